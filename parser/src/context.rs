@@ -1,0 +1,55 @@
+//! The two traits that connect the script layer to the engine.
+//!
+//! * [`EvalContext`]: what an equal-style expression can ask of the simulation
+//!   (thermo keywords, computes, fixes, group functions, per-atom values) and the variable store.
+//! * [`Host`]: the engine as seen by the interpreter: it executes every command that is not
+//!   flow control (variable, next, jump, label, include, if, print, echo, quit are handled by
+//!   the interpreter itself).
+
+use crate::ast::Command;
+use crate::diag::{DResult, Diagnostic};
+use crate::span::SourceMap;
+use crate::variables::Variables;
+
+/// Values an expression may reference. Every method has a default that says "not available",
+/// so a test context only implements `variables`.
+pub trait EvalContext {
+    /// The variable store (for `v_name` and `${name}`).
+    fn variables(&mut self) -> &mut Variables;
+
+    /// A thermo keyword used as a bare word in an expression (`step`, `atoms`, `time`, `dt`,
+    /// `temp`, `pe`, `ke`, `etotal`, `press`, `vol`, `lx`, `xlo`, ...). `None`: not a keyword.
+    fn thermo_keyword(&mut self, _name: &str) -> Option<Result<f64, String>> {
+        None
+    }
+    /// `c_ID` (index `None`) or `c_ID[i]` (1-based) as a global value.
+    fn compute_value(&mut self, id: &str, _index: Option<usize>) -> Result<f64, String> {
+        Err(format!("compute `{id}` does not exist"))
+    }
+    /// `f_ID` or `f_ID[i]` as a global value.
+    fn fix_value(&mut self, id: &str, _index: Option<usize>) -> Result<f64, String> {
+        Err(format!("fix `{id}` does not exist"))
+    }
+    /// Group and region functions: `count(group)`, `mass(group)`, `xcm(group,x)`, `bound(group,xmin)`, ...
+    /// `None`: not a group function.
+    fn group_function(&mut self, _name: &str, _args: &[String]) -> Option<Result<f64, String>> {
+        None
+    }
+    /// A per-atom value referenced by atom ID: `x[12]`, `vx[3]`, `mass[5]`, `type[7]`, ...
+    /// `None`: not a per-atom keyword.
+    fn atom_value(&mut self, _keyword: &str, _id: i64) -> Option<Result<f64, String>> {
+        None
+    }
+}
+
+/// The engine as the interpreter drives it.
+pub trait Host: EvalContext {
+    /// Execute one command (already substituted and split into words).
+    fn execute(&mut self, cmd: &Command, sources: &mut SourceMap) -> DResult<()>;
+    /// Write text to the screen and the log file (both as configured by the host).
+    fn print(&mut self, text: &str);
+    /// Report a warning (the host decides where it goes).
+    fn warn(&mut self, warning: Diagnostic, sources: &SourceMap) {
+        self.print(&warning.render(sources));
+    }
+}

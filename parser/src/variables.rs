@@ -1,0 +1,5 @@
+//! (being written) The variable store.
+
+/// All variables of a run.
+#[derive(Debug, Default)]
+pub struct Variables {}

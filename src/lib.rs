@@ -1,0 +1,6 @@
+//! dmhs: the Discrete Multi-Hybrid System engine (SPH + CGMD + DEM), a LAMMPS companion.
+
+pub mod domain;
+pub mod units;
+
+pub use dmhs_parser as parser;

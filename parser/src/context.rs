@@ -40,6 +40,11 @@ pub trait EvalContext {
     fn atom_value(&mut self, _keyword: &str, _id: i64) -> Option<Result<f64, String>> {
         None
     }
+    /// First and last step of the current (or last) `run` (for `ramp()`, `vdisplace()`, ...).
+    /// `None` before any run.
+    fn run_window(&mut self) -> Option<(i64, i64)> {
+        None
+    }
 }
 
 /// The engine as the interpreter drives it.
@@ -48,6 +53,15 @@ pub trait Host: EvalContext {
     fn execute(&mut self, cmd: &Command, sources: &mut SourceMap) -> DResult<()>;
     /// Write text to the screen and the log file (both as configured by the host).
     fn print(&mut self, text: &str);
+    /// Echo a command line (the `echo` command chooses screen and/or log).
+    fn echo(&mut self, text: &str, screen: bool, log: bool) {
+        if screen || log {
+            self.print(text);
+        }
+    }
+    /// Whether the engine implements a command (the interpreter reports all unknown and
+    /// unsupported command names of a file before running it).
+    fn supports_command(&self, name: &str) -> bool;
     /// Report a warning (the host decides where it goes).
     fn warn(&mut self, warning: Diagnostic, sources: &SourceMap) {
         self.print(&warning.render(sources));

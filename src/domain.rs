@@ -99,3 +99,31 @@ impl Domain {
         }
     }
 }
+
+impl Domain {
+    /// Move `xnew` by whole periods so it is the image closest to `xold`
+    /// (LAMMPS `Domain::remap_near`, same arithmetic).
+    pub fn remap_near(&self, xnew: &mut [f64; 3], xold: &[f64; 3]) {
+        let period = self.prd();
+        for d in 0..3 {
+            if !self.periodic(d) {
+                continue;
+            }
+            let half = 0.5 * period[d];
+            if xnew[d] - xold[d] > period[d] {
+                let n = ((xnew[d] - xold[d]) / period[d]) as i64;
+                xnew[d] -= n as f64 * period[d];
+            }
+            while xnew[d] - xold[d] > half {
+                xnew[d] -= period[d];
+            }
+            if xold[d] - xnew[d] > period[d] {
+                let n = ((xold[d] - xnew[d]) / period[d]) as i64;
+                xnew[d] += n as f64 * period[d];
+            }
+            while xold[d] - xnew[d] > half {
+                xnew[d] += period[d];
+            }
+        }
+    }
+}

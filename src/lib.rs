@@ -1,8 +1,27 @@
 //! dmhs: the Discrete Multi-Hybrid System engine (SPH + CGMD + DEM), a LAMMPS companion.
 
+pub mod atoms;
 pub mod bonded;
+pub mod bonded_forces;
+pub mod boundary;
+pub mod compute;
 pub mod domain;
+pub mod dump;
+pub mod fix;
+pub mod format;
+pub mod groups;
+pub mod memory;
+pub mod neighbor;
+pub mod output;
+pub mod pair;
+pub mod progress;
+pub mod run;
+pub mod sim;
 pub mod special;
+pub mod styles;
+pub mod thermo;
+pub mod timing;
+pub mod topology;
 pub mod units;
 
 pub use dmhs_parser as parser;

@@ -1,0 +1,427 @@
+//! Particles as a struct of arrays. Owned ("local") atoms come first, ghost images of
+//! periodic neighbours after them, exactly as LAMMPS arranges `x`, `v`, `f`.
+//!
+//! Which optional arrays exist is decided once by `atom_style` (see [`AtomFeatures`]); an
+//! absent feature keeps its vectors empty so a scene pays only for what it uses.
+
+/// Optional per-atom properties, switched on by the atom style.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AtomFeatures {
+    /// molecule ID (bond, angle, molecular, full)
+    pub molecule: bool,
+    /// charge (full, charge)
+    pub charge: bool,
+    /// bonds / angles / dihedrals allowed
+    pub bonds: bool,
+    pub angles: bool,
+    pub dihedrals: bool,
+    /// radius, per-atom mass, angular velocity, torque (sphere)
+    pub sphere: bool,
+    /// rho, drho, esph, desph, cv, vest (sph)
+    pub sph: bool,
+}
+
+impl AtomFeatures {
+    /// True if mass is per atom (`rmass`) rather than per type.
+    pub fn per_atom_mass(&self) -> bool {
+        self.sphere
+    }
+    pub fn molecular(&self) -> bool {
+        self.bonds || self.angles || self.dihedrals
+    }
+}
+
+/// Extra per-atom storage owned by a fix or compute (e.g. `fix move` original positions):
+/// kept here so sorting and deleting atoms permutes it with everything else.
+#[derive(Clone, Debug)]
+pub struct ExtraArray {
+    pub name: String,
+    pub stride: usize,
+    pub data: Vec<f64>,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Atoms {
+    pub features: AtomFeatures,
+    /// Number of owned atoms; indices `nlocal..` are ghosts.
+    pub nlocal: usize,
+    /// For each ghost (index `k - nlocal`): the owned atom it images and its periodic shift.
+    pub ghost_owner: Vec<u32>,
+    pub ghost_shift: Vec<[i8; 3]>,
+
+    pub tag: Vec<i64>,
+    /// Atom type, 1-based as in LAMMPS.
+    pub typ: Vec<usize>,
+    /// Group membership bits (bit 0 = group `all`).
+    pub mask: Vec<u32>,
+    pub x: Vec<[f64; 3]>,
+    pub v: Vec<[f64; 3]>,
+    pub f: Vec<[f64; 3]>,
+    pub image: Vec<[i32; 3]>,
+
+    pub molecule: Vec<i64>,
+    pub q: Vec<f64>,
+
+    pub radius: Vec<f64>,
+    pub rmass: Vec<f64>,
+    pub omega: Vec<[f64; 3]>,
+    pub torque: Vec<[f64; 3]>,
+
+    pub rho: Vec<f64>,
+    pub drho: Vec<f64>,
+    pub esph: Vec<f64>,
+    pub desph: Vec<f64>,
+    pub cv: Vec<f64>,
+    pub vest: Vec<[f64; 3]>,
+
+    pub extra: Vec<ExtraArray>,
+}
+
+/// Values for one new atom (fields absent from the style are ignored).
+#[derive(Clone, Debug)]
+pub struct NewAtom {
+    pub tag: i64,
+    pub typ: usize,
+    pub x: [f64; 3],
+    pub v: [f64; 3],
+    pub image: [i32; 3],
+    pub molecule: i64,
+    pub q: f64,
+    pub radius: f64,
+    pub rmass: f64,
+    pub rho: f64,
+    pub esph: f64,
+    pub cv: f64,
+}
+
+impl NewAtom {
+    pub fn at(tag: i64, typ: usize, x: [f64; 3]) -> NewAtom {
+        // defaults as LAMMPS' create_atoms gives them: sphere diameter 1, density 1; sph cv 1
+        NewAtom {
+            tag,
+            typ,
+            x,
+            v: [0.0; 3],
+            image: [0; 3],
+            molecule: 0,
+            q: 0.0,
+            radius: 0.5,
+            rmass: std::f64::consts::PI * 4.0 / 3.0 * 0.125,
+            rho: 0.0,
+            esph: 0.0,
+            cv: 1.0,
+        }
+    }
+}
+
+impl Atoms {
+    pub fn new(features: AtomFeatures) -> Atoms {
+        Atoms { features, ..Atoms::default() }
+    }
+    /// Owned plus ghost atoms.
+    pub fn nall(&self) -> usize {
+        self.x.len()
+    }
+    pub fn nghost(&self) -> usize {
+        self.x.len() - self.nlocal
+    }
+
+    /// Append an owned atom. Must be called with no ghosts present.
+    pub fn push(&mut self, a: &NewAtom) {
+        debug_assert_eq!(self.nghost(), 0);
+        let ft = self.features;
+        self.tag.push(a.tag);
+        self.typ.push(a.typ);
+        self.mask.push(1);
+        self.x.push(a.x);
+        self.v.push(a.v);
+        self.f.push([0.0; 3]);
+        self.image.push(a.image);
+        if ft.molecule {
+            self.molecule.push(a.molecule);
+        }
+        if ft.charge {
+            self.q.push(a.q);
+        }
+        if ft.sphere {
+            self.radius.push(a.radius);
+            self.rmass.push(a.rmass);
+            self.omega.push([0.0; 3]);
+            self.torque.push([0.0; 3]);
+        }
+        if ft.sph {
+            self.rho.push(a.rho);
+            self.drho.push(0.0);
+            self.esph.push(a.esph);
+            self.desph.push(0.0);
+            self.cv.push(a.cv);
+            self.vest.push([0.0; 3]);
+        }
+        for e in &mut self.extra {
+            e.data.extend(std::iter::repeat(0.0).take(e.stride));
+        }
+        self.nlocal += 1;
+    }
+
+    /// Remove all ghosts (before atoms are added, removed or reordered).
+    pub fn clear_ghosts(&mut self) {
+        let n = self.nlocal;
+        self.ghost_owner.clear();
+        self.ghost_shift.clear();
+        self.tag.truncate(n);
+        self.typ.truncate(n);
+        self.mask.truncate(n);
+        self.x.truncate(n);
+        self.v.truncate(n);
+        self.f.truncate(n);
+        self.image.truncate(n);
+        let ft = self.features;
+        if ft.molecule {
+            self.molecule.truncate(n);
+        }
+        if ft.charge {
+            self.q.truncate(n);
+        }
+        if ft.sphere {
+            self.radius.truncate(n);
+            self.rmass.truncate(n);
+            self.omega.truncate(n);
+            self.torque.truncate(n);
+        }
+        if ft.sph {
+            self.rho.truncate(n);
+            self.drho.truncate(n);
+            self.esph.truncate(n);
+            self.desph.truncate(n);
+            self.cv.truncate(n);
+            self.vest.truncate(n);
+        }
+    }
+
+    /// Add a ghost image of owned atom `owner` shifted by `shift` box lengths; per-atom
+    /// values are copied, the position is `x + shift*prd` computed per component as LAMMPS'
+    /// forward communication does it.
+    pub fn push_ghost(&mut self, owner: usize, shift: [i8; 3], prd: [f64; 3]) {
+        let mut x = self.x[owner];
+        for d in 0..3 {
+            if shift[d] != 0 {
+                x[d] += shift[d] as f64 * prd[d];
+            }
+        }
+        self.ghost_owner.push(owner as u32);
+        self.ghost_shift.push(shift);
+        self.tag.push(self.tag[owner]);
+        self.typ.push(self.typ[owner]);
+        self.mask.push(self.mask[owner]);
+        self.x.push(x);
+        self.v.push(self.v[owner]);
+        self.f.push([0.0; 3]);
+        self.image.push(self.image[owner]);
+        let ft = self.features;
+        if ft.molecule {
+            self.molecule.push(self.molecule[owner]);
+        }
+        if ft.charge {
+            self.q.push(self.q[owner]);
+        }
+        if ft.sphere {
+            self.radius.push(self.radius[owner]);
+            self.rmass.push(self.rmass[owner]);
+            self.omega.push(self.omega[owner]);
+            self.torque.push([0.0; 3]);
+        }
+        if ft.sph {
+            self.rho.push(self.rho[owner]);
+            self.drho.push(0.0);
+            self.esph.push(self.esph[owner]);
+            self.desph.push(0.0);
+            self.cv.push(self.cv[owner]);
+            self.vest.push(self.vest[owner]);
+        }
+    }
+
+    /// Refresh ghost positions from their owners (LAMMPS' forward communication of `x`).
+    pub fn forward_positions(&mut self, prd: [f64; 3]) {
+        let n = self.nlocal;
+        let (local, ghosts) = self.x.split_at_mut(n);
+        for (k, g) in ghosts.iter_mut().enumerate() {
+            let o = self.ghost_owner[k] as usize;
+            let s = self.ghost_shift[k];
+            let mut x = local[o];
+            for d in 0..3 {
+                if s[d] != 0 {
+                    x[d] += s[d] as f64 * prd[d];
+                }
+            }
+            *g = x;
+        }
+    }
+
+    /// Copy a per-atom vector field from owners to ghosts.
+    pub fn forward_field<T: Copy>(field: &mut [T], nlocal: usize, owner: &[u32]) {
+        let (local, ghosts) = field.split_at_mut(nlocal);
+        for (g, &o) in ghosts.iter_mut().zip(owner) {
+            *g = local[o as usize];
+        }
+    }
+
+    /// Refresh the per-atom values that pair styles may read on ghosts (velocities and the
+    /// SPH/DEM state); called every step when ghosts exist.
+    pub fn forward_state(&mut self) {
+        let n = self.nlocal;
+        let own = &self.ghost_owner;
+        Self::forward_field(&mut self.v, n, own);
+        let ft = self.features;
+        if ft.sphere {
+            Self::forward_field(&mut self.omega, n, own);
+            Self::forward_field(&mut self.radius, n, own);
+            Self::forward_field(&mut self.rmass, n, own);
+        }
+        if ft.sph {
+            Self::forward_field(&mut self.rho, n, own);
+            Self::forward_field(&mut self.esph, n, own);
+            Self::forward_field(&mut self.cv, n, own);
+            Self::forward_field(&mut self.vest, n, own);
+        }
+    }
+
+    /// Reorder owned atoms: new position `k` takes old atom `order[k]`. No ghosts allowed.
+    pub fn permute(&mut self, order: &[usize]) {
+        debug_assert_eq!(self.nghost(), 0);
+        fn apply<T: Copy>(v: &mut Vec<T>, order: &[usize]) {
+            if v.is_empty() {
+                return;
+            }
+            let old = std::mem::take(v);
+            v.extend(order.iter().map(|&i| old[i]));
+        }
+        apply(&mut self.tag, order);
+        apply(&mut self.typ, order);
+        apply(&mut self.mask, order);
+        apply(&mut self.x, order);
+        apply(&mut self.v, order);
+        apply(&mut self.f, order);
+        apply(&mut self.image, order);
+        apply(&mut self.molecule, order);
+        apply(&mut self.q, order);
+        apply(&mut self.radius, order);
+        apply(&mut self.rmass, order);
+        apply(&mut self.omega, order);
+        apply(&mut self.torque, order);
+        apply(&mut self.rho, order);
+        apply(&mut self.drho, order);
+        apply(&mut self.esph, order);
+        apply(&mut self.desph, order);
+        apply(&mut self.cv, order);
+        apply(&mut self.vest, order);
+        for e in &mut self.extra {
+            let old = std::mem::take(&mut e.data);
+            let s = e.stride;
+            e.data.reserve(order.len() * s);
+            for &i in order {
+                e.data.extend_from_slice(&old[i * s..(i + 1) * s]);
+            }
+        }
+        self.nlocal = order.len();
+    }
+
+    /// Delete the owned atoms for which `remove` is true (order of the rest is kept).
+    pub fn retain(&mut self, remove: &[bool]) {
+        let order: Vec<usize> = (0..self.nlocal).filter(|&i| !remove[i]).collect();
+        self.permute(&order);
+    }
+
+    /// Register (or find) an extra per-atom array; returns its index in `extra`.
+    pub fn extra_array(&mut self, name: &str, stride: usize) -> usize {
+        if let Some(k) = self.extra.iter().position(|e| e.name == name) {
+            return k;
+        }
+        self.extra.push(ExtraArray { name: name.to_string(), stride, data: vec![0.0; self.nlocal * stride] });
+        self.extra.len() - 1
+    }
+    pub fn remove_extra(&mut self, name: &str) {
+        self.extra.retain(|e| e.name != name);
+    }
+
+    /// Mass of atom `i`: per-atom `rmass` if the style has it, else the per-type mass.
+    #[inline]
+    pub fn mass(&self, i: usize, type_mass: &[f64]) -> f64 {
+        if self.features.per_atom_mass() { self.rmass[i] } else { type_mass[self.typ[i]] }
+    }
+
+    /// Largest atom ID.
+    pub fn max_tag(&self) -> i64 {
+        self.tag[..self.nlocal].iter().copied().max().unwrap_or(0)
+    }
+
+    /// Map from atom ID to local index (IDs must be unique and positive).
+    pub fn tag_map(&self) -> TagMap {
+        let mut m = TagMap { index: vec![u32::MAX; self.max_tag() as usize + 1] };
+        for i in 0..self.nlocal {
+            m.index[self.tag[i] as usize] = i as u32;
+        }
+        m
+    }
+}
+
+/// Dense atom-ID -> local-index map (LAMMPS `atom_modify map array`).
+#[derive(Clone, Debug, Default)]
+pub struct TagMap {
+    index: Vec<u32>,
+}
+
+impl TagMap {
+    #[inline]
+    pub fn get(&self, tag: i64) -> Option<usize> {
+        if tag < 0 {
+            return None;
+        }
+        match self.index.get(tag as usize) {
+            Some(&i) if i != u32::MAX => Some(i as usize),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ghosts_copy_owner_and_shift_position() {
+        let mut a = Atoms::new(AtomFeatures { sph: true, ..Default::default() });
+        let mut n = NewAtom::at(7, 2, [0.25, 1.0, 0.0]);
+        n.rho = 1000.0;
+        a.push(&n);
+        a.push_ghost(0, [1, 0, 0], [10.0, 5.0, 1.0]);
+        assert_eq!(a.nlocal, 1);
+        assert_eq!(a.nghost(), 1);
+        assert_eq!(a.x[1], [10.25, 1.0, 0.0]);
+        assert_eq!(a.tag[1], 7);
+        assert_eq!(a.rho[1], 1000.0);
+        a.x[0][0] = 0.5;
+        a.forward_positions([10.0, 5.0, 1.0]);
+        assert_eq!(a.x[1][0], 10.5);
+        a.clear_ghosts();
+        assert_eq!(a.nall(), 1);
+    }
+
+    #[test]
+    fn permute_moves_every_field() {
+        let mut a = Atoms::new(AtomFeatures { molecule: true, ..Default::default() });
+        let k = a.extra_array("xorig", 3);
+        for t in 1..=3 {
+            let mut n = NewAtom::at(t, 1, [t as f64, 0.0, 0.0]);
+            n.molecule = 10 * t;
+            a.push(&n);
+        }
+        a.extra[k].data = vec![1., 1., 1., 2., 2., 2., 3., 3., 3.];
+        a.permute(&[2, 0, 1]);
+        assert_eq!(a.tag, vec![3, 1, 2]);
+        assert_eq!(a.molecule, vec![30, 10, 20]);
+        assert_eq!(a.extra[k].data, vec![3., 3., 3., 1., 1., 1., 2., 2., 2.]);
+        let m = a.tag_map();
+        assert_eq!(m.get(3), Some(0));
+        assert_eq!(m.get(4), None);
+    }
+}

@@ -1,0 +1,95 @@
+//! `fix ID group addforce fx fy fz [every N] [region R]`: adds a constant (or equal-style
+//! variable) force; f_ID is minus the work term, f_ID[1..3] the force before the addition.
+
+use super::value::FixValue;
+use super::{Fix, FixHooks};
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "fix ID group addforce fx fy fz [every N] [region region-ID]";
+
+pub struct FixAddForce {
+    id: String,
+    groupbit: u32,
+    value: [FixValue; 3],
+    every: i64,
+    region: Option<usize>,
+    /// -sum(F . x_unwrapped), then the original force sum.
+    foriginal: [f64; 4],
+}
+
+impl FixAddForce {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let mut value = [FixValue::Null, FixValue::Null, FixValue::Null];
+        for (k, what) in ["fx", "fy", "fz"].iter().enumerate() {
+            let w = a.word(what)?;
+            value[k] = FixValue::parse(w, what, false).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
+        }
+        let mut every = 1;
+        let mut region = None;
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            match w.text.as_str() {
+                "every" => every = a.i64_in("every", 1, i64::MAX)?,
+                "region" => region = Some(super::setforce::find_region(&mut a, sim)?),
+                _ => return Err(a.unknown_keyword(w, &["every", "region"])),
+            }
+        }
+        Ok(FixAddForce { id, groupbit, value, every, region, foriginal: [0.0; 4] })
+    }
+}
+
+impl Fix for FixAddForce {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "addforce"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { post_force: true, ..FixHooks::default() }
+    }
+    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        if sim.step % self.every != 0 {
+            return Ok(());
+        }
+        let mut fv = [0.0; 3];
+        for k in 0..3 {
+            fv[k] = self.value[k].eval(sim)?.unwrap_or(0.0);
+        }
+        let domain = sim.domain.clone().ok_or_else(|| RunError::new(sim.step, "no box"))?;
+        let region = self.region.map(|k| &sim.regions[k]);
+        let a = &mut sim.atoms;
+        self.foriginal = [0.0; 4];
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit == 0 {
+                continue;
+            }
+            if let Some(r) = region {
+                if !r.inside(a.x[i]) {
+                    continue;
+                }
+            }
+            let u = domain.unmap(a.x[i], a.image[i]);
+            self.foriginal[0] -= fv[0] * u[0] + fv[1] * u[1] + fv[2] * u[2];
+            let f = &mut a.f[i];
+            self.foriginal[1] += f[0];
+            self.foriginal[2] += f[1];
+            self.foriginal[3] += f[2];
+            f[0] += fv[0];
+            f[1] += fv[1];
+            f[2] += fv[2];
+        }
+        Ok(())
+    }
+    fn scalar(&self, _sim: &Simulation) -> Option<f64> {
+        Some(self.foriginal[0])
+    }
+    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+        (1..=3).contains(&i).then(|| self.foriginal[i])
+    }
+}

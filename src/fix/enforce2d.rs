@@ -1,0 +1,56 @@
+//! `fix ID group enforce2d`: zero the z components of velocity and force (and the x, y
+//! components of angular velocity and torque) so a 2D system stays in its plane.
+
+use super::{Fix, FixHooks};
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub struct FixEnforce2d {
+    id: String,
+    groupbit: u32,
+}
+
+impl FixEnforce2d {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command) -> DResult<Self> {
+        Args::from_words(args, cmd.span, "fix ID group enforce2d").finish()?;
+        Ok(FixEnforce2d { id, groupbit })
+    }
+}
+
+impl Fix for FixEnforce2d {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "enforce2d"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { post_force: true, ..FixHooks::default() }
+    }
+    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
+        if sim.dimension == 3 {
+            return Err("fix enforce2d cannot be used in a 3d simulation".into());
+        }
+        Ok(())
+    }
+    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        let a = &mut sim.atoms;
+        let sphere = a.features.sphere;
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit != 0 {
+                a.v[i][2] = 0.0;
+                a.f[i][2] = 0.0;
+                if sphere {
+                    a.omega[i][0] = 0.0;
+                    a.omega[i][1] = 0.0;
+                    a.torque[i][0] = 0.0;
+                    a.torque[i][1] = 0.0;
+                }
+            }
+        }
+        Ok(())
+    }
+}

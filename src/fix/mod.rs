@@ -1,0 +1,97 @@
+//! Fixes: operations applied to a group of atoms at fixed points of the time step
+//! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
+
+pub mod addforce;
+pub mod value;
+pub mod enforce2d;
+pub mod gravity;
+pub mod move_linear;
+pub mod nve;
+pub mod setforce;
+pub mod viscous;
+pub mod wall_reflect;
+
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::{Command, DResult, Word};
+
+/// Where a fix acts in the step (LAMMPS' setmask bits), so the engine calls only what is used.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FixHooks {
+    pub initial_integrate: bool,
+    pub post_integrate: bool,
+    pub post_force: bool,
+    pub final_integrate: bool,
+    pub end_of_step: bool,
+}
+
+pub trait Fix: Send {
+    fn id(&self) -> &str;
+    fn style(&self) -> &str;
+    /// Bitmask of the fix group.
+    fn groupbit(&self) -> u32;
+    fn hooks(&self) -> FixHooks;
+    /// Checks before a run (e.g. enforce2d in 3D); errors stop the run before it starts.
+    fn init(&mut self, _sim: &Simulation) -> Result<(), String> {
+        Ok(())
+    }
+    /// Called once per run after the forces of step 0 (LAMMPS `setup`): by default
+    /// fixes that modify forces apply `post_force`.
+    fn setup(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        if self.hooks().post_force {
+            self.post_force(sim)?;
+        }
+        Ok(())
+    }
+    fn initial_integrate(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+        Ok(())
+    }
+    fn post_integrate(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+        Ok(())
+    }
+    fn post_force(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+        Ok(())
+    }
+    fn final_integrate(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+        Ok(())
+    }
+    fn end_of_step(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+        Ok(())
+    }
+    /// Global scalar (`f_ID`), if the fix has one.
+    fn scalar(&self, _sim: &Simulation) -> Option<f64> {
+        None
+    }
+    /// Global vector element `f_ID[i]` (1-based), if the fix has one.
+    fn vector(&self, _sim: &Simulation, _i: usize) -> Option<f64> {
+        None
+    }
+    /// Degrees of freedom this fix removes from atoms of a group (for temperature).
+    fn dof_removed(&self, _sim: &Simulation, _groupbit: u32) -> f64 {
+        0.0
+    }
+    /// Free per-atom storage when the fix is deleted.
+    fn cleanup(&mut self, _sim: &mut Simulation) {}
+    /// One-line description for `dmhs check`.
+    fn describe(&self) -> String {
+        format!("fix {} {}", self.id(), self.style())
+    }
+}
+
+/// Fix styles this build implements.
+pub const SUPPORTED: &[&str] = &["nve", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "move"];
+
+/// Build a fix from `fix ID group style args...`.
+pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
+    let id = id.text.clone();
+    match style.text.as_str() {
+        "nve" => Ok(Box::new(nve::FixNve::from_lammps(id, groupbit, args, cmd)?)),
+        "gravity" => Ok(Box::new(gravity::FixGravity::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "addforce" => Ok(Box::new(addforce::FixAddForce::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "setforce" => Ok(Box::new(setforce::FixSetForce::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "enforce2d" => Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(id, groupbit, args, cmd)?)),
+        "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
+        other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
+    }
+}

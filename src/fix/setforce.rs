@@ -1,0 +1,91 @@
+//! `fix ID group setforce fx fy fz [region R]`: sets force components (NULL leaves one
+//! alone); f_ID[1..3] is the force before it was set.
+
+use super::value::FixValue;
+use super::{Fix, FixHooks};
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "fix ID group setforce fx|NULL fy|NULL fz|NULL [region region-ID]";
+
+pub struct FixSetForce {
+    id: String,
+    groupbit: u32,
+    value: [FixValue; 3],
+    region: Option<usize>,
+    foriginal: [f64; 3],
+}
+
+/// `region ID` keyword of a fix: the region's index.
+pub fn find_region(a: &mut Args, sim: &Simulation) -> DResult<usize> {
+    let w = a.word("region ID")?;
+    sim.regions
+        .iter()
+        .position(|r| r.id == w.text)
+        .ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))
+}
+
+impl FixSetForce {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let mut value = [FixValue::Null, FixValue::Null, FixValue::Null];
+        for (k, what) in ["fx", "fy", "fz"].iter().enumerate() {
+            let w = a.word(what)?;
+            value[k] = FixValue::parse(w, what, true).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
+        }
+        let mut region = None;
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            match w.text.as_str() {
+                "region" => region = Some(find_region(&mut a, sim)?),
+                _ => return Err(a.unknown_keyword(w, &["region"])),
+            }
+        }
+        Ok(FixSetForce { id, groupbit, value, region, foriginal: [0.0; 3] })
+    }
+}
+
+impl Fix for FixSetForce {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "setforce"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { post_force: true, ..FixHooks::default() }
+    }
+    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        let mut fv = [None; 3];
+        for k in 0..3 {
+            fv[k] = self.value[k].eval(sim)?;
+        }
+        let region = self.region.map(|k| &sim.regions[k]);
+        let a = &mut sim.atoms;
+        self.foriginal = [0.0; 3];
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit == 0 {
+                continue;
+            }
+            if let Some(r) = region {
+                if !r.inside(a.x[i]) {
+                    continue;
+                }
+            }
+            let f = &mut a.f[i];
+            for k in 0..3 {
+                self.foriginal[k] += f[k];
+                if let Some(v) = fv[k] {
+                    f[k] = v;
+                }
+            }
+        }
+        Ok(())
+    }
+    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+        (1..=3).contains(&i).then(|| self.foriginal[i - 1])
+    }
+}

@@ -1,0 +1,35 @@
+//! A fix argument that is a constant, an equal-style variable (`v_name`), or NULL.
+
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::args::word_f64;
+use dmhs_parser::{DResult, Word};
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum FixValue {
+    Const(f64),
+    Variable(String),
+    Null,
+}
+
+impl FixValue {
+    /// Parse a word; `allow_null` accepts `NULL`.
+    pub fn parse(w: &Word, what: &str, allow_null: bool) -> DResult<FixValue> {
+        if allow_null && w.text == "NULL" {
+            return Ok(FixValue::Null);
+        }
+        if let Some(name) = w.text.strip_prefix("v_") {
+            return Ok(FixValue::Variable(name.to_string()));
+        }
+        Ok(FixValue::Const(word_f64(w, what)?))
+    }
+    /// Current value (None for NULL).
+    pub fn eval(&self, sim: &mut Simulation) -> Result<Option<f64>, RunError> {
+        match self {
+            FixValue::Const(x) => Ok(Some(*x)),
+            FixValue::Null => Ok(None),
+            FixValue::Variable(name) => dmhs_parser::variables::compute_equal(sim, name)
+                .map(Some)
+                .map_err(|e| RunError::new(sim.step, format!("variable `{name}`: {e}"))),
+        }
+    }
+}

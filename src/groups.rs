@@ -1,0 +1,47 @@
+//! Named groups of atoms as bits of the per-atom `mask` (at most 32, as in LAMMPS).
+
+pub const MAX_GROUPS: usize = 32;
+
+#[derive(Clone, Debug)]
+pub struct Groups {
+    names: Vec<Option<String>>,
+}
+
+impl Default for Groups {
+    fn default() -> Self {
+        let mut names = vec![None; MAX_GROUPS];
+        names[0] = Some("all".to_string());
+        Groups { names }
+    }
+}
+
+impl Groups {
+    pub fn find(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n.as_deref() == Some(name))
+    }
+    /// Bitmask of a group by name.
+    pub fn bit(&self, name: &str) -> Option<u32> {
+        self.find(name).map(|k| 1u32 << k)
+    }
+    /// Index of an existing group or a new one.
+    pub fn find_or_create(&mut self, name: &str) -> Result<usize, String> {
+        if let Some(k) = self.find(name) {
+            return Ok(k);
+        }
+        match self.names.iter().position(|n| n.is_none()) {
+            Some(k) => {
+                self.names[k] = Some(name.to_string());
+                Ok(k)
+            }
+            None => Err(format!("too many groups (at most {MAX_GROUPS}, including `all`)")),
+        }
+    }
+    pub fn delete(&mut self, k: usize) {
+        if k > 0 {
+            self.names[k] = None;
+        }
+    }
+    pub fn names(&self) -> impl Iterator<Item = (usize, &str)> {
+        self.names.iter().enumerate().filter_map(|(k, n)| n.as_deref().map(|s| (k, s)))
+    }
+}

@@ -1,0 +1,84 @@
+//! Where text goes: the screen and the log file (LAMMPS' `-screen`, `-log`, `log`).
+//! Files that must never be left half-written use [`write_atomic`].
+
+use std::fs::{File, OpenOptions};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+#[derive(Default)]
+pub struct Output {
+    pub screen: bool,
+    log: Option<(PathBuf, BufWriter<File>)>,
+    /// Captured text (for tests and the library API), when enabled.
+    pub captured: Option<String>,
+}
+
+impl Output {
+    pub fn new(screen: bool) -> Output {
+        Output { screen, log: None, captured: None }
+    }
+    /// Open (or append to) a log file; `None` closes the current log.
+    pub fn set_log(&mut self, path: Option<&Path>, append: bool) -> std::io::Result<()> {
+        if let Some((_, mut w)) = self.log.take() {
+            let _ = w.flush();
+        }
+        if let Some(p) = path {
+            let f = if append { OpenOptions::new().create(true).append(true).open(p)? } else { File::create(p)? };
+            self.log = Some((p.to_path_buf(), BufWriter::new(f)));
+        }
+        Ok(())
+    }
+    pub fn log_path(&self) -> Option<&Path> {
+        self.log.as_ref().map(|(p, _)| p.as_path())
+    }
+    /// Text to screen and log.
+    pub fn print(&mut self, text: &str) {
+        self.print_to(text, true, true);
+    }
+    pub fn print_to(&mut self, text: &str, screen: bool, log: bool) {
+        if screen && self.screen {
+            let mut out = std::io::stdout().lock();
+            let _ = out.write_all(text.as_bytes());
+            if !text.ends_with('\n') {
+                let _ = out.write_all(b"\n");
+            }
+        }
+        if log {
+            if let Some((_, w)) = &mut self.log {
+                let _ = w.write_all(text.as_bytes());
+                if !text.ends_with('\n') {
+                    let _ = w.write_all(b"\n");
+                }
+            }
+        }
+        if let Some(c) = &mut self.captured {
+            c.push_str(text);
+            if !text.ends_with('\n') {
+                c.push('\n');
+            }
+        }
+    }
+    pub fn flush(&mut self) {
+        if let Some((_, w)) = &mut self.log {
+            let _ = w.flush();
+        }
+        let _ = std::io::stdout().flush();
+    }
+}
+
+impl Drop for Output {
+    fn drop(&mut self) {
+        self.flush();
+    }
+}
+
+/// Write a whole file so that readers see either the old file or the complete new one
+/// (written to a temporary file in the same directory, then renamed over the target).
+pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
+    tmp.write_all(contents)?;
+    tmp.flush()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}

@@ -1,0 +1,185 @@
+//! `pair_style hybrid` and `hybrid/overlay`: several pair styles, each assigned to type pairs
+//! by `pair_coeff I J STYLE [k] args...`. With `hybrid` each type pair has at most one style
+//! (a later assignment replaces an earlier one); with `hybrid/overlay` the styles add up.
+
+use super::{new_pair_style, PairInput, PairModify, PairStyle, Tally, SUPPORTED};
+use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+
+pub const SYNTAX: &str = "pair_style hybrid|hybrid/overlay style1 args1 style2 args2 ...";
+pub const COEFF_SYNTAX: &str = "pair_coeff I J style [k] args...  (k picks among repeated styles; `none` clears a pair under hybrid)";
+
+pub struct Hybrid {
+    overlay: bool,
+    styles: Vec<Box<dyn PairStyle>>,
+    /// For each sub-style, the type pairs assigned to it (row-major over 0..=ntypes).
+    assigned: Vec<Vec<bool>>,
+    /// Pairs explicitly set to `none`.
+    none: Vec<bool>,
+    ntypes: usize,
+}
+
+impl Hybrid {
+    pub fn from_lammps(name: &Word, args: &[Word], cmd: &Command) -> DResult<Hybrid> {
+        let overlay = name.text == "hybrid/overlay";
+        if args.is_empty() {
+            return Err(Diagnostic::at(cmd.span, "pair_style hybrid needs at least one sub-style", "no sub-style").with_help(format!("syntax: {SYNTAX}")));
+        }
+        // a word starts a new sub-style if it names a pair style (as LAMMPS decides)
+        let is_style = |w: &Word| {
+            SUPPORTED.contains(&w.text.as_str()) || dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Pair, &w.text)
+        };
+        if !is_style(&args[0]) {
+            return Err(Diagnostic::at(args[0].span, format!("`{}` is not a pair style", args[0].text), "expected a pair style name").with_help(format!("syntax: {SYNTAX}")));
+        }
+        let mut styles = Vec::new();
+        let mut k = 0;
+        while k < args.len() {
+            let start = k + 1;
+            let mut end = start;
+            while end < args.len() && !is_style(&args[end]) {
+                end += 1;
+            }
+            if args[k].text.starts_with("hybrid") {
+                return Err(Diagnostic::at(args[k].span, "pair_style hybrid cannot contain another hybrid style", "not allowed here"));
+            }
+            styles.push(new_pair_style(&args[k], &args[start..end], cmd)?);
+            k = end;
+        }
+        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0 })
+    }
+
+    fn grow(&mut self, n: usize) {
+        if n <= self.ntypes && !self.assigned.is_empty() {
+            return;
+        }
+        let old = self.ntypes;
+        let s_old = old + 1;
+        let s = n + 1;
+        let regrid = |v: &Vec<bool>| {
+            let mut g = vec![false; s * s];
+            for i in 0..=old {
+                for j in 0..=old {
+                    if let Some(&b) = v.get(i * s_old + j) {
+                        g[i * s + j] = b;
+                    }
+                }
+            }
+            g
+        };
+        let mut assigned: Vec<Vec<bool>> = self.assigned.iter().map(regrid).collect();
+        assigned.resize(self.styles.len(), vec![false; s * s]);
+        self.assigned = assigned;
+        self.none = regrid(&self.none);
+        self.ntypes = n;
+    }
+
+    /// Which sub-style `pair_coeff` names: the style word and, for a repeated style, an index.
+    fn pick(&self, args: &mut Args) -> DResult<Option<usize>> {
+        let w = args.word("sub-style name")?;
+        if w.text == "none" {
+            return Ok(None);
+        }
+        let matches: Vec<usize> = (0..self.styles.len()).filter(|&k| self.styles[k].style() == w.text).collect();
+        match matches.len() {
+            0 => {
+                let names: Vec<&str> = self.styles.iter().map(|s| s.style()).collect();
+                Err(args.error_at(w, format!("pair_coeff names `{}`, which is not a sub-style of this pair_style", w.text), format!("sub-styles: {}", names.join(", "))))
+            }
+            1 => Ok(Some(matches[0])),
+            n => {
+                let k = args.i64_in("sub-style index", 1, n as i64)? as usize;
+                Ok(Some(matches[k - 1]))
+            }
+        }
+    }
+}
+
+impl PairStyle for Hybrid {
+    fn style(&self) -> &str {
+        if self.overlay { "hybrid/overlay" } else { "hybrid" }
+    }
+
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        self.grow(ihi.max(jhi));
+        let s = self.ntypes + 1;
+        let which = self.pick(args)?;
+        if let Some(k) = which {
+            let rest = args.remaining();
+            let mut sub = Args::from_words(rest, rest.first().map(|w| w.span).unwrap_or_default(), args.syntax);
+            self.styles[k].coeff(ilo, ihi, jlo, jhi, &mut sub)?;
+            args.skip(rest.len());
+        } else {
+            args.finish()?;
+        }
+        for i in ilo..=ihi {
+            for j in jlo.max(i)..=jhi {
+                for (m, a) in self.assigned.iter_mut().enumerate() {
+                    let on = match which {
+                        Some(k) if m == k => true,
+                        _ if self.overlay && which.is_some() => a[i * s + j],
+                        _ => false,
+                    };
+                    a[i * s + j] = on;
+                    a[j * s + i] = on;
+                }
+                let none = which.is_none();
+                self.none[i * s + j] = none;
+                self.none[j * s + i] = none;
+            }
+        }
+        Ok(())
+    }
+
+    fn init(&mut self, ntypes: usize, modify: &PairModify, _active: Option<&[bool]>) -> Result<(), String> {
+        self.grow(ntypes);
+        let s = ntypes + 1;
+        for i in 1..=ntypes {
+            for j in i..=ntypes {
+                let any = self.assigned.iter().any(|a| a[i * s + j]) || self.none[i * s + j];
+                if !any {
+                    // mixed pairs: assigned to a style only if I,I and J,J both use it alone
+                    let k_of = |t: usize| {
+                        let ks: Vec<usize> = (0..self.styles.len()).filter(|&k| self.assigned[k][t * s + t]).collect();
+                        if ks.len() == 1 { Some(ks[0]) } else { None }
+                    };
+                    match (k_of(i), k_of(j)) {
+                        (Some(a), Some(b)) if a == b && i != j => {
+                            self.assigned[a][i * s + j] = true;
+                            self.assigned[a][j * s + i] = true;
+                        }
+                        _ => return Err(format!("pair coefficients for types {i} {j} are not set (hybrid pair styles cannot mix different sub-styles)")),
+                    }
+                }
+            }
+        }
+        for (style, active) in self.styles.iter_mut().zip(&self.assigned) {
+            style.init(ntypes, modify, Some(active)).map_err(|e| format!("{e} (sub-style {})", style.style()))?;
+        }
+        Ok(())
+    }
+
+    fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        let s = self.ntypes + 1;
+        (0..self.styles.len())
+            .filter(|&k| self.assigned[k][it * s + jt])
+            .map(|k| self.styles[k].cutoff(it, jt))
+            .fold(0.0, f64::max)
+    }
+
+    fn compute(&self, input: &PairInput, f: &mut [[f64; 3]]) -> Tally {
+        let mut total = Tally::default();
+        for (k, style) in self.styles.iter().enumerate() {
+            let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            total.add(&style.compute(&sub, f));
+        }
+        total
+    }
+
+    fn describe(&self) -> String {
+        let mut s = self.style().to_string();
+        for st in &self.styles {
+            s += &format!("\n  {}", st.describe().replace('\n', "\n  "));
+        }
+        s
+    }
+}

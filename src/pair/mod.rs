@@ -1,0 +1,280 @@
+//! Pair styles and the engine-owned pair loop.
+//!
+//! A style file holds its parameters, its `pair_style`/`pair_coeff` parsing and a kernel;
+//! the loop over the neighbour list, Newton's third law, threading and energy/virial tallies
+//! live here. Adding a style touches one list: [`new_pair_style`].
+
+pub mod hybrid;
+pub mod lj_cut;
+pub mod zero;
+
+use crate::atoms::Atoms;
+use crate::neighbor::{special_level, ChunkList, NeighList, NEIGH_MASK};
+use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+use rayon::prelude::*;
+
+/// How unset I,J coefficients are derived from I,I and J,J (`pair_modify mix`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MixRule {
+    Geometric,
+    Arithmetic,
+    SixthPower,
+}
+
+impl MixRule {
+    /// LAMMPS `Pair::mix_energy`.
+    pub fn energy(self, eps1: f64, eps2: f64, sig1: f64, sig2: f64) -> f64 {
+        match self {
+            MixRule::Geometric | MixRule::Arithmetic => (eps1 * eps2).sqrt(),
+            MixRule::SixthPower => {
+                2.0 * (eps1 * eps2).sqrt() * sig1.powf(3.0) * sig2.powf(3.0) / (sig1.powf(6.0) + sig2.powf(6.0))
+            }
+        }
+    }
+    /// LAMMPS `Pair::mix_distance`.
+    pub fn distance(self, sig1: f64, sig2: f64) -> f64 {
+        match self {
+            MixRule::Geometric => (sig1 * sig2).sqrt(),
+            MixRule::Arithmetic => 0.5 * (sig1 + sig2),
+            MixRule::SixthPower => (0.5 * (sig1.powf(6.0) + sig2.powf(6.0))).powf(1.0 / 6.0),
+        }
+    }
+}
+
+/// `pair_modify` settings shared by all styles.
+#[derive(Clone, Debug)]
+pub struct PairModify {
+    pub mix: MixRule,
+    pub shift: bool,
+}
+
+impl Default for PairModify {
+    fn default() -> Self {
+        PairModify { mix: MixRule::Geometric, shift: false }
+    }
+}
+
+/// Energies and virial from one force evaluation (only filled when asked for).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Tally {
+    pub evdwl: f64,
+    pub ecoul: f64,
+    /// xx, yy, zz, xy, xz, yz
+    pub virial: [f64; 6],
+}
+
+impl Tally {
+    pub fn add(&mut self, o: &Tally) {
+        self.evdwl += o.evdwl;
+        self.ecoul += o.ecoul;
+        for k in 0..6 {
+            self.virial[k] += o.virial[k];
+        }
+    }
+}
+
+/// What a pair computation may read.
+pub struct PairInput<'a> {
+    pub atoms: &'a Atoms,
+    pub list: &'a NeighList,
+    /// `special_bonds` lj weights for levels 0..=3 (level 0 = 1.0).
+    pub special_lj: [f64; 4],
+    pub special_coul: [f64; 4],
+    /// Compute energies and virial on this step.
+    pub eflag: bool,
+    pub ntypes: usize,
+    /// Type pairs this style handles (row-major over `0..=ntypes`); None = all
+    /// (set by `hybrid` for its sub-styles).
+    pub type_filter: Option<&'a [bool]>,
+}
+
+/// A pair style as the engine drives it.
+pub trait PairStyle: Send + Sync {
+    fn style(&self) -> &str;
+    /// `pair_coeff I J args...` with the type ranges already parsed (`args` starts after them).
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()>;
+    /// Prepare for a run (mixing, offsets). An error names what is missing.
+    /// `active` (row-major over `0..=ntypes`) limits the type pairs that must be set, for
+    /// sub-styles of `hybrid`; the others get no interaction.
+    fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String>;
+    /// Interaction cutoff for a type pair after `init` (0 = no interaction).
+    fn cutoff(&self, it: usize, jt: usize) -> f64;
+    /// Add forces on owned atoms to `f`; return the tallies when `input.eflag`.
+    fn compute(&self, input: &PairInput, f: &mut [[f64; 3]]) -> Tally;
+    /// The words of `pair_coeff` for type I (for write_data's "Pair Coeffs"); None if the
+    /// style has no per-type form.
+    fn data_coeffs(&self, _it: usize) -> Option<String> {
+        None
+    }
+    /// One line per line of `pair_coeff` to reproduce the settings (for `dmhs check`).
+    fn describe(&self) -> String {
+        self.style().to_string()
+    }
+}
+
+/// Build a pair style from `pair_style NAME args...`.
+pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<dyn PairStyle>> {
+    match name.text.as_str() {
+        "lj/cut" => Ok(Box::new(lj_cut::LjCut::from_lammps(args, cmd)?)),
+        "zero" => Ok(Box::new(zero::PairZero::from_lammps(args, cmd)?)),
+        "hybrid" | "hybrid/overlay" => Ok(Box::new(hybrid::Hybrid::from_lammps(name, args, cmd)?)),
+        other => Err(crate::styles::unsupported_style("pair", name, other, SUPPORTED)),
+    }
+}
+
+/// Pair styles this build implements.
+pub const SUPPORTED: &[&str] = &["lj/cut", "zero", "hybrid", "hybrid/overlay"];
+
+/// A kernel for a central pair force between two point particles.
+pub trait CentralKernel: Sync {
+    /// `Some((fpair, energy))` when `rsq` is inside the cutoff of the type pair, where the
+    /// force on i is `fpair * (x_i - x_j)`. `factor` is the special-bond weight.
+    fn eval(&self, itype: usize, jtype: usize, rsq: f64, factor: f64, eflag: bool) -> Option<(f64, f64)>;
+}
+
+/// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`].
+struct SharedMut<T>(*mut T, usize);
+unsafe impl<T> Sync for SharedMut<T> {}
+unsafe impl<T> Send for SharedMut<T> {}
+impl<T> SharedMut<T> {
+    /// # Safety
+    /// Callers must ensure no two threads touch the same index at once.
+    #[inline]
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn get(&self, i: usize) -> &mut T {
+        debug_assert!(i < self.1);
+        &mut *self.0.add(i)
+    }
+}
+
+/// Run `work` on every chunk of the list: first all even-numbered chunks in parallel, then all
+/// odd-numbered ones. Chunk `c` may write to its own atoms and to those of chunk `c + 1` only
+/// (guaranteed by the list builder), so concurrent chunks never touch the same atom, and every
+/// atom receives its contributions in the same order whatever the thread count.
+/// Returns the per-chunk results in chunk order.
+pub fn for_each_chunk<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync) -> Vec<R> {
+    let n = list.chunks.len();
+    let mut out = vec![R::default(); n];
+    for parity in 0..2 {
+        let results: Vec<(usize, R)> = (parity..n)
+            .step_by(2)
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|c| (c, work(&list.chunks[c])))
+            .collect();
+        for (c, r) in results {
+            out[c] = r;
+        }
+    }
+    out
+}
+
+/// Sum tallies in chunk order (deterministic).
+pub fn sum_tallies(parts: &[Tally]) -> Tally {
+    let mut t = Tally::default();
+    for p in parts {
+        t.add(p);
+    }
+    t
+}
+
+/// The loop for central forces: every listed pair, Newton's third law for owned partners,
+/// energy and virial with LAMMPS' `ev_tally` weights (a pair with a ghost counts half on
+/// each side, because each side lists it).
+pub fn compute_central<K: CentralKernel>(kernel: &K, input: &PairInput, f: &mut [[f64; 3]]) -> Tally {
+    let type_filter = input.type_filter;
+    let a = input.atoms;
+    let nlocal = a.nlocal;
+    let eflag = input.eflag;
+    let stride = input.ntypes + 1;
+    let shared = SharedMut(f.as_mut_ptr(), f.len());
+    let parts = for_each_chunk(input.list, |chunk| {
+        let mut t = Tally::default();
+        for i in chunk.start..chunk.end {
+            let xi = a.x[i];
+            let ti = a.typ[i];
+            let mut fi = [0.0f64; 3];
+            for &jraw in chunk.neighbors(i) {
+                let j = (jraw & NEIGH_MASK) as usize;
+                let tj = a.typ[j];
+                if let Some(filter) = type_filter {
+                    if !filter[ti * stride + tj] {
+                        continue;
+                    }
+                }
+                let xj = a.x[j];
+                let dx = xi[0] - xj[0];
+                let dy = xi[1] - xj[1];
+                let dz = xi[2] - xj[2];
+                let rsq = dx * dx + dy * dy + dz * dz;
+                let factor = input.special_lj[special_level(jraw)];
+                if let Some((fpair, e)) = kernel.eval(ti, tj, rsq, factor, eflag) {
+                    fi[0] += dx * fpair;
+                    fi[1] += dy * fpair;
+                    fi[2] += dz * fpair;
+                    let w = if j < nlocal {
+                        // SAFETY: j is in this chunk or the next (see for_each_chunk)
+                        let fj = unsafe { shared.get(j) };
+                        fj[0] -= dx * fpair;
+                        fj[1] -= dy * fpair;
+                        fj[2] -= dz * fpair;
+                        1.0
+                    } else {
+                        0.5
+                    };
+                    if eflag {
+                        t.evdwl += w * e;
+                        t.virial[0] += w * dx * dx * fpair;
+                        t.virial[1] += w * dy * dy * fpair;
+                        t.virial[2] += w * dz * dz * fpair;
+                        t.virial[3] += w * dx * dy * fpair;
+                        t.virial[4] += w * dx * dz * fpair;
+                        t.virial[5] += w * dy * dz * fpair;
+                    }
+                }
+            }
+            // SAFETY: i belongs to this chunk
+            let fo = unsafe { shared.get(i) };
+            fo[0] += fi[0];
+            fo[1] += fi[1];
+            fo[2] += fi[2];
+        }
+        t
+    });
+    sum_tallies(&parts)
+}
+
+/// Per-type-pair table (row-major over `0..=ntypes`), symmetric by construction.
+#[derive(Clone, Debug, Default)]
+pub struct TypeTable<T: Clone + Default> {
+    pub n: usize,
+    pub data: Vec<T>,
+}
+
+impl<T: Clone + Default> TypeTable<T> {
+    pub fn new(ntypes: usize) -> Self {
+        TypeTable { n: ntypes, data: vec![T::default(); (ntypes + 1) * (ntypes + 1)] }
+    }
+    #[inline]
+    pub fn get(&self, i: usize, j: usize) -> &T {
+        &self.data[i * (self.n + 1) + j]
+    }
+    #[inline]
+    pub fn set(&mut self, i: usize, j: usize, v: T) {
+        let s = self.n + 1;
+        self.data[i * s + j] = v.clone();
+        self.data[j * s + i] = v;
+    }
+}
+
+/// Parse the two type ranges of `pair_coeff I J ...`; LAMMPS only sets pairs with I <= J.
+pub fn coeff_type_ranges(args: &mut Args, ntypes: usize) -> DResult<(usize, usize, usize, usize)> {
+    let (ilo, ihi) = args.type_range("atom type I", ntypes)?;
+    let (jlo, jhi) = args.type_range("atom type J", ntypes)?;
+    Ok((ilo, ihi, jlo, jhi))
+}
+
+/// Error for a `pair_coeff` that sets no pair (e.g. `pair_coeff 2 1` with only I > J).
+pub fn no_pairs_set(cmd: &Command) -> Diagnostic {
+    Diagnostic::at(cmd.span, "pair_coeff sets no type pair (LAMMPS needs I <= J)", "no I <= J pair in these ranges")
+}

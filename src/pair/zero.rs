@@ -1,0 +1,87 @@
+//! `pair_style zero Rc [nocoeff]` — no forces, but a neighbour list with cutoff Rc (as LAMMPS).
+
+use super::{PairInput, PairModify, PairStyle, Tally, TypeTable};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "pair_style zero Rc [nocoeff] [full]";
+
+#[derive(Clone, Debug)]
+pub struct PairZero {
+    cut_global: f64,
+    nocoeff: bool,
+    cut: TypeTable<Option<f64>>,
+}
+
+impl PairZero {
+    pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<PairZero> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let cut_global = a.non_negative_f64("the cutoff Rc")?;
+        let mut nocoeff = false;
+        while let Some(w) = a.peek() {
+            match w.text.as_str() {
+                "nocoeff" => nocoeff = true,
+                "full" => {}
+                _ => return Err(a.unknown_keyword(w, &["nocoeff", "full"])),
+            }
+            a.skip(1);
+        }
+        Ok(PairZero { cut_global, nocoeff, cut: TypeTable::new(0) })
+    }
+}
+
+impl PairStyle for PairZero {
+    fn style(&self) -> &str {
+        "zero"
+    }
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        let n = ihi.max(jhi).max(self.cut.n);
+        if self.cut.n < n {
+            let mut t = TypeTable::new(n);
+            for i in 1..=self.cut.n {
+                for j in 1..=self.cut.n {
+                    t.set(i, j, *self.cut.get(i, j));
+                }
+            }
+            self.cut = t;
+        }
+        let c = if !self.nocoeff && !args.is_empty() { args.non_negative_f64("the cutoff Rc")? } else { self.cut_global };
+        if !self.nocoeff {
+            args.finish()?;
+        }
+        for i in ilo..=ihi {
+            for j in jlo.max(i)..=jhi {
+                self.cut.set(i, j, Some(c));
+            }
+        }
+        Ok(())
+    }
+    fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
+        let mut t = TypeTable::new(ntypes);
+        for i in 1..=ntypes {
+            for j in i..=ntypes {
+                if let Some(a) = active {
+                    if !a[i * (ntypes + 1) + j] {
+                        continue;
+                    }
+                }
+                let get = |a: usize, b: usize| if a <= self.cut.n && b <= self.cut.n { *self.cut.get(a, b) } else { None };
+                let c = match get(i, j) {
+                    Some(c) => c,
+                    None => match (get(i, i), get(j, j)) {
+                        (Some(a), Some(b)) if i != j => modify.mix.distance(a, b),
+                        _ => return Err(format!("pair zero coefficients for types {i} {j} are not set")),
+                    },
+                };
+                t.set(i, j, Some(c));
+            }
+        }
+        self.cut = t;
+        Ok(())
+    }
+    fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        self.cut.get(it, jt).unwrap_or(0.0)
+    }
+    fn compute(&self, _input: &PairInput, _f: &mut [[f64; 3]]) -> Tally {
+        Tally::default()
+    }
+}

@@ -4,7 +4,7 @@
 //! that `create_atoms` and `units lattice` give LAMMPS' coordinates to the last bit.
 
 use crate::units::{UnitStyle, Units};
-use dmhs_parser::{Args, Command, DResult, Diagnostic};
+use dmhs_parser::{Args, Command, DResult};
 
 const SYNTAX: &str = "lattice style scale keyword values ... \
 (style = none|sc|bcc|fcc|hcp|diamond|sq|sq2|hex|custom; keywords: origin x y z, \

@@ -9,7 +9,7 @@ use crate::special::{build_special, Topology as SpecialTopology};
 
 /// One interaction: local indices of its atoms, the periodic shift of each (relative to the
 /// reference atom), and its type.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Entry<const N: usize> {
     pub atoms: [u32; N],
     pub shift: [[i8; 3]; N],

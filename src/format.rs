@@ -11,3 +11,8 @@ pub fn g(x: f64) -> String {
 pub fn g6(x: f64) -> String {
     format_g(x, 6)
 }
+
+/// `%.8g`, as LAMMPS prints box and lattice values.
+pub fn g8(x: f64) -> String {
+    format_g(x, 8)
+}

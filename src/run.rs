@@ -88,7 +88,9 @@ impl Simulation {
             let (x, img) = (&mut self.atoms.x[i], &mut self.atoms.image[i]);
             domain.wrap(x, img);
         }
-        crate::boundary::reset_shrink_wrap(domain, &self.atoms);
+        if let Some(initial) = self.box_initial.as_ref() {
+            crate::boundary::reset_shrink_wrap(domain, initial, &self.atoms);
+        }
         crate::boundary::check_lost(self)?;
         let domain = self.domain.as_ref().unwrap();
         let pair = self.pair.as_deref();
@@ -123,6 +125,7 @@ impl Simulation {
         self.timers.stamp();
         let mut pair_tally = Tally::default();
         if let Some(p) = self.pair.as_deref() {
+            let mut f = std::mem::take(&mut self.atoms.f);
             let input = PairInput {
                 atoms: &self.atoms,
                 list: &self.neighbor.list,
@@ -132,7 +135,6 @@ impl Simulation {
                 ntypes: self.ntypes,
                 type_filter: None,
             };
-            let mut f = std::mem::take(&mut self.atoms.f);
             pair_tally = p.compute(&input, &mut f);
             self.atoms.f = f;
         }

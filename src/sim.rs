@@ -58,6 +58,8 @@ pub struct Simulation {
     pub newton_pair: bool,
     pub newton_bond: bool,
     pub domain: Option<Domain>,
+    /// The box as created (shrink-wrap margins and `m` bounds come from it).
+    pub box_initial: Option<Domain>,
     pub atoms: Atoms,
     pub ntypes: usize,
     /// Per-type mass (index 0 unused) and whether it was set.
@@ -102,6 +104,8 @@ pub struct Simulation {
     /// Seconds of the last run's loop, for `Loop time` and benchmarks.
     pub last_loop_seconds: f64,
     pub last_loop_steps: i64,
+    /// A run failed (exit code 1 rather than 2 for a deck error).
+    pub runtime_failed: bool,
 }
 
 impl Default for Simulation {
@@ -121,6 +125,7 @@ impl Simulation {
             newton_pair: true,
             newton_bond: true,
             domain: None,
+            box_initial: None,
             atoms: Atoms::new(AtomFeatures::default()),
             ntypes: 0,
             type_mass: vec![0.0],
@@ -158,6 +163,7 @@ impl Simulation {
             natoms_expected: 0,
             last_loop_seconds: 0.0,
             last_loop_steps: 0,
+            runtime_failed: false,
         }
     }
 
@@ -260,10 +266,8 @@ impl Simulation {
 
     /// Lattice spacings for `units lattice` arguments.
     pub fn lattice_scale(&self) -> Result<[f64; 3], String> {
-        match &self.lattice {
-            Some(l) if !l.is_none() => Ok(l.spacings()),
-            _ => Err("`units lattice` (the default) needs a lattice defined with the `lattice` command".to_string()),
-        }
+        // LAMMPS starts with `lattice none 1.0`
+        Ok(self.lattice.as_ref().map(|l| l.spacing()).unwrap_or([1.0; 3]))
     }
 
     /// Value of a thermo keyword (`None` if the name is not one).

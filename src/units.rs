@@ -29,8 +29,8 @@ impl Units {
     pub fn new(style: UnitStyle) -> Units {
         match style {
             UnitStyle::Lj => Units { style, boltz: 1.0, mvv2e: 1.0, ftm2v: 1.0, nktv2p: 1.0, dt: 0.005, skin: 0.3 },
-            UnitStyle::Si => Units { style, boltz: 1.380649e-23, mvv2e: 1.0, ftm2v: 1.0, nktv2p: 1.0, dt: 1.0e-8, skin: 0.001 },
-            UnitStyle::Cgs => Units { style, boltz: 1.380649e-16, mvv2e: 1.0, ftm2v: 1.0, nktv2p: 1.0, dt: 1.0e-8, skin: 0.1 },
+            UnitStyle::Si => Units { style, boltz: 1.3806504e-23, mvv2e: 1.0, ftm2v: 1.0, nktv2p: 1.0, dt: 1.0e-8, skin: 0.001 },
+            UnitStyle::Cgs => Units { style, boltz: 1.3806504e-16, mvv2e: 1.0, ftm2v: 1.0, nktv2p: 1.0, dt: 1.0e-8, skin: 0.1 },
         }
     }
     pub fn name(&self) -> &'static str {

@@ -70,7 +70,7 @@ impl Fix for FixAddForce {
                 continue;
             }
             if let Some(r) = region {
-                if !r.inside(a.x[i]) {
+                if !r.matches(a.x[i]) {
                     continue;
                 }
             }

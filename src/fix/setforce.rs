@@ -71,7 +71,7 @@ impl Fix for FixSetForce {
                 continue;
             }
             if let Some(r) = region {
-                if !r.inside(a.x[i]) {
+                if !r.matches(a.x[i]) {
                     continue;
                 }
             }

@@ -468,27 +468,32 @@ pub fn create_atoms(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::lattice::tests::cmd;
     use crate::units::{UnitStyle, Units};
 
-    /// Run the geometry commands of a deck (one command per line) and return all atoms
-    /// created, in creation (= LAMMPS ID) order.
-    pub(crate) fn run_deck(deck: &str) -> DResult<Vec<([f64; 3], usize)>> {
+    /// What the geometry commands of a test deck produced.
+    pub(crate) struct Deck {
+        pub dim: usize,
+        pub lattice: Option<Lattice>,
+        pub boxed: Option<CreateBox>,
+        pub regions: Vec<Region>,
+        pub atoms: Vec<([f64; 3], usize)>,
+    }
+
+    /// Run the geometry commands of a deck (one command per line; other commands are
+    /// skipped) and return the resulting state; atoms are in creation (= LAMMPS ID) order.
+    pub(crate) fn run_deck_state(deck: &str) -> DResult<Deck> {
         let mut units = Units::new(UnitStyle::Lj);
-        let mut dim = 3;
+        let mut st = Deck { dim: 3, lattice: None, boxed: None, regions: vec![], atoms: vec![] };
         let mut boundary = [[BoundaryKind::Periodic; 2]; 3];
-        let mut lattice: Option<Lattice> = None;
-        let mut regions: Vec<Region> = vec![];
-        let mut boxed: Option<CreateBox> = None;
-        let mut atoms: Vec<([f64; 3], usize)> = vec![];
         for line in deck.lines().map(str::trim).filter(|l| !l.is_empty()) {
             let c = cmd(line);
             let args = c.arg_strs();
             match c.name() {
                 "units" => units = Units::new(match args[0] { "lj" => UnitStyle::Lj, "si" => UnitStyle::Si, "cgs" => UnitStyle::Cgs, u => panic!("test deck uses unsupported units {u}") }),
-                "dimension" => dim = args[0].parse().unwrap(),
+                "dimension" => st.dim = args[0].parse().unwrap(),
                 "boundary" => {
                     for d in 0..3 {
                         let k = match args[d] {
@@ -500,22 +505,26 @@ mod tests {
                         boundary[d] = [k, k];
                     }
                 }
-                "lattice" => lattice = Some(Lattice::from_lammps(&c, &units, dim)?),
+                "lattice" => st.lattice = Some(Lattice::from_lammps(&c, &units, st.dim)?),
                 "region" => {
-                    let r = Region::from_lammps(&c, boxed.as_ref().map(|b| &b.domain), lattice.as_ref(), &regions)?;
-                    regions.push(r);
+                    let r = Region::from_lammps(&c, st.boxed.as_ref().map(|b| &b.domain), st.lattice.as_ref(), &st.regions)?;
+                    st.regions.push(r);
                 }
-                "create_box" => boxed = Some(create_box(&c, &regions, dim, boundary)?),
+                "create_box" => st.boxed = Some(create_box(&c, &st.regions, st.dim, boundary)?),
                 "create_atoms" => {
-                    let b = boxed.as_ref().unwrap();
-                    let existing: Vec<[f64; 3]> = atoms.iter().map(|a| a.0).collect();
-                    let made = create_atoms(&c, &b.domain, b.ntypes, lattice.as_ref(), &regions, &existing)?;
-                    atoms.extend(made.atoms);
+                    let b = st.boxed.as_ref().unwrap();
+                    let existing: Vec<[f64; 3]> = st.atoms.iter().map(|a| a.0).collect();
+                    let made = create_atoms(&c, &b.domain, b.ntypes, st.lattice.as_ref(), &st.regions, &existing)?;
+                    st.atoms.extend(made.atoms);
                 }
                 _ => {}
             }
         }
-        Ok(atoms)
+        Ok(st)
+    }
+
+    pub(crate) fn run_deck(deck: &str) -> DResult<Vec<([f64; 3], usize)>> {
+        Ok(run_deck_state(deck)?.atoms)
     }
 
     /// FNV-1a over (id, type, x, y, z) little-endian bytes in ID order; the same digest is

@@ -20,6 +20,8 @@ keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, ove
 const EPSILON: f64 = 1.0e-6;
 /// Seed for min/max searches.
 const BIG: f64 = 1.0e30;
+/// Relative padding of shrink-wrapped faces when a box is created (LAMMPS Domain `SMALL`).
+const SMALL: f64 = 1.0e-4;
 
 /// What `create_box` defines: the number of atom types, the box, and the topology counts.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,7 +40,8 @@ pub struct CreateBox {
 }
 
 /// Parse `create_box N region-ID ...`: the box is the region's bounding box (as LAMMPS does
-/// for every non-prism region). `boundary` comes from the `boundary` command.
+/// for every non-prism region), padded at shrink-wrapped faces. `boundary` comes from the
+/// `boundary` command (per face: `[dim][0]` lower, `[dim][1]` upper).
 pub fn create_box(cmd: &Command, regions: &[Region], dimension: usize, boundary: [[BoundaryKind; 2]; 3]) -> DResult<CreateBox> {
     let mut a = Args::new(cmd, BOX_SYNTAX);
     let ntypes = a.i64_in("number of atom types", 1, i32::MAX as i64)? as usize;
@@ -57,6 +60,21 @@ pub fn create_box(cmd: &Command, regions: &[Region], dimension: usize, boundary:
     };
     if dimension == 2 && (lo[2] >= 0.0 || hi[2] <= 0.0) {
         return Err(a.error_at(rw, "create_box region zlo/zhi for a 2d simulation must straddle 0.0", "z range must contain 0"));
+    }
+    if (0..3).any(|d| lo[d] >= hi[d]) {
+        return Err(a.error_at(rw, format!("create_box region `{}` gives invalid box bounds (lo >= hi)", rw.text), "empty box"));
+    }
+    // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
+    // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
+    let (mut lo, mut hi) = (lo, hi);
+    for d in 0..3 {
+        let small = SMALL * (hi[d] - lo[d]);
+        if boundary[d][0] == BoundaryKind::Shrink {
+            lo[d] -= small;
+        }
+        if boundary[d][1] == BoundaryKind::Shrink {
+            hi[d] += small;
+        }
     }
     let mut out = CreateBox {
         ntypes,
@@ -647,6 +665,44 @@ pub(crate) mod tests {
     fn random_2d_matches_lammps() {
         let deck = "units lj\ndimension 2\nlattice sq 0.8\nregion box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 random 30 12345 NULL";
         check(deck, 30, 0x979ef700a9c79249, [10.181403293570474, 3.743176867540669, 0.0], [4.66724113565348, 1.057116235409361, 0.0]);
+    }
+
+    #[test]
+    fn shrink_wrapped_faces_are_padded_like_lammps() {
+        // boundary f s m: y faces padded by 1e-4 * 4.5, so sites at y = 3 are created;
+        // sites on the fixed (x = 2) and min-shrink (z = 0) upper faces are not.
+        let deck = "units lj\nboundary f s m\nlattice sc 1.0\nregion box block -2 2 -1.5 3 -3 0\ncreate_box 1 box\ncreate_atoms 1 box";
+        check(deck, 60, 0x766be3c42b27e5b1, [-2.0, -1.0, -3.0], [1.0, 3.0, -1.0]);
+        let st = run_deck_state(deck).unwrap();
+        assert_eq!(st.boxed.unwrap().domain.hi, [2.0, 3.00045, 0.0]);
+    }
+
+    #[test]
+    fn custom_lattice_and_outside_cylinder_match_lammps() {
+        let deck = "units lj\nboundary p p f
+            lattice custom 1.3 a1 1 0 0 a2 0.5 0.8 0 a3 0.2 0.3 0.9 basis 0 0 0 basis 0.5 0.25 0.1 origin 0.3 0.1 0.6
+            region box block -1 3 0 4 -2 2\ncreate_box 2 box
+            region cyl cylinder x 2 0 1.5 INF EDGE side out
+            create_atoms 1 region cyl basis 2 2";
+        check(deck, 127, 0xe98edbf99565b1fd, [-1.7903290113107562, 0.3992820097167875, -1.6228881685262975], [6.066510534729254, 4.6497034034761375, 1.8547293354586256]);
+    }
+
+    #[test]
+    fn fcc_111_orientation_matches_lammps() {
+        let deck = "units lj\nlattice fcc 0.8442 orient x 1 1 1 orient y -1 1 0 orient z -1 -1 2
+            region box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box";
+        check(deck, 432, 0x97096ee5460365ee, [0.0, 1.187653856581669, 0.0], [7.757722505796487, 4.750615426326676, 6.856922738015239]);
+    }
+
+    #[test]
+    fn single_remap_wraps_several_periods_like_lammps() {
+        // LAMMPS: create_atoms 1 single 9.5 -7.25 3.0 units box remap yes -> (1.5, 0.75, 3.0)
+        let deck = "units lj\nregion box block 0 4 0 4 0 4 units box\ncreate_box 1 box
+            create_atoms 1 single 9.5 -7.25 3.0 units box remap yes
+            create_atoms 1 single 4.0 1 1 units box
+            create_atoms 1 single 0.0 1 1 units box";
+        let atoms = run_deck(deck).unwrap();
+        assert_eq!(atoms, vec![([1.5, 0.75, 3.0], 1), ([0.0, 1.0, 1.0], 1)]);
     }
 
     #[test]

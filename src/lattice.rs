@@ -478,6 +478,29 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn spacings_match_lammps() {
+        // xlat ylat zlat reported by LAMMPS 22 Jul 2025 for each command
+        let cases: &[(UnitStyle, usize, &str, [f64; 3])] = &[
+            (UnitStyle::Lj, 3, "lattice bcc 1.2", [1.1856311014966876, 1.1856311014966876, 1.1856311014966876]),
+            (UnitStyle::Lj, 3, "lattice hcp 0.9", [1.1625835210688116, 2.0136537265335037, 1.898490939991203]),
+            (UnitStyle::Lj, 3, "lattice diamond 0.5", [2.5198420997897464, 2.5198420997897464, 2.5198420997897464]),
+            (UnitStyle::Lj, 3, "lattice fcc 0.8442 orient x 1 1 0 orient y -1 1 0 orient z 0 0 1", [2.375307713163338, 2.375307713163338, 1.6795961913825073]),
+            (UnitStyle::Lj, 3, "lattice fcc 0.8442 orient x 1 1 1 orient y -1 1 0 orient z -1 -1 2", [2.9091459396736825, 2.375307713163338, 2.742769095206096]),
+            (UnitStyle::Si, 3, "lattice hcp 3.2 orient x 1 0 0 orient y 0 1 1 orient z 0 -1 1 origin 0.1 0.2 0.3", [3.2, 7.61422531126669, 7.61422531126669]),
+            (UnitStyle::Lj, 3, "lattice custom 1.3 a1 1 0 0 a2 0.5 0.8 0 a3 0.2 0.3 0.9 basis 0 0 0 basis 0.5 0.25 0.1", [2.189611021027544, 1.4168071312531167, 1.159205834661641]),
+            (UnitStyle::Si, 3, "lattice custom 2.0 a1 1 0 0 a2 0.5 0.8 0 a3 0.2 0.3 0.9 basis 0 0 0 spacing 1 2 3", [2.0, 4.0, 6.0]),
+            (UnitStyle::Lj, 2, "lattice hex 0.7", [1.2843567252460064, 2.2245711031688638, 1.2843567252460064]),
+            (UnitStyle::Lj, 2, "lattice sq2 0.9 orient x 1 1 0 orient y -1 1 0", [2.1081851067789192, 2.1081851067789192, 1.4907119849998598]),
+            (UnitStyle::Cgs, 2, "lattice hex 2.5", [2.5, 4.330127018922193, 2.5]),
+            (UnitStyle::Lj, 3, "lattice none 2.5", [2.5, 2.5, 2.5]),
+        ];
+        for (u, d, line, want) in cases {
+            let l = lat(line, *u, *d).unwrap();
+            assert_eq!(l.spacing(), *want, "{line}");
+        }
+    }
+
+    #[test]
     fn rejects_bad_settings() {
         assert!(lat("lattice fcc 0.8 ", UnitStyle::Lj, 2).unwrap_err().message.contains("2d"));
         assert!(lat("lattice sq 1.0 origin 0.5 1.0 0", UnitStyle::Lj, 2).unwrap_err().message.contains("origin y"));

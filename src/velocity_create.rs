@@ -7,6 +7,9 @@
 //! Arrays must be in LAMMPS' local atom order (creation order before the first run), since
 //! the group sums (mass, momentum, temperature) are accumulated in that order.
 
+// Index loops mirror LAMMPS' formulas term by term (same evaluation order).
+#![allow(clippy::needless_range_loop)]
+
 use crate::lattice::Lattice;
 use crate::random_park::RanPark;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span, Word};
@@ -46,19 +49,43 @@ pub struct VelocityOptions {
 
 impl Default for VelocityOptions {
     fn default() -> VelocityOptions {
-        VelocityOptions { gaussian: false, sum: false, mom: true, rot: false, temp: None, loop_mode: LoopMode::All, lattice_units: true }
+        VelocityOptions {
+            gaussian: false,
+            sum: false,
+            mom: true,
+            rot: false,
+            temp: None,
+            loop_mode: LoopMode::All,
+            lattice_units: true,
+        }
     }
 }
 
 /// A velocity style with its arguments already converted to box units.
 #[derive(Clone, Debug, PartialEq)]
 pub enum VelocityStyle {
-    Create { temp: f64, seed: i32 },
+    Create {
+        temp: f64,
+        seed: i32,
+    },
     /// `None` components (NULL) are left unchanged.
-    Set { v: [Option<f64>; 3] },
-    Scale { temp: f64 },
-    Ramp { vdim: usize, vlo: f64, vhi: f64, cdim: usize, clo: f64, chi: f64 },
-    Zero { angular: bool },
+    Set {
+        v: [Option<f64>; 3],
+    },
+    Scale {
+        temp: f64,
+    },
+    Ramp {
+        vdim: usize,
+        vlo: f64,
+        vhi: f64,
+        cdim: usize,
+        clo: f64,
+        chi: f64,
+    },
+    Zero {
+        angular: bool,
+    },
 }
 
 /// A parsed `velocity` command.
@@ -289,7 +316,8 @@ fn omega(l: [f64; 3], i: [[f64; 3]; 3]) -> Result<[f64; 3], String> {
     let axes = [ex, ey, ez];
     let mut wbody = [0.0; 3];
     for k in 0..3 {
-        wbody[k] = if idiag[k] == 0.0 { 0.0 } else { (l[0] * axes[k][0] + l[1] * axes[k][1] + l[2] * axes[k][2]) / idiag[k] };
+        wbody[k] =
+            if idiag[k] == 0.0 { 0.0 } else { (l[0] * axes[k][0] + l[1] * axes[k][1] + l[2] * axes[k][2]) / idiag[k] };
     }
     let mut w = [0.0; 3];
     for d in 0..3 {
@@ -442,7 +470,14 @@ fn triple(random: &mut RanPark, gaussian: bool) -> [f64; 3] {
 }
 
 /// `velocity G create T seed`: random velocities, momentum/rotation removal, rescale to `t`.
-pub fn create(v: &mut [[f64; 3]], atoms: &VelocityAtoms, env: &VelocityEnv, t_desired: f64, seed: i32, opts: &VelocityOptions) -> Result<(), String> {
+pub fn create(
+    v: &mut [[f64; 3]],
+    atoms: &VelocityAtoms,
+    env: &VelocityEnv,
+    t_desired: f64,
+    seed: i32,
+    opts: &VelocityOptions,
+) -> Result<(), String> {
     if seed <= 0 {
         return Err(format!("illegal velocity create seed {seed}"));
     }
@@ -539,7 +574,18 @@ pub fn set(v: &mut [[f64; 3]], selected: &[bool], value: [Option<f64>; 3], sum: 
 /// `velocity G ramp`: component `vdim` ramps from `vlo` to `vhi` as coordinate `cdim`
 /// goes from `clo` to `chi` (clamped outside).
 #[allow(clippy::too_many_arguments)]
-pub fn ramp(v: &mut [[f64; 3]], x: &[[f64; 3]], selected: &[bool], vdim: usize, vlo: f64, vhi: f64, cdim: usize, clo: f64, chi: f64, sum: bool) {
+pub fn ramp(
+    v: &mut [[f64; 3]],
+    x: &[[f64; 3]],
+    selected: &[bool],
+    vdim: usize,
+    vlo: f64,
+    vhi: f64,
+    cdim: usize,
+    clo: f64,
+    chi: f64,
+    sum: bool,
+) {
     for i in 0..v.len() {
         if selected[i] {
             let mut fraction = (x[i][cdim] - clo) / (chi - clo);
@@ -589,11 +635,16 @@ impl Velocity {
                 "rot" => opts.rot = logical(&mut a, "rot")?,
                 "temp" => opts.temp = Some(a.str("temperature compute ID")?.to_string()),
                 "loop" => {
-                    opts.loop_mode = [LoopMode::All, LoopMode::Local, LoopMode::Geom][a.choice("loop", &["all", "local", "geom"])?];
+                    opts.loop_mode = [LoopMode::All, LoopMode::Local, LoopMode::Geom]
+                        [a.choice("loop", &["all", "local", "geom"])?];
                 }
                 "units" => opts.lattice_units = a.choice("units", &["lattice", "box"])? == 0,
                 "bias" | "rigid" => {
-                    return Err(a.error_at(kw, format!("velocity keyword `{}` is not supported", kw.text), "not supported"));
+                    return Err(a.error_at(
+                        kw,
+                        format!("velocity keyword `{}` is not supported", kw.text),
+                        "not supported",
+                    ));
                 }
                 _ => return Err(a.unknown_keyword(kw, &KEYWORDS)),
             }
@@ -603,22 +654,35 @@ impl Velocity {
         let scale = if opts.lattice_units { lat.spacing() } else { [1.0; 3] };
         let num = |w: &Word, what: &str| -> DResult<f64> {
             if w.text.starts_with("v_") {
-                return Err(a.error_at(w, "variables in velocity arguments are not supported", "variable not supported"));
+                return Err(a.error_at(
+                    w,
+                    "variables in velocity arguments are not supported",
+                    "variable not supported",
+                ));
             }
             dmhs_parser::args::word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))
         };
         let dim_of = |w: &Word, names: [&str; 3], what: &str| -> DResult<usize> {
             names.iter().position(|n| *n == w.text).ok_or_else(|| {
-                a.error_at(w, format!("expected {} for {what}, found `{}`", names.join(" or "), w.text), "invalid dimension")
+                a.error_at(
+                    w,
+                    format!("expected {} for {what}, found `{}`", names.join(" or "), w.text),
+                    "invalid dimension",
+                )
             })
         };
 
         let style = match style_word.text.as_str() {
             "create" => {
                 let temp = num(&sargs[0], "temperature")?;
-                let seed = dmhs_parser::args::word_i64(&sargs[1], "seed").map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
+                let seed = dmhs_parser::args::word_i64(&sargs[1], "seed")
+                    .map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
                 if seed <= 0 || seed > i32::MAX as i64 {
-                    return Err(a.error_at(&sargs[1], format!("velocity create seed must be a positive integer, found {seed}"), "invalid seed"));
+                    return Err(a.error_at(
+                        &sargs[1],
+                        format!("velocity create seed must be a positive integer, found {seed}"),
+                        "invalid seed",
+                    ));
                 }
                 VelocityStyle::Create { temp, seed: seed as i32 }
             }
@@ -630,7 +694,11 @@ impl Velocity {
                     }
                 }
                 if dimension == 2 && v[2].is_some_and(|z| z != 0.0) {
-                    return Err(a.error_at(&sargs[2], "cannot set a non-zero z velocity in a 2d simulation", "must be 0 or NULL"));
+                    return Err(a.error_at(
+                        &sargs[2],
+                        "cannot set a non-zero z velocity in a 2d simulation",
+                        "must be 0 or NULL",
+                    ));
                 }
                 VelocityStyle::Set { v }
             }
@@ -651,7 +719,13 @@ impl Velocity {
                 let k = match sargs[0].text.as_str() {
                     "linear" => false,
                     "angular" => true,
-                    _ => return Err(a.error_at(&sargs[0], format!("expected linear or angular, found `{}`", sargs[0].text), "invalid")),
+                    _ => {
+                        return Err(a.error_at(
+                            &sargs[0],
+                            format!("expected linear or angular, found `{}`", sargs[0].text),
+                            "invalid",
+                        ))
+                    }
                 };
                 VelocityStyle::Zero { angular: k }
             }
@@ -732,7 +806,13 @@ mod tests {
             let vc = Velocity::from_lammps(&cmd(line), self.dim, self.lattice.as_ref()).unwrap();
             let mass: Vec<f64> = self.types.iter().map(|&t| self.mass_of_type[t - 1]).collect();
             let count = selected.iter().filter(|&&s| s).count();
-            let env = VelocityEnv { dimension: self.dim, boltz, mvv2e: 1.0, prd: self.prd, dof: default_dof(count, self.dim) };
+            let env = VelocityEnv {
+                dimension: self.dim,
+                boltz,
+                mvv2e: 1.0,
+                prd: self.prd,
+                dof: default_dof(count, self.dim),
+            };
             let atoms = VelocityAtoms { ids: &self.ids, x: &self.x, image: &self.image, mass: &mass, selected };
             vc.apply(&mut self.v, &atoms, &env).unwrap();
         }
@@ -760,14 +840,20 @@ mod tests {
     }
 
     // Fixtures: LAMMPS 22 Jul 2025, one rank, velocities by atom ID via extract_atom.
-    const FCC: &str = "units lj\nlattice fcc 0.8442\nregion box block 0 4 0 4 0 4\ncreate_box 2 box\ncreate_atoms 1 box";
+    const FCC: &str =
+        "units lj\nlattice fcc 0.8442\nregion box block 0 4 0 4 0 4\ncreate_box 2 box\ncreate_atoms 1 box";
 
     #[test]
     fn create_loop_all_matches_lammps() {
         let mut s = setup(FCC, &[1.0, 2.5]);
         let all = vec![true; s.v.len()];
         s.run("velocity all create 1.44 87287 loop all", &all, 1.0);
-        check(&s, 0xaae6b0b81d88fc6c, [0.7636644414798337, 0.13749169671269937, 0.12291516694674864], [-1.9014474094324572, 1.4044056352956336, -0.06702550884163075]);
+        check(
+            &s,
+            0xaae6b0b81d88fc6c,
+            [0.7636644414798337, 0.13749169671269937, 0.12291516694674864],
+            [-1.9014474094324572, 1.4044056352956336, -0.06702550884163075],
+        );
     }
 
     #[test]
@@ -775,7 +861,12 @@ mod tests {
         let mut s = setup(FCC, &[1.0, 2.5]);
         let all = vec![true; s.v.len()];
         s.run("velocity all create 1.44 87287 loop geom", &all, 1.0);
-        check(&s, 0x65d9163c5fd52576, [-0.24713448553592715, -0.6350688564395275, -1.919458527294104], [0.7999121704500977, 0.7132452754988785, 0.0028891130290597754]);
+        check(
+            &s,
+            0x65d9163c5fd52576,
+            [-0.24713448553592715, -0.6350688564395275, -1.919458527294104],
+            [0.7999121704500977, 0.7132452754988785, 0.0028891130290597754],
+        );
     }
 
     #[test]
@@ -783,7 +874,12 @@ mod tests {
         let mut s = setup(FCC, &[1.0, 2.5]);
         let all = vec![true; s.v.len()];
         s.run("velocity all create 1.44 87287 loop local dist gaussian", &all, 1.0);
-        check(&s, 0x6e8ca7391ecc1205, [-0.9414795367546245, 0.34932141157555585, 0.22423584171285557], [2.123447654526178, -0.7927886220809687, 0.08466587030137063]);
+        check(
+            &s,
+            0x6e8ca7391ecc1205,
+            [-0.9414795367546245, 0.34932141157555585, 0.22423584171285557],
+            [2.123447654526178, -0.7927886220809687, 0.08466587030137063],
+        );
     }
 
     #[test]
@@ -791,7 +887,12 @@ mod tests {
         let mut s = setup(FCC, &[1.0, 2.5]);
         let all = vec![true; s.v.len()];
         s.run("velocity all create 3.0 4928459 dist gaussian rot yes", &all, 1.0);
-        check(&s, 0xd6d6d824cbc0b92f, [3.2605312623446663, 2.7669967343976483, -0.6742780422126298], [-0.23935238670948894, 3.400661656244253, 2.785110455101111]);
+        check(
+            &s,
+            0xd6d6d824cbc0b92f,
+            [3.2605312623446663, 2.7669967343976483, -0.6742780422126298],
+            [-0.23935238670948894, 3.400661656244253, 2.785110455101111],
+        );
     }
 
     #[test]
@@ -811,7 +912,12 @@ mod tests {
         s.run("velocity all ramp vy -1 1 x 0 4", &all, 1.0);
         s.run("velocity heavy zero angular", &heavy, 1.0);
         s.run("velocity all scale 2.0", &all, 1.0);
-        check(&s, 0xbfe4171991957c5a, [-0.5857128857110735, -2.2537155593198785, 0.7110136996741213], [0.15243948677511895, 1.2801839070189693, -0.3048789735502379]);
+        check(
+            &s,
+            0xbfe4171991957c5a,
+            [-0.5857128857110735, -2.2537155593198785, 0.7110136996741213],
+            [0.15243948677511895, 1.2801839070189693, -0.3048789735502379],
+        );
     }
 
     const SQ: &str = "units lj\ndimension 2\nboundary p f p\nlattice sq 0.8 origin 0.5 0.5 0
@@ -822,7 +928,12 @@ mod tests {
         let mut s = setup(SQ, &[1.5]);
         let all = vec![true; s.v.len()];
         s.run("velocity all create 1.0 5551 loop geom rot yes", &all, 1.0);
-        check(&s, 0x5bea8349dc97d6e7, [0.8423029742173763, -1.25436155884036, 0.0], [1.4058164804675557, 0.7722597428932924, 0.0]);
+        check(
+            &s,
+            0x5bea8349dc97d6e7,
+            [0.8423029742173763, -1.25436155884036, 0.0],
+            [1.4058164804675557, 0.7722597428932924, 0.0],
+        );
     }
 
     #[test]
@@ -830,7 +941,12 @@ mod tests {
         let mut s = setup(SQ, &[1.5]);
         let all = vec![true; s.v.len()];
         s.run("velocity all create 0.7 5551 dist gaussian", &all, 1.0);
-        check(&s, 0xeac767a5a965fb36, [0.3472749226454524, -0.10662045532648447, 0.0], [-0.1242486516055515, 0.17171814765212431, 0.0]);
+        check(
+            &s,
+            0xeac767a5a965fb36,
+            [0.3472749226454524, -0.10662045532648447, 0.0],
+            [-0.1242486516055515, 0.17171814765212431, 0.0],
+        );
     }
 
     #[test]
@@ -846,12 +962,18 @@ mod tests {
         let all = vec![true; s.v.len()];
         // LAMMPS 2025 si units: boltz = 1.3806504e-23 (CODATA 2006), as extract_global reports.
         s.run("velocity all create 300.0 2024 rot yes", &all, 1.3806504e-23);
-        check(&s, 0xe677945040be9221, [-3.297903715754887e-07, -2.0888165093586095e-07, 0.0], [1.8096673489764607e-07, -3.351593491649347e-08, 0.0]);
+        check(
+            &s,
+            0xe677945040be9221,
+            [-3.297903715754887e-07, -2.0888165093586095e-07, 0.0],
+            [1.8096673489764607e-07, -3.351593491649347e-08, 0.0],
+        );
     }
 
     #[test]
     fn parses_styles_and_keywords() {
-        let v = Velocity::from_lammps(&cmd("velocity all create 1.44 87287 loop geom dist gaussian mom no"), 3, None).unwrap();
+        let v = Velocity::from_lammps(&cmd("velocity all create 1.44 87287 loop geom dist gaussian mom no"), 3, None)
+            .unwrap();
         assert_eq!(v.style, VelocityStyle::Create { temp: 1.44, seed: 87287 });
         assert!(v.opts.gaussian && !v.opts.mom && v.opts.loop_mode == LoopMode::Geom);
         let e = Velocity::from_lammps(&cmd("velocity all create 1.0 -3"), 3, None).unwrap_err();

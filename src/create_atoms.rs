@@ -20,6 +20,8 @@ keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, ove
 const EPSILON: f64 = 1.0e-6;
 /// Seed for min/max searches.
 const BIG: f64 = 1.0e30;
+/// Relative padding of shrink-wrapped faces when a box is created (LAMMPS Domain `SMALL`).
+const SMALL: f64 = 1.0e-4;
 
 /// What `create_box` defines: the number of atom types, the box, and the topology counts.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,13 +40,23 @@ pub struct CreateBox {
 }
 
 /// Parse `create_box N region-ID ...`: the box is the region's bounding box (as LAMMPS does
-/// for every non-prism region). `boundary` comes from the `boundary` command.
-pub fn create_box(cmd: &Command, regions: &[Region], dimension: usize, boundary: [[BoundaryKind; 2]; 3]) -> DResult<CreateBox> {
+/// for every non-prism region), padded at shrink-wrapped faces. `boundary` comes from the
+/// `boundary` command (per face: `[dim][0]` lower, `[dim][1]` upper).
+pub fn create_box(
+    cmd: &Command,
+    regions: &[Region],
+    dimension: usize,
+    boundary: [[BoundaryKind; 2]; 3],
+) -> DResult<CreateBox> {
     let mut a = Args::new(cmd, BOX_SYNTAX);
     let ntypes = a.i64_in("number of atom types", 1, i32::MAX as i64)? as usize;
     let rw = a.word("region ID")?;
     if rw.text == "NULL" {
-        return Err(a.error_at(rw, "create_box with a general triclinic box (NULL region) is not supported", "not supported"));
+        return Err(a.error_at(
+            rw,
+            "create_box with a general triclinic box (NULL region) is not supported",
+            "not supported",
+        ));
     }
     let Some(region) = regions.iter().find(|r| r.id == rw.text) else {
         return Err(a.error_at(rw, format!("create_box region `{}` does not exist", rw.text), "unknown region ID"));
@@ -53,10 +65,37 @@ pub fn create_box(cmd: &Command, regions: &[Region], dimension: usize, boundary:
         return Err(a.error_at(rw, "create_box from a prism region (triclinic box) is not supported", "prism region"));
     }
     let Some((lo, hi)) = region.extent() else {
-        return Err(a.error_at(rw, format!("create_box region `{}` does not support a bounding box", rw.text), "no bounding box (side out or unbounded)"));
+        return Err(a.error_at(
+            rw,
+            format!("create_box region `{}` does not support a bounding box", rw.text),
+            "no bounding box (side out or unbounded)",
+        ));
     };
     if dimension == 2 && (lo[2] >= 0.0 || hi[2] <= 0.0) {
-        return Err(a.error_at(rw, "create_box region zlo/zhi for a 2d simulation must straddle 0.0", "z range must contain 0"));
+        return Err(a.error_at(
+            rw,
+            "create_box region zlo/zhi for a 2d simulation must straddle 0.0",
+            "z range must contain 0",
+        ));
+    }
+    if (0..3).any(|d| lo[d] >= hi[d]) {
+        return Err(a.error_at(
+            rw,
+            format!("create_box region `{}` gives invalid box bounds (lo >= hi)", rw.text),
+            "empty box",
+        ));
+    }
+    // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
+    // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
+    let (mut lo, mut hi) = (lo, hi);
+    for d in 0..3 {
+        let small = SMALL * (hi[d] - lo[d]);
+        if boundary[d][0] == BoundaryKind::Shrink {
+            lo[d] -= small;
+        }
+        if boundary[d][1] == BoundaryKind::Shrink {
+            hi[d] += small;
+        }
     }
     let mut out = CreateBox {
         ntypes,
@@ -142,7 +181,13 @@ pub struct Created {
 
 impl CreateAtoms {
     /// Parse `create_atoms`. `ntypes` is the number of atom types of the box.
-    pub fn from_lammps(cmd: &Command, ntypes: usize, dimension: usize, lattice: Option<&Lattice>, regions: &[Region]) -> DResult<CreateAtoms> {
+    pub fn from_lammps(
+        cmd: &Command,
+        ntypes: usize,
+        dimension: usize,
+        lattice: Option<&Lattice>,
+        regions: &[Region],
+    ) -> DResult<CreateAtoms> {
         let none = Lattice::none(1.0);
         let lattice = lattice.unwrap_or(&none);
         let mut a = Args::new(cmd, ATOMS_SYNTAX);
@@ -193,7 +238,11 @@ impl CreateAtoms {
                 "basis" => {
                     let ib = a.i64_in("basis atom index", 1, nbasis.max(1) as i64)? as usize;
                     if nbasis == 0 {
-                        return Err(a.error_at(a.last().unwrap(), "create_atoms basis needs a lattice with basis atoms", "no lattice basis"));
+                        return Err(a.error_at(
+                            a.last().unwrap(),
+                            "create_atoms basis needs a lattice with basis atoms",
+                            "no lattice basis",
+                        ));
                     }
                     let it = a.i64_in("basis atom type", 1, ntypes as i64)? as usize;
                     basis_types[ib - 1] = it;
@@ -201,30 +250,51 @@ impl CreateAtoms {
                 "remap" => remap = logical(&mut a, "remap")?,
                 "units" => lattice_units = a.choice("units", &["lattice", "box"])? == 0,
                 "overlap" | "maxtry" if !is_random => {
-                    return Err(a.error_at(kw, format!("create_atoms {} can only be used with the random style", kw.text), "random style only"));
+                    return Err(a.error_at(
+                        kw,
+                        format!("create_atoms {} can only be used with the random style", kw.text),
+                        "random style only",
+                    ));
                 }
                 "overlap" => overlap = Some(a.positive_f64("overlap distance")?),
                 "maxtry" => maxtry = a.i64_in("maxtry", 1, i32::MAX as i64)? as usize,
                 "mol" | "var" | "set" | "rotate" | "ratio" | "subset" | "meshmode" | "radscale" => {
-                    return Err(a.error_at(kw, format!("create_atoms keyword `{}` is not supported", kw.text), "not supported"));
+                    return Err(a.error_at(
+                        kw,
+                        format!("create_atoms keyword `{}` is not supported", kw.text),
+                        "not supported",
+                    ));
                 }
                 _ => return Err(a.unknown_keyword(kw, &KEYWORDS)),
             }
         }
         if atom_type < 1 || atom_type as usize > ntypes {
             let w = type_word.unwrap();
-            return Err(a.error_at(w, format!("invalid atom type {atom_type} in create_atoms (box has {ntypes} types)"), "type out of range"));
+            return Err(a.error_at(
+                w,
+                format!("invalid atom type {atom_type} in create_atoms (box has {ntypes} types)"),
+                "type out of range",
+            ));
         }
         match &mut style {
             CreateStyle::Box | CreateStyle::Region(_) => {
                 if nbasis == 0 {
-                    return Err(a.error_at(style_word, "cannot create atoms on a lattice before a `lattice` command", "lattice undefined")
+                    return Err(a
+                        .error_at(
+                            style_word,
+                            "cannot create atoms on a lattice before a `lattice` command",
+                            "lattice undefined",
+                        )
                         .with_note("define a lattice first, e.g. `lattice sq 1.0`"));
                 }
             }
             CreateStyle::Single(x) => {
                 if dimension == 2 && x[2] != 0.0 {
-                    return Err(a.error_at(single_words.unwrap(), "create_atoms single for a 2d simulation requires z = 0.0", "z must be 0"));
+                    return Err(a.error_at(
+                        single_words.unwrap(),
+                        "create_atoms single for a 2d simulation requires z = 0.0",
+                        "z must be 0",
+                    ));
                 }
                 if lattice_units {
                     x[0] *= lattice.xlattice;
@@ -243,7 +313,13 @@ impl CreateAtoms {
 
     /// Generate the atoms on one rank owning the whole `domain`, in LAMMPS' order.
     /// `existing` are the positions of atoms already in the system (for `overlap`).
-    pub fn generate(&self, domain: &Domain, lattice: Option<&Lattice>, regions: &[Region], existing: &[[f64; 3]]) -> DResult<Created> {
+    pub fn generate(
+        &self,
+        domain: &Domain,
+        lattice: Option<&Lattice>,
+        regions: &[Region],
+        existing: &[[f64; 3]],
+    ) -> DResult<Created> {
         let none = Lattice::none(1.0);
         let lattice = lattice.unwrap_or(&none);
         let region = |id: &String| regions.iter().find(|r| &r.id == id);
@@ -281,7 +357,13 @@ impl CreateAtoms {
                 let reg = match &self.style {
                     CreateStyle::Region(id) => match region(id) {
                         Some(r) => Some(r),
-                        None => return Err(Diagnostic::at(self.span, format!("create_atoms region `{id}` does not exist"), "unknown region")),
+                        None => {
+                            return Err(Diagnostic::at(
+                                self.span,
+                                format!("create_atoms region `{id}` does not exist"),
+                                "unknown region",
+                            ))
+                        }
                     },
                     _ => None,
                 };
@@ -291,6 +373,7 @@ impl CreateAtoms {
         Ok(out)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn add_random(
         &self,
         domain: &Domain,
@@ -315,7 +398,11 @@ impl CreateAtoms {
             }
         }
         if (0..3).any(|d| lo[d] > hi[d]) {
-            return Err(Diagnostic::at(self.span, "no overlap of box and region for create_atoms", "region outside the box"));
+            return Err(Diagnostic::at(
+                self.span,
+                "no overlap of box and region for create_atoms",
+                "region outside the box",
+            ));
         }
         let odistsq = self.overlap.map(|d| d * d);
         let mut ninsert = 0;
@@ -355,12 +442,22 @@ impl CreateAtoms {
             }
         }
         if ninsert < n {
-            out.warnings.push(Diagnostic::warning(format!("only inserted {ninsert} particles out of {n}")).with_label(self.span, "create_atoms random"));
+            out.warnings.push(
+                Diagnostic::warning(format!("only inserted {ninsert} particles out of {n}"))
+                    .with_label(self.span, "create_atoms random"),
+            );
         }
         Ok(())
     }
 
-    fn add_lattice(&self, domain: &Domain, lattice: &Lattice, region: Option<&Region>, in_sub: &dyn Fn([f64; 3]) -> bool, out: &mut Created) -> DResult<()> {
+    fn add_lattice(
+        &self,
+        domain: &Domain,
+        lattice: &Lattice,
+        region: Option<&Region>,
+        in_sub: &dyn Fn([f64; 3]) -> bool,
+        out: &mut Created,
+    ) -> DResult<()> {
         // Bounding box of the sub-domain, narrowed by the region's extent.
         let mut blo = domain.lo;
         let mut bhi = domain.hi;
@@ -406,7 +503,11 @@ impl CreateAtoms {
         }
         let ncells = (0..3).map(|d| (hi[d] - lo[d] + 1).max(0) as u128).product::<u128>() * lattice.nbasis() as u128;
         if ncells > i32::MAX as u128 {
-            return Err(Diagnostic::at(self.span, "create_atoms lattice size overflow (too many lattice sites to scan)", "lattice too fine for this box"));
+            return Err(Diagnostic::at(
+                self.span,
+                "create_atoms lattice size overflow (too many lattice sites to scan)",
+                "lattice too fine for this box",
+            ));
         }
         for k in lo[2]..=hi[2] {
             for j in lo[1]..=hi[1] {
@@ -464,31 +565,44 @@ pub fn create_atoms(
     regions: &[Region],
     existing: &[[f64; 3]],
 ) -> DResult<Created> {
-    CreateAtoms::from_lammps(cmd, ntypes, domain.dimension, lattice, regions)?.generate(domain, lattice, regions, existing)
+    CreateAtoms::from_lammps(cmd, ntypes, domain.dimension, lattice, regions)?
+        .generate(domain, lattice, regions, existing)
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::lattice::tests::cmd;
     use crate::units::{UnitStyle, Units};
 
-    /// Run the geometry commands of a deck (one command per line) and return all atoms
-    /// created, in creation (= LAMMPS ID) order.
-    pub(crate) fn run_deck(deck: &str) -> DResult<Vec<([f64; 3], usize)>> {
+    /// What the geometry commands of a test deck produced.
+    pub(crate) struct Deck {
+        pub dim: usize,
+        pub lattice: Option<Lattice>,
+        pub boxed: Option<CreateBox>,
+        pub regions: Vec<Region>,
+        pub atoms: Vec<([f64; 3], usize)>,
+    }
+
+    /// Run the geometry commands of a deck (one command per line; other commands are
+    /// skipped) and return the resulting state; atoms are in creation (= LAMMPS ID) order.
+    pub(crate) fn run_deck_state(deck: &str) -> DResult<Deck> {
         let mut units = Units::new(UnitStyle::Lj);
-        let mut dim = 3;
+        let mut st = Deck { dim: 3, lattice: None, boxed: None, regions: vec![], atoms: vec![] };
         let mut boundary = [[BoundaryKind::Periodic; 2]; 3];
-        let mut lattice: Option<Lattice> = None;
-        let mut regions: Vec<Region> = vec![];
-        let mut boxed: Option<CreateBox> = None;
-        let mut atoms: Vec<([f64; 3], usize)> = vec![];
         for line in deck.lines().map(str::trim).filter(|l| !l.is_empty()) {
             let c = cmd(line);
             let args = c.arg_strs();
             match c.name() {
-                "units" => units = Units::new(match args[0] { "lj" => UnitStyle::Lj, "si" => UnitStyle::Si, "cgs" => UnitStyle::Cgs, u => panic!("test deck uses unsupported units {u}") }),
-                "dimension" => dim = args[0].parse().unwrap(),
+                "units" => {
+                    units = Units::new(match args[0] {
+                        "lj" => UnitStyle::Lj,
+                        "si" => UnitStyle::Si,
+                        "cgs" => UnitStyle::Cgs,
+                        u => panic!("test deck uses unsupported units {u}"),
+                    })
+                }
+                "dimension" => st.dim = args[0].parse().unwrap(),
                 "boundary" => {
                     for d in 0..3 {
                         let k = match args[d] {
@@ -500,22 +614,31 @@ mod tests {
                         boundary[d] = [k, k];
                     }
                 }
-                "lattice" => lattice = Some(Lattice::from_lammps(&c, &units, dim)?),
+                "lattice" => st.lattice = Some(Lattice::from_lammps(&c, &units, st.dim)?),
                 "region" => {
-                    let r = Region::from_lammps(&c, boxed.as_ref().map(|b| &b.domain), lattice.as_ref(), &regions)?;
-                    regions.push(r);
+                    let r = Region::from_lammps(
+                        &c,
+                        st.boxed.as_ref().map(|b| &b.domain),
+                        st.lattice.as_ref(),
+                        &st.regions,
+                    )?;
+                    st.regions.push(r);
                 }
-                "create_box" => boxed = Some(create_box(&c, &regions, dim, boundary)?),
+                "create_box" => st.boxed = Some(create_box(&c, &st.regions, st.dim, boundary)?),
                 "create_atoms" => {
-                    let b = boxed.as_ref().unwrap();
-                    let existing: Vec<[f64; 3]> = atoms.iter().map(|a| a.0).collect();
-                    let made = create_atoms(&c, &b.domain, b.ntypes, lattice.as_ref(), &regions, &existing)?;
-                    atoms.extend(made.atoms);
+                    let b = st.boxed.as_ref().unwrap();
+                    let existing: Vec<[f64; 3]> = st.atoms.iter().map(|a| a.0).collect();
+                    let made = create_atoms(&c, &b.domain, b.ntypes, st.lattice.as_ref(), &st.regions, &existing)?;
+                    st.atoms.extend(made.atoms);
                 }
                 _ => {}
             }
         }
-        Ok(atoms)
+        Ok(st)
+    }
+
+    pub(crate) fn run_deck(deck: &str) -> DResult<Vec<([f64; 3], usize)>> {
+        Ok(run_deck_state(deck)?.atoms)
     }
 
     /// FNV-1a over (id, type, x, y, z) little-endian bytes in ID order; the same digest is
@@ -604,14 +727,26 @@ mod tests {
             create_atoms 3 region out
             create_atoms 1 region p
             create_atoms 2 region pl";
-        check(deck, 1506, 0x38ab29bf6ad60c2c, [5.038788574147522, 4.198990478456269, 2.519394287073761], [8.397980956912537, 9.23777905260379, 9.23777905260379]);
+        check(
+            deck,
+            1506,
+            0x38ab29bf6ad60c2c,
+            [5.038788574147522, 4.198990478456269, 2.519394287073761],
+            [8.397980956912537, 9.23777905260379, 9.23777905260379],
+        );
     }
 
     #[test]
     fn oriented_hcp_with_origin_matches_lammps() {
         let deck = "units si\nlattice hcp 3.2 orient x 1 0 0 orient y 0 1 1 orient z 0 -1 1 origin 0.1 0.2 0.3
             region box block 0 3 0 3 0 3\ncreate_box 2 box\ncreate_atoms 1 box basis 3 2";
-        check(deck, 216, 0xcfb0c99ccbe8a1b9, [1.9200000000000002, 2.71716865891796, 4.78498571952899], [8.32, 21.95764547054791, 18.79988441322149]);
+        check(
+            deck,
+            216,
+            0xcfb0c99ccbe8a1b9,
+            [1.9200000000000002, 2.71716865891796, 4.78498571952899],
+            [8.32, 21.95764547054791, 18.79988441322149],
+        );
     }
 
     #[test]
@@ -622,7 +757,13 @@ mod tests {
             create_atoms 1 region c
             create_atoms 1 single 0.5 0.5 0
             create_atoms 1 single 7.1 -2.2 0 units box remap yes";
-        check(deck, 8, 0x810b0ab192dfa6bf, [2.2476242691805113, 3.5593137650701823, 0.0], [0.6421783626230032, 1.1122855515844319, 0.0]);
+        check(
+            deck,
+            8,
+            0x810b0ab192dfa6bf,
+            [2.2476242691805113, 3.5593137650701823, 0.0],
+            [0.6421783626230032, 1.1122855515844319, 0.0],
+        );
     }
 
     #[test]
@@ -631,28 +772,96 @@ mod tests {
             region s sphere 3 3 3 1.5
             create_atoms 1 random 50 4821 s
             create_atoms 2 random 40 777 NULL overlap 0.9 maxtry 50";
-        check(deck, 79, 0x25400e6ab7bf8b1e, [5.276971230956113, 4.857179395934454, 3.7198119934264655], [0.20113230189597706, 1.0830609040820878, 2.900285086800351]);
+        check(
+            deck,
+            79,
+            0x25400e6ab7bf8b1e,
+            [5.276971230956113, 4.857179395934454, 3.7198119934264655],
+            [0.20113230189597706, 1.0830609040820878, 2.900285086800351],
+        );
     }
 
     #[test]
     fn random_2d_matches_lammps() {
         let deck = "units lj\ndimension 2\nlattice sq 0.8\nregion box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 random 30 12345 NULL";
-        check(deck, 30, 0x979ef700a9c79249, [10.181403293570474, 3.743176867540669, 0.0], [4.66724113565348, 1.057116235409361, 0.0]);
+        check(
+            deck,
+            30,
+            0x979ef700a9c79249,
+            [10.181403293570474, 3.743176867540669, 0.0],
+            [4.66724113565348, 1.057116235409361, 0.0],
+        );
+    }
+
+    #[test]
+    fn shrink_wrapped_faces_are_padded_like_lammps() {
+        // boundary f s m: y faces padded by 1e-4 * 4.5, so sites at y = 3 are created;
+        // sites on the fixed (x = 2) and min-shrink (z = 0) upper faces are not.
+        let deck = "units lj\nboundary f s m\nlattice sc 1.0\nregion box block -2 2 -1.5 3 -3 0\ncreate_box 1 box\ncreate_atoms 1 box";
+        check(deck, 60, 0x766be3c42b27e5b1, [-2.0, -1.0, -3.0], [1.0, 3.0, -1.0]);
+        let st = run_deck_state(deck).unwrap();
+        assert_eq!(st.boxed.unwrap().domain.hi, [2.0, 3.00045, 0.0]);
+    }
+
+    #[test]
+    fn custom_lattice_and_outside_cylinder_match_lammps() {
+        let deck = "units lj\nboundary p p f
+            lattice custom 1.3 a1 1 0 0 a2 0.5 0.8 0 a3 0.2 0.3 0.9 basis 0 0 0 basis 0.5 0.25 0.1 origin 0.3 0.1 0.6
+            region box block -1 3 0 4 -2 2\ncreate_box 2 box
+            region cyl cylinder x 2 0 1.5 INF EDGE side out
+            create_atoms 1 region cyl basis 2 2";
+        check(
+            deck,
+            127,
+            0xe98edbf99565b1fd,
+            [-1.7903290113107562, 0.3992820097167875, -1.6228881685262975],
+            [6.066510534729254, 4.6497034034761375, 1.8547293354586256],
+        );
+    }
+
+    #[test]
+    fn fcc_111_orientation_matches_lammps() {
+        let deck = "units lj\nlattice fcc 0.8442 orient x 1 1 1 orient y -1 1 0 orient z -1 -1 2
+            region box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box";
+        check(
+            deck,
+            432,
+            0x97096ee5460365ee,
+            [0.0, 1.187653856581669, 0.0],
+            [7.757722505796487, 4.750615426326676, 6.856922738015239],
+        );
+    }
+
+    #[test]
+    fn single_remap_wraps_several_periods_like_lammps() {
+        // LAMMPS: create_atoms 1 single 9.5 -7.25 3.0 units box remap yes -> (1.5, 0.75, 3.0)
+        let deck = "units lj\nregion box block 0 4 0 4 0 4 units box\ncreate_box 1 box
+            create_atoms 1 single 9.5 -7.25 3.0 units box remap yes
+            create_atoms 1 single 4.0 1 1 units box
+            create_atoms 1 single 0.0 1 1 units box";
+        let atoms = run_deck(deck).unwrap();
+        assert_eq!(atoms, vec![([1.5, 0.75, 3.0], 1), ([0.0, 1.0, 1.0], 1)]);
     }
 
     #[test]
     fn errors_are_located() {
         let e = run_deck("units lj\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 box").unwrap_err();
         assert!(e.message.contains("lattice"), "{}", e.message);
-        let e = run_deck("units lj\nlattice sc 1\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 2 box").unwrap_err();
+        let e = run_deck("units lj\nlattice sc 1\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 2 box")
+            .unwrap_err();
         assert!(e.message.contains("invalid atom type 2"), "{}", e.message);
         let e = run_deck("units lj\ndimension 2\nregion box block 0 4 0 4 0.1 0.5\ncreate_box 1 box").unwrap_err();
         assert!(e.message.contains("straddle"), "{}", e.message);
-        let e = run_deck("units lj\ndimension 2\nregion box block 0 4 0 4 -1 1\ncreate_box 1 box\ncreate_atoms 1 single 1 1 0.5").unwrap_err();
+        let e = run_deck(
+            "units lj\ndimension 2\nregion box block 0 4 0 4 -1 1\ncreate_box 1 box\ncreate_atoms 1 single 1 1 0.5",
+        )
+        .unwrap_err();
         assert!(e.message.contains("z = 0.0"), "{}", e.message);
         let e = run_deck("units lj\nregion box block 0 4 0 4 0 4 side out\ncreate_box 1 box").unwrap_err();
         assert!(e.message.contains("bounding box"), "{}", e.message);
-        let e = run_deck("units lj\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 single 1 1 1 overlap 1").unwrap_err();
+        let e =
+            run_deck("units lj\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 single 1 1 1 overlap 1")
+                .unwrap_err();
         assert!(e.message.contains("random"), "{}", e.message);
     }
 }

@@ -3,6 +3,9 @@
 //! exactly as LAMMPS' `Lattice` class does (same formulas, same floating-point order), so
 //! that `create_atoms` and `units lattice` give LAMMPS' coordinates to the last bit.
 
+// Index loops mirror LAMMPS' formulas term by term (same evaluation order).
+#![allow(clippy::needless_range_loop)]
+
 use crate::units::{UnitStyle, Units};
 use dmhs_parser::{Args, Command, DResult};
 
@@ -46,7 +49,10 @@ impl LatticeStyle {
         STYLE_NAMES[STYLES.iter().position(|s| *s == self).unwrap_or(0)]
     }
     fn is_3d_only(self) -> bool {
-        matches!(self, LatticeStyle::Sc | LatticeStyle::Bcc | LatticeStyle::Fcc | LatticeStyle::Hcp | LatticeStyle::Diamond)
+        matches!(
+            self,
+            LatticeStyle::Sc | LatticeStyle::Bcc | LatticeStyle::Fcc | LatticeStyle::Hcp | LatticeStyle::Diamond
+        )
     }
     fn is_2d_only(self) -> bool {
         matches!(self, LatticeStyle::Sq | LatticeStyle::Sq2 | LatticeStyle::Hex)
@@ -250,7 +256,9 @@ impl Lattice {
             return Err(a.error_at(style_word, "no basis atoms in lattice", "custom lattice without `basis`"));
         }
         let o = orient;
-        let odot = |p: [i32; 3], q: [i32; 3]| p[0] as i64 * q[0] as i64 + p[1] as i64 * q[1] as i64 + p[2] as i64 * q[2] as i64;
+        let odot = |p: [i32; 3], q: [i32; 3]| {
+            p[0] as i64 * q[0] as i64 + p[1] as i64 * q[1] as i64 + p[2] as i64 * q[2] as i64
+        };
         let at_orient = |msg: &str| match orient_word {
             Some(w) => a.error_at(w, msg.to_string(), "orient vectors"),
             None => a.error_at(style_word, msg.to_string(), "orient vectors"),
@@ -287,7 +295,11 @@ impl Lattice {
             }
             if let Some(k) = basis.iter().position(|b| b[2] != 0.0) {
                 let w = basis_words.get(k).copied().unwrap_or(style_word);
-                return Err(a.error_at(w, "lattice basis atom z coords must be zero for a 2d simulation", "z must be 0"));
+                return Err(a.error_at(
+                    w,
+                    "lattice basis atom z coords must be zero for a 2d simulation",
+                    "z must be 0",
+                ));
             }
         }
 
@@ -478,12 +490,68 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn spacings_match_lammps() {
+        // xlat ylat zlat reported by LAMMPS 22 Jul 2025 for each command
+        let cases: &[(UnitStyle, usize, &str, [f64; 3])] = &[
+            (UnitStyle::Lj, 3, "lattice bcc 1.2", [1.1856311014966876, 1.1856311014966876, 1.1856311014966876]),
+            (UnitStyle::Lj, 3, "lattice hcp 0.9", [1.1625835210688116, 2.0136537265335037, 1.898490939991203]),
+            (UnitStyle::Lj, 3, "lattice diamond 0.5", [2.5198420997897464, 2.5198420997897464, 2.5198420997897464]),
+            (
+                UnitStyle::Lj,
+                3,
+                "lattice fcc 0.8442 orient x 1 1 0 orient y -1 1 0 orient z 0 0 1",
+                [2.375307713163338, 2.375307713163338, 1.6795961913825073],
+            ),
+            (
+                UnitStyle::Lj,
+                3,
+                "lattice fcc 0.8442 orient x 1 1 1 orient y -1 1 0 orient z -1 -1 2",
+                [2.9091459396736825, 2.375307713163338, 2.742769095206096],
+            ),
+            (
+                UnitStyle::Si,
+                3,
+                "lattice hcp 3.2 orient x 1 0 0 orient y 0 1 1 orient z 0 -1 1 origin 0.1 0.2 0.3",
+                [3.2, 7.61422531126669, 7.61422531126669],
+            ),
+            (
+                UnitStyle::Lj,
+                3,
+                "lattice custom 1.3 a1 1 0 0 a2 0.5 0.8 0 a3 0.2 0.3 0.9 basis 0 0 0 basis 0.5 0.25 0.1",
+                [2.189611021027544, 1.4168071312531167, 1.159205834661641],
+            ),
+            (
+                UnitStyle::Si,
+                3,
+                "lattice custom 2.0 a1 1 0 0 a2 0.5 0.8 0 a3 0.2 0.3 0.9 basis 0 0 0 spacing 1 2 3",
+                [2.0, 4.0, 6.0],
+            ),
+            (UnitStyle::Lj, 2, "lattice hex 0.7", [1.2843567252460064, 2.2245711031688638, 1.2843567252460064]),
+            (
+                UnitStyle::Lj,
+                2,
+                "lattice sq2 0.9 orient x 1 1 0 orient y -1 1 0",
+                [2.1081851067789192, 2.1081851067789192, 1.4907119849998598],
+            ),
+            (UnitStyle::Cgs, 2, "lattice hex 2.5", [2.5, 4.330127018922193, 2.5]),
+            (UnitStyle::Lj, 3, "lattice none 2.5", [2.5, 2.5, 2.5]),
+        ];
+        for (u, d, line, want) in cases {
+            let l = lat(line, *u, *d).unwrap();
+            assert_eq!(l.spacing(), *want, "{line}");
+        }
+    }
+
+    #[test]
     fn rejects_bad_settings() {
         assert!(lat("lattice fcc 0.8 ", UnitStyle::Lj, 2).unwrap_err().message.contains("2d"));
         assert!(lat("lattice sq 1.0 origin 0.5 1.0 0", UnitStyle::Lj, 2).unwrap_err().message.contains("origin y"));
         assert!(lat("lattice sc 1.0 a1 1 0 0", UnitStyle::Lj, 3).unwrap_err().message.contains("custom"));
         assert!(lat("lattice sc 1.0 orient x 1 1 0", UnitStyle::Lj, 3).unwrap_err().message.contains("orthogonal"));
-        assert!(lat("lattice sc 1.0 orient x 0 1 0 orient y 1 0 0", UnitStyle::Lj, 3).unwrap_err().message.contains("right-handed"));
+        assert!(lat("lattice sc 1.0 orient x 0 1 0 orient y 1 0 0", UnitStyle::Lj, 3)
+            .unwrap_err()
+            .message
+            .contains("right-handed"));
         assert!(lat("lattice custom 1.0", UnitStyle::Lj, 3).unwrap_err().message.contains("basis"));
         assert!(lat("lattice sc -1", UnitStyle::Lj, 3).is_err());
         assert!(lat("lattice fcc 1.0 orgin 0 0 0", UnitStyle::Lj, 3).unwrap_err().help[0].contains("origin"));

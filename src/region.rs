@@ -18,16 +18,37 @@ const BIG: f64 = 1.0e20;
 /// The geometry of a region, in box units.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
-    Block { lo: [f64; 3], hi: [f64; 3] },
-    Sphere { center: [f64; 3], radius: f64 },
+    Block {
+        lo: [f64; 3],
+        hi: [f64; 3],
+    },
+    Sphere {
+        center: [f64; 3],
+        radius: f64,
+    },
     /// `axis` = 0, 1, 2 for x, y, z; `c1`, `c2` = the centre in the other two dimensions
     /// (in x, y, z order); `lo`, `hi` = the extent along the axis.
-    Cylinder { axis: usize, c1: f64, c2: f64, radius: f64, lo: f64, hi: f64 },
+    Cylinder {
+        axis: usize,
+        c1: f64,
+        c2: f64,
+        radius: f64,
+        lo: f64,
+        hi: f64,
+    },
     /// A parallelepiped with lower corner `lo`, edges `hi - lo` and tilts `xy xz yz`;
     /// `hinv` maps box coordinates to tilt coordinates in [0, 1].
-    Prism { lo: [f64; 3], hi: [f64; 3], tilt: [f64; 3], hinv: [[f64; 3]; 3] },
+    Prism {
+        lo: [f64; 3],
+        hi: [f64; 3],
+        tilt: [f64; 3],
+        hinv: [[f64; 3]; 3],
+    },
     /// Half space on the side the unit `normal` points to.
-    Plane { point: [f64; 3], normal: [f64; 3] },
+    Plane {
+        point: [f64; 3],
+        normal: [f64; 3],
+    },
     Union(Vec<Region>),
     Intersect(Vec<Region>),
 }
@@ -104,12 +125,21 @@ impl Region {
     /// the spacings for `units lattice` (the default; without a lattice command LAMMPS uses
     /// its initial `lattice none 1.0`); `existing` holds the regions defined so far (for
     /// union/intersect and ID reuse).
-    pub fn from_lammps(cmd: &Command, domain: Option<&Domain>, lattice: Option<&Lattice>, existing: &[Region]) -> DResult<Region> {
+    pub fn from_lammps(
+        cmd: &Command,
+        domain: Option<&Domain>,
+        lattice: Option<&Lattice>,
+        existing: &[Region],
+    ) -> DResult<Region> {
         let mut a = Args::new(cmd, SYNTAX);
         let id_word = a.word("region ID")?;
         let id = id_word.text.clone();
         if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            return Err(a.error_at(id_word, format!("region ID `{id}` must use only letters, digits and underscores"), "invalid ID"));
+            return Err(a.error_at(
+                id_word,
+                format!("region ID `{id}` must use only letters, digits and underscores"),
+                "invalid ID",
+            ));
         }
         if existing.iter().any(|r| r.id == id) {
             return Err(a.error_at(id_word, format!("reuse of region ID `{id}`"), "already defined"));
@@ -125,12 +155,20 @@ impl Region {
             "union" | "intersect" => {
                 let n = a.i64("number of sub-regions")?;
                 if n < 2 {
-                    return Err(a.error_at(a.last().unwrap(), format!("region {style} needs at least 2 sub-regions, found {n}"), "must be >= 2"));
+                    return Err(a.error_at(
+                        a.last().unwrap(),
+                        format!("region {style} needs at least 2 sub-regions, found {n}"),
+                        "must be >= 2",
+                    ));
                 }
                 n as usize
             }
             "cone" | "ellipsoid" | "delete" => {
-                return Err(a.error_at(style_word, format!("region style `{style}` is not supported"), "not supported"));
+                return Err(a.error_at(
+                    style_word,
+                    format!("region style `{style}` is not supported"),
+                    "not supported",
+                ));
             }
             _ => {
                 let known = ["block", "sphere", "cylinder", "prism", "plane", "union", "intersect"];
@@ -161,7 +199,11 @@ impl Region {
                     open_words.push((a.last().unwrap(), face));
                 }
                 "move" | "rotate" => {
-                    return Err(a.error_at(kw, format!("region keyword `{}` (dynamic regions) is not supported", kw.text), "not supported"));
+                    return Err(a.error_at(
+                        kw,
+                        format!("region keyword `{}` (dynamic regions) is not supported", kw.text),
+                        "not supported",
+                    ));
                 }
                 _ => return Err(a.unknown_keyword(kw, &KEYWORDS)),
             }
@@ -172,7 +214,11 @@ impl Region {
 
         let num = |w: &Word, what: &str| -> DResult<f64> {
             if w.text.starts_with("v_") {
-                return Err(a.error_at(w, "variable region parameters (v_name) are not supported", "variable not supported"));
+                return Err(a.error_at(
+                    w,
+                    "variable region parameters (v_name) are not supported",
+                    "variable not supported",
+                ));
             }
             dmhs_parser::args::word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))
         };
@@ -180,7 +226,11 @@ impl Region {
         let bound = |w: &Word, dim: usize, upper: bool, what: &str| -> DResult<f64> {
             if w.text == "INF" || w.text == "EDGE" {
                 let Some(d) = domain else {
-                    return Err(a.error_at(w, format!("cannot use region {} when the box does not exist", w.text), "no box yet"));
+                    return Err(a.error_at(
+                        w,
+                        format!("cannot use region {} when the box does not exist", w.text),
+                        "no box yet",
+                    ));
                 };
                 return Ok(match (w.text.as_str(), upper) {
                     ("INF", false) => -BIG,
@@ -203,7 +253,17 @@ impl Region {
                 }
                 for d in 0..3 {
                     if lo[d] > hi[d] {
-                        return Err(a.error_at(&w[2 * d], format!("region block {}lo {} > {}hi {}", "xyz".as_bytes()[d] as char, lo[d], "xyz".as_bytes()[d] as char, hi[d]), "lower bound above upper bound"));
+                        return Err(a.error_at(
+                            &w[2 * d],
+                            format!(
+                                "region block {}lo {} > {}hi {}",
+                                "xyz".as_bytes()[d] as char,
+                                lo[d],
+                                "xyz".as_bytes()[d] as char,
+                                hi[d]
+                            ),
+                            "lower bound above upper bound",
+                        ));
                     }
                 }
                 (Shape::Block { lo, hi }, if interior { Some((lo, hi)) } else { None })
@@ -212,7 +272,11 @@ impl Region {
                 let center = [scale[0] * num(&w[0], "x")?, scale[1] * num(&w[1], "y")?, scale[2] * num(&w[2], "z")?];
                 let radius = scale[0] * num(&w[3], "radius")?;
                 if radius < 0.0 {
-                    return Err(a.error_at(&w[3], format!("region sphere radius must be >= 0, found {}", w[3].text), "negative radius"));
+                    return Err(a.error_at(
+                        &w[3],
+                        format!("region sphere radius must be >= 0, found {}", w[3].text),
+                        "negative radius",
+                    ));
                 }
                 let ext = (
                     [center[0] - radius, center[1] - radius, center[2] - radius],
@@ -222,13 +286,23 @@ impl Region {
             }
             "cylinder" => {
                 if let Some((ow, face)) = open_words.iter().find(|(_, f)| *f > 3) {
-                    return Err(a.error_at(ow, format!("region cylinder has no open face {face} (faces are 1-3)"), "invalid face"));
+                    return Err(a.error_at(
+                        ow,
+                        format!("region cylinder has no open face {face} (faces are 1-3)"),
+                        "invalid face",
+                    ));
                 }
                 let axis = match w[0].text.as_str() {
                     "x" => 0,
                     "y" => 1,
                     "z" => 2,
-                    _ => return Err(a.error_at(&w[0], format!("region cylinder axis must be x, y or z, found `{}`", w[0].text), "invalid axis")),
+                    _ => {
+                        return Err(a.error_at(
+                            &w[0],
+                            format!("region cylinder axis must be x, y or z, found `{}`", w[0].text),
+                            "invalid axis",
+                        ))
+                    }
                 };
                 let (d1, d2) = match axis {
                     0 => (1, 2),
@@ -242,7 +316,11 @@ impl Region {
                 let lo = bound(&w[4], axis, false, "lo")?;
                 let hi = bound(&w[5], axis, true, "hi")?;
                 if radius <= 0.0 {
-                    return Err(a.error_at(&w[3], format!("region cylinder radius must be > 0, found {}", w[3].text), "radius must be > 0"));
+                    return Err(a.error_at(
+                        &w[3],
+                        format!("region cylinder radius must be > 0, found {}", w[3].text),
+                        "radius must be > 0",
+                    ));
                 }
                 let mut elo = [0.0; 3];
                 let mut ehi = [0.0; 3];
@@ -266,13 +344,21 @@ impl Region {
                 let yz = scale[1] * num(&w[8], "yz")?;
                 for d in 0..3 {
                     if lo[d] >= hi[d] {
-                        return Err(a.error_at(&w[2 * d], "region prism must have non-zero thickness in every dimension (lo < hi)", "lo >= hi"));
+                        return Err(a.error_at(
+                            &w[2 * d],
+                            "region prism must have non-zero thickness in every dimension (lo < hi)",
+                            "lo >= hi",
+                        ));
                     }
                 }
                 let inf = |d: usize| lo[d] == -BIG && hi[d] == BIG;
                 for (k, (t, d1, d2)) in [(xy, 0, 1), (xz, 0, 2), (yz, 1, 2)].into_iter().enumerate() {
                     if t != 0.0 && (inf(d1) || inf(d2)) {
-                        return Err(a.error_at(&w[6 + k], "region prism tilt must be 0 when a tilted dimension is INF at both ends", "non-zero tilt"));
+                        return Err(a.error_at(
+                            &w[6 + k],
+                            "region prism tilt must be 0 when a tilted dimension is INF at both ends",
+                            "non-zero tilt",
+                        ));
                     }
                 }
                 let h = [[hi[0] - lo[0], xy, xz], [0.0, hi[1] - lo[1], yz], [0.0, 0.0, hi[2] - lo[2]]];
@@ -310,7 +396,13 @@ impl Region {
                 for sw in w {
                     match existing.iter().find(|r| r.id == sw.text) {
                         Some(r) => subs.push(r.clone()),
-                        None => return Err(a.error_at(sw, format!("region {style} sub-region `{}` does not exist", sw.text), "unknown region ID")),
+                        None => {
+                            return Err(a.error_at(
+                                sw,
+                                format!("region {style} sub-region `{}` does not exist", sw.text),
+                                "unknown region ID",
+                            ))
+                        }
                     }
                 }
                 let ext = if style == "union" {

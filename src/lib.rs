@@ -27,6 +27,9 @@ pub mod thermo;
 pub mod timing;
 pub mod topology;
 pub mod units;
+pub mod velocity;
 pub mod velocity_create;
+pub mod commands;
+pub mod data;
 
 pub use dmhs_parser as parser;

@@ -238,7 +238,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         let need = |ok: bool, what: &str| -> DResult<()> {
             if ok { Ok(()) } else { Err(Diagnostic::at(kw.span, format!("set {} needs an atom style with {what}", kw.text), "not available in this atom style")) }
         };
-        let mut value = |a: &mut Args, what: &str| -> DResult<f64> {
+        let value = |a: &mut Args, what: &str| -> DResult<f64> {
             let w = a.word(what)?;
             if w.text.starts_with("v_") {
                 return Err(a.error_at(w, "per-atom variables in set are not supported yet", "use a number"));

@@ -104,3 +104,36 @@ pub(crate) fn before_box(sim: &Simulation, cmd: &Command) -> DResult<()> {
     }
     Ok(())
 }
+
+/// Test helper: run a deck of plain commands (one per line, no `$` substitution or quotes).
+#[cfg(test)]
+pub(crate) fn run_plain(sim: &mut Simulation, text: &str) -> DResult<()> {
+    use dmhs_parser::{FileId, Span, Word};
+    let mut sources = SourceMap::new();
+    let id = sources.add("test", text);
+    let mut offset = 0usize;
+    for line in text.split_inclusive('\n') {
+        let body = line.split('#').next().unwrap();
+        let mut words = vec![];
+        let mut pos = 0;
+        for w in body.split_whitespace() {
+            let at = body[pos..].find(w).unwrap() + pos;
+            pos = at + w.len();
+            words.push(Word::new(w, Span::new(id, offset + at, offset + at + w.len())));
+        }
+        offset += line.len();
+        if words.is_empty() {
+            continue;
+        }
+        let span = words[0].span.to(words.last().unwrap().span);
+        let cmd = Command { name: words.remove(0), args: words, span };
+        sim.execute(&cmd, &mut sources).map_err(|d| {
+            eprintln!("{}", d.render(&sources));
+            d
+        })?;
+    }
+    let _ = FileId(0);
+    Ok(())
+}
+#[cfg(test)]
+mod tests;

@@ -112,7 +112,11 @@ pub fn numeric_value(ctx: &mut dyn EvalContext, name: &str) -> Result<f64, Strin
     let kind = ctx.variables().vars.get(name).cloned();
     match kind {
         None => Err(format!("invalid variable name `v_{name}` in variable formula")),
-        Some(Kind::Equal(f)) => crate::expr::evaluate(&f, ctx).map_err(|e| e.message),
+        // LAMMPS reads v_name back from its %.15g text (Variable::evaluate uses retrieve + atof)
+        Some(Kind::Equal(f)) => {
+            let x = crate::expr::evaluate(&f, ctx).map_err(|e| e.message)?;
+            Ok(crate::numfmt::format_g(x, 15).parse().unwrap_or(x))
+        }
         Some(Kind::List(v, i)) => v.get(i).and_then(|s| s.parse().ok()).ok_or(format!("variable `{name}` is not numeric")),
         Some(Kind::Str(s)) => s.parse().map_err(|_| format!("variable `{name}` is not numeric")),
     }

@@ -262,12 +262,14 @@ impl Interpreter {
 
     fn check_name(&self, w: &LexWord, host: &dyn Host, top_level: bool, out: &mut Vec<Diagnostic>) {
         let name = w.as_str();
+        if REFUSED_COMMANDS.contains(&name) {
+            out.push(refused(&w.to_word()));
+            return;
+        }
         if name.contains('$') || FLOW_COMMANDS.contains(&name) || host.supports_command(name) {
             return;
         }
-        if REFUSED_COMMANDS.contains(&name) {
-            out.push(refused(&w.to_word()));
-        } else if top_level || !is_lammps_command(name) {
+        if top_level || !is_lammps_command(name) {
             out.push(unknown_command(&w.to_word(), &supported_names(host)));
         }
     }

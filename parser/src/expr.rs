@@ -69,12 +69,9 @@ impl P<'_> {
     fn peek_op(&mut self) -> Option<&'static str> {
         self.ws();
         let rest = &self.s[self.i..];
-        for op in ["||", "|^", "&&", "==", "!=", "<=", ">=", "<", ">", "+", "-", "*", "/", "%", "^"] {
-            if rest.starts_with(op.as_bytes()) {
-                return Some(op);
-            }
-        }
-        None
+        ["||", "|^", "&&", "==", "!=", "<=", ">=", "<", ">", "+", "-", "*", "/", "%", "^"]
+            .into_iter()
+            .find(|op| rest.starts_with(op.as_bytes()))
     }
     fn expr(&mut self, min: u8) -> Result<f64, ExprError> {
         let mut lhs = self.unary()?;

@@ -174,6 +174,12 @@ impl Interpreter {
         self.finish(r)
     }
 
+    /// Only the pre-pass over a script given as text: every problem visible without running it.
+    pub fn check_source(&mut self, name: &str, text: &str, host: &dyn Host) -> Vec<Diagnostic> {
+        let file = self.sources.add(name, text);
+        self.check_lines(&lexer::split_lines(file, text), host)
+    }
+
     /// Run one command line (as LAMMPS' `lammps_command`), e.g. from the host.
     pub fn execute_line(&mut self, text: &str, host: &mut dyn Host) -> Result<Outcome, Vec<Diagnostic>> {
         let file = self.sources.add("<command>", text);

@@ -36,19 +36,16 @@ impl Variables {
                 self.vars.remove(&n);
             }
             "index" => {
-                if !self.vars.contains_key(&n) {
-                    self.vars.insert(n, Kind::List(vals, 0));
-                }
+                self.vars.entry(n).or_insert(Kind::List(vals, 0));
             }
             "loop" => {
-                if !self.vars.contains_key(&n) {
-                    let num = |s: &String| s.parse::<i64>().unwrap_or(1);
-                    let (lo, hi) = match vals.len() {
-                        1 => (1, num(&vals[0])),
-                        _ => (num(&vals[0]), num(&vals[1])),
-                    };
-                    self.vars.insert(n, Kind::List((lo..=hi).map(|i| i.to_string()).collect(), 0));
-                }
+                let num = |s: &String| s.parse::<i64>().unwrap_or(1);
+                let (lo, hi) = match vals.len() {
+                    0 => (1, 0),
+                    1 => (1, num(&vals[0])),
+                    _ => (num(&vals[0]), num(&vals[1])),
+                };
+                self.vars.entry(n).or_insert_with(|| Kind::List((lo..=hi).map(|i| i.to_string()).collect(), 0));
             }
             "equal" => {
                 self.vars.insert(n, Kind::Equal(vals.join(" ")));

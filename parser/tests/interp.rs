@@ -158,3 +158,12 @@ fn shell_and_python_are_refused_even_in_branches() {
     let err = run("in.t", "if \"1 > 0\" then \"shell rm -rf x\"\n", &mut host).unwrap_err();
     assert!(err.contains("`shell` is not supported for safety"), "{err}");
 }
+
+#[test]
+fn check_source_reports_without_running() {
+    let host = TestHost::new();
+    let mut interp = Interpreter::new();
+    let ds = interp.check_source("in.t", "units lj\nfix 1 all nve\npair_stlye x\nprint 'a\n", &host);
+    let msgs: Vec<&str> = ds.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(msgs, ["unknown command `pair_stlye`", "unmatched single quote"]);
+}

@@ -528,6 +528,10 @@ mod tests {
     fn triple_quotes_span_lines() {
         // lmp echoes 'print """line1\nline2\n  line3"""' (trailing blanks of line2 trimmed)
         assert_eq!(lines("print \"\"\"line1\nline2   \n  line3\"\"\"\nx\n"), vec!["print \"\"\"line1\nline2\n  line3\"\"\"", "x"]);
+        // blank lines inside triple quotes vanish (the trim runs back over the whole line)
+        assert_eq!(lines("print \"\"\"a\n\n   \n b\"\"\"\n"), vec!["print \"\"\"a\n b\"\"\""]);
+        // a continuation after a closing quote
+        assert_eq!(lines("print \"x\"&\n   \"y\"\n"), vec!["print \"x\"   \"y\""]);
     }
 
     #[test]

@@ -221,12 +221,12 @@ def write_table(path, header, ids, types, columns):
                              [fmt(c[i]) for c in columns]) + "\n")
 
 
-def snapshot_atoms(lmp):
-    nlocal = lmp.extract_setting("nlocal")
+def atom_getter(lmp):
+    """name -> per-atom array of the local atoms (all atoms: the driver runs on one rank)."""
     if lmp.extract_setting("world_size") != 1:
         raise DriverError("run the driver on one MPI rank")
-    get = lambda name: per_atom(lmp, name, nlocal)
-    return nlocal, get
+    nlocal = lmp.extract_setting("nlocal")
+    return lambda name: per_atom(lmp, name, nlocal)
 
 
 def atom_extras(get):
@@ -244,7 +244,7 @@ def atom_extras(get):
 
 
 def write_forces(lmp, path):
-    _n, get = snapshot_atoms(lmp)
+    get = atom_getter(lmp)
     f = get("f")
     force, _state = atom_extras(get)
     header = ["id", "type", "fx", "fy", "fz"] + [name for name, _ in force]
@@ -253,7 +253,7 @@ def write_forces(lmp, path):
 
 
 def write_final(lmp, path):
-    _n, get = snapshot_atoms(lmp)
+    get = atom_getter(lmp)
     xu = unwrap(lmp, get("x"), get("image"))
     v = get("v")
     _force, state = atom_extras(get)

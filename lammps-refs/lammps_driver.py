@@ -61,7 +61,7 @@ def ensure_mpi_library_path():
 # ---------------------------------------------------------------------------------------------
 
 def logical_commands(text):
-    """Yield (first_line_index, end_line_index_exclusive, command_text) for each command.
+    """Yield (first_line_index, command_text) for each command.
 
     A command continues onto the next line when the last printable character of its line is `&`
     or when it holds an odd number of triple quotes (as LAMMPS' Input::file reads them).
@@ -82,7 +82,7 @@ def logical_commands(text):
             if buf.count('"""') % 2 == 1:
                 continue
             break
-        yield start, i, buf
+        yield start, buf
 
 
 def strip_comment(command):
@@ -118,7 +118,7 @@ def mentions_run(command):
 
 def find_first_run(text, deck_dir, where):
     """Return the line index of the first top-level `run`, or None; refuse decks it cannot split."""
-    for start, _end, command in logical_commands(text):
+    for start, command in logical_commands(text):
         words = split_words(command)
         if not words:
             continue

@@ -14,7 +14,7 @@ fn kind_of(category: &str) -> Option<StyleKind> {
         "improper" => StyleKind::Improper,
         "fix" => StyleKind::Fix,
         "compute" => StyleKind::Compute,
-        "atom_style" => StyleKind::AtomStyle,
+        "atom_style" => StyleKind::Atom,
         "region" => StyleKind::Region,
         "dump" => StyleKind::Dump,
         _ => return None,

@@ -118,3 +118,8 @@ pub fn numeric_value(ctx: &mut dyn EvalContext, name: &str) -> Result<f64, Strin
         Some(Kind::Str(s)) => s.parse().map_err(|_| format!("variable `{name}` is not numeric")),
     }
 }
+
+/// Numeric value of `v_name` (same as [`numeric_value`]).
+pub fn compute_equal(ctx: &mut dyn EvalContext, name: &str) -> Result<f64, String> {
+    numeric_value(ctx, name)
+}

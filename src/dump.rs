@@ -66,7 +66,7 @@ impl Dump {
             groupbit,
             style: style.clone(),
             every,
-            path: PathBuf::from(&fw.text),
+            path: sim.path(&fw.text),
             names: vec![],
             columns: vec![],
             sort: false,

@@ -1,4 +1,4 @@
 fn main() {
-    eprintln!("dmhs: being built");
-    std::process::exit(1);
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    std::process::exit(dmhs::cli::main_with_args(&args));
 }

@@ -236,6 +236,9 @@ impl Simulation {
             crate::format::g(self.dt)
         ));
         self.setup(opts.pre)?;
+        if self.want_capture && self.capture_setup.is_none() {
+            self.capture_setup = Some(crate::crosscheck::capture_forces(self));
+        }
         let mem = crate::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
         self.out.print(&self.thermo.header());

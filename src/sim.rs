@@ -106,6 +106,14 @@ pub struct Simulation {
     pub last_loop_steps: i64,
     /// A run failed (exit code 1 rather than 2 for a deck error).
     pub runtime_failed: bool,
+    /// Directory for relative file names in commands (None: the working directory).
+    pub base_dir: Option<std::path::PathBuf>,
+    /// Per-atom forces captured after the setup of the first run (for crosscheck).
+    pub capture_setup: Option<crate::crosscheck::AtomTable>,
+    pub want_capture: bool,
+    /// `dmhs check`: commands are built but `run` does not run.
+    pub check_only: bool,
+    pub checked_runs: usize,
 }
 
 impl Default for Simulation {
@@ -164,6 +172,19 @@ impl Simulation {
             last_loop_seconds: 0.0,
             last_loop_steps: 0,
             runtime_failed: false,
+            base_dir: None,
+            capture_setup: None,
+            want_capture: false,
+            check_only: false,
+            checked_runs: 0,
+        }
+    }
+
+    /// A file name from a command, resolved against `base_dir`.
+    pub fn path(&self, name: &str) -> std::path::PathBuf {
+        match &self.base_dir {
+            Some(d) if std::path::Path::new(name).is_relative() => d.join(name),
+            _ => std::path::PathBuf::from(name),
         }
     }
 

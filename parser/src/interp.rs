@@ -81,6 +81,9 @@ pub struct Interpreter {
     reported: HashSet<Span>,
     warned_non_ascii: bool,
     quit: Option<i32>,
+    /// Directory that relative paths are resolved against (None: the working directory,
+    /// as LAMMPS does). Lets a library user run decks from elsewhere without `chdir`.
+    base_dir: Option<std::path::PathBuf>,
 }
 
 impl Default for Interpreter {
@@ -131,6 +134,20 @@ impl Interpreter {
             reported: HashSet::new(),
             warned_non_ascii: false,
             quit: None,
+            base_dir: None,
+        }
+    }
+
+    /// Resolve relative `include`, `jump` and `print file` paths against `dir`.
+    pub fn set_base_dir(&mut self, dir: Option<std::path::PathBuf>) {
+        self.base_dir = dir;
+    }
+
+    /// A path as the script wrote it, resolved against the base directory.
+    pub fn resolve(&self, path: &str) -> std::path::PathBuf {
+        match &self.base_dir {
+            Some(d) if std::path::Path::new(path).is_relative() => d.join(path),
+            _ => std::path::PathBuf::from(path),
         }
     }
 
@@ -155,7 +172,7 @@ impl Interpreter {
 
     /// Run an input script from a file (a relative path is relative to the current directory).
     pub fn run_file(&mut self, path: &str, host: &mut dyn Host) -> Result<Outcome, Vec<Diagnostic>> {
-        let text = match std::fs::read(path) {
+        let text = match std::fs::read(self.resolve(path)) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) => return Err(one(Diagnostic::error(format!("cannot open input script `{path}`: {e}")))),
         };
@@ -380,7 +397,7 @@ impl Interpreter {
 
     /// Load a file for `include` or `jump`; `at` is the word that named it.
     fn load(&mut self, path: &str, at: Span) -> Result<Vec<LogicalLine>, Vec<Diagnostic>> {
-        let text = match std::fs::read(path) {
+        let text = match std::fs::read(self.resolve(path)) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) => {
                 return Err(one(Diagnostic::at(at, format!("cannot open input script `{path}`: {e}"), "this file")
@@ -542,10 +559,11 @@ impl Interpreter {
             match kw.as_str() {
                 "file" | "append" => {
                     let path = value.as_str();
+                    let full = self.resolve(path);
                     let opened = if kw.as_str() == "file" {
-                        std::fs::File::create(path)
+                        std::fs::File::create(&full)
                     } else {
-                        std::fs::OpenOptions::new().append(true).create(true).open(path)
+                        std::fs::OpenOptions::new().append(true).create(true).open(&full)
                     };
                     match opened {
                         Ok(f) => file = Some((f, value.span)),

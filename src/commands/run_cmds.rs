@@ -33,6 +33,9 @@ pub fn parse_run(cmd: &Command) -> DResult<RunOptions> {
 pub fn run(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
     let opts = parse_run(cmd)?;
+    if sim.check_only {
+        return sim.check_run(&opts).map_err(|e| Diagnostic::at(cmd.span, e, "this run"));
+    }
     sim.run(&opts).map_err(|e| {
         sim.runtime_failed = true;
         Diagnostic::at(cmd.span, format!("run stopped at step {}: {}", e.step, e.message), "this run").with_note("results written before the failure (log, dumps) are kept")

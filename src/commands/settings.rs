@@ -346,6 +346,6 @@ pub fn log(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     let w = a.word("file name")?;
     let append = if a.is_empty() { false } else { a.choice("keyword", &["append"]).map(|_| true)? };
     a.finish()?;
-    let path = if w.text == "none" { None } else { Some(std::path::Path::new(&w.text)) };
-    sim.out.set_log(path, append).map_err(|e| a.error_at(w, format!("cannot open log file `{}`: {e}", w.text), "cannot open"))
+    let path = if w.text == "none" { None } else { Some(sim.path(&w.text)) };
+    sim.out.set_log(path.as_deref(), append).map_err(|e| a.error_at(w, format!("cannot open log file `{}`: {e}", w.text), "cannot open"))
 }

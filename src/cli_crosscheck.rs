@@ -1,0 +1,104 @@
+//! `dmhs crosscheck DECK`: the deck in dmhs and in LAMMPS, per-atom differences, a verdict.
+
+use crate::cli::deck_dir;
+use crate::crosscheck::{capture_state, compare_runs, report, AtomTable, Difference};
+use crate::deck::{run_file, DeckOptions};
+use std::path::Path;
+
+pub const DEFAULT_FORCE_TOL: f64 = 1e-12;
+pub const DEFAULT_POS_TOL: f64 = 1e-9;
+pub const DEFAULT_VEL_TOL: f64 = 1e-8;
+
+/// dmhs' step-0 forces and final state for a deck (relative paths resolve in the deck's folder).
+pub fn dmhs_capture(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<(AtomTable, AtomTable, f64), String> {
+    let opts = DeckOptions { vars: vars.to_vec(), screen: false, log: None, base_dir: Some(deck_dir(deck)), capture: true, ..Default::default() };
+    let run = run_file(deck, &opts).map_err(|f| f.rendered)?;
+    let sim = run.sim;
+    let f0 = sim.capture_setup.clone().ok_or("the deck has no run command: nothing to compare")?;
+    let fin = capture_state(&sim);
+    let d = sim.domain.as_ref().ok_or("the deck defines no box")?;
+    let prd = d.prd();
+    let box_len = prd[..d.dimension].iter().cloned().fold(0.0, f64::max);
+    Ok((f0, fin, box_len))
+}
+
+/// Whether every difference is within its tolerance.
+pub fn within(diffs: &[Difference], tols: [f64; 3]) -> Vec<String> {
+    let mut bad = vec![];
+    for d in diffs {
+        let tol = match d.quantity.as_str() {
+            "position" => tols[1],
+            "velocity" | "rho" | "esph" | "omega" => tols[2],
+            _ => tols[0],
+        };
+        if !(d.max_rel <= tol) {
+            bad.push(format!("{}: max rel {:.3e} > tolerance {:.1e} (atom {})", d.quantity, d.max_rel, tol, d.worst_id));
+        }
+    }
+    bad
+}
+
+pub fn crosscheck_cmd(decks: &[std::path::PathBuf], opts: &DeckOptions, against: &[String], tols: [Option<f64>; 3]) -> i32 {
+    let tols = [tols[0].unwrap_or(DEFAULT_FORCE_TOL), tols[1].unwrap_or(DEFAULT_POS_TOL), tols[2].unwrap_or(DEFAULT_VEL_TOL)];
+    if decks.is_empty() {
+        eprintln!("dmhs crosscheck: give a deck");
+        return 2;
+    }
+    for engine in against {
+        if engine != "lammps" {
+            eprintln!("dmhs crosscheck: --against {engine} is not supported yet (lammps is)");
+            return 2;
+        }
+    }
+    let mut status = 0;
+    for deck in decks {
+        let tmp = match tempfile::tempdir() {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("dmhs crosscheck: cannot make a temporary directory: {e}");
+                return 1;
+            }
+        };
+        let deck_abs = std::fs::canonicalize(deck).unwrap_or(deck.clone());
+        if let Err(e) = crate::lammps::run_driver(&deck_abs, &opts.vars, tmp.path()) {
+            eprintln!("dmhs crosscheck: {e}");
+            return 1;
+        }
+        let theirs0 = AtomTable::read(&tmp.path().join("forces0.txt"));
+        let theirs = AtomTable::read(&tmp.path().join("final.txt"));
+        let (theirs0, theirs) = match (theirs0, theirs) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                eprintln!("dmhs crosscheck: {e}");
+                return 1;
+            }
+        };
+        let (ours0, ours, box_len) = match dmhs_capture(&deck_abs, &opts.vars) {
+            Ok(x) => x,
+            Err(e) => {
+                eprint!("{e}");
+                return 2;
+            }
+        };
+        match compare_runs(&ours0, &theirs0, &ours, &theirs, box_len) {
+            Ok(diffs) => {
+                println!("crosscheck {} against LAMMPS ({} atoms)", deck.display(), theirs.rows.len());
+                print!("{}", report(&diffs));
+                let bad = within(&diffs, tols);
+                if bad.is_empty() {
+                    println!("PASS (force tol {:.0e}, position tol {:.0e}, velocity tol {:.0e})", tols[0], tols[1], tols[2]);
+                } else {
+                    for b in bad {
+                        println!("FAIL {b}");
+                    }
+                    status = 1;
+                }
+            }
+            Err(e) => {
+                println!("FAIL {e}");
+                status = 1;
+            }
+        }
+    }
+    status
+}

@@ -490,7 +490,7 @@ fn eval_formula(ctx: &mut dyn EvalContext, name: &str, text: &str) -> Result<f64
 }
 
 /// The text `$x` / `${name}` substitutes: `None` if there is no such variable (or it has no
-/// text: atom and vector styles, a format variable whose variable is gone).
+/// single value: atom and vector styles). Errors are LAMMPS messages.
 pub fn retrieve(ctx: &mut dyn EvalContext, name: &str) -> Result<Option<String>, String> {
     let Some(var) = ctx.variables().get(name).cloned() else { return Ok(None) };
     if var.busy {
@@ -505,8 +505,10 @@ pub fn retrieve(ctx: &mut dyn EvalContext, name: &str) -> Result<Option<String>,
         Style::Atom(_) | Style::Vector(_) => None,
         Style::Equal(text) => Some(numfmt::format_g(eval_formula(ctx, name, &text)?, 15)),
         Style::Format { var, fmt } => {
-            if !ctx.variables().is_equal_style(&var) {
-                return Ok(None);
+            match ctx.variables().style(&var) {
+                None => return Err(format!("Variable {name}: format variable {var} does not exist")),
+                Some("equal" | "internal") => {}
+                Some(_) => return Err(format!("Variable {name}: format variable {var} has incompatible style")),
             }
             ctx.variables().set_busy(name, true);
             let v = compute_equal(ctx, &var);

@@ -1,9 +1,11 @@
-//! Equal-style formulas (`variable a equal ...`, `$(...)`, `if` conditions) as LAMMPS
-//! 22 Jul 2025 reads and computes them (src/variable.cpp `Variable::evaluate()`).
+//! Equal-style formulas (`variable a equal ...`, `$(...)`) and `if` conditions as LAMMPS
+//! 22 Jul 2025 reads and computes them (src/variable.cpp `Variable::evaluate()` and
+//! `evaluate_boolean()`).
 //!
-//! The text is parsed into a tree ([`parse`]) and the tree is evaluated ([`eval`]) against an
-//! [`EvalContext`]. The tree keeps every node's byte range, so errors point into the text, and
-//! a later per-atom evaluator can walk the same tree.
+//! [`evaluate`] computes while it reads, as LAMMPS does, so the first error LAMMPS would meet
+//! is the one reported. [`parse`] reads the same grammar into a tree whose nodes keep their
+//! byte ranges, and [`eval`] computes a tree (for formulas parsed once and computed often, and
+//! for a later per-atom evaluator).
 //!
 //! LAMMPS rules reproduced here (each checked with the real `lmp`, see the tests):
 //! * precedence, low to high: `|| |^`, `&&`, `== !=`, `< <= > >=`, `+ -`, `* / %`, `^`, and the
@@ -12,10 +14,16 @@
 //! * operands are computed left to right and each operation is one IEEE operation in that
 //!   order, so results are bit-identical to LAMMPS;
 //! * a number is digits and points with an optional exponent, converted by `strtod` (so `1.2.3`
-//!   is 1.2); `x^0` is 1 for any x; `&&`/`||` evaluate both sides;
+//!   is 1.2); `x^0` is 1 for any x; `&&`/`||` evaluate both sides; `ternary()` reads only the
+//!   branch it returns;
 //! * the value of a whole formula is flushed to zero when its magnitude is below the smallest
 //!   normal double (LAMMPS prints `0` for `0*-1` and for `1e-300*1e-10`), but values inside it
 //!   are not (`atan2(0*-1,-1)` is -PI).
+//!
+//! Where dmhs differs: numbers LAMMPS cannot convert (`.e5`, `1e400`, `1e-310`) make LAMMPS
+//! abort and are errors here; a stray `!` after an operand is a syntax error at once (LAMMPS
+//! reads on and reports a syntax error at the end); `random()`, `normal()` and the special
+//! functions on global vectors (`sum()`, `max()`, ...) are not supported.
 
 use crate::context::EvalContext;
 

@@ -87,10 +87,11 @@ pub fn eval(e: &Expr, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
             let i = global_index(e, indices, "f", id, ctx)?;
             ctx.fix_value(id, i).map_err(|m| e.err(m))
         }
-        Node::UpperCase(word) => Err(e.err(format!(
-            "{word}: upper-case C_/F_ reads a global vector, which an equal-style formula cannot hold"
-        ))
-        .with_help(format!("use {}{} for a scalar or {}{}[i] for one element", word[..1].to_lowercase(), &word[1..], word[..1].to_lowercase(), &word[1..]))),
+        Node::UpperCase(word) => {
+            let lower = word.to_ascii_lowercase();
+            Err(e.err(format!("{word}: upper-case C_/F_ reads a global vector, which an equal-style formula cannot hold"))
+                .with_help(format!("use {}{} for a scalar or ...[i] for one element", &lower[..2], &word[2..])))
+        }
         Node::AtomValue { keyword, id } => {
             let id = index_value(e, id, ctx)?;
             match ctx.atom_value(keyword, id) {

@@ -214,36 +214,17 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// The `)` matching the `(` at `open` (LAMMPS counts parentheses only).
+    /// The `)` matching the `(` at `open`.
     fn matching_paren(&self, open: usize) -> Result<usize, ExprError> {
-        let mut level = 0;
-        for i in open + 1..self.end {
-            match self.b[i] {
-                b'(' => level += 1,
-                b')' if level > 0 => level -= 1,
-                b')' => return Ok(i),
-                _ => {}
-            }
-        }
-        Err(self.syntax_at(open, 1).with_help("this `(` is never closed"))
+        matching_paren(self.b, open, self.end)
+            .ok_or_else(|| self.syntax_at(open, 1).with_help("this `(` is never closed"))
     }
 
     /// A number: digits and points, then an optional exponent; the value is what `strtod`
     /// reads from the start of that text (LAMMPS ignores the rest, so `1.2.3` is 1.2).
     fn number(&mut self) -> Result<Expr, ExprError> {
         let start = self.pos;
-        while matches!(self.peek(), Some(c) if c.is_ascii_digit() || c == b'.') {
-            self.pos += 1;
-        }
-        if matches!(self.peek(), Some(b'e' | b'E')) {
-            self.pos += 1;
-            if matches!(self.peek(), Some(b'+' | b'-')) {
-                self.pos += 1;
-            }
-            while matches!(self.peek(), Some(c) if c.is_ascii_digit()) {
-                self.pos += 1;
-            }
-        }
+        self.pos = number_end(self.b, start, self.end);
         let token = &self.text[start..self.pos];
         let value = strtod_prefix(token).map_err(|m| ExprError::new(m, start, token.len()))?;
         Ok(Expr { node: Node::Number(value), offset: start, len: self.pos - start })
@@ -372,6 +353,38 @@ impl<'a> Parser<'a> {
         }
         Ok(out)
     }
+}
+
+/// The `)` matching the `(` at `open`, before `end` (LAMMPS counts parentheses only).
+pub(crate) fn matching_paren(b: &[u8], open: usize, end: usize) -> Option<usize> {
+    let mut level = 0;
+    for (i, &c) in b.iter().enumerate().take(end).skip(open + 1) {
+        match c {
+            b'(' => level += 1,
+            b')' if level > 0 => level -= 1,
+            b')' => return Some(i),
+            _ => {}
+        }
+    }
+    None
+}
+
+/// End of the number text that starts at `i`: digits and points, then `e` or `E`, a sign
+/// and digits (LAMMPS' scan; the value is read from it by [`strtod_prefix`]).
+pub(crate) fn number_end(b: &[u8], mut i: usize, end: usize) -> usize {
+    while i < end && (b[i].is_ascii_digit() || b[i] == b'.') {
+        i += 1;
+    }
+    if i < end && (b[i] == b'e' || b[i] == b'E') {
+        i += 1;
+        if i < end && (b[i] == b'+' || b[i] == b'-') {
+            i += 1;
+        }
+        while i < end && b[i].is_ascii_digit() {
+            i += 1;
+        }
+    }
+    i
 }
 
 /// The value `strtod` reads from the start of `token` (digits, points, exponent), with the

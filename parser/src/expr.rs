@@ -1,346 +1,280 @@
-//! PLACEHOLDER (parser-script helper): a small equal-style expression evaluator (numbers,
-//! `v_name`, thermo keywords, + - * / ^ %, comparisons, && ||, a few functions) so the
-//! interpreter compiles and its tests run. The parser-expr helper's expr.rs replaces this file.
+//! Equal-style formulas (`variable a equal ...`, `$(...)`) and `if` conditions as LAMMPS
+//! 22 Jul 2025 reads and computes them (src/variable.cpp `Variable::evaluate()` and
+//! `evaluate_boolean()`).
+//!
+//! [`evaluate`] computes while it reads, as LAMMPS does, so the first error LAMMPS would meet
+//! is the one reported. [`parse`] reads the same grammar into a tree whose nodes keep their
+//! byte ranges, and [`eval`] computes a tree (for formulas parsed once and computed often, and
+//! for a later per-atom evaluator).
+//!
+//! LAMMPS rules reproduced here (each checked with the real `lmp`, see the tests):
+//! * precedence, low to high: `|| |^`, `&&`, `== !=`, `< <= > >=`, `+ -`, `* / %`, `^`, and the
+//!   unary `-` and `!` bind tightest of all; every binary operator groups left to right, so
+//!   `-2^2` is 4 and `2^3^2` is 64; there is no unary `+`;
+//! * operands are computed left to right and each operation is one IEEE operation in that
+//!   order, so results are bit-identical to LAMMPS;
+//! * a number is digits and points with an optional exponent, converted by `strtod` (so `1.2.3`
+//!   is 1.2); `x^0` is 1 for any x; `&&`/`||` evaluate both sides; `ternary()` reads only the
+//!   branch it returns;
+//! * the value of a whole formula is flushed to zero when its magnitude is below the smallest
+//!   normal double (LAMMPS prints `0` for `0*-1` and for `1e-300*1e-10`), but values inside it
+//!   are not (`atan2(0*-1,-1)` is -PI).
+//!
+//! Where dmhs differs: numbers LAMMPS cannot convert (`.e5`, `1e400`, `1e-310`) make LAMMPS
+//! abort and are errors here; a stray `!` after an operand is a syntax error at once (LAMMPS
+//! reads on and reports a syntax error at the end); `random()`, `normal()` and the special
+//! functions on global vectors (`sum()`, `max()`, ...) are not supported.
 
 use crate::context::EvalContext;
 
-/// An evaluation error located by a byte range in the expression text.
+mod boolean;
+mod eval;
+mod parser;
+
+pub use boolean::evaluate_boolean;
+pub use eval::eval;
+pub use parser::{atof, strtod_prefix};
+
+/// An error in a formula: the LAMMPS message and the byte range of the offending text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExprError {
     pub message: String,
+    /// Byte offset of the offending text in the formula.
+    pub offset: usize,
+    /// Its length in bytes (0 at the end of the formula).
+    pub len: usize,
+    /// A hint for the user (shown as a `help:` line), if any.
+    pub help: Option<String>,
+    /// LAMMPS writes this message without the `Variable NAME:` prefix of the variable being
+    /// evaluated (it already names its variable, or LAMMPS reports it bare).
+    pub bare: bool,
+}
+
+impl ExprError {
+    pub fn new(message: impl Into<String>, offset: usize, len: usize) -> ExprError {
+        ExprError { message: message.into(), offset, len, help: None, bare: false }
+    }
+    pub(crate) fn with_help(mut self, help: impl Into<String>) -> ExprError {
+        self.help = Some(help.into());
+        self
+    }
+    pub(crate) fn bare(mut self) -> ExprError {
+        self.bare = true;
+        self
+    }
+}
+
+impl std::fmt::Display for ExprError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// Binary operators, in LAMMPS' precedence classes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    Or,
+    Xor,
+    And,
+    Eq,
+    Ne,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Mod,
+    Pow,
+}
+
+impl BinOp {
+    /// LAMMPS' precedence levels (1 lowest); unary operators are level 8.
+    pub fn precedence(self) -> u8 {
+        use BinOp::*;
+        match self {
+            Or | Xor => 1,
+            And => 2,
+            Eq | Ne => 3,
+            Lt | Le | Gt | Ge => 4,
+            Add | Sub => 5,
+            Mul | Div | Mod => 6,
+            Pow => 7,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnOp {
+    Neg,
+    Not,
+}
+
+/// The math functions of LAMMPS equal-style formulas.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MathFn {
+    Sqrt,
+    Exp,
+    Ln,
+    Log,
+    Abs,
+    Sign,
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Atan2,
+    Random,
+    Normal,
+    Ceil,
+    Floor,
+    Round,
+    Ternary,
+    Ramp,
+    Stagger,
+    Logfreq,
+    Logfreq2,
+    Logfreq3,
+    Stride,
+    Stride2,
+    Vdisplace,
+    Swiggle,
+    Cwiggle,
+}
+
+pub(crate) const MATH_FUNCTIONS: &[(&str, MathFn, usize)] = &[
+    ("sqrt", MathFn::Sqrt, 1),
+    ("exp", MathFn::Exp, 1),
+    ("ln", MathFn::Ln, 1),
+    ("log", MathFn::Log, 1),
+    ("abs", MathFn::Abs, 1),
+    ("sign", MathFn::Sign, 1),
+    ("sin", MathFn::Sin, 1),
+    ("cos", MathFn::Cos, 1),
+    ("tan", MathFn::Tan, 1),
+    ("asin", MathFn::Asin, 1),
+    ("acos", MathFn::Acos, 1),
+    ("atan", MathFn::Atan, 1),
+    ("atan2", MathFn::Atan2, 2),
+    ("random", MathFn::Random, 3),
+    ("normal", MathFn::Normal, 3),
+    ("ceil", MathFn::Ceil, 1),
+    ("floor", MathFn::Floor, 1),
+    ("round", MathFn::Round, 1),
+    ("ternary", MathFn::Ternary, 3),
+    ("ramp", MathFn::Ramp, 2),
+    ("stagger", MathFn::Stagger, 2),
+    ("logfreq", MathFn::Logfreq, 3),
+    ("logfreq2", MathFn::Logfreq2, 3),
+    ("logfreq3", MathFn::Logfreq3, 3),
+    ("stride", MathFn::Stride, 3),
+    ("stride2", MathFn::Stride2, 6),
+    ("vdisplace", MathFn::Vdisplace, 2),
+    ("swiggle", MathFn::Swiggle, 3),
+    ("cwiggle", MathFn::Cwiggle, 3),
+];
+
+/// Group functions; their arguments are names, handed to [`EvalContext::group_function`].
+pub const GROUP_FUNCTIONS: &[&str] =
+    &["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "gyration", "ke", "angmom", "torque", "inertia", "omega"];
+
+/// LAMMPS special and feature functions that dmhs does not implement (a clear error, not the
+/// "invalid function" of a misspelling).
+pub(crate) const UNSUPPORTED_FUNCTIONS: &[&str] = &[
+    "sum", "min", "max", "ave", "trap", "slope", "sort", "rsort", "gmask", "rmask", "grmask", "next", "is_active",
+    "is_available", "is_defined", "is_os", "extract_setting", "label2type", "is_typelabel", "is_timeout",
+];
+
+/// Per-atom vectors: a bare name is an error in an equal-style formula, `name[ID]` is one atom's value.
+pub const ATOM_VECTORS: &[&str] =
+    &["id", "mass", "type", "mol", "radius", "q", "x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"];
+
+/// Named constants.
+pub(crate) const CONSTANTS: &[(&str, f64)] = &[
+    ("PI", std::f64::consts::PI),
+    ("version", 20250722.0),
+    ("yes", 1.0),
+    ("no", 0.0),
+    ("on", 1.0),
+    ("off", 0.0),
+    ("true", 1.0),
+    ("false", 0.0),
+];
+
+/// An index between brackets: a positive integer or `v_name`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Index {
+    Number(i64),
+    Variable(String),
+}
+
+/// One node of a formula tree.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Node {
+    Number(f64),
+    Unary(UnOp, Box<Expr>),
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// A math function; its arguments are formulas.
+    Math(MathFn, Vec<Expr>),
+    /// Any other `name(args)`: group, special, feature or unknown functions; the arguments
+    /// are kept as trimmed text.
+    Function { name: String, args: Vec<String> },
+    /// `v_name` or `v_name[i]`.
+    Variable { name: String, index: Option<Index> },
+    /// `c_ID`, `c_ID[i]`, `c_ID[i][j]`.
+    Compute { id: String, indices: Vec<Index> },
+    /// `f_ID`, `f_ID[i]`, `f_ID[i][j]`.
+    Fix { id: String, indices: Vec<Index> },
+    /// `C_ID`/`F_ID`: LAMMPS' forced access to a global vector (never a scalar).
+    UpperCase(String),
+    /// `x[12]`: one atom's value by atom ID.
+    AtomValue { keyword: String, id: Index },
+    /// A bare per-atom vector such as `x` (per-atom formulas only).
+    AtomVector(String),
+    /// Any other word: a thermo keyword.
+    Thermo(String),
+}
+
+/// A formula tree node with the byte range of its text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    pub node: Node,
     pub offset: usize,
     pub len: usize,
 }
 
-fn err<T>(message: impl Into<String>, offset: usize, len: usize) -> Result<T, ExprError> {
-    Err(ExprError { message: message.into(), offset, len })
+impl Expr {
+    pub(crate) fn err(&self, message: impl Into<String>) -> ExprError {
+        ExprError::new(message, self.offset, self.len)
+    }
 }
 
-/// Evaluate an equal-style formula.
+/// Evaluate a whole formula: parse, evaluate, and flush a result below the smallest normal
+/// double to zero, as LAMMPS does for the value of a variable or `$(...)`.
 pub fn evaluate(text: &str, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
-    let mut p = P { s: text.as_bytes(), i: 0, ctx };
-    let v = p.expr(0)?;
-    p.ws();
-    if p.i < p.s.len() {
-        return err("invalid syntax in variable formula", p.i, p.s.len() - p.i);
-    }
-    Ok(v)
+    let v = parser::Parser::new(text).whole(&mut eval::Evaluator { ctx })?;
+    Ok(flush_tiny(v))
 }
 
-/// LAMMPS' `if` boolean: numbers compared numerically, other words compared as strings
-/// with `==` and `!=`.
-pub fn evaluate_boolean(text: &str, ctx: &mut dyn EvalContext) -> Result<bool, ExprError> {
-    let _ = ctx;
-    let toks = bool_tokens(text)?;
-    let mut k = 0;
-    let v = bool_or(&toks, &mut k)?;
-    if k < toks.len() {
-        return err("invalid Boolean syntax in if command", toks[k].1, toks[k].0.len());
-    }
-    Ok(v.num() != 0.0)
+/// Parse a formula into a tree (every function argument included, also the branch of
+/// `ternary()` that [`evaluate`] would not read).
+pub fn parse(text: &str) -> Result<Expr, ExprError> {
+    parser::Parser::new(text).whole(&mut parser::TreeBuilder)
 }
 
-struct P<'a> {
-    s: &'a [u8],
-    i: usize,
-    ctx: &'a mut dyn EvalContext,
-}
-
-fn binop(op: &str) -> Option<(u8, bool)> {
-    // (precedence, right associative)
-    Some(match op {
-        "||" | "|^" => (1, false),
-        "&&" => (2, false),
-        "==" | "!=" => (3, false),
-        "<" | "<=" | ">" | ">=" => (4, false),
-        "+" | "-" => (5, false),
-        "*" | "/" | "%" => (6, false),
-        "^" => (8, true),
-        _ => return None,
-    })
-}
-
-impl P<'_> {
-    fn ws(&mut self) {
-        while self.i < self.s.len() && (self.s[self.i] as char).is_whitespace() {
-            self.i += 1;
-        }
-    }
-    fn peek_op(&mut self) -> Option<&'static str> {
-        self.ws();
-        let rest = &self.s[self.i..];
-        ["||", "|^", "&&", "==", "!=", "<=", ">=", "<", ">", "+", "-", "*", "/", "%", "^"]
-            .into_iter()
-            .find(|op| rest.starts_with(op.as_bytes()))
-    }
-    fn expr(&mut self, min: u8) -> Result<f64, ExprError> {
-        let mut lhs = self.unary()?;
-        while let Some(op) = self.peek_op() {
-            let (prec, right) = binop(op).unwrap();
-            if prec < min {
-                break;
-            }
-            let at = self.i;
-            self.i += op.len();
-            let rhs = self.expr(if right { prec } else { prec + 1 })?;
-            lhs = match op {
-                "+" => lhs + rhs,
-                "-" => lhs - rhs,
-                "*" => lhs * rhs,
-                "/" => {
-                    if rhs == 0.0 {
-                        return err("divide by 0 in variable formula", at, 1);
-                    }
-                    lhs / rhs
-                }
-                "%" => lhs % rhs,
-                "^" => lhs.powf(rhs),
-                "<" => (lhs < rhs) as i32 as f64,
-                "<=" => (lhs <= rhs) as i32 as f64,
-                ">" => (lhs > rhs) as i32 as f64,
-                ">=" => (lhs >= rhs) as i32 as f64,
-                "==" => (lhs == rhs) as i32 as f64,
-                "!=" => (lhs != rhs) as i32 as f64,
-                "&&" => (lhs != 0.0 && rhs != 0.0) as i32 as f64,
-                "||" => (lhs != 0.0 || rhs != 0.0) as i32 as f64,
-                _ => ((lhs == 0.0) != (rhs == 0.0)) as i32 as f64,
-            };
-        }
-        Ok(lhs)
-    }
-    fn unary(&mut self) -> Result<f64, ExprError> {
-        self.ws();
-        match self.s.get(self.i) {
-            Some(b'-') => {
-                self.i += 1;
-                Ok(-self.expr(7)?)
-            }
-            Some(b'!') => {
-                self.i += 1;
-                Ok((self.expr(7)? == 0.0) as i32 as f64)
-            }
-            _ => self.atom(),
-        }
-    }
-    fn atom(&mut self) -> Result<f64, ExprError> {
-        self.ws();
-        let start = self.i;
-        let Some(&c) = self.s.get(self.i) else {
-            return err("invalid syntax in variable formula", start, 0);
-        };
-        if c == b'(' {
-            self.i += 1;
-            let v = self.expr(0)?;
-            self.ws();
-            if self.s.get(self.i) != Some(&b')') {
-                return err("missing ) in variable formula", start, 1);
-            }
-            self.i += 1;
-            return Ok(v);
-        }
-        if c.is_ascii_digit() || c == b'.' {
-            while self.i < self.s.len() && (self.s[self.i].is_ascii_digit() || self.s[self.i] == b'.') {
-                self.i += 1;
-            }
-            if self.i < self.s.len() && (self.s[self.i] == b'e' || self.s[self.i] == b'E') {
-                self.i += 1;
-                if self.i < self.s.len() && (self.s[self.i] == b'+' || self.s[self.i] == b'-') {
-                    self.i += 1;
-                }
-                while self.i < self.s.len() && self.s[self.i].is_ascii_digit() {
-                    self.i += 1;
-                }
-            }
-            let t = std::str::from_utf8(&self.s[start..self.i]).unwrap_or("");
-            return t.parse().or_else(|_| err(format!("invalid number `{t}`"), start, self.i - start));
-        }
-        if c.is_ascii_alphabetic() || c == b'_' {
-            while self.i < self.s.len() && (self.s[self.i].is_ascii_alphanumeric() || self.s[self.i] == b'_') {
-                self.i += 1;
-            }
-            let name = std::str::from_utf8(&self.s[start..self.i]).unwrap_or("").to_string();
-            let len = self.i - start;
-            self.ws();
-            if self.s.get(self.i) == Some(&b'(') {
-                self.i += 1;
-                let a = self.expr(0)?;
-                self.ws();
-                if self.s.get(self.i) != Some(&b')') {
-                    return err("missing ) in function", start, len);
-                }
-                self.i += 1;
-                return Ok(match name.as_str() {
-                    "sqrt" => {
-                        if a < 0.0 {
-                            return err("sqrt of negative value in variable formula", start, len);
-                        }
-                        a.sqrt()
-                    }
-                    "exp" => a.exp(),
-                    "ln" => a.ln(),
-                    "abs" => a.abs(),
-                    "sin" => a.sin(),
-                    "cos" => a.cos(),
-                    "floor" => a.floor(),
-                    "ceil" => a.ceil(),
-                    _ => return err(format!("unknown function `{name}`"), start, len),
-                });
-            }
-            if let Some(var) = name.strip_prefix("v_") {
-                return match crate::variables::numeric_value(self.ctx, var) {
-                    Ok(v) => Ok(v),
-                    Err(m) => err(m, start, len),
-                };
-            }
-            if name == "PI" {
-                return Ok(std::f64::consts::PI);
-            }
-            return match self.ctx.thermo_keyword(&name) {
-                Some(Ok(v)) => Ok(v),
-                Some(Err(m)) => err(m, start, len),
-                None => err(format!("invalid thermo keyword `{name}` in variable formula"), start, len),
-            };
-        }
-        err("invalid syntax in variable formula", start, 1)
-    }
-}
-
-#[derive(Clone, Debug)]
-enum BVal {
-    Num(f64),
-    Str(String),
-}
-impl BVal {
-    fn num(&self) -> f64 {
-        match self {
-            BVal::Num(x) => *x,
-            BVal::Str(_) => 0.0,
-        }
-    }
-}
-
-fn bool_tokens(text: &str) -> Result<Vec<(String, usize)>, ExprError> {
-    let b = text.as_bytes();
-    let mut out = vec![];
-    let mut i = 0;
-    while i < b.len() {
-        if (b[i] as char).is_whitespace() {
-            i += 1;
-            continue;
-        }
-        let two = if i + 1 < b.len() { &text[i..i + 2] } else { "" };
-        if ["==", "!=", "<=", ">=", "&&", "||", "|^"].contains(&two) {
-            out.push((two.to_string(), i));
-            i += 2;
-        } else if b"()<>!".contains(&b[i]) {
-            out.push((text[i..i + 1].to_string(), i));
-            i += 1;
-        } else {
-            let s = i;
-            while i < b.len() && !(b[i] as char).is_whitespace() && !b"()<>!=&|".contains(&b[i]) {
-                i += 1;
-            }
-            if s == i {
-                return err("invalid Boolean syntax in if command", s, 1);
-            }
-            out.push((text[s..i].to_string(), s));
-        }
-    }
-    Ok(out)
-}
-
-fn bool_or(t: &[(String, usize)], k: &mut usize) -> Result<BVal, ExprError> {
-    let mut l = bool_and(t, k)?;
-    while *k < t.len() && (t[*k].0 == "||" || t[*k].0 == "|^") {
-        let op = t[*k].0.clone();
-        *k += 1;
-        let r = bool_and(t, k)?;
-        let (a, b) = (l.num() != 0.0, r.num() != 0.0);
-        l = BVal::Num(if op == "||" { (a || b) as i32 as f64 } else { (a != b) as i32 as f64 });
-    }
-    Ok(l)
-}
-fn bool_and(t: &[(String, usize)], k: &mut usize) -> Result<BVal, ExprError> {
-    let mut l = bool_cmp(t, k)?;
-    while *k < t.len() && t[*k].0 == "&&" {
-        *k += 1;
-        let r = bool_cmp(t, k)?;
-        l = BVal::Num((l.num() != 0.0 && r.num() != 0.0) as i32 as f64);
-    }
-    Ok(l)
-}
-fn bool_cmp(t: &[(String, usize)], k: &mut usize) -> Result<BVal, ExprError> {
-    let l = bool_atom(t, k)?;
-    if *k < t.len() && ["==", "!=", "<", "<=", ">", ">="].contains(&t[*k].0.as_str()) {
-        let (op, at) = t[*k].clone();
-        *k += 1;
-        let r = bool_atom(t, k)?;
-        let v = match (&l, &r) {
-            (BVal::Num(a), BVal::Num(b)) => match op.as_str() {
-                "==" => a == b,
-                "!=" => a != b,
-                "<" => a < b,
-                "<=" => a <= b,
-                ">" => a > b,
-                _ => a >= b,
-            },
-            _ => {
-                let (a, b) = (bval_str(&l), bval_str(&r));
-                match op.as_str() {
-                    "==" => a == b,
-                    "!=" => a != b,
-                    _ => return err("if command: string comparison needs == or !=", at, op.len()),
-                }
-            }
-        };
-        return Ok(BVal::Num(v as i32 as f64));
-    }
-    Ok(l)
-}
-fn bval_str(v: &BVal) -> String {
-    match v {
-        BVal::Num(x) => x.to_string(),
-        BVal::Str(s) => s.clone(),
-    }
-}
-fn bool_atom(t: &[(String, usize)], k: &mut usize) -> Result<BVal, ExprError> {
-    let Some((tok, at)) = t.get(*k).cloned() else {
-        return err("invalid Boolean syntax in if command", t.last().map(|x| x.1).unwrap_or(0), 0);
-    };
-    *k += 1;
-    match tok.as_str() {
-        "(" => {
-            let v = bool_or(t, k)?;
-            if t.get(*k).map(|x| x.0.as_str()) != Some(")") {
-                return err("missing ) in if command", at, 1);
-            }
-            *k += 1;
-            Ok(v)
-        }
-        "!" => Ok(BVal::Num((bool_atom(t, k)?.num() == 0.0) as i32 as f64)),
-        _ => Ok(match tok.parse::<f64>() {
-            Ok(x) if crate::args::is_lammps_float(&tok) => BVal::Num(x),
-            _ => BVal::Str(tok),
-        }),
+/// LAMMPS returns exactly 0 for a formula whose magnitude is below `DBL_MIN` (this also turns
+/// `-0` into `0`).
+pub fn flush_tiny(v: f64) -> f64 {
+    if v.abs() < f64::MIN_POSITIVE {
+        0.0
+    } else {
+        v
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::variables::Variables;
-    struct C(Variables);
-    impl EvalContext for C {
-        fn variables(&mut self) -> &mut Variables {
-            &mut self.0
-        }
-    }
-    #[test]
-    fn arithmetic() {
-        let mut c = C(Variables::default());
-        assert_eq!(evaluate("-3.5*0.01", &mut c).unwrap(), -3.5 * 0.01);
-        assert_eq!(evaluate("2^3^2", &mut c).unwrap(), 512.0);
-        assert!(evaluate_boolean("abc == abc", &mut c).unwrap());
-        assert!(!evaluate_boolean("1 > 2 || 0", &mut c).unwrap());
-    }
-}
+mod tests;

@@ -17,6 +17,8 @@ pub mod lexer;
 pub mod numfmt;
 pub mod span;
 pub mod suggest;
+#[cfg(test)]
+pub(crate) mod test_context;
 pub mod variables;
 
 pub use args::Args;

@@ -59,7 +59,11 @@ fn layouts_match_lammps_column_order() {
         ("sphere 1", "atom-ID atom-type diameter density x y z", "atom-ID vx vy vz wx wy wz"),
         ("bpm/sphere", "atom-ID molecule-ID atom-type diameter density x y z", "atom-ID vx vy vz wx wy wz"),
         ("sph", "atom-ID atom-type rho esph cv x y z", "atom-ID vx vy vz"),
-        ("hybrid sph sphere angle", "atom-ID atom-type x y z rho esph cv diameter density molecule-ID", "atom-ID vx vy vz wx wy wz"),
+        (
+            "hybrid sph sphere angle",
+            "atom-ID atom-type x y z rho esph cv diameter density molecule-ID",
+            "atom-ID vx vy vz wx wy wz",
+        ),
         ("hybrid full sphere", "atom-ID atom-type x y z molecule-ID q diameter density", "atom-ID vx vy vz wx wy wz"),
         ("hybrid sphere full", "atom-ID atom-type x y z diameter density molecule-ID q", "atom-ID vx vy vz wx wy wz"),
         ("hybrid charge sph", "atom-ID atom-type x y z q rho esph cv", "atom-ID vx vy vz"),
@@ -72,7 +76,10 @@ fn layouts_match_lammps_column_order() {
         assert_eq!(cols(&l.velocities), vels, "{style}");
     }
     let full = layout("full");
-    assert_eq!(full.atoms_help(), "Atoms line for atom_style full is: atom-ID molecule-ID atom-type q x y z [ix iy iz]");
+    assert_eq!(
+        full.atoms_help(),
+        "Atoms line for atom_style full is: atom-ID molecule-ID atom-type q x y z [ix iy iz]"
+    );
     assert!(full.bonds && full.angles && full.dihedrals && full.impropers && full.per_type_mass);
     let h = layout("hybrid sph sphere angle");
     assert_eq!(h.style, "hybrid");
@@ -139,7 +146,8 @@ fn reads_lammps_atomic_file() {
     let pc = &df.coeffs[0];
     assert_eq!(pc.kind, CoeffKind::Pair);
     assert_eq!(pc.style.as_ref().unwrap().text, "lj/cut");
-    let args: Vec<Vec<String>> = pc.lines.iter().map(|l| l.command_args(pc.kind).into_iter().map(|w| w.text).collect()).collect();
+    let args: Vec<Vec<String>> =
+        pc.lines.iter().map(|l| l.command_args(pc.kind).into_iter().map(|w| w.text).collect()).collect();
     assert_eq!(args, vec![vec!["1", "1", "1", "1"], vec!["2", "2", "1.2", "1.1"]]);
     assert!(df.image_flags);
     assert!(df.atoms.iter().any(|a| a.image != [0, 0, 0]), "the run moved some atoms across the box");
@@ -167,7 +175,8 @@ fn reads_lammps_full_file_with_labels_and_topology() {
     assert_eq!(df.type_labels.find(TypeKind::Bond, "C-O"), Some(2));
     let a4 = df.atoms.iter().find(|a| a.id == 4).unwrap();
     assert_eq!((a4.molecule, a4.atom_type, a4.q), (1, 3, -0.34));
-    let kinds: Vec<(CoeffKind, &str)> = df.coeffs.iter().map(|c| (c.kind, c.style.as_ref().unwrap().text.as_str())).collect();
+    let kinds: Vec<(CoeffKind, &str)> =
+        df.coeffs.iter().map(|c| (c.kind, c.style.as_ref().unwrap().text.as_str())).collect();
     assert_eq!(
         kinds,
         [
@@ -181,7 +190,10 @@ fn reads_lammps_full_file_with_labels_and_topology() {
     let dih = &df.coeffs[3].lines[0];
     assert_eq!(dih.types, [1]);
     assert_eq!(dih.args.iter().map(|w| w.text.as_str()).collect::<Vec<_>>(), ["0.3", "1", "3"]);
-    assert_eq!(df.bonds.iter().map(|b| (b.topo_type, b.atoms)).collect::<Vec<_>>(), [(1, [1, 2]), (1, [1, 3]), (2, [1, 4]), (1, [1, 5])]);
+    assert_eq!(
+        df.bonds.iter().map(|b| (b.topo_type, b.atoms)).collect::<Vec<_>>(),
+        [(1, [1, 2]), (1, [1, 3]), (2, [1, 4]), (1, [1, 5])]
+    );
     assert_eq!((df.angles[0].topo_type, df.angles[0].atoms), (1, [2, 1, 3]));
     assert_eq!(df.dihedrals[0].atoms, [2, 1, 4, 5]);
     assert_eq!(df.impropers[0].atoms, [1, 2, 3, 4]);
@@ -205,12 +217,18 @@ fn reads_lammps_sphere_sph_and_hybrid_files() {
 
     let (df, _) = parse_file("lmp_hybrid.data", "hybrid sph sphere angle");
     let a2 = df.atoms.iter().find(|a| a.id == 2).unwrap();
-    assert_eq!((a2.rho, a2.esph, a2.cv, a2.diameter, a2.density, a2.molecule), (1001.5, 2.0, 1.0, 0.001, 999.9999999999999, 3));
+    assert_eq!(
+        (a2.rho, a2.esph, a2.cv, a2.diameter, a2.density, a2.molecule),
+        (1001.5, 2.0, 1.0, 0.001, 999.9999999999999, 3)
+    );
     assert_eq!(df.velocities.as_ref().unwrap()[1].omega, [0.0, 0.0, 1.5]);
     assert_eq!(df.bonds.len(), 2);
     assert_eq!(df.angles[0].atoms, [1, 2, 3]);
     // `Pair Coeffs # zero` lines are a type alone
-    assert_eq!(df.coeffs[0].lines[1].command_args(CoeffKind::Pair).iter().map(|w| w.text.clone()).collect::<Vec<_>>(), ["2", "2"]);
+    assert_eq!(
+        df.coeffs[0].lines[1].command_args(CoeffKind::Pair).iter().map(|w| w.text.clone()).collect::<Vec<_>>(),
+        ["2", "2"]
+    );
     check_expect(&df, "lmp_hybrid.expect");
 }
 
@@ -293,8 +311,10 @@ fn written_file_reads_back_to_the_same_values() {
         }
         assert_eq!(a.image, b.image);
     }
-    assert_eq!(back.velocities.as_ref().unwrap().iter().map(|v| (v.id, v.v, v.omega)).collect::<Vec<_>>(),
-               df.velocities.as_ref().unwrap().iter().map(|v| (v.id, v.v, v.omega)).collect::<Vec<_>>());
+    assert_eq!(
+        back.velocities.as_ref().unwrap().iter().map(|v| (v.id, v.v, v.omega)).collect::<Vec<_>>(),
+        df.velocities.as_ref().unwrap().iter().map(|v| (v.id, v.v, v.omega)).collect::<Vec<_>>()
+    );
     assert_eq!(back.header.boxlo, df.header.boxlo);
     assert_eq!(back.masses[0].mass, 0.1 + 0.2);
 }
@@ -347,8 +367,15 @@ fn several_line_errors_are_reported_at_once() {
     assert_eq!(es.len(), 3, "{r}");
     assert!(r.contains("error: expected a number for q, found `abc`"), "{r}");
     assert!(r.contains("--> bad.data:18:7"), "{r}");
-    assert!(r.contains("= help: Atoms line for atom_style full is: atom-ID molecule-ID atom-type q x y z [ix iy iz]"), "{r}");
-    assert!(r.contains("error: expected 7 values (or 10 with image flags) in this Atoms line, found 6") || r.contains("expected 7 values in this Atoms line"), "{r}");
+    assert!(
+        r.contains("= help: Atoms line for atom_style full is: atom-ID molecule-ID atom-type q x y z [ix iy iz]"),
+        "{r}"
+    );
+    assert!(
+        r.contains("error: expected 7 values (or 10 with image flags) in this Atoms line, found 6")
+            || r.contains("expected 7 values in this Atoms line"),
+        "{r}"
+    );
     assert!(r.contains("atom 1 appears twice in this Bonds line"), "{r}");
 }
 
@@ -356,7 +383,8 @@ fn several_line_errors_are_reported_at_once() {
 fn image_flags_must_be_on_every_line_or_none() {
     let (_, r) = errors(&FULL.replace("1 1 1 0.0 0.5 0.5 0.5", "1 1 1 0.0 0.5 0.5 0.5 0 0 0"), "full");
     assert!(r.contains("expected 10 values in this Atoms line (as in the first Atoms line), found 7"), "{r}");
-    let df = parse_data_file(&FULL.replace(" 0.5 0.5\n", " 0.5 0.5 1 -1 0\n"), Default::default(), &layout("full")).unwrap();
+    let df =
+        parse_data_file(&FULL.replace(" 0.5 0.5\n", " 0.5 0.5 1 -1 0\n"), Default::default(), &layout("full")).unwrap();
     assert!(df.image_flags && df.atoms.iter().all(|a| a.image == [1, -1, 0]));
 }
 
@@ -396,6 +424,8 @@ fn box_errors() {
     let df = parse_data_file(&FULL.replace("0 4 zlo zhi\n", ""), Default::default(), &layout("full")).unwrap();
     assert_eq!((df.header.boxlo[2], df.header.boxhi[2]), (-0.5, 0.5));
     assert_eq!(df.warnings.len(), 1);
+    let (_, r) = errors(&FULL.replace("0 4 ylo yhi", "0 4y ylo yhi").replace("0 4 xlo xhi", "x0 4 xlo xhi"), "full");
+    assert!(r.contains("expected a number for the box, found `4y`") && r.contains("found `x0`"), "{r}");
     let (_, r) = errors(&FULL.replace("0 4 zlo zhi", "0 4 zlo zhi\n1 0 0 avec"), "full");
     assert!(r.contains("general triclinic"), "{r}");
 }
@@ -413,8 +443,14 @@ fn values_lammps_rejects() {
         (FULL.replace("2 1 2 3\n", "2 2 2 3\n"), "bond type 2 is out of range: the header says 1 bond types"),
         (FULL.replace("2 1 2 3\n", "2 1 2 5\n"), "no atom has ID 5"),
         (FULL.replace("2 1 2 3\n", "2 1 2 3 4\n"), "expected 4 values in this Bonds line, found 5"),
-        (FULL.replace("Masses\n\n1 1.0\n2 2.0\n\n", "") + "\nVelocities\n\n1 1 2 3\n2 1 2 3\n4 1 2 3\n", "invalid atom ID 4 in the Velocities section"),
-        (FULL.replace("Masses", "Velocities\n\n1 1 2 3\n2 1 2 3\n3 1 2 3\n\nMasses"), "the Velocities section comes before the Atoms section"),
+        (
+            FULL.replace("Masses\n\n1 1.0\n2 2.0\n\n", "") + "\nVelocities\n\n1 1 2 3\n2 1 2 3\n4 1 2 3\n",
+            "invalid atom ID 4 in the Velocities section",
+        ),
+        (
+            FULL.replace("Masses", "Velocities\n\n1 1 2 3\n2 1 2 3\n3 1 2 3\n\nMasses"),
+            "the Velocities section comes before the Atoms section",
+        ),
         (FULL.replace("2 bonds\n1 bond types\n", "").replace("Bonds\n\n1 1 1 2\n2 1 2 3\n", ""), "__ok__"),
         (FULL.to_string() + "\nAtoms\n\n4 1 1 0 0 0 0\n5 1 1 0 0 0 0\n6 1 1 0 0 0 0\n", "a second Atoms section"),
         (FULL.to_string() + "\nEllipsoids\n\n", "invalid data file section Ellipsoids"),
@@ -427,7 +463,11 @@ fn values_lammps_rejects() {
             continue;
         }
         let es = r.expect_err(want);
-        assert!(es.iter().any(|e| e.message.contains(want)), "want `{want}`, got {:#?}", es.iter().map(|e| &e.message).collect::<Vec<_>>());
+        assert!(
+            es.iter().any(|e| e.message.contains(want)),
+            "want `{want}`, got {:#?}",
+            es.iter().map(|e| &e.message).collect::<Vec<_>>()
+        );
         assert!(es.iter().all(|e| e.primary_span().is_some() || e.message.contains("too many")), "{es:?}");
     }
 }
@@ -442,24 +482,34 @@ fn style_specific_rules() {
     let (_, r) = errors(&sphere.replace("Atoms # sphere", "Masses\n\n1 1.0\n\nAtoms # sphere"), "sphere");
     assert!(r.contains("atom_style sphere has per-atom masses: a Masses section is not allowed"), "{r}");
     let (_, r) = errors(&sphere.replace("2 1 2 3 4 5 6", "2 1 2 3"), "sphere");
-    assert!(r.contains("expected 7 values in this Velocities line, found 4") && r.contains("Velocities line for atom_style sphere is: atom-ID vx vy vz wx wy wz"), "{r}");
+    assert!(
+        r.contains("expected 7 values in this Velocities line, found 4")
+            && r.contains("Velocities line for atom_style sphere is: atom-ID vx vy vz wx wy wz"),
+        "{r}"
+    );
     let (_, r) = errors(&sphere.replace("1 atom types", "1 atom types\n1 bonds\n1 bond types"), "sphere");
     assert!(r.contains("no bonds allowed with atom_style sphere"), "{r}");
     // the hint after `Atoms` only warns (as LAMMPS)
-    let df = parse_data_file(&sphere.replace("Atoms # sphere", "Atoms # atomic"), Default::default(), &layout("sphere")).unwrap();
+    let df =
+        parse_data_file(&sphere.replace("Atoms # sphere", "Atoms # atomic"), Default::default(), &layout("sphere"))
+            .unwrap();
     assert!(df.warnings[0].message.contains("says atom_style atomic"));
 }
 
 #[test]
 fn comments_follow_lammps_rules() {
     // a word starting with `#` ends an Atoms line; a glued `#` is an error there, but not in Velocities
-    let text = FULL.replace("3 1 1 0.0 2.5 0.5 0.5", "3 1 1 0.0 2.5 0.5 0.5 # last") + "\nVelocities\n\n1 1 2 3#c\n2 1 2 3\n3 1 2 3\n";
+    let text = FULL.replace("3 1 1 0.0 2.5 0.5 0.5", "3 1 1 0.0 2.5 0.5 0.5 # last")
+        + "\nVelocities\n\n1 1 2 3#c\n2 1 2 3\n3 1 2 3\n";
     let df = parse_data_file(&text, Default::default(), &layout("full")).unwrap();
     assert_eq!(df.velocities.unwrap()[0].v, [1.0, 2.0, 3.0]);
     let (_, r) = errors(&FULL.replace("3 1 1 0.0 2.5 0.5 0.5", "3 1 1 0.0 2.5 0.5 0.5#x"), "full");
     assert!(r.contains("found `0.5#x`"), "{r}");
     // header comments, CRLF line ends, a comment in place of the blank line after a section name
-    let text = FULL.replace("3 atoms", "3 atoms # three").replace("Atoms # full\n\n", "Atoms # full\n# c\n").replace('\n', "\r\n");
+    let text = FULL
+        .replace("3 atoms", "3 atoms # three")
+        .replace("Atoms # full\n\n", "Atoms # full\n# c\n")
+        .replace('\n', "\r\n");
     assert!(parse_data_file(&text, Default::default(), &layout("full")).is_ok());
 }
 
@@ -502,14 +552,21 @@ fn coefficient_sections_keep_words_for_the_style() {
     assert_eq!(b.args.iter().map(|w| w.text.as_str()).collect::<Vec<_>>(), ["harmonic", "100", "1.0"]);
     // class2 cross terms: the keyword goes after the type, or after a hybrid sub-style name
     let l = CoeffLine::new(vec![1], &["1.5", "2.0"]);
-    assert_eq!(l.command_args(CoeffKind::BondBond).iter().map(|w| w.text.as_str()).collect::<Vec<_>>(), ["1", "bb", "1.5", "2.0"]);
+    assert_eq!(
+        l.command_args(CoeffKind::BondBond).iter().map(|w| w.text.as_str()).collect::<Vec<_>>(),
+        ["1", "bb", "1.5", "2.0"]
+    );
     let l = CoeffLine::new(vec![1], &["class2", "1.5"]);
-    assert_eq!(l.command_args(CoeffKind::AngleAngle).iter().map(|w| w.text.as_str()).collect::<Vec<_>>(), ["1", "class2", "aa", "1.5"]);
+    assert_eq!(
+        l.command_args(CoeffKind::AngleAngle).iter().map(|w| w.text.as_str()).collect::<Vec<_>>(),
+        ["1", "class2", "aa", "1.5"]
+    );
     let (_, r) = errors(&(FULL.to_string() + "\nPair Coeffs\n\n1 1 1\n\n2 1 1\n"), "full");
     assert!(r.contains("blank or comment line inside the Pair Coeffs section"), "{r}");
     let (_, r) = errors(&(FULL.to_string() + "\nPair Coeffs\n\n1 1 1\n3 1 1\n"), "full");
     assert!(r.contains("atom type 3 is out of range"), "{r}");
-    let atomic = "t\n1 atoms\n1 atom types\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n1 1 0 0 0\n\nBond Coeffs\n\n";
+    let atomic =
+        "t\n1 atoms\n1 atom types\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n1 1 0 0 0\n\nBond Coeffs\n\n";
     let (_, r) = errors(atomic, "atomic");
     assert!(r.contains("invalid data file section Bond Coeffs: atom_style atomic has no bonds"), "{r}");
 }

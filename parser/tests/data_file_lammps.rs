@@ -81,7 +81,12 @@ struct Readback {
 
 impl Readback {
     fn f(&self, name: &str, id: i64) -> Vec<u64> {
-        self.props.get(&(name.to_string(), id)).unwrap_or_else(|| panic!("LAMMPS has no {name} for atom {id}")).iter().map(|s| s.parse().unwrap()).collect()
+        self.props
+            .get(&(name.to_string(), id))
+            .unwrap_or_else(|| panic!("LAMMPS has no {name} for atom {id}"))
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect()
     }
     fn i(&self, name: &str, id: i64) -> Vec<i64> {
         self.props[&(name.to_string(), id)].iter().map(|s| s.parse().unwrap()).collect()
@@ -93,19 +98,32 @@ fn read_with_lammps(py: &Path, lib: &Path, dir: &Path, style: &str, pre: &str, t
     std::fs::write(&data, text).unwrap();
     let script = dir.join("reader.py");
     std::fs::write(&script, READER).unwrap();
-    let out = Command::new(py).arg(&script).args([style, data.to_str().unwrap(), pre]).env("LD_LIBRARY_PATH", lib).output().unwrap();
+    let out = Command::new(py)
+        .arg(&script)
+        .args([style, data.to_str().unwrap(), pre])
+        .env("LD_LIBRARY_PATH", lib)
+        .output()
+        .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "LAMMPS failed to read {tag}:\n{}\n{}\n--- file ---\n{text}", stdout, String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "LAMMPS failed to read {tag}:\n{}\n{}\n--- file ---\n{text}",
+        stdout,
+        String::from_utf8_lossy(&out.stderr)
+    );
     let mut rb = Readback { atoms: 0, props: HashMap::new(), topology: HashMap::new() };
     for line in stdout.lines() {
         let w: Vec<&str> = line.split_whitespace().collect();
         match w[0] {
             "natoms" => rb.atoms = w[1].parse().unwrap(),
-            "bonds" | "angles" | "dihedrals" | "impropers" => {
-                rb.topology.entry(w[0].to_string()).or_default().push(w[2..].iter().map(|s| s.parse().unwrap()).collect())
-            }
+            "bonds" | "angles" | "dihedrals" | "impropers" => rb
+                .topology
+                .entry(w[0].to_string())
+                .or_default()
+                .push(w[2..].iter().map(|s| s.parse().unwrap()).collect()),
             name => {
-                rb.props.insert((name.to_string(), w[1].parse().unwrap()), w[2..].iter().map(|s| s.to_string()).collect());
+                rb.props
+                    .insert((name.to_string(), w[1].parse().unwrap()), w[2..].iter().map(|s| s.to_string()).collect());
             }
         }
     }
@@ -129,7 +147,7 @@ impl Rng {
     /// Random sign and magnitude 10^-12 .. 10^12.
     fn wild(&mut self) -> f64 {
         let e = (self.next() % 25) as i32 - 12;
-        let s = if self.next() % 2 == 0 { 1.0 } else { -1.0 };
+        let s = if self.next() & 1 == 0 { 1.0 } else { -1.0 };
         s * (1.0 + self.unit()) * 10f64.powi(e)
     }
 }
@@ -222,10 +240,26 @@ fn check(rb: &Readback, layout: &AtomLayout, df: &DataFile, tag: &str) {
         assert_eq!(rb.f("mass", m.atom_type as i64), [m.mass.to_bits()], "{tag} mass {}", m.atom_type);
     }
     let topo = |name: &str| rb.topology.get(name).cloned().unwrap_or_default();
-    assert_eq!(topo("bonds"), df.bonds.iter().map(|b| vec![b.topo_type as i64, b.atoms[0], b.atoms[1]]).collect::<Vec<_>>(), "{tag}");
-    assert_eq!(topo("angles"), df.angles.iter().map(|b| [vec![b.topo_type as i64], b.atoms.to_vec()].concat()).collect::<Vec<_>>(), "{tag}");
-    assert_eq!(topo("dihedrals"), df.dihedrals.iter().map(|b| [vec![b.topo_type as i64], b.atoms.to_vec()].concat()).collect::<Vec<_>>(), "{tag}");
-    assert_eq!(topo("impropers"), df.impropers.iter().map(|b| [vec![b.topo_type as i64], b.atoms.to_vec()].concat()).collect::<Vec<_>>(), "{tag}");
+    assert_eq!(
+        topo("bonds"),
+        df.bonds.iter().map(|b| vec![b.topo_type as i64, b.atoms[0], b.atoms[1]]).collect::<Vec<_>>(),
+        "{tag}"
+    );
+    assert_eq!(
+        topo("angles"),
+        df.angles.iter().map(|b| [vec![b.topo_type as i64], b.atoms.to_vec()].concat()).collect::<Vec<_>>(),
+        "{tag}"
+    );
+    assert_eq!(
+        topo("dihedrals"),
+        df.dihedrals.iter().map(|b| [vec![b.topo_type as i64], b.atoms.to_vec()].concat()).collect::<Vec<_>>(),
+        "{tag}"
+    );
+    assert_eq!(
+        topo("impropers"),
+        df.impropers.iter().map(|b| [vec![b.topo_type as i64], b.atoms.to_vec()].concat()).collect::<Vec<_>>(),
+        "{tag}"
+    );
 }
 
 #[test]
@@ -246,16 +280,28 @@ fn lammps_reads_back_what_we_write() {
     for (k, (style, pre)) in cases.iter().enumerate() {
         let (layout, mut df) = build(style, 9, 1000 + k as u64);
         if style.starts_with("atomic") || *style == "full" {
-            df.coeffs.push(coeffs(CoeffKind::Pair, "lj/cut", (1..=3).map(|t| CoeffLine::new(vec![t], &["1.0", "1.1"])).collect()));
+            df.coeffs.push(coeffs(
+                CoeffKind::Pair,
+                "lj/cut",
+                (1..=3).map(|t| CoeffLine::new(vec![t], &["1.0", "1.1"])).collect(),
+            ));
         }
         if *style == "full" {
-            df.coeffs.push(coeffs(CoeffKind::Bond, "harmonic", (1..=2).map(|t| CoeffLine::new(vec![t], &["100.0", "1.5"])).collect()));
+            df.coeffs.push(coeffs(
+                CoeffKind::Bond,
+                "harmonic",
+                (1..=2).map(|t| CoeffLine::new(vec![t], &["100.0", "1.5"])).collect(),
+            ));
             df.coeffs.push(coeffs(CoeffKind::Angle, "harmonic", vec![CoeffLine::new(vec![1], &["30.0", "109.5"])]));
             df.coeffs.push(coeffs(CoeffKind::Dihedral, "harmonic", vec![CoeffLine::new(vec![1], &["0.3", "1", "3"])]));
             df.coeffs.push(coeffs(CoeffKind::Improper, "harmonic", vec![CoeffLine::new(vec![1], &["10.5", "180.0"])]));
         }
         if style.starts_with("hybrid") {
-            df.coeffs.push(coeffs(CoeffKind::Bond, "harmonic", (1..=2).map(|t| CoeffLine::new(vec![t], &["1e-3", "1e-3"])).collect()));
+            df.coeffs.push(coeffs(
+                CoeffKind::Bond,
+                "harmonic",
+                (1..=2).map(|t| CoeffLine::new(vec![t], &["1e-3", "1e-3"])).collect(),
+            ));
         }
         let text = df.write(&layout);
         let tag = style.replace([' ', '/'], "_");
@@ -263,7 +309,10 @@ fn lammps_reads_back_what_we_write() {
         check(&rb, &layout, &df, style);
         // and our reader reads our own file back to the same values
         let back = parse_data_file(&text, Default::default(), &layout).unwrap();
-        assert_eq!(back.atoms.iter().map(|a| (a.id, a.x.map(f64::to_bits))).collect::<Vec<_>>(), df.atoms.iter().map(|a| (a.id, a.x.map(f64::to_bits))).collect::<Vec<_>>());
+        assert_eq!(
+            back.atoms.iter().map(|a| (a.id, a.x.map(f64::to_bits))).collect::<Vec<_>>(),
+            df.atoms.iter().map(|a| (a.id, a.x.map(f64::to_bits))).collect::<Vec<_>>()
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

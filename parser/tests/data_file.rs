@@ -435,7 +435,7 @@ fn values_lammps_rejects() {
     let cases = [
         (FULL.replace("3 1 1 0.0", "0 1 1 0.0"), "invalid atom ID 0"),
         (FULL.replace("3 1 1 0.0", "2 1 1 0.0"), "duplicate atom ID 2"),
-        (FULL.replace("3 1 1 0.0", "3 1 1.0 0.0"), "expected a atom type, found `1.0`"),
+        (FULL.replace("3 1 1 0.0", "3 1 1.0 0.0"), "expected an atom type, found `1.0`"),
         (FULL.replace("3 1 1 0.0 2.5", "3 1 1 0.0 2.5x"), "expected a number for x, found `2.5x`"),
         (FULL.replace("3 1 1 0.0 2.5", "3 1 1 0.0 1e400"), "expected a number for x, found `1e400`"),
         (FULL.replace("2 2.0", "2 0.0"), "invalid mass 0.0: must be > 0"),
@@ -580,4 +580,20 @@ fn error_count_is_capped() {
     let (es, _) = errors(&text, "atomic");
     assert_eq!(es.len(), 26);
     assert!(es[25].message.contains("too many errors"));
+}
+
+#[test]
+fn a_missing_title_is_explained() {
+    // LAMMPS always skips the first line: here it is `3 atoms`, so the Atoms lines are one too many
+    let text = FULL.replace("title\n", "");
+    let (es, r) = errors(&text, "full");
+    assert!(!es[0].is_error() && es[0].message.contains("first line of a data file is its title"), "{r}");
+}
+
+#[test]
+fn broken_atoms_do_not_cascade() {
+    // atoms 2 and 3 are rejected: the bonds naming them get no second error
+    let text = FULL.replace("2 1 2 0.0 1.5", "2 1 2 x 1.5").replace("3 atoms", "2 atoms");
+    let (es, r) = errors(&text, "full");
+    assert_eq!(es.len(), 2, "{r}");
 }

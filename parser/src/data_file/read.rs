@@ -195,8 +195,11 @@ fn parse_i64(w: &Word) -> Option<i64> {
     w.text.parse::<i64>().ok()
 }
 
-/// Reads a data file for an atom style. Errors are located diagnostics with a help line; as
-/// many as the file allows are reported at once.
+/// Reads a data file for an atom style.
+///
+/// `Err` holds located diagnostics with help lines, in file order: every error the file
+/// allows to find (at most 25, then a note), and the warnings found on the way. On success
+/// the warnings are in [`DataFile::warnings`].
 pub fn parse_data_file(text: &str, file: FileId, layout: &AtomLayout) -> Result<DataFile, Vec<Diagnostic>> {
     let mut r = Reader {
         lines: split_lines(text),
@@ -208,23 +211,25 @@ pub fn parse_data_file(text: &str, file: FileId, layout: &AtomLayout) -> Result<
         type_sections_seen: false,
         max_atom_id: 0,
         atom_index: HashMap::new(),
-        bad_atom_ids: HashSet::new(),
+        atoms_incomplete: false,
         velocity_ids: HashMap::new(),
         section_spans: HashMap::new(),
         first_atom_line_done: false,
     };
     r.run();
     if r.errors.is_empty() {
-        Ok(r.df)
-    } else {
-        if r.errors.len() > MAX_ERRORS {
-            r.errors.truncate(MAX_ERRORS);
-            r.errors.push(Diagnostic::error(format!(
-                "too many errors in the data file; only the first {MAX_ERRORS} are shown"
-            )));
-        }
-        Err(r.errors)
+        return Ok(r.df);
     }
+    let too_many = r.errors.len() > MAX_ERRORS;
+    r.errors.truncate(MAX_ERRORS);
+    // the warnings found so far often explain the errors (e.g. a header line read as the title)
+    let mut all = std::mem::take(&mut r.df.warnings);
+    all.append(&mut r.errors);
+    all.sort_by_key(|d| d.primary_span().map(|s| s.lo).unwrap_or(u32::MAX));
+    if too_many {
+        all.push(Diagnostic::error(format!("too many errors in the data file; only the first {MAX_ERRORS} are shown")));
+    }
+    Err(all)
 }
 
 struct Reader<'a> {
@@ -240,8 +245,8 @@ struct Reader<'a> {
     max_atom_id: i64,
     /// Atom ID -> index in `df.atoms`.
     atom_index: HashMap<i64, usize>,
-    /// IDs of Atoms lines that had errors: later lines naming them get no second error.
-    bad_atom_ids: HashSet<i64>,
+    /// The Atoms section had errors: a missing atom ID elsewhere is not a new error.
+    atoms_incomplete: bool,
     /// Velocity atom ID -> span of its first line.
     velocity_ids: HashMap<i64, Span>,
     section_spans: HashMap<Section, Span>,
@@ -685,6 +690,9 @@ impl<'a> Reader<'a> {
         if looks_numeric(first) {
             // data where a section name belongs: a section with more lines than the header says
             if let Some((sec, sec_span)) = self.last_counted_section(i) {
+                if sec == Section::Atoms {
+                    self.atoms_incomplete = true;
+                }
                 let (what, key) = section_count_words(sec, &self.df.header);
                 let mut d = Diagnostic::at(
                     self.line_span(i),
@@ -742,6 +750,9 @@ impl<'a> Reader<'a> {
     }
 
     fn short_section(&mut self, section: Section, name: &str, name_span: Span, read: usize, at: Option<usize>) {
+        if section == Section::Atoms {
+            self.atoms_incomplete = true;
+        }
         let (what, key) = section_count_words(section, &self.df.header);
         let span = match at {
             Some(j) => Span::new(self.file, self.lines[j].start, self.lines[j].start + self.lines[j].text.len().max(1)),
@@ -926,7 +937,7 @@ impl<'a> Reader<'a> {
         if labels.is_empty() {
             return Err(Diagnostic::at(
                 w.span,
-                format!("expected a {} type, found `{}`", k.name(), w.text),
+                format!("expected {} type, found `{}`", a_type(k), w.text),
                 "not a type",
             )
             .with_help(help.to_string())
@@ -972,7 +983,7 @@ impl<'a> Reader<'a> {
                 )
             };
             self.err(Diagnostic::at(span, msg, format!("{} values", words.len())).with_help(help));
-            self.remember_bad_atom(&words);
+            self.atoms_incomplete = true;
             return;
         }
         let mut atom = AtomLine::new(0, 0, [0.0; 3]);
@@ -1067,7 +1078,7 @@ impl<'a> Reader<'a> {
             for d in errs {
                 self.err(d);
             }
-            self.remember_bad_atom(&words);
+            self.atoms_incomplete = true;
             return;
         }
         if let Some(&prev) = self.atom_index.get(&atom.id) {
@@ -1083,12 +1094,6 @@ impl<'a> Reader<'a> {
         self.max_atom_id = self.max_atom_id.max(atom.id);
         self.atom_index.insert(atom.id, self.df.atoms.len());
         self.df.atoms.push(atom);
-    }
-
-    fn remember_bad_atom(&mut self, words: &[Word]) {
-        if let Some(id) = self.layout.atom_column(C::Id).and_then(|i| words.get(i)).and_then(parse_i64) {
-            self.bad_atom_ids.insert(id);
-        }
     }
 
     fn velocity_line(&mut self, j: usize) {
@@ -1147,7 +1152,7 @@ impl<'a> Reader<'a> {
             return;
         }
         let id_span = words[0].span;
-        if self.bad_atom_ids.contains(&vel.id) {
+        if self.atoms_incomplete && !self.atom_index.contains_key(&vel.id) {
             return;
         }
         if vel.id <= 0 || vel.id > self.max_atom_id {
@@ -1269,7 +1274,7 @@ impl<'a> Reader<'a> {
                 None => self.err(
                     Diagnostic::at(
                         w.span,
-                        format!("expected a {} type number, found `{}`", tk.name(), w.text),
+                        format!("expected {} type number, found `{}`", a_type(tk), w.text),
                         "not an integer",
                     )
                     .with_help(help.clone())
@@ -1315,7 +1320,7 @@ impl<'a> Reader<'a> {
         for (a, w) in atoms.iter_mut().zip(&words[2..]) {
             match parse_i64(w) {
                 Some(id) if self.atom_index.contains_key(&id) => *a = id,
-                Some(id) if self.bad_atom_ids.contains(&id) => ok = false,
+                Some(_) if self.atoms_incomplete => ok = false,
                 Some(id) => {
                     self.err(
                         Diagnostic::at(w.span, format!("no atom has ID {id}"), "no such atom").with_help(help.clone()),
@@ -1380,7 +1385,7 @@ impl<'a> Reader<'a> {
                 self.err(
                     Diagnostic::at(
                         words[0].span,
-                        format!("expected a {} type in 1..={n}, found `{}`", k.name(), words[0].text),
+                        format!("expected {} type in 1..={n}, found `{}`", a_type(k), words[0].text),
                         "not a type",
                     )
                     .with_help(help),
@@ -1569,6 +1574,12 @@ fn header_key(t: &[&str]) -> Option<(HeaderKey, usize)> {
         return Some((HeaderKey::Tilt, 3));
     }
     None
+}
+
+/// `an atom`, `a bond`, ... (for messages).
+fn a_type(k: TypeKind) -> String {
+    let article = if k == TypeKind::Atom || k == TypeKind::Angle || k == TypeKind::Improper { "an" } else { "a" };
+    format!("{article} {}", k.name())
 }
 
 /// A box line (`lo hi xlo xhi`, `xy xz yz xy xz yz`) whatever its numbers: how many values.

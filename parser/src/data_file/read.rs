@@ -1600,8 +1600,6 @@ fn is_type_label(s: &str) -> bool {
     !(c.is_ascii_digit() || c == '*' || c == '#') && s.is_ascii() && !s.chars().any(is_sep)
 }
 
-// ---------------------------------------------------------------------------------------------
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -200,8 +200,9 @@ impl<P> Default for TypeTable<P> {
 
 impl<P: Clone> TypeTable<P> {
     /// `n` types, none set.
+    /// Make room for types 1..=n, keeping the coefficients already set.
     pub fn resize(&mut self, n: usize) {
-        self.slots = vec![None; n + 1];
+        self.slots.resize(n + 1, None);
     }
     pub fn ntypes(&self) -> usize {
         self.slots.len().saturating_sub(1)

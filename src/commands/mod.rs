@@ -88,6 +88,13 @@ impl Host for Simulation {
     }
 }
 
+impl Simulation {
+    /// Execute one command (used for the coefficient sections of data files).
+    pub fn execute_command(&mut self, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {
+        Host::execute(self, cmd, sources)
+    }
+}
+
 /// Error unless the simulation box exists.
 pub(crate) fn need_box(sim: &Simulation, cmd: &Command) -> DResult<()> {
     if sim.domain.is_none() {

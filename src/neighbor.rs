@@ -148,6 +148,8 @@ pub struct NeighList {
     /// Squared list cutoff (cutoff + skin)^2 per type pair, row-major over `0..=ntypes`.
     pub cutneighsq: Vec<f64>,
     pub ntypes: usize,
+    /// Some entry carries a special-bond level.
+    pub has_special: bool,
 }
 
 impl NeighList {
@@ -272,13 +274,11 @@ impl Neighbor {
             lo[d] -= cutmax;
             hi[d] += cutmax;
         }
-        let binsize = if settings.binsize > 0.0 { settings.binsize } else if cutmax > 0.0 { 0.5 * cutmax } else { 1.0 };
+        let binsize = if settings.binsize > 0.0 { settings.binsize } else if cutmax > 0.0 { cutmax / 3.0 } else { 1.0 };
         let grid = Grid::new(lo, hi, binsize, dim, cutmax);
-        // slab axis: the active dimension with the most bins
-        let axis = (0..dim).max_by_key(|&d| grid.nb[d]).unwrap_or(0);
 
-        // sort owned atoms by (slab plane, bin)
-        let keys: Vec<u64> = atoms.x[..n].iter().map(|x| grid.sort_key(x, axis)).collect();
+        // sort owned atoms by bin: bins are numbered slab axis first, so this is slab order
+        let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
         let mut order: Vec<usize> = (0..n).collect();
         order.sort_by_key(|&i| keys[i]);
         atoms.permute(&order);
@@ -291,52 +291,68 @@ impl Neighbor {
                 }
                 let count = atoms.nall();
                 for k in 0..count {
-                    let (owner, mut shift) = if k < n {
+                    let xk = atoms.x[k][d];
+                    let near_lo = xk < domain.lo[d] + cutmax;
+                    let near_hi = xk >= domain.hi[d] - cutmax;
+                    if !near_lo && !near_hi {
+                        continue;
+                    }
+                    let (owner, shift) = if k < n {
                         (k, [0i8; 3])
                     } else {
                         (atoms.ghost_owner[k - n] as usize, atoms.ghost_shift[k - n])
                     };
-                    let xk = atoms.x[k][d];
-                    if xk < domain.lo[d] + cutmax {
-                        shift[d] = 1;
-                        atoms.push_ghost(owner, shift, prd);
+                    if near_lo {
+                        let mut s = shift;
+                        s[d] = 1;
+                        atoms.push_ghost(owner, s, prd);
                     }
-                    if xk >= domain.hi[d] - cutmax {
-                        shift[d] = -1;
-                        atoms.push_ghost(owner, shift, prd);
+                    if near_hi {
+                        let mut s = shift;
+                        s[d] = -1;
+                        atoms.push_ghost(owner, s, prd);
                     }
                 }
             }
         }
 
-        // bin all atoms
+        // owned atoms of bin b are the index range local_start[b]..local_start[b+1];
+        // ghosts are counting-sorted into their own bins
         let nall = atoms.nall();
-        let mut bin_of = vec![0usize; nall];
-        let mut counts = vec![0u32; grid.total + 1];
-        for (k, x) in atoms.x.iter().enumerate() {
-            let b = grid.bin(x);
-            bin_of[k] = b;
-            counts[b + 1] += 1;
+        let mut local_start = vec![0u32; grid.total + 1];
+        for &b in keys.iter() {
+            local_start[b as usize + 1] += 1;
         }
         for b in 0..grid.total {
-            counts[b + 1] += counts[b];
+            local_start[b + 1] += local_start[b];
         }
-        let bin_start = counts.clone();
-        let mut fill = counts;
-        let mut bin_atoms = vec![0u32; nall];
-        for k in 0..nall {
-            let b = bin_of[k];
-            bin_atoms[fill[b] as usize] = k as u32;
-            fill[b] += 1;
+        let ghost_bin: Vec<u32> = atoms.x[n..].iter().map(|x| grid.bin(x) as u32).collect();
+        let mut ghost_start = vec![0u32; grid.total + 1];
+        for &b in &ghost_bin {
+            ghost_start[b as usize + 1] += 1;
+        }
+        for b in 0..grid.total {
+            ghost_start[b + 1] += ghost_start[b];
+        }
+        let mut fill = ghost_start.clone();
+        let mut ghosts_by_bin = vec![0u32; nall - n];
+        for (k, &b) in ghost_bin.iter().enumerate() {
+            ghosts_by_bin[fill[b as usize] as usize] = (n + k) as u32;
+            fill[b as usize] += 1;
         }
 
-        // stencil of bin offsets within reach of the cutoff
-        let reach = grid.reach;
-        let stencil = grid.stencil(cutmax);
+        // stencil rows: runs of consecutive bins along the fastest grid axis within reach;
+        // atoms of consecutive bins are consecutive (owned atoms are sorted by bin, ghosts are
+        // counting-sorted), so each row is one contiguous range of candidates
+        let rows = grid.stencil_rows(cutmax);
+        // owned partners come from the forward half: rows after the atom's own row, and the
+        // atom's own row from its bin on (later atoms of its own bin only)
+        let own_row_end = rows.iter().find(|r| r.0 <= 0 && r.1 >= 0).map(|r| r.1).unwrap_or(0);
+        let forward: Vec<(i64, i64)> = rows.iter().copied().filter(|r| r.0 > 0).collect();
 
-        // slab chunks: consecutive planes along `axis`, at least `reach` planes thick
-        let thick = reach[axis].max(1) as usize;
-        let plane_of = |i: usize| grid.coord(atoms.x[i][axis], axis) as usize / thick;
+        // slab chunks: consecutive planes along the slab axis, at least `reach` planes thick
+        let thick = grid.reach[grid.axis].max(1) as usize;
+        let plane_of = |i: usize| grid.plane(keys_sorted(&keys, &order, i)) / thick;
         let mut bounds = vec![0usize];
         for i in 1..n {
             if plane_of(i) != plane_of(i - 1) {
@@ -358,41 +374,77 @@ impl Neighbor {
             .map(|w| {
                 let (start, end) = (w[0], w[1]);
                 let mut offsets = Vec::with_capacity(end - start + 1);
-                let mut neigh = Vec::new();
+                let mut neigh = Vec::with_capacity((end - start) * 48);
                 offsets.push(0u32);
                 for i in start..end {
                     let xi = a.x[i];
                     let ti = a.typ[i];
                     let row = &cutneighsq[ti * stride..(ti + 1) * stride];
-                    let bi = bin_of[i];
-                    for &off in &stencil {
-                        let b = (bi as i64 + off) as usize;
-                        for &j in &bin_atoms[bin_start[b] as usize..bin_start[b + 1] as usize] {
-                            let j = j as usize;
-                            if j < n && j <= i {
-                                continue;
+                    let bi = keys_sorted(&keys, &order, i) as i64;
+                    let plain = !use_special && excl.is_empty();
+                    let consider = |j: usize, neigh: &mut Vec<u32>| {
+                        let xj = a.x[j];
+                        let dx = xi[0] - xj[0];
+                        let dy = xi[1] - xj[1];
+                        let dz = xi[2] - xj[2];
+                        let rsq = dx * dx + dy * dy + dz * dz;
+                        if rsq > row[a.typ[j]] {
+                            return;
+                        }
+                        if !excl.is_empty() && excl.excluded(a, i, j) {
+                            return;
+                        }
+                        let mut entry = j as u32;
+                        if use_special {
+                            let far = j >= n && minimum_image_check(domain, [dx, dy, dz]);
+                            match special.action(a.tag[i], a.tag[j], far) {
+                                PairAction::Keep => {}
+                                PairAction::Exclude => return,
+                                PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
                             }
+                        }
+                        neigh.push(entry);
+                    };
+                    // candidates of a contiguous index range: without exclusions or special
+                    // bonds every candidate is written and kept only if within the cutoff
+                    // (branch-free: the hit rate is about 1 in 4, badly predicted)
+                    let range = |j0: usize, j1: usize, neigh: &mut Vec<u32>| {
+                        if !plain {
+                            for j in j0..j1 {
+                                consider(j, neigh);
+                            }
+                            return;
+                        }
+                        neigh.reserve(j1.saturating_sub(j0));
+                        let mut len = neigh.len();
+                        let base = neigh.as_mut_ptr();
+                        for j in j0..j1 {
                             let xj = a.x[j];
                             let dx = xi[0] - xj[0];
                             let dy = xi[1] - xj[1];
                             let dz = xi[2] - xj[2];
                             let rsq = dx * dx + dy * dy + dz * dz;
-                            if rsq > row[a.typ[j]] {
-                                continue;
+                            // SAFETY: capacity reserved for every candidate of this range
+                            unsafe { *base.add(len) = j as u32 };
+                            len += (rsq <= row[a.typ[j]]) as usize;
+                        }
+                        // SAFETY: the first `len` entries are initialised
+                        unsafe { neigh.set_len(len) };
+                    };
+                    // owned partners: later atoms of the own row, then the forward rows
+                    range(i + 1, local_start[(bi + own_row_end) as usize + 1] as usize, &mut neigh);
+                    for &(r0, r1) in &forward {
+                        range(local_start[(bi + r0) as usize] as usize, local_start[(bi + r1) as usize + 1] as usize, &mut neigh);
+                    }
+                    // ghost partners: every bin in reach (ghosts are images of atoms within
+                    // cutmax of a periodic face, so only atoms that near a face can see one)
+                    let near_face = (0..dim).any(|d| domain.periodic(d) && (xi[d] < domain.lo[d] + cutmax || xi[d] >= domain.hi[d] - cutmax));
+                    if near_face {
+                        for &(r0, r1) in &rows {
+                            let (b0, b1) = ((bi + r0) as usize, (bi + r1) as usize);
+                            for &g in &ghosts_by_bin[ghost_start[b0] as usize..ghost_start[b1 + 1] as usize] {
+                                consider(g as usize, &mut neigh);
                             }
-                            if !excl.is_empty() && excl.excluded(a, i, j) {
-                                continue;
-                            }
-                            let mut entry = j as u32;
-                            if use_special {
-                                let far = j >= n && minimum_image_check(domain, [dx, dy, dz]);
-                                match special.action(a.tag[i], a.tag[j], far) {
-                                    PairAction::Keep => {}
-                                    PairAction::Exclude => continue,
-                                    PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
-                                }
-                            }
-                            neigh.push(entry);
                         }
                     }
                     offsets.push(neigh.len() as u32);
@@ -401,7 +453,8 @@ impl Neighbor {
             })
             .collect();
 
-        self.list = NeighList { chunks, cutneighsq, ntypes };
+        let has_special = use_special && chunks.iter().any(|c| c.neigh.iter().any(|&j| j > NEIGH_MASK));
+        self.list = NeighList { chunks, cutneighsq, ntypes, has_special };
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);
         self.ago = 0;
@@ -410,8 +463,15 @@ impl Neighbor {
     }
 }
 
+/// The bin of owned atom `i` after sorting (keys are in pre-sort order).
+#[inline]
+fn keys_sorted(keys: &[u32], order: &[usize], i: usize) -> u32 {
+    keys[order[i]]
+}
+
 /// A regular grid of bins covering `lo..hi` plus a margin of `reach` bins on each side, so
-/// that a stencil around any atom's bin stays inside the grid.
+/// that a stencil around any atom's bin stays inside the grid. Bins are numbered with the slab
+/// axis (the dimension with the most bins) varying slowest.
 struct Grid {
     lo: [f64; 3],
     size: [f64; 3],
@@ -419,6 +479,9 @@ struct Grid {
     nb: [usize; 3],
     reach: [i64; 3],
     total: usize,
+    /// The slab axis, then the other two dimensions (slowest to fastest).
+    axis: usize,
+    order: [usize; 3],
 }
 
 impl Grid {
@@ -448,7 +511,9 @@ impl Grid {
             nb[d] += 2 * reach[d] as usize;
             inv[d] = 1.0 / size[d];
         }
-        Grid { lo: glo, size, inv, nb, reach, total: nb[0] * nb[1] * nb[2] }
+        let axis = (0..dim).max_by_key(|&d| nb[d]).unwrap_or(0);
+        let rest: Vec<usize> = (0..3).filter(|&d| d != axis).collect();
+        Grid { lo: glo, size, inv, nb, reach, total: nb[0] * nb[1] * nb[2], axis, order: [axis, rest[0], rest[1]] }
     }
     #[inline]
     fn coord(&self, x: f64, d: usize) -> usize {
@@ -457,29 +522,33 @@ impl Grid {
     }
     #[inline]
     fn bin(&self, x: &[f64; 3]) -> usize {
-        let (cx, cy, cz) = (self.coord(x[0], 0), self.coord(x[1], 1), self.coord(x[2], 2));
-        (cz * self.nb[1] + cy) * self.nb[0] + cx
+        let [a, b, c] = self.order;
+        (self.coord(x[a], a) * self.nb[b] + self.coord(x[b], b)) * self.nb[c] + self.coord(x[c], c)
     }
-    /// Sort key: slab plane along `axis` first, then the bin index.
-    fn sort_key(&self, x: &[f64; 3], axis: usize) -> u64 {
-        ((self.coord(x[axis], axis) as u64) << 40) | self.bin(x) as u64
+    /// Slab plane of a bin.
+    #[inline]
+    fn plane(&self, bin: u32) -> usize {
+        bin as usize / (self.nb[self.order[1]] * self.nb[self.order[2]])
     }
-    /// Bin-index offsets of every bin whose closest point can be within `cut`.
-    fn stencil(&self, cut: f64) -> Vec<i64> {
-        let reach = self.reach;
-        let mut s = Vec::new();
-        let (nx, ny) = (self.nb[0] as i64, self.nb[1] as i64);
+    /// The stencil as rows along the fastest axis: `(first, last)` bin-index offsets of each
+    /// run of bins whose closest point can be within `cut`, in increasing order.
+    fn stencil_rows(&self, cut: f64) -> Vec<(i64, i64)> {
+        let [a, b, c] = self.order;
+        let (nbb, nbc) = (self.nb[b] as i64, self.nb[c] as i64);
         let gap = |k: i64, d: usize| if k == 0 { 0.0 } else { (k.abs() - 1) as f64 * self.size[d] };
-        for k in -reach[2]..=reach[2] {
-            for j in -reach[1]..=reach[1] {
-                for i in -reach[0]..=reach[0] {
-                    let (gx, gy, gz) = (gap(i, 0), gap(j, 1), gap(k, 2));
-                    if gx * gx + gy * gy + gz * gz <= cut * cut * (1.0 + 1e-12) {
-                        s.push((k * ny + j) * nx + i);
-                    }
+        let within = |ga: f64, gb: f64, gc: f64| ga * ga + gb * gb + gc * gc <= cut * cut * (1.0 + 1e-12);
+        let mut rows = Vec::new();
+        for ka in -self.reach[a]..=self.reach[a] {
+            for kb in -self.reach[b]..=self.reach[b] {
+                let (ga, gb) = (gap(ka, a), gap(kb, b));
+                if !within(ga, gb, 0.0) {
+                    continue;
                 }
+                let kmax = (0..=self.reach[c]).rev().find(|&k| within(ga, gb, gap(k, c))).unwrap_or(0);
+                let base = (ka * nbb + kb) * nbc;
+                rows.push((base - kmax, base + kmax));
             }
         }
-        s
+        rows
     }
 }

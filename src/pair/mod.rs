@@ -125,11 +125,18 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
 /// Pair styles this build implements.
 pub const SUPPORTED: &[&str] = &["lj/cut", "zero", "hybrid", "hybrid/overlay"];
 
-/// A kernel for a central pair force between two point particles.
+/// A kernel for a central pair force between two point particles. Parameters are looked up
+/// once per atom i as a row over j's type, then evaluated per pair.
 pub trait CentralKernel: Sync {
-    /// `Some((fpair, energy))` when `rsq` is inside the cutoff of the type pair, where the
-    /// force on i is `fpair * (x_i - x_j)`. `factor` is the special-bond weight.
-    fn eval(&self, itype: usize, jtype: usize, rsq: f64, factor: f64, eflag: bool) -> Option<(f64, f64)>;
+    type Params: Sync;
+    /// Parameters of type pairs (ti, 0..=ntypes), indexed by j's type.
+    fn row(&self, ti: usize) -> &[Self::Params];
+    /// Squared cutoff of a type pair.
+    fn cutsq(p: &Self::Params) -> f64;
+    /// `(fpair, energy)` for `rsq` inside the cutoff, where the force on i is
+    /// `fpair * (x_i - x_j)`; `factor` is the special-bond weight. The energy is only used
+    /// when `EFLAG`.
+    fn eval<const EFLAG: bool>(p: &Self::Params, rsq: f64, factor: f64) -> (f64, f64);
 }
 
 /// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`].
@@ -180,57 +187,83 @@ pub fn sum_tallies(parts: &[Tally]) -> Tally {
 
 /// The loop for central forces: every listed pair, Newton's third law for owned partners,
 /// energy and virial with LAMMPS' `ev_tally` weights (a pair with a ghost counts half on
-/// each side, because each side lists it).
+/// each side, because each side lists it). Specialised at compile time on whether energies
+/// are tallied, special weights exist and a type filter applies, so the common case pays for
+/// none of them.
 pub fn compute_central<K: CentralKernel>(kernel: &K, input: &PairInput, f: &mut [[f64; 3]]) -> Tally {
-    let type_filter = input.type_filter;
+    let special = input.list.has_special;
+    match (input.eflag, special, input.type_filter.is_some()) {
+        (false, false, false) => central_loop::<K, false, false, false>(kernel, input, f),
+        (true, false, false) => central_loop::<K, true, false, false>(kernel, input, f),
+        (false, true, false) => central_loop::<K, false, true, false>(kernel, input, f),
+        (true, true, false) => central_loop::<K, true, true, false>(kernel, input, f),
+        (false, false, true) => central_loop::<K, false, false, true>(kernel, input, f),
+        (true, false, true) => central_loop::<K, true, false, true>(kernel, input, f),
+        (false, true, true) => central_loop::<K, false, true, true>(kernel, input, f),
+        (true, true, true) => central_loop::<K, true, true, true>(kernel, input, f),
+    }
+}
+
+fn central_loop<K: CentralKernel, const EFLAG: bool, const SPECIAL: bool, const FILTER: bool>(
+    kernel: &K,
+    input: &PairInput,
+    f: &mut [[f64; 3]],
+) -> Tally {
     let a = input.atoms;
     let nlocal = a.nlocal;
-    let eflag = input.eflag;
     let stride = input.ntypes + 1;
+    let x = &a.x[..];
+    let typ = &a.typ[..];
+    assert!(x.len() == typ.len() && f.len() >= nlocal);
     let shared = SharedMut(f.as_mut_ptr(), f.len());
     let parts = for_each_chunk(input.list, |chunk| {
         let mut t = Tally::default();
         for i in chunk.start..chunk.end {
-            let xi = a.x[i];
-            let ti = a.typ[i];
+            let xi = x[i];
+            let ti = typ[i];
+            let row = kernel.row(ti);
+            let filter = if FILTER { &input.type_filter.unwrap()[ti * stride..(ti + 1) * stride] } else { &[][..] };
             let mut fi = [0.0f64; 3];
             for &jraw in chunk.neighbors(i) {
                 let j = (jraw & NEIGH_MASK) as usize;
-                let tj = a.typ[j];
-                if let Some(filter) = type_filter {
-                    if !filter[ti * stride + tj] {
-                        continue;
-                    }
+                // SAFETY: the list builder stores only indices < nall = x.len() = typ.len()
+                let (xj, tj) = unsafe { (*x.get_unchecked(j), *typ.get_unchecked(j)) };
+                if FILTER && !filter[tj] {
+                    continue;
                 }
-                let xj = a.x[j];
                 let dx = xi[0] - xj[0];
                 let dy = xi[1] - xj[1];
                 let dz = xi[2] - xj[2];
                 let rsq = dx * dx + dy * dy + dz * dz;
-                let factor = input.special_lj[special_level(jraw)];
-                if let Some((fpair, e)) = kernel.eval(ti, tj, rsq, factor, eflag) {
-                    fi[0] += dx * fpair;
-                    fi[1] += dy * fpair;
-                    fi[2] += dz * fpair;
-                    let w = if j < nlocal {
-                        // SAFETY: j is in this chunk or the next (see for_each_chunk)
-                        let fj = unsafe { shared.get(j) };
-                        fj[0] -= dx * fpair;
-                        fj[1] -= dy * fpair;
-                        fj[2] -= dz * fpair;
-                        1.0
-                    } else {
-                        0.5
-                    };
-                    if eflag {
-                        t.evdwl += w * e;
-                        t.virial[0] += w * dx * dx * fpair;
-                        t.virial[1] += w * dy * dy * fpair;
-                        t.virial[2] += w * dz * dz * fpair;
-                        t.virial[3] += w * dx * dy * fpair;
-                        t.virial[4] += w * dx * dz * fpair;
-                        t.virial[5] += w * dy * dz * fpair;
-                    }
+                let p = &row[tj];
+                // branch-free cutoff: about a quarter of the listed pairs (those in the skin)
+                // are outside, which a branch predicts badly; their force is masked to +0
+                let keep = if rsq < K::cutsq(p) { u64::MAX } else { 0 };
+                let factor = if SPECIAL { input.special_lj[special_level(jraw)] } else { 1.0 };
+                let (fpair, e) = K::eval::<EFLAG>(p, rsq, factor);
+                let fpair = f64::from_bits(fpair.to_bits() & keep);
+                let e = f64::from_bits(e.to_bits() & keep);
+                fi[0] += dx * fpair;
+                fi[1] += dy * fpair;
+                fi[2] += dz * fpair;
+                let w = if j < nlocal {
+                    // SAFETY: j is an owned atom of this chunk or the next (see for_each_chunk)
+                    let fj = unsafe { shared.get(j) };
+                    fj[0] -= dx * fpair;
+                    fj[1] -= dy * fpair;
+                    fj[2] -= dz * fpair;
+                    1.0
+                } else {
+                    0.5
+                };
+                if EFLAG {
+                    t.evdwl += w * e;
+                    t.virial[0] += w * dx * dx * fpair;
+                    t.virial[1] += w * dy * dy * fpair;
+                    t.virial[2] += w * dz * dz * fpair;
+                    t.virial[3] += w * dx * dy * fpair;
+                    t.virial[4] += w * dx * dz * fpair;
+                    t.virial[5] += w * dy * dz * fpair;
                 }
             }
             // SAFETY: i belongs to this chunk
@@ -258,6 +291,11 @@ impl<T: Clone + Default> TypeTable<T> {
     #[inline]
     pub fn get(&self, i: usize, j: usize) -> &T {
         &self.data[i * (self.n + 1) + j]
+    }
+    /// Row i: the values for (i, 0..=n).
+    #[inline]
+    pub fn row(&self, i: usize) -> &[T] {
+        &self.data[i * (self.n + 1)..(i + 1) * (self.n + 1)]
     }
     #[inline]
     pub fn set(&mut self, i: usize, j: usize, v: T) {

@@ -13,7 +13,7 @@
 
 use crate::atoms::Atoms;
 use crate::domain::Domain;
-use crate::special::{minimum_image_check, pair_action, PairAction, SpecialFlag, SpecialList};
+use crate::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
 use rayon::prelude::*;
 
 /// Bits of a neighbour entry that hold the special-bond level (as LAMMPS' SBBITS).
@@ -26,37 +26,73 @@ pub fn special_level(j: u32) -> usize {
     (j >> SPECIAL_SHIFT) as usize
 }
 
-/// Special partner lists by atom ID and what the list does with each level.
+/// Special partner lists by atom ID (flattened: `partners[offsets[t]..offsets[t+1]]` are atom
+/// t's partners with their level) and what the list does with each level.
 #[derive(Clone, Debug)]
 pub struct SpecialTable {
-    /// Indexed by atom ID (empty lists for atoms without bonds).
-    pub by_tag: Vec<SpecialList>,
+    pub offsets: Vec<u32>,
+    pub partners: Vec<(i64, u8)>,
     pub flags: [SpecialFlag; 4],
+    /// Every list is symmetric (true unless `special_bonds angle/dihedral yes` trimmed one
+    /// side), so only atom i's list needs searching.
+    pub symmetric: bool,
 }
 
 impl Default for SpecialTable {
     fn default() -> Self {
-        SpecialTable { by_tag: Vec::new(), flags: [SpecialFlag::Normal; 4] }
+        SpecialTable { offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
     }
 }
 
 impl SpecialTable {
+    /// Flatten per-atom lists (`lists[k]` belongs to atom ID `ids[k]`).
+    pub fn from_lists(ids: &[i64], lists: Vec<SpecialList>, flags: [SpecialFlag; 4], symmetric: bool) -> SpecialTable {
+        let maxtag = ids.iter().copied().max().unwrap_or(0).max(0) as usize;
+        let mut by_tag: Vec<Option<SpecialList>> = vec![None; maxtag + 1];
+        for (k, l) in lists.into_iter().enumerate() {
+            by_tag[ids[k] as usize] = Some(l);
+        }
+        let mut offsets = Vec::with_capacity(maxtag + 2);
+        let mut partners = Vec::new();
+        offsets.push(0u32);
+        for l in &by_tag {
+            if let Some(l) = l {
+                for &t in &l.ids {
+                    partners.push((t, l.level(t).unwrap_or(0)));
+                }
+            }
+            offsets.push(partners.len() as u32);
+        }
+        SpecialTable { offsets, partners, flags, symmetric }
+    }
     pub fn is_empty(&self) -> bool {
-        self.by_tag.iter().all(|l| l.ids.is_empty())
+        self.partners.is_empty()
+    }
+    #[inline]
+    fn level(&self, itag: i64, jtag: i64) -> u8 {
+        let t = itag as usize;
+        if t + 1 >= self.offsets.len() {
+            return 0;
+        }
+        self.partners[self.offsets[t] as usize..self.offsets[t + 1] as usize].iter().find(|p| p.0 == jtag).map(|p| p.1).unwrap_or(0)
     }
     /// The action for pair (i, j): atom i's list is searched first (LAMMPS `find_special`);
-    /// dmhs also searches atom j's, so the one-sided lists `special_bonds angle yes` can
-    /// produce do not depend on which atom of the pair owns the list entry.
+    /// dmhs also searches atom j's when lists can be one-sided (`special_bonds angle yes`),
+    /// so the result does not depend on which atom of the pair owns the list entry.
     #[inline]
     fn action(&self, itag: i64, jtag: i64, far_image: bool) -> PairAction {
-        let empty = SpecialList::default();
-        let li = self.by_tag.get(itag as usize).unwrap_or(&empty);
-        match pair_action(&self.flags, li, jtag, far_image) {
-            PairAction::Keep if li.level(jtag).is_none() => {
-                let lj = self.by_tag.get(jtag as usize).unwrap_or(&empty);
-                pair_action(&self.flags, lj, itag, far_image)
-            }
-            other => other,
+        let mut level = self.level(itag, jtag);
+        if level == 0 && !self.symmetric {
+            level = self.level(jtag, itag);
+        }
+        if level == 0 {
+            return PairAction::Keep;
+        }
+        match self.flags[level as usize] {
+            SpecialFlag::Normal => PairAction::Keep,
+            _ if far_image => PairAction::Keep,
+            SpecialFlag::Exclude => PairAction::Exclude,
+            SpecialFlag::Weighted => PairAction::Weighted(level),
         }
     }
 }
@@ -279,9 +315,22 @@ impl Neighbor {
 
         // sort owned atoms by bin: bins are numbered slab axis first, so this is slab order
         let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
-        let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by_key(|&i| keys[i]);
+        // counting sort (stable: atoms of one bin keep their order)
+        let mut start = vec![0u32; grid.total + 1];
+        for &k in &keys {
+            start[k as usize + 1] += 1;
+        }
+        for b in 0..grid.total {
+            start[b + 1] += start[b];
+        }
+        let mut order = vec![0usize; n];
+        for (i, &k) in keys.iter().enumerate() {
+            order[start[k as usize] as usize] = i;
+            start[k as usize] += 1;
+        }
         atoms.permute(&order);
+        // bin of each owned atom in its new place
+        let bin_of: Vec<u32> = order.iter().map(|&o| keys[o]).collect();
 
         // ghosts, dimension by dimension so edges and corners get images too (LAMMPS borders())
         if cutmax > 0.0 {
@@ -352,7 +401,7 @@ impl Neighbor {
 
         // slab chunks: consecutive planes along the slab axis, at least `reach` planes thick
         let thick = grid.reach[grid.axis].max(1) as usize;
-        let plane_of = |i: usize| grid.plane(keys_sorted(&keys, &order, i)) / thick;
+        let plane_of = |i: usize| grid.plane(bin_of[i]) / thick;
         let mut bounds = vec![0usize];
         for i in 1..n {
             if plane_of(i) != plane_of(i - 1) {
@@ -380,7 +429,7 @@ impl Neighbor {
                     let xi = a.x[i];
                     let ti = a.typ[i];
                     let row = &cutneighsq[ti * stride..(ti + 1) * stride];
-                    let bi = keys_sorted(&keys, &order, i) as i64;
+                    let bi = bin_of[i] as i64;
                     let plain = !use_special && excl.is_empty();
                     let consider = |j: usize, neigh: &mut Vec<u32>| {
                         let xj = a.x[j];
@@ -463,12 +512,6 @@ impl Neighbor {
     }
 }
 
-/// The bin of owned atom `i` after sorting (keys are in pre-sort order).
-#[inline]
-fn keys_sorted(keys: &[u32], order: &[usize], i: usize) -> u32 {
-    keys[order[i]]
-}
-
 /// A regular grid of bins covering `lo..hi` plus a margin of `reach` bins on each side, so
 /// that a stencil around any atom's bin stays inside the grid. Bins are numbered with the slab
 /// axis (the dimension with the most bins) varying slowest.
@@ -512,7 +555,12 @@ impl Grid {
             inv[d] = 1.0 / size[d];
         }
         let axis = (0..dim).max_by_key(|&d| nb[d]).unwrap_or(0);
-        let rest: Vec<usize> = (0..3).filter(|&d| d != axis).collect();
+        // the fastest-varying axis is an active one, so stencil rows are long (in 2D: z, with
+        // one bin, goes in the middle)
+        let mut rest: Vec<usize> = (0..3).filter(|&d| d != axis).collect();
+        if dim == 2 {
+            rest.sort_by_key(|&d| if d == 2 { 0 } else { 1 });
+        }
         Grid { lo: glo, size, inv, nb, reach, total: nb[0] * nb[1] * nb[2], axis, order: [axis, rest[0], rest[1]] }
     }
     #[inline]

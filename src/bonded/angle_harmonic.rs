@@ -44,6 +44,7 @@ impl AngleStyle for AngleHarmonic {
     fn check_all_set(&self) -> Result<(), String> {
         self.types.check_all_set("Angle")
     }
+    #[inline(always)]
     fn compute(&self, atype: usize, del1: Vec3, del2: Vec3) -> AngleForces {
         let p = self.types.get(atype);
         let rsq1 = del1[0] * del1[0] + del1[1] * del1[1] + del1[2] * del1[2];

@@ -37,6 +37,7 @@ impl BondStyle for BondHarmonic {
     fn check_all_set(&self) -> Result<(), String> {
         self.types.check_all_set("Bond")
     }
+    #[inline(always)]
     fn compute(&self, btype: usize, _del: Vec3, rsq: f64) -> (f64, f64) {
         let p = self.types.get(btype);
         let r = rsq.sqrt();

@@ -55,6 +55,7 @@ impl DihedralStyle for DihedralHarmonic {
     fn check_all_set(&self) -> Result<(), String> {
         self.types.check_all_set("Dihedral")
     }
+    #[inline(always)]
     fn compute(&self, dtype: usize, vb1: Vec3, vb2: Vec3, vb3: Vec3) -> DihedralForces {
         let p = self.types.get(dtype);
         let vb2m = [-vb2[0], -vb2[1], -vb2[2]];

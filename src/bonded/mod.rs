@@ -20,6 +20,8 @@ pub mod bond_harmonic;
 pub mod dihedral_harmonic;
 pub mod dihedral_quadratic;
 
+use crate::bonded_forces::{BondedTally, Entry, Kernels};
+use crate::pair::SharedMut;
 use dmhs_parser::{Args, DResult};
 
 pub type Vec3 = [f64; 3];
@@ -55,6 +57,10 @@ pub trait BondStyle: Send + Sync {
     /// One bond of type `btype`: `del = x1 - x2`, `rsq = |del|^2` summed as x, y, z.
     /// Returns `(fbond, energy)`: the force on atom 1 is `del * fbond`, on atom 2 its negative.
     fn compute(&self, btype: usize, del: Vec3, rsq: f64) -> (f64, f64);
+    /// Apply a batch of bonds (monomorphised per style, so `compute` inlines).
+    fn apply(&self, entries: &[Entry<2>], k: &Kernels, f: &SharedMut<Vec3>, t: &mut BondedTally) {
+        crate::bonded_forces::apply_bonds(self, entries, k, f, t)
+    }
     /// The rest length (LAMMPS `equilibrium_distance`, used e.g. by the neighbour-list check).
     fn equilibrium_distance(&self, btype: usize) -> f64;
     /// The coefficient words `write_data` prints after the type number.
@@ -88,6 +94,10 @@ pub trait AngleStyle: Send + Sync {
     fn check_all_set(&self) -> Result<(), String>;
     /// One angle 1-2-3 (2 is the vertex): `del1 = x1 - x2`, `del2 = x3 - x2`.
     fn compute(&self, atype: usize, del1: Vec3, del2: Vec3) -> AngleForces;
+    /// Apply a batch of angles (monomorphised per style, so `compute` inlines).
+    fn apply(&self, entries: &[Entry<3>], k: &Kernels, f: &SharedMut<Vec3>, t: &mut BondedTally) {
+        crate::bonded_forces::apply_angles(self, entries, k, f, t)
+    }
     /// The rest angle in radians (LAMMPS `equilibrium_angle`).
     fn equilibrium_angle(&self, atype: usize) -> f64;
     fn coeff_words(&self, atype: usize) -> String;
@@ -119,6 +129,10 @@ pub trait DihedralStyle: Send + Sync {
     fn check_all_set(&self) -> Result<(), String>;
     /// One dihedral 1-2-3-4: `vb1 = x1 - x2`, `vb2 = x3 - x2`, `vb3 = x4 - x3`.
     fn compute(&self, dtype: usize, vb1: Vec3, vb2: Vec3, vb3: Vec3) -> DihedralForces;
+    /// Apply a batch of dihedrals (monomorphised per style, so `compute` inlines).
+    fn apply(&self, entries: &[Entry<4>], k: &Kernels, f: &SharedMut<Vec3>, t: &mut BondedTally) {
+        crate::bonded_forces::apply_dihedrals(self, entries, k, f, t)
+    }
     fn coeff_words(&self, dtype: usize) -> String;
 }
 

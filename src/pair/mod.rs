@@ -140,15 +140,18 @@ pub trait CentralKernel: Sync {
 }
 
 /// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`].
-struct SharedMut<T>(*mut T, usize);
+pub struct SharedMut<T>(*mut T, usize);
 unsafe impl<T> Sync for SharedMut<T> {}
 unsafe impl<T> Send for SharedMut<T> {}
 impl<T> SharedMut<T> {
+    pub fn new(data: &mut [T]) -> SharedMut<T> {
+        SharedMut(data.as_mut_ptr(), data.len())
+    }
     /// # Safety
     /// Callers must ensure no two threads touch the same index at once.
     #[inline]
     #[allow(clippy::mut_from_ref)]
-    unsafe fn get(&self, i: usize) -> &mut T {
+    pub unsafe fn get(&self, i: usize) -> &mut T {
         debug_assert!(i < self.1);
         &mut *self.0.add(i)
     }
@@ -160,15 +163,23 @@ impl<T> SharedMut<T> {
 /// atom receives its contributions in the same order whatever the thread count.
 /// Returns the per-chunk results in chunk order.
 pub fn for_each_chunk<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync) -> Vec<R> {
-    let n = list.chunks.len();
+    for_each_slab(list.chunks.len(), |c| work(&list.chunks[c]))
+}
+
+/// The even/odd schedule of [`for_each_chunk`] over `n` chunks given by index.
+pub fn for_each_slab<R: Send + Default + Clone>(n: usize, work: impl Fn(usize) -> R + Sync) -> Vec<R> {
     let mut out = vec![R::default(); n];
+    if rayon::current_num_threads() == 1 || n < 2 {
+        // same order of contributions as the parallel schedule
+        for parity in 0..2 {
+            for c in (parity..n).step_by(2) {
+                out[c] = work(c);
+            }
+        }
+        return out;
+    }
     for parity in 0..2 {
-        let results: Vec<(usize, R)> = (parity..n)
-            .step_by(2)
-            .collect::<Vec<_>>()
-            .into_par_iter()
-            .map(|c| (c, work(&list.chunks[c])))
-            .collect();
+        let results: Vec<(usize, R)> = (parity..n).step_by(2).collect::<Vec<_>>().into_par_iter().map(|c| (c, work(c))).collect();
         for (c, r) in results {
             out[c] = r;
         }

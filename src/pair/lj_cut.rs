@@ -79,6 +79,7 @@ impl PairStyle for LjCut {
             }
             self.coeff = t;
         }
+        args.syntax = COEFF_SYNTAX;
         let epsilon = args.f64("epsilon")?;
         let sigma = args.f64("sigma")?;
         let cut = if args.is_empty() { self.cut_global } else { args.positive_f64("the cutoff Rc")? };

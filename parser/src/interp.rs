@@ -362,7 +362,16 @@ impl Interpreter {
         let cmd = &words[0];
         let args = &words[1..];
         match cmd.as_str() {
-            "variable" => host.variables().command(&words_of(args)).map_err(one),
+            "variable" => {
+                // LAMMPS substitutes `$` references in the value of a string-style variable
+                // when it is defined, even inside quotes
+                let mut w = words_of(args);
+                if args.len() >= 3 && args[1].as_str() == "string" && args[2].as_str().contains('$') {
+                    let value = lexer::substitute(&args[2].text, host, None).map_err(one)?;
+                    w[2].text = value.text().to_string();
+                }
+                host.variables().command(&w).map_err(one)
+            }
             "next" => {
                 if host.variables().next(&words_of(args)).map_err(one)? {
                     self.jump_skip = true;

@@ -4,7 +4,7 @@
 
 use crate::fix::{Fix, FixHooks};
 use crate::neighbor::NeighError;
-use crate::pair::{PairInput, Tally};
+use crate::pair::{PairInput, PairOutput, Tally};
 use crate::sim::{Energies, RunError, Simulation};
 use crate::timing::Stage;
 use std::time::Instant;
@@ -105,14 +105,51 @@ impl Simulation {
                 ),
                 NeighError::BadPosition { index } => RunError::new(step, format!("atom {} has a non-finite position", self.atoms.tag[index])),
             })?;
-        let _ = order;
+        if self.pair.is_some() {
+            self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
+        }
         self.build_bonded_lists()?;
         self.lists_valid = true;
         Ok(())
     }
 
+    /// Call `work` with the pair style, its input and the per-atom outputs (taken out of the
+    /// atoms for the duration, so the style can read the atoms while writing forces).
+    pub fn with_pair<R>(&mut self, work: impl FnOnce(&mut dyn crate::pair::PairStyle, &PairInput, &mut PairOutput) -> R, eflag: bool, advance: bool) -> R {
+        let mut pair = self.pair.take().expect("pair style");
+        let (mut f, mut torque, mut drho, mut desph) = (
+            std::mem::take(&mut self.atoms.f),
+            std::mem::take(&mut self.atoms.torque),
+            std::mem::take(&mut self.atoms.drho),
+            std::mem::take(&mut self.atoms.desph),
+        );
+        let input = PairInput {
+            atoms: &self.atoms,
+            list: &self.neighbor.list,
+            special_lj: self.special_bonds.lj,
+            special_coul: self.special_bonds.coul,
+            eflag,
+            ntypes: self.ntypes,
+            type_filter: None,
+            type_mass: &self.type_mass,
+            dt: self.dt,
+            step: self.step,
+            advance,
+            dimension: self.dimension,
+        };
+        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph };
+        let r = work(pair.as_mut(), &input, &mut out);
+        self.atoms.f = f;
+        self.atoms.torque = torque;
+        self.atoms.drho = drho;
+        self.atoms.desph = desph;
+        self.pair = Some(pair);
+        r
+    }
+
     /// Zero forces and rates, then pair and bonded forces. Tallies energies if `eflag`.
-    pub fn compute_forces(&mut self, eflag: bool) -> Result<(), RunError> {
+    /// `advance`: false during run setup (contact histories are not advanced, as in LAMMPS).
+    pub fn compute_forces(&mut self, eflag: bool, advance: bool) -> Result<(), RunError> {
         let a = &mut self.atoms;
         a.f.iter_mut().for_each(|f| *f = [0.0; 3]);
         if a.features.sphere {
@@ -124,19 +161,8 @@ impl Simulation {
         }
         self.timers.stamp();
         let mut pair_tally = Tally::default();
-        if let Some(p) = self.pair.as_deref() {
-            let mut f = std::mem::take(&mut self.atoms.f);
-            let input = PairInput {
-                atoms: &self.atoms,
-                list: &self.neighbor.list,
-                special_lj: self.special_bonds.lj,
-                special_coul: self.special_bonds.coul,
-                eflag,
-                ntypes: self.ntypes,
-                type_filter: None,
-            };
-            pair_tally = p.compute(&input, &mut f);
-            self.atoms.f = f;
+        if self.pair.is_some() {
+            pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
         }
         self.timers.charge(Stage::Pair);
         let bonded = self.compute_bonded(eflag)?;
@@ -171,7 +197,7 @@ impl Simulation {
             self.atoms.forward_state();
         }
         self.natoms_expected = self.atoms.nlocal;
-        self.compute_forces(true)?;
+        self.compute_forces(true, false)?;
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s| f.setup(s))?;
         self.timers.charge(Stage::Modify);
@@ -198,7 +224,7 @@ impl Simulation {
             self.timers.charge(Stage::Comm);
         }
 
-        self.compute_forces(eflag)?;
+        self.compute_forces(eflag, true)?;
 
         self.timers.stamp();
         self.fix_hook(|h| h.post_force, |f, s| f.post_force(s))?;

@@ -2,7 +2,7 @@
 //! by `pair_coeff I J STYLE [k] args...`. With `hybrid` each type pair has at most one style
 //! (a later assignment replaces an earlier one); with `hybrid/overlay` the styles add up.
 
-use super::{new_pair_style, PairInput, PairModify, PairStyle, Tally, SUPPORTED};
+use super::{new_pair_style, PairInput, PairModify, PairOutput, PairStyle, Tally, SUPPORTED};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "pair_style hybrid|hybrid/overlay style1 args1 style2 args2 ...";
@@ -166,13 +166,20 @@ impl PairStyle for Hybrid {
             .fold(0.0, f64::max)
     }
 
-    fn compute(&self, input: &PairInput, f: &mut [[f64; 3]]) -> Tally {
+    fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         let mut total = Tally::default();
-        for (k, style) in self.styles.iter().enumerate() {
+        for (k, style) in self.styles.iter_mut().enumerate() {
             let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
-            total.add(&style.compute(&sub, f));
+            total.add(&style.compute(&sub, out));
         }
         total
+    }
+
+    fn rebuilt(&mut self, input: &PairInput, order: &[usize]) {
+        for (k, style) in self.styles.iter_mut().enumerate() {
+            let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            style.rebuilt(&sub, order);
+        }
     }
 
     fn describe(&self) -> String {

@@ -2,7 +2,7 @@
 //! E = 4 eps [(sigma/r)^12 - (sigma/r)^6] (- E(Rc) with `pair_modify shift yes`).
 //! Arithmetic in LAMMPS' order (lj1 = 48 eps sigma^12, lj2 = 24 eps sigma^6, ...).
 
-use super::{compute_central, CentralKernel, PairInput, PairModify, PairStyle, Tally, TypeTable};
+use super::{compute_central, CentralKernel, PairInput, PairModify, PairOutput, PairStyle, Tally, TypeTable};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style lj/cut Rc";
@@ -156,8 +156,8 @@ impl PairStyle for LjCut {
         self.derived.get(it, jt).cutsq.sqrt()
     }
 
-    fn compute(&self, input: &PairInput, f: &mut [[f64; 3]]) -> Tally {
-        compute_central(self, input, f)
+    fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
+        compute_central(self, input, out.f)
     }
 
     fn data_coeffs(&self, it: usize) -> Option<String> {

@@ -73,6 +73,15 @@ impl Tally {
     }
 }
 
+/// Per-atom outputs a pair style adds to (owned atoms; empty slices for arrays the atom style
+/// does not have).
+pub struct PairOutput<'a> {
+    pub f: &'a mut [[f64; 3]],
+    pub torque: &'a mut [[f64; 3]],
+    pub drho: &'a mut [f64],
+    pub desph: &'a mut [f64],
+}
+
 /// What a pair computation may read.
 pub struct PairInput<'a> {
     pub atoms: &'a Atoms,
@@ -86,6 +95,13 @@ pub struct PairInput<'a> {
     /// Type pairs this style handles (row-major over `0..=ntypes`); None = all
     /// (set by `hybrid` for its sub-styles).
     pub type_filter: Option<&'a [bool]>,
+    /// Per-type masses (index 0 unused).
+    pub type_mass: &'a [f64],
+    pub dt: f64,
+    pub step: i64,
+    /// False during run setup (LAMMPS' `shearupdate`: contact histories are not advanced).
+    pub advance: bool,
+    pub dimension: usize,
 }
 
 /// A pair style as the engine drives it.
@@ -99,8 +115,12 @@ pub trait PairStyle: Send + Sync {
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String>;
     /// Interaction cutoff for a type pair after `init` (0 = no interaction).
     fn cutoff(&self, it: usize, jt: usize) -> f64;
-    /// Add forces on owned atoms to `f`; return the tallies when `input.eflag`.
-    fn compute(&self, input: &PairInput, f: &mut [[f64; 3]]) -> Tally;
+    /// Add forces (and torques, density and energy rates) on owned atoms to `out`; return the
+    /// tallies when `input.eflag`. `&mut self` lets a style keep state such as contact history.
+    fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally;
+    /// Called after every neighbour-list rebuild (before `compute`); `order` is the permutation
+    /// applied to owned atoms (new k takes old `order[k]`).
+    fn rebuilt(&mut self, _input: &PairInput, _order: &[usize]) {}
     /// The words of `pair_coeff` for type I (for write_data's "Pair Coeffs"); None if the
     /// style has no per-type form.
     fn data_coeffs(&self, _it: usize) -> Option<String> {

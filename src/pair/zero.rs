@@ -1,6 +1,6 @@
 //! `pair_style zero Rc [nocoeff]` — no forces, but a neighbour list with cutoff Rc (as LAMMPS).
 
-use super::{PairInput, PairModify, PairStyle, Tally, TypeTable};
+use super::{PairInput, PairModify, PairOutput, PairStyle, Tally, TypeTable};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style zero Rc [nocoeff] [full]";
@@ -81,7 +81,7 @@ impl PairStyle for PairZero {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.cut.get(it, jt).unwrap_or(0.0)
     }
-    fn compute(&self, _input: &PairInput, _f: &mut [[f64; 3]]) -> Tally {
+    fn compute(&mut self, _input: &PairInput, _out: &mut PairOutput) -> Tally {
         Tally::default()
     }
 }

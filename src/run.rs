@@ -54,7 +54,8 @@ impl Simulation {
     pub fn init_run(&mut self) -> Result<(), String> {
         let domain = self.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
         let _ = domain;
-        if !self.atoms.features.per_atom_mass() {
+        let type_mass_needed = !self.atoms.features.per_atom_mass() || self.pair.as_ref().map(|p| p.needs_type_mass()).unwrap_or(false);
+        if type_mass_needed {
             for t in 1..=self.ntypes {
                 if !self.mass_set[t] {
                     return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)"));
@@ -161,6 +162,16 @@ impl Simulation {
         }
         self.timers.stamp();
         let mut pair_tally = Tally::default();
+        if self.pair.is_some() && self.atoms.features.sph {
+            // density summation (sph/rhosum) before the forces that read the densities
+            let mut rho = std::mem::take(&mut self.atoms.rho);
+            let changed = self.with_pair(|p, input, _| p.density_pass(input, &mut rho), false, advance);
+            self.atoms.rho = rho;
+            if changed {
+                let n = self.atoms.nlocal;
+                crate::atoms::Atoms::forward_field(&mut self.atoms.rho, n, &self.atoms.ghost_owner);
+            }
+        }
         if self.pair.is_some() {
             pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
         }
@@ -197,6 +208,10 @@ impl Simulation {
             self.atoms.forward_state();
         }
         self.natoms_expected = self.atoms.nlocal;
+        self.timers.stamp();
+        self.fix_hook(|_| true, |f, s| f.setup_pre_force(s))?;
+        self.atoms.forward_state();
+        self.timers.charge(Stage::Modify);
         self.compute_forces(true, false)?;
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s| f.setup(s))?;

@@ -9,6 +9,7 @@ pub mod pressure;
 pub mod property;
 pub mod property_atom;
 pub mod reduce;
+pub mod sph_atom;
 pub mod temp;
 
 use crate::sim::Simulation;
@@ -58,7 +59,7 @@ pub trait Compute: Send + Sync {
 }
 
 /// Compute styles this build implements.
-pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce"];
+pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce", "sph/rho/atom", "sph/e/atom", "sph/t/atom"];
 
 /// Build a compute from `compute ID group style args...`.
 pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &Simulation) -> DResult<Box<dyn Compute>> {
@@ -71,6 +72,7 @@ pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: 
         "com" => Ok(Box::new(com::ComputeCom::from_lammps(id, groupbit, args, cmd)?)),
         "property/atom" => Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(id, groupbit, args, cmd, sim)?)),
         "reduce" => Ok(Box::new(reduce::ComputeReduce::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "sph/rho/atom" | "sph/e/atom" | "sph/t/atom" => Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("compute", style, other, SUPPORTED)),
     }
 }

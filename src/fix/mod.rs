@@ -8,6 +8,7 @@ pub mod gravity;
 pub mod move_linear;
 pub mod nve;
 pub mod setforce;
+pub mod sph;
 pub mod viscous;
 pub mod wall_reflect;
 
@@ -32,6 +33,10 @@ pub trait Fix: Send {
     fn hooks(&self) -> FixHooks;
     /// Checks before a run (e.g. enforce2d in 3D); errors stop the run before it starts.
     fn init(&mut self, _sim: &Simulation) -> Result<(), String> {
+        Ok(())
+    }
+    /// Called once per run before the forces of step 0 are computed (LAMMPS `setup_pre_force`).
+    fn setup_pre_force(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
         Ok(())
     }
     /// Called once per run after the forces of step 0 (LAMMPS `setup`): by default
@@ -78,7 +83,7 @@ pub trait Fix: Send {
 }
 
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "move"];
+pub const SUPPORTED: &[&str] = &["nve", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "move", "sph", "sph/stationary"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
@@ -92,6 +97,7 @@ pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Wo
         "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, sim)?)),
         "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, sim)?)),
         "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }
 }

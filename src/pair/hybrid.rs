@@ -182,6 +182,34 @@ impl PairStyle for Hybrid {
         }
     }
 
+    fn needs_type_mass(&self) -> bool {
+        self.styles.iter().any(|s| s.needs_type_mass())
+    }
+
+    fn density_pass(&mut self, input: &PairInput, rho: &mut [f64]) -> bool {
+        let mut any = false;
+        for (k, style) in self.styles.iter_mut().enumerate() {
+            let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            any |= style.density_pass(&sub, rho);
+        }
+        any
+    }
+
+    fn sph_info(&self) -> Option<super::SphInfo> {
+        // the most restrictive values over the SPH sub-styles
+        let infos: Vec<super::SphInfo> = self.styles.iter().filter_map(|s| s.sph_info()).collect();
+        let first = infos.first()?.clone();
+        Some(infos.iter().skip(1).fold(first, |a, b| super::SphInfo {
+            h_min: a.h_min.min(b.h_min),
+            c_max: a.c_max.max(b.c_max),
+            rho0_min: a.rho0_min.min(b.rho0_min),
+            mu_max: match (a.mu_max, b.mu_max) {
+                (Some(x), Some(y)) => Some(x.max(y)),
+                (x, y) => x.or(y),
+            },
+        }))
+    }
+
     fn describe(&self) -> String {
         let mut s = self.style().to_string();
         for st in &self.styles {

@@ -6,6 +6,11 @@
 
 pub mod hybrid;
 pub mod lj_cut;
+pub mod sph;
+pub mod sph_heatconduction;
+pub mod sph_rhosum;
+pub mod sph_taitwater;
+pub mod sph_taitwater_morris;
 pub mod zero;
 
 use crate::atoms::Atoms;
@@ -130,12 +135,79 @@ pub trait PairStyle: Send + Sync {
     fn describe(&self) -> String {
         self.style().to_string()
     }
+    /// The style uses per-type masses (`mass`), even for atom styles with per-atom masses.
+    fn needs_type_mass(&self) -> bool {
+        false
+    }
+    /// A density pass before the force pass (sph/rhosum): may overwrite `rho` of owned atoms;
+    /// returns true if it did (the engine then refreshes ghosts).
+    fn density_pass(&mut self, _input: &PairInput, _rho: &mut [f64]) -> bool {
+        false
+    }
+    /// SPH parameters for stability estimates (`dmhs check`), if this is an SPH style.
+    fn sph_info(&self) -> Option<SphInfo> {
+        None
+    }
+}
+
+/// What stability estimates need from SPH styles.
+#[derive(Clone, Debug, Default)]
+pub struct SphInfo {
+    /// Smallest kernel support h over all pairs.
+    pub h_min: f64,
+    /// Largest sound speed c0 and the smallest rho0 over types with parameters.
+    pub c_max: f64,
+    pub rho0_min: f64,
+    /// Largest dynamic viscosity (Morris styles).
+    pub mu_max: Option<f64>,
+}
+
+impl SphInfo {
+    /// From the Tait tables; `morris`: the pair value is a dynamic viscosity.
+    pub fn from_tait(types: &sph::TaitTypes, pairs: &sph::PairTable<(f64, f64)>, n: usize, morris: Option<()>) -> SphInfo {
+        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0) };
+        for i in 1..=n.min(types.rho0.len().saturating_sub(1)) {
+            if types.rho0[i] > 0.0 {
+                info.c_max = info.c_max.max(types.c0[i]);
+                info.rho0_min = info.rho0_min.min(types.rho0[i]);
+            }
+            for j in i..=n.min(pairs.n) {
+                if pairs.is_set(i, j) {
+                    let (x, h) = *pairs.get(i, j);
+                    info.h_min = info.h_min.min(h);
+                    if let Some(m) = info.mu_max.as_mut() {
+                        *m = m.max(x);
+                    }
+                }
+            }
+        }
+        info
+    }
+}
+
+/// Squared cutoffs per type pair from an SPH table (`h_of` picks h); 0 for pairs not active.
+pub fn sph_cutsq<T: Clone + Default>(pairs: &sph::PairTable<T>, n: usize, active: Option<&[bool]>, h_of: impl Fn(&T) -> f64) -> Vec<f64> {
+    let mut c = vec![0.0; (n + 1) * (n + 1)];
+    for i in 1..=n {
+        for j in 1..=n {
+            let on = active.map(|a| a[i * (n + 1) + j]).unwrap_or(true);
+            if on && pairs.is_set(i, j) {
+                let h = h_of(pairs.get(i, j));
+                c[i * (n + 1) + j] = h * h;
+            }
+        }
+    }
+    c
 }
 
 /// Build a pair style from `pair_style NAME args...`.
 pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<dyn PairStyle>> {
     match name.text.as_str() {
         "lj/cut" => Ok(Box::new(lj_cut::LjCut::from_lammps(args, cmd)?)),
+        "sph/taitwater" => Ok(Box::new(sph_taitwater::SphTaitwater::from_lammps(args, cmd)?)),
+        "sph/taitwater/morris" => Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?)),
+        "sph/heatconduction" => Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?)),
+        "sph/rhosum" => Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?)),
         "zero" => Ok(Box::new(zero::PairZero::from_lammps(args, cmd)?)),
         "hybrid" | "hybrid/overlay" => Ok(Box::new(hybrid::Hybrid::from_lammps(name, args, cmd)?)),
         other => Err(crate::styles::unsupported_style("pair", name, other, SUPPORTED)),
@@ -143,7 +215,7 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
 }
 
 /// Pair styles this build implements.
-pub const SUPPORTED: &[&str] = &["lj/cut", "zero", "hybrid", "hybrid/overlay"];
+pub const SUPPORTED: &[&str] = &["lj/cut", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay"];
 
 /// A kernel for a central pair force between two point particles. Parameters are looked up
 /// once per atom i as a row over j's type, then evaluated per pair.

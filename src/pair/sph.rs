@@ -1,0 +1,331 @@
+//! Shared parts of the SPH pair styles (LAMMPS' SPH package): the smoothing kernels, the
+//! per-type Tait parameters with LAMMPS' storage quirks, coefficient parsing, and the
+//! engine-owned SPH pair loop.
+//!
+//! Notation as in LAMMPS: `h` is the pair_coeff cutoff (the kernel's support radius), and
+//! `wfd = (1/r) dW/dr` (the missing factor r comes back through `x_ij` in forces and
+//! `v_ij . x_ij` in rates).
+
+use super::{for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use crate::neighbor::NEIGH_MASK;
+use dmhs_parser::{Args, DResult, Diagnostic, Word};
+
+/// The smoothing kernel of the force and rate terms. `Lucy` is what LAMMPS uses; the others are
+/// a dmhs extension (`pair_style sph/... kernel cubic|wendland2`), documented in docs/commands.md.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// W = K/h^d (1 + 3q)(1 - q)^3, K = 5/pi (2D), 105/(16 pi) (3D); q = r/h.
+    Lucy,
+    /// Monaghan's cubic B-spline with support h (smoothing length h/2).
+    Cubic,
+    /// Wendland C2: W = K/h^d (1 - q)^4 (1 + 4q), K = 7/pi (2D), 21/(2 pi) (3D).
+    Wendland2,
+}
+
+impl Kernel {
+    pub fn name(self) -> &'static str {
+        match self {
+            Kernel::Lucy => "lucy",
+            Kernel::Cubic => "cubic",
+            Kernel::Wendland2 => "wendland2",
+        }
+    }
+
+    /// `(1/r) dW/dr` for a pair at squared distance `rsq < h^2`, in LAMMPS' arithmetic for Lucy.
+    #[inline(always)]
+    pub fn wfd(self, rsq: f64, h: f64, dim3: bool) -> f64 {
+        match self {
+            Kernel::Lucy => {
+                let ih = 1.0 / h;
+                let ihsq = ih * ih;
+                let w = h - rsq.sqrt();
+                if dim3 {
+                    -25.066903536973515383 * w * w * ihsq * ihsq * ihsq * ih
+                } else {
+                    -19.098593171027440292 * w * w * ihsq * ihsq * ihsq
+                }
+            }
+            Kernel::Wendland2 => {
+                // dW/dr = -20 K q (1-q)^3 / h^(d+1)  ->  (1/r) dW/dr = -20 K (1-q)^3 / h^(d+2)
+                let q = rsq.sqrt() / h;
+                let u = 1.0 - q;
+                let k = if dim3 { 21.0 / (2.0 * std::f64::consts::PI) } else { 7.0 / std::f64::consts::PI };
+                let hd2 = if dim3 { h.powi(5) } else { h.powi(4) };
+                -20.0 * k * u * u * u / hd2
+            }
+            Kernel::Cubic => {
+                // support h = 2 hs; W = sigma/hs^d f(s), s = r/hs
+                let hs = 0.5 * h;
+                let r = rsq.sqrt();
+                let s = r / hs;
+                let sigma = if dim3 { 1.0 / std::f64::consts::PI } else { 10.0 / (7.0 * std::f64::consts::PI) };
+                // (1/s) df/ds
+                let dfds_over_s = if s < 1.0 { -3.0 + 2.25 * s } else { -0.75 * (2.0 - s) * (2.0 - s) / s };
+                let hsd2 = if dim3 { hs.powi(5) } else { hs.powi(4) };
+                sigma * dfds_over_s / hsd2
+            }
+        }
+    }
+
+    /// `W(r)` (for tests and for density summation with non-Lucy kernels).
+    pub fn w(self, r: f64, h: f64, dim3: bool) -> f64 {
+        let q = r / h;
+        if q >= 1.0 {
+            return 0.0;
+        }
+        let pi = std::f64::consts::PI;
+        match self {
+            Kernel::Lucy => {
+                let k = if dim3 { 105.0 / (16.0 * pi * h * h * h) } else { 5.0 / (pi * h * h) };
+                k * (1.0 + 3.0 * q) * (1.0 - q).powi(3)
+            }
+            Kernel::Wendland2 => {
+                let k = if dim3 { 21.0 / (2.0 * pi * h * h * h) } else { 7.0 / (pi * h * h) };
+                k * (1.0 - q).powi(4) * (1.0 + 4.0 * q)
+            }
+            Kernel::Cubic => {
+                let hs = 0.5 * h;
+                let s = r / hs;
+                let sigma = if dim3 { 1.0 / (pi * hs * hs * hs) } else { 10.0 / (7.0 * pi * hs * hs) };
+                if s < 1.0 { sigma * (1.0 - 1.5 * s * s + 0.75 * s * s * s) } else { sigma * 0.25 * (2.0 - s).powi(3) }
+            }
+        }
+    }
+}
+
+/// Parse the optional `kernel NAME` extension keyword of an SPH pair style.
+pub fn parse_kernel(a: &mut Args) -> DResult<Kernel> {
+    let mut kernel = Kernel::Lucy;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "kernel" => {
+                kernel = match a.choice("kernel", &["lucy", "cubic", "wendland2"])? {
+                    0 => Kernel::Lucy,
+                    1 => Kernel::Cubic,
+                    _ => Kernel::Wendland2,
+                }
+            }
+            _ => return Err(a.unknown_keyword(w, &["kernel"])),
+        }
+    }
+    Ok(kernel)
+}
+
+/// LAMMPS' Tait equation of state written as P/rho^2 (`fi` in pair_sph_taitwater.cpp):
+/// t = rho/rho0; f = t^3; B (f^2 t - 1) / rho^2.
+#[inline(always)]
+pub fn tait_p_over_rho2(rho: f64, rho0: f64, b: f64) -> f64 {
+    let tmp = rho / rho0;
+    let f = tmp * tmp * tmp;
+    b * (f * f * tmp - 1.0) / (rho * rho)
+}
+
+/// Per-pair coefficients: `set` and the values of `pair_coeff I J ...`.
+#[derive(Clone, Debug)]
+pub struct PairTable<T: Clone> {
+    pub n: usize,
+    pub set: Vec<bool>,
+    pub val: Vec<T>,
+}
+
+impl<T: Clone + Default> PairTable<T> {
+    pub fn new(n: usize) -> Self {
+        PairTable { n, set: vec![false; (n + 1) * (n + 1)], val: vec![T::default(); (n + 1) * (n + 1)] }
+    }
+    #[inline(always)]
+    pub fn get(&self, i: usize, j: usize) -> &T {
+        &self.val[i * (self.n + 1) + j]
+    }
+    pub fn is_set(&self, i: usize, j: usize) -> bool {
+        self.set[i * (self.n + 1) + j]
+    }
+    pub fn put(&mut self, i: usize, j: usize, v: T) {
+        let s = self.n + 1;
+        self.val[i * s + j] = v.clone();
+        self.val[j * s + i] = v;
+        self.set[i * s + j] = true;
+        self.set[j * s + i] = true;
+    }
+    /// Grow to `n` types keeping what is set.
+    pub fn grow(&mut self, n: usize) {
+        if n <= self.n {
+            return;
+        }
+        let mut t = PairTable::new(n);
+        for i in 0..=self.n {
+            for j in 0..=self.n {
+                if self.is_set(i, j) {
+                    t.put(i, j, self.get(i, j).clone());
+                }
+            }
+        }
+        *self = t;
+    }
+    /// Every pair I <= J of `1..=n` (within `active` if given) must be set.
+    pub fn check_all(&self, n: usize, active: Option<&[bool]>, style: &str) -> Result<(), String> {
+        for i in 1..=n {
+            for j in i..=n {
+                if let Some(a) = active {
+                    if !a[i * (n + 1) + j] {
+                        continue;
+                    }
+                }
+                if i > self.n || j > self.n || !self.is_set(i, j) {
+                    return Err(format!("pair {style} coefficients for types {i} {j} are not set (SPH styles do not mix: every pair must be given)"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Per-type Tait parameters (LAMMPS stores rho0, c0 and B per type I: the last pair_coeff whose
+/// I range includes a type wins, whatever its J range).
+#[derive(Clone, Debug, Default)]
+pub struct TaitTypes {
+    pub rho0: Vec<f64>,
+    pub c0: Vec<f64>,
+    pub b: Vec<f64>,
+}
+
+impl TaitTypes {
+    pub fn grow(&mut self, n: usize) {
+        if self.rho0.len() < n + 1 {
+            self.rho0.resize(n + 1, 0.0);
+            self.c0.resize(n + 1, 0.0);
+            self.b.resize(n + 1, 0.0);
+        }
+    }
+    pub fn set(&mut self, lo: usize, hi: usize, rho0: f64, c0: f64) {
+        self.grow(hi);
+        // LAMMPS: B = c0^2 rho0 / 7
+        let b = c0 * c0 * rho0 / 7.0;
+        for i in lo..=hi {
+            self.rho0[i] = rho0;
+            self.c0[i] = c0;
+            self.b[i] = b;
+        }
+    }
+}
+
+/// `pair_coeff I J rho0 c0 X h` of sph/taitwater (X = alpha) and sph/taitwater/morris (X = mu).
+pub fn tait_coeff(ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args, syntax: &'static str, x_name: &str, types: &mut TaitTypes, pairs: &mut PairTable<(f64, f64)>) -> DResult<()> {
+    args.syntax = syntax;
+    let rho0 = args.f64("rho0")?;
+    let c0 = args.f64("c0 (sound speed)")?;
+    let x = args.f64(x_name)?;
+    let h = args.positive_f64("h (kernel support)")?;
+    args.finish()?;
+    pairs.grow(ihi.max(jhi));
+    types.set(ilo, ihi, rho0, c0);
+    for i in ilo..=ihi {
+        for j in jlo.max(i)..=jhi {
+            pairs.put(i, j, (x, h));
+        }
+    }
+    Ok(())
+}
+
+/// A non-positive density would make the Tait term infinite: report it at the coefficient.
+pub fn check_positive(w: &Word, x: f64, what: &str) -> DResult<()> {
+    if x <= 0.0 {
+        return Err(Diagnostic::at(w.span, format!("{what} must be > 0"), "must be > 0"));
+    }
+    Ok(())
+}
+
+/// What one SPH pair contributes: force on i (j gets the opposite), density and energy rates
+/// of i and j, and the scalar LAMMPS tallies in the virial (`fpair`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SphContribution {
+    pub f: [f64; 3],
+    pub fpair: f64,
+    pub drho_i: f64,
+    pub drho_j: f64,
+    pub de_i: f64,
+    pub de_j: f64,
+}
+
+/// Per-pair physics of an SPH style, called by [`compute_sph`].
+pub trait SphKernel: Sync {
+    /// Per-atom precomputation for atom i (e.g. the Tait P/rho^2), also used for j.
+    fn prepare(&self, input: &PairInput, i: usize) -> f64;
+    /// Squared cutoff of a type pair (0: no interaction).
+    fn cutsq(&self, ti: usize, tj: usize) -> f64;
+    /// The pair's contribution; `pi`/`pj` are the `prepare` values.
+    #[allow(clippy::too_many_arguments)]
+    fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, pi: f64, pj: f64, del: [f64; 3], rsq: f64) -> SphContribution;
+}
+
+/// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
+/// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
+pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
+    let a = input.atoms;
+    let nlocal = a.nlocal;
+    let nall = a.nall();
+    let stride = input.ntypes + 1;
+    // per-atom terms once for owned atoms and ghosts
+    let prep: Vec<f64> = (0..nall).map(|i| kernel.prepare(input, i)).collect();
+    let f = SharedMut::new(out.f);
+    let drho = SharedMut::new(out.drho);
+    let desph = SharedMut::new(out.desph);
+    let eflag = input.eflag;
+    let parts = for_each_chunk(input.list, |chunk| {
+        let mut t = Tally::default();
+        for i in chunk.start..chunk.end {
+            let xi = a.x[i];
+            let ti = a.typ[i];
+            let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
+            for &jraw in chunk.neighbors(i) {
+                let j = (jraw & NEIGH_MASK) as usize;
+                let tj = a.typ[j];
+                if let Some(fl) = filter {
+                    if !fl[tj] {
+                        continue;
+                    }
+                }
+                let xj = a.x[j];
+                let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                if !(rsq < kernel.cutsq(ti, tj)) {
+                    continue;
+                }
+                let c = kernel.pair(input, i, j, ti, tj, prep[i], prep[j], del, rsq);
+                // SAFETY: i is in this chunk, an owned j in this chunk or the next
+                unsafe {
+                    let fi = f.get(i);
+                    fi[0] += c.f[0];
+                    fi[1] += c.f[1];
+                    fi[2] += c.f[2];
+                    *drho.get(i) += c.drho_i;
+                    *desph.get(i) += c.de_i;
+                }
+                let w = if j < nlocal {
+                    unsafe {
+                        let fj = f.get(j);
+                        fj[0] -= c.f[0];
+                        fj[1] -= c.f[1];
+                        fj[2] -= c.f[2];
+                        *desph.get(j) += c.de_j;
+                        *drho.get(j) += c.drho_j;
+                    }
+                    1.0
+                } else {
+                    0.5
+                };
+                if eflag {
+                    let fp = c.fpair;
+                    t.virial[0] += w * del[0] * del[0] * fp;
+                    t.virial[1] += w * del[1] * del[1] * fp;
+                    t.virial[2] += w * del[2] * del[2] * fp;
+                    t.virial[3] += w * del[0] * del[1] * fp;
+                    t.virial[4] += w * del[0] * del[2] * fp;
+                    t.virial[5] += w * del[1] * del[2] * fp;
+                }
+            }
+        }
+        t
+    });
+    sum_tallies(&parts)
+}

@@ -1,0 +1,90 @@
+//! `pair_style sph/heatconduction [kernel K]` — SPH heat conduction between particles (LAMMPS SPH
+//! package), `pair_coeff I J D h`:
+//! de_i = 2 m_i m_j/(m_i + m_j) (rho_i + rho_j)/(rho_i rho_j) D (e_i - e_j) wfd, de_j = -de_i
+//! (esph is extensive; temperatures come from compute sph/t/atom as esph/cv).
+
+use super::sph::{compute_sph, parse_kernel, Kernel, PairTable, SphContribution, SphKernel};
+use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "pair_style sph/heatconduction [kernel lucy|cubic|wendland2]";
+pub const COEFF_SYNTAX: &str = "pair_coeff I J D h";
+
+pub struct SphHeatConduction {
+    kernel: Kernel,
+    /// (D, h) per pair
+    pairs: PairTable<(f64, f64)>,
+    cutsq: Vec<f64>,
+    n: usize,
+    dim3: bool,
+}
+
+impl SphHeatConduction {
+    pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let kernel = parse_kernel(&mut a)?;
+        Ok(SphHeatConduction { kernel, pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true })
+    }
+}
+
+impl SphKernel for SphHeatConduction {
+    #[inline(always)]
+    fn prepare(&self, _input: &PairInput, _i: usize) -> f64 {
+        0.0
+    }
+    #[inline(always)]
+    fn cutsq(&self, ti: usize, tj: usize) -> f64 {
+        self.cutsq[ti * (self.n + 1) + tj]
+    }
+    #[inline(always)]
+    fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, _pi: f64, _pj: f64, _del: [f64; 3], rsq: f64) -> SphContribution {
+        let a = input.atoms;
+        let (d, h) = *self.pairs.get(ti, tj);
+        let wfd = self.kernel.wfd(rsq, h, self.dim3);
+        let (imass, jmass) = (input.type_mass[ti], input.type_mass[tj]);
+        let mut de = 2.0 * imass * jmass / (imass + jmass);
+        de *= (a.rho[i] + a.rho[j]) / (a.rho[i] * a.rho[j]);
+        de *= d * (a.esph[i] - a.esph[j]) * wfd;
+        SphContribution { de_i: de, de_j: -de, ..SphContribution::default() }
+    }
+}
+
+impl PairStyle for SphHeatConduction {
+    fn style(&self) -> &str {
+        "sph/heatconduction"
+    }
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        args.syntax = COEFF_SYNTAX;
+        let d = args.f64("D (diffusion coefficient)")?;
+        let h = args.positive_f64("h (kernel support)")?;
+        args.finish()?;
+        self.pairs.grow(ihi.max(jhi));
+        for i in ilo..=ihi {
+            for j in jlo.max(i)..=jhi {
+                self.pairs.put(i, j, (d, h));
+            }
+        }
+        Ok(())
+    }
+    fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
+        self.pairs.check_all(ntypes, active, "sph/heatconduction")?;
+        self.pairs.grow(ntypes);
+        self.n = ntypes;
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        Ok(())
+    }
+    fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
+    }
+    fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
+        self.dim3 = input.dimension == 3;
+        compute_sph(self, input, out);
+        Tally::default()
+    }
+    fn needs_type_mass(&self) -> bool {
+        true
+    }
+    fn describe(&self) -> String {
+        format!("sph/heatconduction (kernel {})", self.kernel.name())
+    }
+}

@@ -1,5 +1,6 @@
 //! dmhs: the Discrete Multi-Hybrid System engine (SPH + CGMD + DEM), a LAMMPS companion.
 
+pub mod analytic;
 pub mod atoms;
 pub mod bonded;
 pub mod bonded_forces;

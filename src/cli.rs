@@ -20,6 +20,10 @@ usage:
                                     step 0 and positions/velocities at the end
   dmhs bench --against lammps DECK... [options]
                                     particle-steps per second of dmhs and LAMMPS on each deck
+  dmhs validate CASE [--quick]      run an SPH validation case against its analytic reference:
+                                    poiseuille, couette, heat, hydrostatic, dambreak, all
+  dmhs validate chart               Poiseuille speed-versus-accuracy chart, dmhs and LAMMPS
+                                    (writes docs/img/speed_accuracy.png and .svg)
 
 options:
   -var NAME VALUE...   define an index variable (as lmp -var)
@@ -31,6 +35,8 @@ options:
               --pos-tol X   (default 1e-9, relative to the box length)
               --vel-tol X   (default 1e-8, relative to the largest speed)
   bench: --threads-list 1,2 (dmhs thread counts to time; default 1,2)
+  validate: --quick (the fast variants the tests run), --engine dmhs|lammps,
+            --json FILE (default out/validate/CASE.json), --img DIR (also draw the charts)
 ";
 
 #[derive(Debug, Default)]
@@ -44,13 +50,17 @@ struct Cli {
     pos_tol: Option<f64>,
     vel_tol: Option<f64>,
     threads_list: Option<Vec<usize>>,
+    quick: bool,
+    engine: Option<String>,
+    json: Option<PathBuf>,
+    img: Option<PathBuf>,
 }
 
 fn parse(args: &[String]) -> Result<Cli, String> {
     let mut c = Cli { opts: DeckOptions { screen: true, log: Some(PathBuf::from("log.dmhs")), ..Default::default() }, ..Default::default() };
     let mut i = 0;
     if let Some(first) = args.first() {
-        if ["run", "check", "crosscheck", "bench", "help"].contains(&first.as_str()) {
+        if ["run", "check", "crosscheck", "bench", "validate", "help"].contains(&first.as_str()) {
             c.sub = first.clone();
             i = 1;
         }
@@ -140,6 +150,22 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 c.threads_list = Some(list.map_err(|_| format!("--threads-list: `{v}` is not a list like 1,2"))?);
                 i += 2;
             }
+            "--quick" => {
+                c.quick = true;
+                i += 1;
+            }
+            "--engine" => {
+                c.engine = Some(value(i, a)?.clone());
+                i += 2;
+            }
+            "--json" => {
+                c.json = Some(PathBuf::from(value(i, a)?));
+                i += 2;
+            }
+            "--img" => {
+                c.img = Some(PathBuf::from(value(i, a)?));
+                i += 2;
+            }
             "-sf" | "-suffix" | "-pk" | "-package" | "-k" | "-kokkos" | "-partition" | "-p" | "-restart2data" | "-r2data" | "-restart2dump" | "-r2dump" | "-mpicolor" | "-skiprun" | "-sr" => {
                 return Err(format!("LAMMPS option {a} is not supported by dmhs"));
             }
@@ -180,6 +206,7 @@ pub fn main_with_args(args: &[String]) -> i32 {
         "check" => check_cmd(&cli),
         "crosscheck" => crate::cli_crosscheck::crosscheck_cmd(&cli.decks, &cli.opts, &cli.against, [cli.force_tol, cli.pos_tol, cli.vel_tol]),
         "bench" => crate::bench::bench_cmd(&cli.decks, &cli.opts, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2])),
+        "validate" => crate::validate::validate_cmd(&cli.decks, cli.quick, cli.engine.as_deref(), cli.json.as_deref(), cli.img.as_deref()),
         _ => unreachable!(),
     }
 }

@@ -179,6 +179,7 @@ pub fn run_lammps(case: &str, vars: &[(String, String)], times: &[f64]) -> Resul
     let mut result = RunResult { engine: Engine::Lammps, vars: runs.last().unwrap().clone(), samples: vec![], thermo: Thermo::default(), loop_seconds: 0.0, atoms: 0 };
     for (k, v) in runs.iter().enumerate() {
         let out = dir.path().join(format!("run{k}"));
+        std::fs::create_dir_all(&out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
         crate::lammps::run_driver(&deck_path, &deck_vars(v), &out)?;
         let state = AtomTable::read(&out.join("final.txt"))?;
         let meta: Value = serde_json::from_str(&std::fs::read_to_string(out.join("meta.json")).map_err(|e| format!("meta.json: {e}"))?).map_err(|e| format!("meta.json: {e}"))?;

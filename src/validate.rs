@@ -615,6 +615,9 @@ fn poiseuille_error(state: &AtomTable, t: f64) -> Result<f64, String> {
     Ok(l2_relative(rows.iter().map(|r| (r[1], analytic::poiseuille_startup(r[0], t, l, f, nu)))))
 }
 
+/// Each timing of the speed sweep is the fastest of this many runs.
+pub const TIMING_REPEATS: usize = 2;
+
 /// Run the sweep: dmhs on one thread (its main-loop time), LAMMPS serial (`lmp`'s loop time,
 /// with the state from the driver). `progress` is told each finished point.
 pub fn speed_sweep(quick: bool, progress: &mut dyn FnMut(&SpeedPoint)) -> Result<Vec<SpeedPoint>, String> {
@@ -629,7 +632,11 @@ pub fn speed_sweep(quick: bool, progress: &mut dyn FnMut(&SpeedPoint)) -> Result
         let mut p = SpeedPoint { engine: Engine::Dmhs, kernel: kernel.into(), n, cdt, seconds: 0.0, error: None, note: String::new() };
         match pool.install(|| run_dmhs("poiseuille", &vars, &[])) {
             Ok(run) => {
+                // the fastest of TIMING_REPEATS runs (the runs are identical; the machine is not)
                 p.seconds = run.loop_seconds;
+                for _ in 1..TIMING_REPEATS {
+                    p.seconds = p.seconds.min(pool.install(|| run_dmhs("poiseuille", &vars, &[]))?.loop_seconds);
+                }
                 let e = poiseuille_error(&run.last().state, run.last().time)?;
                 p.error = Some(e).filter(|e| e.is_finite());
             }
@@ -643,8 +650,10 @@ pub fn speed_sweep(quick: bool, progress: &mut dyn FnMut(&SpeedPoint)) -> Result
                 Ok(run) => {
                     let e = poiseuille_error(&run.last().state, run.last().time)?;
                     q.error = Some(e).filter(|e| e.is_finite());
-                    let (sec, _, _) = crate::lammps::time_lmp(&deck_path, &deck_vars(&vars))?;
-                    q.seconds = sec;
+                    q.seconds = f64::INFINITY;
+                    for _ in 0..TIMING_REPEATS {
+                        q.seconds = q.seconds.min(crate::lammps::time_lmp(&deck_path, &deck_vars(&vars))?.0);
+                    }
                 }
                 Err(e) => q.note = e.lines().find(|l| l.contains("ERROR")).unwrap_or("failed").trim().to_string(),
             }
@@ -665,7 +674,7 @@ pub fn speed_charts(points: &[SpeedPoint]) -> Vec<(String, Chart)> {
         .log_y()
         .x_range(0.01, 50.0)
         .y_range(1e-3, 0.5)
-        .legend(Legend::UpperRight);
+        .legend(Legend::LowerLeft);
     let mut conv = Chart::new("Poiseuille flow: convergence by kernel (t = 1 s, nu dt/dx^2 = 0.1)")
         .x_label("N = L / dx")
         .y_label("relative L2 error of u")
@@ -696,7 +705,7 @@ pub fn speed_charts(points: &[SpeedPoint]) -> Vec<(String, Chart)> {
         let n = pts[0].n;
         // include the cdt = 0.1 point of that resolution
         pts.extend(points.iter().filter(ok).filter(|p| p.engine == engine && p.kernel == "lucy" && p.cdt == 0.1 && p.n == n));
-        pts.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
+        pts.sort_by(|a, b| b.cdt.total_cmp(&a.cdt));
         chart = chart.series(
             Series::line_points(&format!("{} lucy, N = {n}, nu dt/dx^2 = {}", engine.name(), pts.iter().map(|p| p.cdt.to_string()).collect::<Vec<_>>().join(", ")), pts.iter().map(|p| (p.seconds, p.error.unwrap())).collect())
                 .color(color)
@@ -811,7 +820,7 @@ fn chart_cmd(quick: bool, json_path: Option<&Path>, img: Option<&Path>) -> i32 {
         "case": "speed_accuracy",
         "deck": deck("poiseuille").map(|d| d.0),
         "quick": quick,
-        "timing": "main-loop seconds; dmhs on one thread, LAMMPS serial lmp (OMP_NUM_THREADS=1)",
+        "timing": format!("main-loop seconds, fastest of {TIMING_REPEATS} runs; dmhs on one thread, LAMMPS serial lmp (OMP_NUM_THREADS=1)"),
         "points": points.iter().map(|p| json!({"engine": p.engine.name(), "kernel": p.kernel, "N": p.n, "cdt": p.cdt,
             "seconds": p.seconds, "l2_rel": p.error, "note": p.note})).collect::<Vec<_>>(),
     });

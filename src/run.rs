@@ -209,8 +209,11 @@ impl Simulation {
         }
         self.natoms_expected = self.atoms.nlocal;
         self.timers.stamp();
+        // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and
+        // not refreshed after it, so at the first setup a ghost keeps the velocity estimate it
+        // had when it was made (fix sph sets vest = v on owned atoms only). Step-0 forces of
+        // pairs across periodic faces see the old vest, exactly as in LAMMPS.
         self.fix_hook(|_| true, |f, s| f.setup_pre_force(s))?;
-        self.atoms.forward_state();
         self.timers.charge(Stage::Modify);
         self.compute_forces(true, false)?;
         self.timers.stamp();
@@ -276,10 +279,13 @@ impl Simulation {
             self.step,
             crate::format::g(self.dt)
         ));
-        self.setup(opts.pre)?;
         if self.want_capture && self.capture_setup.is_none() {
+            // crosscheck: the forces of a separate setup before the first run, exactly as
+            // lammps_driver.py issues `run 0 post no` before the deck's first run in LAMMPS
+            self.setup(opts.pre)?;
             self.capture_setup = Some(crate::crosscheck::capture_forces(self));
         }
+        self.setup(opts.pre)?;
         let mem = crate::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
         self.out.print(&self.thermo.header());

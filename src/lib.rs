@@ -29,6 +29,7 @@ pub mod region;
 pub mod run;
 pub mod sim;
 pub mod special;
+pub mod stability;
 pub mod styles;
 pub mod thermo;
 pub mod timing;

@@ -286,6 +286,10 @@ impl Simulation {
             self.capture_setup = Some(crate::crosscheck::capture_forces(self));
         }
         self.setup(opts.pre)?;
+        let (_, warnings) = crate::stability::report(self, &crate::stability::limits(self, true));
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
+        }
         let mem = crate::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
         self.out.print(&self.thermo.header());
@@ -297,7 +301,7 @@ impl Simulation {
         for _ in 0..nsteps {
             let next = self.step + 1;
             let eflag = self.output_due(next, last);
-            if let Err(e) = self.step_once(eflag) {
+            if let Err(e) = self.step_once(eflag).and_then(|_| crate::stability::check_state(self)) {
                 result = Err(e);
                 break;
             }
@@ -375,6 +379,11 @@ impl Simulation {
         let threads = rayon::current_num_threads();
         self.out.print(&format!("100.0% CPU use with 1 MPI tasks x {threads} threads\n"));
         self.out.print(&self.timers.report(loop_time));
+        self.out.print(&format!(
+            "Memory per particle: {:.0} bytes ({:.4} Mbytes in all)\n",
+            crate::memory::bytes_per_particle(self),
+            crate::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0)
+        ));
         let npairs = self.neighbor.list.npairs();
         self.out.print(&format!(
             "Nlocal:    {} ave {} max {} min\nNghost:    {} ave {} max {} min\nNeighs:    {} ave {} max {} min\n\nTotal # of neighbors = {}\nAve neighs/atom = {:.7}\nNeighbor list builds = {}\nDangerous builds = {}\n",

@@ -160,12 +160,14 @@ pub struct SphInfo {
     pub rho0_min: f64,
     /// Largest dynamic viscosity (Morris styles).
     pub mu_max: Option<f64>,
+    /// Reference density per type (index 0 unused; 0 = no Tait parameters for that type).
+    pub rho0: Vec<f64>,
 }
 
 impl SphInfo {
     /// From the Tait tables; `morris`: the pair value is a dynamic viscosity.
     pub fn from_tait(types: &sph::TaitTypes, pairs: &sph::PairTable<(f64, f64)>, n: usize, morris: Option<()>) -> SphInfo {
-        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0) };
+        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0), rho0: types.rho0.clone() };
         for i in 1..=n.min(types.rho0.len().saturating_sub(1)) {
             if types.rho0[i] > 0.0 {
                 info.c_max = info.c_max.max(types.c0[i]);

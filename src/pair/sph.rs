@@ -34,10 +34,17 @@ impl Kernel {
     /// `(1/r) dW/dr` for a pair at squared distance `rsq < h^2`, in LAMMPS' arithmetic for Lucy.
     #[inline(always)]
     pub fn wfd(self, rsq: f64, h: f64, dim3: bool) -> f64 {
+        let ih = 1.0 / h;
+        self.wfd_with(rsq, &Support { h, ih, ihsq: ih * ih }, dim3)
+    }
+
+    /// [`Kernel::wfd`] with the support's inverse powers precomputed (same bits: LAMMPS computes
+    /// ih = 1/h and ihsq = ih*ih per pair, identically).
+    #[inline(always)]
+    pub fn wfd_with(self, rsq: f64, s: &Support, dim3: bool) -> f64 {
+        let (h, ih, ihsq) = (s.h, s.ih, s.ihsq);
         match self {
             Kernel::Lucy => {
-                let ih = 1.0 / h;
-                let ihsq = ih * ih;
                 let w = h - rsq.sqrt();
                 if dim3 {
                     -25.066903536973515383 * w * w * ihsq * ihsq * ihsq * ih
@@ -90,6 +97,21 @@ impl Kernel {
                 if s < 1.0 { sigma * (1.0 - 1.5 * s * s + 0.75 * s * s * s) } else { sigma * 0.25 * (2.0 - s).powi(3) }
             }
         }
+    }
+}
+
+/// A kernel support radius with its inverse powers.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Support {
+    pub h: f64,
+    pub ih: f64,
+    pub ihsq: f64,
+}
+
+impl Support {
+    pub fn new(h: f64) -> Support {
+        let ih = 1.0 / h;
+        Support { h, ih, ihsq: ih * ih }
     }
 }
 
@@ -251,15 +273,25 @@ pub struct SphContribution {
 pub trait SphKernel: Sync {
     /// Per-atom precomputation for atom i (e.g. the Tait P/rho^2), also used for j.
     fn prepare(&self, input: &PairInput, i: usize) -> f64;
-    /// Squared cutoff of a type pair (0: no interaction).
-    fn cutsq(&self, ti: usize, tj: usize) -> f64;
-    /// The pair's contribution; `pi`/`pj` are the `prepare` values.
+    /// Squared cutoffs of type pairs (ti, 0..=ntypes) (0: no interaction).
+    fn cutsq_row(&self, ti: usize) -> &[f64];
+    /// The pair's contribution; `pi`/`pj` are the `prepare` values. Called for every listed
+    /// pair, also outside the cutoff (the loop then discards the result): it must not fail there.
     #[allow(clippy::too_many_arguments)]
     fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, pi: f64, pj: f64, del: [f64; 3], rsq: f64) -> SphContribution;
 }
 
+/// Keep `x` if `keep` is all ones, else +0 (masking the bits also clears a NaN or infinity
+/// computed for a pair outside the cutoff).
+#[inline(always)]
+fn mask(x: f64, keep: u64) -> f64 {
+    f64::from_bits(x.to_bits() & keep)
+}
+
 /// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
 /// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
+/// The cutoff test is branch-free: about 40% of listed pairs are in the skin, which a branch
+/// predicts badly; their contributions are computed and masked to zero.
 pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
     let a = input.atoms;
     let nlocal = a.nlocal;
@@ -276,7 +308,9 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
         for i in chunk.start..chunk.end {
             let xi = a.x[i];
             let ti = a.typ[i];
+            let cutsq = kernel.cutsq_row(ti);
             let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
+            let (mut fx, mut fy, mut fz, mut dr, mut de) = (0.0, 0.0, 0.0, 0.0, 0.0);
             for &jraw in chunk.neighbors(i) {
                 let j = (jraw & NEIGH_MASK) as usize;
                 let tj = a.typ[j];
@@ -288,34 +322,30 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
                 let xj = a.x[j];
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                if !(rsq < kernel.cutsq(ti, tj)) {
-                    continue;
-                }
+                let keep = if rsq < cutsq[tj] { u64::MAX } else { 0 };
                 let c = kernel.pair(input, i, j, ti, tj, prep[i], prep[j], del, rsq);
-                // SAFETY: i is in this chunk, an owned j in this chunk or the next
-                unsafe {
-                    let fi = f.get(i);
-                    fi[0] += c.f[0];
-                    fi[1] += c.f[1];
-                    fi[2] += c.f[2];
-                    *drho.get(i) += c.drho_i;
-                    *desph.get(i) += c.de_i;
-                }
+                let cf = [mask(c.f[0], keep), mask(c.f[1], keep), mask(c.f[2], keep)];
+                fx += cf[0];
+                fy += cf[1];
+                fz += cf[2];
+                dr += mask(c.drho_i, keep);
+                de += mask(c.de_i, keep);
                 let w = if j < nlocal {
+                    // SAFETY: an owned j is in this chunk or the next (slab schedule)
                     unsafe {
                         let fj = f.get(j);
-                        fj[0] -= c.f[0];
-                        fj[1] -= c.f[1];
-                        fj[2] -= c.f[2];
-                        *desph.get(j) += c.de_j;
-                        *drho.get(j) += c.drho_j;
+                        fj[0] -= cf[0];
+                        fj[1] -= cf[1];
+                        fj[2] -= cf[2];
+                        *desph.get(j) += mask(c.de_j, keep);
+                        *drho.get(j) += mask(c.drho_j, keep);
                     }
                     1.0
                 } else {
                     0.5
                 };
                 if eflag {
-                    let fp = c.fpair;
+                    let fp = mask(c.fpair, keep);
                     t.virial[0] += w * del[0] * del[0] * fp;
                     t.virial[1] += w * del[1] * del[1] * fp;
                     t.virial[2] += w * del[2] * del[2] * fp;
@@ -323,6 +353,15 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
                     t.virial[4] += w * del[0] * del[2] * fp;
                     t.virial[5] += w * del[1] * del[2] * fp;
                 }
+            }
+            // SAFETY: i belongs to this chunk
+            unsafe {
+                let fi = f.get(i);
+                fi[0] += fx;
+                fi[1] += fy;
+                fi[2] += fz;
+                *drho.get(i) += dr;
+                *desph.get(i) += de;
             }
         }
         t

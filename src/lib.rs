@@ -14,6 +14,7 @@ pub mod deck;
 pub mod create_atoms;
 pub mod domain;
 pub mod dump;
+pub mod dump_vtu;
 pub mod fix;
 pub mod format;
 pub mod groups;

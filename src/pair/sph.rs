@@ -368,3 +368,66 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     });
     sum_tallies(&parts)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Integral of W over the plane or space, by rings/shells (midpoint rule).
+    fn integral(k: Kernel, h: f64, dim3: bool) -> f64 {
+        let n = 20000;
+        let dr = h / n as f64;
+        (0..n)
+            .map(|m| {
+                let r = (m as f64 + 0.5) * dr;
+                let shell = if dim3 { 4.0 * std::f64::consts::PI * r * r } else { 2.0 * std::f64::consts::PI * r };
+                k.w(r, h, dim3) * shell * dr
+            })
+            .sum()
+    }
+
+    #[test]
+    fn kernels_are_normalised() {
+        for k in [Kernel::Lucy, Kernel::Cubic, Kernel::Wendland2] {
+            for dim3 in [false, true] {
+                let s = integral(k, 1.7, dim3);
+                assert!((s - 1.0).abs() < 1e-6, "{k:?} dim3={dim3}: {s}");
+            }
+        }
+    }
+
+    #[test]
+    fn wfd_is_the_derivative_of_w_over_r() {
+        let h = 1.3;
+        for k in [Kernel::Lucy, Kernel::Cubic, Kernel::Wendland2] {
+            for dim3 in [false, true] {
+                for &r in &[0.05, 0.3, 0.6, 0.65, 0.9, 1.25] {
+                    let e = 1e-6;
+                    let dwdr = (k.w(r + e, h, dim3) - k.w(r - e, h, dim3)) / (2.0 * e);
+                    let got = k.wfd(r * r, h, dim3);
+                    assert!((got - dwdr / r).abs() <= 1e-6 * (1.0 + (dwdr / r).abs()), "{k:?} dim3={dim3} r={r}: {got} vs {}", dwdr / r);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn lucy_is_lammps_arithmetic() {
+        // LAMMPS pair_sph_taitwater.cpp, 2D, evaluated step by step
+        let (h, rsq): (f64, f64) = (0.03, 0.0004);
+        let ih = 1.0 / h;
+        let ihsq = ih * ih;
+        let w = h - rsq.sqrt();
+        let lammps = -19.098593171027440292 * w * w * ihsq * ihsq * ihsq;
+        assert_eq!(Kernel::Lucy.wfd(rsq, h, false).to_bits(), lammps.to_bits());
+    }
+
+    #[test]
+    fn tait_matches_the_formula_sheet() {
+        let (rho0, c) = (1000.0, 20.0);
+        let b = c * c * rho0 / 7.0;
+        let rho: f64 = 1003.0;
+        let p = b * ((rho / rho0).powi(7) - 1.0);
+        assert!((tait_p_over_rho2(rho, rho0, b) - p / (rho * rho)).abs() < 1e-12 * (p / (rho * rho)).abs());
+    }
+}

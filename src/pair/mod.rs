@@ -233,6 +233,17 @@ pub trait CentralKernel: Sync {
     fn eval<const EFLAG: bool>(p: &Self::Params, rsq: f64, factor: f64) -> (f64, f64);
 }
 
+/// `s[i]` without a bounds check, for the hot loops. Callers index per-atom arrays with
+/// neighbour-list entries (always < the number of owned + ghost atoms, which every per-atom
+/// array holds) and per-type tables with atom types (validated to 1..=ntypes when atoms are
+/// created or retyped, and tables hold ntypes + 1 entries). Checked in debug builds.
+#[inline(always)]
+pub fn at<T: Copy>(s: &[T], i: usize) -> T {
+    debug_assert!(i < s.len(), "index {i} out of {}", s.len());
+    // SAFETY: see above
+    unsafe { *s.get_unchecked(i) }
+}
+
 /// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`].
 pub struct SharedMut<T>(*mut T, usize);
 unsafe impl<T> Sync for SharedMut<T> {}

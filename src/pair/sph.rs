@@ -6,7 +6,7 @@
 //! `wfd = (1/r) dW/dr` (the missing factor r comes back through `x_ij` in forces and
 //! `v_ij . x_ij` in rates).
 
-use super::{for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use super::{at, for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
 use crate::neighbor::NEIGH_MASK;
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
 
@@ -275,23 +275,17 @@ pub trait SphKernel: Sync {
     fn prepare(&self, input: &PairInput, i: usize) -> f64;
     /// Squared cutoffs of type pairs (ti, 0..=ntypes) (0: no interaction).
     fn cutsq_row(&self, ti: usize) -> &[f64];
-    /// The pair's contribution; `pi`/`pj` are the `prepare` values. Called for every listed
-    /// pair, also outside the cutoff (the loop then discards the result): it must not fail there.
+    /// The pair's contribution (for pairs inside the cutoff); `pi`/`pj` are the `prepare` values.
     #[allow(clippy::too_many_arguments)]
     fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, pi: f64, pj: f64, del: [f64; 3], rsq: f64) -> SphContribution;
 }
 
-/// Keep `x` if `keep` is all ones, else +0 (masking the bits also clears a NaN or infinity
-/// computed for a pair outside the cutoff).
-#[inline(always)]
-fn mask(x: f64, keep: u64) -> f64 {
-    f64::from_bits(x.to_bits() & keep)
-}
-
 /// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
 /// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
-/// The cutoff test is branch-free: about 40% of listed pairs are in the skin, which a branch
-/// predicts badly; their contributions are computed and masked to zero.
+///
+/// For each atom the neighbours inside the cutoff are first gathered without branches (about
+/// 40% of listed pairs lie in the skin, and a branch on that is badly predicted); only those go
+/// through the kernel.
 pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
     let a = input.atoms;
     let nlocal = a.nlocal;
@@ -305,47 +299,61 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     let eflag = input.eflag;
     let parts = for_each_chunk(input.list, |chunk| {
         let mut t = Tally::default();
+        let mut inside: Vec<u32> = Vec::with_capacity(128);
         for i in chunk.start..chunk.end {
             let xi = a.x[i];
             let ti = a.typ[i];
             let cutsq = kernel.cutsq_row(ti);
             let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
-            let (mut fx, mut fy, mut fz, mut dr, mut de) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            for &jraw in chunk.neighbors(i) {
+            // gather the neighbours inside the cutoff (and the type filter), branch-free
+            let neigh = chunk.neighbors(i);
+            inside.clear();
+            inside.reserve(neigh.len());
+            let base = inside.as_mut_ptr();
+            let mut n_in = 0usize;
+            for &jraw in neigh {
                 let j = (jraw & NEIGH_MASK) as usize;
-                let tj = a.typ[j];
-                if let Some(fl) = filter {
-                    if !fl[tj] {
-                        continue;
-                    }
-                }
-                let xj = a.x[j];
+                let xj = at(&a.x, j);
+                let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
+                let rsq = dx * dx + dy * dy + dz * dz;
+                let tj = at(&a.typ, j);
+                let ok = rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true);
+                // SAFETY: capacity reserved for every neighbour
+                unsafe { *base.add(n_in) = j as u32 };
+                n_in += ok as usize;
+            }
+            // SAFETY: the first n_in entries were written
+            unsafe { inside.set_len(n_in) };
+            let (mut fx, mut fy, mut fz, mut dr, mut de) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            let prep_i = prep[i];
+            for &j in &inside {
+                let j = j as usize;
+                let tj = at(&a.typ, j);
+                let xj = at(&a.x, j);
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                let keep = if rsq < cutsq[tj] { u64::MAX } else { 0 };
-                let c = kernel.pair(input, i, j, ti, tj, prep[i], prep[j], del, rsq);
-                let cf = [mask(c.f[0], keep), mask(c.f[1], keep), mask(c.f[2], keep)];
-                fx += cf[0];
-                fy += cf[1];
-                fz += cf[2];
-                dr += mask(c.drho_i, keep);
-                de += mask(c.de_i, keep);
+                let c = kernel.pair(input, i, j, ti, tj, prep_i, at(&prep, j), del, rsq);
+                fx += c.f[0];
+                fy += c.f[1];
+                fz += c.f[2];
+                dr += c.drho_i;
+                de += c.de_i;
                 let w = if j < nlocal {
                     // SAFETY: an owned j is in this chunk or the next (slab schedule)
                     unsafe {
                         let fj = f.get(j);
-                        fj[0] -= cf[0];
-                        fj[1] -= cf[1];
-                        fj[2] -= cf[2];
-                        *desph.get(j) += mask(c.de_j, keep);
-                        *drho.get(j) += mask(c.drho_j, keep);
+                        fj[0] -= c.f[0];
+                        fj[1] -= c.f[1];
+                        fj[2] -= c.f[2];
+                        *desph.get(j) += c.de_j;
+                        *drho.get(j) += c.drho_j;
                     }
                     1.0
                 } else {
                     0.5
                 };
                 if eflag {
-                    let fp = mask(c.fpair, keep);
+                    let fp = c.fpair;
                     t.virial[0] += w * del[0] * del[0] * fp;
                     t.virial[1] += w * del[1] * del[1] * fp;
                     t.virial[2] += w * del[2] * del[2] * fp;

@@ -6,7 +6,7 @@
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
 use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, PairTable, SphContribution, SphKernel, Support, TaitTypes};
-use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/taitwater [kernel lucy|cubic|wendland2]";
@@ -49,16 +49,16 @@ impl SphKernel for SphTaitwater {
     #[inline(always)]
     fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, fi: f64, fj: f64, del: [f64; 3], rsq: f64) -> SphContribution {
         let a = input.atoms;
-        let (sup, eps, visc_c) = &self.derived[ti * (self.n + 1) + tj];
+        let (sup, eps, visc_c) = at(&self.derived, ti * (self.n + 1) + tj);
         let h = sup.h;
-        let wfd = self.kernel.wfd_with(rsq, sup, self.dim3);
-        let (imass, jmass) = (input.type_mass[ti], input.type_mass[tj]);
-        let (vi, vj) = (a.vest[i], a.vest[j]);
+        let wfd = self.kernel.wfd_with(rsq, &sup, self.dim3);
+        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
+        let (vi, vj) = (at(&a.vest, i), at(&a.vest, j));
         let dvdr = del[0] * (vi[0] - vj[0]) + del[1] * (vi[1] - vj[1]) + del[2] * (vi[2] - vj[2]);
         // Monaghan viscosity for approaching pairs only, computed for all and masked
         // (branch-free: the sign of v.x is unpredictable)
         let mu = h * dvdr / (rsq + eps);
-        let fvisc = visc_c * mu / (a.rho[i] + a.rho[j]);
+        let fvisc = visc_c * mu / (at(&a.rho, i) + at(&a.rho, j));
         let fvisc = f64::from_bits(fvisc.to_bits() & if dvdr < 0.0 { u64::MAX } else { 0 });
         let fpair = -imass * jmass * (fi + fj + fvisc) * wfd;
         let de = -0.5 * fpair * dvdr;

@@ -2,9 +2,11 @@
 //! the start of a run) and guards that stop an unstable run with a clear message, keeping every
 //! file written so far.
 //!
-//! Limits (h: SPH kernel support as in pair_coeff, c: sound speed, mu: dynamic viscosity):
-//! acoustic CFL dt <= 0.25 h/c; viscous dt <= 0.125 h^2 rho0/mu; force dt <= 0.25 sqrt(h/|a|max);
-//! harmonic bonds dt <= T/20 with T = 2 pi sqrt(m_min/(2K)) the period of the lightest pair.
+//! Limits, with the smoothing length hs = h/2 (LAMMPS' h in pair_coeff is the kernel support),
+//! c the sound speed and mu the dynamic viscosity: acoustic CFL dt <= 0.25 hs/c; viscous
+//! dt <= 0.125 hs^2 rho0/mu; force dt <= 0.25 sqrt(hs/|a|max); harmonic bonds dt <= T/20 with
+//! T = 2 pi sqrt(m_min/(2K)) the period of the lightest pair. The acoustic limit is where the dam
+//! break of docs/validation.md turns unstable (stable at 1x, unstable at 2x, all resolutions).
 
 use crate::sim::{RunError, Simulation};
 
@@ -48,22 +50,23 @@ fn max_acceleration(sim: &Simulation) -> f64 {
 pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
     let mut out = vec![];
     if let Some(info) = sim.pair.as_ref().and_then(|p| p.sph_info()) {
+        let hs = 0.5 * info.h_min;
         if info.c_max > 0.0 && info.h_min.is_finite() {
-            out.push(Limit { model: "SPH".into(), rule: format!("acoustic CFL 0.25 h/c (h = {}, c = {})", info.h_min, info.c_max), dt_max: 0.25 * info.h_min / info.c_max });
+            out.push(Limit { model: "SPH".into(), rule: format!("acoustic CFL 0.25 hs/c (hs = h/2 = {hs}, c = {})", info.c_max), dt_max: 0.25 * hs / info.c_max });
         }
         if let Some(mu) = info.mu_max.filter(|&m| m > 0.0) {
             if info.rho0_min.is_finite() {
                 out.push(Limit {
                     model: "SPH".into(),
-                    rule: format!("viscous 0.125 h^2 rho0/mu (rho0 = {}, mu = {})", info.rho0_min, mu),
-                    dt_max: 0.125 * info.h_min * info.h_min * info.rho0_min / mu,
+                    rule: format!("viscous 0.125 hs^2 rho0/mu (rho0 = {}, mu = {})", info.rho0_min, mu),
+                    dt_max: 0.125 * hs * hs * info.rho0_min / mu,
                 });
             }
         }
         if forces_known && info.h_min.is_finite() {
             let amax = max_acceleration(sim);
             if amax > 0.0 {
-                out.push(Limit { model: "SPH".into(), rule: format!("force 0.25 sqrt(h/|a|max) (|a|max = {amax:.4e})"), dt_max: 0.25 * (info.h_min / amax).sqrt() });
+                out.push(Limit { model: "SPH".into(), rule: format!("force 0.25 sqrt(hs/|a|max) (|a|max = {amax:.4e})"), dt_max: 0.25 * (hs / amax).sqrt() });
             }
         }
     }

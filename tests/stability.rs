@@ -33,12 +33,13 @@ fn dump_is_whole(text: &str) -> usize {
 #[test]
 fn four_times_the_acoustic_limit_stops_cleanly() {
     let tmp = tempfile::tempdir().unwrap();
-    let (code, text) = dmhs(&["run", deck().to_str().unwrap(), "-var", "cfl", "4", "-log", "run.log"], tmp.path());
+    // cfl 2 = 4x the acoustic limit 0.25 hs/c
+    let (code, text) = dmhs(&["run", deck().to_str().unwrap(), "-var", "cfl", "2", "-log", "run.log"], tmp.path());
     assert_eq!(code, Some(1), "{text}");
-    assert!(text.contains("WARNING: the time step 3.0000e-3 is 4.00x the acoustic CFL 0.25 h/c limit"), "{text}");
+    assert!(text.contains("WARNING: the time step 1.5000e-3 is 4.00x the acoustic CFL 0.25 hs/c limit"), "{text}");
     assert!(text.contains("run stopped at step"), "{text}");
     assert!(text.contains("atom ") || text.contains("particle "), "{text}");
-    assert!(text.contains("the time step 3.0000e-3 is 4.00x the acoustic CFL 0.25 h/c limit 7.5000e-4"), "{text}");
+    assert!(text.contains("the time step 1.5000e-3 is 4.00x the acoustic CFL 0.25 hs/c limit 3.7500e-4"), "{text}");
     let log = std::fs::read_to_string(tmp.path().join("run.log")).unwrap();
     assert!(log.contains("Loop time of"), "the log is closed properly:\n{log}");
     let dump = std::fs::read_to_string(tmp.path().join("dump.dambreak")).unwrap();
@@ -48,6 +49,7 @@ fn four_times_the_acoustic_limit_stops_cleanly() {
 #[test]
 fn within_the_limit_it_runs() {
     let tmp = tempfile::tempdir().unwrap();
+    // cfl is the time step in units of 0.25 h/c = 2x the acoustic limit 0.25 hs/c
     let (code, text) = dmhs(&["run", deck().to_str().unwrap(), "-var", "cfl", "0.4", "-var", "nsteps", "400", "-log", "none"], tmp.path());
     assert_eq!(code, Some(0), "{text}");
     assert!(!text.contains("WARNING"), "{text}");
@@ -61,9 +63,9 @@ fn check_reports_the_limits() {
     let (code, text) = dmhs(&["check", deck().to_str().unwrap(), "-var", "cfl", "4"], tmp.path());
     assert_eq!(code, Some(0), "{text}");
     assert!(text.contains("stable time step estimates:"), "{text}");
-    assert!(text.contains("acoustic CFL 0.25 h/c (h = 0.06, c = 20)") && text.contains("dt <= 7.5000e-4"), "{text}");
-    assert!(text.contains("force 0.25 sqrt(h/|a|max)"), "{text}");
-    assert!(text.contains("WARNING: the time step 3.0000e-3 is 4.00x"), "{text}");
+    assert!(text.contains("acoustic CFL 0.25 hs/c (hs = h/2 = 0.03, c = 20)") && text.contains("dt <= 3.7500e-4"), "{text}");
+    assert!(text.contains("force 0.25 sqrt(hs/|a|max)"), "{text}");
+    assert!(text.contains("WARNING: the time step 3.0000e-3 is 8.00x"), "{text}");
 }
 
 #[test]

@@ -254,7 +254,7 @@ impl Simulation {
 
     /// Ghost atoms need fresh velocities and per-atom state only for styles that read them.
     fn needs_ghost_state(&self) -> bool {
-        self.comm_vel || self.atoms.features.sph || self.atoms.features.sphere
+        self.comm_vel || self.atoms.features.sph || self.atoms.features.sphere || self.atoms.extra.iter().any(|e| e.ghosts)
     }
 
     /// The `run` command.

@@ -6,6 +6,7 @@
 #     lammps-refs/regenerate.sh            # all decks
 #     lammps-refs/regenerate.sh NAME ...   # some decks (NAME as in decks/in.NAME)
 #     lammps-refs/regenerate.sh --chaos    # also measure each deck's round-off sensitivity
+#     lammps-refs/regenerate.sh --shared   # only the shared decks (../shared/reference/lammps-decks)
 #
 # Python: $DMHS_LAMMPS_PYTHON, else <repo>/.venv-lammps/bin/python (scripts/setup-lammps.sh).
 set -euo pipefail
@@ -18,19 +19,22 @@ if [ ! -x "$py" ]; then
 fi
 
 chaos=0
+shared_only=0
 names=()
 for arg in "$@"; do
     case "$arg" in
         --chaos) chaos=1 ;;
+        --shared) shared_only=1 ;;
         *) names+=("$arg") ;;
     esac
 done
-if [ ${#names[@]} -eq 0 ]; then
+if [ ${#names[@]} -eq 0 ] && [ "$shared_only" = 0 ]; then
     for deck in "$here"/decks/in.*; do names+=("${deck##*/in.}"); done
 fi
 
 "$py" "$here/gen_chains.py"
-for name in "${names[@]}"; do
+"$py" "$here/gen_sph.py"
+for name in "${names[@]+"${names[@]}"}"; do
     echo "== $name"
     out="$here/refs/$name"
     rm -rf "$out"
@@ -40,3 +44,32 @@ for name in "${names[@]}"; do
     fi
 done
 du -ch "$here"/refs/*/{forces0.txt,final.txt,meta.json} | tail -n 1
+
+# The shared reference decks (../shared/reference/lammps-decks), 500 steps, stored for every 25th
+# atom only (the full tables would be several MB; the live test compares every atom).
+shared_dir="$here/../../shared/reference/lammps-decks"
+if [ $# -eq 0 ] || [ "$shared_only" = 1 ]; then
+    for spec in "poiseuille2d:" "dambreak2d:" "dambreak2d:rhosum"; do
+        deck=${spec%%:*}; variant=${spec#*:}
+        name="shared_$deck${variant:+_$variant}"
+        echo "== $name"
+        out="$here/refs/$name"
+        rm -rf "$out" && mkdir -p "$out"
+        extra=()
+        [ -n "$variant" ] && extra=(--var rhosum 1)
+        tmp=$(mktemp -d)
+        "$py" "$here/lammps_driver.py" "$shared_dir/in.$deck" --out "$tmp" --var nsteps 500 "${extra[@]}"
+        "$py" - "$tmp" "$out" <<'PY'
+import json, os, sys
+src, dst = sys.argv[1], sys.argv[2]
+for name in ("forces0.txt", "final.txt"):
+    lines = open(os.path.join(src, name)).read().splitlines()
+    keep = [lines[0]] + [l for l in lines[1:] if int(l.split()[0]) % 25 == 1]
+    open(os.path.join(dst, name), "w").write("\n".join(keep) + "\n")
+meta = json.load(open(os.path.join(src, "meta.json")))
+meta["subsampled"] = "every 25th atom (ids 1, 26, 51, ...)"
+json.dump(meta, open(os.path.join(dst, "meta.json"), "w"), indent=1)
+PY
+        rm -rf "$tmp"
+    done
+fi

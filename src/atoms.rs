@@ -37,7 +37,10 @@ impl AtomFeatures {
 pub struct ExtraArray {
     pub name: String,
     pub stride: usize,
+    /// `stride` values per atom: owned atoms, then (if `ghosts`) ghost images.
     pub data: Vec<f64>,
+    /// Ghost images carry the values too (for fields that pair styles read on neighbours).
+    pub ghosts: bool,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -196,6 +199,9 @@ impl Atoms {
             self.cv.truncate(n);
             self.vest.truncate(n);
         }
+        for e in &mut self.extra {
+            e.data.truncate(n * e.stride);
+        }
     }
 
     /// Add a ghost image of owned atom `owner` shifted by `shift` box lengths; per-atom
@@ -237,6 +243,10 @@ impl Atoms {
             self.desph.push(0.0);
             self.cv.push(self.cv[owner]);
             self.vest.push(self.vest[owner]);
+        }
+        for e in self.extra.iter_mut().filter(|e| e.ghosts) {
+            let s = e.stride;
+            e.data.extend_from_within(owner * s..(owner + 1) * s);
         }
     }
 
@@ -282,6 +292,14 @@ impl Atoms {
             Self::forward_field(&mut self.esph, n, own);
             Self::forward_field(&mut self.cv, n, own);
             Self::forward_field(&mut self.vest, n, own);
+        }
+        for e in self.extra.iter_mut().filter(|e| e.ghosts) {
+            let s = e.stride;
+            let (local, ghosts) = e.data.split_at_mut(n * s);
+            for (k, &o) in own.iter().enumerate() {
+                let o = o as usize;
+                ghosts[k * s..(k + 1) * s].copy_from_slice(&local[o * s..(o + 1) * s]);
+            }
         }
     }
 
@@ -331,13 +349,26 @@ impl Atoms {
         self.permute(&order);
     }
 
-    /// Register (or find) an extra per-atom array; returns its index in `extra`.
+    /// Register (or find) an extra per-atom array for owned atoms only; returns its index.
+    /// Call with no ghosts present.
     pub fn extra_array(&mut self, name: &str, stride: usize) -> usize {
+        self.extra_field(name, stride, false)
+    }
+
+    /// Register (or find) an extra per-atom array; `ghosts`: ghost images carry it too (it is
+    /// refreshed with the velocities every step). Call with no ghosts present.
+    pub fn extra_field(&mut self, name: &str, stride: usize, ghosts: bool) -> usize {
         if let Some(k) = self.extra.iter().position(|e| e.name == name) {
+            self.extra[k].ghosts |= ghosts;
             return k;
         }
-        self.extra.push(ExtraArray { name: name.to_string(), stride, data: vec![0.0; self.nlocal * stride] });
+        self.extra.push(ExtraArray { name: name.to_string(), stride, data: vec![0.0; self.nlocal * stride], ghosts });
         self.extra.len() - 1
+    }
+
+    /// Index of an extra array by name.
+    pub fn find_extra(&self, name: &str) -> Option<usize> {
+        self.extra.iter().position(|e| e.name == name)
     }
     pub fn remove_extra(&mut self, name: &str) {
         self.extra.retain(|e| e.name != name);
@@ -423,5 +454,27 @@ mod tests {
         let m = a.tag_map();
         assert_eq!(m.get(3), Some(0));
         assert_eq!(m.get(4), None);
+    }
+}
+
+#[cfg(test)]
+mod extra_tests {
+    use super::*;
+    #[test]
+    fn ghost_fields_follow_their_owners() {
+        let mut a = Atoms::new(AtomFeatures::default());
+        a.push(&NewAtom::at(1, 1, [0.1, 0.0, 0.0]));
+        a.push(&NewAtom::at(2, 1, [0.9, 0.0, 0.0]));
+        let c = a.extra_field("conc", 1, true);
+        let p = a.extra_array("private", 2);
+        a.extra[c].data = vec![0.25, 0.75];
+        a.push_ghost(1, [-1, 0, 0], [1.0, 1.0, 1.0]);
+        assert_eq!(a.extra[c].data, vec![0.25, 0.75, 0.75]);
+        assert_eq!(a.extra[p].data.len(), 4);
+        a.extra[c].data[1] = 0.5;
+        a.forward_state();
+        assert_eq!(a.extra[c].data[2], 0.5);
+        a.clear_ghosts();
+        assert_eq!(a.extra[c].data, vec![0.25, 0.5]);
     }
 }

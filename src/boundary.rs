@@ -71,13 +71,14 @@ pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
     Err(RunError::new(
         sim.step,
         format!(
-            "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {} = {}, box {}..{})",
+            "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {} = {}, box {}..{}){}",
             a.nlocal,
             a.tag[i],
             ["x", "y", "z"][d],
             a.x[i][d],
             domain.lo[d],
-            domain.hi[d]
+            domain.hi[d],
+            crate::stability::dt_hint(sim)
         ),
     ))
 }

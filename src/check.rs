@@ -9,6 +9,13 @@ impl Simulation {
         self.init_run()?;
         let n = if opts.upto { opts.nsteps - self.step } else { opts.nsteps };
         self.out.print(&format!("check: run {} steps from step {} (not run)", n, self.step));
+        // the forces of the current state give the force-based limit
+        let known = self.setup(opts.pre).is_ok();
+        let (text, warnings) = crate::stability::report(self, &crate::stability::limits(self, known));
+        self.out.print(&text);
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
+        }
         self.checked_runs += 1;
         Ok(())
     }

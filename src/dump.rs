@@ -48,13 +48,13 @@ impl Dump {
         let groupbit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
         let style_w = a.word("dump style")?;
         let style = style_w.text.clone();
-        if style != "atom" && style != "custom" {
+        if style != "atom" && style != "custom" && style != "vtk" {
             let msg = if dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Dump, &style) {
-                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom or custom)")
+                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom or vtk)")
             } else {
                 format!("unknown dump style `{style}`")
             };
-            return Err(a.error_at(style_w, msg, "expected atom or custom"));
+            return Err(a.error_at(style_w, msg, "expected atom, custom or vtk"));
         }
         let every = a.i64_in("N (dump every N steps)", 1, i64::MAX)?;
         let fw = a.word("file name")?;
@@ -80,9 +80,17 @@ impl Dump {
             last_written: None,
             file: None,
         };
+        if style == "vtk" && !fw.text.ends_with(".vtu") {
+            return Err(a.error_at(fw, "dump vtk writes VTK XML files: the name must end in .vtu (with * for the step, e.g. out.*.vtu)", "expected a .vtu file name"));
+        }
         if style == "atom" {
             a.finish()?;
             d.set_atom_columns();
+        } else if style == "vtk" && a.is_empty() {
+            for name in crate::dump_vtu::default_fields(sim) {
+                d.names.push(name.to_string());
+                d.columns.push(Column::Attr(Field::parse(name).unwrap()));
+            }
         } else {
             if a.is_empty() {
                 return Err(a.missing("at least one per-atom field"));
@@ -228,8 +236,41 @@ impl Dump {
         Ok(s)
     }
 
+    /// The snapshot as a VTK XML document (positions as points, columns as point data;
+    /// x, y, z columns are left out: they are the points).
+    fn snapshot_vtu(&self, sim: &Simulation) -> Result<String, String> {
+        let a = &sim.atoms;
+        let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        idx.sort_by_key(|&i| a.tag[i]);
+        let points: Vec<[f64; 3]> = idx.iter().map(|&i| a.x[i]).collect();
+        let mut fields = vec![];
+        for (name, c) in self.names.iter().zip(&self.columns) {
+            if matches!(name.as_str(), "x" | "y" | "z") {
+                continue;
+            }
+            let values: Vec<f64> = match c {
+                Column::Attr(f) => idx.iter().map(|&i| f.value(sim, i)).collect(),
+                Column::Compute(cid, col) => {
+                    let k = sim.find_compute(cid).ok_or_else(|| format!("dump {}: compute `{cid}` does not exist", self.id))?;
+                    let p = sim.computes[k].peratom(sim)?;
+                    idx.iter().map(|&i| p.get(i, col.unwrap_or(0))).collect()
+                }
+            };
+            fields.push(crate::dump_vtu::Field { name: name.clone(), components: 1, values });
+        }
+        Ok(crate::dump_vtu::document(&points, &fields, sim.step, sim.time()))
+    }
+
     /// Write a snapshot now.
     pub fn write(&mut self, sim: &Simulation) -> Result<(), String> {
+        if self.style == "vtk" {
+            let text = self.snapshot_vtu(sim)?;
+            let name = self.path.to_string_lossy().to_string();
+            let p = if name.contains('*') { PathBuf::from(name.replace('*', &sim.step.to_string())) } else { PathBuf::from(name.replace(".vtu", &format!(".{}.vtu", sim.step))) };
+            write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
+            self.last_written = Some(sim.step);
+            return Ok(());
+        }
         let text = self.snapshot(sim)?;
         let name = self.path.to_string_lossy().to_string();
         if name.contains('*') {

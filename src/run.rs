@@ -209,8 +209,11 @@ impl Simulation {
         }
         self.natoms_expected = self.atoms.nlocal;
         self.timers.stamp();
+        // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and
+        // not refreshed after it, so at the first setup a ghost keeps the velocity estimate it
+        // had when it was made (fix sph sets vest = v on owned atoms only). Step-0 forces of
+        // pairs across periodic faces see the old vest, exactly as in LAMMPS.
         self.fix_hook(|_| true, |f, s| f.setup_pre_force(s))?;
-        self.atoms.forward_state();
         self.timers.charge(Stage::Modify);
         self.compute_forces(true, false)?;
         self.timers.stamp();
@@ -251,7 +254,7 @@ impl Simulation {
 
     /// Ghost atoms need fresh velocities and per-atom state only for styles that read them.
     fn needs_ghost_state(&self) -> bool {
-        self.comm_vel || self.atoms.features.sph || self.atoms.features.sphere
+        self.comm_vel || self.atoms.features.sph || self.atoms.features.sphere || self.atoms.extra.iter().any(|e| e.ghosts)
     }
 
     /// The `run` command.
@@ -276,9 +279,16 @@ impl Simulation {
             self.step,
             crate::format::g(self.dt)
         ));
-        self.setup(opts.pre)?;
         if self.want_capture && self.capture_setup.is_none() {
+            // crosscheck: the forces of a separate setup before the first run, exactly as
+            // lammps_driver.py issues `run 0 post no` before the deck's first run in LAMMPS
+            self.setup(opts.pre)?;
             self.capture_setup = Some(crate::crosscheck::capture_forces(self));
+        }
+        self.setup(opts.pre)?;
+        let (_, warnings) = crate::stability::report(self, &crate::stability::limits(self, true));
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
         }
         let mem = crate::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
@@ -291,7 +301,7 @@ impl Simulation {
         for _ in 0..nsteps {
             let next = self.step + 1;
             let eflag = self.output_due(next, last);
-            if let Err(e) = self.step_once(eflag) {
+            if let Err(e) = self.step_once(eflag).and_then(|_| crate::stability::check_state(self)) {
                 result = Err(e);
                 break;
             }
@@ -369,6 +379,11 @@ impl Simulation {
         let threads = rayon::current_num_threads();
         self.out.print(&format!("100.0% CPU use with 1 MPI tasks x {threads} threads\n"));
         self.out.print(&self.timers.report(loop_time));
+        self.out.print(&format!(
+            "Memory per particle: {:.0} bytes ({:.4} Mbytes in all)\n",
+            crate::memory::bytes_per_particle(self),
+            crate::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0)
+        ));
         let npairs = self.neighbor.list.npairs();
         self.out.print(&format!(
             "Nlocal:    {} ave {} max {} min\nNghost:    {} ave {} max {} min\nNeighs:    {} ave {} max {} min\n\nTotal # of neighbors = {}\nAve neighs/atom = {:.7}\nNeighbor list builds = {}\nDangerous builds = {}\n",

@@ -114,6 +114,7 @@ pub struct Simulation {
     /// `dmhs check`: commands are built but `run` does not run.
     pub check_only: bool,
     pub checked_runs: usize,
+    pub guard: crate::stability::Guard,
 }
 
 impl Default for Simulation {
@@ -177,6 +178,7 @@ impl Simulation {
             want_capture: false,
             check_only: false,
             checked_runs: 0,
+            guard: Default::default(),
         }
     }
 

@@ -54,3 +54,33 @@ fn lammps_and_logfile_read_the_outputs() {
     println!("{text}");
     assert!(o.status.success() && text.contains("ALL OK"), "output check failed:\n{text}");
 }
+
+#[test]
+fn vtu_files_are_read_by_meshio() {
+    let required = std::env::var("DMHS_REQUIRE_LAMMPS").map(|v| v == "1").unwrap_or(false);
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "dimension 2\nunits lj\natom_style sph\nboundary p p p\nregion box block 0 6 0 6 -0.5 0.5\ncreate_box 1 box\n\
+                lattice sq 1.0\ncreate_atoms 1 box\nmass 1 1.0\nset group all sph/rho 1.0 sph/e 2.0\n\
+                pair_style sph/taitwater\npair_coeff * * 1.0 10.0 0.1 1.3\nfix 1 all sph\nfix 2 all enforce2d\n\
+                compute t all sph/t/atom\ndump v all vtk 5 out.*.vtu\ndump w all vtk 10 sel_*.vtu id vx c_t\nrun 10\n";
+    let opts = dmhs::deck::DeckOptions { base_dir: Some(tmp.path().to_path_buf()), ..Default::default() };
+    dmhs::deck::run_text("vtu", deck, &opts).map_err(|f| f.rendered).unwrap();
+    for step in [0, 5, 10] {
+        assert!(tmp.path().join(format!("out.{step}.vtu")).exists());
+    }
+    let text = std::fs::read_to_string(tmp.path().join("sel_10.vtu")).unwrap();
+    assert!(text.contains("NumberOfPoints=\"36\"") && text.contains("Name=\"c_t\""));
+    let python = match dmhs::lammps::find_python() {
+        Ok(p) => p,
+        Err(e) => {
+            assert!(!required, "DMHS_REQUIRE_LAMMPS=1 but the Python environment is missing: {e}");
+            return;
+        }
+    };
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/outputs/check_vtu.py");
+    for (file, fields) in [("out.10.vtu", vec!["id", "type", "rho", "esph", "vx"]), ("sel_10.vtu", vec!["id", "vx", "c_t"])] {
+        let o = Command::new(&python).arg(&script).arg(tmp.path().join(file)).arg("36").args(&fields).output().unwrap();
+        let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success() && text.contains("VTU OK"), "{file}: {text}");
+    }
+}

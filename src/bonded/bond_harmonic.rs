@@ -50,6 +50,9 @@ impl BondStyle for BondHarmonic {
     fn equilibrium_distance(&self, btype: usize) -> f64 {
         self.types.get(btype).r0
     }
+    fn stiffness(&self, btype: usize) -> f64 {
+        self.types.try_get(btype).map(|p| p.k).unwrap_or(0.0)
+    }
     fn coeff_words(&self, btype: usize) -> String {
         let p = self.types.get(btype);
         format!("{} {}", fmt_g(p.k), fmt_g(p.r0))

@@ -63,6 +63,11 @@ pub trait BondStyle: Send + Sync {
     }
     /// The rest length (LAMMPS `equilibrium_distance`, used e.g. by the neighbour-list check).
     fn equilibrium_distance(&self, btype: usize) -> f64;
+    /// Spring constant for stability estimates: for E = K (r - r0)^2, the K of the type (0 if
+    /// the style has no such notion).
+    fn stiffness(&self, _btype: usize) -> f64 {
+        0.0
+    }
     /// The coefficient words `write_data` prints after the type number.
     fn coeff_words(&self, btype: usize) -> String;
 }

@@ -30,6 +30,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("comm_modify", settings::comm_modify),
     ("special_bonds", settings::special_bonds),
     ("log", settings::log),
+    ("dmhs/stability", settings::dmhs_stability),
     ("lattice", box_cmds::lattice),
     ("region", box_cmds::region),
     ("create_box", box_cmds::create_box),

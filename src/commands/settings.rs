@@ -349,3 +349,29 @@ pub fn log(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     let path = if w.text == "none" { None } else { Some(sim.path(&w.text)) };
     sim.out.set_log(path.as_deref(), append).map_err(|e| a.error_at(w, format!("cannot open log file `{}`: {e}", w.text), "cannot open"))
 }
+
+/// `dmhs/stability keyword value ...` (dmhs extension): the run-time guards of
+/// src/stability.rs. Keywords: `rho LO HI` (allowed SPH density as factors of rho0, default
+/// 0.5 2), `every N` (check every N steps, default 1), `off`, `on`.
+pub fn dmhs_stability(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "dmhs/stability [rho LO HI] [every N] [on|off]");
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "rho" => {
+                let lo = a.positive_f64("LO (factor of rho0)")?;
+                let hi = a.f64_where("HI (factor of rho0)", "> LO", |x| x > lo)?;
+                sim.guard.rho_lo = lo;
+                sim.guard.rho_hi = hi;
+            }
+            "every" => sim.guard.every = a.i64_in("every", 1, i64::MAX)?,
+            "off" => sim.guard.enabled = false,
+            "on" => sim.guard.enabled = true,
+            _ => return Err(a.unknown_keyword(w, &["rho", "every", "on", "off"])),
+        }
+    }
+    Ok(())
+}

@@ -207,6 +207,7 @@ impl PairStyle for Hybrid {
                 (Some(x), Some(y)) => Some(x.max(y)),
                 (x, y) => x.or(y),
             },
+            rho0: if a.rho0.iter().any(|&r| r > 0.0) { a.rho0.clone() } else { b.rho0.clone() },
         }))
     }
 

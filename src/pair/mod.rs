@@ -160,12 +160,14 @@ pub struct SphInfo {
     pub rho0_min: f64,
     /// Largest dynamic viscosity (Morris styles).
     pub mu_max: Option<f64>,
+    /// Reference density per type (index 0 unused; 0 = no Tait parameters for that type).
+    pub rho0: Vec<f64>,
 }
 
 impl SphInfo {
     /// From the Tait tables; `morris`: the pair value is a dynamic viscosity.
     pub fn from_tait(types: &sph::TaitTypes, pairs: &sph::PairTable<(f64, f64)>, n: usize, morris: Option<()>) -> SphInfo {
-        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0) };
+        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0), rho0: types.rho0.clone() };
         for i in 1..=n.min(types.rho0.len().saturating_sub(1)) {
             if types.rho0[i] > 0.0 {
                 info.c_max = info.c_max.max(types.c0[i]);
@@ -229,6 +231,17 @@ pub trait CentralKernel: Sync {
     /// `fpair * (x_i - x_j)`; `factor` is the special-bond weight. The energy is only used
     /// when `EFLAG`.
     fn eval<const EFLAG: bool>(p: &Self::Params, rsq: f64, factor: f64) -> (f64, f64);
+}
+
+/// `s[i]` without a bounds check, for the hot loops. Callers index per-atom arrays with
+/// neighbour-list entries (always < the number of owned + ghost atoms, which every per-atom
+/// array holds) and per-type tables with atom types (validated to 1..=ntypes when atoms are
+/// created or retyped, and tables hold ntypes + 1 entries). Checked in debug builds.
+#[inline(always)]
+pub fn at<T: Copy>(s: &[T], i: usize) -> T {
+    debug_assert!(i < s.len(), "index {i} out of {}", s.len());
+    // SAFETY: see above
+    unsafe { *s.get_unchecked(i) }
 }
 
 /// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`].

@@ -33,8 +33,8 @@ impl SphKernel for SphHeatConduction {
         0.0
     }
     #[inline(always)]
-    fn cutsq(&self, ti: usize, tj: usize) -> f64 {
-        self.cutsq[ti * (self.n + 1) + tj]
+    fn cutsq_row(&self, ti: usize) -> &[f64] {
+        &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
     fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, _pi: f64, _pj: f64, _del: [f64; 3], rsq: f64) -> SphContribution {

@@ -5,8 +5,8 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, PairTable, SphContribution, SphKernel, TaitTypes};
-use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, PairTable, SphContribution, SphKernel, Support, TaitTypes};
+use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/taitwater [kernel lucy|cubic|wendland2]";
@@ -18,6 +18,9 @@ pub struct SphTaitwater {
     /// (alpha, h) per pair
     pairs: PairTable<(f64, f64)>,
     cutsq: Vec<f64>,
+    /// Per type pair, precomputed with LAMMPS' arithmetic: the support, 0.01 h^2, and
+    /// -alpha (c_i + c_j).
+    derived: Vec<(Support, f64, f64)>,
     n: usize,
     dim3: bool,
 }
@@ -26,7 +29,7 @@ impl SphTaitwater {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let kernel = parse_kernel(&mut a)?;
-        Ok(SphTaitwater { kernel, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true })
+        Ok(SphTaitwater { kernel, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
     }
 }
 
@@ -40,23 +43,23 @@ impl SphKernel for SphTaitwater {
         tait_p_over_rho2(input.atoms.rho[i], self.types.rho0[t], self.types.b[t])
     }
     #[inline(always)]
-    fn cutsq(&self, ti: usize, tj: usize) -> f64 {
-        self.cutsq[ti * (self.n + 1) + tj]
+    fn cutsq_row(&self, ti: usize) -> &[f64] {
+        &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
     fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, fi: f64, fj: f64, del: [f64; 3], rsq: f64) -> SphContribution {
         let a = input.atoms;
-        let (alpha, h) = *self.pairs.get(ti, tj);
-        let wfd = self.kernel.wfd(rsq, h, self.dim3);
-        let (imass, jmass) = (input.type_mass[ti], input.type_mass[tj]);
-        let (vi, vj) = (a.vest[i], a.vest[j]);
+        let (sup, eps, visc_c) = at(&self.derived, ti * (self.n + 1) + tj);
+        let h = sup.h;
+        let wfd = self.kernel.wfd_with(rsq, &sup, self.dim3);
+        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
+        let (vi, vj) = (at(&a.vest, i), at(&a.vest, j));
         let dvdr = del[0] * (vi[0] - vj[0]) + del[1] * (vi[1] - vj[1]) + del[2] * (vi[2] - vj[2]);
-        let fvisc = if dvdr < 0.0 {
-            let mu = h * dvdr / (rsq + 0.01 * h * h);
-            -alpha * (self.types.c0[ti] + self.types.c0[tj]) * mu / (a.rho[i] + a.rho[j])
-        } else {
-            0.0
-        };
+        // Monaghan viscosity for approaching pairs only, computed for all and masked
+        // (branch-free: the sign of v.x is unpredictable)
+        let mu = h * dvdr / (rsq + eps);
+        let fvisc = visc_c * mu / (at(&a.rho, i) + at(&a.rho, j));
+        let fvisc = f64::from_bits(fvisc.to_bits() & if dvdr < 0.0 { u64::MAX } else { 0 });
         let fpair = -imass * jmass * (fi + fj + fvisc) * wfd;
         let de = -0.5 * fpair * dvdr;
         SphContribution {
@@ -83,6 +86,15 @@ impl PairStyle for SphTaitwater {
         self.types.grow(ntypes);
         self.n = ntypes;
         self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        let s = ntypes + 1;
+        self.derived = vec![(Support::default(), 0.0, 0.0); s * s];
+        for i in 1..=ntypes {
+            for j in 1..=ntypes {
+                let (alpha, h) = *self.pairs.get(i, j);
+                // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
+                self.derived[i * s + j] = (Support::new(h), 0.01 * h * h, -alpha * (self.types.c0[i] + self.types.c0[j]));
+            }
+        }
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -39,8 +39,8 @@ impl SphKernel for SphTaitwaterMorris {
         tait_p_over_rho2(input.atoms.rho[i], self.types.rho0[t], self.types.b[t])
     }
     #[inline(always)]
-    fn cutsq(&self, ti: usize, tj: usize) -> f64 {
-        self.cutsq[ti * (self.n + 1) + tj]
+    fn cutsq_row(&self, ti: usize) -> &[f64] {
+        &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
     fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, fi: f64, fj: f64, del: [f64; 3], rsq: f64) -> SphContribution {

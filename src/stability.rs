@@ -1,0 +1,155 @@
+//! Stability: time-step limits of the active models (shown by `dmhs check` and warned about at
+//! the start of a run) and guards that stop an unstable run with a clear message, keeping every
+//! file written so far.
+//!
+//! Limits, with the smoothing length hs = h/2 (LAMMPS' h in pair_coeff is the kernel support),
+//! c the sound speed and mu the dynamic viscosity: acoustic CFL dt <= 0.25 hs/c; viscous
+//! dt <= 0.125 hs^2 rho0/mu; force dt <= 0.25 sqrt(hs/|a|max); harmonic bonds dt <= T/20 with
+//! T = 2 pi sqrt(m_min/(2K)) the period of the lightest pair. The acoustic limit is where the dam
+//! break of docs/validation.md turns unstable (stable at 1x, unstable at 2x, all resolutions).
+
+use crate::sim::{RunError, Simulation};
+
+/// One time-step limit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Limit {
+    pub model: String,
+    pub rule: String,
+    pub dt_max: f64,
+}
+
+/// Settings of the guards (`dmhs/stability` extension command).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Guard {
+    pub enabled: bool,
+    /// Allowed density range as factors of each type's rho0.
+    pub rho_lo: f64,
+    pub rho_hi: f64,
+    /// Check every N steps.
+    pub every: i64,
+}
+
+impl Default for Guard {
+    fn default() -> Self {
+        Guard { enabled: true, rho_lo: 0.5, rho_hi: 2.0, every: 1 }
+    }
+}
+
+/// Largest |f|/m over owned atoms (the current forces).
+fn max_acceleration(sim: &Simulation) -> f64 {
+    let a = &sim.atoms;
+    (0..a.nlocal)
+        .map(|i| {
+            let f = a.f[i];
+            (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / sim.mass(i)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The time-step limits of the active models (forces must be current for the force limit).
+pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
+    let mut out = vec![];
+    if let Some(info) = sim.pair.as_ref().and_then(|p| p.sph_info()) {
+        let hs = 0.5 * info.h_min;
+        if info.c_max > 0.0 && info.h_min.is_finite() {
+            out.push(Limit { model: "SPH".into(), rule: format!("acoustic CFL 0.25 hs/c (hs = h/2 = {hs}, c = {})", info.c_max), dt_max: 0.25 * hs / info.c_max });
+        }
+        if let Some(mu) = info.mu_max.filter(|&m| m > 0.0) {
+            if info.rho0_min.is_finite() {
+                out.push(Limit {
+                    model: "SPH".into(),
+                    rule: format!("viscous 0.125 hs^2 rho0/mu (rho0 = {}, mu = {})", info.rho0_min, mu),
+                    dt_max: 0.125 * hs * hs * info.rho0_min / mu,
+                });
+            }
+        }
+        if forces_known && info.h_min.is_finite() {
+            let amax = max_acceleration(sim);
+            if amax > 0.0 {
+                out.push(Limit { model: "SPH".into(), rule: format!("force 0.25 sqrt(hs/|a|max) (|a|max = {amax:.4e})"), dt_max: 0.25 * (hs / amax).sqrt() });
+            }
+        }
+    }
+    if let Some(bond) = sim.bond_style.as_ref() {
+        if bond.name() == "harmonic" && sim.topo.nbondtypes > 0 {
+            let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);
+            if m_min.is_finite() {
+                let k_max = (1..=sim.topo.nbondtypes).map(|t| bond.stiffness(t)).fold(0.0, f64::max);
+                if k_max > 0.0 {
+                    // reduced mass of two lightest atoms; E = K (r - r0)^2 is a spring of 2K
+                    let period = 2.0 * std::f64::consts::PI * (0.5 * m_min / (2.0 * k_max)).sqrt();
+                    out.push(Limit { model: "bond harmonic".into(), rule: format!("T/20, T = 2 pi sqrt(m/(2K)) (K = {k_max}, m = {m_min})"), dt_max: period / 20.0 });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Text for `dmhs check` and the warnings at the start of a run.
+pub fn report(sim: &Simulation, limits: &[Limit]) -> (String, Vec<String>) {
+    let mut s = String::from("stable time step estimates:\n");
+    let mut warnings = vec![];
+    if limits.is_empty() {
+        s += "  (no estimate for the active models)\n";
+    }
+    for l in limits {
+        let ratio = sim.dt / l.dt_max;
+        s += &format!("  {:<14} {:<60} dt <= {:.4e}   (timestep {:.4e} = {:.2}x)\n", l.model, l.rule, l.dt_max, sim.dt, ratio);
+        if ratio > 1.0 {
+            warnings.push(format!("the time step {:.4e} is {:.2}x the {} limit of {} ({:.4e}): the run may go unstable", sim.dt, ratio, l.rule.split(" (").next().unwrap_or(""), l.model, l.dt_max));
+        }
+    }
+    (s, warnings)
+}
+
+/// "; the time step is N x the ... limit" when the time step exceeds the tightest limit.
+pub fn dt_hint(sim: &Simulation) -> String {
+    let l = limits(sim, false);
+    let worst = l.iter().max_by(|x, y| (sim.dt / x.dt_max).total_cmp(&(sim.dt / y.dt_max)));
+    match worst {
+        Some(w) if sim.dt > w.dt_max => {
+            format!("; the time step {:.4e} is {:.2}x the {} limit {:.4e}", sim.dt, sim.dt / w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.dt_max)
+        }
+        _ => String::new(),
+    }
+}
+
+/// Stop the run if the state went bad: non-finite positions, velocities or SPH fields, or an
+/// SPH density outside the sane range. The message names step, particle, quantity and bound.
+pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
+    let g = &sim.guard;
+    if !g.enabled || sim.step % g.every != 0 {
+        return Ok(());
+    }
+    let a = &sim.atoms;
+    let step = sim.step;
+    let hint = || dt_hint(sim);
+    for i in 0..a.nlocal {
+        for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
+            if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
+                return Err(RunError::new(step, format!("particle {} has a non-finite {name} ({}, {}, {}): the run is unstable{}", a.tag[i], v[0], v[1], v[2], hint())));
+            }
+        }
+    }
+    if a.features.sph {
+        let rho0 = sim.pair.as_ref().and_then(|p| p.sph_info()).map(|s| s.rho0).unwrap_or_default();
+        for i in 0..a.nlocal {
+            let r = a.rho[i];
+            if !r.is_finite() || !a.esph[i].is_finite() {
+                return Err(RunError::new(step, format!("particle {} has a non-finite density or energy (rho {}, esph {}): the run is unstable{}", a.tag[i], r, a.esph[i], hint())));
+            }
+            let r0 = rho0.get(a.typ[i]).copied().unwrap_or(0.0);
+            if r0 > 0.0 && (r < g.rho_lo * r0 || r > g.rho_hi * r0) {
+                return Err(RunError::new(
+                    step,
+                    format!(
+                        "particle {} (type {}) has density {:.6e}, outside the sane range [{:.4e}, {:.4e}] ({} to {} x rho0 = {}): the run is unstable{}",
+                        a.tag[i], a.typ[i], r, g.rho_lo * r0, g.rho_hi * r0, g.rho_lo, g.rho_hi, r0, hint()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

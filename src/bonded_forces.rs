@@ -163,7 +163,11 @@ impl Simulation {
         {
             self.out.print(&format!("WARNING: {w}"));
         }
-        // special partners by atom ID
+        self.rebuild_special()
+    }
+
+    /// The special partners (1-2, 1-3, 1-4) by atom ID from the current topology.
+    pub fn rebuild_special(&mut self) -> Result<(), String> {
         let flags = self.special_bonds.flags(false);
         if self.topo.bonds.is_empty() {
             self.special_table = SpecialTable { flags, ..SpecialTable::default() };
@@ -176,7 +180,16 @@ impl Simulation {
             let symmetric = !self.special_bonds.angle && !self.special_bonds.dihedral;
             self.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
         }
+        self.special_dirty = false;
         Ok(())
+    }
+
+    /// Fixes that add or remove bonds, angles or dihedrals call this: the special lists are
+    /// rebuilt and the neighbour lists rebuilt on this step (after the integrator), as LAMMPS
+    /// does for fix bond/break and bond/create.
+    pub fn topology_changed(&mut self) {
+        self.special_dirty = true;
+        self.rebuild_requested = true;
     }
 
     /// Map every interaction to local indices and closest-image shifts (after a rebuild).

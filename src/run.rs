@@ -83,6 +83,9 @@ impl Simulation {
     /// box, sort, make ghosts and build the lists.
     pub fn rebuild(&mut self) -> Result<(), RunError> {
         let step = self.step;
+        if self.special_dirty {
+            self.rebuild_special().map_err(|e| RunError::new(step, e))?;
+        }
         let Some(domain) = self.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
         self.atoms.clear_ghosts();
         for i in 0..self.atoms.nlocal {
@@ -230,7 +233,10 @@ impl Simulation {
         self.fix_hook(|h| h.post_integrate, |f, s| f.post_integrate(s))?;
         self.timers.charge(Stage::Modify);
 
-        if self.neighbor.decide(&self.neigh_settings, &self.atoms) {
+        // a fix that changed the topology or must see fresh lists asks for a rebuild
+        // (LAMMPS' Neighbor::decide checks fixes' next_reneighbor before counting steps)
+        let requested = std::mem::take(&mut self.rebuild_requested);
+        if requested || self.neighbor.decide(&self.neigh_settings, &self.atoms) {
             self.rebuild()?;
             self.timers.charge(Stage::Neigh);
         } else {

@@ -115,6 +115,10 @@ pub struct Simulation {
     pub check_only: bool,
     pub checked_runs: usize,
     pub guard: crate::stability::Guard,
+    /// A fix asked for neighbour lists to be rebuilt on this step (LAMMPS `next_reneighbor`).
+    pub rebuild_requested: bool,
+    /// The topology changed since the special lists were built.
+    pub special_dirty: bool,
 }
 
 impl Default for Simulation {
@@ -179,6 +183,8 @@ impl Simulation {
             check_only: false,
             checked_runs: 0,
             guard: Default::default(),
+            rebuild_requested: false,
+            special_dirty: false,
         }
     }
 

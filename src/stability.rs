@@ -30,8 +30,11 @@ pub struct Guard {
 }
 
 impl Default for Guard {
+    /// Densities must stay positive and below 2 rho0 (the Tait pressure is then 127 B: no
+    /// weakly compressible flow gets there). There is no useful lower bound by default:
+    /// free-surface particles with density summation sit well below rho0.
     fn default() -> Self {
-        Guard { enabled: true, rho_lo: 0.5, rho_hi: 2.0, every: 1 }
+        Guard { enabled: true, rho_lo: 0.0, rho_hi: 2.0, every: 1 }
     }
 }
 
@@ -140,11 +143,11 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
                 return Err(RunError::new(step, format!("particle {} has a non-finite density or energy (rho {}, esph {}): the run is unstable{}", a.tag[i], r, a.esph[i], hint())));
             }
             let r0 = rho0.get(a.typ[i]).copied().unwrap_or(0.0);
-            if r0 > 0.0 && (r < g.rho_lo * r0 || r > g.rho_hi * r0) {
+            if r0 > 0.0 && (r <= g.rho_lo * r0 || r > g.rho_hi * r0) {
                 return Err(RunError::new(
                     step,
                     format!(
-                        "particle {} (type {}) has density {:.6e}, outside the sane range [{:.4e}, {:.4e}] ({} to {} x rho0 = {}): the run is unstable{}",
+                        "particle {} (type {}) has density {:.6e}, outside the sane range ({:.4e}, {:.4e}] ({} to {} x rho0 = {}): the run is unstable{}",
                         a.tag[i], a.typ[i], r, g.rho_lo * r0, g.rho_hi * r0, g.rho_lo, g.rho_hi, r0, hint()
                     ),
                 ));

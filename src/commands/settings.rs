@@ -352,7 +352,7 @@ pub fn log(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
 
 /// `dmhs/stability keyword value ...` (dmhs extension): the run-time guards of
 /// src/stability.rs. Keywords: `rho LO HI` (allowed SPH density as factors of rho0, default
-/// 0.5 2), `every N` (check every N steps, default 1), `off`, `on`.
+/// 0 2: positive and at most twice rho0), `every N` (check every N steps, default 1), `off`, `on`.
 pub fn dmhs_stability(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "dmhs/stability [rho LO HI] [every N] [on|off]");
     if a.is_empty() {
@@ -362,7 +362,7 @@ pub fn dmhs_stability(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
         a.skip(1);
         match w.text.as_str() {
             "rho" => {
-                let lo = a.positive_f64("LO (factor of rho0)")?;
+                let lo = a.non_negative_f64("LO (factor of rho0)")?;
                 let hi = a.f64_where("HI (factor of rho0)", "> LO", |x| x > lo)?;
                 sim.guard.rho_lo = lo;
                 sim.guard.rho_hi = hi;

@@ -269,40 +269,60 @@ pub struct SphContribution {
     pub de_j: f64,
 }
 
+/// What the SPH loop reads of one particle, packed into one cache line: position, a velocity
+/// (the estimate `vest`), and two scalars chosen by the style (e.g. rho and the Tait P/rho^2).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(64))]
+pub struct Packed {
+    pub x: [f64; 3],
+    pub v: [f64; 3],
+    pub a: f64,
+    pub b: f64,
+}
+
 /// Per-pair physics of an SPH style, called by [`compute_sph`].
 pub trait SphKernel: Sync {
-    /// Per-atom precomputation for atom i (e.g. the Tait P/rho^2), also used for j.
-    fn prepare(&self, input: &PairInput, i: usize) -> f64;
+    /// The record of particle i (owned or ghost).
+    fn pack(&self, input: &PairInput, i: usize) -> Packed;
     /// Squared cutoffs of type pairs (ti, 0..=ntypes) (0: no interaction).
     fn cutsq_row(&self, ti: usize) -> &[f64];
-    /// The pair's contribution (for pairs inside the cutoff); `pi`/`pj` are the `prepare` values.
+    /// The contribution of a pair inside the cutoff.
     #[allow(clippy::too_many_arguments)]
-    fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, pi: f64, pj: f64, del: [f64; 3], rsq: f64) -> SphContribution;
+    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, del: [f64; 3], rsq: f64) -> SphContribution;
+}
+
+/// Rates and forces accumulated per particle during the loop (one record per owned atom).
+#[derive(Clone, Copy, Debug, Default)]
+struct Acc {
+    f: [f64; 3],
+    drho: f64,
+    desph: f64,
 }
 
 /// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
 /// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
 ///
-/// For each atom the neighbours inside the cutoff are first gathered without branches (about
-/// 40% of listed pairs lie in the skin, and a branch on that is badly predicted); only those go
-/// through the kernel.
+/// Particles are read from packed records (one cache line per neighbour) and contributions
+/// gathered in packed accumulators, added to the outputs at the end. For each atom the
+/// neighbours inside the cutoff are first gathered without branches (about 40% of listed pairs
+/// lie in the skin, and a branch on that is badly predicted); only those go through the kernel.
 pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
     let a = input.atoms;
     let nlocal = a.nlocal;
     let nall = a.nall();
     let stride = input.ntypes + 1;
-    // per-atom terms once for owned atoms and ghosts
-    let prep: Vec<f64> = (0..nall).map(|i| kernel.prepare(input, i)).collect();
-    let f = SharedMut::new(out.f);
-    let drho = SharedMut::new(out.drho);
-    let desph = SharedMut::new(out.desph);
+    let packed: Vec<Packed> = (0..nall).map(|i| kernel.pack(input, i)).collect();
+    let typ: Vec<u32> = a.typ.iter().map(|&t| t as u32).collect();
+    let mut acc = vec![Acc::default(); nlocal];
+    let shared = SharedMut::new(&mut acc);
     let eflag = input.eflag;
     let parts = for_each_chunk(input.list, |chunk| {
         let mut t = Tally::default();
         let mut inside: Vec<u32> = Vec::with_capacity(128);
         for i in chunk.start..chunk.end {
-            let xi = a.x[i];
-            let ti = a.typ[i];
+            let pi = packed[i];
+            let xi = pi.x;
+            let ti = typ[i] as usize;
             let cutsq = kernel.cutsq_row(ti);
             let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
             // gather the neighbours inside the cutoff (and the type filter), branch-free
@@ -313,10 +333,10 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
             let mut n_in = 0usize;
             for &jraw in neigh {
                 let j = (jraw & NEIGH_MASK) as usize;
-                let xj = at(&a.x, j);
+                let xj = at(&packed, j).x;
                 let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
                 let rsq = dx * dx + dy * dy + dz * dz;
-                let tj = at(&a.typ, j);
+                let tj = at(&typ, j) as usize;
                 let ok = rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true);
                 // SAFETY: capacity reserved for every neighbour
                 unsafe { *base.add(n_in) = j as u32 };
@@ -324,30 +344,27 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
             }
             // SAFETY: the first n_in entries were written
             unsafe { inside.set_len(n_in) };
-            let (mut fx, mut fy, mut fz, mut dr, mut de) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            let prep_i = prep[i];
+            let mut own = Acc::default();
             for &j in &inside {
                 let j = j as usize;
-                let tj = at(&a.typ, j);
-                let xj = at(&a.x, j);
-                let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                let pj = at(&packed, j);
+                let tj = at(&typ, j) as usize;
+                let del = [xi[0] - pj.x[0], xi[1] - pj.x[1], xi[2] - pj.x[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                let c = kernel.pair(input, i, j, ti, tj, prep_i, at(&prep, j), del, rsq);
-                fx += c.f[0];
-                fy += c.f[1];
-                fz += c.f[2];
-                dr += c.drho_i;
-                de += c.de_i;
+                let c = kernel.pair(input, &pi, &pj, ti, tj, del, rsq);
+                own.f[0] += c.f[0];
+                own.f[1] += c.f[1];
+                own.f[2] += c.f[2];
+                own.drho += c.drho_i;
+                own.desph += c.de_i;
                 let w = if j < nlocal {
                     // SAFETY: an owned j is in this chunk or the next (slab schedule)
-                    unsafe {
-                        let fj = f.get(j);
-                        fj[0] -= c.f[0];
-                        fj[1] -= c.f[1];
-                        fj[2] -= c.f[2];
-                        *desph.get(j) += c.de_j;
-                        *drho.get(j) += c.drho_j;
-                    }
+                    let aj = unsafe { shared.get(j) };
+                    aj.f[0] -= c.f[0];
+                    aj.f[1] -= c.f[1];
+                    aj.f[2] -= c.f[2];
+                    aj.desph += c.de_j;
+                    aj.drho += c.drho_j;
                     1.0
                 } else {
                     0.5
@@ -363,17 +380,27 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
                 }
             }
             // SAFETY: i belongs to this chunk
-            unsafe {
-                let fi = f.get(i);
-                fi[0] += fx;
-                fi[1] += fy;
-                fi[2] += fz;
-                *drho.get(i) += dr;
-                *desph.get(i) += de;
-            }
+            let ai = unsafe { shared.get(i) };
+            ai.f[0] += own.f[0];
+            ai.f[1] += own.f[1];
+            ai.f[2] += own.f[2];
+            ai.drho += own.drho;
+            ai.desph += own.desph;
         }
         t
     });
+    // add to what other styles (hybrid/overlay) put there already
+    let has_rates = !out.drho.is_empty();
+    for (i, c) in acc.iter().enumerate() {
+        let f = &mut out.f[i];
+        f[0] += c.f[0];
+        f[1] += c.f[1];
+        f[2] += c.f[2];
+        if has_rates {
+            out.drho[i] += c.drho;
+            out.desph[i] += c.desph;
+        }
+    }
     sum_tallies(&parts)
 }
 

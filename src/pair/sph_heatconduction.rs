@@ -3,8 +3,8 @@
 //! de_i = 2 m_i m_j/(m_i + m_j) (rho_i + rho_j)/(rho_i rho_j) D (e_i - e_j) wfd, de_j = -de_i
 //! (esph is extensive; temperatures come from compute sph/t/atom as esph/cv).
 
-use super::sph::{compute_sph, parse_kernel, Kernel, PairTable, SphContribution, SphKernel};
-use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::sph::{compute_sph, parse_kernel, Kernel, Packed, PairTable, SphContribution, SphKernel};
+use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/heatconduction [kernel lucy|cubic|wendland2]";
@@ -28,23 +28,24 @@ impl SphHeatConduction {
 }
 
 impl SphKernel for SphHeatConduction {
+    /// a = rho, b = esph.
     #[inline(always)]
-    fn prepare(&self, _input: &PairInput, _i: usize) -> f64 {
-        0.0
+    fn pack(&self, input: &PairInput, i: usize) -> Packed {
+        let a = input.atoms;
+        Packed { x: a.x[i], v: [0.0; 3], a: a.rho[i], b: a.esph[i] }
     }
     #[inline(always)]
     fn cutsq_row(&self, ti: usize) -> &[f64] {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, _pi: f64, _pj: f64, _del: [f64; 3], rsq: f64) -> SphContribution {
-        let a = input.atoms;
+    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, _del: [f64; 3], rsq: f64) -> SphContribution {
         let (d, h) = *self.pairs.get(ti, tj);
         let wfd = self.kernel.wfd(rsq, h, self.dim3);
-        let (imass, jmass) = (input.type_mass[ti], input.type_mass[tj]);
+        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
         let mut de = 2.0 * imass * jmass / (imass + jmass);
-        de *= (a.rho[i] + a.rho[j]) / (a.rho[i] * a.rho[j]);
-        de *= d * (a.esph[i] - a.esph[j]) * wfd;
+        de *= (pi.a + pj.a) / (pi.a * pj.a);
+        de *= d * (pi.b - pj.b) * wfd;
         SphContribution { de_i: de, de_j: -de, ..SphContribution::default() }
     }
 }

@@ -5,7 +5,7 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, PairTable, SphContribution, SphKernel, Support, TaitTypes};
+use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, TaitTypes};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -34,33 +34,34 @@ impl SphTaitwater {
 }
 
 impl SphKernel for SphTaitwater {
+    /// a = rho, b = the Tait P/rho^2 (computed once per particle; LAMMPS recomputes it per
+    /// pair with the same arithmetic).
     #[inline(always)]
-    fn prepare(&self, input: &PairInput, i: usize) -> f64 {
-        let t = input.atoms.typ[i];
-        if self.types.rho0.get(t).copied().unwrap_or(0.0) == 0.0 {
-            return 0.0;
-        }
-        tait_p_over_rho2(input.atoms.rho[i], self.types.rho0[t], self.types.b[t])
+    fn pack(&self, input: &PairInput, i: usize) -> Packed {
+        let a = input.atoms;
+        let t = a.typ[i];
+        let rho0 = self.types.rho0.get(t).copied().unwrap_or(0.0);
+        let p = if rho0 == 0.0 { 0.0 } else { tait_p_over_rho2(a.rho[i], rho0, self.types.b[t]) };
+        Packed { x: a.x[i], v: a.vest[i], a: a.rho[i], b: p }
     }
     #[inline(always)]
     fn cutsq_row(&self, ti: usize) -> &[f64] {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, fi: f64, fj: f64, del: [f64; 3], rsq: f64) -> SphContribution {
-        let a = input.atoms;
+    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, del: [f64; 3], rsq: f64) -> SphContribution {
         let (sup, eps, visc_c) = at(&self.derived, ti * (self.n + 1) + tj);
         let h = sup.h;
         let wfd = self.kernel.wfd_with(rsq, &sup, self.dim3);
         let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
-        let (vi, vj) = (at(&a.vest, i), at(&a.vest, j));
+        let (vi, vj) = (pi.v, pj.v);
         let dvdr = del[0] * (vi[0] - vj[0]) + del[1] * (vi[1] - vj[1]) + del[2] * (vi[2] - vj[2]);
         // Monaghan viscosity for approaching pairs only, computed for all and masked
         // (branch-free: the sign of v.x is unpredictable)
         let mu = h * dvdr / (rsq + eps);
-        let fvisc = visc_c * mu / (at(&a.rho, i) + at(&a.rho, j));
+        let fvisc = visc_c * mu / (pi.a + pj.a);
         let fvisc = f64::from_bits(fvisc.to_bits() & if dvdr < 0.0 { u64::MAX } else { 0 });
-        let fpair = -imass * jmass * (fi + fj + fvisc) * wfd;
+        let fpair = -imass * jmass * (pi.b + pj.b + fvisc) * wfd;
         let de = -0.5 * fpair * dvdr;
         SphContribution {
             f: [del[0] * fpair, del[1] * fpair, del[2] * fpair],

@@ -4,8 +4,8 @@
 //! F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) wfd x_ij + 2 mu m_i m_j wfd / (rho_i rho_j) v_ij;
 //! de_i = de_j = -(fpair v.x + fvisc |v_ij|^2)/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, PairTable, SphContribution, SphKernel, TaitTypes};
-use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, TaitTypes};
+use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/taitwater/morris [kernel lucy|cubic|wendland2]";
@@ -17,6 +17,8 @@ pub struct SphTaitwaterMorris {
     /// (mu, h) per pair
     pairs: PairTable<(f64, f64)>,
     cutsq: Vec<f64>,
+    /// Per type pair: mu and the kernel support.
+    derived: Vec<(f64, Support)>,
     n: usize,
     dim3: bool,
 }
@@ -25,36 +27,36 @@ impl SphTaitwaterMorris {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let kernel = parse_kernel(&mut a)?;
-        Ok(SphTaitwaterMorris { kernel, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true })
+        Ok(SphTaitwaterMorris { kernel, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
     }
 }
 
 impl SphKernel for SphTaitwaterMorris {
+    /// a = rho, b = the Tait P/rho^2.
     #[inline(always)]
-    fn prepare(&self, input: &PairInput, i: usize) -> f64 {
-        let t = input.atoms.typ[i];
-        if self.types.rho0.get(t).copied().unwrap_or(0.0) == 0.0 {
-            return 0.0;
-        }
-        tait_p_over_rho2(input.atoms.rho[i], self.types.rho0[t], self.types.b[t])
+    fn pack(&self, input: &PairInput, i: usize) -> Packed {
+        let a = input.atoms;
+        let t = a.typ[i];
+        let rho0 = self.types.rho0.get(t).copied().unwrap_or(0.0);
+        let p = if rho0 == 0.0 { 0.0 } else { tait_p_over_rho2(a.rho[i], rho0, self.types.b[t]) };
+        Packed { x: a.x[i], v: a.vest[i], a: a.rho[i], b: p }
     }
     #[inline(always)]
     fn cutsq_row(&self, ti: usize) -> &[f64] {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair(&self, input: &PairInput, i: usize, j: usize, ti: usize, tj: usize, fi: f64, fj: f64, del: [f64; 3], rsq: f64) -> SphContribution {
-        let a = input.atoms;
-        let (mu, h) = *self.pairs.get(ti, tj);
-        let wfd = self.kernel.wfd(rsq, h, self.dim3);
-        let (imass, jmass) = (input.type_mass[ti], input.type_mass[tj]);
-        let (vi, vj) = (a.vest[i], a.vest[j]);
+    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, del: [f64; 3], rsq: f64) -> SphContribution {
+        let (mu, sup) = at(&self.derived, ti * (self.n + 1) + tj);
+        let wfd = self.kernel.wfd_with(rsq, &sup, self.dim3);
+        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
+        let (vi, vj) = (pi.v, pj.v);
         let vel = [vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]];
         let dvdr = del[0] * vel[0] + del[1] * vel[1] + del[2] * vel[2];
         // LAMMPS' order: fvisc = 2 mu / (rho_i rho_j); fvisc *= m_i m_j wfd
-        let mut fvisc = 2.0 * mu / (a.rho[i] * a.rho[j]);
+        let mut fvisc = 2.0 * mu / (pi.a * pj.a);
         fvisc *= imass * jmass * wfd;
-        let fpair = -imass * jmass * (fi + fj) * wfd;
+        let fpair = -imass * jmass * (pi.b + pj.b) * wfd;
         let de = -0.5 * (fpair * dvdr + fvisc * (vel[0] * vel[0] + vel[1] * vel[1] + vel[2] * vel[2]));
         SphContribution {
             f: [del[0] * fpair + vel[0] * fvisc, del[1] * fpair + vel[1] * fvisc, del[2] * fpair + vel[2] * fvisc],
@@ -80,6 +82,14 @@ impl PairStyle for SphTaitwaterMorris {
         self.types.grow(ntypes);
         self.n = ntypes;
         self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        let s = ntypes + 1;
+        self.derived = vec![(0.0, Support::default()); s * s];
+        for i in 1..=ntypes {
+            for j in 1..=ntypes {
+                let (mu, h) = *self.pairs.get(i, j);
+                self.derived[i * s + j] = (mu, Support::new(h));
+            }
+        }
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

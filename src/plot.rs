@@ -1,12 +1,15 @@
 //! Small line/scatter charts drawn with `plotters`, written as PNG and SVG (the validation report's
 //! figures). Linear or logarithmic axes, axis labels, a legend, optional per-point labels.
 //!
-//!     use dmhs::plot::{Chart, Series};
-//!     let chart = Chart::new("Poiseuille flow")
-//!         .x_label("y (mm)").y_label("u (mm/s)")
-//!         .series(Series::line("analytic", vec![(0.0, 0.0), (0.5, 0.025), (1.0, 0.0)]))
-//!         .series(Series::points("dmhs", vec![(0.25, 0.019)]));
-//!     chart.save(std::path::Path::new("out/poiseuille"))?;  // out/poiseuille.png, .svg
+//! ```no_run
+//! use dmhs::plot::{Chart, Series};
+//! let chart = Chart::new("Poiseuille flow")
+//!     .x_label("y (mm)")
+//!     .y_label("u (mm/s)")
+//!     .series(Series::line("analytic", vec![(0.0, 0.0), (0.5, 0.025), (1.0, 0.0)]))
+//!     .series(Series::points("dmhs", vec![(0.25, 0.019)]));
+//! chart.save(std::path::Path::new("out/poiseuille")).unwrap(); // out/poiseuille.png, .svg
+//! ```
 //!
 //! Text is rendered with the system's sans-serif font (fontconfig; Debian: fonts-dejavu-core).
 

@@ -11,12 +11,51 @@
 //! chart.save(std::path::Path::new("out/poiseuille")).unwrap(); // out/poiseuille.png, .svg
 //! ```
 //!
-//! Text is rendered with the system's sans-serif font (fontconfig; Debian: fonts-dejavu-core).
+//! Text is rasterised in pure Rust (no fontconfig/freetype needed to build): the first TrueType font
+//! found among `$DMHS_FONT` and the usual system paths (Debian: fonts-dejavu-core) is used.
 
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
+
+/// TrueType fonts tried in order when `$DMHS_FONT` is not set.
+const FONT_PATHS: &[&str] = &[
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+    "/usr/share/fonts/liberation-sans/LiberationSans-Regular.ttf",
+    "/usr/share/fonts/truetype/freefont/FreeSans.ttf",
+    "/usr/share/fonts/truetype/noto/NotoSans-Regular.ttf",
+    "/System/Library/Fonts/Supplemental/Arial.ttf",
+    "/Library/Fonts/Arial.ttf",
+    "C:\\Windows\\Fonts\\arial.ttf",
+];
+
+/// Register the chart font under the name "sans-serif" once per process.
+fn ensure_font() -> Result<(), String> {
+    static FONT: std::sync::OnceLock<Result<(), String>> = std::sync::OnceLock::new();
+    FONT.get_or_init(|| {
+        let from_env = std::env::var("DMHS_FONT").ok().filter(|p| !p.is_empty());
+        let candidates: Vec<String> = match &from_env {
+            Some(p) => vec![p.clone()],
+            None => FONT_PATHS.iter().map(|p| p.to_string()).collect(),
+        };
+        for path in &candidates {
+            let Ok(bytes) = std::fs::read(path) else { continue };
+            // plotters keeps fonts for the life of the process
+            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+            return plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
+                .map_err(|_| format!("{path}: not a TrueType font"));
+        }
+        Err(match from_env {
+            Some(p) => format!("DMHS_FONT={p}: cannot read the font file"),
+            None => "charts need a TrueType font: install one (Debian: apt-get install fonts-dejavu-core) or set DMHS_FONT=/path/to/font.ttf".to_string(),
+        })
+    })
+    .clone()
+}
 
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -160,6 +199,7 @@ impl Chart {
 
     /// Write `stem.png` and `stem.svg` (creating the folder); returns the two paths.
     pub fn save(&self, stem: &Path) -> Result<Vec<PathBuf>, String> {
+        ensure_font()?;
         if let Some(dir) = stem.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         }

@@ -42,35 +42,28 @@ impl Kernel {
     /// ih = 1/h and ihsq = ih*ih per pair, identically).
     #[inline(always)]
     pub fn wfd_with(self, rsq: f64, s: &Support, dim3: bool) -> f64 {
-        let (h, ih, ihsq) = (s.h, s.ih, s.ihsq);
-        match self {
-            Kernel::Lucy => {
-                let w = h - rsq.sqrt();
-                if dim3 {
-                    -25.066903536973515383 * w * w * ihsq * ihsq * ihsq * ih
-                } else {
-                    -19.098593171027440292 * w * w * ihsq * ihsq * ihsq
-                }
-            }
-            Kernel::Wendland2 => {
-                // dW/dr = -20 K q (1-q)^3 / h^(d+1)  ->  (1/r) dW/dr = -20 K (1-q)^3 / h^(d+2)
-                let q = rsq.sqrt() / h;
-                let u = 1.0 - q;
-                let k = if dim3 { 21.0 / (2.0 * std::f64::consts::PI) } else { 7.0 / std::f64::consts::PI };
-                let hd2 = if dim3 { h.powi(5) } else { h.powi(4) };
-                -20.0 * k * u * u * u / hd2
-            }
-            Kernel::Cubic => {
-                // support h = 2 hs; W = sigma/hs^d f(s), s = r/hs
-                let hs = 0.5 * h;
-                let r = rsq.sqrt();
-                let s = r / hs;
-                let sigma = if dim3 { 1.0 / std::f64::consts::PI } else { 10.0 / (7.0 * std::f64::consts::PI) };
-                // (1/s) df/ds
-                let dfds_over_s = if s < 1.0 { -3.0 + 2.25 * s } else { -0.75 * (2.0 - s) * (2.0 - s) / s };
-                let hsd2 = if dim3 { hs.powi(5) } else { hs.powi(4) };
-                sigma * dfds_over_s / hsd2
-            }
+        let r = rsq.sqrt();
+        match (self, dim3) {
+            (Kernel::Lucy, false) => lucy_wfd_2d(r, s.h, s.ihsq),
+            (Kernel::Lucy, true) => lucy_wfd_3d(r, s.h, s.ih, s.ihsq),
+            (Kernel::Wendland2, _) => wendland2_wfd(r, s.h, dim3),
+            (Kernel::Cubic, _) => cubic_wfd(r, s.h, dim3),
+        }
+    }
+
+    /// [`Kernel::wfd_with`] for a batch of pairs, lane by lane (the kernel and dimension are
+    /// chosen once per batch, so the compiler vectorizes each arm; the same operations per lane
+    /// give the same bits).
+    #[inline(always)]
+    pub fn wfd_lanes(self, rsq: &L, s: &SupportLanes, dim3: bool) -> L {
+        let r = sqrt_lanes(rsq);
+        match (self, dim3) {
+            (Kernel::Lucy, false) => lanes(|l| lucy_wfd_2d(r[l], s.h[l], s.ihsq[l])),
+            (Kernel::Lucy, true) => lanes(|l| lucy_wfd_3d(r[l], s.h[l], s.ih[l], s.ihsq[l])),
+            (Kernel::Wendland2, false) => lanes(|l| wendland2_wfd(r[l], s.h[l], false)),
+            (Kernel::Wendland2, true) => lanes(|l| wendland2_wfd(r[l], s.h[l], true)),
+            (Kernel::Cubic, false) => lanes(|l| cubic_wfd(r[l], s.h[l], false)),
+            (Kernel::Cubic, true) => lanes(|l| cubic_wfd(r[l], s.h[l], true)),
         }
     }
 
@@ -97,6 +90,88 @@ impl Kernel {
                 if s < 1.0 { sigma * (1.0 - 1.5 * s * s + 0.75 * s * s * s) } else { sigma * 0.25 * (2.0 - s).powi(3) }
             }
         }
+    }
+}
+
+/// Lucy's `(1/r) dW/dr` in 2D at distance r, in LAMMPS' order of operations.
+#[inline(always)]
+fn lucy_wfd_2d(r: f64, h: f64, ihsq: f64) -> f64 {
+    let w = h - r;
+    -19.098593171027440292 * w * w * ihsq * ihsq * ihsq
+}
+
+/// Lucy's `(1/r) dW/dr` in 3D at distance r, in LAMMPS' order of operations.
+#[inline(always)]
+fn lucy_wfd_3d(r: f64, h: f64, ih: f64, ihsq: f64) -> f64 {
+    let w = h - r;
+    -25.066903536973515383 * w * w * ihsq * ihsq * ihsq * ih
+}
+
+/// Wendland C2: dW/dr = -20 K q (1-q)^3 / h^(d+1), so (1/r) dW/dr = -20 K (1-q)^3 / h^(d+2).
+#[inline(always)]
+fn wendland2_wfd(r: f64, h: f64, dim3: bool) -> f64 {
+    let q = r / h;
+    let u = 1.0 - q;
+    let k = if dim3 { 21.0 / (2.0 * std::f64::consts::PI) } else { 7.0 / std::f64::consts::PI };
+    let hd2 = if dim3 { h.powi(5) } else { h.powi(4) };
+    -20.0 * k * u * u * u / hd2
+}
+
+/// Cubic B-spline with support h = 2 hs; W = sigma/hs^d f(s), s = r/hs.
+#[inline(always)]
+fn cubic_wfd(r: f64, h: f64, dim3: bool) -> f64 {
+    let hs = 0.5 * h;
+    let s = r / hs;
+    let sigma = if dim3 { 1.0 / std::f64::consts::PI } else { 10.0 / (7.0 * std::f64::consts::PI) };
+    // (1/s) df/ds, both branches computed and one selected (branch-free in lanes)
+    let inner = -3.0 + 2.25 * s;
+    let outer = -0.75 * (2.0 - s) * (2.0 - s) / s;
+    let dfds_over_s = if s < 1.0 { inner } else { outer };
+    let hsd2 = if dim3 { hs.powi(5) } else { hs.powi(4) };
+    sigma * dfds_over_s / hsd2
+}
+
+/// Pairs evaluated together by the SPH loop (one AVX register of f64; 8 measured slower).
+pub const LANES: usize = 4;
+/// One value per lane.
+pub type L = [f64; LANES];
+
+/// A lane array from a per-lane expression.
+#[inline(always)]
+pub fn lanes(f: impl Fn(usize) -> f64) -> L {
+    std::array::from_fn(f)
+}
+
+/// Square roots of the lanes: one vector instruction where the CPU has AVX (the compiler,
+/// left alone, mixes scalar and vector roots); IEEE roots either way, so the same bits.
+#[inline(always)]
+pub fn sqrt_lanes(x: &L) -> L {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    {
+        use std::arch::x86_64::{_mm256_loadu_pd, _mm256_sqrt_pd, _mm256_storeu_pd};
+        let mut out = [0.0; LANES];
+        // SAFETY: AVX is enabled at compile time; both arrays hold LANES = 4 f64
+        unsafe { _mm256_storeu_pd(out.as_mut_ptr(), _mm256_sqrt_pd(_mm256_loadu_pd(x.as_ptr()))) };
+        out
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    lanes(|l| x[l].sqrt())
+}
+
+/// Kernel supports of a batch, lane by lane.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SupportLanes {
+    pub h: L,
+    pub ih: L,
+    pub ihsq: L,
+}
+
+impl SupportLanes {
+    /// Gather the supports of the batch's type pairs with `sup(lane)`.
+    #[inline(always)]
+    pub fn gather(sup: impl Fn(usize) -> Support) -> SupportLanes {
+        let s: [Support; LANES] = std::array::from_fn(sup);
+        SupportLanes { h: lanes(|l| s[l].h), ih: lanes(|l| s[l].ih), ihsq: lanes(|l| s[l].ihsq) }
     }
 }
 
@@ -257,16 +332,31 @@ pub fn check_positive(w: &Word, x: f64, what: &str) -> DResult<()> {
     Ok(())
 }
 
-/// What one SPH pair contributes: force on i (j gets the opposite), density and energy rates
-/// of i and j, and the scalar LAMMPS tallies in the virial (`fpair`).
+/// What a batch of SPH pairs contributes, per lane: force on i (j gets the opposite), density
+/// and energy rates of i and j, and the scalar LAMMPS tallies in the virial (`fpair`).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SphContribution {
-    pub f: [f64; 3],
-    pub fpair: f64,
-    pub drho_i: f64,
-    pub drho_j: f64,
-    pub de_i: f64,
-    pub de_j: f64,
+    pub f: [L; 3],
+    pub fpair: L,
+    pub drho_i: L,
+    pub drho_j: L,
+    pub de_i: L,
+    pub de_j: L,
+}
+
+/// Up to [`LANES`] neighbours j of one particle i, field by field (unused lanes repeat lane 0;
+/// their results are ignored).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Batch {
+    /// Types of the j.
+    pub tj: [usize; LANES],
+    /// x_i - x_j
+    pub del: [L; 3],
+    pub rsq: L,
+    /// The j's velocity (estimate) and style scalars, as in [`Packed`].
+    pub v: [L; 3],
+    pub a: L,
+    pub b: L,
 }
 
 /// What the SPH loop reads of one particle, packed into one cache line: position, a velocity
@@ -286,9 +376,9 @@ pub trait SphKernel: Sync {
     fn pack(&self, input: &PairInput, i: usize) -> Packed;
     /// Squared cutoffs of type pairs (ti, 0..=ntypes) (0: no interaction).
     fn cutsq_row(&self, ti: usize) -> &[f64];
-    /// The contribution of a pair inside the cutoff.
-    #[allow(clippy::too_many_arguments)]
-    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, del: [f64; 3], rsq: f64) -> SphContribution;
+    /// The contributions of a batch of pairs (i, j) inside the cutoff, written lane by lane with
+    /// [`lanes`] so that the compiler evaluates the lanes together.
+    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution;
 }
 
 /// Rates and forces accumulated per particle during the loop (one record per owned atom).
@@ -345,38 +435,50 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
             // SAFETY: the first n_in entries were written
             unsafe { inside.set_len(n_in) };
             let mut own = Acc::default();
-            for &j in &inside {
-                let j = j as usize;
-                let pj = at(&packed, j);
-                let tj = at(&typ, j) as usize;
-                let del = [xi[0] - pj.x[0], xi[1] - pj.x[1], xi[2] - pj.x[2]];
-                let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                let c = kernel.pair(input, &pi, &pj, ti, tj, del, rsq);
-                own.f[0] += c.f[0];
-                own.f[1] += c.f[1];
-                own.f[2] += c.f[2];
-                own.drho += c.drho_i;
-                own.desph += c.de_i;
-                let w = if j < nlocal {
-                    // SAFETY: an owned j is in this chunk or the next (slab schedule)
-                    let aj = unsafe { shared.get(j) };
-                    aj.f[0] -= c.f[0];
-                    aj.f[1] -= c.f[1];
-                    aj.f[2] -= c.f[2];
-                    aj.desph += c.de_j;
-                    aj.drho += c.drho_j;
-                    1.0
-                } else {
-                    0.5
+            for batch in inside.chunks(LANES) {
+                let n = batch.len();
+                let js: [usize; LANES] = std::array::from_fn(|l| batch[if l < n { l } else { 0 }] as usize);
+                // SAFETY: neighbour indices are below nall = packed.len()
+                let pj: [&Packed; LANES] = js.map(|j| unsafe { packed.get_unchecked(j) });
+                let del = [lanes(|l| xi[0] - pj[l].x[0]), lanes(|l| xi[1] - pj[l].x[1]), lanes(|l| xi[2] - pj[l].x[2])];
+                let b = Batch {
+                    tj: js.map(|j| at(&typ, j) as usize),
+                    del,
+                    rsq: lanes(|l| del[0][l] * del[0][l] + del[1][l] * del[1][l] + del[2][l] * del[2][l]),
+                    v: [lanes(|l| pj[l].v[0]), lanes(|l| pj[l].v[1]), lanes(|l| pj[l].v[2])],
+                    a: lanes(|l| pj[l].a),
+                    b: lanes(|l| pj[l].b),
                 };
-                if eflag {
-                    let fp = c.fpair;
-                    t.virial[0] += w * del[0] * del[0] * fp;
-                    t.virial[1] += w * del[1] * del[1] * fp;
-                    t.virial[2] += w * del[2] * del[2] * fp;
-                    t.virial[3] += w * del[0] * del[1] * fp;
-                    t.virial[4] += w * del[0] * del[2] * fp;
-                    t.virial[5] += w * del[1] * del[2] * fp;
+                let c = kernel.pair_lanes(input, &pi, ti, &b);
+                // apply in list order (the sums of a one-pair-at-a-time loop)
+                for (l, &j) in js.iter().enumerate().take(n) {
+                    let f = [c.f[0][l], c.f[1][l], c.f[2][l]];
+                    own.f[0] += f[0];
+                    own.f[1] += f[1];
+                    own.f[2] += f[2];
+                    own.drho += c.drho_i[l];
+                    own.desph += c.de_i[l];
+                    let w = if j < nlocal {
+                        // SAFETY: an owned j is in this chunk or the next (slab schedule)
+                        let aj = unsafe { shared.get(j) };
+                        aj.f[0] -= f[0];
+                        aj.f[1] -= f[1];
+                        aj.f[2] -= f[2];
+                        aj.desph += c.de_j[l];
+                        aj.drho += c.drho_j[l];
+                        1.0
+                    } else {
+                        0.5
+                    };
+                    if eflag {
+                        let (fp, d) = (c.fpair[l], [b.del[0][l], b.del[1][l], b.del[2][l]]);
+                        t.virial[0] += w * d[0] * d[0] * fp;
+                        t.virial[1] += w * d[1] * d[1] * fp;
+                        t.virial[2] += w * d[2] * d[2] * fp;
+                        t.virial[3] += w * d[0] * d[1] * fp;
+                        t.virial[4] += w * d[0] * d[2] * fp;
+                        t.virial[5] += w * d[1] * d[2] * fp;
+                    }
                 }
             }
             // SAFETY: i belongs to this chunk

@@ -3,7 +3,7 @@
 //! de_i = 2 m_i m_j/(m_i + m_j) (rho_i + rho_j)/(rho_i rho_j) D (e_i - e_j) wfd, de_j = -de_i
 //! (esph is extensive; temperatures come from compute sph/t/atom as esph/cv).
 
-use super::sph::{compute_sph, parse_kernel, Kernel, Packed, PairTable, SphContribution, SphKernel};
+use super::sph::{compute_sph, lanes, parse_kernel, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -39,14 +39,17 @@ impl SphKernel for SphHeatConduction {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, _del: [f64; 3], rsq: f64) -> SphContribution {
-        let (d, h) = *self.pairs.get(ti, tj);
-        let wfd = self.kernel.wfd(rsq, h, self.dim3);
-        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
-        let mut de = 2.0 * imass * jmass / (imass + jmass);
-        de *= (pi.a + pj.a) / (pi.a * pj.a);
-        de *= d * (pi.b - pj.b) * wfd;
-        SphContribution { de_i: de, de_j: -de, ..SphContribution::default() }
+    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+        let dh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
+        // LAMMPS computes 1/h per pair: Support::new does the same arithmetic
+        let sup = SupportLanes::gather(|l| Support::new(dh[l].1));
+        let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
+        let imass = at(input.type_mass, ti);
+        let jmass = lanes(|l| at(input.type_mass, b.tj[l]));
+        let de = lanes(|l| 2.0 * imass * jmass[l] / (imass + jmass[l]));
+        let de = lanes(|l| de[l] * ((pi.a + b.a[l]) / (pi.a * b.a[l])));
+        let de = lanes(|l| de[l] * (dh[l].0 * (pi.b - b.b[l]) * wfd[l]));
+        SphContribution { de_i: de, de_j: lanes(|l| -de[l]), ..SphContribution::default() }
     }
 }
 

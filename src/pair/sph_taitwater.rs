@@ -5,7 +5,7 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, TaitTypes};
+use super::sph::{compute_sph, lanes, parse_kernel, tait_coeff, tait_p_over_rho2, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -49,25 +49,27 @@ impl SphKernel for SphTaitwater {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, del: [f64; 3], rsq: f64) -> SphContribution {
-        let (sup, eps, visc_c) = at(&self.derived, ti * (self.n + 1) + tj);
-        let h = sup.h;
-        let wfd = self.kernel.wfd_with(rsq, &sup, self.dim3);
-        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
-        let (vi, vj) = (pi.v, pj.v);
-        let dvdr = del[0] * (vi[0] - vj[0]) + del[1] * (vi[1] - vj[1]) + del[2] * (vi[2] - vj[2]);
-        // Monaghan viscosity for approaching pairs only, computed for all and masked
-        // (branch-free: the sign of v.x is unpredictable)
-        let mu = h * dvdr / (rsq + eps);
-        let fvisc = visc_c * mu / (pi.a + pj.a);
-        let fvisc = f64::from_bits(fvisc.to_bits() & if dvdr < 0.0 { u64::MAX } else { 0 });
-        let fpair = -imass * jmass * (pi.b + pj.b + fvisc) * wfd;
-        let de = -0.5 * fpair * dvdr;
+    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+        let row = ti * (self.n + 1);
+        let d: [(Support, f64, f64); LANES] = std::array::from_fn(|l| at(&self.derived, row + b.tj[l]));
+        let sup = SupportLanes::gather(|l| d[l].0);
+        let (eps, visc_c) = (lanes(|l| d[l].1), lanes(|l| d[l].2));
+        let (del, rsq) = (&b.del, &b.rsq);
+        let wfd = self.kernel.wfd_lanes(rsq, &sup, self.dim3);
+        let imass = at(input.type_mass, ti);
+        let jmass = lanes(|l| at(input.type_mass, b.tj[l]));
+        let vi = pi.v;
+        let dvdr = lanes(|l| del[0][l] * (vi[0] - b.v[0][l]) + del[1][l] * (vi[1] - b.v[1][l]) + del[2][l] * (vi[2] - b.v[2][l]));
+        // Monaghan viscosity for approaching pairs only: computed for all and selected
+        let mu = lanes(|l| sup.h[l] * dvdr[l] / (rsq[l] + eps[l]));
+        let fvisc = lanes(|l| if dvdr[l] < 0.0 { visc_c[l] * mu[l] / (pi.a + b.a[l]) } else { 0.0 });
+        let fpair = lanes(|l| -imass * jmass[l] * (pi.b + b.b[l] + fvisc[l]) * wfd[l]);
+        let de = lanes(|l| -0.5 * fpair[l] * dvdr[l]);
         SphContribution {
-            f: [del[0] * fpair, del[1] * fpair, del[2] * fpair],
+            f: [lanes(|l| del[0][l] * fpair[l]), lanes(|l| del[1][l] * fpair[l]), lanes(|l| del[2][l] * fpair[l])],
             fpair,
-            drho_i: jmass * dvdr * wfd,
-            drho_j: imass * dvdr * wfd,
+            drho_i: lanes(|l| jmass[l] * dvdr[l] * wfd[l]),
+            drho_j: lanes(|l| imass * dvdr[l] * wfd[l]),
             de_i: de,
             de_j: de,
         }

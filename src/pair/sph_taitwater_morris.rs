@@ -4,7 +4,7 @@
 //! F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) wfd x_ij + 2 mu m_i m_j wfd / (rho_i rho_j) v_ij;
 //! de_i = de_j = -(fpair v.x + fvisc |v_ij|^2)/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, parse_kernel, tait_coeff, tait_p_over_rho2, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, TaitTypes};
+use super::sph::{compute_sph, lanes, parse_kernel, tait_coeff, tait_p_over_rho2, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -46,23 +46,29 @@ impl SphKernel for SphTaitwaterMorris {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair(&self, input: &PairInput, pi: &Packed, pj: &Packed, ti: usize, tj: usize, del: [f64; 3], rsq: f64) -> SphContribution {
-        let (mu, sup) = at(&self.derived, ti * (self.n + 1) + tj);
-        let wfd = self.kernel.wfd_with(rsq, &sup, self.dim3);
-        let (imass, jmass) = (at(input.type_mass, ti), at(input.type_mass, tj));
-        let (vi, vj) = (pi.v, pj.v);
-        let vel = [vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]];
-        let dvdr = del[0] * vel[0] + del[1] * vel[1] + del[2] * vel[2];
+    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+        let row = ti * (self.n + 1);
+        let d: [(f64, Support); LANES] = std::array::from_fn(|l| at(&self.derived, row + b.tj[l]));
+        let sup = SupportLanes::gather(|l| d[l].1);
+        let mu = lanes(|l| d[l].0);
+        let del = &b.del;
+        let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
+        let imass = at(input.type_mass, ti);
+        let jmass = lanes(|l| at(input.type_mass, b.tj[l]));
+        let vi = pi.v;
+        let vel = [lanes(|l| vi[0] - b.v[0][l]), lanes(|l| vi[1] - b.v[1][l]), lanes(|l| vi[2] - b.v[2][l])];
+        let dvdr = lanes(|l| del[0][l] * vel[0][l] + del[1][l] * vel[1][l] + del[2][l] * vel[2][l]);
         // LAMMPS' order: fvisc = 2 mu / (rho_i rho_j); fvisc *= m_i m_j wfd
-        let mut fvisc = 2.0 * mu / (pi.a * pj.a);
-        fvisc *= imass * jmass * wfd;
-        let fpair = -imass * jmass * (pi.b + pj.b) * wfd;
-        let de = -0.5 * (fpair * dvdr + fvisc * (vel[0] * vel[0] + vel[1] * vel[1] + vel[2] * vel[2]));
+        let fvisc = lanes(|l| 2.0 * mu[l] / (pi.a * b.a[l]));
+        let fvisc = lanes(|l| fvisc[l] * (imass * jmass[l] * wfd[l]));
+        let fpair = lanes(|l| -imass * jmass[l] * (pi.b + b.b[l]) * wfd[l]);
+        let vsq = lanes(|l| vel[0][l] * vel[0][l] + vel[1][l] * vel[1][l] + vel[2][l] * vel[2][l]);
+        let de = lanes(|l| -0.5 * (fpair[l] * dvdr[l] + fvisc[l] * vsq[l]));
         SphContribution {
-            f: [del[0] * fpair + vel[0] * fvisc, del[1] * fpair + vel[1] * fvisc, del[2] * fpair + vel[2] * fvisc],
+            f: std::array::from_fn(|k| lanes(|l| del[k][l] * fpair[l] + vel[k][l] * fvisc[l])),
             fpair,
-            drho_i: jmass * dvdr * wfd,
-            drho_j: imass * dvdr * wfd,
+            drho_i: lanes(|l| jmass[l] * dvdr[l] * wfd[l]),
+            drho_j: lanes(|l| imass * dvdr[l] * wfd[l]),
             de_i: de,
             de_j: de,
         }

@@ -30,6 +30,7 @@ if [ ${#names[@]} -eq 0 ]; then
 fi
 
 "$py" "$here/gen_chains.py"
+"$py" "$here/gen_clumps.py"
 for name in "${names[@]}"; do
     echo "== $name"
     out="$here/refs/$name"

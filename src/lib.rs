@@ -9,6 +9,7 @@ pub mod cli_crosscheck;
 pub mod bench;
 pub mod boundary;
 pub mod compute;
+pub mod contact_history;
 pub mod crosscheck;
 pub mod deck;
 pub mod create_atoms;

@@ -7,8 +7,10 @@ pub mod enforce2d;
 pub mod gravity;
 pub mod move_linear;
 pub mod nve;
+pub mod nve_sphere;
 pub mod setforce;
 pub mod viscous;
+pub mod wall_gran;
 pub mod wall_reflect;
 
 use crate::sim::{RunError, Simulation};
@@ -78,19 +80,21 @@ pub trait Fix: Send {
 }
 
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "move"];
+pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
     let id = id.text.clone();
     match style.text.as_str() {
         "nve" => Ok(Box::new(nve::FixNve::from_lammps(id, groupbit, args, cmd)?)),
+        "nve/sphere" => Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(id, groupbit, args, cmd, sim)?)),
         "gravity" => Ok(Box::new(gravity::FixGravity::from_lammps(id, groupbit, args, cmd, sim)?)),
         "addforce" => Ok(Box::new(addforce::FixAddForce::from_lammps(id, groupbit, args, cmd, sim)?)),
         "setforce" => Ok(Box::new(setforce::FixSetForce::from_lammps(id, groupbit, args, cmd, sim)?)),
         "enforce2d" => Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(id, groupbit, args, cmd)?)),
         "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, sim)?)),
         "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, sim)?)),
         "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }

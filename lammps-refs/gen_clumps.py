@@ -7,7 +7,7 @@ DMHS "point-like elemental particles bonded into clumps": each clump is a tetrah
 spheres (diameter 0.9, density 1) joined by six harmonic bonds (rest length 1.0, the edges) and
 twelve harmonic angles (60 degrees, every corner of every face), one molecule ID per clump; the
 corners are jittered by up to 0.03 so that bonds and angles start with non-zero forces.
-Two 3 x 3 blocks of clumps, randomly oriented, approach each other along x (vx = +1.5 and -1.5
+Two 3 x 3 blocks of clumps, randomly oriented, approach each other along x (vx = +4 and -4
 plus a small seeded spread), offset in y and z so that the contacts are oblique; a few spheres of
 the two blocks already overlap at step 0. The box is
 periodic; the blocks sit across the y and z faces, so some clumps are split by the boundary
@@ -25,7 +25,7 @@ DIAMETER = 0.9
 DENSITY = 1.0
 EDGE = 1.0
 BOX = (16.0, 9.0, 9.0)
-SPEED = 1.5
+SPEED = 4.0
 SEED = 20251124
 
 

@@ -27,6 +27,7 @@ pub mod pair;
 pub mod progress;
 pub mod random_park;
 pub mod region;
+pub mod restart;
 pub mod run;
 pub mod sim;
 pub mod special;

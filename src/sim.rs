@@ -75,6 +75,9 @@ pub struct Simulation {
     pub bonded_lists: crate::bonded_forces::BondedLists,
     pub special_bonds: SpecialBonds,
     pub special_table: SpecialTable,
+    /// The force-field commands as given (pair/bond/angle/dihedral styles and coefficients,
+    /// pair_modify, special_bonds), replayed by read_restart.
+    pub ff_commands: Vec<Vec<String>>,
     pub neigh_settings: NeighborSettings,
     pub neighbor: Neighbor,
     pub comm_vel: bool,
@@ -147,6 +150,7 @@ impl Simulation {
             bonded_lists: Default::default(),
             special_bonds: SpecialBonds::default(),
             special_table: SpecialTable::default(),
+            ff_commands: Vec::new(),
             neigh_settings: NeighborSettings::new(units.skin),
             neighbor: Neighbor::default(),
             comm_vel: false,

@@ -101,18 +101,11 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
             let mut tqi = [0.0f64; 3];
             for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
                 let j = (jraw & NEIGH_MASK) as usize;
-                let tj = typ[j];
-                if EXTRA {
-                    if let Some(filter) = input.type_filter {
-                        if !filter[ti * stride + tj] {
-                            continue;
-                        }
-                    }
-                }
-                let xj = x[j];
+                // SAFETY: the list builder stores only indices < nall, the length of every
+                // per-atom array checked above
+                let (xj, radj) = unsafe { (*x.get_unchecked(j), *radius.get_unchecked(j)) };
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                let radj = radius[j];
                 let radsum = radi + radj;
                 let e = k0 + k;
                 if rsq >= radsum * radsum {
@@ -122,6 +115,14 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                         values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
                     }
                     continue;
+                }
+                let tj = unsafe { *typ.get_unchecked(j) };
+                if EXTRA {
+                    if let Some(filter) = input.type_filter {
+                        if !filter[ti * stride + tj] {
+                            continue;
+                        }
+                    }
                 }
                 let factor = if EXTRA { input.special_lj[special_level(jraw)] } else { 1.0 };
                 if EXTRA && factor == 0.0 {
@@ -134,17 +135,20 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 } else {
                     &mut empty
                 };
-                let c = Contact {
-                    del,
-                    rsq,
-                    radi,
-                    radj,
-                    vi: &v[i],
-                    vj: &v[j],
-                    omegai: &omega[i],
-                    omegaj: &omega[j],
-                    mi: rmass[i],
-                    mj: rmass[j],
+                // SAFETY: as above
+                let c = unsafe {
+                    Contact {
+                        del,
+                        rsq,
+                        radi,
+                        radj,
+                        vi: v.get_unchecked(i),
+                        vj: v.get_unchecked(j),
+                        omegai: omega.get_unchecked(i),
+                        omegaj: omega.get_unchecked(j),
+                        mi: *rmass.get_unchecked(i),
+                        mj: *rmass.get_unchecked(j),
+                    }
                 };
                 let mut r = M::contact(model.params(ti, tj), &c, h, update, dt);
                 if EXTRA && factor != 1.0 {

@@ -1,7 +1,8 @@
 //! `pair_style gran/hooke Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]`: the Hookean
-//! spring-dashpot contact without shear history (LAMMPS 2025 arithmetic). The normal force
-//! Kn delta - m_eff gamma_n v_n is never negative; the tangential force is pure damping,
-//! -m_eff gamma_t v_tr, limited to xmu |F_n|. Kt is accepted and unused, as in LAMMPS.
+//! spring-dashpot contact without shear history (LAMMPS 2025 arithmetic). The normal force is
+//! Kn delta - m_eff gamma_n v_n (clamped at 0 only with `limit_damping`, as LAMMPS 2025 does);
+//! the tangential force is pure damping, -m_eff gamma_t v_tr, limited to xmu |F_n|. Kt is
+//! accepted and unused, as in LAMMPS.
 
 use super::contact::{compute_contacts, Contact, ContactForce, ContactModel};
 use super::gran_hooke_history::{check_setup, classic_force, Classic, GranTypes};
@@ -56,7 +57,7 @@ impl ContactModel for NoHistory {
         let meff = c.mi * c.mj / (c.mi + c.mj);
         let damp = meff * p.gamman * vnnr * rsqinv;
         let mut ccel = p.kn * (radsum - r) * rinv - damp;
-        if ccel < 0.0 {
+        if p.limit_damping && ccel < 0.0 {
             ccel = 0.0;
         }
 

@@ -135,15 +135,19 @@ impl FixWallGran {
             let xi = a.x[i][self.dim];
             let del1 = xi - wlo;
             let del2 = whi - xi;
-            let mut dx = [0.0f64; 3];
-            dx[self.dim] = if del1 < del2 { del1 } else { -del2 };
-            let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            // signed distance from the nearer plane; |dx|^2 is just its square (the other
+            // components are zero)
+            let dist = if del1 < del2 { del1 } else { -del2 };
+            let rsq = dist * dist;
             let radi = a.radius[i];
             let h = &mut hist[3 * i..3 * i + 3];
             if rsq >= radi * radi {
                 h.iter_mut().for_each(|s| *s = 0.0);
                 continue;
             }
+            let mut dx = [0.0f64; 3];
+            dx[self.dim] = dist;
+            let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             let g = GranGeom { dx, rsq, radi, radj: 0.0, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, meff: a.rmass[i], wall: true };
             let r = granular_contact(&self.model, &g, h, update, dt);
             let f = &mut a.f[i];

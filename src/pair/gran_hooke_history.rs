@@ -10,7 +10,7 @@
 //! Kt NULL = 2/7 Kn, gamma_t NULL = gamma_n/2, dampflag 0 = no tangential damping.
 //! Special-bond weights scale the force and torques (LAMMPS 2025).
 
-use super::contact::{compute_contacts, Contact, ContactForce, ContactModel};
+use super::contact::{compute_contacts, lanes, Contact, ContactForce, ContactModel, LaneSrc, LanesOut, L};
 use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
 use crate::contact_history::ContactHistory;
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -274,6 +274,84 @@ impl ContactModel for Classic {
         }
         classic_force(c, ccel, rinv, [fs1, fs2, fs3])
     }
+    #[inline(always)]
+    fn contact_lanes(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
+        self.contact_lanes_classic(b, update, dt)
+    }
+}
+
+impl Classic {
+    /// [`ContactModel::contact`] for a batch of pairs, operation by operation over the lanes
+    /// (vectorized by the compiler; the same operations per lane, so the same bits), with the
+    /// branches of the scalar code as per-lane selects.
+    #[inline(always)]
+    fn contact_lanes_classic(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
+        let p = self;
+        let [delx, dely, delz] = b.del();
+        let rsq = lanes(|l| delx[l] * delx[l] + dely[l] * dely[l] + delz[l] * delz[l]);
+        let (radi, radj) = (b.scalar(b.radius, 0), b.scalar(b.radius, 1));
+        let (vi, vj) = (b.v3(b.v, 0), b.v3(b.v, 1));
+        let (omegai, omegaj) = (b.v3(b.omega, 0), b.v3(b.omega, 1));
+        let (mi, mj) = (b.scalar(b.rmass, 0), b.scalar(b.rmass, 1));
+        let radsum = lanes(|l| radi[l] + radj[l]);
+        let r = lanes(|l| rsq[l].sqrt());
+        let rinv = lanes(|l| 1.0 / r[l]);
+        let rsqinv = lanes(|l| 1.0 / rsq[l]);
+        let vr1 = lanes(|l| vi[0][l] - vj[0][l]);
+        let vr2 = lanes(|l| vi[1][l] - vj[1][l]);
+        let vr3 = lanes(|l| vi[2][l] - vj[2][l]);
+        let vnnr = lanes(|l| vr1[l] * delx[l] + vr2[l] * dely[l] + vr3[l] * delz[l]);
+        let vt1 = lanes(|l| vr1[l] - delx[l] * vnnr[l] * rsqinv[l]);
+        let vt2 = lanes(|l| vr2[l] - dely[l] * vnnr[l] * rsqinv[l]);
+        let vt3 = lanes(|l| vr3[l] - delz[l] * vnnr[l] * rsqinv[l]);
+        let wr = |d: usize| lanes(|l| (radi[l] * omegai[d][l] + radj[l] * omegaj[d][l]) * rinv[l]);
+        let (wr1, wr2, wr3) = (wr(0), wr(1), wr(2));
+        let meff = lanes(|l| mi[l] * mj[l] / (mi[l] + mj[l]));
+        let damp = lanes(|l| meff[l] * p.gamman * vnnr[l] * rsqinv[l]);
+        let mut ccel = lanes(|l| p.kn * (radsum[l] - r[l]) * rinv[l] - damp[l]);
+        if p.limit_damping {
+            ccel = lanes(|l| if ccel[l] < 0.0 { 0.0 } else { ccel[l] });
+        }
+        let vtr1 = lanes(|l| vt1[l] - (delz[l] * wr2[l] - dely[l] * wr3[l]));
+        let vtr2 = lanes(|l| vt2[l] - (delx[l] * wr3[l] - delz[l] * wr1[l]));
+        let vtr3 = lanes(|l| vt3[l] - (dely[l] * wr1[l] - delx[l] * wr2[l]));
+        let [mut s1, mut s2, mut s3] = b.hist();
+        if update {
+            s1 = lanes(|l| s1[l] + vtr1[l] * dt);
+            s2 = lanes(|l| s2[l] + vtr2[l] * dt);
+            s3 = lanes(|l| s3[l] + vtr3[l] * dt);
+        }
+        let shrmag = lanes(|l| (s1[l] * s1[l] + s2[l] * s2[l] + s3[l] * s3[l]).sqrt());
+        let rsht = lanes(|l| (s1[l] * delx[l] + s2[l] * dely[l] + s3[l] * delz[l]) * rsqinv[l]);
+        if update {
+            s1 = lanes(|l| s1[l] - rsht[l] * delx[l]);
+            s2 = lanes(|l| s2[l] - rsht[l] * dely[l]);
+            s3 = lanes(|l| s3[l] - rsht[l] * delz[l]);
+        }
+        let mg = lanes(|l| meff[l] * p.gammat);
+        let fs1 = lanes(|l| -(p.kt * s1[l] + mg[l] * vtr1[l]));
+        let fs2 = lanes(|l| -(p.kt * s2[l] + mg[l] * vtr2[l]));
+        let fs3 = lanes(|l| -(p.kt * s3[l] + mg[l] * vtr3[l]));
+        let fs = lanes(|l| (fs1[l] * fs1[l] + fs2[l] * fs2[l] + fs3[l] * fs3[l]).sqrt());
+        let fn_ = lanes(|l| p.xmu * (ccel[l] * r[l]).abs());
+        // Coulomb limit, where fs > fn: rescale (or zero the force when the shear is zero)
+        let ratio = lanes(|l| fn_[l] / fs[l]);
+        let slide = |l: usize| fs[l] > fn_[l];
+        let rescale = |s: L, vtr: L| lanes(|l| if slide(l) && shrmag[l] != 0.0 { ratio[l] * (s[l] + mg[l] * vtr[l] / p.kt) - mg[l] * vtr[l] / p.kt } else { s[l] });
+        let hist = [rescale(s1, vtr1), rescale(s2, vtr2), rescale(s3, vtr3)];
+        let limit = |f: L| lanes(|l| if slide(l) { if shrmag[l] != 0.0 { f[l] * ratio[l] } else { 0.0 } } else { f[l] });
+        let (fs1, fs2, fs3) = (limit(fs1), limit(fs2), limit(fs3));
+        let tor1 = lanes(|l| rinv[l] * (dely[l] * fs3[l] - delz[l] * fs2[l]));
+        let tor2 = lanes(|l| rinv[l] * (delz[l] * fs1[l] - delx[l] * fs3[l]));
+        let tor3 = lanes(|l| rinv[l] * (delx[l] * fs2[l] - dely[l] * fs1[l]));
+        let neg = |rad: &L, t: &L| lanes(|l| -(rad[l] * t[l]));
+        LanesOut {
+            f: [lanes(|l| delx[l] * ccel[l] + fs1[l]), lanes(|l| dely[l] * ccel[l] + fs2[l]), lanes(|l| delz[l] * ccel[l] + fs3[l])],
+            ti: [neg(&radi, &tor1), neg(&radi, &tor2), neg(&radi, &tor3)],
+            tj: [neg(&radj, &tor1), neg(&radj, &tor2), neg(&radj, &tor3)],
+            hist,
+        }
+    }
 }
 
 /// Force on i and torques of the classic styles (torque -R (n x F_t) with the full radii).
@@ -334,4 +412,99 @@ pub fn rebuild_history(history: &mut ContactHistory, input: &PairInput) {
         let radsum = radius[i] + radius[j];
         rsq < radsum * radsum
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pair::contact::{LaneSrc, LANES};
+
+    /// A small deterministic generator (no dependencies).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        }
+    }
+
+    /// The vector kernel gives exactly the bits of the one-pair kernel, in every branch
+    /// (sticking, sliding, sliding with zero shear, clamped normal force, setup).
+    #[test]
+    fn lane_kernel_matches_scalar_kernel_bit_for_bit() {
+        let mut rng = Lcg(12345);
+        // xmu 0.01: every contact slides; 1000: every contact sticks; 0.3: both
+        for (limit_damping, xmu) in [(false, 0.01), (false, 0.3), (false, 1000.0), (true, 0.3)] {
+            let p = Classic { kn: 2.0e5, kt: 5.0e4, gamman: 300.0, gammat: 150.0, xmu, dampflag: true, limit_damping };
+            for trial in 0..100 {
+                // 8 atoms: pairs (0,1), (2,3), (4,5), (6,7)
+                let n = 2 * LANES;
+                let mut x = vec![[0.0; 3]; n];
+                let (mut v, mut w) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
+                let (mut rad, mut m) = (vec![0.0; n], vec![0.0; n]);
+                let mut values = vec![0.0; 3 * LANES];
+                for k in 0..n {
+                    rad[k] = 0.5 + 0.1 * rng.next();
+                    m[k] = 1.0 + 0.5 * rng.next();
+                    for d in 0..3 {
+                        v[k][d] = 4.0 * rng.next();
+                        w[k][d] = 20.0 * rng.next();
+                    }
+                }
+                for l in 0..LANES {
+                    let (i, j) = (2 * l, 2 * l + 1);
+                    let dir = [rng.next(), rng.next(), rng.next()];
+                    let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+                    let r = (rad[i] + rad[j]) * (1.0 - 0.02 * (rng.next() + 0.5));
+                    for d in 0..3 {
+                        x[i][d] = 3.0 * rng.next();
+                        x[j][d] = x[i][d] - r * dir[d] / len;
+                        // zero shear in some lanes, large shear (sliding) in others
+                        values[3 * l + d] = if (trial + l) % 3 == 0 { 0.0 } else { 1e-3 * rng.next() };
+                    }
+                }
+                for update in [false, true] {
+                    let typ = vec![1usize; n];
+                    let src = LaneSrc {
+                        n: LANES,
+                        ij: [std::array::from_fn(|l| 2 * l), std::array::from_fn(|l| 2 * l + 1)],
+                        e: std::array::from_fn(|l| l),
+                        x: &x,
+                        v: &v,
+                        omega: &w,
+                        radius: &rad,
+                        rmass: &m,
+                        typ: &typ,
+                        values: &values,
+                        hsize: 3,
+                    };
+                    let out = p.contact_lanes(&src, update, 1e-4);
+                    for l in 0..LANES {
+                        let (i, j) = (2 * l, 2 * l + 1);
+                        let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                        let c = Contact {
+                            del,
+                            rsq: del[0] * del[0] + del[1] * del[1] + del[2] * del[2],
+                            radi: rad[i],
+                            radj: rad[j],
+                            vi: &v[i],
+                            vj: &v[j],
+                            omegai: &w[i],
+                            omegaj: &w[j],
+                            mi: m[i],
+                            mj: m[j],
+                        };
+                        let mut h = [values[3 * l], values[3 * l + 1], values[3 * l + 2]];
+                        let r = Classic::contact(&p, &c, &mut h, update, 1e-4);
+                        for d in 0..3 {
+                            assert_eq!(out.f[d][l].to_bits(), r.f[d].to_bits());
+                            assert_eq!(out.ti[d][l].to_bits(), r.ti[d].to_bits());
+                            assert_eq!(out.tj[d][l].to_bits(), r.tj[d].to_bits());
+                            assert_eq!(out.hist[d][l].to_bits(), h[d].to_bits());
+                        }
+                    }
+                }
+            }
+        }
+    }
 }

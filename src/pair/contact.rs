@@ -218,10 +218,11 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         };
         let mut b = Batch::default();
         // evaluate the batch and apply its results in list order
-        let flush = |b: &mut Batch, values: &mut [f64], t: &mut Tally| {
-            if b.n == 0 {
+        let flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally| {
+            if n == 0 {
                 return;
             }
+            b.n = n;
             // unused lanes repeat lane 0 (valid numbers; their results are ignored)
             for l in b.n..LANES {
                 b.i[l] = b.i[0];
@@ -277,8 +278,9 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     t.virial[5] += w * del[1] * f[2];
                 }
             }
-            b.n = 0;
         };
+        // lanes filled so far (a local, so it stays in a register)
+        let mut n = 0usize;
         for i in chunk.start..chunk.end {
             let xi = x[i];
             let radi = radius[i];
@@ -297,12 +299,10 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 if !EXTRA {
                     // the common case without branches on the (unpredictable) overlap test:
                     // every entry is written to the next lane, which is kept only if touching
-                    let l = b.n;
-                    b.i[l] = i;
-                    b.j[l] = j;
-                    b.e[l] = e;
-                    b.factor[l] = 1.0;
-                    b.n += touching as usize;
+                    b.i[n] = i;
+                    b.j[n] = j;
+                    b.e[n] = e;
+                    n += touching as usize;
                     if hsize > 0 {
                         let was = touch[e];
                         touch[e] = touching as u8;
@@ -311,8 +311,9 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                             values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
                         }
                     }
-                    if b.n == LANES {
-                        flush(&mut b, values, &mut t);
+                    if n == LANES {
+                        flush(&mut b, n, values, &mut t);
+                        n = 0;
                     }
                     continue;
                 }
@@ -333,21 +334,21 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 if factor == 0.0 {
                     continue;
                 }
-                let l = b.n;
                 if hsize > 0 {
                     touch[e] = 1;
                 }
-                b.i[l] = i;
-                b.j[l] = j;
-                b.e[l] = e;
-                b.factor[l] = factor;
-                b.n += 1;
-                if b.n == LANES {
-                    flush(&mut b, values, &mut t);
+                b.i[n] = i;
+                b.j[n] = j;
+                b.e[n] = e;
+                b.factor[n] = factor;
+                n += 1;
+                if n == LANES {
+                    flush(&mut b, n, values, &mut t);
+                    n = 0;
                 }
             }
         }
-        flush(&mut b, values, &mut t);
+        flush(&mut b, n, values, &mut t);
         t
     });
     sum_tallies(&parts)

@@ -31,6 +31,7 @@ fi
 
 "$py" "$here/gen_chains.py"
 "$py" "$here/gen_clumps.py"
+"$py" "$here/gen_beds.py"
 for name in "${names[@]}"; do
     echo "== $name"
     out="$here/refs/$name"

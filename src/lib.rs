@@ -20,6 +20,7 @@ pub mod format;
 pub mod groups;
 pub mod lammps;
 pub mod lattice;
+pub mod liggghts;
 pub mod memory;
 pub mod neighbor;
 pub mod output;

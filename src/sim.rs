@@ -78,6 +78,9 @@ pub struct Simulation {
     /// The force-field commands as given (pair/bond/angle/dihedral styles and coefficients,
     /// pair_modify, special_bonds), replayed by read_restart.
     pub ff_commands: Vec<Vec<String>>,
+    /// Every command executed, as words after substitution (when Some; for translating a deck
+    /// to another engine).
+    pub command_log: Option<Vec<Vec<String>>>,
     pub neigh_settings: NeighborSettings,
     pub neighbor: Neighbor,
     pub comm_vel: bool,
@@ -151,6 +154,7 @@ impl Simulation {
             special_bonds: SpecialBonds::default(),
             special_table: SpecialTable::default(),
             ff_commands: Vec::new(),
+            command_log: None,
             neigh_settings: NeighborSettings::new(units.skin),
             neighbor: Neighbor::default(),
             comm_vel: false,

@@ -90,6 +90,11 @@ pub fn supported_commands() -> impl Iterator<Item = &'static str> {
 
 impl Host for Simulation {
     fn execute(&mut self, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {
+        if let Some(log) = self.command_log.as_mut() {
+            let mut words = vec![cmd.name.text.clone()];
+            words.extend(cmd.args.iter().map(|w| w.text.clone()));
+            log.push(words);
+        }
         match COMMANDS.iter().find(|(n, _)| *n == cmd.name()) {
             Some((_, handler)) => {
                 handler(self, cmd, sources)?;

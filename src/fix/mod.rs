@@ -79,6 +79,18 @@ pub trait Fix: Send {
     }
 }
 
+/// Run `work` over index ranges covering `0..n` (`chunk` indices each), in parallel when the
+/// pool has several threads: for per-atom loops whose atoms are independent, so the results are
+/// the same either way. With one thread it is one plain loop, without the pool's overhead.
+pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usize>) + Sync + Send) {
+    use rayon::prelude::*;
+    if rayon::current_num_threads() == 1 || n <= chunk {
+        work(0..n);
+    } else {
+        (0..n.div_ceil(chunk)).into_par_iter().for_each(|c| work(c * chunk..((c + 1) * chunk).min(n)));
+    }
+}
+
 /// Fix styles this build implements.
 pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move"];
 

@@ -5,6 +5,7 @@
 
 use super::{Fix, FixHooks};
 use crate::sim::{RunError, Simulation};
+use crate::pair::SharedMut;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group nve/sphere [disc]";
@@ -40,6 +41,47 @@ impl FixNveSphere {
     }
 }
 
+impl FixNveSphere {
+    /// One half step: v += dtf/m f and omega += dtf/(I_f r^2 m) torque, and in the first half
+    /// x += dt v. Atoms are independent, so chunks of atoms run in parallel (same bits).
+    fn integrate(&self, sim: &mut Simulation, first: bool) {
+        let dtv = sim.dt;
+        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
+        let dtfrotate = dtf / self.inertia;
+        let groupbit = self.groupbit;
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let (f, torque, rmass, radius, mask) = (&a.f[..n], &a.torque[..n], &a.rmass[..n], &a.radius[..n], &a.mask[..n]);
+        let (x, v, omega) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.omega[..n]));
+        super::for_each_range(n, 2048, |range| {
+            for i in range {
+                if mask[i] & groupbit == 0 {
+                    continue;
+                }
+                // SAFETY: each index belongs to one range only
+                let (xi, vi, wi) = unsafe { (x.get(i), v.get(i), omega.get(i)) };
+                let m = rmass[i];
+                let dtfm = dtf / m;
+                let fi = f[i];
+                vi[0] += dtfm * fi[0];
+                vi[1] += dtfm * fi[1];
+                vi[2] += dtfm * fi[2];
+                if first {
+                    xi[0] += dtv * vi[0];
+                    xi[1] += dtv * vi[1];
+                    xi[2] += dtv * vi[2];
+                }
+                let r = radius[i];
+                let dtirotate = dtfrotate / (r * r * m);
+                let t = torque[i];
+                wi[0] += dtirotate * t[0];
+                wi[1] += dtirotate * t[1];
+                wi[2] += dtirotate * t[2];
+            }
+        });
+    }
+}
+
 impl Fix for FixNveSphere {
     fn id(&self) -> &str {
         &self.id
@@ -63,59 +105,11 @@ impl Fix for FixNveSphere {
         Ok(())
     }
     fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let dtfrotate = dtf / self.inertia;
-        let a = &mut sim.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            let m = a.rmass[i];
-            let dtfm = dtf / m;
-            let f = a.f[i];
-            let v = &mut a.v[i];
-            v[0] += dtfm * f[0];
-            v[1] += dtfm * f[1];
-            v[2] += dtfm * f[2];
-            let v = *v;
-            let x = &mut a.x[i];
-            x[0] += dtv * v[0];
-            x[1] += dtv * v[1];
-            x[2] += dtv * v[2];
-            let r = a.radius[i];
-            let dtirotate = dtfrotate / (r * r * m);
-            let t = a.torque[i];
-            let w = &mut a.omega[i];
-            w[0] += dtirotate * t[0];
-            w[1] += dtirotate * t[1];
-            w[2] += dtirotate * t[2];
-        }
+        self.integrate(sim, true);
         Ok(())
     }
     fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let dtfrotate = dtf / self.inertia;
-        let a = &mut sim.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            let m = a.rmass[i];
-            let dtfm = dtf / m;
-            let f = a.f[i];
-            let v = &mut a.v[i];
-            v[0] += dtfm * f[0];
-            v[1] += dtfm * f[1];
-            v[2] += dtfm * f[2];
-            let r = a.radius[i];
-            let dtirotate = dtfrotate / (r * r * m);
-            let t = a.torque[i];
-            let w = &mut a.omega[i];
-            w[0] += dtirotate * t[0];
-            w[1] += dtirotate * t[1];
-            w[2] += dtirotate * t[2];
-        }
+        self.integrate(sim, false);
         Ok(())
     }
 }

@@ -15,6 +15,7 @@
 use super::{Fix, FixHooks};
 use crate::pair::granular::{granular_contact, GranGeom, GranModel};
 use crate::sim::{RunError, Simulation};
+use crate::pair::SharedMut;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group wall/gran granular hooke Kn eta_n0 [damping velocity|mass_velocity|viscoelastic|tsuji] [tangential linear_history Kt x_gt mu | linear_nohistory x_gt mu] [limit_damping] xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]";
@@ -77,7 +78,7 @@ impl FixWallGran {
         };
         let lo = bound(&mut a, "lo (or NULL)", -BIG)?;
         let hi = bound(&mut a, "hi (or NULL)", BIG)?;
-        let axis_of = |a: &mut Args| -> DResult<usize> { Ok(a.choice("axis", &["x", "y", "z"])?) };
+        let axis_of = |a: &mut Args| -> DResult<usize> { a.choice("axis", &["x", "y", "z"]) };
         let mut motion = Motion::None;
         while let Some(k) = a.peek() {
             a.skip(1);
@@ -127,36 +128,48 @@ impl FixWallGran {
         let w0 = [0.0f64; 3];
         let k = sim.atoms.extra_array(&self.array, 3);
         let a = &mut sim.atoms;
+        let n = a.nlocal;
         let mut hist = std::mem::take(&mut a.extra[k].data);
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
+        let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
+        let (f, torque, h3) = (SharedMut::new(&mut a.f[..n]), SharedMut::new(&mut a.torque[..n]), SharedMut::new(&mut hist[..3 * n]));
+        let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
+        // atoms are independent: ranges of them may run in parallel (same bits)
+        super::for_each_range(n, 2048, |range| {
+            for i in range {
+                if mask[i] & groupbit == 0 {
+                    continue;
+                }
+                let xi = x[i][dim];
+                let del1 = xi - wlo;
+                let del2 = whi - xi;
+                // signed distance from the nearer plane; |dx|^2 is just its square (the other
+                // components are zero)
+                let dist = if del1 < del2 { del1 } else { -del2 };
+                let rsq = dist * dist;
+                let radi = radius[i];
+                // SAFETY: each atom (and its 3 history values) belongs to one range only
+                let (h0, h1, h2) = unsafe { (h3.get(3 * i), h3.get(3 * i + 1), h3.get(3 * i + 2)) };
+                if rsq >= radi * radi {
+                    (*h0, *h1, *h2) = (0.0, 0.0, 0.0);
+                    continue;
+                }
+                let mut hv = [*h0, *h1, *h2];
+                let mut dx = [0.0f64; 3];
+                dx[dim] = dist;
+                let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+                let g = GranGeom { dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, meff: rmass[i], wall: true };
+                let r = granular_contact(model, &g, &mut hv, update, dt);
+                (*h0, *h1, *h2) = (hv[0], hv[1], hv[2]);
+                // SAFETY: as above
+                unsafe {
+                    let (fi, ti) = (f.get(i), torque.get(i));
+                    for d in 0..3 {
+                        fi[d] += r.f[d];
+                        ti[d] += r.ti[d];
+                    }
+                }
             }
-            let xi = a.x[i][self.dim];
-            let del1 = xi - wlo;
-            let del2 = whi - xi;
-            // signed distance from the nearer plane; |dx|^2 is just its square (the other
-            // components are zero)
-            let dist = if del1 < del2 { del1 } else { -del2 };
-            let rsq = dist * dist;
-            let radi = a.radius[i];
-            let h = &mut hist[3 * i..3 * i + 3];
-            if rsq >= radi * radi {
-                h.iter_mut().for_each(|s| *s = 0.0);
-                continue;
-            }
-            let mut dx = [0.0f64; 3];
-            dx[self.dim] = dist;
-            let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-            let g = GranGeom { dx, rsq, radi, radj: 0.0, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, meff: a.rmass[i], wall: true };
-            let r = granular_contact(&self.model, &g, h, update, dt);
-            let f = &mut a.f[i];
-            let t = &mut a.torque[i];
-            for d in 0..3 {
-                f[d] += r.f[d];
-                t[d] += r.ti[d];
-            }
-        }
+        });
         a.extra[k].data = hist;
         Ok(())
     }

@@ -48,26 +48,18 @@ pub trait ContactModel: Sync {
     /// ignored). The default evaluates them one at a time with [`ContactModel::contact`].
     fn contact_lanes(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
         let mut o = LanesOut::default();
+        let (del, rsq, hist) = (b.del(), b.rsq(), b.hist());
+        let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
+        let (radi, radj, mi, mj) = (b.scalar(b.radius, 0), b.scalar(b.radius, 1), b.scalar(b.rmass, 0), b.scalar(b.rmass, 1));
         for l in 0..b.n {
-            let pick = |a: [L; 3]| [a[0][l], a[1][l], a[2][l]];
-            let (vi, vj, wi, wj) = (pick(b.v3(b.v, 0)), pick(b.v3(b.v, 1)), pick(b.v3(b.omega, 0)), pick(b.v3(b.omega, 1)));
-            let c = Contact {
-                del: pick(b.del()),
-                rsq: b.rsq()[l],
-                radi: b.scalar(b.radius, 0)[l],
-                radj: b.scalar(b.radius, 1)[l],
-                vi: &vi,
-                vj: &vj,
-                omegai: &wi,
-                omegaj: &wj,
-                mi: b.scalar(b.rmass, 0)[l],
-                mj: b.scalar(b.rmass, 1)[l],
-            };
-            let mut h = pick(b.hist());
+            let pick = |a: &[L; 3]| [a[0][l], a[1][l], a[2][l]];
+            let (vil, vjl, wil, wjl) = (pick(&vi), pick(&vj), pick(&wi), pick(&wj));
+            let c = Contact { del: pick(&del), rsq: rsq[l], radi: radi[l], radj: radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: mi[l], mj: mj[l] };
+            let mut h = pick(&hist);
             let (ti, tj) = b.types(l);
             let r = Self::contact(self.params(ti, tj), &c, &mut h[..Self::HISTORY], update, dt);
-            for d in 0..3 {
-                o.hist[d][l] = h[d];
+            for (d, hd) in h.iter().enumerate() {
+                o.hist[d][l] = *hd;
                 o.f[d][l] = r.f[d];
                 o.ti[d][l] = r.ti[d];
                 o.tj[d][l] = r.tj[d];

@@ -1,9 +1,11 @@
 //! `pair_style granular [cutoff]` with per-type-pair contact models, as LAMMPS 2025's
 //! GranularModel computes them:
 //!
-//!     pair_coeff I J hooke Kn eta_n0 [damping velocity|mass_velocity|viscoelastic|tsuji]
-//!                [tangential linear_nohistory x_gt mu | linear_history Kt x_gt mu]
-//!                [limit_damping] [cutoff value]
+//! ```text
+//! pair_coeff I J hooke Kn eta_n0 [damping velocity|mass_velocity|viscoelastic|tsuji]
+//!            [tangential linear_nohistory x_gt mu | linear_history Kt x_gt mu]
+//!            [limit_damping] [cutoff value]
+//! ```
 //!
 //! * F_n = Kn delta + F_damp, F_damp = -eta_n v_n with eta_n = eta_n0 (velocity),
 //!   eta_n0 m_eff (mass_velocity), eta_n0 m_eff a (viscoelastic, a = sqrt(delta R_eff), the

@@ -18,8 +18,9 @@ usage:
   dmhs check DECK [options]         parse and build the deck without running; print the set-up
   dmhs crosscheck DECK [options]    run DECK in dmhs and in LAMMPS; compare per-atom forces at
                                     step 0 and positions/velocities at the end
-  dmhs bench --against lammps DECK... [options]
-                                    particle-steps per second of dmhs and LAMMPS on each deck
+                                    (--against liggghts: in LIGGGHTS 3.8, for granular decks)
+  dmhs bench --against lammps [--against liggghts] DECK... [options]
+                                    particle-steps per second of dmhs and the reference engines
 
 options:
   -var NAME VALUE...   define an index variable (as lmp -var)

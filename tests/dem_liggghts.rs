@@ -188,3 +188,19 @@ fn sliding_impact_restitution_agrees() {
     assert!((en_o - en_t).abs() < 1e-3, "normal restitution {en_o} vs {en_t}");
     assert!(et_t < et_o && et_o - et_t < 0.05, "tangential restitution {et_o} vs {et_t}");
 }
+
+#[test]
+fn crosscheck_against_liggghts_from_the_command_line() {
+    if !have_liggghts() {
+        return;
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs"))
+        .args(["crosscheck", "--against", "liggghts", "--vel-tol", "1e-10", "--pos-tol", "1e-12"])
+        .arg(root().join("lammps-refs/decks/in.gran_stick_history_nve"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    println!("{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success());
+    assert!(text.contains("against LIGGGHTS (1000 atoms)") && text.contains("PASS"));
+}

@@ -34,6 +34,8 @@ fi
 
 "$py" "$here/gen_chains.py"
 "$py" "$here/gen_sph.py"
+"$py" "$here/gen_clumps.py"
+"$py" "$here/gen_beds.py"
 for name in "${names[@]+"${names[@]}"}"; do
     echo "== $name"
     out="$here/refs/$name"

@@ -1,5 +1,7 @@
-//! `dmhs bench --against lammps DECK...`: particle-steps per second of dmhs (at several thread
-//! counts) and LAMMPS (serial) on the same decks, measured in the same invocation.
+//! `dmhs bench --against lammps [--against liggghts] DECK...`: particle-steps per second of dmhs
+//! (at several thread counts) and of the reference engines (serial: LAMMPS' `lmp`, LIGGGHTS for
+//! granular decks) on the same decks, measured in the same invocation. The ratio column is
+//! relative to LAMMPS (to LIGGGHTS when only it is given).
 
 use crate::cli::deck_dir;
 use crate::deck::{run_file, DeckOptions};
@@ -42,22 +44,38 @@ pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], thre
         return 2;
     }
     for a in against {
-        if a != "lammps" {
-            eprintln!("dmhs bench: --against {a} is not supported yet (lammps is)");
+        if a != "lammps" && a != "liggghts" {
+            eprintln!("dmhs bench: --against {a} is not supported (lammps and liggghts are)");
             return 2;
         }
+    }
+    // LAMMPS first: it is the reference of the ratio column
+    let mut engines: Vec<&str> = vec![];
+    if against.iter().any(|a| a == "lammps") {
+        engines.push("lammps");
+    }
+    if against.iter().any(|a| a == "liggghts") {
+        engines.push("liggghts");
     }
     println!("{:<40} {:<12} {:>10} {:>8} {:>9} {:>14} {:>8} {:>10}", "deck", "engine", "atoms", "steps", "seconds", "particle-st/s", "ratio", "bytes/part");
     let mut status = 0;
     for deck in decks {
         let name = deck.display().to_string();
         let mut reference: Option<f64> = None;
-        if !against.is_empty() {
-            match crate::lammps::time_lmp(deck, &opts.vars) {
+        for engine in &engines {
+            let timed = if *engine == "lammps" { crate::lammps::time_lmp(deck, &opts.vars) } else { crate::liggghts::time_liggghts(deck, &opts.vars) };
+            match timed {
                 Ok((sec, steps, atoms)) => {
-                    let t = Timing { engine: "lammps 1t".into(), seconds: sec, steps, atoms, bytes_per_particle: None };
-                    reference = Some(t.particle_steps_per_second());
-                    println!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>10}", name, t.engine, atoms, steps, sec, t.particle_steps_per_second(), "1.00", "-");
+                    let t = Timing { engine: format!("{engine} 1t"), seconds: sec, steps, atoms, bytes_per_particle: None };
+                    let pss = t.particle_steps_per_second();
+                    let ratio = match reference {
+                        Some(r) => format!("{:.2}", pss / r),
+                        None => {
+                            reference = Some(pss);
+                            "1.00".to_string()
+                        }
+                    };
+                    println!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>10}", name, t.engine, atoms, steps, sec, pss, ratio, "-");
                 }
                 Err(e) => {
                     eprintln!("dmhs bench: {e}");

@@ -18,8 +18,9 @@ usage:
   dmhs check DECK [options]         parse and build the deck without running; print the set-up
   dmhs crosscheck DECK [options]    run DECK in dmhs and in LAMMPS; compare per-atom forces at
                                     step 0 and positions/velocities at the end
-  dmhs bench --against lammps DECK... [options]
-                                    particle-steps per second of dmhs and LAMMPS on each deck
+                                    (--against liggghts: in LIGGGHTS 3.8, for granular decks)
+  dmhs bench --against lammps [--against liggghts] DECK... [options]
+                                    particle-steps per second of dmhs and the reference engines
   dmhs validate CASE [--quick]      run an SPH validation case against its analytic reference:
                                     poiseuille, couette, heat, hydrostatic, dambreak, all
   dmhs validate chart               Poiseuille speed-versus-accuracy chart, dmhs and LAMMPS

@@ -1,4 +1,6 @@
-//! `dmhs crosscheck DECK`: the deck in dmhs and in LAMMPS, per-atom differences, a verdict.
+//! `dmhs crosscheck DECK [--against lammps|liggghts]`: the deck in dmhs and in a reference
+//! engine (LAMMPS by default; LIGGGHTS for granular decks, see [`crate::liggghts`]), per-atom
+//! differences, a verdict.
 
 use crate::cli::deck_dir;
 use crate::crosscheck::{capture_state, compare_runs, report, AtomTable, Difference};
@@ -44,35 +46,16 @@ pub fn crosscheck_cmd(decks: &[std::path::PathBuf], opts: &DeckOptions, against:
         eprintln!("dmhs crosscheck: give a deck");
         return 2;
     }
-    for engine in against {
-        if engine != "lammps" {
-            eprintln!("dmhs crosscheck: --against {engine} is not supported yet (lammps is)");
+    let engines: Vec<String> = if against.is_empty() { vec!["lammps".to_string()] } else { against.to_vec() };
+    for engine in &engines {
+        if engine != "lammps" && engine != "liggghts" {
+            eprintln!("dmhs crosscheck: --against {engine} is not supported (lammps and liggghts are)");
             return 2;
         }
     }
     let mut status = 0;
     for deck in decks {
-        let tmp = match tempfile::tempdir() {
-            Ok(t) => t,
-            Err(e) => {
-                eprintln!("dmhs crosscheck: cannot make a temporary directory: {e}");
-                return 1;
-            }
-        };
         let deck_abs = std::fs::canonicalize(deck).unwrap_or(deck.clone());
-        if let Err(e) = crate::lammps::run_driver(&deck_abs, &opts.vars, tmp.path()) {
-            eprintln!("dmhs crosscheck: {e}");
-            return 1;
-        }
-        let theirs0 = AtomTable::read(&tmp.path().join("forces0.txt"));
-        let theirs = AtomTable::read(&tmp.path().join("final.txt"));
-        let (theirs0, theirs) = match (theirs0, theirs) {
-            (Ok(a), Ok(b)) => (a, b),
-            (Err(e), _) | (_, Err(e)) => {
-                eprintln!("dmhs crosscheck: {e}");
-                return 1;
-            }
-        };
         let (ours0, ours, box_len) = match dmhs_capture(&deck_abs, &opts.vars) {
             Ok(x) => x,
             Err(e) => {
@@ -80,23 +63,51 @@ pub fn crosscheck_cmd(decks: &[std::path::PathBuf], opts: &DeckOptions, against:
                 return 2;
             }
         };
-        match compare_runs(&ours0, &theirs0, &ours, &theirs, box_len) {
-            Ok(diffs) => {
-                println!("crosscheck {} against LAMMPS ({} atoms)", deck.display(), theirs.rows.len());
-                print!("{}", report(&diffs));
-                let bad = within(&diffs, tols);
-                if bad.is_empty() {
-                    println!("PASS (force tol {:.0e}, position tol {:.0e}, velocity tol {:.0e})", tols[0], tols[1], tols[2]);
-                } else {
-                    for b in bad {
-                        println!("FAIL {b}");
+        for engine in &engines {
+            let tmp = match tempfile::tempdir() {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("dmhs crosscheck: cannot make a temporary directory: {e}");
+                    return 1;
+                }
+            };
+            let ran = if engine == "lammps" {
+                crate::lammps::run_driver(&deck_abs, &opts.vars, tmp.path())
+            } else {
+                crate::liggghts::run_driver(&deck_abs, &opts.vars, tmp.path())
+            };
+            if let Err(e) = ran {
+                eprintln!("dmhs crosscheck: {e}");
+                return 1;
+            }
+            let theirs0 = AtomTable::read(&tmp.path().join("forces0.txt"));
+            let theirs = AtomTable::read(&tmp.path().join("final.txt"));
+            let (theirs0, theirs) = match (theirs0, theirs) {
+                (Ok(a), Ok(b)) => (a, b),
+                (Err(e), _) | (_, Err(e)) => {
+                    eprintln!("dmhs crosscheck: {e}");
+                    return 1;
+                }
+            };
+            let label = if engine == "lammps" { "LAMMPS" } else { "LIGGGHTS" };
+            match compare_runs(&ours0, &theirs0, &ours, &theirs, box_len) {
+                Ok(diffs) => {
+                    println!("crosscheck {} against {label} ({} atoms)", deck.display(), theirs.rows.len());
+                    print!("{}", report(&diffs));
+                    let bad = within(&diffs, tols);
+                    if bad.is_empty() {
+                        println!("PASS (force tol {:.0e}, position tol {:.0e}, velocity tol {:.0e})", tols[0], tols[1], tols[2]);
+                    } else {
+                        for b in bad {
+                            println!("FAIL {b}");
+                        }
+                        status = 1;
                     }
+                }
+                Err(e) => {
+                    println!("FAIL {e}");
                     status = 1;
                 }
-            }
-            Err(e) => {
-                println!("FAIL {e}");
-                status = 1;
             }
         }
     }

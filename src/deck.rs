@@ -25,6 +25,8 @@ pub struct DeckOptions {
     pub capture_text: bool,
     /// `-echo screen|log|both|none`.
     pub echo: Option<(bool, bool)>,
+    /// Keep every executed command in `Simulation::command_log`.
+    pub record_commands: bool,
 }
 
 /// Why a deck did not complete.
@@ -58,6 +60,9 @@ fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> {
     sim.base_dir = opts.base_dir.clone();
     sim.want_capture = opts.capture;
     sim.check_only = opts.check_only;
+    if opts.record_commands {
+        sim.command_log = Some(Vec::new());
+    }
     for (name, values) in &opts.vars {
         sim.variables.define_index(name, values.clone());
     }

@@ -36,6 +36,14 @@ impl Groups {
             None => Err(format!("too many groups (at most {MAX_GROUPS}, including `all`)")),
         }
     }
+    /// Give group `k` (its bit in the atom masks) a name (read_restart).
+    pub fn set_index(&mut self, k: usize, name: &str) -> Result<(), String> {
+        if k >= MAX_GROUPS {
+            return Err(format!("group index {k} out of range (at most {MAX_GROUPS} groups)"));
+        }
+        self.names[k] = Some(name.to_string());
+        Ok(())
+    }
     pub fn delete(&mut self, k: usize) {
         if k > 0 {
             self.names[k] = None;

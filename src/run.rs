@@ -63,8 +63,11 @@ impl Simulation {
             }
         }
         let ntypes = self.ntypes;
-        if let Some(p) = self.pair.as_mut() {
-            p.init(ntypes, &self.pair_modify, None)?;
+        if let Some(mut p) = self.pair.take() {
+            let setup = crate::pair::PairSetup { atoms: &self.atoms, ntypes, comm_vel: self.comm_vel };
+            let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
+            self.pair = Some(p);
+            r?;
         }
         self.init_bonded()?;
         let mut fixes = std::mem::take(&mut self.fixes);

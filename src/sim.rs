@@ -75,6 +75,12 @@ pub struct Simulation {
     pub bonded_lists: crate::bonded_forces::BondedLists,
     pub special_bonds: SpecialBonds,
     pub special_table: SpecialTable,
+    /// The force-field commands as given (pair/bond/angle/dihedral styles and coefficients,
+    /// pair_modify, special_bonds), replayed by read_restart.
+    pub ff_commands: Vec<Vec<String>>,
+    /// Every command executed, as words after substitution (when Some; for translating a deck
+    /// to another engine).
+    pub command_log: Option<Vec<Vec<String>>>,
     pub neigh_settings: NeighborSettings,
     pub neighbor: Neighbor,
     pub comm_vel: bool,
@@ -152,6 +158,8 @@ impl Simulation {
             bonded_lists: Default::default(),
             special_bonds: SpecialBonds::default(),
             special_table: SpecialTable::default(),
+            ff_commands: Vec::new(),
+            command_log: None,
             neigh_settings: NeighborSettings::new(units.skin),
             neighbor: Neighbor::default(),
             comm_vel: false,

@@ -10,6 +10,8 @@ mod output_cmds;
 mod run_cmds;
 mod settings;
 
+pub(crate) use settings::features_of;
+
 use crate::sim::Simulation;
 use dmhs_parser::{Command, DResult, Diagnostic, Host, SourceMap};
 
@@ -64,6 +66,22 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("dump_modify", output_cmds::dump_modify),
     ("run", run_cmds::run),
     ("reset_timestep", run_cmds::reset_timestep),
+    ("write_restart", crate::restart::write_restart),
+    ("read_restart", crate::restart::read_restart),
+];
+
+/// Commands that define the force field (replayed by read_restart).
+const FORCE_FIELD: &[&str] = &[
+    "pair_style",
+    "pair_coeff",
+    "pair_modify",
+    "bond_style",
+    "bond_coeff",
+    "angle_style",
+    "angle_coeff",
+    "dihedral_style",
+    "dihedral_coeff",
+    "special_bonds",
 ];
 
 /// Names of the supported commands (for `dmhs check` and docs).
@@ -73,8 +91,22 @@ pub fn supported_commands() -> impl Iterator<Item = &'static str> {
 
 impl Host for Simulation {
     fn execute(&mut self, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {
+        if let Some(log) = self.command_log.as_mut() {
+            let mut words = vec![cmd.name.text.clone()];
+            words.extend(cmd.args.iter().map(|w| w.text.clone()));
+            log.push(words);
+        }
         match COMMANDS.iter().find(|(n, _)| *n == cmd.name()) {
-            Some((_, handler)) => handler(self, cmd, sources),
+            Some((_, handler)) => {
+                handler(self, cmd, sources)?;
+                if FORCE_FIELD.contains(&cmd.name()) {
+                    // kept for write_restart, which stores the force field as its commands
+                    let mut words = vec![cmd.name.text.clone()];
+                    words.extend(cmd.args.iter().map(|w| w.text.clone()));
+                    self.ff_commands.push(words);
+                }
+                Ok(())
+            }
             None => Err(Diagnostic::at(cmd.name.span, format!("command `{}` is not supported by dmhs", cmd.name()), "not supported")),
         }
     }

@@ -7,9 +7,11 @@ pub mod enforce2d;
 pub mod gravity;
 pub mod move_linear;
 pub mod nve;
+pub mod nve_sphere;
 pub mod setforce;
 pub mod sph;
 pub mod viscous;
+pub mod wall_gran;
 pub mod wall_reflect;
 
 use crate::sim::{RunError, Simulation};
@@ -82,20 +84,34 @@ pub trait Fix: Send {
     }
 }
 
+/// Run `work` over index ranges covering `0..n` (`chunk` indices each), in parallel when the
+/// pool has several threads: for per-atom loops whose atoms are independent, so the results are
+/// the same either way. With one thread it is one plain loop, without the pool's overhead.
+pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usize>) + Sync + Send) {
+    use rayon::prelude::*;
+    if rayon::current_num_threads() == 1 || n <= chunk {
+        work(0..n);
+    } else {
+        (0..n.div_ceil(chunk)).into_par_iter().for_each(|c| work(c * chunk..((c + 1) * chunk).min(n)));
+    }
+}
+
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "move", "sph", "sph/stationary"];
+pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
     let id = id.text.clone();
     match style.text.as_str() {
         "nve" => Ok(Box::new(nve::FixNve::from_lammps(id, groupbit, args, cmd)?)),
+        "nve/sphere" => Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(id, groupbit, args, cmd, sim)?)),
         "gravity" => Ok(Box::new(gravity::FixGravity::from_lammps(id, groupbit, args, cmd, sim)?)),
         "addforce" => Ok(Box::new(addforce::FixAddForce::from_lammps(id, groupbit, args, cmd, sim)?)),
         "setforce" => Ok(Box::new(setforce::FixSetForce::from_lammps(id, groupbit, args, cmd, sim)?)),
         "enforce2d" => Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(id, groupbit, args, cmd)?)),
         "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, sim)?)),
         "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, sim)?)),
         "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
         "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),

@@ -2,7 +2,7 @@
 //! by `pair_coeff I J STYLE [k] args...`. With `hybrid` each type pair has at most one style
 //! (a later assignment replaces an earlier one); with `hybrid/overlay` the styles add up.
 
-use super::{new_pair_style, PairInput, PairModify, PairOutput, PairStyle, Tally, SUPPORTED};
+use super::{new_pair_style, PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, SUPPORTED};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "pair_style hybrid|hybrid/overlay style1 args1 style2 args2 ...";
@@ -128,6 +128,17 @@ impl PairStyle for Hybrid {
             }
         }
         Ok(())
+    }
+
+    fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
+        for style in self.styles.iter_mut() {
+            style.init_sim(setup)?;
+        }
+        Ok(())
+    }
+
+    fn histories(&mut self) -> Vec<&mut crate::contact_history::ContactHistory> {
+        self.styles.iter_mut().flat_map(|s| s.histories()).collect()
     }
 
     fn init(&mut self, ntypes: usize, modify: &PairModify, _active: Option<&[bool]>) -> Result<(), String> {

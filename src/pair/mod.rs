@@ -4,6 +4,10 @@
 //! the loop over the neighbour list, Newton's third law, threading and energy/virial tallies
 //! live here. Adding a style touches one list: [`new_pair_style`].
 
+pub mod contact;
+pub mod gran_hooke;
+pub mod gran_hooke_history;
+pub mod granular;
 pub mod hybrid;
 pub mod lj_cut;
 pub mod sph;
@@ -109,11 +113,24 @@ pub struct PairInput<'a> {
     pub dimension: usize,
 }
 
+/// What a pair style may check and read before a run (granular styles need the atoms'
+/// radii for their cutoffs and ghost velocities for their forces).
+pub struct PairSetup<'a> {
+    pub atoms: &'a Atoms,
+    pub ntypes: usize,
+    /// `comm_modify vel yes`
+    pub comm_vel: bool,
+}
+
 /// A pair style as the engine drives it.
 pub trait PairStyle: Send + Sync {
     fn style(&self) -> &str;
     /// `pair_coeff I J args...` with the type ranges already parsed (`args` starts after them).
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()>;
+    /// Checks against the atoms before a run (called before `init`); an error stops the run.
+    fn init_sim(&mut self, _setup: &PairSetup) -> Result<(), String> {
+        Ok(())
+    }
     /// Prepare for a run (mixing, offsets). An error names what is missing.
     /// `active` (row-major over `0..=ntypes`) limits the type pairs that must be set, for
     /// sub-styles of `hybrid`; the others get no interaction.
@@ -126,6 +143,11 @@ pub trait PairStyle: Send + Sync {
     /// Called after every neighbour-list rebuild (before `compute`); `order` is the permutation
     /// applied to owned atoms (new k takes old `order[k]`).
     fn rebuilt(&mut self, _input: &PairInput, _order: &[usize]) {}
+    /// The contact-history stores of the style (granular styles), for write_restart and
+    /// read_restart; empty for styles without history.
+    fn histories(&mut self) -> Vec<&mut crate::contact_history::ContactHistory> {
+        vec![]
+    }
     /// The words of `pair_coeff` for type I (for write_data's "Pair Coeffs"); None if the
     /// style has no per-type form.
     fn data_coeffs(&self, _it: usize) -> Option<String> {
@@ -210,6 +232,9 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
         "sph/taitwater/morris" => Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?)),
         "sph/heatconduction" => Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?)),
         "sph/rhosum" => Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?)),
+        "gran/hooke" => Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?)),
+        "gran/hooke/history" => Ok(Box::new(gran_hooke_history::GranHookeHistory::from_lammps(args, cmd)?)),
+        "granular" => Ok(Box::new(granular::Granular::from_lammps(args, cmd)?)),
         "zero" => Ok(Box::new(zero::PairZero::from_lammps(args, cmd)?)),
         "hybrid" | "hybrid/overlay" => Ok(Box::new(hybrid::Hybrid::from_lammps(name, args, cmd)?)),
         other => Err(crate::styles::unsupported_style("pair", name, other, SUPPORTED)),
@@ -217,7 +242,7 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
 }
 
 /// Pair styles this build implements.
-pub const SUPPORTED: &[&str] = &["lj/cut", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay"];
+pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay"];
 
 /// A kernel for a central pair force between two point particles. Parameters are looked up
 /// once per atom i as a row over j's type, then evaluated per pair.

@@ -38,9 +38,11 @@ impl Simulation {
         }
         let mut fixes = std::mem::take(&mut self.fixes);
         let mut result = Ok(());
-        for f in fixes.iter_mut() {
+        for (k, f) in fixes.iter_mut().enumerate() {
             if wanted(&f.hooks()) {
+                let t0 = std::time::Instant::now();
                 result = hook(f.as_mut(), self);
+                self.timers.charge_fix(k, t0.elapsed().as_secs_f64());
                 if result.is_err() {
                     break;
                 }
@@ -204,6 +206,9 @@ impl Simulation {
     /// LAMMPS `Verlet::setup`: lists, forces of the current state, fix setup, first output.
     pub fn setup(&mut self, pre: bool) -> Result<(), RunError> {
         self.timers.reset();
+        if let Some(p) = self.pair.as_mut() {
+            p.reset_model_seconds();
+        }
         if pre || !self.lists_valid {
             self.timers.stamp();
             self.rebuild()?;
@@ -259,6 +264,37 @@ impl Simulation {
         self.fix_hook(|h| h.end_of_step, |f, s| f.end_of_step(s))?;
         self.timers.charge(Stage::Modify);
         Ok(())
+    }
+
+    /// Each active model with its seconds in this run: pair styles (hybrid: per sub-style and
+    /// its type pairs), the bonded styles together (they share one pass), and each fix.
+    fn model_rows(&self) -> Vec<(String, f64)> {
+        use crate::timing::Stage;
+        let stage = |st: Stage| self.timers.seconds[crate::timing::STAGES.iter().position(|(s, _)| *s == st).unwrap()];
+        let mut rows = Vec::new();
+        if let Some(p) = &self.pair {
+            let parts = p.model_seconds();
+            if parts.is_empty() {
+                rows.push((format!("pair {}", p.style()), stage(Stage::Pair)));
+            } else {
+                rows.extend(parts.into_iter().map(|(l, t)| (format!("pair {l}"), t)));
+            }
+        }
+        let bonded: Vec<String> = [
+            self.bond_style.as_ref().filter(|_| !self.topo.bonds.is_empty()).map(|b| format!("bond {}", b.name())),
+            self.angle_style.as_ref().filter(|_| !self.topo.angles.is_empty()).map(|b| format!("angle {}", b.name())),
+            self.dihedral_style.as_ref().filter(|_| !self.topo.dihedrals.is_empty()).map(|b| format!("dihedral {}", b.name())),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if !bonded.is_empty() {
+            rows.push((bonded.join(" + "), stage(Stage::Bond)));
+        }
+        for (k, f) in self.fixes.iter().enumerate() {
+            rows.push((format!("fix {} {}", f.id(), f.style()), self.timers.fix_seconds.get(k).copied().unwrap_or(0.0)));
+        }
+        rows
     }
 
     /// Ghost atoms need fresh velocities and per-atom state only for styles that read them.
@@ -388,6 +424,7 @@ impl Simulation {
         let threads = rayon::current_num_threads();
         self.out.print(&format!("100.0% CPU use with 1 MPI tasks x {threads} threads\n"));
         self.out.print(&self.timers.report(loop_time));
+        self.out.print(&crate::timing::model_report(&self.model_rows(), loop_time));
         self.out.print(&format!(
             "Memory per particle: {:.0} bytes ({:.4} Mbytes in all)\n",
             crate::memory::bytes_per_particle(self),

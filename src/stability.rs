@@ -73,6 +73,16 @@ pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
             }
         }
     }
+    if let Some(kn) = sim.pair.as_ref().and_then(|p| p.contact_stiffness()).filter(|&k| k > 0.0) {
+        let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);
+        if m_min.is_finite() && m_min > 0.0 {
+            // undamped contact of the two lightest particles: m_eff = m/2, t_c = pi sqrt(m_eff/k_n)
+            // (damping lengthens it, so this is the conservative value); t_c/10 is T/20 of the
+            // contact oscillation, the rule used for harmonic bonds below
+            let tc = std::f64::consts::PI * (0.5 * m_min / kn).sqrt();
+            out.push(Limit { model: "DEM contact".into(), rule: format!("t_c/10, t_c = pi sqrt(m_eff/k_n) (k_n = {kn}, m_eff = {:.4e})", 0.5 * m_min), dt_max: tc / 10.0 });
+        }
+    }
     if let Some(bond) = sim.bond_style.as_ref() {
         if bond.name() == "harmonic" && sim.topo.nbondtypes > 0 {
             let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);

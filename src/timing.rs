@@ -24,19 +24,29 @@ pub const STAGES: [(Stage, &str); 6] = [
 #[derive(Clone, Debug)]
 pub struct Timers {
     pub seconds: [f64; 6],
+    /// Seconds in each fix (by position in the fix list), all hooks together.
+    pub fix_seconds: Vec<f64>,
     last: Instant,
 }
 
 impl Default for Timers {
     fn default() -> Self {
-        Timers { seconds: [0.0; 6], last: Instant::now() }
+        Timers { seconds: [0.0; 6], fix_seconds: Vec::new(), last: Instant::now() }
     }
 }
 
 impl Timers {
     pub fn reset(&mut self) {
         self.seconds = [0.0; 6];
+        self.fix_seconds.clear();
         self.last = Instant::now();
+    }
+    /// Charge `t` seconds to fix number `k`.
+    pub fn charge_fix(&mut self, k: usize, t: f64) {
+        if self.fix_seconds.len() <= k {
+            self.fix_seconds.resize(k + 1, 0.0);
+        }
+        self.fix_seconds[k] += t;
     }
     /// Start timing from now.
     pub fn stamp(&mut self) {
@@ -63,4 +73,16 @@ impl Timers {
         s += &format!("{:<8}|            | {:<10.5} |            |       | {:5.2}\n", "Other", other, pct(other));
         s
     }
+}
+
+/// The per-model table printed after the stage breakdown: each active model's time and its share
+/// of the loop (`rows`: label and seconds).
+pub fn model_report(rows: &[(String, f64)], total: f64) -> String {
+    let width = rows.iter().map(|(l, _)| l.len()).max().unwrap_or(5).max(5);
+    let mut s = format!("Model timing breakdown:\n{:<width$} |  time (s)  | %total\n{}\n", "Model", "-".repeat(width + 23));
+    for (label, t) in rows {
+        let pct = if total > 0.0 { 100.0 * t / total } else { 0.0 };
+        s += &format!("{label:<width$} | {t:<10.5} | {pct:5.2}\n");
+    }
+    s
 }

@@ -106,3 +106,38 @@ fn unknown_option_is_a_usage_error() {
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("LAMMPS option -sf is not supported"));
 }
+
+/// `dmhs check` names each active model with its type pairs and its time-step limit; a run
+/// prints each model's share of the loop time after the stage breakdown.
+#[test]
+fn check_and_run_report_the_active_models() {
+    let tmp = tempfile::tempdir().unwrap();
+    let refs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks");
+    // decks read their data files from the working directory, as in LAMMPS
+    for f in ["in.sph_overlay_2d", "sph_island_2d.data", "in.gran_clumps_history", "gran_clumps.data"] {
+        std::fs::copy(refs.join(f), tmp.path().join(f)).unwrap();
+    }
+    let overlay = tmp.path().join("in.sph_overlay_2d");
+    let o = dmhs(&["check", overlay.to_str().unwrap()], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("sph/taitwater/morris (kernel lucy) [type pairs 1-1 1-2 2-2]"), "{t}");
+    assert!(t.contains("lj/cut 0.5 [type pairs 1-2]"), "{t}");
+    assert!(t.contains("SPH            acoustic CFL"), "{t}");
+
+    let o = dmhs(&["run", overlay.to_str().unwrap(), "-log", "none"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let table = t.split("Model timing breakdown:").nth(1).expect("model table");
+    for row in ["pair sph/taitwater/morris (1-1 1-2 2-2)", "pair sph/heatconduction (1-1 1-2 2-2)", "pair lj/cut (1-2)", "fix 1 sph", "fix 2 enforce2d"] {
+        assert!(table.contains(row), "missing `{row}` in\n{table}");
+    }
+
+    let clumps = tmp.path().join("in.gran_clumps_history");
+    let o = dmhs(&["check", clumps.to_str().unwrap()], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    // k_n 20000 and the lightest particle: t_c/10 = pi sqrt(m/2 / k_n)/10
+    assert!(t.contains("DEM contact    t_c/10") && t.contains("dt <= 9.7047e-4"), "{t}");
+    assert!(t.contains("bond harmonic  T/20"), "{t}");
+}

@@ -78,6 +78,9 @@ impl PairStyle for GranHooke {
     fn style(&self) -> &str {
         "gran/hooke"
     }
+    fn contact_stiffness(&self) -> Option<f64> {
+        Some(self.model.0.kn)
+    }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         self.types.coeff(ilo, ihi, jlo, jhi, args)
     }

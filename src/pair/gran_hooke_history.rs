@@ -374,6 +374,9 @@ impl PairStyle for GranHookeHistory {
     fn style(&self) -> &str {
         "gran/hooke/history"
     }
+    fn contact_stiffness(&self) -> Option<f64> {
+        Some(self.settings.kn)
+    }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         self.types.coeff(ilo, ihi, jlo, jhi, args)
     }

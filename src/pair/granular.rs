@@ -417,6 +417,9 @@ impl PairStyle for Granular {
     fn style(&self) -> &str {
         "granular"
     }
+    fn contact_stiffness(&self) -> Option<f64> {
+        self.coeff.data.iter().map(|m| m.kn).reduce(f64::max)
+    }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         args.syntax = COEFF_SYNTAX;
         let m = GranModel::parse(args, false)?;

@@ -4,6 +4,7 @@
 
 use super::{new_pair_style, PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, SUPPORTED};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+use std::time::Instant;
 
 pub const SYNTAX: &str = "pair_style hybrid|hybrid/overlay style1 args1 style2 args2 ...";
 pub const COEFF_SYNTAX: &str = "pair_coeff I J style [k] args...  (k picks among repeated styles; `none` clears a pair under hybrid)";
@@ -16,6 +17,8 @@ pub struct Hybrid {
     /// Pairs explicitly set to `none`.
     none: Vec<bool>,
     ntypes: usize,
+    /// Seconds spent in each sub-style (density and force passes) since the last reset.
+    seconds: Vec<f64>,
 }
 
 impl Hybrid {
@@ -45,7 +48,8 @@ impl Hybrid {
             styles.push(new_pair_style(&args[k], &args[start..end], cmd)?);
             k = end;
         }
-        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0 })
+        let seconds = vec![0.0; styles.len()];
+        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds })
     }
 
     fn grow(&mut self, n: usize) {
@@ -91,6 +95,19 @@ impl Hybrid {
                 Ok(Some(matches[k - 1]))
             }
         }
+    }
+}
+
+impl Hybrid {
+    /// The type pairs I-J (I <= J) assigned to sub-style `k`, e.g. `1-1 1-2`, or `none`.
+    fn pairs_of(&self, k: usize) -> String {
+        let s = self.ntypes + 1;
+        let pairs: Vec<String> = (1..=self.ntypes)
+            .flat_map(|i| (i..=self.ntypes).map(move |j| (i, j)))
+            .filter(|&(i, j)| self.assigned.get(k).is_some_and(|a| a[i * s + j]))
+            .map(|(i, j)| format!("{i}-{j}"))
+            .collect();
+        if pairs.is_empty() { "none".to_string() } else { pairs.join(" ") }
     }
 }
 
@@ -181,7 +198,9 @@ impl PairStyle for Hybrid {
         let mut total = Tally::default();
         for (k, style) in self.styles.iter_mut().enumerate() {
             let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            let t0 = Instant::now();
             total.add(&style.compute(&sub, out));
+            self.seconds[k] += t0.elapsed().as_secs_f64();
         }
         total
     }
@@ -201,7 +220,9 @@ impl PairStyle for Hybrid {
         let mut any = false;
         for (k, style) in self.styles.iter_mut().enumerate() {
             let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            let t0 = Instant::now();
             any |= style.density_pass(&sub, rho);
+            self.seconds[k] += t0.elapsed().as_secs_f64();
         }
         any
     }
@@ -224,9 +245,23 @@ impl PairStyle for Hybrid {
 
     fn describe(&self) -> String {
         let mut s = self.style().to_string();
-        for st in &self.styles {
-            s += &format!("\n  {}", st.describe().replace('\n', "\n  "));
+        for (k, st) in self.styles.iter().enumerate() {
+            let d = st.describe();
+            let (first, rest) = d.split_once('\n').map(|(a, b)| (a, format!("\n{b}"))).unwrap_or((&d, String::new()));
+            s += &format!("\n  {first} [type pairs {}]{}", self.pairs_of(k), rest.replace('\n', "\n  "));
         }
         s
+    }
+
+    fn model_seconds(&self) -> Vec<(String, f64)> {
+        self.styles.iter().enumerate().map(|(k, st)| (format!("{} ({})", st.style(), self.pairs_of(k)), self.seconds[k])).collect()
+    }
+
+    fn contact_stiffness(&self) -> Option<f64> {
+        self.styles.iter().filter_map(|s| s.contact_stiffness()).reduce(f64::max)
+    }
+
+    fn reset_model_seconds(&mut self) {
+        self.seconds.iter_mut().for_each(|t| *t = 0.0);
     }
 }

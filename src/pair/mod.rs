@@ -170,6 +170,19 @@ pub trait PairStyle: Send + Sync {
     fn sph_info(&self) -> Option<SphInfo> {
         None
     }
+    /// Seconds spent in each part of the style since the last reset, with a label per part
+    /// (hybrid: one per sub-style); empty when the style is a single model (the Pair stage
+    /// time is then its time).
+    fn model_seconds(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
+    /// The largest normal contact stiffness k_n (force per overlap) of a granular contact style,
+    /// for the DEM time-step estimate of `dmhs check`.
+    fn contact_stiffness(&self) -> Option<f64> {
+        None
+    }
+    /// Start the per-part clocks of [`PairStyle::model_seconds`] again (at run setup).
+    fn reset_model_seconds(&mut self) {}
 }
 
 /// What stability estimates need from SPH styles.

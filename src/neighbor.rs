@@ -186,11 +186,41 @@ pub struct NeighList {
     pub ntypes: usize,
     /// Some entry carries a special-bond level.
     pub has_special: bool,
+    /// Build number, unique in the process (0: never built): lists derived from this one
+    /// (hybrid sub-lists) know when they are stale.
+    pub generation: u64,
 }
 
 impl NeighList {
     pub fn npairs(&self) -> usize {
         self.chunks.iter().map(|c| c.neigh.len()).sum()
+    }
+
+    /// The entries whose type pair `keep` marks (row-major over `0..=ntypes`), in the same
+    /// chunks and order (LAMMPS' skip lists for hybrid sub-styles).
+    pub fn filtered(&self, typ: &[usize], keep: &[bool]) -> NeighList {
+        let stride = self.ntypes + 1;
+        let chunks = self
+            .chunks
+            .iter()
+            .map(|c| {
+                let mut offsets = Vec::with_capacity(c.offsets.len());
+                let mut neigh = Vec::with_capacity(c.neigh.len());
+                offsets.push(0);
+                for i in c.start..c.end {
+                    let row = &keep[typ[i] * stride..(typ[i] + 1) * stride];
+                    neigh.extend(c.neighbors(i).iter().filter(|&&j| row[typ[(j & NEIGH_MASK) as usize]]));
+                    offsets.push(neigh.len() as u32);
+                }
+                ChunkList { start: c.start, end: c.end, offsets, neigh }
+            })
+            .collect();
+        NeighList { chunks, ..self.clone_header() }
+    }
+
+    /// Everything but the entries.
+    fn clone_header(&self) -> NeighList {
+        NeighList { chunks: Vec::new(), cutneighsq: self.cutneighsq.clone(), ntypes: self.ntypes, has_special: self.has_special, generation: self.generation }
     }
 }
 
@@ -503,7 +533,10 @@ impl Neighbor {
             .collect();
 
         let has_special = use_special && chunks.iter().any(|c| c.neigh.iter().any(|&j| j > NEIGH_MASK));
-        self.list = NeighList { chunks, cutneighsq, ntypes, has_special };
+        // unique over the process, so no derived list can mistake a new build for its own
+        static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        let generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.list = NeighList { chunks, cutneighsq, ntypes, has_special, generation };
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);
         self.ago = 0;

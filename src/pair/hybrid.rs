@@ -4,6 +4,7 @@
 
 use super::{new_pair_style, PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, SUPPORTED};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+use crate::neighbor::NeighList;
 use std::time::Instant;
 
 pub const SYNTAX: &str = "pair_style hybrid|hybrid/overlay style1 args1 style2 args2 ...";
@@ -19,6 +20,10 @@ pub struct Hybrid {
     ntypes: usize,
     /// Seconds spent in each sub-style (density and force passes) since the last reset.
     seconds: Vec<f64>,
+    /// Per sub-style, the engine's list reduced to its type pairs (None: it has all of them),
+    /// made from the list of build `sublists_of`, so a sub-style loops only over its own pairs.
+    sublists: Vec<Option<NeighList>>,
+    sublists_of: Option<u64>,
 }
 
 impl Hybrid {
@@ -49,7 +54,7 @@ impl Hybrid {
             k = end;
         }
         let seconds = vec![0.0; styles.len()];
-        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds })
+        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds, sublists: vec![], sublists_of: None })
     }
 
     fn grow(&mut self, n: usize) {
@@ -99,6 +104,32 @@ impl Hybrid {
 }
 
 impl Hybrid {
+    /// Bring the sub-lists up to date with the engine's list (after a rebuild).
+    fn refresh_sublists(&mut self, input: &PairInput) {
+        if self.sublists_of == Some(input.list.generation) && self.sublists.len() == self.styles.len() {
+            return;
+        }
+        let s = self.ntypes + 1;
+        let n = self.ntypes;
+        self.sublists = self
+            .assigned
+            .iter()
+            .map(|a| {
+                let all = (1..=n).all(|i| (i..=n).all(|j| a[i * s + j]));
+                if all { None } else { Some(input.list.filtered(&input.atoms.typ, a)) }
+            })
+            .collect();
+        self.sublists_of = Some(input.list.generation);
+    }
+
+    /// The input of sub-style `k`: its own list, no type filter left to apply.
+    fn sub_input<'a>(sublists: &'a [Option<NeighList>], k: usize, input: &PairInput<'a>) -> PairInput<'a> {
+        match &sublists[k] {
+            Some(list) => PairInput { list, type_filter: None, ..*input },
+            None => PairInput { type_filter: None, ..*input },
+        }
+    }
+
     /// The type pairs I-J (I <= J) assigned to sub-style `k`, e.g. `1-1 1-2`, or `none`.
     fn pairs_of(&self, k: usize) -> String {
         let s = self.ntypes + 1;
@@ -195,9 +226,10 @@ impl PairStyle for Hybrid {
     }
 
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
+        self.refresh_sublists(input);
         let mut total = Tally::default();
         for (k, style) in self.styles.iter_mut().enumerate() {
-            let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            let sub = Self::sub_input(&self.sublists, k, input);
             let t0 = Instant::now();
             total.add(&style.compute(&sub, out));
             self.seconds[k] += t0.elapsed().as_secs_f64();
@@ -206,8 +238,9 @@ impl PairStyle for Hybrid {
     }
 
     fn rebuilt(&mut self, input: &PairInput, order: &[usize]) {
+        self.refresh_sublists(input);
         for (k, style) in self.styles.iter_mut().enumerate() {
-            let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            let sub = Self::sub_input(&self.sublists, k, input);
             style.rebuilt(&sub, order);
         }
     }
@@ -217,9 +250,10 @@ impl PairStyle for Hybrid {
     }
 
     fn density_pass(&mut self, input: &PairInput, rho: &mut [f64]) -> bool {
+        self.refresh_sublists(input);
         let mut any = false;
         for (k, style) in self.styles.iter_mut().enumerate() {
-            let sub = PairInput { type_filter: Some(&self.assigned[k]), ..*input };
+            let sub = Self::sub_input(&self.sublists, k, input);
             let t0 = Instant::now();
             any |= style.density_pass(&sub, rho);
             self.seconds[k] += t0.elapsed().as_secs_f64();

@@ -138,10 +138,16 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     let a = &sim.atoms;
     let step = sim.step;
     let hint = || dt_hint(sim);
-    for i in 0..a.nlocal {
-        for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
-            if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
-                return Err(RunError::new(step, format!("particle {} has a non-finite {name} ({}, {}, {}): the run is unstable{}", a.tag[i], v[0], v[1], v[2], hint())));
+    // fast path: x * 0 is 0 for finite x and NaN otherwise, so one vectorizable sum tells
+    // whether any coordinate is bad; only then is the particle searched for
+    let n = a.nlocal;
+    let probe: f64 = a.x[..n].iter().chain(&a.v[..n]).map(|p| p[0] * 0.0 + p[1] * 0.0 + p[2] * 0.0).sum();
+    if probe != 0.0 {
+        for i in 0..a.nlocal {
+            for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
+                if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
+                    return Err(RunError::new(step, format!("particle {} has a non-finite {name} ({}, {}, {}): the run is unstable{}", a.tag[i], v[0], v[1], v[2], hint())));
+                }
             }
         }
     }

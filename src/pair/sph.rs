@@ -392,6 +392,24 @@ struct Acc {
 /// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
 /// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
 ///
+/// Write the neighbours j with `keep(j, rsq)` to `out` without branches; returns their count.
+/// `out` must have room for all of `neigh`.
+#[inline(always)]
+fn gather_inside(neigh: &[u32], packed: &[Packed], xi: [f64; 3], out: *mut u32, keep: impl Fn(usize, f64) -> bool) -> usize {
+    let mut n_in = 0usize;
+    for &jraw in neigh {
+        let j = (jraw & NEIGH_MASK) as usize;
+        let xj = at(packed, j).x;
+        let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
+        let rsq = dx * dx + dy * dy + dz * dz;
+        let ok = keep(j, rsq);
+        // SAFETY: the caller reserved room for every neighbour
+        unsafe { *out.add(n_in) = j as u32 };
+        n_in += ok as usize;
+    }
+    n_in
+}
+
 /// Particles are read from packed records (one cache line per neighbour) and contributions
 /// gathered in packed accumulators, added to the outputs at the end. For each atom the
 /// neighbours inside the cutoff are first gathered without branches (about 40% of listed pairs
@@ -406,6 +424,15 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     let mut acc = vec![Acc::default(); nlocal];
     let shared = SharedMut::new(&mut acc);
     let eflag = input.eflag;
+    // types i whose cutoff is the same for every partner type, with no type filter (the common
+    // case): their cutoff test needs no partner types
+    let uniform_cut: Vec<Option<f64>> = (0..stride)
+        .map(|ti| {
+            let row = &kernel.cutsq_row(ti)[1..];
+            let same = input.type_filter.is_none() && !row.is_empty() && row.iter().all(|&c| c == row[0]);
+            if same { Some(row[0]) } else { None }
+        })
+        .collect();
     let parts = for_each_chunk(input.list, |chunk| {
         let mut t = Tally::default();
         let mut inside: Vec<u32> = Vec::with_capacity(128);
@@ -419,19 +446,13 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
             let neigh = chunk.neighbors(i);
             inside.clear();
             inside.reserve(neigh.len());
-            let base = inside.as_mut_ptr();
-            let mut n_in = 0usize;
-            for &jraw in neigh {
-                let j = (jraw & NEIGH_MASK) as usize;
-                let xj = at(&packed, j).x;
-                let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
-                let rsq = dx * dx + dy * dy + dz * dz;
-                let tj = at(&typ, j) as usize;
-                let ok = rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true);
-                // SAFETY: capacity reserved for every neighbour
-                unsafe { *base.add(n_in) = j as u32 };
-                n_in += ok as usize;
-            }
+            let n_in = match uniform_cut[ti] {
+                Some(c) => gather_inside(neigh, &packed, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
+                None => gather_inside(neigh, &packed, xi, inside.as_mut_ptr(), |j, rsq| {
+                    let tj = at(&typ, j) as usize;
+                    rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)
+                }),
+            };
             // SAFETY: the first n_in entries were written
             unsafe { inside.set_len(n_in) };
             let mut own = Acc::default();

@@ -36,6 +36,7 @@ fi
 "$py" "$here/gen_sph.py"
 "$py" "$here/gen_clumps.py"
 "$py" "$here/gen_beds.py"
+"$py" "$here/gen_coupling.py"
 for name in "${names[@]+"${names[@]}"}"; do
     echo "== $name"
     out="$here/refs/$name"

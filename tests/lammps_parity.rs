@@ -13,11 +13,10 @@ use std::path::{Path, PathBuf};
 
 const TOLS: [f64; 3] = [DEFAULT_FORCE_TOL, DEFAULT_POS_TOL, DEFAULT_VEL_TOL];
 
-/// Decks whose step-0 drho and desph are not compared: with a hybrid atom style that includes
-/// sph, LAMMPS 2025's first setup gives pairs across periodic faces velocity estimates that are
-/// neither the ghosts' old ones (what dmhs and plain `atom_style sph` use) nor the new ones; the
-/// trajectory after the setup matches (see lammps-refs/README.md, coupling decks). Forces at
-/// step 0 and the whole final state are still compared.
+/// Decks whose step-0 drho and desph are not compared: particles that start moving next to a
+/// periodic face, where dmhs' step 0 differs from LAMMPS with `newton on` (LAMMPS computes a pair
+/// across the face on one side only, with the ghost's old velocity estimate; docs/commands.md,
+/// SPH). From step 1 on both agree: forces at step 0 and the whole final state are compared.
 const STEP0_RATES_UNCHECKED: &[&str] = &["coupling_couette"];
 
 fn root() -> PathBuf {

@@ -244,3 +244,33 @@ impl Fix for FixBondBreak {
         format!("fix {} {} (bond type {}, Rmax {}, every {})", self.id, self.style(), self.btype, self.cutsq.sqrt(), self.nevery)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::{Angle, Bond, Dihedral};
+
+    #[test]
+    fn a_broken_bond_takes_its_angles_and_dihedrals_along() {
+        let mut sim = Simulation::new();
+        let t = &mut sim.topo;
+        t.bonds = (1..5).map(|k| Bond { typ: 1, atoms: [k, k + 1] }).collect();
+        t.angles = (1..4).map(|k| Angle { typ: 1, atoms: [k, k + 1, k + 2] }).collect();
+        t.dihedrals = (1..3).map(|k| Dihedral { typ: 1, atoms: [k, k + 1, k + 2, k + 3] }).collect();
+        // bond 4-3 given in the other order: 3-4 goes, with angles 2-3-4 and 3-4-5 and both dihedrals
+        remove_bond(&mut sim, 4, 3, true, true);
+        let bonds: Vec<[i64; 2]> = sim.topo.bonds.iter().map(|b| b.atoms).collect();
+        assert_eq!(bonds, vec![[1, 2], [2, 3], [4, 5]]);
+        let angles: Vec<[i64; 3]> = sim.topo.angles.iter().map(|a| a.atoms).collect();
+        assert_eq!(angles, vec![[1, 2, 3]]);
+        assert!(sim.topo.dihedrals.is_empty());
+        // without angles/dihedrals at run start (LAMMPS' angleflag), only the bond goes
+        remove_bond(&mut sim, 1, 2, false, false);
+        assert_eq!(sim.topo.angles.len(), 1);
+    }
+
+    #[test]
+    fn ghost_image_positions_are_computed_as_lammps_copies_them() {
+        assert_eq!(image([0.25, 1.0, 3.0], [1, 0, -1], [10.0, 5.0, 2.0]), [10.25, 1.0, 1.0]);
+    }
+}

@@ -314,3 +314,38 @@ impl Fix for FixBondCreate {
         sim.atoms.remove_extra(&self.count_name());
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eligibility_follows_types_and_bond_counts() {
+        let mut f = FixBondCreate {
+            id: "c".into(),
+            groupbit: 1,
+            nevery: 1,
+            itype: 1,
+            jtype: 2,
+            cutsq: 1.0,
+            btype: 1,
+            imaxbond: 2,
+            inewtype: 3,
+            jmaxbond: 1,
+            jnewtype: 4,
+            fraction: 1.0,
+            random: RanPark::new(1),
+            atype: 0,
+            counted: false,
+            createcount: 0,
+            createcounttotal: 0,
+        };
+        assert!(f.possible(1, 1, 2, 0));
+        assert!(f.possible(2, 0, 1, 1), "either order of the pair");
+        assert!(!f.possible(1, 2, 2, 0), "itype atom at maxbond");
+        assert!(!f.possible(1, 0, 2, 1), "jtype atom at maxbond");
+        assert!(!f.possible(1, 0, 1, 0), "wrong types");
+        f.imaxbond = 0;
+        assert!(f.possible(1, 100, 2, 0), "maxbond 0: no limit");
+    }
+}

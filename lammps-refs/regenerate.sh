@@ -36,11 +36,18 @@ fi
 "$py" "$here/gen_sph.py"
 "$py" "$here/gen_clumps.py"
 "$py" "$here/gen_beds.py"
+"$py" "$here/gen_coupling.py"
+"$py" "$here/gen_bondchange.py"
 for name in "${names[@]+"${names[@]}"}"; do
     echo "== $name"
     out="$here/refs/$name"
     rm -rf "$out"
     "$py" "$here/lammps_driver.py" "$here/decks/in.$name" --out "$out"
+    # bond/break and bond/create decks: the thermo table of the run (event counts per step)
+    case "$name" in
+        bond*) awk '/^ +Step/{n++; if (n == 2) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
+                   "$out/log.lammps" > "$out/thermo.txt" ;;
+    esac
     if [ "$chaos" = 1 ]; then
         "$py" "$here/chaos_check.py" "$here/decks/in.$name"
     fi

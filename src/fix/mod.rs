@@ -2,6 +2,8 @@
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
 pub mod addforce;
+pub mod bond_break;
+pub mod bond_create;
 pub mod value;
 pub mod enforce2d;
 pub mod gravity;
@@ -97,7 +99,7 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
 }
 
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary"];
+pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
@@ -114,6 +116,8 @@ pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Wo
         "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, sim)?)),
         "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
         "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "bond/break" | "dmhs/bond/break" => Ok(Box::new(bond_break::FixBondBreak::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "bond/create" => Ok(Box::new(bond_create::FixBondCreate::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }
 }

@@ -312,3 +312,59 @@ fn solidifying_atoms_bond_to_solid_neighbours_and_melting_breaks_bonds() {
     let last = rows.last().unwrap();
     assert_eq!((last[col(&h, "f_phase[2]")], last[col(&h, "f_phase[3]")], last[col(&h, "f_phase[4]")]), (3.0, 2.0, 2.0));
 }
+
+/// Two overlapping spheres inside the SPH support, moving; `PAIR` is replaced per case.
+const TWO: &str = "
+dimension 2
+units si
+atom_style hybrid sph sphere
+boundary f f p
+comm_modify vel yes
+atom_modify map array
+region box block -3 4 -3 4 -0.5 0.5 units box
+create_box 2 box
+create_atoms 1 single 0.0 0.0 0.0 units box
+create_atoms 1 single 0.9 0.2 0.0 units box
+set group all diameter 1.0
+set group all mass 20.0
+mass * 20.0
+set group all sph/rho 1010.0
+set atom 2 sph/rho 990.0
+set atom 1 vx 0.3
+set atom 1 vy -0.1
+set atom 2 vx -0.2
+set atom 1 sph/e 1000.0
+set atom 2 sph/e 500.0
+PAIR
+fix integ all sph
+run 0
+";
+
+fn forces(pair: &str) -> Vec<[f64; 3]> {
+    let r = run("two", &TWO.replace("PAIR", pair));
+    let s = &r.sim;
+    let map = s.atoms.tag_map();
+    (1..=2).map(|t| s.atoms.f[map.get(t).unwrap()]).collect()
+}
+
+#[test]
+fn blend_is_the_weighted_sum_of_sph_and_dem() {
+    let sph = forces("pair_style sph/taitwater/morris\npair_coeff * * 1000.0 100.0 1.0 1.5");
+    let dem = forces("pair_style gran/hooke 1000.0 NULL 0.3 NULL 0.5 0\npair_coeff * *");
+    let blend = "pair_style dmhs/blend 1000.0 NULL 0.3 NULL 0.5 0\npair_coeff * * 1000.0 100.0 1.0 1.5";
+    // no phase fix: phi = 1, pure SPH
+    let pure = forces(blend);
+    // cv = 1 (create_atoms), L = 0, T* = 500: atom 1 at T = 1000 has phi = 1, atom 2 at T = 500
+    // phi = 0 -> pair weight 1/2
+    let half = forces(&format!("{blend}\nfix phase all dmhs/phase Tstar 500 cvs 1 cvl 1 latent 0 liquid 1 solid 2 mix 500 1000"));
+    for i in 0..2 {
+        for k in 0..2 {
+            assert!(sph[i][k].abs() > 1e-3 && dem[i][k].abs() > 1e-3, "both parts act: {sph:?} {dem:?}");
+            assert!((pure[i][k] - sph[i][k]).abs() <= 1e-13 * sph[i][k].abs(), "{pure:?} vs {sph:?}");
+            let exact = 0.5 * sph[i][k] + 0.5 * dem[i][k];
+            assert!((half[i][k] - exact).abs() <= 1e-13 * exact.abs().max(1.0), "{half:?} vs {exact}");
+        }
+        // Newton's third law
+        assert!((half[0][i] + half[1][i]).abs() < 1e-12);
+    }
+}

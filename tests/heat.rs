@@ -41,10 +41,10 @@ fn col(h: &[String], name: &str) -> usize {
     h.iter().position(|s| s == name).unwrap_or_else(|| panic!("no column {name} in {h:?}"))
 }
 
-/// Sum of m e over all atoms.
+/// Sum of esph (the particles' energies m e) over all atoms.
 fn total_energy(r: &DeckRun) -> f64 {
     let s = &r.sim;
-    (0..s.atoms.nlocal).map(|i| s.atoms.mass(i, &s.type_mass) * s.atoms.esph[i]).sum()
+    s.atoms.esph[..s.atoms.nlocal].iter().sum()
 }
 
 /// Front of examples/heat/in.stefan against Neumann's solution, at every thermo sample with
@@ -131,9 +131,9 @@ group wall type 3
 mass 1*2 1000.0
 mass 3 3700.0
 set group all sph/rho 1000.0
-set group melt sph/e 175.0
+set group melt sph/e 175000.0
 set group wall sph/e 0.0
-set group wall sph/cv 3.0
+set group wall sph/cv 11100.0
 pair_style dmhs/heatconduction
 pair_coeff 1*2 1*2 1.0 2.6
 pair_coeff 3 3 100.0 2.6
@@ -156,8 +156,8 @@ fn closed_system_conserves_energy_to_round_off() {
     let fs = rows.last().unwrap()[col(&h, "f_phase")];
     assert!(fs > 0.1 && fs < 1.0, "part of the liquid solidified: {fs}");
     let rel = (e1 - e0).abs() / e0.abs();
-    println!("sum m e: {e0} -> {e1}, relative change {rel:e}, solid fraction {fs}");
-    assert!(rel < 1e-13, "sum m e: {e0} -> {e1} ({rel:e})");
+    println!("sum of esph: {e0} -> {e1}, relative change {rel:e}, solid fraction {fs}");
+    assert!(rel < 1e-13, "sum of esph: {e0} -> {e1} ({rel:e})");
     // the wall warmed: heat went from the liquid to the wall
     let s = &r.sim;
     let ew: f64 = (0..s.atoms.nlocal).filter(|&i| s.atoms.typ[i] == 3).map(|i| s.atoms.esph[i]).sum();
@@ -175,7 +175,7 @@ create_box 2 box
 create_atoms 1 single 1.0 1.0 0.0 units box
 mass * 2.0
 set group all sph/rho 1000.0
-set group all sph/e 175.0
+set group all sph/e 350.0
 pair_style dmhs/heatconduction
 pair_coeff * * 1.0 0.5
 fix integ all sph/stationary
@@ -225,7 +225,7 @@ fn cooling_shows_the_plateau_at_tstar() {
     assert!((last - t2).abs() < 0.011, "plateau ends at {last}, expected {t2}");
     // the energy removed by cooling is what the particle lost
     let removed = rows.last().unwrap()[cr];
-    let lost = 2.0 * 175.0 - total_energy(&r);
+    let lost = 350.0 - total_energy(&r);
     assert!((removed - lost).abs() < 1e-12 * lost, "removed {removed}, lost {lost}");
 }
 
@@ -333,8 +333,8 @@ set atom 2 sph/rho 990.0
 set atom 1 vx 0.3
 set atom 1 vy -0.1
 set atom 2 vx -0.2
-set atom 1 sph/e 1000.0
-set atom 2 sph/e 500.0
+set atom 1 sph/e 20000.0
+set atom 2 sph/e 10000.0
 PAIR
 fix integ all sph
 run 0
@@ -354,7 +354,7 @@ fn blend_is_the_weighted_sum_of_sph_and_dem() {
     let blend = "pair_style dmhs/blend 1000.0 NULL 0.3 NULL 0.5 0\npair_coeff * * 1000.0 100.0 1.0 1.5";
     // no phase fix: phi = 1, pure SPH
     let pure = forces(blend);
-    // cv = 1 (create_atoms), L = 0, T* = 500: atom 1 at T = 1000 has phi = 1, atom 2 at T = 500
+    // m = 20, L = 0, T* = 500, cvs = cvl = 1: atom 1 at T = 1000 has phi = 1, atom 2 at T = 500
     // phi = 0 -> pair weight 1/2
     let half = forces(&format!("{blend}\nfix phase all dmhs/phase Tstar 500 cvs 1 cvl 1 latent 0 liquid 1 solid 2 mix 500 1000"));
     for i in 0..2 {

@@ -1,7 +1,7 @@
 //! `compute ID group dmhs/phase/atom` — per-atom state of the phase-change model, 4 columns:
 //! c_ID[1] temperature T (the `dmhs/T` field of fix dmhs/phase, else esph/cv),
 //! c_ID[2] label (1 solid, 0 liquid; 0 without fix dmhs/phase),
-//! c_ID[3] melt fraction by enthalpy (fix dmhs/phase group: clamp((e - e_sol)/L, 0, 1);
+//! c_ID[3] melt fraction by enthalpy (fix dmhs/phase group: clamp((e - e_sol)/L, 0, 1), e = esph/m;
 //!         else 1 - label),
 //! c_ID[4] SPH weight phi of the blend (the `dmhs/phi` field, else 1 - label).
 //! Atoms outside the compute's group get 0 in every column.
@@ -53,7 +53,7 @@ impl Compute for ComputeDmhsPhaseAtom {
             }
             let label = kl.map(|k| a.extra[k].data[i]).unwrap_or(0.0);
             let melt = match eos {
-                Some((e, bit)) if a.mask[i] & bit != 0 => e.melt_fraction(a.esph[i]),
+                Some((e, bit)) if a.mask[i] & bit != 0 => e.melt_fraction(a.esph[i] / sim.mass(i)),
                 _ => 1.0 - label,
             };
             let phi = kp.map(|k| a.extra[k].data[i]).unwrap_or(1.0 - label);

@@ -12,7 +12,8 @@
 //! cools. D must not exceed the neighbour cutoff (ghost atoms must cover it).
 //!
 //! Output: f_ID = number of cooling atoms on the last step; f_ID[1] the same, f_ID[2] the
-//! energy removed so far, sum over steps of dt sum_i m_i kT c_i (T_i - Tair).
+//! energy removed so far, sum over steps of dt sum_i kT C_i (T_i - Tair) (trapezoid, as the
+//! integrators apply it).
 
 use super::{Fix, FixHooks};
 use crate::sim::{RunError, Simulation};
@@ -58,7 +59,7 @@ impl FixDmhsCooling {
 }
 
 impl FixDmhsCooling {
-    /// Add the cooling rates to desph; returns the rate of energy loss sum_i m_i kT c_i (T_i - Tair).
+    /// Add the cooling rates to desph; returns the rate of energy loss sum_i kT C_i (T_i - Tair).
     fn apply(&mut self, sim: &mut Simulation) -> f64 {
         let coord = self.surface.map(|(d, _)| coordination(&sim.atoms, d));
         let kt_field = sim.atoms.find_extra(crate::pair::dmhs_heatconduction::T_FIELD);
@@ -79,7 +80,7 @@ impl FixDmhsCooling {
             let c = kc_field.map(|k| a.extra[k].data[i]).unwrap_or(a.cv[i]);
             let de = -self.kt * c * (t - self.tair);
             a.desph[i] += de;
-            rate -= a.mass(i, &sim.type_mass) * de;
+            rate -= de;
             n += 1;
         }
         self.ncool = n;

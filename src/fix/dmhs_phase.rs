@@ -2,14 +2,16 @@
 //! [mix Tlow Thigh]` — solidification and melting with latent heat (Alexiadis 2015, Eq 24 and
 //! the casting example).
 //!
-//! Equation of state (e = specific internal energy `esph`, e_0 = T_0 = 0):
+//! Equation of state (e = esph/m, the specific internal energy: esph is the particle's energy
+//! m e as in LAMMPS' SPH package; e_0 = T_0 = 0):
 //!   e_sol = cvs T*,  e_liq = e_sol + L
 //!   T = e/cvs                      for e < e_sol          (solid)
 //!   T = T*                         for e_sol <= e <= e_liq (transition plateau)
 //!   T = T* + (e - e_liq)/cvl       for e > e_liq          (liquid)
 //! The temperature of every atom is published in the per-atom field `dmhs/T` (ghosts too), read
 //! by `pair_style dmhs/heatconduction` and `fix dmhs/cooling`; atoms outside the group get
-//! esph/cv. The heat capacity of the current state (cvs below e_sol, cvl above) goes to `dmhs/c`.
+//! esph/cv. The particle's heat capacity in its current state (m cvs below e_sol, m cvl above;
+//! cv outside the group) goes to `dmhs/c`.
 //!
 //! Label and switch of models (checked at the end of every step, on group atoms):
 //! - a liquid atom whose e falls below e_sol becomes solid: its type becomes ST (so the per-type
@@ -28,7 +30,7 @@
 //!
 //! Output: f_ID = solid fraction (solid atoms / group atoms); f_ID[1..5] = solid fraction,
 //! number of solid atoms, bonds created, bonds deleted (since the fix was defined), and the
-//! solid fraction by enthalpy (sum over the group of clamp((e_liq - e)/L, 0, 1), per atom).
+//! solid fraction by enthalpy (mean over the group of clamp((e_liq - e)/L, 0, 1)).
 //! Per-atom: `compute ID group dmhs/phase/atom` (T, label, melt fraction, phi).
 
 use super::{Fix, FixHooks};
@@ -184,10 +186,12 @@ impl FixDmhsPhase {
         let kp = sim.atoms.find_extra(PHI_FIELD);
         let a = &mut sim.atoms;
         for i in 0..a.nlocal {
-            let e = a.esph[i];
             let (t, c) = if a.mask[i] & self.groupbit != 0 {
-                (self.eos.temperature(e), self.eos.capacity(e))
+                let m = a.mass(i, &sim.type_mass);
+                let e = a.esph[i] / m;
+                (self.eos.temperature(e), m * self.eos.capacity(e))
             } else {
+                let e = a.esph[i];
                 let cv = a.cv[i];
                 (if cv > 0.0 { e / cv } else { 0.0 }, cv)
             };
@@ -225,7 +229,7 @@ impl FixDmhsPhase {
                 continue;
             }
             let solid = a.extra[kl].data[i] != 0.0;
-            let e = a.esph[i];
+            let e = a.esph[i] / a.mass(i, &sim.type_mass);
             if !solid && e < self.eos.esol {
                 freeze.push(i);
             } else if solid && e > self.eos.eliq {
@@ -297,7 +301,7 @@ impl FixDmhsPhase {
             if a.mask[i] & self.groupbit != 0 {
                 n += 1.0;
                 ns += a.extra[kl].data[i];
-                fs += 1.0 - self.eos.melt_fraction(a.esph[i]);
+                fs += 1.0 - self.eos.melt_fraction(a.esph[i] / a.mass(i, &sim.type_mass));
             }
         }
         (n, ns, fs)

@@ -4,8 +4,11 @@
 //!   m_i de_i/dt = sum_j m_i m_j/(rho_i rho_j) (kappa_i + kappa_j) (T_i - T_j) wfd_ij
 //!
 //! (wfd = (1/r) dW/dr < 0, so heat flows from hot to cold; `r_ij . grad_j W / r^2` of the paper
-//! is `-wfd`). e is the specific internal energy `esph` (J/kg), the pair exchange is
-//! antisymmetric in m e, so sum_i m_i e_i is conserved to round-off.
+//! is `-wfd`). As in LAMMPS' SPH package `esph` is the particle's internal energy E = m e
+//! (extensive; e is the paper's specific energy), so the style adds dE_i/dt = m_i de_i/dt to
+//! desph; the exchange is antisymmetric, so sum_i esph_i is conserved to round-off (and the
+//! work of LAMMPS' SPH momentum styles, added to esph in the same units, keeps KE + sum esph
+//! conserved).
 //!
 //! `pair_coeff I J kappa h`: kappa is the pair's mean conductivity (kappa_i + kappa_j)/2, h the
 //! kernel support. Unset I != J pairs mix arithmetically from I I and J J (kappa and h), which
@@ -13,9 +16,10 @@
 //! harmonic mean 2 kappa_i kappa_j/(kappa_i + kappa_j) of Cleary and Monaghan).
 //!
 //! T_i: the per-atom field `dmhs/T` when a `fix dmhs/phase` publishes it (Eq 24 with latent
-//! heat), else esph/cv (Eq 23 with e_0 = T_0 = 0). m is the atom's mass (rmass with sphere).
+//! heat), else esph/cv (Eq 23 with e_0 = T_0 = 0; cv is the particle's heat capacity m c_v, as
+//! compute sph/t/atom reads it). m is the atom's mass (rmass with sphere).
 //! Relation to LAMMPS' sph/heatconduction: for one material with constant c_v and equal masses
-//! both give the same rates when D = kappa/(rho c_v); LAMMPS drives the flux by esph
+//! both give the same rates when D = kappa/(rho c_v) (c_v specific); LAMMPS drives the flux by esph
 //! differences, which is wrong across a latent-heat plateau and between materials of different
 //! c_v, hence this style.
 
@@ -77,9 +81,9 @@ impl SphKernel for DmhsHeatConduction {
         let kh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
         let sup = SupportLanes::gather(|l| Support::new(kh[l].1));
         let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
-        // q = (kappa_i + kappa_j)(T_i - T_j) wfd / (rho_i rho_j); de_i = m_j q, de_j = -m_i q
-        let q = lanes(|l| 2.0 * kh[l].0 * (pi.b - b.b[l]) * wfd[l] / (pi.a * b.a[l]));
-        SphContribution { de_i: lanes(|l| b.v[0][l] * q[l]), de_j: lanes(|l| -pi.v[0] * q[l]), ..SphContribution::default() }
+        // dE_i = m_i m_j (kappa_i + kappa_j)(T_i - T_j) wfd / (rho_i rho_j) = -dE_j
+        let de = lanes(|l| pi.v[0] * b.v[0][l] * (2.0 * kh[l].0 * (pi.b - b.b[l]) * wfd[l] / (pi.a * b.a[l])));
+        SphContribution { de_i: de, de_j: lanes(|l| -de[l]), ..SphContribution::default() }
     }
 }
 
@@ -190,13 +194,12 @@ mod tests {
         hc.compute(&input, &mut out);
         // T1 = 150, T2 = 50; wfd for Lucy 3D at r = 0.3, h = 0.8
         let wfd = Kernel::Lucy.wfd(0.09, 0.8, true);
-        let q = (1.0 + 3.0) * (150.0 - 50.0) * wfd / (1000.0 * 1500.0);
+        let q = 2.0 * 5.0 * (1.0 + 3.0) * (150.0 - 50.0) * wfd / (1000.0 * 1500.0);
         let i0 = atoms.tag.iter().position(|&t| t == 1).unwrap();
         let i1 = 1 - i0;
-        assert!((de[i0] - 5.0 * q).abs() <= 1e-14 * (5.0 * q).abs(), "{} vs {}", de[i0], 5.0 * q);
-        assert!((de[i1] + 2.0 * q).abs() <= 1e-14 * (2.0 * q).abs());
+        assert!((de[i0] - q).abs() <= 1e-14 * q.abs(), "{} vs {}", de[i0], q);
         assert!(de[i0] < 0.0, "the hot particle cools");
-        assert!((2.0 * de[i0] + 5.0 * de[i1]).abs() < 1e-15 * (2.0 * de[i0]).abs(), "sum m de = 0");
+        assert_eq!(de[i0], -de[i1], "sum of dE = 0");
         assert_eq!(f[0], [0.0; 3]);
     }
 }

@@ -415,3 +415,29 @@ fn hybrid_heat_exchange_matches_lammps() {
     let warm = ours.rows.values().filter(|r| r.1[e] > 1.0).count();
     assert!(warm > 0);
 }
+
+#[test]
+fn bad_phase_and_cooling_commands_are_located_errors() {
+    let base = "
+dimension 2
+units si
+atom_style sph
+region box block 0 2 0 2 -0.5 0.5 units box
+create_box 2 box
+";
+    let cases = [
+        ("fix p all dmhs/phase Tstar 25 cvs 2 cvl 1 latent 50 liquid 1", "needs the keyword `solid`"),
+        ("fix p all dmhs/phase Tstar 25 cvs 2 cvl 1 latent 50 liquid 1 solid 1", "must differ"),
+        ("fix p all dmhs/phase Tstar 25 cvs -2 cvl 1 latent 50 liquid 1 solid 2", "cvs"),
+        ("fix p all dmhs/phase Tstar 25 cvs 2 cvl 1 latent 50 liquid 1 solid 2 bond 1", "bond"),
+        ("fix p all dmhs/phase Tstar 25 cvs 2 cvl 1 latent 50 liquid 1 solid 2 mix 900 500", "Thigh"),
+        ("fix p all dmhs/phase Tstar 25 cvs 2 cvl 1 latent 50 liquid 1 solid 2 colour red", "colour"),
+        ("fix c all dmhs/cooling 0.1", "Tair"),
+        ("fix c all dmhs/cooling 0.1 0.0 surface 1.0", "NC"),
+    ];
+    for (line, expect) in cases {
+        let err = run_text("bad", &format!("{base}{line}\n"), &opts(&[])).err().unwrap_or_else(|| panic!("`{line}` was accepted"));
+        assert!(err.rendered.contains("bad:7:"), "{line}: no location in {}", err.rendered);
+        assert!(err.rendered.contains(expect), "{line}: expected `{expect}` in {}", err.rendered);
+    }
+}

@@ -293,3 +293,43 @@ mod tests {
         assert_eq!(interpolate(&MARTIN_MOYCE_A225, 0.5), None);
     }
 }
+
+/// Two-phase Stefan problem (Neumann's solution): a liquid at `t_init` above the melting point
+/// `t_melt` fills x > 0 and solidifies from a wall held at `t_wall` < `t_melt` at x = 0. The
+/// front is X(t) = 2 lambda sqrt(alpha_s t), lambda the root of
+///   exp(-l^2)/erf(l) - (k_l/k_s) sqrt(a_s/a_l) (T_i - T_m)/(T_m - T_w) exp(-l^2 a_s/a_l)/erfc(l sqrt(a_s/a_l))
+///     = l sqrt(pi) L/(c_s (T_m - T_w)),
+/// with a = k/(rho c). Returns lambda (bisection to round-off).
+#[allow(clippy::too_many_arguments)]
+pub fn stefan_lambda(rho: f64, k_s: f64, c_s: f64, k_l: f64, c_l: f64, latent: f64, t_wall: f64, t_melt: f64, t_init: f64) -> f64 {
+    let (a_s, a_l) = (k_s / (rho * c_s), k_l / (rho * c_l));
+    let r = (a_s / a_l).sqrt();
+    let f = |l: f64| {
+        (-l * l).exp() / erf(l) - (k_l / k_s) * r * (t_init - t_melt) / (t_melt - t_wall) * (-l * l * r * r).exp() / (1.0 - erf(l * r))
+            - l * PI.sqrt() * latent / (c_s * (t_melt - t_wall))
+    };
+    let (mut lo, mut hi) = (1e-9, 5.0);
+    for _ in 0..200 {
+        let m = 0.5 * (lo + hi);
+        if f(m) > 0.0 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[cfg(test)]
+mod stefan_tests {
+    #[test]
+    fn stefan_lambda_limits() {
+        // one-phase limit (liquid at T_m): lambda exp(l^2) erf(l) = St/sqrt(pi); St = 1 -> 0.6201
+        let l = super::stefan_lambda(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 1.0);
+        assert!((l * (l * l).exp() * super::erf(l) - 1.0 / std::f64::consts::PI.sqrt()).abs() < 1e-12);
+        assert!((l - 0.6200633).abs() < 1e-6, "{l}");
+        // the paper's casting values with T_i = 100 (examples/heat/in.stefan)
+        let l = super::stefan_lambda(1000.0, 1.0, 2.0, 1.0, 1.0, 50.0, 0.0, 25.0, 100.0);
+        assert!((l - 0.27301889799).abs() < 1e-9, "{l}");
+    }
+}

@@ -3,6 +3,7 @@
 //! registry. Computes only read the simulation.
 
 pub mod com;
+pub mod dmhs_phase_atom;
 pub mod ke;
 pub mod pe;
 pub mod pressure;
@@ -59,7 +60,7 @@ pub trait Compute: Send + Sync {
 }
 
 /// Compute styles this build implements.
-pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce", "sph/rho/atom", "sph/e/atom", "sph/t/atom"];
+pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce", "sph/rho/atom", "sph/e/atom", "sph/t/atom", "dmhs/phase/atom"];
 
 /// Build a compute from `compute ID group style args...`.
 pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &Simulation) -> DResult<Box<dyn Compute>> {
@@ -73,6 +74,7 @@ pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: 
         "property/atom" => Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(id, groupbit, args, cmd, sim)?)),
         "reduce" => Ok(Box::new(reduce::ComputeReduce::from_lammps(id, groupbit, args, cmd, sim)?)),
         "sph/rho/atom" | "sph/e/atom" | "sph/t/atom" => Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/phase/atom" => Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("compute", style, other, SUPPORTED)),
     }
 }

@@ -4,6 +4,8 @@
 pub mod addforce;
 pub mod bond_break;
 pub mod bond_create;
+pub mod dmhs_cooling;
+pub mod dmhs_phase;
 pub mod value;
 pub mod enforce2d;
 pub mod gravity;
@@ -78,6 +80,10 @@ pub trait Fix: Send {
     fn dof_removed(&self, _sim: &Simulation, _groupbit: u32) -> f64 {
         0.0
     }
+    /// The phase-change equation of state, for fix dmhs/phase (read by compute dmhs/phase/atom).
+    fn phase_eos(&self) -> Option<crate::fix::dmhs_phase::PhaseEos> {
+        None
+    }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _sim: &mut Simulation) {}
     /// One-line description for `dmhs check`.
@@ -99,7 +105,7 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
 }
 
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break"];
+pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break", "dmhs/phase", "dmhs/cooling"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
@@ -118,6 +124,8 @@ pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Wo
         "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         "bond/break" | "dmhs/bond/break" => Ok(Box::new(bond_break::FixBondBreak::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         "bond/create" => Ok(Box::new(bond_create::FixBondCreate::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/phase" => Ok(Box::new(dmhs_phase::FixDmhsPhase::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/cooling" => Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }
 }

@@ -24,6 +24,9 @@ pub struct Hybrid {
     /// made from the list of build `sublists_of`, so a sub-style loops only over its own pairs.
     sublists: Vec<Option<NeighList>>,
     sublists_of: Option<u64>,
+    /// The atom types the sub-lists were filtered with (a fix that changes types without a
+    /// list rebuild makes them stale too).
+    sublists_typ: Vec<usize>,
 }
 
 impl Hybrid {
@@ -54,7 +57,7 @@ impl Hybrid {
             k = end;
         }
         let seconds = vec![0.0; styles.len()];
-        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds, sublists: vec![], sublists_of: None })
+        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds, sublists: vec![], sublists_of: None, sublists_typ: vec![] })
     }
 
     fn grow(&mut self, n: usize) {
@@ -104,11 +107,14 @@ impl Hybrid {
 }
 
 impl Hybrid {
-    /// Bring the sub-lists up to date with the engine's list (after a rebuild).
-    fn refresh_sublists(&mut self, input: &PairInput) {
-        if self.sublists_of == Some(input.list.generation) && self.sublists.len() == self.styles.len() {
-            return;
+    /// Bring the sub-lists up to date with the engine's list (after a rebuild) and the atom
+    /// types; returns true if they were remade.
+    fn refresh_sublists(&mut self, input: &PairInput) -> bool {
+        let typ = &input.atoms.typ;
+        if self.sublists_of == Some(input.list.generation) && self.sublists.len() == self.styles.len() && self.sublists_typ == *typ {
+            return false;
         }
+        self.sublists_typ.clone_from(typ);
         let s = self.ntypes + 1;
         let n = self.ntypes;
         self.sublists = self
@@ -120,6 +126,19 @@ impl Hybrid {
             })
             .collect();
         self.sublists_of = Some(input.list.generation);
+        true
+    }
+
+    /// Remake the sub-lists if types changed since the last list build, and let the sub-styles
+    /// re-key their contact histories to them (as after a rebuild; no atom moved).
+    fn refresh_between_builds(&mut self, input: &PairInput) {
+        if self.refresh_sublists(input) {
+            let order: Vec<usize> = (0..input.atoms.nlocal).collect();
+            for (k, style) in self.styles.iter_mut().enumerate() {
+                let sub = Self::sub_input(&self.sublists, k, input);
+                style.rebuilt(&sub, &order);
+            }
+        }
     }
 
     /// The input of sub-style `k`: its own list, no type filter left to apply.
@@ -226,7 +245,7 @@ impl PairStyle for Hybrid {
     }
 
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        self.refresh_sublists(input);
+        self.refresh_between_builds(input);
         let mut total = Tally::default();
         for (k, style) in self.styles.iter_mut().enumerate() {
             let sub = Self::sub_input(&self.sublists, k, input);
@@ -250,7 +269,7 @@ impl PairStyle for Hybrid {
     }
 
     fn density_pass(&mut self, input: &PairInput, rho: &mut [f64]) -> bool {
-        self.refresh_sublists(input);
+        self.refresh_between_builds(input);
         let mut any = false;
         for (k, style) in self.styles.iter_mut().enumerate() {
             let sub = Self::sub_input(&self.sublists, k, input);

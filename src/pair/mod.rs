@@ -5,6 +5,8 @@
 //! live here. Adding a style touches one list: [`new_pair_style`].
 
 pub mod contact;
+pub mod dmhs_blend;
+pub mod dmhs_heatconduction;
 pub mod gran_hooke;
 pub mod gran_hooke_history;
 pub mod granular;
@@ -245,6 +247,8 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
         "sph/taitwater/morris" => Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?)),
         "sph/heatconduction" => Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?)),
         "sph/rhosum" => Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?)),
+        "dmhs/blend" => Ok(Box::new(dmhs_blend::DmhsBlend::from_lammps(args, cmd)?)),
+        "dmhs/heatconduction" => Ok(Box::new(dmhs_heatconduction::DmhsHeatConduction::from_lammps(args, cmd)?)),
         "gran/hooke" => Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?)),
         "gran/hooke/history" => Ok(Box::new(gran_hooke_history::GranHookeHistory::from_lammps(args, cmd)?)),
         "granular" => Ok(Box::new(granular::Granular::from_lammps(args, cmd)?)),
@@ -255,7 +259,7 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
 }
 
 /// Pair styles this build implements.
-pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay"];
+pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay", "dmhs/heatconduction", "dmhs/blend"];
 
 /// A kernel for a central pair force between two point particles. Parameters are looked up
 /// once per atom i as a row over j's type, then evaluated per pair.

@@ -29,6 +29,10 @@ impl SphTaitwaterMorris {
         let kernel = parse_kernel(&mut a)?;
         Ok(SphTaitwaterMorris { kernel, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
     }
+    /// The dimension, for styles that evaluate this one pair by pair (dmhs/blend).
+    pub fn set_dim3(&mut self, dim3: bool) {
+        self.dim3 = dim3;
+    }
 }
 
 impl SphKernel for SphTaitwaterMorris {

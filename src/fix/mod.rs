@@ -2,6 +2,9 @@
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
 pub mod addforce;
+pub mod dmhs_diffusion;
+pub mod dmhs_stokes;
+pub mod dmhs_swell;
 pub mod value;
 pub mod enforce2d;
 pub mod gravity;
@@ -97,7 +100,7 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
 }
 
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary"];
+pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "dmhs/diffusion", "dmhs/swell", "dmhs/stokes"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
@@ -114,6 +117,9 @@ pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Wo
         "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, sim)?)),
         "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
         "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/diffusion" => Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/swell" => Ok(Box::new(dmhs_swell::FixSwell::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/stokes" => Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }
 }

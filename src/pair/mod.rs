@@ -5,6 +5,8 @@
 //! live here. Adding a style touches one list: [`new_pair_style`].
 
 pub mod contact;
+pub mod dmhs_lj_wet;
+pub mod dmhs_sph_diffusion;
 pub mod gran_hooke;
 pub mod gran_hooke_history;
 pub mod granular;
@@ -89,6 +91,8 @@ pub struct PairOutput<'a> {
     pub torque: &'a mut [[f64; 3]],
     pub drho: &'a mut [f64],
     pub desph: &'a mut [f64],
+    /// Water-mass rates (`dmhs/dwater`; empty without a water field).
+    pub dwater: &'a mut [f64],
 }
 
 /// What a pair computation may read.
@@ -232,6 +236,8 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
         "sph/taitwater/morris" => Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?)),
         "sph/heatconduction" => Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?)),
         "sph/rhosum" => Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?)),
+        "dmhs/sph/diffusion" => Ok(Box::new(dmhs_sph_diffusion::SphDiffusion::from_lammps(args, cmd)?)),
+        "dmhs/lj/wet" => Ok(Box::new(dmhs_lj_wet::LjWet::from_lammps(args, cmd)?)),
         "gran/hooke" => Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?)),
         "gran/hooke/history" => Ok(Box::new(gran_hooke_history::GranHookeHistory::from_lammps(args, cmd)?)),
         "granular" => Ok(Box::new(granular::Granular::from_lammps(args, cmd)?)),
@@ -242,7 +248,7 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
 }
 
 /// Pair styles this build implements.
-pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay"];
+pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "dmhs/sph/diffusion", "dmhs/lj/wet", "hybrid", "hybrid/overlay"];
 
 /// A kernel for a central pair force between two point particles. Parameters are looked up
 /// once per atom i as a row over j's type, then evaluated per pair.

@@ -301,3 +301,52 @@ fn moving_sph_wall_carries_its_velocity() {
     assert!(walls > 0);
     assert!(fluid_vx > 1e-5, "the moving wall drags the fluid: {fluid_vx}");
 }
+
+#[test]
+fn bad_water_decks_name_the_problem() {
+    let head = "units si\natom_style sph\nregion box block 0 1 0 1 0 1 units box\ncreate_box 1 box\ncreate_atoms 1 single 0.5 0.5 0.5 units box\n";
+    let cases = [
+        ("set atom 1 dmhs/conc 0.5\n", "6:12", "mass of atom type 1 is not set"),
+        ("mass 1 1\nset atom 1 sph/rho 1\npair_style dmhs/sph/diffusion\npair_coeff 1 1 -1 0.1\n", "9:16", "must be >= 0"),
+        ("mass 1 1\nset atom 1 sph/rho 1\nfix s all dmhs/swell 1\n", "8:11", "needs an atom style with radii"),
+        ("mass 1 1\nset atom 1 sph/rho 1\npair_style dmhs/sph/diffusion\npair_coeff 1 1 1 0.1\nrun 1\n", "10:1", "no particle carries water"),
+        ("pair_style dmhs/lj/wet 1.0 conc median\n", "6:33", "expected one of: max, mean"),
+        ("pair_style dmhs/lj/wet 1.0\npair_coeff 1 1 1 1 0\n", "7:20", "cth"),
+        ("fix d all dmhs/stokes 1e-3\n", "6:11", "needs an atom style with radii"),
+    ];
+    for (tail, at, msg) in cases {
+        let deck = format!("{head}{tail}");
+        let err = match run_text("bad.in", &deck, &DeckOptions::default()) {
+            Ok(_) => panic!("accepted:\n{deck}"),
+            Err(f) => f.rendered,
+        };
+        assert!(err.contains(&format!("bad.in:{at}")) && err.contains(msg), "{tail}:\n{err}");
+    }
+}
+
+#[test]
+fn water_fields_reach_dumps_and_reductions() {
+    let dir = tempfile::tempdir().unwrap();
+    let dump = dir.path().join("w.dump");
+    let deck = format!(
+        "{}\ncompute c all property/atom conc water dwater\ncompute s all reduce sum c_c[2]\n\
+         dump d all custom 10 {} id conc water dwater\nthermo_style custom step c_s f_w\nrun 10\n",
+        mixed_deck(false),
+        dump.display()
+    );
+    let sim = run(&deck, &[]);
+    let text = std::fs::read_to_string(&dump).unwrap();
+    assert!(text.contains("ITEM: ATOMS id conc water dwater"), "{}", &text[..300.min(text.len())]);
+    let last = text.rsplit("ITEM: ATOMS").next().unwrap();
+    let rows: Vec<Vec<f64>> = last.lines().skip(1).map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), sim.atoms.nlocal);
+    for r in &rows {
+        let i = index_of(&sim, r[0] as i64);
+        // dump custom writes %g (6 significant digits)
+        let w = water(&sim.atoms).unwrap()[i];
+        assert!((r[2] - w).abs() <= 1e-5 * w.abs(), "{} vs {w}", r[2]);
+        let c = conc(&sim.atoms, &sim.type_mass, i);
+        assert!((r[1] - c).abs() <= 1e-5 * c.abs(), "{} vs {c}", r[1]);
+    }
+    assert!(rows.iter().any(|r| r[3] != 0.0), "rates are dumped");
+}

@@ -350,3 +350,31 @@ fn water_fields_reach_dumps_and_reductions() {
     }
     assert!(rows.iter().any(|r| r[3] != 0.0), "rates are dumped");
 }
+
+#[test]
+fn dry_wet_lj_is_lj_cut() {
+    // without water, dmhs/lj/wet is lj/cut (checked against LAMMPS in lammps-refs): same forces,
+    // energy, pressure and trajectory on a periodic LJ liquid, with pair_modify shift
+    let deck = |pair: &str, coeff: &str| {
+        format!(
+            "units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 4 0 4 0 4\ncreate_box 2 box\ncreate_atoms 1 box\n\
+             region half block 0 2 INF INF INF INF\nset region half type 2\nmass * 1.0\nvelocity all create 1.5 87287 loop geom\n\
+             pair_style {pair}\npair_coeff 1 1 {coeff}\npair_coeff 2 2 1.2 0.9 {}\npair_modify shift yes\n\
+             neighbor 0.3 bin\nfix 1 all nve\nthermo_style custom step pe press\nrun 100\n",
+            if pair.starts_with("dmhs") { "0.5 2.5" } else { "2.5" }
+        )
+    };
+    let mut a = run(&deck("lj/cut 2.5", "1.0 1.0"), &[]);
+    let mut b = run(&deck("dmhs/lj/wet 2.5", "1.0 1.0 0.5"), &[]);
+    let (ea, eb) = (dmhs::thermo::values(&mut a), dmhs::thermo::values(&mut b));
+    let (ea, eb) = (ea.unwrap(), eb.unwrap());
+    for k in 0..ea.len() {
+        assert!((ea[k] - eb[k]).abs() <= 1e-9 * ea[k].abs().max(1.0), "thermo column {k}: {} vs {}", ea[k], eb[k]);
+    }
+    for i in 0..a.atoms.nlocal {
+        let j = index_of(&b, a.atoms.tag[i]);
+        for d in 0..3 {
+            assert!((a.atoms.x[i][d] - b.atoms.x[j][d]).abs() < 1e-9, "atom {}", a.atoms.tag[i]);
+        }
+    }
+}

@@ -378,3 +378,22 @@ fn dry_wet_lj_is_lj_cut() {
         }
     }
 }
+
+#[test]
+fn pair_rate_is_eq_26() {
+    // two particles of different mass and density: dw_1/dt = V1 V2 2D (c1 - c2) (1/r) dW/dr,
+    // dw_2/dt = -dw_1/dt (Lucy kernel, 3D)
+    let deck = "units si\natom_style sph\nregion box block -1 1 -1 1 -1 1 units box\ncreate_box 2 box\n\
+         create_atoms 1 single 0 0 0 units box\ncreate_atoms 2 single 0.03 0.04 0 units box\n\
+         mass 1 2.0\nmass 2 3.0\nset type 1 sph/rho 1000\nset type 2 sph/rho 1500\n\
+         pair_style dmhs/sph/diffusion\npair_coeff * * 0.7 0.1\nfix w all dmhs/diffusion\n\
+         set atom 1 dmhs/conc 0.8\nset atom 2 dmhs/conc 0.1\n";
+    let sim = start(deck);
+    let (i, j) = (index_of(&sim, 1), index_of(&sim, 2));
+    let dw = sim.atoms.extra[sim.atoms.find_extra(dmhs::water::DWATER).unwrap()].data.clone();
+    let wfd = dmhs::pair::sph::Kernel::Lucy.wfd(0.05 * 0.05, 0.1, true);
+    let expected = (2.0 / 1000.0) * (3.0 / 1500.0) * 2.0 * 0.7 * (0.8 - 0.1) * wfd;
+    assert!(expected < 0.0);
+    assert!((dw[i] - expected).abs() <= 1e-14 * expected.abs(), "{} vs {expected}", dw[i]);
+    assert_eq!(dw[j], -dw[i]);
+}

@@ -85,7 +85,10 @@ impl PairStyle for SphDiffusion {
         if crate::water::water(a).is_none() {
             return Err("pair dmhs/sph/diffusion: no particle carries water (define fix dmhs/diffusion, or set ... dmhs/conc)".into());
         }
-        if let Some(i) = (0..a.nlocal).find(|&i| a.rho[i] <= 0.0) {
+        // only particles of types that exchange water need a volume m/rho
+        let n = self.pairs.n;
+        let exchanges = |t: usize| t <= n && (1..=n).any(|j| self.pairs.is_set(t, j) && self.pairs.get(t, j).0 > 0.0);
+        if let Some(i) = (0..a.nlocal).find(|&i| a.rho[i] <= 0.0 && exchanges(a.typ[i])) {
             return Err(format!("pair dmhs/sph/diffusion: atom {} has density {} (V = m/rho needs rho > 0)", a.tag[i], a.rho[i]));
         }
         Ok(())

@@ -397,3 +397,22 @@ fn pair_rate_is_eq_26() {
     assert!((dw[i] - expected).abs() <= 1e-14 * expected.abs(), "{} vs {expected}", dw[i]);
     assert_eq!(dw[j], -dw[i]);
 }
+
+#[test]
+fn restart_keeps_the_dry_size_of_swollen_particles() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("s.restart");
+    let setup = "dimension 2\nunits si\natom_style hybrid sph sphere\nboundary f f p\n\
+         region box block -5 5 -5 5 -0.5 0.5 units box\ncreate_box 2 box\n\
+         create_atoms 1 single 0 0 0 units box\ncreate_atoms 2 single 1 0 0 units box\n\
+         mass * 1.0\nset group all sph/rho 1.0\nset group all diameter 1.2\n";
+    let fixes = "pair_style dmhs/sph/diffusion\npair_coeff * * 0.05 1.5\nfix w all dmhs/diffusion\nfix s all dmhs/swell 2.0\ntimestep 0.01\n";
+    let a = run(&format!("{setup}{fixes}set atom 2 dmhs/conc 1.0\nrun 30\nwrite_restart {}\nrun 30\n", file.display()), &[]);
+    let b = run(&format!("read_restart {}\n{fixes}run 30\n", file.display()), &[]);
+    for tag in [1, 2] {
+        let (i, j) = (index_of(&a, tag), index_of(&b, tag));
+        assert_eq!(a.atoms.radius[i], b.atoms.radius[j], "atom {tag}");
+        assert_eq!(water(&a.atoms).unwrap()[i], water(&b.atoms).unwrap()[j]);
+    }
+    assert!(a.atoms.radius[index_of(&a, 1)] > 0.6);
+}

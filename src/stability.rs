@@ -73,6 +73,9 @@ pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
             }
         }
     }
+    if let Some(p) = sim.pair.as_ref() {
+        out.extend(p.dt_limits());
+    }
     if let Some(bond) = sim.bond_style.as_ref() {
         if bond.name() == "harmonic" && sim.topo.nbondtypes > 0 {
             let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);

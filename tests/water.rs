@@ -416,3 +416,21 @@ fn restart_keeps_the_dry_size_of_swollen_particles() {
     }
     assert!(a.atoms.radius[index_of(&a, 1)] > 0.6);
 }
+
+#[test]
+fn diffusion_reports_its_time_step_limit() {
+    // D dt/dx^2 = 0.7 is stable and 0.8 unstable on the Fick deck (h = 2.6 dx): the limit
+    // 0.05 h^2/D keeps a factor of about 2 below that
+    let deck = include_str!("../examples/diffusion/in.fick");
+    let sim = run(&deck.replace("run          ${nsteps}", ""), &[]);
+    let limits = dmhs::stability::limits(&sim, false);
+    let l = limits.iter().find(|l| l.model == "water diffusion").expect("a diffusion limit");
+    let (h, d) = (0.026, 1e-3);
+    assert!((l.dt_max - 0.05 * h * h / d).abs() < 1e-15, "{l:?}");
+    let stable = |cdt: &str| {
+        let s = run(deck, &[("N", "50"), ("cdt", cdt), ("tend", "40")]);
+        (0..s.atoms.nlocal).all(|i| conc(&s.atoms, &s.type_mass, i).abs() <= 1.0 + 1e-9)
+    };
+    assert!(stable("0.7"));
+    assert!(!stable("0.8"));
+}

@@ -174,6 +174,11 @@ pub trait PairStyle: Send + Sync {
     fn sph_info(&self) -> Option<SphInfo> {
         None
     }
+    /// Other time-step limits of the style (e.g. explicit diffusion), for `dmhs check` and the
+    /// warnings at the start of a run.
+    fn dt_limits(&self) -> Vec<crate::stability::Limit> {
+        vec![]
+    }
 }
 
 /// What stability estimates need from SPH styles.

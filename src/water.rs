@@ -62,10 +62,7 @@ pub fn set(atoms: &mut Atoms, type_mass: &[f64], mass_set: &[bool], selected: &[
     }
     ensure_fields(atoms);
     let k = atoms.find_extra(WATER).unwrap();
-    for i in 0..atoms.nlocal {
-        if !selected[i] {
-            continue;
-        }
+    for (i, _) in selected.iter().enumerate().take(atoms.nlocal).filter(|(_, &s)| s) {
         let w = if keyword == "dmhs/conc" {
             let t = atoms.typ[i];
             if !mass_set.get(t).copied().unwrap_or(false) {

@@ -10,7 +10,8 @@
 //!   (Weeks-Chandler-Andersen): E_rep = LJ(s) + eps for s < s_min (0 beyond), E_att = -eps for
 //!   s < s_min and LJ(s) beyond. The repulsive core stays whole (wet particles still do not
 //!   overlap); the attraction, and only it, goes linearly to 0 at cth.
-//! - `scale all`: E = lambda LJ(s) (the whole potential, as the brief's eps_eff reading).
+//! - `scale all`: E = lambda LJ(s) (the whole potential: eps_eff = lambda eps).
+//!
 //! `pair_modify shift yes` subtracts LJ(Rc) from the attractive part.
 //! Swelling (`swell dmax`, with `fix dmhs/swell`): s = r - (g_i + g_j), the distance between the
 //! swollen surfaces, where g = r_i - r0_i is each particle's radius growth capped at dmax; the

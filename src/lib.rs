@@ -44,6 +44,7 @@ pub mod units;
 pub mod validate;
 pub mod velocity;
 pub mod velocity_create;
+pub mod water;
 pub mod commands;
 pub mod data;
 

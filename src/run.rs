@@ -132,6 +132,8 @@ impl Simulation {
             std::mem::take(&mut self.atoms.drho),
             std::mem::take(&mut self.atoms.desph),
         );
+        let kw = self.atoms.find_extra(crate::water::DWATER);
+        let mut dwater = kw.map(|k| std::mem::take(&mut self.atoms.extra[k].data)).unwrap_or_default();
         let input = PairInput {
             atoms: &self.atoms,
             list: &self.neighbor.list,
@@ -146,12 +148,15 @@ impl Simulation {
             advance,
             dimension: self.dimension,
         };
-        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph };
+        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, dwater: &mut dwater };
         let r = work(pair.as_mut(), &input, &mut out);
         self.atoms.f = f;
         self.atoms.torque = torque;
         self.atoms.drho = drho;
         self.atoms.desph = desph;
+        if let Some(k) = kw {
+            self.atoms.extra[k].data = dwater;
+        }
         self.pair = Some(pair);
         r
     }
@@ -167,6 +172,9 @@ impl Simulation {
         if a.features.sph {
             a.drho.iter_mut().for_each(|x| *x = 0.0);
             a.desph.iter_mut().for_each(|x| *x = 0.0);
+        }
+        if let Some(k) = a.find_extra(crate::water::DWATER) {
+            a.extra[k].data.iter_mut().for_each(|x| *x = 0.0);
         }
         self.timers.stamp();
         let mut pair_tally = Tally::default();

@@ -83,6 +83,9 @@ pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
             out.push(Limit { model: "DEM contact".into(), rule: format!("t_c/10, t_c = pi sqrt(m_eff/k_n) (k_n = {kn}, m_eff = {:.4e})", 0.5 * m_min), dt_max: tc / 10.0 });
         }
     }
+    if let Some(p) = sim.pair.as_ref() {
+        out.extend(p.dt_limits());
+    }
     if let Some(bond) = sim.bond_style.as_ref() {
         if bond.name() == "harmonic" && sim.topo.nbondtypes > 0 {
             let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);

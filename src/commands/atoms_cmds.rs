@@ -196,7 +196,7 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
 
 pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv)";
+    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water)";
     let mut a = Args::new(cmd, syntax);
     sim.atoms.clear_ghosts();
     let n = sim.atoms.nlocal;
@@ -334,8 +334,13 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                     _ => at.cv[i] = v,
                 });
             }
+            "dmhs/conc" | "dmhs/water" => {
+                let v = value(&mut a, &kw.text)?;
+                let sel = &sel;
+                crate::water::set(at, &sim.type_mass, &sim.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
+            }
             other => {
-                let known = ["type", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv"];
+                let known = ["type", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water"];
                 let mut d = a.error_at(kw, format!("set keyword `{other}` is not supported"), "unknown or unsupported keyword");
                 if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
                     d = d.with_help(h);

@@ -27,6 +27,10 @@ pub enum Field {
     Desph,
     Cv,
     Vest(usize),
+    /// Water concentration c = w rho/m, water mass w, and its rate (dmhs/sph/diffusion).
+    Conc,
+    Water,
+    DWater,
 }
 
 impl Field {
@@ -61,6 +65,9 @@ impl Field {
             "desph" => Field::Desph,
             "cv" => Field::Cv,
             "vxest" | "vyest" | "vzest" => Field::Vest(axis(&name[1..2])?),
+            "conc" => Field::Conc,
+            "water" => Field::Water,
+            "dwater" => Field::DWater,
             _ => return None,
         })
     }
@@ -73,6 +80,7 @@ impl Field {
             Field::Q => (ft.charge, "charges"),
             Field::Radius | Field::Diameter | Field::Omega(_) | Field::Torque(_) => (ft.sphere, "sphere attributes (atom_style sphere)"),
             Field::Rho | Field::Drho | Field::Esph | Field::Desph | Field::Cv | Field::Vest(_) => (ft.sph, "SPH attributes (atom_style sph)"),
+            Field::Conc | Field::Water | Field::DWater => (sim.atoms.find_extra(crate::water::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
             _ => (true, ""),
         };
         if ok { Ok(()) } else { Err(format!("this atom style has no {what}")) }
@@ -116,6 +124,9 @@ impl Field {
             Field::Desph => a.desph[i],
             Field::Cv => a.cv[i],
             Field::Vest(d) => a.vest[i][d],
+            Field::Conc => crate::water::conc(a, &sim.type_mass, i),
+            Field::Water => crate::water::extra_value(a, crate::water::WATER, i),
+            Field::DWater => crate::water::extra_value(a, crate::water::DWATER, i),
         }
     }
 }

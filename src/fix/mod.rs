@@ -6,6 +6,9 @@ pub mod bond_break;
 pub mod bond_create;
 pub mod dmhs_cooling;
 pub mod dmhs_phase;
+pub mod dmhs_diffusion;
+pub mod dmhs_stokes;
+pub mod dmhs_swell;
 pub mod value;
 pub mod enforce2d;
 pub mod gravity;
@@ -105,7 +108,7 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
 }
 
 /// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break", "dmhs/phase", "dmhs/cooling"];
+pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break", "dmhs/phase", "dmhs/cooling", "dmhs/diffusion", "dmhs/swell", "dmhs/stokes"];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
@@ -126,6 +129,9 @@ pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Wo
         "bond/create" => Ok(Box::new(bond_create::FixBondCreate::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         "dmhs/phase" => Ok(Box::new(dmhs_phase::FixDmhsPhase::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         "dmhs/cooling" => Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/diffusion" => Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/swell" => Ok(Box::new(dmhs_swell::FixSwell::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/stokes" => Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(id, groupbit, style, args, cmd, sim)?)),
         other => Err(crate::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }
 }

@@ -280,6 +280,9 @@ impl PairStyle for Hybrid {
         any
     }
 
+    fn dt_limits(&self) -> Vec<crate::stability::Limit> {
+        self.styles.iter().flat_map(|s| s.dt_limits()).collect()
+    }
     fn sph_info(&self) -> Option<super::SphInfo> {
         // the most restrictive values over the SPH sub-styles
         let infos: Vec<super::SphInfo> = self.styles.iter().filter_map(|s| s.sph_info()).collect();

@@ -7,6 +7,8 @@
 pub mod contact;
 pub mod dmhs_blend;
 pub mod dmhs_heatconduction;
+pub mod dmhs_lj_wet;
+pub mod dmhs_sph_diffusion;
 pub mod gran_hooke;
 pub mod gran_hooke_history;
 pub mod granular;
@@ -91,6 +93,8 @@ pub struct PairOutput<'a> {
     pub torque: &'a mut [[f64; 3]],
     pub drho: &'a mut [f64],
     pub desph: &'a mut [f64],
+    /// Water-mass rates (`dmhs/dwater`; empty without a water field).
+    pub dwater: &'a mut [f64],
 }
 
 /// What a pair computation may read.
@@ -185,6 +189,11 @@ pub trait PairStyle: Send + Sync {
     }
     /// Start the per-part clocks of [`PairStyle::model_seconds`] again (at run setup).
     fn reset_model_seconds(&mut self) {}
+    /// Other time-step limits of the style (e.g. explicit diffusion), for `dmhs check` and the
+    /// warnings at the start of a run.
+    fn dt_limits(&self) -> Vec<crate::stability::Limit> {
+        vec![]
+    }
 }
 
 /// What stability estimates need from SPH styles.
@@ -249,6 +258,8 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
         "sph/rhosum" => Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?)),
         "dmhs/blend" => Ok(Box::new(dmhs_blend::DmhsBlend::from_lammps(args, cmd)?)),
         "dmhs/heatconduction" => Ok(Box::new(dmhs_heatconduction::DmhsHeatConduction::from_lammps(args, cmd)?)),
+        "dmhs/sph/diffusion" => Ok(Box::new(dmhs_sph_diffusion::SphDiffusion::from_lammps(args, cmd)?)),
+        "dmhs/lj/wet" => Ok(Box::new(dmhs_lj_wet::LjWet::from_lammps(args, cmd)?)),
         "gran/hooke" => Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?)),
         "gran/hooke/history" => Ok(Box::new(gran_hooke_history::GranHookeHistory::from_lammps(args, cmd)?)),
         "granular" => Ok(Box::new(granular::Granular::from_lammps(args, cmd)?)),
@@ -259,7 +270,7 @@ pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<
 }
 
 /// Pair styles this build implements.
-pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "hybrid", "hybrid/overlay", "dmhs/heatconduction", "dmhs/blend"];
+pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "dmhs/sph/diffusion", "dmhs/lj/wet", "hybrid", "hybrid/overlay", "dmhs/heatconduction", "dmhs/blend"];
 
 /// A kernel for a central pair force between two point particles. Parameters are looked up
 /// once per atom i as a row over j's type, then evaluated per pair.

@@ -379,6 +379,11 @@ pub trait SphKernel: Sync {
     /// The contributions of a batch of pairs (i, j) inside the cutoff, written lane by lane with
     /// [`lanes`] so that the compiler evaluates the lanes together.
     fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution;
+    /// The scalar rate (`de_i`, `de_j`) is the water-mass rate dw/dt (`dmhs/sph/diffusion`)
+    /// rather than desph: the loop adds it to `out.dwater`.
+    fn rate_is_water(&self) -> bool {
+        false
+    }
 }
 
 /// Rates and forces accumulated per particle during the loop (one record per owned atom).
@@ -514,12 +519,15 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     });
     // add to what other styles (hybrid/overlay) put there already
     let has_rates = !out.drho.is_empty();
+    let water = kernel.rate_is_water() && !out.dwater.is_empty();
     for (i, c) in acc.iter().enumerate() {
         let f = &mut out.f[i];
         f[0] += c.f[0];
         f[1] += c.f[1];
         f[2] += c.f[2];
-        if has_rates {
+        if water {
+            out.dwater[i] += c.desph;
+        } else if has_rates {
             out.drho[i] += c.drho;
             out.desph[i] += c.desph;
         }

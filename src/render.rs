@@ -45,8 +45,10 @@ impl Camera {
     /// Screen position (pixels from the left, pixels from the top) and depth (larger = farther).
     pub fn project(&self, x: [f64; 3]) -> (f64, f64, f64) {
         let d = [x[0] - self.center[0], x[1] - self.center[1], x[2] - self.center[2]];
-        let sx = 0.5 * self.width as f64 + dot(self.right, d) / self.pixel;
-        let sy = 0.5 * self.height as f64 - dot(self.up, d) / self.pixel;
+        // LAMMPS' pixel grid: the centre point falls on the centre of pixel (W/2, H/2 - 1)
+        // counted from the top-left, so positions match its images pixel for pixel
+        let sx = 0.5 * self.width as f64 + 0.5 + dot(self.right, d) / self.pixel;
+        let sy = 0.5 * self.height as f64 - 0.5 - dot(self.up, d) / self.pixel;
         (sx, sy, -dot(self.toward, d))
     }
 }
@@ -100,6 +102,7 @@ impl Canvas {
     /// the pixel under their centre.
     pub fn sphere(&mut self, cam: &Camera, x: [f64; 3], radius: f64, c: Rgb) {
         let (sx, sy, z) = cam.project(x);
+        let thin = radius / cam.pixel < 1.0;
         let r = (radius / cam.pixel).max(0.5);
         if !(sx.is_finite() && sy.is_finite()) {
             return;
@@ -111,7 +114,8 @@ impl Canvas {
                 let q = (dx * dx + dy * dy) / (r * r);
                 if q <= 1.0 {
                     let nz = (1.0 - q).sqrt();
-                    let n = [dx / r, -dy / r, nz];
+                    // below a pixel wide there is nothing to shade: the plain colour
+                    let n = if thin { [0.0, 0.0, 1.0] } else { [dx / r, -dy / r, nz] };
                     self.put(ix, iy, z - nz * radius, shade(c, n, self.shiny));
                 }
             }
@@ -126,6 +130,7 @@ impl Canvas {
             return;
         }
         let radius = 0.5 * diam;
+        let thin = radius / cam.pixel < 1.0;
         let r = (radius / cam.pixel).max(0.5);
         let (ex, ey) = (bx - ax, by - ay);
         let len2 = ex * ex + ey * ey;
@@ -140,7 +145,7 @@ impl Canvas {
                 let q = (dx * dx + dy * dy) / (r * r);
                 if q <= 1.0 {
                     let nz = (1.0 - q).sqrt();
-                    let n = [dx / r, -dy / r, nz];
+                    let n = if thin { [0.0, 0.0, 1.0] } else { [dx / r, -dy / r, nz] };
                     self.put(ix, iy, az + t * (bz - az) - nz * radius, shade(c, n, self.shiny));
                 }
             }
@@ -226,7 +231,7 @@ mod tests {
         let c = cam(100, 50, 0.1);
         // +x to the right, +y up, viewer on +z
         let (sx, sy, z) = c.project([1.0, 0.5, 2.0]);
-        assert!((sx - 60.0).abs() < 1e-12 && (sy - 20.0).abs() < 1e-12 && (z + 2.0).abs() < 1e-12);
+        assert!((sx - 60.5).abs() < 1e-12 && (sy - 19.5).abs() < 1e-12 && (z + 2.0).abs() < 1e-12);
         assert!(Camera::looking(0.0, 0.0, [0.0, 0.0, 1.0], [0.0; 3], 1.0, 10, 10).is_err());
     }
 

@@ -30,6 +30,7 @@ pub mod neighbor;
 pub mod output;
 pub mod pair;
 pub mod plot;
+pub mod plot_cmd;
 pub mod progress;
 pub mod random_park;
 pub mod region;

@@ -310,3 +310,37 @@ fn camera_matches_lammps() {
         }
     }
 }
+
+#[test]
+fn plot_draws_a_log_written_by_a_dmhs_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "units lj\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+velocity all create 1.5 87287\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n\
+thermo_style custom step temp ke pe\nthermo 10\nrun 30\nthermo_style custom step temp press\nrun 30\n";
+    std::fs::write(tmp.path().join("in.lj"), deck).unwrap();
+    let bin = env!("CARGO_BIN_EXE_dmhs");
+    let run = |args: &[&str]| std::process::Command::new(bin).args(args).current_dir(tmp.path()).output().unwrap();
+    let o = run(&["run", "in.lj", "-log", "log.lj", "-screen", "none"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // both runs' tables: Temp spans steps 0..60, KinEng only the first run
+    let t = dmhs::plot_cmd::read_table(&std::fs::read_to_string(tmp.path().join("log.lj")).unwrap()).unwrap();
+    assert_eq!(t.columns, ["Step", "Temp", "KinEng", "PotEng", "Press"]);
+    assert_eq!(t.rows.len(), 8);
+    assert_eq!((t.rows[0][0], t.rows[7][0]), (0.0, 60.0));
+    let o = run(&["plot", "log.lj", "--x", "Step", "--y", "Temp,KinEng", "-o", "thermo.png", "--title", "LJ"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let im = Image::read(&tmp.path().join("thermo.png"));
+    assert_eq!((im.w, im.h), (900, 600));
+    // the first series is drawn in the chart palette's first colour (0, 114, 178)
+    assert!(im.rgb.chunks(3).any(|p| p == [0, 114, 178]));
+    let o = run(&["plot", "log.lj", "--y", "temp", "-o", "t.svg"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::read_to_string(tmp.path().join("t.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("Temp") && svg.contains("polyline"));
+    // a bad column: a clear error listing the columns, exit code 1
+    let o = run(&["plot", "log.lj", "--y", "Volume"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(err.contains("no column `Volume`; the columns are: Step, Temp, KinEng, PotEng, Press"), "{err}");
+    assert!(!tmp.path().join("log.png").exists());
+}

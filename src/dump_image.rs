@@ -16,17 +16,17 @@ use dmhs_parser::{Args, DResult, Word};
 use std::path::{Path, PathBuf};
 
 pub const SYNTAX: &str = "dump ID group image|movie N file color diameter [keyword value ...]  \
-(color: type or a per-atom value; diameter: type, a number or a per-atom value; keywords: atom, adiam, bond, size, view, center, up, zoom, box, axes, subbox, shiny, fsaa)";
+(color: type or a per-atom value; diameter: type, a number or a per-atom value; keywords: atom, adiam, bond, size, view, center, up, zoom, box, axes, subbox, shiny, fsaa, fix)";
 
 /// Keywords of the `dump image` command that dmhs implements.
-const KEYWORDS: &[&str] = &["atom", "adiam", "bond", "size", "view", "center", "up", "zoom", "box", "axes", "subbox", "shiny", "fsaa"];
+const KEYWORDS: &[&str] = &["atom", "adiam", "bond", "size", "view", "center", "up", "zoom", "box", "axes", "subbox", "shiny", "fsaa", "fix"];
 /// LAMMPS' other `dump image` keywords: errors that name them.
-const LAMMPS_ONLY: &[&str] = &["autobond", "grid", "line", "tri", "ellipsoid", "body", "compute", "fix", "persp", "region", "ssao", "depthcue", "outline"];
+const LAMMPS_ONLY: &[&str] = &["autobond", "grid", "line", "tri", "ellipsoid", "body", "compute", "persp", "region", "ssao", "depthcue", "outline"];
 /// `dump_modify` keywords for images that dmhs implements.
-pub const MODIFY_KEYWORDS: &[&str] = &["acolor", "adiam", "amap", "backcolor", "boxcolor", "bcolor", "bdiam", "color", "pad", "framerate"];
+pub const MODIFY_KEYWORDS: &[&str] = &["acolor", "adiam", "amap", "backcolor", "boxcolor", "bcolor", "bdiam", "color", "fcolor", "pad", "framerate"];
 const MODIFY_LAMMPS_ONLY: &[&str] = &[
     "atrans", "backcolor2", "btrans", "bitrate", "axestrans", "boxtrans", "subboxtrans", "gamma", "gtrans", "lights", "specular", "loadcolors",
-    "savecolors", "ccolor", "ctrans", "fcolor", "ftrans", "gmap", "bmap", "element",
+    "savecolors", "ccolor", "ctrans", "ftrans", "gmap", "bmap", "element",
 ];
 
 /// LAMMPS' default per-type colour sequence.
@@ -195,6 +195,9 @@ pub struct ImageDump {
     background: Rgb,
     boxcolor: Rgb,
     user_colors: Vec<(String, Rgb)>,
+    /// `fix ID color flag1 flag2`: wall planes of these fixes, drawn as box-wide outlines
+    /// (fix ID, colour, line diameter as a fraction of the shortest box length).
+    fixes: Vec<(String, Rgb, f64)>,
     pad: usize,
     framerate: f64,
 }
@@ -292,6 +295,7 @@ impl ImageDump {
             background: [0.0; 3],
             boxcolor: named("gold", &[]).unwrap(),
             user_colors: vec![],
+            fixes: vec![],
             pad: if movie { 10 } else { 0 },
             framerate: 24.0,
         };
@@ -377,6 +381,23 @@ impl ImageDump {
                 }
                 "shiny" => d.shiny = a.f64_where("shiny", "in 0..1", |s| (0.0..=1.0).contains(&s))?,
                 "fsaa" => d.fsaa = a.yes_no("fsaa")?,
+                "fix" => {
+                    let fw = a.word("fix ID")?;
+                    let Some(f) = sim.fixes.iter().find(|f| f.id() == fw.text) else {
+                        return Err(a.error_at(fw, format!("fix `{}` does not exist", fw.text), "unknown fix"));
+                    };
+                    if !["wall/reflect", "wall/gran"].contains(&f.style()) {
+                        return Err(a.error_at(fw, format!("fix {} ({}) has nothing to draw: dmhs draws the planes of wall/reflect and wall/gran", fw.text, f.style()), "not a wall fix"));
+                    }
+                    let color = match a.choice("fix color style (const or type)", &["const", "type", "element"])? {
+                        0 => [1.0; 3],
+                        1 => d.type_color[0],
+                        _ => return Err(a.error_at(a.last().unwrap(), "`element` colouring is not supported by dmhs", "use const or type")),
+                    };
+                    let diam = a.non_negative_f64("fix flag1 (line diameter, fraction of the shortest box length; 0: as the box)")?;
+                    a.f64("fix flag2 (unused)")?;
+                    d.fixes.push((fw.text.clone(), color, diam));
+                }
                 k if LAMMPS_ONLY.contains(&k) => {
                     return Err(a.error_at(w, format!("dump image keyword `{k}` is a LAMMPS option that dmhs does not support"), format!("supported: {}", KEYWORDS.join(", "))));
                 }
@@ -497,6 +518,13 @@ impl ImageDump {
                 };
                 self.user_colors.push((name, rgb));
             }
+            "fcolor" => {
+                let fw = a.word("fix ID")?;
+                let Some(k) = self.fixes.iter().position(|f| f.0 == fw.text) else {
+                    return Err(a.error_at(fw, format!("fcolor: fix `{}` is not drawn by this dump (add `fix {} const 0 0` to it)", fw.text, fw.text), "not drawn"));
+                };
+                self.fixes[k].1 = self.color_of(a.word("color")?)?;
+            }
             "pad" => self.pad = a.i64_in("pad (digits of the step in file names)", 0, 30)? as usize,
             "framerate" => self.framerate = a.positive_f64("framerate")?,
             k if MODIFY_LAMMPS_ONLY.contains(&k) => {
@@ -587,6 +615,14 @@ impl ImageDump {
         for k in 0..3 {
             center[k] = lo[k] + num(&self.center[k], sim)? * (hi[k] - lo[k]);
         }
+        let mut planes = vec![];
+        for (fid, color, diam) in &self.fixes {
+            let k = sim.fixes.iter().position(|f| f.id() == fid).ok_or_else(|| format!("fix `{fid}` (drawn by this dump) does not exist"))?;
+            let fixes = std::mem::take(&mut sim.fixes);
+            let p = fixes[k].image_planes(sim);
+            sim.fixes = fixes;
+            planes.extend(p?.into_iter().map(|(axis, c)| (axis, c, *color, *diam)));
+        }
         let sim = &*sim;
         let a = &sim.atoms;
         let idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0).collect();
@@ -634,6 +670,23 @@ impl ImageDump {
                         cv.cylinder(&cam, corner(m), corner(m | bit), diam, self.boxcolor);
                     }
                 }
+            }
+        }
+        // wall planes: the outline of the plane's section of the box
+        for (axis, c, color, diam) in planes {
+            let (lo, hi) = (dom.lo, dom.hi);
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            let point = |a: f64, b: f64| {
+                let mut p = [0.0; 3];
+                p[axis] = c;
+                p[u] = a;
+                p[v] = b;
+                p
+            };
+            let corners = [point(lo[u], lo[v]), point(hi[u], lo[v]), point(hi[u], hi[v]), point(lo[u], hi[v])];
+            let width = if diam > 0.0 { diam } else { self.box_diam.max(0.005) } * shortest;
+            for k in 0..4 {
+                cv.cylinder(&cam, corners[k], corners[(k + 1) % 4], width, color);
             }
         }
         if self.axes != Axes::No {

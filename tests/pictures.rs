@@ -344,3 +344,23 @@ thermo_style custom step temp ke pe\nthermo 10\nrun 30\nthermo_style custom step
     assert!(err.contains("no column `Volume`; the columns are: Step, Temp, KinEng, PotEng, Press"), "{err}");
     assert!(!tmp.path().join("log.png").exists());
 }
+
+#[test]
+fn wall_planes_of_a_fix_are_drawn() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "units lj\ndimension 2\nboundary f f p\nregion box block 0 10 0 5 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 2.5 0\nmass 1 1\n\
+fix w all wall/reflect xlo 2.0 yhi 4.0 units box\n\
+dump 1 all image 1 w.*.png type type size 400 200 box no 0.0 fix w const 0.02 0\ndump_modify 1 fcolor w cyan\nrun 0\n";
+    run_in(tmp.path(), deck).unwrap();
+    let im = Image::read(&tmp.path().join("w.0.png"));
+    let cyan = [0, 255, 255];
+    // the plane x = 2 is a vertical line, y = 4 a horizontal one (1 pixel wide: 0.02 * 5 = 0.1)
+    let (x, y) = at(2.0, 1.0);
+    assert!(im.px(x, y) == cyan || im.px(x - 1, y) == cyan, "{:?}", im.px(x, y));
+    let (x, y) = at(7.0, 4.0);
+    assert!(im.px(x, y) == cyan || im.px(x, y - 1) == cyan, "{:?}", im.px(x, y));
+    let (x, y) = at(3.0, 1.0);
+    assert_eq!(im.px(x, y), [0, 0, 0]);
+    let err = run_in(tmp.path(), &deck.replace("fix w const", "fix nosuch const")).err().unwrap();
+    assert!(err.contains("fix `nosuch` does not exist") && err.contains("in.picture:9:"), "{err}");
+}

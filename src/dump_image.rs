@@ -352,8 +352,8 @@ impl ImageDump {
                     for (k, what) in ["up Ux", "up Uy", "up Uz"].iter().enumerate() {
                         d.up[k] = word_param(a, what)?;
                     }
-                    if two_d {
-                        return Err(a.error_at(w, "a 2d image has y up: the up keyword is for 3d", "2d view"));
+                    if two_d && matches!(d.up[2], Param::Num(z) if z != 0.0) {
+                        return Err(a.error_at(w, "a 2d image is viewed along z: the up vector must lie in the xy plane", "2d view"));
                     }
                 }
                 "zoom" => {

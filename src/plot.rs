@@ -217,7 +217,7 @@ impl Chart {
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         let svg = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-        let tmp = tempfile::Builder::new().prefix(".plot").suffix(if svg { ".svg" } else { ".png" }).tempfile_in(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let tmp = crate::output::temp_file_in(dir, if svg { ".svg" } else { ".png" }).map_err(|e| format!("{}: {e}", dir.display()))?;
         if svg {
             self.draw(SVGBackend::new(tmp.path(), self.size).into_drawing_area())
         } else {

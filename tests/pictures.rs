@@ -60,8 +60,13 @@ fn at(x: f64, y: f64) -> (usize, usize) {
 #[test]
 fn colours_by_type_at_the_atom_positions() {
     let tmp = tempfile::tempdir().unwrap();
-    let deck = format!("{THREE_ATOMS}dump 1 all image 10 img.*.png type type size 400 200\nrun 20\n");
+    let deck = format!("{THREE_ATOMS}dump 1 all image 10 img.*.png type type size 400 200\nvariable z equal 2.0\ndump 2 all image 20 zoom.*.png type type size 400 200 zoom v_z center d 0.2 0.4 0.5\nrun 20\n");
     run_in(tmp.path(), &deck).unwrap();
+    // zoom 2 through a variable, centred on (2, 2): the type-1 atom at the image centre
+    // (LAMMPS' pixel grid: centre pixel (W/2, H/2 - 1)) and the type-2 atom 5 / 0.05 = 100 pixels right
+    let im = Image::read(&tmp.path().join("zoom.20.png"));
+    assert!(close(im.px(200, 99), [255, 0, 0], 3), "{:?}", im.px(200, 99));
+    assert!(close(im.px(300, 79), [34, 139, 34], 3), "{:?}", im.px(300, 79));
     for step in [0, 10, 20] {
         assert!(tmp.path().join(format!("img.{step}.png")).exists());
     }

@@ -327,8 +327,8 @@ impl ImageDump {
                     }
                 }
                 "size" => {
-                    d.width = a.i64_in("image width (pixels)", 1, 16384)? as usize;
-                    d.height = a.i64_in("image height (pixels)", 1, 16384)? as usize;
+                    d.width = a.i64_in("image width (pixels)", 1, 4096)? as usize;
+                    d.height = a.i64_in("image height (pixels)", 1, 4096)? as usize;
                 }
                 "view" => {
                     d.theta = word_param(a, "view theta (degrees)")?;

@@ -25,6 +25,9 @@ usage:
                                     poiseuille, couette, heat, hydrostatic, dambreak, all
   dmhs validate chart               Poiseuille speed-versus-accuracy chart, dmhs and LAMMPS
                                     (writes docs/img/speed_accuracy.png and .svg)
+  dmhs plot FILE [--x COL] [--y COL1,COL2] [-o OUT.png|OUT.svg] [--title T] [--logy]
+                                    line chart of columns of a thermo log (every run), a fix
+                                    ave/time file or a column file with a header line
 
 options:
   -var NAME VALUE...   define an index variable (as lmp -var)
@@ -182,6 +185,10 @@ fn parse(args: &[String]) -> Result<Cli, String> {
 
 /// Run the command line; returns the process exit code.
 pub fn main_with_args(args: &[String]) -> i32 {
+    // `plot` has options of its own
+    if args.first().map(String::as_str) == Some("plot") {
+        return crate::plot_cmd::plot_cmd(&args[1..]);
+    }
     let cli = match parse(args) {
         Ok(c) => c,
         Err(e) => {

@@ -11,10 +11,10 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::PathBuf;
 
-pub const SYNTAX: &str = "dump ID group atom|custom N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...]";
+pub const SYNTAX: &str = "dump ID group atom|custom|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...]";
 
 #[derive(Clone, Debug)]
-enum Column {
+pub(crate) enum Column {
     Attr(Field),
     /// per-atom compute, column (0-based; None for a per-atom vector)
     Compute(String, Option<usize>),
@@ -38,6 +38,8 @@ pub struct Dump {
     format_column: Vec<(usize, String)>,
     pub last_written: Option<i64>,
     file: Option<File>,
+    /// `dump image` / `dump movie` settings.
+    pub picture: Option<Box<crate::dump_image::ImageDump>>,
 }
 
 impl Dump {
@@ -48,17 +50,23 @@ impl Dump {
         let groupbit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
         let style_w = a.word("dump style")?;
         let style = style_w.text.clone();
-        if style != "atom" && style != "custom" && style != "vtk" {
+        if !["atom", "custom", "vtk", "image", "movie"].contains(&style.as_str()) {
             let msg = if dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Dump, &style) {
-                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom or vtk)")
+                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, vtk, image or movie)")
             } else {
                 format!("unknown dump style `{style}`")
             };
-            return Err(a.error_at(style_w, msg, "expected atom, custom or vtk"));
+            return Err(a.error_at(style_w, msg, "expected atom, custom, vtk, image or movie"));
         }
         let every = a.i64_in("N (dump every N steps)", 1, i64::MAX)?;
         let fw = a.word("file name")?;
-        if fw.text.ends_with(".gz") || fw.text.ends_with(".zst") || fw.text.contains('%') {
+        let picture = if style == "image" || style == "movie" {
+            let mut ia = Args::from_words(a.remaining(), cmd.span, crate::dump_image::SYNTAX);
+            Some(Box::new(crate::dump_image::ImageDump::from_lammps(&mut ia, fw, style == "movie", sim)?))
+        } else {
+            None
+        };
+        if picture.is_none() && (fw.text.ends_with(".gz") || fw.text.ends_with(".zst") || fw.text.contains('%')) {
             return Err(a.error_at(fw, "compressed (.gz, .zst) and per-processor (%) dump files are not supported", "plain file name expected"));
         }
         let mut d = Dump {
@@ -79,7 +87,11 @@ impl Dump {
             format_column: vec![],
             last_written: None,
             file: None,
+            picture,
         };
+        if d.picture.is_some() {
+            return Ok(d);
+        }
         if style == "vtk" && !fw.text.ends_with(".vtu") {
             return Err(a.error_at(fw, "dump vtk writes VTK XML files: the name must end in .vtu (with * for the step, e.g. out.*.vtu)", "expected a .vtu file name"));
         }
@@ -119,6 +131,11 @@ impl Dump {
         let keys = ["sort", "format", "every", "first", "image", "append", "flush"];
         while let Some(w) = a.peek() {
             a.skip(1);
+            if let Some(p) = self.picture.as_mut() {
+                if p.modify(w, a)? {
+                    continue;
+                }
+            }
             match w.text.as_str() {
                 "sort" => {
                     let v = a.word("sort setting (id or off)")?;
@@ -162,6 +179,7 @@ impl Dump {
                         self.set_atom_columns();
                     }
                 }
+                _ if self.picture.is_some() => return Err(a.unknown_keyword(w, &[&keys[..], crate::dump_image::MODIFY_KEYWORDS].concat())),
                 _ => return Err(a.unknown_keyword(w, &keys)),
             }
         }
@@ -248,21 +266,19 @@ impl Dump {
             if matches!(name.as_str(), "x" | "y" | "z") {
                 continue;
             }
-            let values: Vec<f64> = match c {
-                Column::Attr(f) => idx.iter().map(|&i| f.value(sim, i)).collect(),
-                Column::Compute(cid, col) => {
-                    let k = sim.find_compute(cid).ok_or_else(|| format!("dump {}: compute `{cid}` does not exist", self.id))?;
-                    let p = sim.computes[k].peratom(sim)?;
-                    idx.iter().map(|&i| p.get(i, col.unwrap_or(0))).collect()
-                }
-            };
+            let values = column_values(c, sim, &idx).map_err(|e| format!("dump {}: {e}", self.id))?;
             fields.push(crate::dump_vtu::Field { name: name.clone(), components: 1, values });
         }
         Ok(crate::dump_vtu::document(&points, &fields, sim.step, sim.time()))
     }
 
     /// Write a snapshot now.
-    pub fn write(&mut self, sim: &Simulation) -> Result<(), String> {
+    pub fn write(&mut self, sim: &mut Simulation) -> Result<(), String> {
+        if let Some(p) = &self.picture {
+            p.write(sim, self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;
+            self.last_written = Some(sim.step);
+            return Ok(());
+        }
         if self.style == "vtk" {
             let text = self.snapshot_vtu(sim)?;
             let name = self.path.to_string_lossy().to_string();
@@ -293,12 +309,24 @@ impl Dump {
     }
 }
 
+/// The values of one column for the owned atoms `idx`.
+pub(crate) fn column_values(c: &Column, sim: &Simulation, idx: &[usize]) -> Result<Vec<f64>, String> {
+    Ok(match c {
+        Column::Attr(f) => idx.iter().map(|&i| f.value(sim, i)).collect(),
+        Column::Compute(cid, col) => {
+            let k = sim.find_compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?;
+            let p = sim.computes[k].peratom(sim)?;
+            idx.iter().map(|&i| p.get(i, col.unwrap_or(0))).collect()
+        }
+    })
+}
+
 /// LAMMPS' `%-1.16e` for box bounds.
 fn sci16(x: f64) -> String {
     format_printf("%-1.16e", x).unwrap_or_else(|_| format!("{x:e}"))
 }
 
-fn parse_column(name: &str, sim: &Simulation) -> Result<Column, String> {
+pub(crate) fn parse_column(name: &str, sim: &Simulation) -> Result<Column, String> {
     if let Some(rest) = name.strip_prefix("c_") {
         let (cid, col) = match rest.find('[') {
             Some(k) if rest.ends_with(']') => {

@@ -210,6 +210,24 @@ impl Chart {
         Ok(vec![png, svg])
     }
 
+    /// Write one file, SVG if the name ends in .svg and PNG otherwise, atomically (drawn into a
+    /// temporary file in the same folder, then renamed).
+    pub fn save_as(&self, path: &Path) -> Result<(), String> {
+        ensure_font()?;
+        let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        let svg = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        let tmp = crate::output::temp_file_in(dir, if svg { ".svg" } else { ".png" }).map_err(|e| format!("{}: {e}", dir.display()))?;
+        if svg {
+            self.draw(SVGBackend::new(tmp.path(), self.size).into_drawing_area())
+        } else {
+            self.draw(BitMapBackend::new(tmp.path(), self.size).into_drawing_area())
+        }
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+        tmp.persist(path).map_err(|e| format!("{}: {}", path.display(), e.error))?;
+        Ok(())
+    }
+
     /// The axis range of one coordinate: the given one, or the data's with a margin.
     fn range(&self, given: Option<(f64, f64)>, log: bool, coord: impl Fn(&(f64, f64)) -> f64) -> Result<(f64, f64), String> {
         if let Some(r) = given {

@@ -110,6 +110,9 @@ pub fn dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<(
     if sim.dumps.iter().any(|x| x.id == d.id) {
         return Err(dmhs_parser::Diagnostic::at(cmd.args[0].span, format!("reuse of dump ID `{}`", d.id), "already defined"));
     }
+    if let Some(note) = d.picture.as_ref().and_then(|p| p.movie_note(&d.id)) {
+        sim.out.print(&note);
+    }
     sim.dumps.push(d);
     Ok(())
 }

@@ -89,6 +89,10 @@ pub trait Fix: Send {
     }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _sim: &mut Simulation) {}
+    /// Wall planes drawn by `dump image ... fix ID`: (axis, coordinate) at the current step.
+    fn image_planes(&self, _sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
+        Ok(vec![])
+    }
     /// One-line description for `dmhs check`.
     fn describe(&self) -> String {
         format!("fix {} {}", self.id(), self.style())

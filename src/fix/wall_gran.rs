@@ -109,13 +109,13 @@ impl FixWallGran {
         Ok(FixWallGran { id, groupbit, model, dim, lo, hi, motion, time_origin: sim.step, array })
     }
 
-    fn apply(&mut self, sim: &mut Simulation, update: bool) -> Result<(), RunError> {
-        let dt = sim.dt;
+    /// The planes' positions and the wall velocity at the current step.
+    fn wall_now(&self, sim: &Simulation) -> (f64, f64, [f64; 3]) {
         let (mut wlo, mut whi) = (self.lo, self.hi);
         let mut vwall = [0.0f64; 3];
         match self.motion {
             Motion::Wiggle { axis, amplitude, omega } => {
-                let arg = omega * (sim.step - self.time_origin) as f64 * dt;
+                let arg = omega * (sim.step - self.time_origin) as f64 * sim.dt;
                 if axis == self.dim {
                     wlo = self.lo + amplitude - amplitude * arg.cos();
                     whi = self.hi + amplitude - amplitude * arg.cos();
@@ -125,6 +125,12 @@ impl FixWallGran {
             Motion::Shear { axis, v } => vwall[axis] = v,
             Motion::None => {}
         }
+        (wlo, whi, vwall)
+    }
+
+    fn apply(&mut self, sim: &mut Simulation, update: bool) -> Result<(), RunError> {
+        let dt = sim.dt;
+        let (wlo, whi, vwall) = self.wall_now(sim);
         let w0 = [0.0f64; 3];
         let k = sim.atoms.extra_array(&self.array, 3);
         let a = &mut sim.atoms;
@@ -197,6 +203,10 @@ impl Fix for FixWallGran {
     }
     fn cleanup(&mut self, sim: &mut Simulation) {
         sim.atoms.remove_extra(&self.array);
+    }
+    fn image_planes(&self, sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
+        let (wlo, whi, _) = self.wall_now(sim);
+        Ok([wlo, whi].into_iter().filter(|x| x.abs() < 0.5 * BIG).map(|x| (self.dim, x)).collect())
     }
     fn describe(&self) -> String {
         format!("fix {} wall/gran granular {} {}plane {} {}", self.id, self.model_describe(), ["x", "y", "z"][self.dim], self.lo, self.hi)

@@ -86,6 +86,15 @@ impl Fix for FixWallReflect {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_integrate: true, ..FixHooks::default() }
     }
+    fn image_planes(&self, sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
+        let mut planes = vec![];
+        for w in &self.walls {
+            if let Some(c) = w.coord.eval(sim).map_err(|e| e.message)? {
+                planes.push((w.dim, c));
+            }
+        }
+        Ok(planes)
+    }
     fn post_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
         for w in &self.walls {
             let coord = w.coord.eval(sim)?.unwrap_or(0.0);

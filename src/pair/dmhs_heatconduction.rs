@@ -190,7 +190,7 @@ mod tests {
             advance: true,
             dimension: 3,
         };
-        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de };
+        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, dwater: &mut [] };
         hc.compute(&input, &mut out);
         // T1 = 150, T2 = 50; wfd for Lucy 3D at r = 0.3, h = 0.8
         let wfd = Kernel::Lucy.wfd(0.09, 0.8, true);

@@ -28,6 +28,38 @@ use crate::sim::{RunError, Simulation};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 use std::collections::HashMap;
 
+/// The owned atoms i, j (tag i < tag j) that chose each other (`partner[i]` is the tag of i's
+/// choice, 0 for none), as LAMMPS' bond/break and bond/create pair them. Below `fraction` 1,
+/// each pair is kept when the random number of its lower-tag atom is below `fraction`; one
+/// number is drawn per atom with a partner, in atom-ID order (see the module doc).
+pub fn mutual_partners(a: &crate::atoms::Atoms, partner: &[i64], fraction: f64, random: &mut RanPark) -> Vec<(usize, usize)> {
+    let n = partner.len();
+    let map = a.tag_map();
+    let mut probability: HashMap<i64, f64> = HashMap::new();
+    if fraction < 1.0 {
+        let mut with: Vec<i64> = (0..n).filter(|&i| partner[i] != 0).map(|i| a.tag[i]).collect();
+        with.sort_unstable();
+        for t in with {
+            probability.insert(t, random.uniform());
+        }
+    }
+    let mut pairs = vec![];
+    for i in 0..n {
+        if partner[i] == 0 {
+            continue;
+        }
+        let j = map.get(partner[i]).expect("partner is an owned atom");
+        if partner[j] != a.tag[i] || a.tag[i] > a.tag[j] {
+            continue;
+        }
+        if fraction < 1.0 && probability[&a.tag[i]] >= fraction {
+            continue;
+        }
+        pairs.push((i, j));
+    }
+    pairs
+}
+
 pub const SYNTAX: &str = "fix ID group bond/break Nevery bondtype Rmax [prob fraction seed]";
 pub const DMHS_SYNTAX: &str = "fix ID group dmhs/bond/break Nevery bondtype Rmax [temp Tmax] [prob fraction seed]";
 
@@ -198,30 +230,7 @@ impl Fix for FixBondBreak {
                 distsq[i2] = rsq;
             }
         }
-        let map = a.tag_map();
-        // one random number per atom with a partner, in atom-ID order (see the module doc)
-        let mut probability: HashMap<i64, f64> = HashMap::new();
-        if self.fraction < 1.0 {
-            let mut with: Vec<i64> = (0..n).filter(|&i| partner[i] != 0).map(|i| a.tag[i]).collect();
-            with.sort_unstable();
-            for t in with {
-                probability.insert(t, self.random.uniform());
-            }
-        }
-        let mut broken: Vec<(i64, i64)> = vec![];
-        for i in 0..n {
-            if partner[i] == 0 {
-                continue;
-            }
-            let j = map.get(partner[i]).expect("bond partner is an owned atom");
-            if partner[j] != a.tag[i] || a.tag[i] > a.tag[j] {
-                continue;
-            }
-            if self.fraction < 1.0 && probability[&a.tag[i]] >= self.fraction {
-                continue;
-            }
-            broken.push((a.tag[i], a.tag[j]));
-        }
+        let mut broken: Vec<(i64, i64)> = mutual_partners(a, &partner, self.fraction, &mut self.random).into_iter().map(|(i, j)| (a.tag[i], a.tag[j])).collect();
         broken.extend(hot_bonds);
         self.breakcount = broken.len();
         self.breakcounttotal += broken.len();

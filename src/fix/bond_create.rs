@@ -16,7 +16,7 @@
 //! With `prob` below 1 the random numbers are dmhs' own (one per atom with a partner, in
 //! atom-ID order): reproducible, not bit-identical to LAMMPS.
 
-use super::bond_break::{check_special, image};
+use super::bond_break::{check_special, image, mutual_partners};
 use super::{Fix, FixHooks};
 use crate::neighbor::NEIGH_MASK;
 use crate::random_park::RanPark;
@@ -230,29 +230,7 @@ impl Fix for FixBondCreate {
                 }
             }
         }
-        let map = a.tag_map();
-        let mut probability: HashMap<i64, f64> = HashMap::new();
-        if self.fraction < 1.0 {
-            let mut with: Vec<i64> = (0..n).filter(|&i| partner[i] != 0).map(|i| a.tag[i]).collect();
-            with.sort_unstable();
-            for t in with {
-                probability.insert(t, self.random.uniform());
-            }
-        }
-        let mut created: Vec<(usize, usize)> = vec![];
-        for i in 0..n {
-            if partner[i] == 0 {
-                continue;
-            }
-            let j = map.get(partner[i]).expect("partner is an owned atom");
-            if partner[j] != a.tag[i] || a.tag[i] > a.tag[j] {
-                continue;
-            }
-            if self.fraction < 1.0 && probability[&a.tag[i]] >= self.fraction {
-                continue;
-            }
-            created.push((i, j));
-        }
+        let created = mutual_partners(a, &partner, self.fraction, &mut self.random);
         self.createcount = created.len();
         self.createcounttotal += created.len();
         if created.is_empty() {

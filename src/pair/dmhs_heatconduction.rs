@@ -96,12 +96,7 @@ impl PairStyle for DmhsHeatConduction {
         let k = args.f64("kappa (thermal conductivity)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.given.grow(ihi.max(jhi));
-        for i in ilo..=ihi {
-            for j in jlo.max(i)..=jhi {
-                self.given.put(i, j, (k, h));
-            }
-        }
+        self.given.put_range(ilo, ihi, jlo, jhi, (k, h));
         Ok(())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {

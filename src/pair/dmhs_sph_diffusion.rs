@@ -69,12 +69,7 @@ impl PairStyle for SphDiffusion {
         let d = args.non_negative_f64("D (diffusion coefficient)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.grow(ihi.max(jhi));
-        for i in ilo..=ihi {
-            for j in jlo.max(i)..=jhi {
-                self.pairs.put(i, j, (2.0 * d, h));
-            }
-        }
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (2.0 * d, h));
         Ok(())
     }
     fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {

@@ -244,6 +244,16 @@ impl<T: Clone + Default> PairTable<T> {
         self.set[i * s + j] = true;
         self.set[j * s + i] = true;
     }
+    /// `pair_coeff ilo:ihi jlo:jhi`: set `v` for every pair I <= J of the ranges (growing the
+    /// table as needed).
+    pub fn put_range(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, v: T) {
+        self.grow(ihi.max(jhi));
+        for i in ilo..=ihi {
+            for j in jlo.max(i)..=jhi {
+                self.put(i, j, v.clone());
+            }
+        }
+    }
     /// Grow to `n` types keeping what is set.
     pub fn grow(&mut self, n: usize) {
         if n <= self.n {
@@ -314,13 +324,8 @@ pub fn tait_coeff(ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Arg
     let x = args.f64(x_name)?;
     let h = args.positive_f64("h (kernel support)")?;
     args.finish()?;
-    pairs.grow(ihi.max(jhi));
+    pairs.put_range(ilo, ihi, jlo, jhi, (x, h));
     types.set(ilo, ihi, rho0, c0);
-    for i in ilo..=ihi {
-        for j in jlo.max(i)..=jhi {
-            pairs.put(i, j, (x, h));
-        }
-    }
     Ok(())
 }
 

@@ -62,12 +62,7 @@ impl PairStyle for SphHeatConduction {
         let d = args.f64("D (diffusion coefficient)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.grow(ihi.max(jhi));
-        for i in ilo..=ihi {
-            for j in jlo.max(i)..=jhi {
-                self.pairs.put(i, j, (d, h));
-            }
-        }
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (d, h));
         Ok(())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {

@@ -37,12 +37,7 @@ impl PairStyle for SphRhoSum {
         args.syntax = COEFF_SYNTAX;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.grow(ihi.max(jhi));
-        for i in ilo..=ihi {
-            for j in jlo.max(i)..=jhi {
-                self.pairs.put(i, j, h);
-            }
-        }
+        self.pairs.put_range(ilo, ihi, jlo, jhi, h);
         Ok(())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {

@@ -131,6 +131,46 @@ pub fn dt_hint(sim: &Simulation) -> String {
     }
 }
 
+/// Whether every component is finite: `v * 0` is 0 for finite v and NaN otherwise, summed in
+/// four independent lanes (one dependent add per lane instead of one chain over all atoms), over
+/// chunks in parallel. The answer is a boolean, so it does not depend on the thread count.
+fn all_finite(p: &[[f64; 3]]) -> bool {
+    use rayon::prelude::*;
+    let chunk_ok = |c: &[[f64; 3]]| {
+        let mut acc = [0.0f64; 4];
+        let mut quads = c.chunks_exact(4);
+        for q in &mut quads {
+            for l in 0..4 {
+                acc[l] += q[l][0] * 0.0 + q[l][1] * 0.0 + q[l][2] * 0.0;
+            }
+        }
+        for r in quads.remainder() {
+            acc[0] += r[0] * 0.0 + r[1] * 0.0 + r[2] * 0.0;
+        }
+        acc.iter().all(|&s| s == 0.0)
+    };
+    if rayon::current_num_threads() == 1 || p.len() <= CHECK_CHUNK {
+        chunk_ok(p)
+    } else {
+        p.par_chunks(CHECK_CHUNK).all(chunk_ok)
+    }
+}
+
+/// Atoms per parallel work item of the state checks.
+const CHECK_CHUNK: usize = 4096;
+
+/// Whether `bad(i)` holds for some i in `0..n` (chunks in parallel, branch-free inside a chunk).
+fn any_in_chunks(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
+    use rayon::prelude::*;
+    let chunk_bad = |c: usize| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(n)).fold(false, |acc, i| acc | bad(i));
+    let chunks = n.div_ceil(CHECK_CHUNK);
+    if rayon::current_num_threads() == 1 || chunks <= 1 {
+        (0..chunks).any(chunk_bad)
+    } else {
+        (0..chunks).into_par_iter().any(chunk_bad)
+    }
+}
+
 /// Stop the run if the state went bad: non-finite positions, velocities or SPH fields, or an
 /// SPH density outside the sane range. The message names step, particle, quantity and bound.
 pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
@@ -141,11 +181,10 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     let a = &sim.atoms;
     let step = sim.step;
     let hint = || dt_hint(sim);
-    // fast path: x * 0 is 0 for finite x and NaN otherwise, so one vectorizable sum tells
-    // whether any coordinate is bad; only then is the particle searched for
+    // fast path: x * 0 is 0 for finite x and NaN otherwise, so vectorizable sums tell whether
+    // any coordinate is bad; only then is the particle searched for
     let n = a.nlocal;
-    let probe: f64 = a.x[..n].iter().chain(&a.v[..n]).map(|p| p[0] * 0.0 + p[1] * 0.0 + p[2] * 0.0).sum();
-    if probe != 0.0 {
+    if !all_finite(&a.x[..n]) || !all_finite(&a.v[..n]) {
         for i in 0..a.nlocal {
             for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
                 if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
@@ -156,6 +195,14 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     }
     if a.features.sph {
         let rho0 = sim.pair.as_ref().and_then(|p| p.sph_info()).map(|s| s.rho0).unwrap_or_default();
+        let bad = |i: usize| {
+            let r = a.rho[i];
+            let r0 = rho0.get(a.typ[i]).copied().unwrap_or(0.0);
+            !r.is_finite() || !a.esph[i].is_finite() || (r0 > 0.0 && (r <= g.rho_lo * r0 || r > g.rho_hi * r0))
+        };
+        if !any_in_chunks(n, bad) {
+            return Ok(());
+        }
         for i in 0..a.nlocal {
             let r = a.rho[i];
             if !r.is_finite() || !a.esph[i].is_finite() {

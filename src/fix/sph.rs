@@ -10,6 +10,7 @@
 //! m is the per-atom mass if the atom style has one, else the per-type mass.
 
 use super::{Fix, FixHooks};
+use crate::pair::SharedMut;
 use crate::sim::{RunError, Simulation};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -27,6 +28,58 @@ impl FixSph {
             return Err(Diagnostic::at(style.span, format!("fix {} needs an atom style with SPH attributes (atom_style sph or hybrid ... sph)", style.text), "atom style has no rho/esph/vest"));
         }
         Ok(FixSph { id, groupbit, stationary })
+    }
+}
+
+impl FixSph {
+    /// One half step of LAMMPS' fix sph (in its order of operations). First half: esph and rho
+    /// by dtf times their rates; for moving particles the velocity estimate
+    /// vest = v + 2 dtfm f, then v += dtfm f and x += dt v. Second half: v += dtfm f, then esph
+    /// and rho. Atoms are independent, so chunks run in parallel (same bits).
+    fn half_step(&self, sim: &mut Simulation, first: bool) {
+        let dtv = sim.dt;
+        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
+        let per_atom = sim.atoms.features.per_atom_mass();
+        let (groupbit, stationary) = (self.groupbit, self.stationary);
+        let type_mass = &sim.type_mass;
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let (f, drho, desph, mask, typ, rmass) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
+        let (x, v, vest) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.vest[..n]));
+        let (rho, esph) = (SharedMut::new(&mut a.rho[..n]), SharedMut::new(&mut a.esph[..n]));
+        super::for_each_range(n, 4096, |range| {
+            for i in range {
+                if mask[i] & groupbit == 0 {
+                    continue;
+                }
+                // SAFETY: each index belongs to one range only
+                let (xi, vi, vesti, rhoi, esphi) = unsafe { (x.get(i), v.get(i), vest.get(i), rho.get(i), esph.get(i)) };
+                if first {
+                    *esphi += dtf * desph[i];
+                    *rhoi += dtf * drho[i];
+                }
+                if !stationary {
+                    let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };
+                    let dtfm = dtf / m;
+                    let fi = f[i];
+                    if first {
+                        *vesti = [vi[0] + 2.0 * dtfm * fi[0], vi[1] + 2.0 * dtfm * fi[1], vi[2] + 2.0 * dtfm * fi[2]];
+                    }
+                    vi[0] += dtfm * fi[0];
+                    vi[1] += dtfm * fi[1];
+                    vi[2] += dtfm * fi[2];
+                    if first {
+                        xi[0] += dtv * vi[0];
+                        xi[1] += dtv * vi[1];
+                        xi[2] += dtv * vi[2];
+                    }
+                }
+                if !first {
+                    *esphi += dtf * desph[i];
+                    *rhoi += dtf * drho[i];
+                }
+            }
+        });
     }
 }
 
@@ -55,55 +108,11 @@ impl Fix for FixSph {
         Ok(())
     }
     fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let a = &mut sim.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            a.esph[i] += dtf * a.desph[i];
-            a.rho[i] += dtf * a.drho[i];
-            if self.stationary {
-                continue;
-            }
-            let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
-            let dtfm = dtf / m;
-            let f = a.f[i];
-            let v = a.v[i];
-            a.vest[i] = [v[0] + 2.0 * dtfm * f[0], v[1] + 2.0 * dtfm * f[1], v[2] + 2.0 * dtfm * f[2]];
-            let v = &mut a.v[i];
-            v[0] += dtfm * f[0];
-            v[1] += dtfm * f[1];
-            v[2] += dtfm * f[2];
-            let x = &mut a.x[i];
-            x[0] += dtv * v[0];
-            x[1] += dtv * v[1];
-            x[2] += dtv * v[2];
-        }
+        self.half_step(sim, true);
         Ok(())
     }
     fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let a = &mut sim.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            if !self.stationary {
-                let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
-                let dtfm = dtf / m;
-                let f = a.f[i];
-                let v = &mut a.v[i];
-                v[0] += dtfm * f[0];
-                v[1] += dtfm * f[1];
-                v[2] += dtfm * f[2];
-            }
-            a.esph[i] += dtf * a.desph[i];
-            a.rho[i] += dtf * a.drho[i];
-        }
+        self.half_step(sim, false);
         Ok(())
     }
 }

@@ -111,6 +111,22 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
     }
 }
 
+/// Half kick v += dtfm f, component by component (LAMMPS' arithmetic).
+#[inline(always)]
+pub fn kick(v: &mut [f64; 3], dtfm: f64, f: &[f64; 3]) {
+    v[0] += dtfm * f[0];
+    v[1] += dtfm * f[1];
+    v[2] += dtfm * f[2];
+}
+
+/// Drift x += dt v.
+#[inline(always)]
+pub fn drift(x: &mut [f64; 3], dt: f64, v: &[f64; 3]) {
+    x[0] += dt * v[0];
+    x[1] += dt * v[1];
+    x[2] += dt * v[2];
+}
+
 /// Fix styles this build implements.
 pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break", "dmhs/phase", "dmhs/cooling", "dmhs/diffusion", "dmhs/swell", "dmhs/stokes"];
 

@@ -2,6 +2,7 @@
 //! dtf = dt/2 * ftm2v; v += dtf/m * f; x += dt * v).
 
 use super::{Fix, FixHooks};
+use crate::pair::SharedMut;
 use crate::sim::{RunError, Simulation};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -14,6 +15,36 @@ impl FixNve {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command) -> DResult<Self> {
         Args::from_words(args, cmd.span, "fix ID group nve").finish()?;
         Ok(FixNve { id, groupbit })
+    }
+}
+
+impl FixNve {
+    /// One half step: v += dtf/m f, and in the first half x += dt v. Atoms are independent, so
+    /// chunks of atoms run in parallel (same bits).
+    fn half_step(&self, sim: &mut Simulation, first: bool) {
+        let dtv = sim.dt;
+        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
+        let per_atom = sim.atoms.features.per_atom_mass();
+        let groupbit = self.groupbit;
+        let type_mass = &sim.type_mass;
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
+        let (x, v) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]));
+        super::for_each_range(n, 4096, |range| {
+            for i in range {
+                if mask[i] & groupbit == 0 {
+                    continue;
+                }
+                let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };
+                // SAFETY: each index belongs to one range only
+                let (xi, vi) = unsafe { (x.get(i), v.get(i)) };
+                super::kick(vi, dtf / m, &f[i]);
+                if first {
+                    super::drift(xi, dtv, vi);
+                }
+            }
+        });
     }
 }
 
@@ -31,42 +62,11 @@ impl Fix for FixNve {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
     fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let a = &mut sim.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit != 0 {
-                let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
-                let dtfm = dtf / m;
-                let f = a.f[i];
-                let v = &mut a.v[i];
-                v[0] += dtfm * f[0];
-                v[1] += dtfm * f[1];
-                v[2] += dtfm * f[2];
-                let x = &mut a.x[i];
-                x[0] += dtv * v[0];
-                x[1] += dtv * v[1];
-                x[2] += dtv * v[2];
-            }
-        }
+        self.half_step(sim, true);
         Ok(())
     }
     fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let a = &mut sim.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit != 0 {
-                let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
-                let dtfm = dtf / m;
-                let f = a.f[i];
-                let v = &mut a.v[i];
-                v[0] += dtfm * f[0];
-                v[1] += dtfm * f[1];
-                v[2] += dtfm * f[2];
-            }
-        }
+        self.half_step(sim, false);
         Ok(())
     }
 }

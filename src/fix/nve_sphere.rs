@@ -62,21 +62,13 @@ impl FixNveSphere {
                 let (xi, vi, wi) = unsafe { (x.get(i), v.get(i), omega.get(i)) };
                 let m = rmass[i];
                 let dtfm = dtf / m;
-                let fi = f[i];
-                vi[0] += dtfm * fi[0];
-                vi[1] += dtfm * fi[1];
-                vi[2] += dtfm * fi[2];
+                super::kick(vi, dtfm, &f[i]);
                 if first {
-                    xi[0] += dtv * vi[0];
-                    xi[1] += dtv * vi[1];
-                    xi[2] += dtv * vi[2];
+                    super::drift(xi, dtv, vi);
                 }
                 let r = radius[i];
                 let dtirotate = dtfrotate / (r * r * m);
-                let t = torque[i];
-                wi[0] += dtirotate * t[0];
-                wi[1] += dtirotate * t[1];
-                wi[2] += dtirotate * t[2];
+                super::kick(wi, dtirotate, &torque[i]);
             }
         });
     }

@@ -65,13 +65,9 @@ impl FixSph {
                     if first {
                         *vesti = [vi[0] + 2.0 * dtfm * fi[0], vi[1] + 2.0 * dtfm * fi[1], vi[2] + 2.0 * dtfm * fi[2]];
                     }
-                    vi[0] += dtfm * fi[0];
-                    vi[1] += dtfm * fi[1];
-                    vi[2] += dtfm * fi[2];
+                    super::kick(vi, dtfm, &fi);
                     if first {
-                        xi[0] += dtv * vi[0];
-                        xi[1] += dtv * vi[1];
-                        xi[2] += dtv * vi[2];
+                        super::drift(xi, dtv, vi);
                     }
                 }
                 if !first {

@@ -119,6 +119,16 @@ pub fn kick(v: &mut [f64; 3], dtfm: f64, f: &[f64; 3]) {
     v[2] += dtfm * f[2];
 }
 
+/// dtf/m for each type's mass (empty with per-atom masses): the same division LAMMPS makes per
+/// atom, made once per type, so the same bits.
+pub fn dtfm_by_type(dtf: f64, type_mass: &[f64], per_atom: bool) -> Vec<f64> {
+    if per_atom {
+        Vec::new()
+    } else {
+        type_mass.iter().map(|&m| dtf / m).collect()
+    }
+}
+
 /// Drift x += dt v.
 #[inline(always)]
 pub fn drift(x: &mut [f64; 3], dt: f64, v: &[f64; 3]) {

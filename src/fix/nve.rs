@@ -26,7 +26,7 @@ impl FixNve {
         let dtf = 0.5 * sim.dt * sim.units.ftm2v;
         let per_atom = sim.atoms.features.per_atom_mass();
         let groupbit = self.groupbit;
-        let type_mass = &sim.type_mass;
+        let dtfm_of_type = super::dtfm_by_type(dtf, &sim.type_mass, per_atom);
         let a = &mut sim.atoms;
         let n = a.nlocal;
         let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
@@ -36,10 +36,10 @@ impl FixNve {
                 if mask[i] & groupbit == 0 {
                     continue;
                 }
-                let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };
+                let dtfm = if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] };
                 // SAFETY: each index belongs to one range only
                 let (xi, vi) = unsafe { (x.get(i), v.get(i)) };
-                super::kick(vi, dtf / m, &f[i]);
+                super::kick(vi, dtfm, &f[i]);
                 if first {
                     super::drift(xi, dtv, vi);
                 }

@@ -41,7 +41,7 @@ impl FixSph {
         let dtf = 0.5 * sim.dt * sim.units.ftm2v;
         let per_atom = sim.atoms.features.per_atom_mass();
         let (groupbit, stationary) = (self.groupbit, self.stationary);
-        let type_mass = &sim.type_mass;
+        let dtfm_of_type = super::dtfm_by_type(dtf, &sim.type_mass, per_atom);
         let a = &mut sim.atoms;
         let n = a.nlocal;
         let (f, drho, desph, mask, typ, rmass) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
@@ -59,8 +59,7 @@ impl FixSph {
                     *rhoi += dtf * drho[i];
                 }
                 if !stationary {
-                    let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };
-                    let dtfm = dtf / m;
+                    let dtfm = if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] };
                     let fi = f[i];
                     if first {
                         *vesti = [vi[0] + 2.0 * dtfm * fi[0], vi[1] + 2.0 * dtfm * fi[1], vi[2] + 2.0 * dtfm * fi[2]];

@@ -429,8 +429,13 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     let nlocal = a.nlocal;
     let nall = a.nall();
     let stride = input.ntypes + 1;
-    let packed: Vec<Packed> = (0..nall).map(|i| kernel.pack(input, i)).collect();
-    let typ: Vec<u32> = a.typ.iter().map(|&t| t as u32).collect();
+    // per-atom preparation in parallel (each record depends on its own atom only)
+    let (packed, typ): (Vec<Packed>, Vec<u32>) = if rayon::current_num_threads() > 1 {
+        use rayon::prelude::*;
+        ((0..nall).into_par_iter().map(|i| kernel.pack(input, i)).collect(), a.typ.par_iter().map(|&t| t as u32).collect())
+    } else {
+        ((0..nall).map(|i| kernel.pack(input, i)).collect(), a.typ.iter().map(|&t| t as u32).collect())
+    };
     let mut acc = vec![Acc::default(); nlocal];
     let shared = SharedMut::new(&mut acc);
     let eflag = input.eflag;
@@ -525,18 +530,26 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     // add to what other styles (hybrid/overlay) put there already
     let has_rates = !out.drho.is_empty();
     let water = kernel.rate_is_water() && !out.dwater.is_empty();
-    for (i, c) in acc.iter().enumerate() {
-        let f = &mut out.f[i];
-        f[0] += c.f[0];
-        f[1] += c.f[1];
-        f[2] += c.f[2];
-        if water {
-            out.dwater[i] += c.desph;
-        } else if has_rates {
-            out.drho[i] += c.drho;
-            out.desph[i] += c.desph;
+    let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
+    crate::fix::for_each_range(nlocal, 4096, |range| {
+        for i in range {
+            let c = &acc[i];
+            // SAFETY: each index belongs to one range only; the rate arrays are used only when
+            // they exist (has_rates, water)
+            unsafe {
+                let fi = f.get(i);
+                fi[0] += c.f[0];
+                fi[1] += c.f[1];
+                fi[2] += c.f[2];
+                if water {
+                    *dwater.get(i) += c.desph;
+                } else if has_rates {
+                    *drho.get(i) += c.drho;
+                    *desph.get(i) += c.desph;
+                }
+            }
         }
-    }
+    });
     sum_tallies(&parts)
 }
 

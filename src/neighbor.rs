@@ -261,10 +261,12 @@ impl Neighbor {
             }
             let trigger = 0.5 * settings.skin;
             let triggersq = trigger * trigger;
-            let moved = atoms.x[..atoms.nlocal].iter().zip(&self.xhold).any(|(x, h)| {
-                let dx = x[0] - h[0];
-                let dy = x[1] - h[1];
-                let dz = x[2] - h[2];
+            let m = atoms.nlocal.min(self.xhold.len());
+            let (x, hold) = (&atoms.x[..m], &self.xhold[..m]);
+            let moved = crate::fix::any_index(x.len(), |i| {
+                let dx = x[i][0] - hold[i][0];
+                let dy = x[i][1] - hold[i][1];
+                let dz = x[i][2] - hold[i][2];
                 dx * dx + dy * dy + dz * dz > triggersq
             });
             if moved && self.ago == settings.every.max(settings.delay) {

@@ -8,6 +8,7 @@
 //! T = 2 pi sqrt(m_min/(2K)) the period of the lightest pair. The acoustic limit is where the dam
 //! break of docs/validation.md turns unstable (stable at 1x, unstable at 2x, all resolutions).
 
+use crate::fix::{any_index, ANY_CHUNK};
 use crate::sim::{RunError, Simulation};
 
 /// One time-step limit.
@@ -149,25 +150,10 @@ fn all_finite(p: &[[f64; 3]]) -> bool {
         }
         acc.iter().all(|&s| s == 0.0)
     };
-    if rayon::current_num_threads() == 1 || p.len() <= CHECK_CHUNK {
+    if rayon::current_num_threads() == 1 || p.len() <= ANY_CHUNK {
         chunk_ok(p)
     } else {
-        p.par_chunks(CHECK_CHUNK).all(chunk_ok)
-    }
-}
-
-/// Atoms per parallel work item of the state checks.
-const CHECK_CHUNK: usize = 4096;
-
-/// Whether `bad(i)` holds for some i in `0..n` (chunks in parallel, branch-free inside a chunk).
-fn any_in_chunks(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
-    use rayon::prelude::*;
-    let chunk_bad = |c: usize| (c * CHECK_CHUNK..((c + 1) * CHECK_CHUNK).min(n)).fold(false, |acc, i| acc | bad(i));
-    let chunks = n.div_ceil(CHECK_CHUNK);
-    if rayon::current_num_threads() == 1 || chunks <= 1 {
-        (0..chunks).any(chunk_bad)
-    } else {
-        (0..chunks).into_par_iter().any(chunk_bad)
+        p.par_chunks(ANY_CHUNK).all(chunk_ok)
     }
 }
 
@@ -200,7 +186,7 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
             let r0 = rho0.get(a.typ[i]).copied().unwrap_or(0.0);
             !r.is_finite() || !a.esph[i].is_finite() || (r0 > 0.0 && (r <= g.rho_lo * r0 || r > g.rho_hi * r0))
         };
-        if !any_in_chunks(n, bad) {
+        if !any_index(n, bad) {
             return Ok(());
         }
         for i in 0..a.nlocal {

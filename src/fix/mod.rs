@@ -111,6 +111,22 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
     }
 }
 
+/// Indices per parallel work item of [`any_index`].
+pub const ANY_CHUNK: usize = 4096;
+
+/// Whether `bad(i)` holds for some i in `0..n`: chunks in parallel, each folded without
+/// branches (so it vectorizes). The answer is a boolean, the same for every thread count.
+pub fn any_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
+    use rayon::prelude::*;
+    let chunk_bad = |c: usize| (c * ANY_CHUNK..((c + 1) * ANY_CHUNK).min(n)).fold(false, |acc, i| acc | bad(i));
+    let chunks = n.div_ceil(ANY_CHUNK);
+    if rayon::current_num_threads() == 1 || chunks <= 1 {
+        (0..chunks).any(chunk_bad)
+    } else {
+        (0..chunks).into_par_iter().any(chunk_bad)
+    }
+}
+
 /// Half kick v += dtfm f, component by component (LAMMPS' arithmetic).
 #[inline(always)]
 pub fn kick(v: &mut [f64; 3], dtfm: f64, f: &[f64; 3]) {

@@ -165,13 +165,13 @@ impl Simulation {
     /// `advance`: false during run setup (contact histories are not advanced, as in LAMMPS).
     pub fn compute_forces(&mut self, eflag: bool, advance: bool) -> Result<(), RunError> {
         let a = &mut self.atoms;
-        a.f.iter_mut().for_each(|f| *f = [0.0; 3]);
+        clear(&mut a.f, [0.0; 3]);
         if a.features.sphere {
-            a.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+            clear(&mut a.torque, [0.0; 3]);
         }
         if a.features.sph {
-            a.drho.iter_mut().for_each(|x| *x = 0.0);
-            a.desph.iter_mut().for_each(|x| *x = 0.0);
+            clear(&mut a.drho, 0.0);
+            clear(&mut a.desph, 0.0);
         }
         if let Some(k) = a.find_extra(crate::water::DWATER) {
             a.extra[k].data.iter_mut().for_each(|x| *x = 0.0);
@@ -452,3 +452,12 @@ impl Simulation {
     }
 }
 
+/// Set every element to `zero` (in parallel chunks for large arrays).
+fn clear<T: Copy + Send + Sync>(v: &mut [T], zero: T) {
+    use rayon::prelude::*;
+    if rayon::current_num_threads() > 1 && v.len() > 16384 {
+        v.par_chunks_mut(8192).for_each(|c| c.fill(zero));
+    } else {
+        v.fill(zero);
+    }
+}

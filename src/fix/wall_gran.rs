@@ -156,7 +156,11 @@ impl FixWallGran {
                 // SAFETY: each atom (and its 3 history values) belongs to one range only
                 let (h0, h1, h2) = unsafe { (h3.get(3 * i), h3.get(3 * i + 1), h3.get(3 * i + 2)) };
                 if rsq >= radi * radi {
-                    (*h0, *h1, *h2) = (0.0, 0.0, 0.0);
+                    // no contact: history zero (written only if it is not, so the many atoms
+                    // away from the wall do not dirty their history's cache lines)
+                    if (h0.to_bits() | h1.to_bits() | h2.to_bits()) != 0 {
+                        (*h0, *h1, *h2) = (0.0, 0.0, 0.0);
+                    }
                     continue;
                 }
                 let mut hv = [*h0, *h1, *h2];

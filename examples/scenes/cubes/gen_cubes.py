@@ -17,7 +17,7 @@ import math
 RHO_W = 1000.0
 MW = 5.7e-3                  # water particle mass (kg per m of depth)
 DL = math.sqrt(MW / RHO_W)    # 2.387e-3 m
-R0 = 2.3e-3                  # cube lattice spacing (m)
+R0 = DL                      # cube lattice spacing (m): the water spacing (paper 2.3e-3, see README)
 NC = 7                       # particles per cube side
 NWALL = 3
 
@@ -33,14 +33,18 @@ def cube(cx, cy):
 
 
 def build(name, nx, ny, fill, centres, rho_s):
-    """nx x ny channel (in dL), water up to `fill` rows, cubes at `centres` (in m) of density rho_s."""
+    """nx x ny channel (in dL), water up to `fill` rows, cubes at `centres` (in m, moved to the
+    nearest water site) of density rho_s."""
     lx, h = nx * DL, ny * DL
+    centres = [((math.floor(x / DL) + 0.5) * DL, (math.floor(y / DL) + 0.5) * DL) for (x, y) in centres]
     solids = [p for c in centres for p in cube(*c)]
 
     def clear(x, y):
+        # the cubes sit on the water lattice and replace its sites one for one: no void layer
+        # around a cube (a gap of a fraction of dL adds displaced volume: spurious buoyancy)
         for (sx, sy) in solids:
             dx = (x - sx + lx / 2) % lx - lx / 2
-            if math.hypot(dx, y - sy) < 0.5 * (DL + R0) * 0.999:
+            if math.hypot(dx, y - sy) < 0.5 * DL:
                 return False
         return True
 
@@ -101,16 +105,16 @@ def main():
     h = ny * DL
     # A: neutrally buoyant cubes spread over the channel
     build("cubes_A.data", nx, ny, ny, grid(nx, ny, 4, 3, 0.2 * h, 0.8 * h), 1000.0)
-    # B: light cubes (990) in a half-filled channel (free surface at 0.6 H), starting low
-    build("cubes_B.data", nx, ny, 24, grid(nx, ny, 4, 2, 0.15 * h, 0.38 * h), 990.0)
+    # B: light cubes (990) in a partly filled channel (free surface at 0.6 H), starting under it
+    build("cubes_B.data", nx, ny, 24, grid(nx, ny, 4, 2, 0.3 * h, 0.47 * h), 990.0)
     # C: heavy brittle cubes (1500) starting in the upper half
     build("cubes_C.data", nx, ny, ny, grid(nx, ny, 4, 3, 0.45 * h, 0.85 * h), 1500.0)
     # fast variants: a quarter of the channel length with one column of cubes (a periodic cell
     # of the same pattern), fewer rows for B and C
     nxf = 20
     build("cubes_A_fast.data", nxf, ny, ny, grid(nxf, ny, 1, 3, 0.2 * h, 0.8 * h, False), 1000.0)
-    build("cubes_B_fast.data", nxf, ny, 24, grid(nxf, ny, 1, 1, 0.45 * h, 0.45 * h, False), 990.0)
-    build("cubes_C_fast.data", nxf, ny, ny, grid(nxf, ny, 1, 2, 0.45 * h, 0.75 * h, False), 1500.0)
+    build("cubes_B_fast.data", nxf, ny, 24, grid(nxf, ny, 1, 1, 0.6 * h, 0.6 * h, False), 990.0)
+    build("cubes_C_fast.data", nxf, ny, ny, grid(nxf, ny, 1, 2, 0.13 * h, 0.42 * h, False), 1500.0)
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ const DL: f64 = 5.0e-6;
 const OBSTACLE_UP: f64 = 70.0 * DL;
 const OBSTACLE_DOWN: f64 = 73.0 * DL;
 const NMEMBRANE: usize = 48;
+/// Breakage length of the breakable membrane (C, H, I).
+const RMAX: f64 = 3.6e-6;
 /// Radius of the undeformed membrane: 48 r0 / (2 pi).
 const RCELL: f64 = 48.0 * 3.3e-6 / (2.0 * std::f64::consts::PI);
 
@@ -118,6 +120,8 @@ fn b_unbreakable_cell_passes_the_constriction_intact() {
     assert_eq!(s.outside_polygon, 0, "the cytoplasm stays inside the membrane");
     assert!(s.membrane_min_x > OBSTACLE_DOWN, "the whole membrane is past the constriction: min x {} <= {}", s.membrane_min_x, OBSTACLE_DOWN);
     assert!(s.com_x > OBSTACLE_DOWN + 4.0 * DL, "centre of mass {} not downstream of the obstacle", s.com_x);
+    // the passage stretched the membrane beyond the length at which C's bonds break
+    assert!(s.longest_bond > RMAX, "longest bond {} <= rmax", s.longest_bond);
 }
 
 #[test]
@@ -134,6 +138,8 @@ fn h_shear_by_the_moving_wall_tears_the_cell() {
     let s = run_case("H");
     assert!(s.bonds <= NMEMBRANE - 10, "bonds left {}", s.bonds);
     assert!(s.released >= 5, "cytoplasm released: {}", s.released);
+    // the content is smeared along the flow, far beyond the cell's diameter
+    assert!(s.cyto_max_dist > 2.0 * RCELL, "cytoplasm within {} of the membrane centroid", s.cyto_max_dist);
 }
 
 #[test]

@@ -20,6 +20,16 @@ DL = math.sqrt(MW / RHO_W)    # 2.387e-3 m
 R0 = DL                      # cube lattice spacing (m): the water spacing (paper 2.3e-3, see README)
 NC = 7                       # particles per cube side
 NWALL = 3
+C0 = 8.0                     # Tait sound speed of in.cubes (m/s): sets the hydrostatic densities
+G = 9.81
+
+
+def hydrostatic_rho(rho0, y, y_surface):
+    """Density whose Tait pressure B((rho/rho0)^7 - 1), B = c0^2 rho0 / 7, is the hydrostatic
+    pressure of the water above y: the run starts at rest instead of settling (the settling
+    transient shook the brittle cubes apart)."""
+    p = max(0.0, RHO_W * G * (y_surface - y))
+    return rho0 * (1.0 + p / (C0 * C0 * rho0 / 7.0)) ** (1.0 / 7.0)
 
 
 def sphere_density(mass, diameter):
@@ -75,6 +85,8 @@ def build(name, nx, ny, fill, centres, rho_s):
             atoms.append((x, -(k + 0.5) * DL, 3, 0, RHO_W, DL, MW))
             atoms.append((x, h + (k + 0.5) * DL, 3, 0, RHO_W, DL, MW))
     ylo, yhi = -NWALL * DL - DL, h + NWALL * DL + DL
+    y_surface = fill * DL
+    atoms = [(x, y, t, mol, hydrostatic_rho(rho, y, y_surface), d, m) for (x, y, t, mol, rho, d, m) in atoms]
     with open(name, "w") as f:
         f.write(f"cubes in a periodic channel (gen_cubes.py): {len(water)} water, {len(centres)} cubes of density {rho_s}\n\n")
         f.write(f"{len(atoms)} atoms\n3 atom types\n{len(bonds)} bonds\n1 bond types\n{len(angles)} angles\n1 angle types\n\n")
@@ -82,7 +94,7 @@ def build(name, nx, ny, fill, centres, rho_s):
         f.write(f"Masses\n\n1 {MW!r}\n2 {ms!r}\n3 {MW!r}\n\n")
         f.write("Atoms # hybrid\n\n")
         for n, (x, y, t, mol, rho, d, m) in enumerate(atoms, 1):
-            f.write(f"{n} {t} {x!r} {y!r} 0.0 {rho} 0.0 1.0 {d!r} {sphere_density(m, d)!r} {mol}\n")
+            f.write(f"{n} {t} {x!r} {y!r} 0.0 {rho!r} 0.0 1.0 {d!r} {sphere_density(m, d)!r} {mol}\n")
         f.write("\nBonds\n\n" + "".join(f"{k + 1} 1 {a} {b}\n" for k, (a, b) in enumerate(bonds)))
         f.write("\nAngles\n\n" + "".join(f"{k + 1} 1 {a} {b} {c}\n" for k, (a, b, c) in enumerate(angles)))
     print(f"{name}: {len(atoms)} atoms ({len(water)} water, {len(centres)} cubes), box {lx:.4f} x {h:.4f} m")
@@ -105,8 +117,9 @@ def main():
     h = ny * DL
     # A: neutrally buoyant cubes spread over the channel
     build("cubes_A.data", nx, ny, ny, grid(nx, ny, 4, 3, 0.2 * h, 0.8 * h), 1000.0)
-    # B: light cubes (990) in a partly filled channel (free surface at 0.6 H), starting under it
-    build("cubes_B.data", nx, ny, 24, grid(nx, ny, 4, 2, 0.3 * h, 0.47 * h), 990.0)
+    # B: light cubes (990) in a partly filled channel (free surface at 0.6 H): four start at the
+    # surface (centre one spacing above the top water row), four (molecules 5-8) under it
+    build("cubes_B.data", nx, ny, 24, grid(nx, ny, 4, 1, 0.6 * h, 0.6 * h) + grid(nx, ny, 4, 1, 0.35 * h, 0.35 * h), 990.0)
     # C: heavy brittle cubes (1500) starting in the upper half
     build("cubes_C.data", nx, ny, ny, grid(nx, ny, 4, 3, 0.45 * h, 0.85 * h), 1500.0)
     # fast variants: a quarter of the channel length with one column of cubes (a periodic cell

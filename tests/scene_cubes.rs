@@ -88,8 +88,9 @@ fn c_heavy_brittle_cubes_deposit() {
     let bonds = sim.topo.bonds.len();
     let (start_lo, start_hi) = (5.5 * DL, 16.5 * DL);
     println!("C: cube centres {ys:?} (started at {start_lo} and {start_hi}), bonds {bonds} of 168");
-    // on the floor: the wall's top row is at -dL/2, so a resting cube's centre is at 3.5 r0
-    assert!(ys[0] < HALF + 0.5 * DL, "the lower cube is not on the bottom: {}", ys[0]);
+    // on the floor: the wall's top row is at -dL/2, so a cube touching it has its centre at
+    // 3.5 r0; one layer of water stays under it (it drains slowly), so allow 1.5 dL more
+    assert!(ys[0] < HALF + 1.5 * DL, "the lower cube is not on the bottom: {}", ys[0]);
     assert!(ys[1] < start_hi - DL, "the upper cube did not sink: {}", ys[1]);
     // bonds break only beyond 0.1% strain, which sinking and settling in this small run do not
     // reach (printed above; README: the full variant's pile)

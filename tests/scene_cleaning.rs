@@ -48,3 +48,21 @@ fn soil_stays_on_the_wall_until_it_is_wet_then_is_washed_off() {
     assert!(*rmax.last().unwrap() > 1.25 * 2.35e-5, "{}", rmax.last().unwrap());
     assert!(dir.path().join("scene_cleaning.0.png").exists(), "the deck draws its pictures");
 }
+
+#[test]
+fn count_and_mass_take_a_region() {
+    // LAMMPS' count(group,region) and mass(group,region): the deck's measure of soil on the wall
+    let deck = "units si\natom_style atomic\nregion box block 0 4 0 1 0 1 units box\ncreate_box 2 box\n\
+        create_atoms 1 single 0.5 0.5 0.5 units box\ncreate_atoms 1 single 1.5 0.5 0.5 units box\n\
+        create_atoms 2 single 2.5 0.5 0.5 units box\ncreate_atoms 1 single 3.5 0.5 0.5 units box\n\
+        mass 1 2.0\nmass 2 5.0\nregion left block 0 2.6 INF INF INF INF units box\n\
+        variable n equal count(all,left)\nvariable m equal mass(all,left)\nvariable n1 equal count(all)\n\
+        print \"${n} ${m} ${n1}\"\n";
+    let opts = DeckOptions { capture_text: true, ..Default::default() };
+    let run = run_text("count", deck, &opts).map_err(|f| f.rendered).unwrap();
+    let out = run.sim.out.captured.as_deref().unwrap();
+    assert!(out.lines().any(|l| l == "3 9 4"), "{out}");
+    let bad = "units si\natom_style atomic\nregion box block 0 1 0 1 0 1 units box\ncreate_box 1 box\nvariable n equal count(all,nowhere)\nprint \"${n}\"\n";
+    let err = run_text("count", bad, &DeckOptions::default()).err().expect("unknown region").rendered;
+    assert!(err.contains("region `nowhere` does not exist"), "{err}");
+}

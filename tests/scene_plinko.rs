@@ -1,7 +1,7 @@
 //! Scene 6 of the paper (Fig 14, examples/scenes/plinko): rigid (k_a = 1e-15 J) and flexible
 //! (k_a = 1e-16 J) ring cells fall through a pin array under a body force with Stokes drag. The
-//! fast variant of the deck runs here; the check reads the deck's thermo columns c_rig[2] and
-//! c_flex[2], the heights of the two populations' centres of mass (Fig 14b).
+//! fast variant of the deck runs here; the check reads the deck's thermo columns v_yC_rigid and
+//! v_yC_flexible, the heights of the two populations' centres of mass (Fig 14b).
 
 use dmhs::deck::{run_text, DeckOptions};
 use dmhs::plot_cmd::read_table;
@@ -27,7 +27,7 @@ fn flexible_cells_descend_faster_than_rigid_ones() {
         let k = t.find(name).unwrap();
         t.rows.iter().map(|r| r[k]).collect()
     };
-    let (time, rig, flex) = (col("Time"), col("c_rig[2]"), col("c_flex[2]"));
+    let (time, rig, flex) = (col("Time"), col("v_yC_rigid"), col("v_yC_flexible"));
     let last = time.len() - 1;
     // 16 particles per cell, every bond and angle kept
     assert_eq!(sim.atoms.nlocal, 6 * 16 + 20);

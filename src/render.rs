@@ -189,6 +189,10 @@ impl Canvas {
             let mut enc = png::Encoder::new(&mut out, self.width as u32, self.height as u32);
             enc.set_color(png::ColorType::Rgb);
             enc.set_depth(png::BitDepth::Eight);
+            // shaded spheres compress poorly with the default filter; adaptive filtering and
+            // the best deflate level make scene pictures 2-3 times smaller
+            enc.set_compression(png::Compression::Best);
+            enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
             let mut w = enc.write_header().map_err(|e| e.to_string())?;
             w.write_image_data(&self.bytes()).map_err(|e| e.to_string())?;
         }

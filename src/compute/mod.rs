@@ -88,7 +88,7 @@ pub fn default_computes() -> Vec<Box<dyn Compute>> {
     ]
 }
 
-/// Group functions of expressions: count(g), mass(g), xcm(g,dim), vcm(g,dim), fcm(g,dim),
+/// Group functions of expressions: count(g[,region]), mass(g[,region]), xcm(g,dim), vcm(g,dim), fcm(g,dim),
 /// bound(g,xmin|xmax|...), ke(g). `None` if `name` is not a group function.
 pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<Result<f64, String>> {
     let known = ["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "ke", "gyration"];
@@ -99,6 +99,11 @@ pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<R
         let g = args.first().ok_or_else(|| format!("{name}() needs a group ID"))?;
         let bit = sim.group_bit(g)?;
         let a = &sim.atoms;
+        // LAMMPS' optional last argument of count() and mass(): only atoms in a region
+        let region = match (name, args.get(1)) {
+            ("count" | "mass", Some(r)) => Some(sim.regions.iter().find(|reg| &reg.id == r).ok_or_else(|| format!("{name}(): region `{r}` does not exist"))?),
+            _ => None,
+        };
         let members = (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0);
         let dim_of = |k: usize| -> Result<usize, String> {
             match args.get(k).map(|s| s.as_str()) {
@@ -109,8 +114,11 @@ pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<R
             }
         };
         Ok(match name {
-            "count" => sim.group_count(bit) as f64,
-            "mass" => members.map(|i| sim.mass(i)).sum(),
+            "count" => match region {
+                Some(r) => members.filter(|&i| r.matches(a.x[i])).count() as f64,
+                None => sim.group_count(bit) as f64,
+            },
+            "mass" => members.filter(|&i| region.is_none_or(|r| r.matches(a.x[i]))).map(|i| sim.mass(i)).sum(),
             "charge" => {
                 if !a.features.charge {
                     return Err("charge() needs an atom style with charges".into());

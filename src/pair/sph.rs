@@ -190,23 +190,52 @@ impl Support {
     }
 }
 
+fn kernel_choice(a: &mut Args) -> DResult<Kernel> {
+    Ok(match a.choice("kernel", &["lucy", "cubic", "wendland2"])? {
+        0 => Kernel::Lucy,
+        1 => Kernel::Cubic,
+        _ => Kernel::Wendland2,
+    })
+}
+
 /// Parse the optional `kernel NAME` extension keyword of an SPH pair style.
 pub fn parse_kernel(a: &mut Args) -> DResult<Kernel> {
     let mut kernel = Kernel::Lucy;
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
-            "kernel" => {
-                kernel = match a.choice("kernel", &["lucy", "cubic", "wendland2"])? {
-                    0 => Kernel::Lucy,
-                    1 => Kernel::Cubic,
-                    _ => Kernel::Wendland2,
-                }
-            }
+            "kernel" => kernel = kernel_choice(a)?,
             _ => return Err(a.unknown_keyword(w, &["kernel"])),
         }
     }
     Ok(kernel)
+}
+
+/// Options of the Tait styles: the kernel and the `pmin P` extension (dmhs): the pressure is
+/// clipped from below, P = max(P_Tait, pmin). `pmin 0` removes the tension that makes a
+/// stretching free jet (falling stream) clump and burst with weakly compressible SPH.
+pub fn parse_tait_options(a: &mut Args) -> DResult<(Kernel, Option<f64>)> {
+    let mut kernel = Kernel::Lucy;
+    let mut pmin = None;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "kernel" => kernel = kernel_choice(a)?,
+            "pmin" => pmin = Some(a.f64("pmin (lowest pressure)")?),
+            _ => return Err(a.unknown_keyword(w, &["kernel", "pmin"])),
+        }
+    }
+    Ok((kernel, pmin))
+}
+
+/// The Tait P/rho^2 with the optional lower pressure bound of [`parse_tait_options`].
+#[inline(always)]
+pub fn tait_p_over_rho2_min(rho: f64, rho0: f64, b: f64, pmin: Option<f64>) -> f64 {
+    let p = tait_p_over_rho2(rho, rho0, b);
+    match pmin {
+        Some(m) if p * rho * rho < m => m / (rho * rho),
+        _ => p,
+    }
 }
 
 /// LAMMPS' Tait equation of state written as P/rho^2 (`fi` in pair_sph_taitwater.cpp):

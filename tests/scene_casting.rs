@@ -2,7 +2,7 @@
 //! from a ladle into a cold mould, solidifying with latent heat (slow) or without it under strong
 //! surface cooling (fast).
 //!
-//! Quick variants run here (`-var quick 1`: 3 s slow, 8 s fast); the full slow run (45 s, to
+//! Quick variants run here (`-var quick 1`: 4 s slow, 8 s fast); the full slow run (45 s, to
 //! complete solidification) is `#[ignore]`d: `cargo test --release --test scene_casting -- --ignored`.
 
 use dmhs::deck::{run_file, DeckOptions};
@@ -46,14 +46,14 @@ fn slow_casting_solidifies_from_the_mould_with_three_zones() {
     let (liq, plateau, solid) = (col(&t, "v_nliq"), col(&t, "f_phase[6]"), col(&t, "f_phase[2]"));
     let melted = col(&t, "f_phase[8]");
     let last = fs.len() - 1;
-    assert!((time[last] - 3.0).abs() < 1e-9);
+    assert!((time[last] - 4.0).abs() < 1e-9);
     // every liquid particle is accounted for (none left the box)
     for k in 0..fs.len() {
         assert_eq!(liq[k] + plateau[k] + solid[k], N, "sample {k}");
     }
     let worst = check_drops_are_remelts(&t);
     println!("slow quick: solid fraction {} at t = {}, largest drop {worst}, melting events {}", fs[last], time[last], melted[last]);
-    assert!(fs[last] > 0.25, "solid fraction at 3 s: {}", fs[last]);
+    assert!(fs[last] > 0.25, "solid fraction at 4 s: {}", fs[last]);
     // re-melting is rare: at most 3 % of the charge
     assert!(melted[last] <= 0.03 * N, "melting events {}", melted[last]);
     // the three zones of Fig 9D coexist: liquid above e_liq, transition on the plateau, solid

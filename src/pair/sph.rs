@@ -587,6 +587,22 @@ mod tests {
     }
 
     #[test]
+    fn pmin_clips_the_tait_pressure_from_below() {
+        // B = c0^2 rho0 / 7 with c0 = 20, rho0 = 1000
+        let (rho0, b) = (1000.0, 400.0 * 1000.0 / 7.0);
+        // rho = 0.9 rho0: P = B (0.9^7 - 1) = -29811.6 Pa (tension)
+        let p = tait_p_over_rho2(900.0, rho0, b) * 900.0 * 900.0;
+        assert!((p - b * (0.9f64.powi(7) - 1.0)).abs() < 1e-9 * b);
+        assert!((p + 29811.6).abs() < 0.01, "{p}");
+        assert_eq!(tait_p_over_rho2_min(900.0, rho0, b, Some(0.0)), 0.0);
+        assert_eq!(tait_p_over_rho2_min(900.0, rho0, b, Some(-1.0e4)) * 900.0 * 900.0, -1.0e4);
+        // compression is untouched: rho = 1.1 rho0, P = B (1.1^7 - 1) = 54212.4 Pa
+        assert_eq!(tait_p_over_rho2_min(1100.0, rho0, b, Some(0.0)), tait_p_over_rho2(1100.0, rho0, b));
+        assert!((tait_p_over_rho2(1100.0, rho0, b) * 1100.0 * 1100.0 - 54212.4).abs() < 0.01);
+        assert_eq!(tait_p_over_rho2_min(900.0, rho0, b, None), tait_p_over_rho2(900.0, rho0, b));
+    }
+
+    #[test]
     fn kernels_are_normalised() {
         for k in [Kernel::Lucy, Kernel::Cubic, Kernel::Wendland2] {
             for dim3 in [false, true] {

@@ -30,7 +30,9 @@
 //!
 //! Output: f_ID = solid fraction (solid atoms / group atoms); f_ID[1..5] = solid fraction,
 //! number of solid atoms, bonds created, bonds deleted (since the fix was defined), and the
-//! solid fraction by enthalpy (mean over the group of clamp((e_liq - e)/L, 0, 1)).
+//! solid fraction by enthalpy (mean over the group of clamp((e_liq - e)/L, 0, 1)), atoms on the
+//! plateau (e_sol <= e <= e_liq: the transition zone), and the numbers of solidification and
+//! melting events (since the fix was defined).
 //! Per-atom: `compute ID group dmhs/phase/atom` (T, label, melt fraction, phi).
 
 use super::{Fix, FixHooks};
@@ -97,6 +99,9 @@ pub struct FixDmhsPhase {
     mix: Option<(f64, f64)>,
     created: u64,
     deleted: u64,
+    /// atoms that became solid / liquid (since the fix was defined)
+    frozen: u64,
+    melted: u64,
 }
 
 impl FixDmhsPhase {
@@ -162,7 +167,7 @@ impl FixDmhsPhase {
         if mix.is_some() {
             sim.atoms.extra_field(PHI_FIELD, 1, true);
         }
-        Ok(FixDmhsPhase { id, groupbit, eos, liquid, solid, bond, mix, created: 0, deleted: 0 })
+        Ok(FixDmhsPhase { id, groupbit, eos, liquid, solid, bond, mix, created: 0, deleted: 0, frozen: 0, melted: 0 })
     }
 
     fn field(sim: &Simulation, name: &str) -> usize {
@@ -248,11 +253,13 @@ impl FixDmhsPhase {
             t.remove_atoms(&gone);
             self.deleted += (nb - t.bonds.len()) as u64;
             topo_changed |= t.bonds.len() + t.angles.len() + t.dihedrals.len() != before;
+            self.melted += melt.len() as u64;
             for &i in &melt {
                 sim.atoms.extra[kl].data[i] = 0.0;
                 sim.atoms.typ[i] = self.liquid;
             }
         }
+        self.frozen += freeze.len() as u64;
         // newly solid atoms in ID order, each bonding to solid atoms within the cut-off
         freeze.sort_by_key(|&i| sim.atoms.tag[i]);
         let mut bonded: std::collections::HashSet<(i64, i64)> = std::collections::HashSet::new();
@@ -293,18 +300,24 @@ impl FixDmhsPhase {
         Ok(())
     }
 
-    fn counts(&self, sim: &Simulation) -> (f64, f64, f64) {
+    /// (group atoms, solid-labelled atoms, solid fraction by enthalpy summed, atoms on the
+    /// plateau e_sol <= e <= e_liq).
+    fn counts(&self, sim: &Simulation) -> (f64, f64, f64, f64) {
         let kl = Self::field(sim, LABEL_FIELD);
         let a = &sim.atoms;
-        let (mut n, mut ns, mut fs) = (0.0, 0.0, 0.0);
+        let (mut n, mut ns, mut fs, mut np) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
+                let e = a.esph[i] / a.mass(i, &sim.type_mass);
                 n += 1.0;
                 ns += a.extra[kl].data[i];
-                fs += 1.0 - self.eos.melt_fraction(a.esph[i] / a.mass(i, &sim.type_mass));
+                fs += 1.0 - self.eos.melt_fraction(e);
+                if e >= self.eos.esol && e <= self.eos.eliq {
+                    np += 1.0;
+                }
             }
         }
-        (n, ns, fs)
+        (n, ns, fs, np)
     }
 }
 
@@ -353,17 +366,20 @@ impl Fix for FixDmhsPhase {
         Ok(())
     }
     fn scalar(&self, sim: &Simulation) -> Option<f64> {
-        let (n, ns, _) = self.counts(sim);
+        let (n, ns, _, _) = self.counts(sim);
         Some(if n > 0.0 { ns / n } else { 0.0 })
     }
     fn vector(&self, sim: &Simulation, i: usize) -> Option<f64> {
-        let (n, ns, fs) = self.counts(sim);
+        let (n, ns, fs, np) = self.counts(sim);
         match i {
             1 => Some(if n > 0.0 { ns / n } else { 0.0 }),
             2 => Some(ns),
             3 => Some(self.created as f64),
             4 => Some(self.deleted as f64),
             5 => Some(if n > 0.0 { fs / n } else { 0.0 }),
+            6 => Some(np),
+            7 => Some(self.frozen as f64),
+            8 => Some(self.melted as f64),
             _ => None,
         }
     }

@@ -24,7 +24,7 @@ use crate::fix::dmhs_phase::PHI_FIELD;
 use crate::neighbor::NEIGH_MASK;
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]";
+pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [kernel K] [pmin P]";
 
 pub struct DmhsBlend {
     sph: SphTaitwaterMorris,
@@ -36,8 +36,10 @@ pub struct DmhsBlend {
 
 impl DmhsBlend {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
-        let dem = NoHistory(Classic::from_lammps(args, cmd, SYNTAX)?);
-        let sph = SphTaitwaterMorris::from_lammps(&[], cmd)?;
+        // `kernel K` and `pmin P` (dmhs extensions of the SPH part) may follow the DEM values
+        let k = args.iter().position(|w| w.text == "kernel" || w.text == "pmin").unwrap_or(args.len());
+        let dem = NoHistory(Classic::from_lammps(&args[..k], cmd, SYNTAX)?);
+        let sph = SphTaitwaterMorris::from_lammps(&args[k..], cmd)?;
         Ok(DmhsBlend { sph, dem, maxrad: vec![], n: 0 })
     }
 }

@@ -190,23 +190,52 @@ impl Support {
     }
 }
 
+fn kernel_choice(a: &mut Args) -> DResult<Kernel> {
+    Ok(match a.choice("kernel", &["lucy", "cubic", "wendland2"])? {
+        0 => Kernel::Lucy,
+        1 => Kernel::Cubic,
+        _ => Kernel::Wendland2,
+    })
+}
+
 /// Parse the optional `kernel NAME` extension keyword of an SPH pair style.
 pub fn parse_kernel(a: &mut Args) -> DResult<Kernel> {
     let mut kernel = Kernel::Lucy;
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
-            "kernel" => {
-                kernel = match a.choice("kernel", &["lucy", "cubic", "wendland2"])? {
-                    0 => Kernel::Lucy,
-                    1 => Kernel::Cubic,
-                    _ => Kernel::Wendland2,
-                }
-            }
+            "kernel" => kernel = kernel_choice(a)?,
             _ => return Err(a.unknown_keyword(w, &["kernel"])),
         }
     }
     Ok(kernel)
+}
+
+/// Options of the Tait styles: the kernel and the `pmin P` extension (dmhs): the pressure is
+/// clipped from below, P = max(P_Tait, pmin). `pmin 0` removes the tension that makes a
+/// stretching free jet (falling stream) clump and burst with weakly compressible SPH.
+pub fn parse_tait_options(a: &mut Args) -> DResult<(Kernel, Option<f64>)> {
+    let mut kernel = Kernel::Lucy;
+    let mut pmin = None;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "kernel" => kernel = kernel_choice(a)?,
+            "pmin" => pmin = Some(a.f64("pmin (lowest pressure)")?),
+            _ => return Err(a.unknown_keyword(w, &["kernel", "pmin"])),
+        }
+    }
+    Ok((kernel, pmin))
+}
+
+/// The Tait P/rho^2 with the optional lower pressure bound of [`parse_tait_options`].
+#[inline(always)]
+pub fn tait_p_over_rho2_min(rho: f64, rho0: f64, b: f64, pmin: Option<f64>) -> f64 {
+    let p = tait_p_over_rho2(rho, rho0, b);
+    match pmin {
+        Some(m) if p * rho * rho < m => m / (rho * rho),
+        _ => p,
+    }
 }
 
 /// LAMMPS' Tait equation of state written as P/rho^2 (`fi` in pair_sph_taitwater.cpp):
@@ -568,6 +597,22 @@ mod tests {
                 k.w(r, h, dim3) * shell * dr
             })
             .sum()
+    }
+
+    #[test]
+    fn pmin_clips_the_tait_pressure_from_below() {
+        // B = c0^2 rho0 / 7 with c0 = 20, rho0 = 1000
+        let (rho0, b) = (1000.0, 400.0 * 1000.0 / 7.0);
+        // rho = 0.9 rho0: P = B (0.9^7 - 1) = -29811.6 Pa (tension)
+        let p = tait_p_over_rho2(900.0, rho0, b) * 900.0 * 900.0;
+        assert!((p - b * (0.9f64.powi(7) - 1.0)).abs() < 1e-9 * b);
+        assert!((p + 29811.6).abs() < 0.01, "{p}");
+        assert_eq!(tait_p_over_rho2_min(900.0, rho0, b, Some(0.0)), 0.0);
+        assert_eq!(tait_p_over_rho2_min(900.0, rho0, b, Some(-1.0e4)) * 900.0 * 900.0, -1.0e4);
+        // compression is untouched: rho = 1.1 rho0, P = B (1.1^7 - 1) = 54212.4 Pa
+        assert_eq!(tait_p_over_rho2_min(1100.0, rho0, b, Some(0.0)), tait_p_over_rho2(1100.0, rho0, b));
+        assert!((tait_p_over_rho2(1100.0, rho0, b) * 1100.0 * 1100.0 - 54212.4).abs() < 0.01);
+        assert_eq!(tait_p_over_rho2_min(900.0, rho0, b, None), tait_p_over_rho2(900.0, rho0, b));
     }
 
     #[test]

@@ -5,15 +5,17 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_kernel, tait_coeff, tait_p_over_rho2, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "pair_style sph/taitwater [kernel lucy|cubic|wendland2]";
+pub const SYNTAX: &str = "pair_style sph/taitwater [kernel lucy|cubic|wendland2] [pmin P]";
 pub const COEFF_SYNTAX: &str = "pair_coeff I J rho0 c0 alpha h";
 
 pub struct SphTaitwater {
     kernel: Kernel,
+    /// `pmin P` (dmhs extension): lowest pressure
+    pmin: Option<f64>,
     types: TaitTypes,
     /// (alpha, h) per pair
     pairs: PairTable<(f64, f64)>,
@@ -28,8 +30,8 @@ pub struct SphTaitwater {
 impl SphTaitwater {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        let kernel = parse_kernel(&mut a)?;
-        Ok(SphTaitwater { kernel, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
+        let (kernel, pmin) = parse_tait_options(&mut a)?;
+        Ok(SphTaitwater { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
     }
 }
 
@@ -41,7 +43,7 @@ impl SphKernel for SphTaitwater {
         let a = input.atoms;
         let t = a.typ[i];
         let rho0 = self.types.rho0.get(t).copied().unwrap_or(0.0);
-        let p = if rho0 == 0.0 { 0.0 } else { tait_p_over_rho2(a.rho[i], rho0, self.types.b[t]) };
+        let p = if rho0 == 0.0 { 0.0 } else { tait_p_over_rho2_min(a.rho[i], rho0, self.types.b[t], self.pmin) };
         Packed { x: a.x[i], v: a.vest[i], a: a.rho[i], b: p }
     }
     #[inline(always)]
@@ -111,7 +113,7 @@ impl PairStyle for SphTaitwater {
         true
     }
     fn describe(&self) -> String {
-        let mut s = format!("sph/taitwater (kernel {})", self.kernel.name());
+        let mut s = format!("sph/taitwater (kernel {}{})", self.kernel.name(), self.pmin.map(|p| format!(", pmin {p}")).unwrap_or_default());
         for i in 1..=self.n {
             s += &format!("\n    type {i}: rho0 {} c0 {}", self.types.rho0[i], self.types.c0[i]);
         }

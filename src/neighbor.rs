@@ -452,6 +452,7 @@ impl Neighbor {
             .windows(2)
             .collect::<Vec<_>>()
             .par_iter()
+            .with_max_len(1)
             .map(|w| {
                 let (start, end) = (w[0], w[1]);
                 let mut offsets = Vec::with_capacity(end - start + 1);

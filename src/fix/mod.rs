@@ -107,7 +107,7 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
     if rayon::current_num_threads() == 1 || n <= chunk {
         work(0..n);
     } else {
-        (0..n.div_ceil(chunk)).into_par_iter().for_each(|c| work(c * chunk..((c + 1) * chunk).min(n)));
+        (0..n.div_ceil(chunk)).into_par_iter().with_max_len(1).for_each(|c| work(c * chunk..((c + 1) * chunk).min(n)));
     }
 }
 

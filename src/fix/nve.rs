@@ -31,7 +31,7 @@ impl FixNve {
         let n = a.nlocal;
         let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
         let (x, v) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]));
-        super::for_each_range(n, 4096, |range| {
+        super::for_each_range(n, 1024, |range| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;

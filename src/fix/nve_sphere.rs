@@ -53,7 +53,7 @@ impl FixNveSphere {
         let n = a.nlocal;
         let (f, torque, rmass, radius, mask) = (&a.f[..n], &a.torque[..n], &a.rmass[..n], &a.radius[..n], &a.mask[..n]);
         let (x, v, omega) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.omega[..n]));
-        super::for_each_range(n, 2048, |range| {
+        super::for_each_range(n, 1024, |range| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;

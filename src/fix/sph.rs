@@ -47,7 +47,7 @@ impl FixSph {
         let (f, drho, desph, mask, typ, rmass) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
         let (x, v, vest) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.vest[..n]));
         let (rho, esph) = (SharedMut::new(&mut a.rho[..n]), SharedMut::new(&mut a.esph[..n]));
-        super::for_each_range(n, 4096, |range| {
+        super::for_each_range(n, 1024, |range| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;

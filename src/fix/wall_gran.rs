@@ -140,7 +140,7 @@ impl FixWallGran {
         let (f, torque, h3) = (SharedMut::new(&mut a.f[..n]), SharedMut::new(&mut a.torque[..n]), SharedMut::new(&mut hist[..3 * n]));
         let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
         // atoms are independent: ranges of them may run in parallel (same bits)
-        super::for_each_range(n, 2048, |range| {
+        super::for_each_range(n, 1024, |range| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;

@@ -337,7 +337,9 @@ pub fn for_each_slab<R: Send + Default + Clone>(n: usize, work: impl Fn(usize) -
         return out;
     }
     for parity in 0..2 {
-        let results: Vec<(usize, R)> = (parity..n).step_by(2).collect::<Vec<_>>().into_par_iter().map(|c| (c, work(c))).collect();
+        // one task per chunk (with_max_len(1)): work is often concentrated in a few slabs (a
+        // water column in a wide tank), and rayon's default splitting would leave them on one thread
+        let results: Vec<(usize, R)> = (parity..n).step_by(2).collect::<Vec<_>>().into_par_iter().with_max_len(1).map(|c| (c, work(c))).collect();
         for (c, r) in results {
             out[c] = r;
         }

@@ -560,7 +560,7 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     let has_rates = !out.drho.is_empty();
     let water = kernel.rate_is_water() && !out.dwater.is_empty();
     let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
-    crate::fix::for_each_range(nlocal, 4096, |range| {
+    crate::fix::for_each_range(nlocal, 1024, |range| {
         for i in range {
             let c = &acc[i];
             // SAFETY: each index belongs to one range only; the rate arrays are used only when

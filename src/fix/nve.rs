@@ -16,9 +16,7 @@ impl FixNve {
         Args::from_words(args, cmd.span, "fix ID group nve").finish()?;
         Ok(FixNve { id, groupbit })
     }
-}
 
-impl FixNve {
     /// One half step: v += dtf/m f, and in the first half x += dt v. Atoms are independent, so
     /// chunks of atoms run in parallel (same bits).
     fn half_step(&self, sim: &mut Simulation, first: bool) {

@@ -29,9 +29,7 @@ impl FixSph {
         }
         Ok(FixSph { id, groupbit, stationary })
     }
-}
 
-impl FixSph {
     /// One half step of LAMMPS' fix sph (in its order of operations). First half: esph and rho
     /// by dtf times their rates; for moving particles the velocity estimate
     /// vest = v + 2 dtfm f, then v += dtfm f and x += dt v. Second half: v += dtfm f, then esph

@@ -278,7 +278,7 @@ impl Simulation {
         let mut f = std::mem::take(&mut self.atoms.f);
         let nchunks = lists.bonds.nchunks().max(lists.angles.nchunks()).max(lists.dihedrals.nchunks());
         let shared = SharedMut::new(&mut f);
-        let parts = for_each_slab(nchunks, |c| {
+        let parts = for_each_slab(nchunks, self.atoms.nlocal, |c| {
             // SAFETY: a chunk's interactions touch only atoms of this chunk and the next
             let mut t = BondedTally::default();
             ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &shared, &mut t);

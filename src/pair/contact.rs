@@ -199,7 +199,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let (x, v, omega, radius, rmass, typ) = (&a.x[..], &a.v[..], &a.omega[..], &a.radius[..], &a.rmass[..], &a.typ[..]);
     let update = input.advance;
     let dt = input.dt;
-    let parts = for_each_slab(input.list.chunks.len(), |c| {
+    let parts = for_each_slab(input.list.chunks.len(), nlocal, |c| {
         let chunk = &input.list.chunks[c];
         let mut t = Tally::default();
         // SAFETY: chunk c of the store is used only by the work item of list chunk c

@@ -321,13 +321,20 @@ impl<T> SharedMut<T> {
 /// atom receives its contributions in the same order whatever the thread count.
 /// Returns the per-chunk results in chunk order.
 pub fn for_each_chunk<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync) -> Vec<R> {
-    for_each_slab(list.chunks.len(), |c| work(&list.chunks[c]))
+    let atoms = list.chunks.last().map(|c| c.end).unwrap_or(0);
+    for_each_slab(list.chunks.len(), atoms, |c| work(&list.chunks[c]))
 }
 
-/// The even/odd schedule of [`for_each_chunk`] over `n` chunks given by index.
-pub fn for_each_slab<R: Send + Default + Clone>(n: usize, work: impl Fn(usize) -> R + Sync) -> Vec<R> {
+/// Below this many owned atoms the slab schedule runs on the calling thread: waking a second
+/// thread twice per loop costs more than it saves (the 564-particle Plinko scene ran slower with
+/// 2 threads than with 1).
+pub const PARALLEL_MIN_ATOMS: usize = 2000;
+
+/// The even/odd schedule of [`for_each_chunk`] over `n` chunks given by index, for a system of
+/// `atoms` owned atoms.
+pub fn for_each_slab<R: Send + Default + Clone>(n: usize, atoms: usize, work: impl Fn(usize) -> R + Sync) -> Vec<R> {
     let mut out = vec![R::default(); n];
-    if rayon::current_num_threads() == 1 || n < 2 {
+    if rayon::current_num_threads() == 1 || n < 2 || atoms < PARALLEL_MIN_ATOMS {
         // same order of contributions as the parallel schedule
         for parity in 0..2 {
             for c in (parity..n).step_by(2) {

@@ -459,7 +459,7 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     let nall = a.nall();
     let stride = input.ntypes + 1;
     // per-atom preparation in parallel (each record depends on its own atom only)
-    let (packed, typ): (Vec<Packed>, Vec<u32>) = if rayon::current_num_threads() > 1 {
+    let (packed, typ): (Vec<Packed>, Vec<u32>) = if rayon::current_num_threads() > 1 && nall >= super::PARALLEL_MIN_ATOMS {
         use rayon::prelude::*;
         ((0..nall).into_par_iter().map(|i| kernel.pack(input, i)).collect(), a.typ.par_iter().map(|&t| t as u32).collect())
     } else {

@@ -8,7 +8,7 @@
 //! T = 2 pi sqrt(m_min/(2K)) the period of the lightest pair. The acoustic limit is where the dam
 //! break of docs/validation.md turns unstable (stable at 1x, unstable at 2x, all resolutions).
 
-use crate::fix::{any_index, ANY_CHUNK};
+use crate::fix::any_index;
 use crate::sim::{RunError, Simulation};
 
 /// One time-step limit.
@@ -132,29 +132,10 @@ pub fn dt_hint(sim: &Simulation) -> String {
     }
 }
 
-/// Whether every component is finite: `v * 0` is 0 for finite v and NaN otherwise, summed in
-/// four independent lanes (one dependent add per lane instead of one chain over all atoms), over
-/// chunks in parallel. The answer is a boolean, so it does not depend on the thread count.
+/// Whether every component is finite: `v * 0` is 0 for finite v and NaN otherwise (so the test
+/// has no branch and vectorizes), over chunks in parallel with [`any_index`].
 fn all_finite(p: &[[f64; 3]]) -> bool {
-    use rayon::prelude::*;
-    let chunk_ok = |c: &[[f64; 3]]| {
-        let mut acc = [0.0f64; 4];
-        let mut quads = c.chunks_exact(4);
-        for q in &mut quads {
-            for l in 0..4 {
-                acc[l] += q[l][0] * 0.0 + q[l][1] * 0.0 + q[l][2] * 0.0;
-            }
-        }
-        for r in quads.remainder() {
-            acc[0] += r[0] * 0.0 + r[1] * 0.0 + r[2] * 0.0;
-        }
-        acc.iter().all(|&s| s == 0.0)
-    };
-    if rayon::current_num_threads() == 1 || p.len() <= ANY_CHUNK {
-        chunk_ok(p)
-    } else {
-        p.par_chunks(ANY_CHUNK).all(chunk_ok)
-    }
+    !any_index(p.len(), |i| p[i][0] * 0.0 + p[i][1] * 0.0 + p[i][2] * 0.0 != 0.0)
 }
 
 /// Stop the run if the state went bad: non-finite positions, velocities or SPH fields, or an

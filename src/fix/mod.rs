@@ -112,7 +112,7 @@ pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usiz
 }
 
 /// Indices per parallel work item of [`any_index`].
-pub const ANY_CHUNK: usize = 4096;
+const ANY_CHUNK: usize = 4096;
 
 /// Whether `bad(i)` holds for some i in `0..n`: chunks in parallel, each folded without
 /// branches (so it vectorizes). The answer is a boolean, the same for every thread count.

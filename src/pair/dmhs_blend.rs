@@ -101,8 +101,9 @@ impl PairStyle for DmhsBlend {
                     let mut fsum = [0.0; 3];
                     if w > 0.0 && rsq < sph_cut[tj] {
                         let pj = self.sph.pack(input, j);
-                        let b = Batch {
+                        let b: Batch<3> = Batch {
                             tj: [tj; 4],
+                            m: [input.type_mass[tj]; 4],
                             del: [[del[0]; 4], [del[1]; 4], [del[2]; 4]],
                             rsq: [rsq; 4],
                             v: [[pj.v[0]; 4], [pj.v[1]; 4], [pj.v[2]; 4]],

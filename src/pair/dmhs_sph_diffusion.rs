@@ -48,7 +48,7 @@ impl SphKernel for SphDiffusion {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair_lanes(&self, _input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+    fn pair_lanes<const D: usize>(&self, _input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
         let dh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
         let sup = SupportLanes::gather(|l| Support::new(dh[l].1));
         let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);

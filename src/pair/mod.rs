@@ -15,6 +15,7 @@ pub mod granular;
 pub mod hybrid;
 pub mod lj_cut;
 pub mod sph;
+pub mod sph_loop;
 pub mod sph_heatconduction;
 pub mod sph_rhosum;
 pub mod sph_taitwater;

@@ -6,8 +6,8 @@
 //! `wfd = (1/r) dW/dr` (the missing factor r comes back through `x_ij` in forces and
 //! `v_ij . x_ij` in rates).
 
-use super::{at, for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
-use crate::neighbor::NEIGH_MASK;
+pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
+use super::PairInput;
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
 
 /// The smoothing kernel of the force and rate terms. `Lucy` is what LAMMPS uses; the others are
@@ -366,33 +366,6 @@ pub fn check_positive(w: &Word, x: f64, what: &str) -> DResult<()> {
     Ok(())
 }
 
-/// What a batch of SPH pairs contributes, per lane: force on i (j gets the opposite), density
-/// and energy rates of i and j, and the scalar LAMMPS tallies in the virial (`fpair`).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct SphContribution {
-    pub f: [L; 3],
-    pub fpair: L,
-    pub drho_i: L,
-    pub drho_j: L,
-    pub de_i: L,
-    pub de_j: L,
-}
-
-/// Up to [`LANES`] neighbours j of one particle i, field by field (unused lanes repeat lane 0;
-/// their results are ignored).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Batch {
-    /// Types of the j.
-    pub tj: [usize; LANES],
-    /// x_i - x_j
-    pub del: [L; 3],
-    pub rsq: L,
-    /// The j's velocity (estimate) and style scalars, as in [`Packed`].
-    pub v: [L; 3],
-    pub a: L,
-    pub b: L,
-}
-
 /// What the SPH loop reads of one particle, packed into one cache line: position, a velocity
 /// (the estimate `vest`), and two scalars chosen by the style (e.g. rho and the Tait P/rho^2).
 #[derive(Clone, Copy, Debug, Default)]
@@ -412,174 +385,12 @@ pub trait SphKernel: Sync {
     fn cutsq_row(&self, ti: usize) -> &[f64];
     /// The contributions of a batch of pairs (i, j) inside the cutoff, written lane by lane with
     /// [`lanes`] so that the compiler evaluates the lanes together.
-    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution;
+    fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D>;
     /// The scalar rate (`de_i`, `de_j`) is the water-mass rate dw/dt (`dmhs/sph/diffusion`)
     /// rather than desph: the loop adds it to `out.dwater`.
     fn rate_is_water(&self) -> bool {
         false
     }
-}
-
-/// Rates and forces accumulated per particle during the loop (one record per owned atom).
-#[derive(Clone, Copy, Debug, Default)]
-struct Acc {
-    f: [f64; 3],
-    drho: f64,
-    desph: f64,
-}
-
-/// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
-/// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
-///
-/// Write the neighbours j with `keep(j, rsq)` to `out` without branches; returns their count.
-/// `out` must have room for all of `neigh`.
-#[inline(always)]
-fn gather_inside(neigh: &[u32], packed: &[Packed], xi: [f64; 3], out: *mut u32, keep: impl Fn(usize, f64) -> bool) -> usize {
-    let mut n_in = 0usize;
-    for &jraw in neigh {
-        let j = (jraw & NEIGH_MASK) as usize;
-        let xj = at(packed, j).x;
-        let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
-        let rsq = dx * dx + dy * dy + dz * dz;
-        let ok = keep(j, rsq);
-        // SAFETY: the caller reserved room for every neighbour
-        unsafe { *out.add(n_in) = j as u32 };
-        n_in += ok as usize;
-    }
-    n_in
-}
-
-/// Particles are read from packed records (one cache line per neighbour) and contributions
-/// gathered in packed accumulators, added to the outputs at the end. For each atom the
-/// neighbours inside the cutoff are first gathered without branches (about 40% of listed pairs
-/// lie in the skin, and a branch on that is badly predicted); only those go through the kernel.
-pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
-    let a = input.atoms;
-    let nlocal = a.nlocal;
-    let nall = a.nall();
-    let stride = input.ntypes + 1;
-    // per-atom preparation in parallel (each record depends on its own atom only)
-    let (packed, typ): (Vec<Packed>, Vec<u32>) = if rayon::current_num_threads() > 1 && nall >= super::PARALLEL_MIN_ATOMS {
-        use rayon::prelude::*;
-        ((0..nall).into_par_iter().map(|i| kernel.pack(input, i)).collect(), a.typ.par_iter().map(|&t| t as u32).collect())
-    } else {
-        ((0..nall).map(|i| kernel.pack(input, i)).collect(), a.typ.iter().map(|&t| t as u32).collect())
-    };
-    let mut acc = vec![Acc::default(); nlocal];
-    let shared = SharedMut::new(&mut acc);
-    let eflag = input.eflag;
-    // types i whose cutoff is the same for every partner type, with no type filter (the common
-    // case): their cutoff test needs no partner types
-    let uniform_cut: Vec<Option<f64>> = (0..stride)
-        .map(|ti| {
-            let row = &kernel.cutsq_row(ti)[1..];
-            let same = input.type_filter.is_none() && !row.is_empty() && row.iter().all(|&c| c == row[0]);
-            if same { Some(row[0]) } else { None }
-        })
-        .collect();
-    let parts = for_each_chunk(input.list, |chunk| {
-        let mut t = Tally::default();
-        let mut inside: Vec<u32> = Vec::with_capacity(128);
-        for i in chunk.start..chunk.end {
-            let pi = packed[i];
-            let xi = pi.x;
-            let ti = typ[i] as usize;
-            let cutsq = kernel.cutsq_row(ti);
-            let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
-            // gather the neighbours inside the cutoff (and the type filter), branch-free
-            let neigh = chunk.neighbors(i);
-            inside.clear();
-            inside.reserve(neigh.len());
-            let n_in = match uniform_cut[ti] {
-                Some(c) => gather_inside(neigh, &packed, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
-                None => gather_inside(neigh, &packed, xi, inside.as_mut_ptr(), |j, rsq| {
-                    let tj = at(&typ, j) as usize;
-                    rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)
-                }),
-            };
-            // SAFETY: the first n_in entries were written
-            unsafe { inside.set_len(n_in) };
-            let mut own = Acc::default();
-            for batch in inside.chunks(LANES) {
-                let n = batch.len();
-                let js: [usize; LANES] = std::array::from_fn(|l| batch[if l < n { l } else { 0 }] as usize);
-                // SAFETY: neighbour indices are below nall = packed.len()
-                let pj: [&Packed; LANES] = js.map(|j| unsafe { packed.get_unchecked(j) });
-                let del = [lanes(|l| xi[0] - pj[l].x[0]), lanes(|l| xi[1] - pj[l].x[1]), lanes(|l| xi[2] - pj[l].x[2])];
-                let b = Batch {
-                    tj: js.map(|j| at(&typ, j) as usize),
-                    del,
-                    rsq: lanes(|l| del[0][l] * del[0][l] + del[1][l] * del[1][l] + del[2][l] * del[2][l]),
-                    v: [lanes(|l| pj[l].v[0]), lanes(|l| pj[l].v[1]), lanes(|l| pj[l].v[2])],
-                    a: lanes(|l| pj[l].a),
-                    b: lanes(|l| pj[l].b),
-                };
-                let c = kernel.pair_lanes(input, &pi, ti, &b);
-                // apply in list order (the sums of a one-pair-at-a-time loop)
-                for (l, &j) in js.iter().enumerate().take(n) {
-                    let f = [c.f[0][l], c.f[1][l], c.f[2][l]];
-                    own.f[0] += f[0];
-                    own.f[1] += f[1];
-                    own.f[2] += f[2];
-                    own.drho += c.drho_i[l];
-                    own.desph += c.de_i[l];
-                    let w = if j < nlocal {
-                        // SAFETY: an owned j is in this chunk or the next (slab schedule)
-                        let aj = unsafe { shared.get(j) };
-                        aj.f[0] -= f[0];
-                        aj.f[1] -= f[1];
-                        aj.f[2] -= f[2];
-                        aj.desph += c.de_j[l];
-                        aj.drho += c.drho_j[l];
-                        1.0
-                    } else {
-                        0.5
-                    };
-                    if eflag {
-                        let (fp, d) = (c.fpair[l], [b.del[0][l], b.del[1][l], b.del[2][l]]);
-                        t.virial[0] += w * d[0] * d[0] * fp;
-                        t.virial[1] += w * d[1] * d[1] * fp;
-                        t.virial[2] += w * d[2] * d[2] * fp;
-                        t.virial[3] += w * d[0] * d[1] * fp;
-                        t.virial[4] += w * d[0] * d[2] * fp;
-                        t.virial[5] += w * d[1] * d[2] * fp;
-                    }
-                }
-            }
-            // SAFETY: i belongs to this chunk
-            let ai = unsafe { shared.get(i) };
-            ai.f[0] += own.f[0];
-            ai.f[1] += own.f[1];
-            ai.f[2] += own.f[2];
-            ai.drho += own.drho;
-            ai.desph += own.desph;
-        }
-        t
-    });
-    // add to what other styles (hybrid/overlay) put there already
-    let has_rates = !out.drho.is_empty();
-    let water = kernel.rate_is_water() && !out.dwater.is_empty();
-    let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
-    crate::fix::for_each_range(nlocal, 1024, |range| {
-        for i in range {
-            let c = &acc[i];
-            // SAFETY: each index belongs to one range only; the rate arrays are used only when
-            // they exist (has_rates, water)
-            unsafe {
-                let fi = f.get(i);
-                fi[0] += c.f[0];
-                fi[1] += c.f[1];
-                fi[2] += c.f[2];
-                if water {
-                    *dwater.get(i) += c.desph;
-                } else if has_rates {
-                    *drho.get(i) += c.drho;
-                    *desph.get(i) += c.desph;
-                }
-            }
-        }
-    });
-    sum_tallies(&parts)
 }
 
 #[cfg(test)]

@@ -39,13 +39,13 @@ impl SphKernel for SphHeatConduction {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+    fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
         let dh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
         // LAMMPS computes 1/h per pair: Support::new does the same arithmetic
         let sup = SupportLanes::gather(|l| Support::new(dh[l].1));
         let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
         let imass = at(input.type_mass, ti);
-        let jmass = lanes(|l| at(input.type_mass, b.tj[l]));
+        let jmass = b.m;
         let de = lanes(|l| 2.0 * imass * jmass[l] / (imass + jmass[l]));
         let de = lanes(|l| de[l] * ((pi.a + b.a[l]) / (pi.a * b.a[l])));
         let de = lanes(|l| de[l] * (dh[l].0 * (pi.b - b.b[l]) * wfd[l]));

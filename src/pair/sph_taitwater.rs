@@ -5,7 +5,7 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -51,7 +51,7 @@ impl SphKernel for SphTaitwater {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+    fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
         let row = ti * (self.n + 1);
         let d: [(Support, f64, f64); LANES] = std::array::from_fn(|l| at(&self.derived, row + b.tj[l]));
         let sup = SupportLanes::gather(|l| d[l].0);
@@ -59,16 +59,17 @@ impl SphKernel for SphTaitwater {
         let (del, rsq) = (&b.del, &b.rsq);
         let wfd = self.kernel.wfd_lanes(rsq, &sup, self.dim3);
         let imass = at(input.type_mass, ti);
-        let jmass = lanes(|l| at(input.type_mass, b.tj[l]));
+        let jmass = b.m;
         let vi = pi.v;
-        let dvdr = lanes(|l| del[0][l] * (vi[0] - b.v[0][l]) + del[1][l] * (vi[1] - b.v[1][l]) + del[2][l] * (vi[2] - b.v[2][l]));
+        let vel: [L; D] = std::array::from_fn(|k| lanes(|l| vi[k] - b.v[k][l]));
+        let dvdr = dot_lanes(del, &vel);
         // Monaghan viscosity for approaching pairs only: computed for all and selected
         let mu = lanes(|l| sup.h[l] * dvdr[l] / (rsq[l] + eps[l]));
         let fvisc = lanes(|l| if dvdr[l] < 0.0 { visc_c[l] * mu[l] / (pi.a + b.a[l]) } else { 0.0 });
         let fpair = lanes(|l| -imass * jmass[l] * (pi.b + b.b[l] + fvisc[l]) * wfd[l]);
         let de = lanes(|l| -0.5 * fpair[l] * dvdr[l]);
         SphContribution {
-            f: [lanes(|l| del[0][l] * fpair[l]), lanes(|l| del[1][l] * fpair[l]), lanes(|l| del[2][l] * fpair[l])],
+            f: std::array::from_fn(|k| lanes(|l| del[k][l] * fpair[l])),
             fpair,
             drho_i: lanes(|l| jmass[l] * dvdr[l] * wfd[l]),
             drho_j: lanes(|l| imass * dvdr[l] * wfd[l]),

@@ -4,7 +4,7 @@
 //! F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) wfd x_ij + 2 mu m_i m_j wfd / (rho_i rho_j) v_ij;
 //! de_i = de_j = -(fpair v.x + fvisc |v_ij|^2)/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -52,7 +52,7 @@ impl SphKernel for SphTaitwaterMorris {
         &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
     }
     #[inline(always)]
-    fn pair_lanes(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch) -> SphContribution {
+    fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
         let row = ti * (self.n + 1);
         let d: [(f64, Support); LANES] = std::array::from_fn(|l| at(&self.derived, row + b.tj[l]));
         let sup = SupportLanes::gather(|l| d[l].1);
@@ -60,15 +60,15 @@ impl SphKernel for SphTaitwaterMorris {
         let del = &b.del;
         let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
         let imass = at(input.type_mass, ti);
-        let jmass = lanes(|l| at(input.type_mass, b.tj[l]));
+        let jmass = b.m;
         let vi = pi.v;
-        let vel = [lanes(|l| vi[0] - b.v[0][l]), lanes(|l| vi[1] - b.v[1][l]), lanes(|l| vi[2] - b.v[2][l])];
-        let dvdr = lanes(|l| del[0][l] * vel[0][l] + del[1][l] * vel[1][l] + del[2][l] * vel[2][l]);
+        let vel: [L; D] = std::array::from_fn(|k| lanes(|l| vi[k] - b.v[k][l]));
+        let dvdr = dot_lanes(del, &vel);
         // LAMMPS' order: fvisc = 2 mu / (rho_i rho_j); fvisc *= m_i m_j wfd
         let fvisc = lanes(|l| 2.0 * mu[l] / (pi.a * b.a[l]));
         let fvisc = lanes(|l| fvisc[l] * (imass * jmass[l] * wfd[l]));
         let fpair = lanes(|l| -imass * jmass[l] * (pi.b + b.b[l]) * wfd[l]);
-        let vsq = lanes(|l| vel[0][l] * vel[0][l] + vel[1][l] * vel[1][l] + vel[2][l] * vel[2][l]);
+        let vsq = dot_lanes(&vel, &vel);
         let de = lanes(|l| -0.5 * (fpair[l] * dvdr[l] + fvisc[l] * vsq[l]));
         SphContribution {
             f: std::array::from_fn(|k| lanes(|l| del[k][l] * fpair[l] + vel[k][l] * fvisc[l])),

@@ -1,0 +1,328 @@
+//! The engine-owned SPH pair loop: per-particle records, batches of [`LANES`] pairs, and the
+//! accumulation of forces and rates. The physics of a pair is the style's ([`SphKernel`]).
+//!
+//! Layout. A particle is one cache line, two rows of four f64, so that four partners become
+//! lane vectors by two 4x4 transposes:
+//! - 3D: `[x, y, z, vx] [vy, vz, a, b]` (the memory of [`Packed`]);
+//! - 2D: `[x, y, vx, vy] [a, b, m, 0]`, m the particle's mass.
+//!
+//! The 2D layout is used when every particle has the same z and no z velocity (what a 2D run
+//! is); the z terms LAMMPS computes are then zeros, and leaving them out gives the same sums,
+//! because every accumulator starts at +0 (a zero of either sign added to it changes nothing).
+//! Rates and forces of a particle are kept as one row of four (2D: fx fy drho desph; 3D: fx fy
+//! fz drho, with desph beside), added with one vector operation per pair and partner.
+
+use super::sph::{lanes, Packed, SphKernel, L, LANES};
+use super::{at, for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use crate::neighbor::NEIGH_MASK;
+
+/// Up to [`LANES`] neighbours j of one particle i, field by field (unused lanes repeat lane 0;
+/// their results are ignored). `D` is the dimension of the vectors.
+#[derive(Clone, Copy, Debug)]
+pub struct Batch<const D: usize> {
+    /// Types of the j.
+    pub tj: [usize; LANES],
+    /// x_i - x_j
+    pub del: [L; D],
+    pub rsq: L,
+    /// The j's velocity (estimate) and style scalars, as in [`Packed`].
+    pub v: [L; D],
+    pub a: L,
+    pub b: L,
+    /// The j's masses (per type, as LAMMPS' SPH styles use them).
+    pub m: L,
+}
+
+/// What a batch of SPH pairs contributes, per lane: force on i (j gets the opposite), density
+/// and energy rates of i and j, and the scalar LAMMPS tallies in the virial (`fpair`).
+#[derive(Clone, Copy, Debug)]
+pub struct SphContribution<const D: usize> {
+    pub f: [L; D],
+    pub fpair: L,
+    pub drho_i: L,
+    pub drho_j: L,
+    pub de_i: L,
+    pub de_j: L,
+}
+
+impl<const D: usize> Default for SphContribution<D> {
+    fn default() -> Self {
+        SphContribution { f: [[0.0; LANES]; D], fpair: [0.0; LANES], drho_i: [0.0; LANES], drho_j: [0.0; LANES], de_i: [0.0; LANES], de_j: [0.0; LANES] }
+    }
+}
+
+/// `sum_k a[k][l] * b[k][l]` lane by lane, k in order (LAMMPS' `delx*velx + dely*vely + ...`).
+#[inline(always)]
+pub fn dot_lanes<const D: usize>(a: &[L; D], b: &[L; D]) -> L {
+    lanes(|l| {
+        let mut s = a[0][l] * b[0][l];
+        for k in 1..D {
+            s += a[k][l] * b[k][l];
+        }
+        s
+    })
+}
+
+/// One particle as the loop reads it (see the module text).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(64))]
+struct Record([[f64; 4]; 2]);
+
+impl Record {
+    fn new<const D: usize>(p: &Packed, m: f64) -> Record {
+        if D == 2 {
+            Record([[p.x[0], p.x[1], p.v[0], p.v[1]], [p.a, p.b, m, 0.0]])
+        } else {
+            Record([[p.x[0], p.x[1], p.x[2], p.v[0]], [p.v[1], p.v[2], p.a, p.b]])
+        }
+    }
+    /// The style's record back (2D: z of position and velocity 0; the loop passes positions
+    /// only as differences).
+    #[inline(always)]
+    fn packed<const D: usize>(&self) -> Packed {
+        let [r, s] = self.0;
+        if D == 2 {
+            Packed { x: [r[0], r[1], 0.0], v: [r[2], r[3], 0.0], a: s[0], b: s[1] }
+        } else {
+            Packed { x: [r[0], r[1], r[2]], v: [r[3], s[0], s[1]], a: s[2], b: s[3] }
+        }
+    }
+}
+
+/// Four f64 aligned for one vector load and store.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(32))]
+struct Row([f64; 4]);
+
+impl Row {
+    #[inline(always)]
+    fn add(&mut self, r: &L) {
+        let s = &mut self.0;
+        *s = [s[0] + r[0], s[1] + r[1], s[2] + r[2], s[3] + r[3]];
+    }
+}
+
+/// Rows to columns of a 4x4 block: `out[k][l] = m[l][k]`.
+#[inline(always)]
+fn transpose4(m: [L; 4]) -> [L; 4] {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    {
+        use std::arch::x86_64::*;
+        // SAFETY: AVX is enabled at compile time; every array holds four f64
+        unsafe {
+            let r = [_mm256_loadu_pd(m[0].as_ptr()), _mm256_loadu_pd(m[1].as_ptr()), _mm256_loadu_pd(m[2].as_ptr()), _mm256_loadu_pd(m[3].as_ptr())];
+            let t0 = _mm256_unpacklo_pd(r[0], r[1]);
+            let t1 = _mm256_unpackhi_pd(r[0], r[1]);
+            let t2 = _mm256_unpacklo_pd(r[2], r[3]);
+            let t3 = _mm256_unpackhi_pd(r[2], r[3]);
+            let c = [_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31), _mm256_permute2f128_pd(t1, t3, 0x31)];
+            let mut out = [[0.0; 4]; 4];
+            for k in 0..4 {
+                _mm256_storeu_pd(out[k].as_mut_ptr(), c[k]);
+            }
+            out
+        }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    std::array::from_fn(|k| std::array::from_fn(|l| m[l][k]))
+}
+
+/// Write the neighbours j with `keep(j, rsq)` to `out` without branches; returns their count.
+/// `out` must have room for all of `neigh`.
+#[inline(always)]
+fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: *mut u32, keep: impl Fn(usize, f64) -> bool) -> usize {
+    let mut n_in = 0usize;
+    for &jraw in neigh {
+        let j = (jraw & NEIGH_MASK) as usize;
+        let xj = at(recs, j).0[0];
+        let (dx, dy) = (xi[0] - xj[0], xi[1] - xj[1]);
+        let rsq = if D == 2 {
+            dx * dx + dy * dy
+        } else {
+            let dz = xi[2] - xj[2];
+            dx * dx + dy * dy + dz * dz
+        };
+        let ok = keep(j, rsq);
+        // SAFETY: the caller reserved room for every neighbour
+        unsafe { *out.add(n_in) = j as u32 };
+        n_in += ok as usize;
+    }
+    n_in
+}
+
+/// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
+/// for owned partners, rates for both atoms, virial from `fpair` as LAMMPS' `ev_tally`.
+///
+/// For each atom the neighbours inside the cutoff are first gathered without branches (about
+/// 40% of listed pairs lie in the skin, and a branch on that is badly predicted); only those go
+/// through the kernel, [`LANES`] at a time. Contributions are gathered per atom and added to
+/// the outputs at the end, in the order of a one-pair-at-a-time loop.
+pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
+    let a = input.atoms;
+    let nall = a.nall();
+    let parallel = rayon::current_num_threads() > 1 && nall >= super::PARALLEL_MIN_ATOMS;
+    // per-atom preparation in parallel (each record depends on its own atom only)
+    if input.dimension == 2 {
+        // the last slot of a 2D record says whether the particle leaves the plane of the first
+        let z0 = a.x.first().map(|x| x[2]).unwrap_or(0.0);
+        let mut recs = records(nall, parallel, |i| {
+            let p = kernel.pack(input, i);
+            let mut r = Record::new::<2>(&p, at(input.type_mass, a.typ[i]));
+            r.0[1][3] = if p.x[2] != z0 || p.v[2] != 0.0 { 1.0 } else { 0.0 };
+            r
+        });
+        if !crate::fix::any_index(nall, |i| recs[i].0[1][3] != 0.0) {
+            return sph_loop::<K, 2>(kernel, input, out, &recs);
+        }
+        recs.clear();
+    }
+    let recs = records(nall, parallel, |i| Record::new::<3>(&kernel.pack(input, i), 0.0));
+    sph_loop::<K, 3>(kernel, input, out, &recs)
+}
+
+/// The records of atoms `0..n`, made by `rec` (in parallel when `parallel`).
+fn records(n: usize, parallel: bool, rec: impl Fn(usize) -> Record + Sync + Send) -> Vec<Record> {
+    if parallel {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().map(rec).collect()
+    } else {
+        (0..n).map(rec).collect()
+    }
+}
+
+fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &mut PairOutput, recs: &[Record]) -> Tally {
+    let a = input.atoms;
+    let nlocal = a.nlocal;
+    let stride = input.ntypes + 1;
+    let typ: Vec<u32> = a.typ.iter().map(|&t| t as u32).collect();
+    // per owned atom: 2D [fx fy drho desph]; 3D [fx fy fz drho] and desph
+    let mut acc = vec![Row::default(); nlocal];
+    let mut acc_e = vec![0.0f64; if D == 3 { nlocal } else { 0 }];
+    let (shared, shared_e) = (SharedMut::new(&mut acc), SharedMut::new(&mut acc_e));
+    let eflag = input.eflag;
+    // types i whose cutoff is the same for every partner type, with no type filter (the common
+    // case): their cutoff test needs no partner types
+    let uniform_cut: Vec<Option<f64>> = (0..stride)
+        .map(|ti| {
+            let row = &kernel.cutsq_row(ti)[1..];
+            let same = input.type_filter.is_none() && !row.is_empty() && row.iter().all(|&c| c == row[0]);
+            if same { Some(row[0]) } else { None }
+        })
+        .collect();
+    let parts = for_each_chunk(input.list, |chunk| {
+        let mut t = Tally::default();
+        let mut inside: Vec<u32> = Vec::with_capacity(128);
+        for i in chunk.start..chunk.end {
+            let pi = recs[i].packed::<D>();
+            let xi = pi.x;
+            let ti = typ[i] as usize;
+            let cutsq = kernel.cutsq_row(ti);
+            let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
+            // gather the neighbours inside the cutoff (and the type filter), branch-free
+            let neigh = chunk.neighbors(i);
+            inside.clear();
+            inside.reserve(neigh.len());
+            let n_in = match uniform_cut[ti] {
+                Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
+                None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
+                    let tj = at(&typ, j) as usize;
+                    rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)
+                }),
+            };
+            // SAFETY: the first n_in entries were written
+            unsafe { inside.set_len(n_in) };
+            let mut own = Row::default();
+            let mut own_e = 0.0;
+            for batch in inside.chunks(LANES) {
+                let n = batch.len();
+                let js: [usize; LANES] = std::array::from_fn(|l| batch[if l < n { l } else { 0 }] as usize);
+                // SAFETY: neighbour indices are below nall = recs.len()
+                let rj: [&Record; LANES] = js.map(|j| unsafe { recs.get_unchecked(j) });
+                let c0 = transpose4([rj[0].0[0], rj[1].0[0], rj[2].0[0], rj[3].0[0]]);
+                let c1 = transpose4([rj[0].0[1], rj[1].0[1], rj[2].0[1], rj[3].0[1]]);
+                let tj = js.map(|j| at(&typ, j) as usize);
+                let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
+                    (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
+                } else {
+                    let v3 = [c0[3], c1[0], c1[1]];
+                    (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| v3[k]), c1[2], c1[3], lanes(|l| at(input.type_mass, tj[l])))
+                };
+                let del: [L; D] = std::array::from_fn(|k| lanes(|l| xi[k] - xj[k][l]));
+                let b = Batch { tj, del, rsq: dot_lanes(&del, &del), v: vj, a: aj, b: bj, m: mj };
+                let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
+                // rows per lane: what i gets and what j gets (minus the force)
+                let neg = |x: &L| lanes(|l| -x[l]);
+                let (ri, rj) = if D == 2 {
+                    (transpose4([c.f[0], c.f[1], c.drho_i, c.de_i]), transpose4([neg(&c.f[0]), neg(&c.f[1]), c.drho_j, c.de_j]))
+                } else {
+                    (transpose4([c.f[0], c.f[1], c.f[D - 1], c.drho_i]), transpose4([neg(&c.f[0]), neg(&c.f[1]), neg(&c.f[D - 1]), c.drho_j]))
+                };
+                // apply in list order (the sums of a one-pair-at-a-time loop)
+                for (l, &j) in js.iter().enumerate().take(n) {
+                    own.add(&ri[l]);
+                    if D == 3 {
+                        own_e += c.de_i[l];
+                    }
+                    let w = if j < nlocal {
+                        // SAFETY: an owned j is in this chunk or the next (slab schedule)
+                        unsafe {
+                            shared.get(j).add(&rj[l]);
+                            if D == 3 {
+                                *shared_e.get(j) += c.de_j[l];
+                            }
+                        }
+                        1.0
+                    } else {
+                        0.5
+                    };
+                    if eflag {
+                        let fp = c.fpair[l];
+                        let d: [f64; D] = std::array::from_fn(|k| b.del[k][l]);
+                        t.virial[0] += w * d[0] * d[0] * fp;
+                        t.virial[1] += w * d[1] * d[1] * fp;
+                        t.virial[3] += w * d[0] * d[1] * fp;
+                        if D == 3 {
+                            t.virial[2] += w * d[D - 1] * d[D - 1] * fp;
+                            t.virial[4] += w * d[0] * d[D - 1] * fp;
+                            t.virial[5] += w * d[1] * d[D - 1] * fp;
+                        }
+                    }
+                }
+            }
+            // SAFETY: i belongs to this chunk
+            unsafe {
+                shared.get(i).add(&own.0);
+                if D == 3 {
+                    *shared_e.get(i) += own_e;
+                }
+            }
+        }
+        t
+    });
+    // add to what other styles (hybrid/overlay) put there already
+    let has_rates = !out.drho.is_empty();
+    let water = kernel.rate_is_water() && !out.dwater.is_empty();
+    let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
+    crate::fix::for_each_range(nlocal, 1024, |range| {
+        for i in range {
+            let r = acc[i].0;
+            // 2D: fx fy drho desph; 3D: fx fy fz drho, desph beside
+            let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], acc_e[i]) };
+            // SAFETY: each index belongs to one range only; the rate arrays are used only when
+            // they exist (has_rates, water)
+            unsafe {
+                let fi = f.get(i);
+                fi[0] += r[0];
+                fi[1] += r[1];
+                fi[2] += fz;
+                if water {
+                    *dwater.get(i) += e_rate;
+                } else if has_rates {
+                    *drho.get(i) += rho_rate;
+                    *desph.get(i) += e_rate;
+                }
+            }
+        }
+    });
+    sum_tallies(&parts)
+}

@@ -38,41 +38,73 @@ impl FixSph {
         let dtv = sim.dt;
         let dtf = 0.5 * sim.dt * sim.units.ftm2v;
         let per_atom = sim.atoms.features.per_atom_mass();
-        let (groupbit, stationary) = (self.groupbit, self.stationary);
+        let groupbit = self.groupbit;
         let dtfm_of_type = super::dtfm_by_type(dtf, &sim.type_mass, per_atom);
         let a = &mut sim.atoms;
         let n = a.nlocal;
-        let (f, drho, desph, mask, typ, rmass) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
+        let (f, drho, desph, mask, typ) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n]);
+        let rmass = if per_atom { &a.rmass[..n] } else { &[][..] };
         let (x, v, vest) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.vest[..n]));
         let (rho, esph) = (SharedMut::new(&mut a.rho[..n]), SharedMut::new(&mut a.esph[..n]));
-        super::for_each_range(n, 1024, |range| {
-            for i in range {
-                if mask[i] & groupbit == 0 {
-                    continue;
-                }
-                // SAFETY: each index belongs to one range only
-                let (xi, vi, vesti, rhoi, esphi) = unsafe { (x.get(i), v.get(i), vest.get(i), rho.get(i), esph.get(i)) };
-                if first {
-                    *esphi += dtf * desph[i];
-                    *rhoi += dtf * drho[i];
-                }
-                if !stationary {
-                    let dtfm = if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] };
-                    let fi = f[i];
-                    if first {
-                        *vesti = [vi[0] + 2.0 * dtfm * fi[0], vi[1] + 2.0 * dtfm * fi[1], vi[2] + 2.0 * dtfm * fi[2]];
-                    }
-                    super::kick(vi, dtfm, &fi);
-                    if first {
-                        super::drift(xi, dtv, vi);
-                    }
-                }
-                if !first {
-                    *esphi += dtf * desph[i];
-                    *rhoi += dtf * drho[i];
-                }
+        super::for_each_range(n, 1024, |r| {
+            // SAFETY: each range belongs to one task only
+            let s = unsafe { HalfStep { x: x.slice(r.clone()), v: v.slice(r.clone()), vest: vest.slice(r.clone()), rho: rho.slice(r.clone()), esph: esph.slice(r.clone()) } };
+            let dtfm = |i: usize| if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] };
+            let (f, drho, desph, mask) = (&f[r.clone()], &drho[r.clone()], &desph[r.clone()], &mask[r.clone()]);
+            let dtfm_r = |k: usize| dtfm(r.start + k);
+            match (first, self.stationary) {
+                (true, false) => s.run::<true, true>(f, drho, desph, mask, groupbit, dtf, dtv, dtfm_r),
+                (false, false) => s.run::<false, true>(f, drho, desph, mask, groupbit, dtf, dtv, dtfm_r),
+                (true, true) => s.run::<true, false>(f, drho, desph, mask, groupbit, dtf, dtv, dtfm_r),
+                (false, true) => s.run::<false, false>(f, drho, desph, mask, groupbit, dtf, dtv, dtfm_r),
             }
         });
+    }
+}
+
+/// The per-atom arrays one task of a half step writes (one range of atoms).
+struct HalfStep<'a> {
+    x: &'a mut [[f64; 3]],
+    v: &'a mut [[f64; 3]],
+    vest: &'a mut [[f64; 3]],
+    rho: &'a mut [f64],
+    esph: &'a mut [f64],
+}
+
+impl HalfStep<'_> {
+    /// One half step (`FIRST`: the initial one) of the atoms in the group, in LAMMPS' order;
+    /// `MOVING`: fix sph (x, v and vest move), else sph/stationary.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run<const FIRST: bool, const MOVING: bool>(self, f: &[[f64; 3]], drho: &[f64], desph: &[f64], mask: &[u32], groupbit: u32, dtf: f64, dtv: f64, dtfm: impl Fn(usize) -> f64) {
+        let m = self.x.len();
+        let (x, v, vest, rho, esph) = (&mut self.x[..m], &mut self.v[..m], &mut self.vest[..m], &mut self.rho[..m], &mut self.esph[..m]);
+        let (f, drho, desph, mask) = (&f[..m], &drho[..m], &desph[..m], &mask[..m]);
+        for i in 0..m {
+            if mask[i] & groupbit == 0 {
+                continue;
+            }
+            if FIRST {
+                esph[i] += dtf * desph[i];
+                rho[i] += dtf * drho[i];
+            }
+            if MOVING {
+                let dtfm = dtfm(i);
+                let fi = f[i];
+                if FIRST {
+                    let vi = v[i];
+                    vest[i] = [vi[0] + 2.0 * dtfm * fi[0], vi[1] + 2.0 * dtfm * fi[1], vi[2] + 2.0 * dtfm * fi[2]];
+                }
+                super::kick(&mut v[i], dtfm, &fi);
+                if FIRST {
+                    super::drift(&mut x[i], dtv, &v[i]);
+                }
+            }
+            if !FIRST {
+                esph[i] += dtf * desph[i];
+                rho[i] += dtf * drho[i];
+            }
+        }
     }
 }
 

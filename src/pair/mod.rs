@@ -314,6 +314,16 @@ impl<T> SharedMut<T> {
         debug_assert!(i < self.1);
         &mut *self.0.add(i)
     }
+    /// The elements of `range` as a slice (a plain slice lets the compiler keep other data in
+    /// registers across writes, which it cannot do for writes through [`SharedMut::get`]).
+    /// # Safety
+    /// Callers must ensure no other thread touches the range while the slice lives.
+    #[inline]
+    #[allow(clippy::mut_from_ref)]
+    pub unsafe fn slice(&self, range: std::ops::Range<usize>) -> &mut [T] {
+        assert!(range.start <= range.end && range.end <= self.1);
+        std::slice::from_raw_parts_mut(self.0.add(range.start), range.end - range.start)
+    }
 }
 
 /// Run `work` on every chunk of the list: first all even-numbered chunks in parallel, then all

@@ -176,7 +176,7 @@ impl SupportLanes {
 }
 
 /// A kernel support radius with its inverse powers.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Support {
     pub h: f64,
     pub ih: f64,
@@ -187,6 +187,38 @@ impl Support {
     pub fn new(h: f64) -> Support {
         let ih = 1.0 / h;
         Support { h, ih, ihsq: ih * ih }
+    }
+}
+
+/// Values per type pair (I, J in 0..=n), knowing which rows I hold one value for every partner
+/// type J >= 1 (the common case: one `pair_coeff * *`), so that a batch needs no per-lane lookup.
+#[derive(Clone, Debug, Default)]
+pub struct PerTypePair<T> {
+    stride: usize,
+    val: Vec<T>,
+    uniform: Vec<bool>,
+}
+
+impl<T: Copy + PartialEq> PerTypePair<T> {
+    /// The table of `f(i, j)` for types `0..=n`.
+    pub fn new(n: usize, f: impl Fn(usize, usize) -> T) -> Self {
+        let stride = n + 1;
+        let val: Vec<T> = (0..stride * stride).map(|k| f(k / stride, k % stride)).collect();
+        let uniform = (0..stride).map(|i| n >= 1 && (1..=n).all(|j| val[i * stride + j] == val[i * stride + 1])).collect();
+        PerTypePair { stride, val, uniform }
+    }
+    #[inline(always)]
+    pub fn get(&self, i: usize, j: usize) -> T {
+        super::at(&self.val, i * self.stride + j)
+    }
+    /// The values for type `ti` against the types `tj` of a batch.
+    #[inline(always)]
+    pub fn batch(&self, ti: usize, tj: &[usize; LANES]) -> [T; LANES] {
+        if super::at(&self.uniform, ti) {
+            [self.get(ti, 1); LANES]
+        } else {
+            std::array::from_fn(|l| self.get(ti, tj[l]))
+        }
     }
 }
 

@@ -221,7 +221,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             // gather the neighbours inside the cutoff (and the type filter), branch-free
             let neigh = chunk.neighbors(i);
             inside.clear();
-            inside.reserve(neigh.len());
+            inside.reserve(neigh.len() + LANES);
             let n_in = match uniform_cut[ti] {
                 Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
                 None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
@@ -233,9 +233,15 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             unsafe { inside.set_len(n_in) };
             let mut own = Row::default();
             let mut own_e = 0.0;
-            for batch in inside.chunks(LANES) {
-                let n = batch.len();
-                let js: [usize; LANES] = std::array::from_fn(|l| batch[if l < n { l } else { 0 }] as usize);
+            // pad to whole batches with copies of the first neighbour (their results are ignored)
+            if n_in > 0 {
+                while inside.len() % LANES != 0 {
+                    inside.push(inside[0]);
+                }
+            }
+            for (start, batch) in (0..n_in).step_by(LANES).zip(inside.chunks_exact(LANES)) {
+                let n = (n_in - start).min(LANES);
+                let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
                 // SAFETY: neighbour indices are below nall = recs.len()
                 let rj: [&Record; LANES] = js.map(|j| unsafe { recs.get_unchecked(j) });
                 let c0 = transpose4([rj[0].0[0], rj[1].0[0], rj[2].0[0], rj[3].0[0]]);
@@ -258,12 +264,13 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                     (transpose4([c.f[0], c.f[1], c.f[D - 1], c.drho_i]), transpose4([neg(&c.f[0]), neg(&c.f[1]), neg(&c.f[D - 1]), c.drho_j]))
                 };
                 // apply in list order (the sums of a one-pair-at-a-time loop)
-                for (l, &j) in js.iter().enumerate().take(n) {
+                for l in 0..n {
+                    let j = js[l];
                     own.add(&ri[l]);
                     if D == 3 {
                         own_e += c.de_i[l];
                     }
-                    let w = if j < nlocal {
+                    if j < nlocal {
                         // SAFETY: an owned j is in this chunk or the next (slab schedule)
                         unsafe {
                             shared.get(j).add(&rj[l]);
@@ -271,11 +278,11 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                                 *shared_e.get(j) += c.de_j[l];
                             }
                         }
-                        1.0
-                    } else {
-                        0.5
-                    };
-                    if eflag {
+                    }
+                }
+                if eflag {
+                    for l in 0..n {
+                        let w = if js[l] < nlocal { 1.0 } else { 0.5 };
                         let fp = c.fpair[l];
                         let d: [f64; D] = std::array::from_fn(|k| b.del[k][l]);
                         t.virial[0] += w * d[0] * d[0] * fp;

@@ -5,7 +5,7 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -22,7 +22,7 @@ pub struct SphTaitwater {
     cutsq: Vec<f64>,
     /// Per type pair, precomputed with LAMMPS' arithmetic: the support, 0.01 h^2, and
     /// -alpha (c_i + c_j).
-    derived: Vec<(Support, f64, f64)>,
+    derived: PerTypePair<(Support, f64, f64)>,
     n: usize,
     dim3: bool,
 }
@@ -31,7 +31,7 @@ impl SphTaitwater {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let (kernel, pmin) = parse_tait_options(&mut a)?;
-        Ok(SphTaitwater { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
+        Ok(SphTaitwater { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
     }
 }
 
@@ -52,8 +52,7 @@ impl SphKernel for SphTaitwater {
     }
     #[inline(always)]
     fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
-        let row = ti * (self.n + 1);
-        let d: [(Support, f64, f64); LANES] = std::array::from_fn(|l| at(&self.derived, row + b.tj[l]));
+        let d: [(Support, f64, f64); LANES] = self.derived.batch(ti, &b.tj);
         let sup = SupportLanes::gather(|l| d[l].0);
         let (eps, visc_c) = (lanes(|l| d[l].1), lanes(|l| d[l].2));
         let (del, rsq) = (&b.del, &b.rsq);
@@ -92,15 +91,15 @@ impl PairStyle for SphTaitwater {
         self.types.grow(ntypes);
         self.n = ntypes;
         self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
-        let s = ntypes + 1;
-        self.derived = vec![(Support::default(), 0.0, 0.0); s * s];
-        for i in 1..=ntypes {
-            for j in 1..=ntypes {
-                let (alpha, h) = *self.pairs.get(i, j);
-                // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
-                self.derived[i * s + j] = (Support::new(h), 0.01 * h * h, -alpha * (self.types.c0[i] + self.types.c0[j]));
+        let (pairs, c0) = (&self.pairs, &self.types.c0);
+        self.derived = PerTypePair::new(ntypes, |i, j| {
+            if i == 0 || j == 0 {
+                return (Support::default(), 0.0, 0.0);
             }
-        }
+            let (alpha, h) = *pairs.get(i, j);
+            // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
+            (Support::new(h), 0.01 * h * h, -alpha * (c0[i] + c0[j]))
+        });
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -4,7 +4,7 @@
 //! F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) wfd x_ij + 2 mu m_i m_j wfd / (rho_i rho_j) v_ij;
 //! de_i = de_j = -(fpair v.x + fvisc |v_ij|^2)/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -20,7 +20,7 @@ pub struct SphTaitwaterMorris {
     pairs: PairTable<(f64, f64)>,
     cutsq: Vec<f64>,
     /// Per type pair: mu and the kernel support.
-    derived: Vec<(f64, Support)>,
+    derived: PerTypePair<(f64, Support)>,
     n: usize,
     dim3: bool,
 }
@@ -29,7 +29,7 @@ impl SphTaitwaterMorris {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let (kernel, pmin) = parse_tait_options(&mut a)?;
-        Ok(SphTaitwaterMorris { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: vec![], n: 0, dim3: true })
+        Ok(SphTaitwaterMorris { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
     }
     /// The dimension, for styles that evaluate this one pair by pair (dmhs/blend).
     pub fn set_dim3(&mut self, dim3: bool) {
@@ -53,8 +53,7 @@ impl SphKernel for SphTaitwaterMorris {
     }
     #[inline(always)]
     fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
-        let row = ti * (self.n + 1);
-        let d: [(f64, Support); LANES] = std::array::from_fn(|l| at(&self.derived, row + b.tj[l]));
+        let d: [(f64, Support); LANES] = self.derived.batch(ti, &b.tj);
         let sup = SupportLanes::gather(|l| d[l].1);
         let mu = lanes(|l| d[l].0);
         let del = &b.del;
@@ -94,14 +93,14 @@ impl PairStyle for SphTaitwaterMorris {
         self.types.grow(ntypes);
         self.n = ntypes;
         self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
-        let s = ntypes + 1;
-        self.derived = vec![(0.0, Support::default()); s * s];
-        for i in 1..=ntypes {
-            for j in 1..=ntypes {
-                let (mu, h) = *self.pairs.get(i, j);
-                self.derived[i * s + j] = (mu, Support::new(h));
+        let pairs = &self.pairs;
+        self.derived = PerTypePair::new(ntypes, |i, j| {
+            if i == 0 || j == 0 {
+                return (0.0, Support::default());
             }
-        }
+            let (mu, h) = *pairs.get(i, j);
+            (mu, Support::new(h))
+        });
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

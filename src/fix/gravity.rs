@@ -3,6 +3,7 @@
 
 use super::value::FixValue;
 use super::{Fix, FixHooks};
+use crate::pair::SharedMut;
 use crate::sim::{RunError, Simulation};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -13,7 +14,8 @@ pub struct FixGravity {
     groupbit: u32,
     magnitude: FixValue,
     dir: [f64; 3],
-    egrav: f64,
+    /// The acceleration vector of the last force step.
+    acc: [f64; 3],
 }
 
 impl FixGravity {
@@ -48,7 +50,7 @@ impl FixGravity {
             return Err(a.error_at(&args[1], "gravity direction has zero length", "zero vector"));
         }
         a.finish()?;
-        Ok(FixGravity { id, groupbit, magnitude, dir, egrav: 0.0 })
+        Ok(FixGravity { id, groupbit, magnitude, dir, acc: [0.0; 3] })
     }
 }
 
@@ -75,25 +77,44 @@ impl Fix for FixGravity {
     }
     fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
         let g = self.magnitude.eval(sim)?.unwrap_or(0.0);
-        let (xacc, yacc, zacc) = (g * self.dir[0], g * self.dir[1], g * self.dir[2]);
+        let acc = [g * self.dir[0], g * self.dir[1], g * self.dir[2]];
+        self.acc = acc;
         let per_atom = sim.atoms.features.per_atom_mass();
         let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let (mask, typ, rmass, type_mass, groupbit) = (&a.mask[..n], &a.typ[..n], &a.rmass, &sim.type_mass, self.groupbit);
+        let f = SharedMut::new(&mut a.f[..n]);
+        // atoms are independent: ranges in parallel (the energy is summed in `scalar`)
+        super::for_each_range(n, 4096, |r| {
+            // SAFETY: each range belongs to one task only
+            let f = unsafe { f.slice(r.clone()) };
+            for (k, i) in r.enumerate() {
+                if mask[i] & groupbit != 0 {
+                    let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };
+                    f[k][0] += m * acc[0];
+                    f[k][1] += m * acc[1];
+                    f[k][2] += m * acc[2];
+                }
+            }
+        });
+        Ok(())
+    }
+    /// LAMMPS' egrav = -sum m (g . x) over the group, with the acceleration of the last force
+    /// step, summed here in atom order (what LAMMPS sums in post_force: positions, masses and
+    /// the group do not change between the force step and the end of the step, when thermo and
+    /// variables read it).
+    fn scalar(&self, sim: &Simulation) -> Option<f64> {
+        let a = &sim.atoms;
+        let per_atom = a.features.per_atom_mass();
+        let [xacc, yacc, zacc] = self.acc;
         let mut egrav = 0.0;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
                 let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
-                let f = &mut a.f[i];
-                f[0] += m * xacc;
-                f[1] += m * yacc;
-                f[2] += m * zacc;
                 let x = a.x[i];
                 egrav -= m * (xacc * x[0] + yacc * x[1] + zacc * x[2]);
             }
         }
-        self.egrav = egrav;
-        Ok(())
-    }
-    fn scalar(&self, _sim: &Simulation) -> Option<f64> {
-        Some(self.egrav)
+        Some(egrav)
     }
 }

@@ -84,6 +84,38 @@ pair_style zero 1.0\npair_coeff * *\nfix hot all dmhs/bond/break 1 1 5.0 temp 2.
     assert_eq!(sim.fix_value("hot", Some(1)).unwrap(), 0.0);
 }
 
+/// dmhs/bond/break's f_ID[3] / f_ID[4]: the longest checked bond at the last check and since the
+/// fix was defined. A static chain with bonds 1.0, 1.5 and 2.5 long and Rmax 2.0: step 1 sees
+/// 2.5 and breaks 3-4; step 2 sees 1.5 as the longest, the running maximum stays 2.5.
+#[test]
+fn dmhs_bond_break_reports_the_longest_bond() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = "chain\n\n4 atoms\n1 atom types\n3 bonds\n1 bond types\n\n0 10 xlo xhi\n0 10 ylo yhi\n-0.5 0.5 zlo zhi\n\nMasses\n\n1 1.0\n\n\
+Atoms # hybrid sph bond\n\n1 1 1.0 5 0 1.0 1.0 1.0 1\n2 1 2.0 5 0 1.0 1.0 1.0 1\n3 1 3.5 5 0 1.0 1.0 1.0 1\n4 1 6.0 5 0 1.0 1.0 1.0 1\n\n\
+Bonds\n\n1 1 1 2\n2 1 2 3\n3 1 3 4\n";
+    std::fs::write(dir.path().join("chain.data"), data).unwrap();
+    let deck = |fix: &str, steps: u32| {
+        format!("units lj\ndimension 2\natom_style hybrid sph bond\nboundary p p p\nread_data chain.data\nbond_style harmonic\nbond_coeff 1 10.0 1.0\n\
+pair_style zero 3.0\npair_coeff * *\n{fix}\nrun {steps}\n")
+    };
+    let path = dir.path().join("in.long");
+    let opts = DeckOptions { base_dir: Some(dir.path().to_path_buf()), ..Default::default() };
+    use dmhs::parser::EvalContext;
+    let expect = [(1, 2.5, 2.5, 1.0), (2, 1.5, 2.5, 0.0)];
+    for (steps, last, ever, broken_last) in expect {
+        std::fs::write(&path, deck("fix b all dmhs/bond/break 1 1 2.0", steps)).unwrap();
+        let mut sim = run_file(&path, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim;
+        assert!((sim.fix_value("b", Some(3)).unwrap() - last).abs() < 1e-12, "step {steps}");
+        assert!((sim.fix_value("b", Some(4)).unwrap() - ever).abs() < 1e-12, "step {steps}");
+        assert_eq!(sim.fix_value("b", Some(1)).unwrap(), broken_last);
+        assert_eq!(sim.fix_value("b", Some(2)).unwrap(), 1.0);
+    }
+    // LAMMPS' bond/break has two values only
+    std::fs::write(&path, deck("fix b all bond/break 1 1 2.0", 1)).unwrap();
+    let mut sim = run_file(&path, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim;
+    assert!(sim.fix_value("b", Some(3)).is_err());
+}
+
 #[test]
 fn bond_fix_errors_name_the_problem() {
     let dir = tempfile::tempdir().unwrap();

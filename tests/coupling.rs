@@ -60,16 +60,24 @@ fn couette_past_bonded_walls_matches_the_analytic_profile() {
     }
 }
 
+/// A bonded chain 1-2-3-4 (atom_style hybrid sph bond, periodic 10 x 10 box) at x positions
+/// `x` with energies `esph` (cv = 1), written as `chain.data` into `dir`.
+fn write_chain(dir: &std::path::Path, x: [f64; 4], esph: [f64; 4]) {
+    let atoms: String = (0..4).map(|k| format!("{} 1 {} 5 0 1.0 {} 1.0 1\n", k + 1, x[k], esph[k])).collect();
+    let data = format!(
+        "chain\n\n4 atoms\n1 atom types\n3 bonds\n1 bond types\n\n0 10 xlo xhi\n0 10 ylo yhi\n-0.5 0.5 zlo zhi\n\nMasses\n\n1 1.0\n\n\
+Atoms # hybrid sph bond\n\n{atoms}\nBonds\n\n1 1 1 2\n2 1 2 3\n3 1 3 4\n"
+    );
+    std::fs::write(dir.join("chain.data"), data).unwrap();
+}
+
 /// A chain 1-2-3-4 (atom_style hybrid sph bond) whose atom 2 is hot (esph/cv = 5 > Tmax = 2):
 /// dmhs/bond/break with the temperature criterion breaks both bonds of atom 2 on the first
 /// check and keeps 3-4; Rmax is too long for the distance rule to act.
 #[test]
 fn temperature_criterion_breaks_every_bond_of_a_hot_atom() {
     let dir = tempfile::tempdir().unwrap();
-    let data = "chain\n\n4 atoms\n1 atom types\n3 bonds\n1 bond types\n\n0 10 xlo xhi\n0 10 ylo yhi\n-0.5 0.5 zlo zhi\n\nMasses\n\n1 1.0\n\n\
-Atoms # hybrid sph bond\n\n1 1 1.0 5 0 1.0 1.0 1.0 1\n2 1 2.0 5 0 1.0 5.0 1.0 1\n3 1 3.0 5 0 1.0 1.0 1.0 1\n4 1 4.0 5 0 1.0 1.9 1.0 1\n\n\
-Bonds\n\n1 1 1 2\n2 1 2 3\n3 1 3 4\n";
-    std::fs::write(dir.path().join("chain.data"), data).unwrap();
+    write_chain(dir.path(), [1.0, 2.0, 3.0, 4.0], [1.0, 5.0, 1.0, 1.9]);
     let deck = "units lj\ndimension 2\natom_style hybrid sph bond\nboundary p p p\nread_data chain.data\nbond_style harmonic\nbond_coeff 1 10.0 1.0\n\
 pair_style zero 1.0\npair_coeff * *\nfix hot all dmhs/bond/break 1 1 5.0 temp 2.0\nthermo_style custom step f_hot[1] f_hot[2]\nrun 3\n";
     let path = dir.path().join("in.hot");
@@ -90,10 +98,7 @@ pair_style zero 1.0\npair_coeff * *\nfix hot all dmhs/bond/break 1 1 5.0 temp 2.
 #[test]
 fn dmhs_bond_break_reports_the_longest_bond() {
     let dir = tempfile::tempdir().unwrap();
-    let data = "chain\n\n4 atoms\n1 atom types\n3 bonds\n1 bond types\n\n0 10 xlo xhi\n0 10 ylo yhi\n-0.5 0.5 zlo zhi\n\nMasses\n\n1 1.0\n\n\
-Atoms # hybrid sph bond\n\n1 1 1.0 5 0 1.0 1.0 1.0 1\n2 1 2.0 5 0 1.0 1.0 1.0 1\n3 1 3.5 5 0 1.0 1.0 1.0 1\n4 1 6.0 5 0 1.0 1.0 1.0 1\n\n\
-Bonds\n\n1 1 1 2\n2 1 2 3\n3 1 3 4\n";
-    std::fs::write(dir.path().join("chain.data"), data).unwrap();
+    write_chain(dir.path(), [1.0, 2.0, 3.5, 6.0], [1.0; 4]);
     let deck = |fix: &str, steps: u32| {
         format!("units lj\ndimension 2\natom_style hybrid sph bond\nboundary p p p\nread_data chain.data\nbond_style harmonic\nbond_coeff 1 10.0 1.0\n\
 pair_style zero 3.0\npair_coeff * *\n{fix}\nrun {steps}\n")

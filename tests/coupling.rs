@@ -60,16 +60,24 @@ fn couette_past_bonded_walls_matches_the_analytic_profile() {
     }
 }
 
+/// A bonded chain 1-2-3-4 (atom_style hybrid sph bond, periodic 10 x 10 box) at x positions
+/// `x` with energies `esph` (cv = 1), written as `chain.data` into `dir`.
+fn write_chain(dir: &std::path::Path, x: [f64; 4], esph: [f64; 4]) {
+    let atoms: String = (0..4).map(|k| format!("{} 1 {} 5 0 1.0 {} 1.0 1\n", k + 1, x[k], esph[k])).collect();
+    let data = format!(
+        "chain\n\n4 atoms\n1 atom types\n3 bonds\n1 bond types\n\n0 10 xlo xhi\n0 10 ylo yhi\n-0.5 0.5 zlo zhi\n\nMasses\n\n1 1.0\n\n\
+Atoms # hybrid sph bond\n\n{atoms}\nBonds\n\n1 1 1 2\n2 1 2 3\n3 1 3 4\n"
+    );
+    std::fs::write(dir.join("chain.data"), data).unwrap();
+}
+
 /// A chain 1-2-3-4 (atom_style hybrid sph bond) whose atom 2 is hot (esph/cv = 5 > Tmax = 2):
 /// dmhs/bond/break with the temperature criterion breaks both bonds of atom 2 on the first
 /// check and keeps 3-4; Rmax is too long for the distance rule to act.
 #[test]
 fn temperature_criterion_breaks_every_bond_of_a_hot_atom() {
     let dir = tempfile::tempdir().unwrap();
-    let data = "chain\n\n4 atoms\n1 atom types\n3 bonds\n1 bond types\n\n0 10 xlo xhi\n0 10 ylo yhi\n-0.5 0.5 zlo zhi\n\nMasses\n\n1 1.0\n\n\
-Atoms # hybrid sph bond\n\n1 1 1.0 5 0 1.0 1.0 1.0 1\n2 1 2.0 5 0 1.0 5.0 1.0 1\n3 1 3.0 5 0 1.0 1.0 1.0 1\n4 1 4.0 5 0 1.0 1.9 1.0 1\n\n\
-Bonds\n\n1 1 1 2\n2 1 2 3\n3 1 3 4\n";
-    std::fs::write(dir.path().join("chain.data"), data).unwrap();
+    write_chain(dir.path(), [1.0, 2.0, 3.0, 4.0], [1.0, 5.0, 1.0, 1.9]);
     let deck = "units lj\ndimension 2\natom_style hybrid sph bond\nboundary p p p\nread_data chain.data\nbond_style harmonic\nbond_coeff 1 10.0 1.0\n\
 pair_style zero 1.0\npair_coeff * *\nfix hot all dmhs/bond/break 1 1 5.0 temp 2.0\nthermo_style custom step f_hot[1] f_hot[2]\nrun 3\n";
     let path = dir.path().join("in.hot");
@@ -82,6 +90,35 @@ pair_style zero 1.0\npair_coeff * *\nfix hot all dmhs/bond/break 1 1 5.0 temp 2.
     assert_eq!(sim.fix_value("hot", Some(2)).unwrap(), 2.0);
     // broken on step 1; nothing more on steps 2 and 3
     assert_eq!(sim.fix_value("hot", Some(1)).unwrap(), 0.0);
+}
+
+/// dmhs/bond/break's f_ID[3] / f_ID[4]: the longest checked bond at the last check and since the
+/// fix was defined. A static chain with bonds 1.0, 1.5 and 2.5 long and Rmax 2.0: step 1 sees
+/// 2.5 and breaks 3-4; step 2 sees 1.5 as the longest, the running maximum stays 2.5.
+#[test]
+fn dmhs_bond_break_reports_the_longest_bond() {
+    let dir = tempfile::tempdir().unwrap();
+    write_chain(dir.path(), [1.0, 2.0, 3.5, 6.0], [1.0; 4]);
+    let deck = |fix: &str, steps: u32| {
+        format!("units lj\ndimension 2\natom_style hybrid sph bond\nboundary p p p\nread_data chain.data\nbond_style harmonic\nbond_coeff 1 10.0 1.0\n\
+pair_style zero 3.0\npair_coeff * *\n{fix}\nrun {steps}\n")
+    };
+    let path = dir.path().join("in.long");
+    let opts = DeckOptions { base_dir: Some(dir.path().to_path_buf()), ..Default::default() };
+    use dmhs::parser::EvalContext;
+    let expect = [(1, 2.5, 2.5, 1.0), (2, 1.5, 2.5, 0.0)];
+    for (steps, last, ever, broken_last) in expect {
+        std::fs::write(&path, deck("fix b all dmhs/bond/break 1 1 2.0", steps)).unwrap();
+        let mut sim = run_file(&path, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim;
+        assert!((sim.fix_value("b", Some(3)).unwrap() - last).abs() < 1e-12, "step {steps}");
+        assert!((sim.fix_value("b", Some(4)).unwrap() - ever).abs() < 1e-12, "step {steps}");
+        assert_eq!(sim.fix_value("b", Some(1)).unwrap(), broken_last);
+        assert_eq!(sim.fix_value("b", Some(2)).unwrap(), 1.0);
+    }
+    // LAMMPS' bond/break has two values only
+    std::fs::write(&path, deck("fix b all bond/break 1 1 2.0", 1)).unwrap();
+    let mut sim = run_file(&path, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim;
+    assert!(sim.fix_value("b", Some(3)).is_err());
 }
 
 #[test]

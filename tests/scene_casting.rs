@@ -64,24 +64,35 @@ fn slow_casting_solidifies_from_the_mould_with_three_zones() {
     assert!(col(&t, "Bonds")[last] >= 0.8 * solid[last]);
 }
 
+/// Fast solidification (Fig 10): the crust of the first half is broken mechanically (bonds
+/// stretched beyond r_max = 1.09 r0 by the incoming metal break) and partly re-melted.
 #[test]
-fn fast_casting_forms_a_crust_that_partly_remelts() {
+fn fast_casting_crust_breaks_and_partly_remelts() {
     let t = run_casting(&[("quick", "1"), ("case", "fast")]);
-    let (fs, plateau) = (col(&t, "f_phase"), col(&t, "f_phase[6]"));
+    let (time, fs, plateau) = (col(&t, "Time"), col(&t, "f_phase"), col(&t, "f_phase[6]"));
     let (frozen, melted) = (col(&t, "f_phase[7]"), col(&t, "f_phase[8]"));
-    let (deleted, broken) = (col(&t, "f_phase[4]"), col(&t, "f_brk[2]"));
+    let (created, deleted, broken, longest) = (col(&t, "f_phase[3]"), col(&t, "f_phase[4]"), col(&t, "f_brk[2]"), col(&t, "f_brk[4]"));
     let last = fs.len() - 1;
+    // the pour ends when the ladle is lifted away (5 s) and what was left in it has landed
+    let k_poured = time.iter().position(|&x| x >= 6.0 - 1e-9).unwrap();
     println!(
-        "fast quick: solid fraction {}, solidification events {}, melting events {}, bonds deleted by melting {}, bonds broken by stretching {}",
-        fs[last], frozen[last], melted[last], deleted[last], broken[last]
+        "fast quick: solid fraction {}, solidification events {}, melting events {}, bonds created {}, deleted by melting {}, broken by stretching {} ({} by t = {}), longest bond {} m, bonds left {}",
+        fs[last], frozen[last], melted[last], created[last], deleted[last], broken[last], broken[k_poured], time[k_poured], longest[last], col(&t, "Bonds")[last]
     );
     // no latent heat: no transition zone
     assert!(plateau.iter().all(|&p| p == 0.0));
     assert!(fs[last] > 0.8, "solid fraction at 8 s: {}", fs[last]);
+    // mechanical breakage: bonds made by solidification are pulled beyond r_max and break
+    // (53 measured; 38 to 53 when alpha, c0 or dt is changed by 5 to 10 %), while metal is
+    // poured (all but at most a quarter of them before 6 s; measured 53 of 53)
+    assert!(broken[last] >= 15.0, "bonds broken by stretching {}", broken[last]);
+    assert!(broken[k_poured] >= 0.75 * broken[last], "{} of {} breaks before t = 6 s", broken[k_poured], broken[last]);
+    // the paper's literal r_max = 0.04 m is never reached (see README)
+    assert!(longest[last] < 0.04, "longest bond {}", longest[last]);
     // the hot second pour re-melts part of the crust of the first: solid particles melt again
     // and lose their bonds
     assert!(melted[last] >= 20.0, "melting events {}", melted[last]);
-    assert!(deleted[last] >= 50.0, "bonds deleted by melting {}", deleted[last]);
+    assert!(deleted[last] >= 25.0, "bonds deleted by melting {}", deleted[last]);
     // more solidification events than particles: re-melted particles solidify again
     assert!(frozen[last] > fs[last] * N + 20.0);
     assert_eq!(frozen[last] - melted[last], (fs[last] * N).round());

@@ -17,6 +17,8 @@
 //! between group atoms breaks when the temperature T = esph/cv of either of its atoms exceeds
 //! Tmax (all such bonds at once: a melting particle loses all its bonds); the distance rule above
 //! applies to the remaining bonds. Needs an atom style with sph.
+//! dmhs/bond/break also reports `f_ID[3]`, the longest checked bond (bondtype, group atoms,
+//! before breaking) at the last check, and `f_ID[4]`, the longest since the fix was defined.
 //!
 //! With `prob` below 1 the random numbers are dmhs' own (Park-Miller, one per atom with a
 //! partner, in atom-ID order), so runs are reproducible but not bit-identical to LAMMPS, whose
@@ -78,6 +80,10 @@ pub struct FixBondBreak {
     dihedralflag: bool,
     breakcount: usize,
     breakcounttotal: usize,
+    /// dmhs/bond/break only: the longest checked bond at the last check and since the fix was
+    /// defined (before breaking; bonds broken by temperature excluded).
+    longest: f64,
+    longest_ever: f64,
 }
 
 impl FixBondBreak {
@@ -124,6 +130,8 @@ impl FixBondBreak {
             dihedralflag: false,
             breakcount: 0,
             breakcounttotal: 0,
+            longest: 0.0,
+            longest_ever: 0.0,
         })
     }
 }
@@ -199,6 +207,7 @@ impl Fix for FixBondBreak {
         let mut hot_bonds: Vec<(i64, i64)> = vec![];
         let temp = |i: usize| a.esph[i] / a.cv[i];
         let lists = &sim.bonded_lists.bonds;
+        let mut longest_sq: f64 = 0.0;
         // bonds in list order: chunk entries, then the ones across periodic faces
         for e in lists.entries.iter().chain(&lists.leftover) {
             if e.typ != self.btype {
@@ -218,6 +227,7 @@ impl Fix for FixBondBreak {
             let p2 = image(a.x[i2], e.shift[1], prd);
             let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
             let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            longest_sq = longest_sq.max(rsq);
             if rsq <= self.cutsq {
                 continue;
             }
@@ -233,6 +243,8 @@ impl Fix for FixBondBreak {
         let mut broken: Vec<(i64, i64)> = mutual_partners(a, &partner, self.fraction, &mut self.random).into_iter().map(|(i, j)| (a.tag[i], a.tag[j])).collect();
         broken.extend(hot_bonds);
         self.breakcount = broken.len();
+        self.longest = longest_sq.sqrt();
+        self.longest_ever = self.longest_ever.max(self.longest);
         self.breakcounttotal += broken.len();
         for &(p, q) in &broken {
             remove_bond(sim, p, q, self.angleflag, self.dihedralflag);
@@ -246,6 +258,8 @@ impl Fix for FixBondBreak {
         match i {
             1 => Some(self.breakcount as f64),
             2 => Some(self.breakcounttotal as f64),
+            3 if self.dmhs => Some(self.longest),
+            4 if self.dmhs => Some(self.longest_ever),
             _ => None,
         }
     }

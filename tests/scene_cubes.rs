@@ -32,18 +32,9 @@ fn run_deck(case: &str, extra: &[(&str, &str)]) -> Simulation {
     run_file(&tmp.path().join("in.cubes"), &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim
 }
 
-/// Centre-of-mass height of each cube (by molecule ID), sorted.
+/// Centre-of-mass height of each cube, sorted.
 fn cube_heights(sim: &Simulation) -> Vec<f64> {
-    let a = &sim.atoms;
-    let mut sums: std::collections::BTreeMap<i64, (f64, f64)> = Default::default();
-    for i in 0..a.nlocal {
-        if a.typ[i] == 2 {
-            let e = sums.entry(a.molecule[i]).or_insert((0.0, 0.0));
-            e.0 += a.x[i][1];
-            e.1 += 1.0;
-        }
-    }
-    let mut ys: Vec<f64> = sums.values().map(|(s, n)| s / n).collect();
+    let mut ys = heights_by_molecule(sim);
     ys.sort_by(f64::total_cmp);
     ys
 }
@@ -94,7 +85,7 @@ fn bonds_per_cube(sim: &Simulation) -> Vec<usize> {
     n.values().copied().collect()
 }
 
-/// Centre-of-mass height of each cube in molecule order (cube_heights sorts them).
+/// Centre-of-mass height of each cube, in molecule order.
 fn heights_by_molecule(sim: &Simulation) -> Vec<f64> {
     let a = &sim.atoms;
     let mut sums: std::collections::BTreeMap<i64, (f64, f64)> = Default::default();

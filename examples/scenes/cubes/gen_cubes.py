@@ -2,7 +2,7 @@
 """Writes the data files of the cubes-in-Poiseuille-flow scene (paper Fig 7), Python 3 standard
 library only.
 
-    python3 gen_cubes.py      # cubes_{A,B,C}.data (full) and cubes_{A,B,C}_fast.data
+    python3 gen_cubes.py      # cubes_{A,B,C}.data (full), cubes_{A,B,C}_fast.data, cubes_C_land.data
 
 A periodic channel (x) between two walls of three rows of fixed SPH particles; water on a square
 grid of spacing dL = sqrt(m / rho) = 2.387e-3 m (m = 5.7e-3 kg per unit depth). Each cube is 7 x 7
@@ -128,6 +128,13 @@ def main():
     build("cubes_A_fast.data", nxf, ny, ny, grid(nxf, ny, 1, 3, 0.2 * h, 0.8 * h, False), 1000.0)
     build("cubes_B_fast.data", nxf, ny, 24, grid(nxf, ny, 1, 1, 0.6 * h, 0.6 * h, False), 990.0)
     build("cubes_C_fast.data", nxf, ny, ny, grid(nxf, ny, 1, 2, 0.13 * h, 0.42 * h, False), 1500.0)
+    # C landing (fast, -var land 1): molecule 1 rests on the bottom wall (its lowest row one
+    # spacing above the wall's top row, the DEM contact distance; no water under it), molecule 2
+    # sits on it (adjacent lattice rows, no water film between them) and in.cubes launches it
+    # downwards: the moment of impact, which the SPH water film between cubes never lets happen
+    # within the full run (README)
+    xc = 0.5 * nxf * DL
+    build("cubes_C_land.data", nxf, ny, ny, [(xc, 3.2 * DL), (xc, 10.2 * DL)], 1500.0)
 
 
 if __name__ == "__main__":

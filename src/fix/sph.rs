@@ -49,9 +49,12 @@ impl FixSph {
         super::for_each_range(n, 1024, |r| {
             // SAFETY: each range belongs to one task only
             let s = unsafe { HalfStep { x: x.slice(r.clone()), v: v.slice(r.clone()), vest: vest.slice(r.clone()), rho: rho.slice(r.clone()), esph: esph.slice(r.clone()) } };
-            let dtfm = |i: usize| if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] };
             let (f, drho, desph, mask) = (&f[r.clone()], &drho[r.clone()], &desph[r.clone()], &mask[r.clone()]);
-            let dtfm_r = |k: usize| dtfm(r.start + k);
+            // dtf/m of the range's k-th atom
+            let dtfm_r = |k: usize| {
+                let i = r.start + k;
+                if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] }
+            };
             match (first, self.stationary) {
                 (true, false) => s.run::<true, true>(f, drho, desph, mask, groupbit, dtf, dtv, dtfm_r),
                 (false, false) => s.run::<false, true>(f, drho, desph, mask, groupbit, dtf, dtv, dtfm_r),

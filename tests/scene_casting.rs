@@ -92,7 +92,7 @@ fn fast_casting_crust_breaks_and_partly_remelts() {
     // the hot second pour re-melts part of the crust of the first: solid particles melt again
     // and lose their bonds
     assert!(melted[last] >= 20.0, "melting events {}", melted[last]);
-    assert!(deleted[last] >= 25.0, "bonds deleted by melting {}", deleted[last]);
+    assert!(deleted[last] >= 50.0, "bonds deleted by melting {}", deleted[last]);
     // more solidification events than particles: re-melted particles solidify again
     assert!(frozen[last] > fs[last] * N + 20.0);
     assert_eq!(frozen[last] - melted[last], (fs[last] * N).round());

@@ -17,7 +17,7 @@
 use super::contact::{Contact, ContactModel};
 use super::gran_hooke::NoHistory;
 use super::gran_hooke_history::Classic;
-use super::sph::{Batch, SphKernel};
+use super::sph::{Batch, SphKernel, L};
 use super::sph_taitwater_morris::SphTaitwaterMorris;
 use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
 use crate::fix::dmhs_phase::PHI_FIELD;
@@ -103,12 +103,12 @@ impl PairStyle for DmhsBlend {
                         let pj = self.sph.pack(input, j);
                         let b: Batch<3> = Batch {
                             tj: [tj; 4],
-                            m: [input.type_mass[tj]; 4],
-                            del: [[del[0]; 4], [del[1]; 4], [del[2]; 4]],
-                            rsq: [rsq; 4],
-                            v: [[pj.v[0]; 4], [pj.v[1]; 4], [pj.v[2]; 4]],
-                            a: [pj.a; 4],
-                            b: [pj.b; 4],
+                            m: L::splat(input.type_mass[tj]),
+                            del: [L::splat(del[0]), L::splat(del[1]), L::splat(del[2])],
+                            rsq: L::splat(rsq),
+                            v: [L::splat(pj.v[0]), L::splat(pj.v[1]), L::splat(pj.v[2])],
+                            a: L::splat(pj.a),
+                            b: L::splat(pj.b),
                         };
                         let c = self.sph.pair_lanes(input, &pi, ti, &b);
                         for k in 0..3 {

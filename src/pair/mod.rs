@@ -13,6 +13,7 @@ pub mod gran_hooke;
 pub mod gran_hooke_history;
 pub mod granular;
 pub mod hybrid;
+pub mod lanes;
 pub mod lj_cut;
 pub mod sph;
 pub mod sph_loop;

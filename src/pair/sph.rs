@@ -6,6 +6,7 @@
 //! `wfd = (1/r) dW/dr` (the missing factor r comes back through `x_ij` in forces and
 //! `v_ij . x_ij` in rates).
 
+pub use super::lanes::{lanes, L, LANES};
 pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
 use super::PairInput;
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
@@ -56,10 +57,17 @@ impl Kernel {
     /// give the same bits).
     #[inline(always)]
     pub fn wfd_lanes(self, rsq: &L, s: &SupportLanes, dim3: bool) -> L {
-        let r = sqrt_lanes(rsq);
+        let r = rsq.sqrt();
         match (self, dim3) {
-            (Kernel::Lucy, false) => lanes(|l| lucy_wfd_2d(r[l], s.h[l], s.ihsq[l])),
-            (Kernel::Lucy, true) => lanes(|l| lucy_wfd_3d(r[l], s.h[l], s.ih[l], s.ihsq[l])),
+            // lucy_wfd_2d and _3d: the same operations in the same order
+            (Kernel::Lucy, false) => {
+                let w = s.h - r;
+                -19.098593171027440292 * w * w * s.ihsq * s.ihsq * s.ihsq
+            }
+            (Kernel::Lucy, true) => {
+                let w = s.h - r;
+                -25.066903536973515383 * w * w * s.ihsq * s.ihsq * s.ihsq * s.ih
+            }
             (Kernel::Wendland2, false) => lanes(|l| wendland2_wfd(r[l], s.h[l], false)),
             (Kernel::Wendland2, true) => lanes(|l| wendland2_wfd(r[l], s.h[l], true)),
             (Kernel::Cubic, false) => lanes(|l| cubic_wfd(r[l], s.h[l], false)),
@@ -129,33 +137,6 @@ fn cubic_wfd(r: f64, h: f64, dim3: bool) -> f64 {
     let dfds_over_s = if s < 1.0 { inner } else { outer };
     let hsd2 = if dim3 { hs.powi(5) } else { hs.powi(4) };
     sigma * dfds_over_s / hsd2
-}
-
-/// Pairs evaluated together by the SPH loop (one AVX register of f64; 8 measured slower).
-pub const LANES: usize = 4;
-/// One value per lane.
-pub type L = [f64; LANES];
-
-/// A lane array from a per-lane expression.
-#[inline(always)]
-pub fn lanes(f: impl Fn(usize) -> f64) -> L {
-    std::array::from_fn(f)
-}
-
-/// Square roots of the lanes: one vector instruction where the CPU has AVX (the compiler,
-/// left alone, mixes scalar and vector roots); IEEE roots either way, so the same bits.
-#[inline(always)]
-pub fn sqrt_lanes(x: &L) -> L {
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    {
-        use std::arch::x86_64::{_mm256_loadu_pd, _mm256_sqrt_pd, _mm256_storeu_pd};
-        let mut out = [0.0; LANES];
-        // SAFETY: AVX is enabled at compile time; both arrays hold LANES = 4 f64
-        unsafe { _mm256_storeu_pd(out.as_mut_ptr(), _mm256_sqrt_pd(_mm256_loadu_pd(x.as_ptr()))) };
-        out
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    lanes(|l| x[l].sqrt())
 }
 
 /// Kernel supports of a batch, lane by lane.

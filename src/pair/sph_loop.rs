@@ -12,7 +12,8 @@
 //! Rates and forces of a particle are kept as one row of four (2D: fx fy drho desph; 3D: fx fy
 //! fz drho, with desph beside), added with one vector operation per pair and partner.
 
-use super::sph::{lanes, Packed, SphKernel, L, LANES};
+use super::lanes::{lanes, transpose4, L, LANES};
+use super::sph::{Packed, SphKernel};
 use super::{at, for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
 use crate::neighbor::NEIGH_MASK;
 
@@ -47,20 +48,19 @@ pub struct SphContribution<const D: usize> {
 
 impl<const D: usize> Default for SphContribution<D> {
     fn default() -> Self {
-        SphContribution { f: [[0.0; LANES]; D], fpair: [0.0; LANES], drho_i: [0.0; LANES], drho_j: [0.0; LANES], de_i: [0.0; LANES], de_j: [0.0; LANES] }
+        let z = L::default();
+        SphContribution { f: [z; D], fpair: z, drho_i: z, drho_j: z, de_i: z, de_j: z }
     }
 }
 
 /// `sum_k a[k][l] * b[k][l]` lane by lane, k in order (LAMMPS' `delx*velx + dely*vely + ...`).
 #[inline(always)]
 pub fn dot_lanes<const D: usize>(a: &[L; D], b: &[L; D]) -> L {
-    lanes(|l| {
-        let mut s = a[0][l] * b[0][l];
-        for k in 1..D {
-            s += a[k][l] * b[k][l];
-        }
-        s
-    })
+    let mut s = a[0] * b[0];
+    for k in 1..D {
+        s += a[k] * b[k];
+    }
+    s
 }
 
 /// One particle as the loop reads it (see the module text).
@@ -87,44 +87,6 @@ impl Record {
             Packed { x: [r[0], r[1], r[2]], v: [r[3], s[0], s[1]], a: s[2], b: s[3] }
         }
     }
-}
-
-/// Four f64 aligned for one vector load and store.
-#[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(32))]
-struct Row([f64; 4]);
-
-impl Row {
-    #[inline(always)]
-    fn add(&mut self, r: &L) {
-        let s = &mut self.0;
-        *s = [s[0] + r[0], s[1] + r[1], s[2] + r[2], s[3] + r[3]];
-    }
-}
-
-/// Rows to columns of a 4x4 block: `out[k][l] = m[l][k]`.
-#[inline(always)]
-fn transpose4(m: [L; 4]) -> [L; 4] {
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    {
-        use std::arch::x86_64::*;
-        // SAFETY: AVX is enabled at compile time; every array holds four f64
-        unsafe {
-            let r = [_mm256_loadu_pd(m[0].as_ptr()), _mm256_loadu_pd(m[1].as_ptr()), _mm256_loadu_pd(m[2].as_ptr()), _mm256_loadu_pd(m[3].as_ptr())];
-            let t0 = _mm256_unpacklo_pd(r[0], r[1]);
-            let t1 = _mm256_unpackhi_pd(r[0], r[1]);
-            let t2 = _mm256_unpacklo_pd(r[2], r[3]);
-            let t3 = _mm256_unpackhi_pd(r[2], r[3]);
-            let c = [_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31), _mm256_permute2f128_pd(t1, t3, 0x31)];
-            let mut out = [[0.0; 4]; 4];
-            for k in 0..4 {
-                _mm256_storeu_pd(out[k].as_mut_ptr(), c[k]);
-            }
-            out
-        }
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    std::array::from_fn(|k| std::array::from_fn(|l| m[l][k]))
 }
 
 /// Write the neighbours j with `keep(j, rsq)` to `out` without branches; returns their count.
@@ -196,7 +158,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let stride = input.ntypes + 1;
     let typ: Vec<u32> = a.typ.iter().map(|&t| t as u32).collect();
     // per owned atom: 2D [fx fy drho desph]; 3D [fx fy fz drho] and desph
-    let mut acc = vec![Row::default(); nlocal];
+    let mut acc = vec![L::default(); nlocal];
     let mut acc_e = vec![0.0f64; if D == 3 { nlocal } else { 0 }];
     let (shared, shared_e) = (SharedMut::new(&mut acc), SharedMut::new(&mut acc_e));
     let eflag = input.eflag;
@@ -231,7 +193,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             };
             // SAFETY: the first n_in entries were written
             unsafe { inside.set_len(n_in) };
-            let mut own = Row::default();
+            let mut own = L::default();
             let mut own_e = 0.0;
             // pad to whole batches with copies of the first neighbour (their results are ignored)
             if n_in > 0 {
@@ -244,8 +206,8 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
                 // SAFETY: neighbour indices are below nall = recs.len()
                 let rj: [&Record; LANES] = js.map(|j| unsafe { recs.get_unchecked(j) });
-                let c0 = transpose4([rj[0].0[0], rj[1].0[0], rj[2].0[0], rj[3].0[0]]);
-                let c1 = transpose4([rj[0].0[1], rj[1].0[1], rj[2].0[1], rj[3].0[1]]);
+                let c0 = transpose4([&rj[0].0[0], &rj[1].0[0], &rj[2].0[0], &rj[3].0[0]]);
+                let c1 = transpose4([&rj[0].0[1], &rj[1].0[1], &rj[2].0[1], &rj[3].0[1]]);
                 let tj = js.map(|j| at(&typ, j) as usize);
                 let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
                     (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
@@ -253,27 +215,27 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                     let v3 = [c0[3], c1[0], c1[1]];
                     (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| v3[k]), c1[2], c1[3], lanes(|l| at(input.type_mass, tj[l])))
                 };
-                let del: [L; D] = std::array::from_fn(|k| lanes(|l| xi[k] - xj[k][l]));
+                let del: [L; D] = std::array::from_fn(|k| xi[k] - xj[k]);
                 let b = Batch { tj, del, rsq: dot_lanes(&del, &del), v: vj, a: aj, b: bj, m: mj };
                 let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
                 // rows per lane: what i gets and what j gets (minus the force)
-                let neg = |x: &L| lanes(|l| -x[l]);
+                let nf: [L; D] = c.f.map(|f| -f);
                 let (ri, rj) = if D == 2 {
-                    (transpose4([c.f[0], c.f[1], c.drho_i, c.de_i]), transpose4([neg(&c.f[0]), neg(&c.f[1]), c.drho_j, c.de_j]))
+                    (transpose4([&c.f[0].0, &c.f[1].0, &c.drho_i.0, &c.de_i.0]), transpose4([&nf[0].0, &nf[1].0, &c.drho_j.0, &c.de_j.0]))
                 } else {
-                    (transpose4([c.f[0], c.f[1], c.f[D - 1], c.drho_i]), transpose4([neg(&c.f[0]), neg(&c.f[1]), neg(&c.f[D - 1]), c.drho_j]))
+                    (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
                 };
                 // apply in list order (the sums of a one-pair-at-a-time loop)
                 for l in 0..n {
                     let j = js[l];
-                    own.add(&ri[l]);
+                    own += ri[l];
                     if D == 3 {
                         own_e += c.de_i[l];
                     }
                     if j < nlocal {
                         // SAFETY: an owned j is in this chunk or the next (slab schedule)
                         unsafe {
-                            shared.get(j).add(&rj[l]);
+                            *shared.get(j) += rj[l];
                             if D == 3 {
                                 *shared_e.get(j) += c.de_j[l];
                             }
@@ -298,7 +260,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             }
             // SAFETY: i belongs to this chunk
             unsafe {
-                shared.get(i).add(&own.0);
+                *shared.get(i) += own;
                 if D == 3 {
                     *shared_e.get(i) += own_e;
                 }
@@ -312,7 +274,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
     crate::fix::for_each_range(nlocal, 1024, |range| {
         for i in range {
-            let r = acc[i].0;
+            let r = acc[i];
             // 2D: fx fy drho desph; 3D: fx fy fz drho, desph beside
             let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], acc_e[i]) };
             // SAFETY: each index belongs to one range only; the rate arrays are used only when

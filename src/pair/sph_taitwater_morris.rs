@@ -61,19 +61,19 @@ impl SphKernel for SphTaitwaterMorris {
         let imass = at(input.type_mass, ti);
         let jmass = b.m;
         let vi = pi.v;
-        let vel: [L; D] = std::array::from_fn(|k| lanes(|l| vi[k] - b.v[k][l]));
+        let vel: [L; D] = std::array::from_fn(|k| vi[k] - b.v[k]);
         let dvdr = dot_lanes(del, &vel);
         // LAMMPS' order: fvisc = 2 mu / (rho_i rho_j); fvisc *= m_i m_j wfd
-        let fvisc = lanes(|l| 2.0 * mu[l] / (pi.a * b.a[l]));
-        let fvisc = lanes(|l| fvisc[l] * (imass * jmass[l] * wfd[l]));
-        let fpair = lanes(|l| -imass * jmass[l] * (pi.b + b.b[l]) * wfd[l]);
+        let fvisc = 2.0 * mu / (pi.a * b.a);
+        let fvisc = fvisc * (imass * jmass * wfd);
+        let fpair = -imass * jmass * (pi.b + b.b) * wfd;
         let vsq = dot_lanes(&vel, &vel);
-        let de = lanes(|l| -0.5 * (fpair[l] * dvdr[l] + fvisc[l] * vsq[l]));
+        let de = -0.5 * (fpair * dvdr + fvisc * vsq);
         SphContribution {
-            f: std::array::from_fn(|k| lanes(|l| del[k][l] * fpair[l] + vel[k][l] * fvisc[l])),
+            f: std::array::from_fn(|k| del[k] * fpair + vel[k] * fvisc),
             fpair,
-            drho_i: lanes(|l| jmass[l] * dvdr[l] * wfd[l]),
-            drho_j: lanes(|l| imass * dvdr[l] * wfd[l]),
+            drho_i: jmass * dvdr * wfd,
+            drho_j: imass * dvdr * wfd,
             de_i: de,
             de_j: de,
         }

@@ -125,31 +125,45 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     let parallel = rayon::current_num_threads() > 1 && nall >= super::PARALLEL_MIN_ATOMS;
     // per-atom preparation in parallel (each record depends on its own atom only)
     if input.dimension == 2 {
-        // the last slot of a 2D record says whether the particle leaves the plane of the first
+        // a 2D record needs every particle in the plane of the first, at rest across it
         let z0 = a.x.first().map(|x| x[2]).unwrap_or(0.0);
-        let mut recs = records(nall, parallel, |i| {
+        let (recs, off_plane) = records(nall, parallel, |i| {
             let p = kernel.pack(input, i);
-            let mut r = Record::new::<2>(&p, at(input.type_mass, a.typ[i]));
-            r.0[1][3] = if p.x[2] != z0 || p.v[2] != 0.0 { 1.0 } else { 0.0 };
-            r
+            (Record::new::<2>(&p, at(input.type_mass, a.typ[i])), p.x[2] != z0 || p.v[2] != 0.0)
         });
-        if !crate::fix::any_index(nall, |i| recs[i].0[1][3] != 0.0) {
+        if !off_plane {
             return sph_loop::<K, 2>(kernel, input, out, &recs);
         }
-        recs.clear();
     }
-    let recs = records(nall, parallel, |i| Record::new::<3>(&kernel.pack(input, i), 0.0));
+    let (recs, _) = records(nall, parallel, |i| (Record::new::<3>(&kernel.pack(input, i), 0.0), false));
     sph_loop::<K, 3>(kernel, input, out, &recs)
 }
 
-/// The records of atoms `0..n`, made by `rec` (in parallel when `parallel`).
-fn records(n: usize, parallel: bool, rec: impl Fn(usize) -> Record + Sync + Send) -> Vec<Record> {
-    if parallel {
+/// The records of atoms `0..n` made by `rec` (in parallel when `parallel`), and whether `rec`
+/// flagged any atom. Written in place: returned one by one and collected, a record went
+/// through the stack in scalar pieces and was read back whole, a store-forwarding stall.
+fn records(n: usize, parallel: bool, rec: impl Fn(usize) -> (Record, bool) + Sync) -> (Vec<Record>, bool) {
+    const CHUNK: usize = 1024;
+    let mut v: Vec<Record> = Vec::with_capacity(n);
+    let fill = |c: usize, slots: &mut [std::mem::MaybeUninit<Record>]| {
+        let mut flagged = false;
+        for (k, slot) in slots.iter_mut().enumerate() {
+            let (r, f) = rec(c * CHUNK + k);
+            slot.write(r);
+            flagged |= f;
+        }
+        flagged
+    };
+    let spare = &mut v.spare_capacity_mut()[..n];
+    let flagged = if parallel {
         use rayon::prelude::*;
-        (0..n).into_par_iter().map(rec).collect()
+        spare.par_chunks_mut(CHUNK).enumerate().map(|(c, s)| fill(c, s)).reduce(|| false, |x, y| x | y)
     } else {
-        (0..n).map(rec).collect()
-    }
+        spare.chunks_mut(CHUNK).enumerate().fold(false, |acc, (c, s)| acc | fill(c, s))
+    };
+    // SAFETY: every one of the n slots was written above
+    unsafe { v.set_len(n) };
+    (v, flagged)
 }
 
 fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &mut PairOutput, recs: &[Record]) -> Tally {

@@ -333,8 +333,15 @@ impl<T> SharedMut<T> {
 /// atom receives its contributions in the same order whatever the thread count.
 /// Returns the per-chunk results in chunk order.
 pub fn for_each_chunk<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync) -> Vec<R> {
+    for_each_chunk_then(list, work, |_| ())
+}
+
+/// [`for_each_chunk`], and `done(chunk)` for every chunk as soon as no task writes to its atoms
+/// any more, inside the task that wrote last (while its data are in that core's cache, and
+/// without another parallel pass).
+pub fn for_each_chunk_then<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync, done: impl Fn(&ChunkList) + Sync) -> Vec<R> {
     let atoms = list.chunks.last().map(|c| c.end).unwrap_or(0);
-    for_each_slab(list.chunks.len(), atoms, |c| work(&list.chunks[c]))
+    for_each_slab_then(list.chunks.len(), atoms, |c| work(&list.chunks[c]), |c| done(&list.chunks[c]))
 }
 
 /// Below this many owned atoms the slab schedule runs on the calling thread: waking a second
@@ -345,20 +352,43 @@ pub const PARALLEL_MIN_ATOMS: usize = 2000;
 /// The even/odd schedule of [`for_each_chunk`] over `n` chunks given by index, for a system of
 /// `atoms` owned atoms.
 pub fn for_each_slab<R: Send + Default + Clone>(n: usize, atoms: usize, work: impl Fn(usize) -> R + Sync) -> Vec<R> {
+    for_each_slab_then(n, atoms, work, |_| ())
+}
+
+/// [`for_each_slab`] with [`for_each_chunk_then`]'s `done`. Chunk c receives from tasks c - 1
+/// and c: an odd c is complete after its own task (in the odd phase), an even c after task
+/// c - 1 (chunk 0 after the even phase), so odd task c finishes c and c + 1, and task 1 also 0.
+pub fn for_each_slab_then<R: Send + Default + Clone>(n: usize, atoms: usize, work: impl Fn(usize) -> R + Sync, done: impl Fn(usize) + Sync) -> Vec<R> {
     let mut out = vec![R::default(); n];
+    let task = |c: usize| {
+        let r = work(c);
+        if c % 2 == 1 {
+            if c == 1 {
+                done(0);
+            }
+            done(c);
+            if c + 1 < n {
+                done(c + 1);
+            }
+        }
+        r
+    };
     if rayon::current_num_threads() == 1 || n < 2 || atoms < PARALLEL_MIN_ATOMS {
         // same order of contributions as the parallel schedule
         for parity in 0..2 {
             for c in (parity..n).step_by(2) {
-                out[c] = work(c);
+                out[c] = task(c);
             }
+        }
+        if n == 1 {
+            done(0);
         }
         return out;
     }
     for parity in 0..2 {
         // one task per chunk (with_max_len(1)): work is often concentrated in a few slabs (a
         // water column in a wide tank), and rayon's default splitting would leave them on one thread
-        let results: Vec<(usize, R)> = (parity..n).step_by(2).collect::<Vec<_>>().into_par_iter().with_max_len(1).map(|c| (c, work(c))).collect();
+        let results: Vec<(usize, R)> = (parity..n).step_by(2).collect::<Vec<_>>().into_par_iter().with_max_len(1).map(|c| (c, task(c))).collect();
         for (c, r) in results {
             out[c] = r;
         }

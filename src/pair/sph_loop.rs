@@ -14,7 +14,7 @@
 
 use super::lanes::{lanes, transpose4, L, LANES};
 use super::sph::{Packed, SphKernel};
-use super::{at, for_each_chunk, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use super::{at, for_each_chunk_then, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
 use crate::neighbor::NEIGH_MASK;
 
 /// Up to [`LANES`] neighbours j of one particle i, field by field (unused lanes repeat lane 0;
@@ -185,115 +185,19 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             if same { Some(row[0]) } else { None }
         })
         .collect();
-    let parts = for_each_chunk(input.list, |chunk| {
-        let mut t = Tally::default();
-        let mut inside: Vec<u32> = Vec::with_capacity(128);
-        for i in chunk.start..chunk.end {
-            let pi = recs[i].packed::<D>();
-            let xi = pi.x;
-            let ti = typ[i] as usize;
-            let cutsq = kernel.cutsq_row(ti);
-            let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
-            // gather the neighbours inside the cutoff (and the type filter), branch-free
-            let neigh = chunk.neighbors(i);
-            inside.clear();
-            inside.reserve(neigh.len() + LANES);
-            let n_in = match uniform_cut[ti] {
-                Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
-                None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
-                    let tj = at(&typ, j) as usize;
-                    rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)
-                }),
-            };
-            // SAFETY: the first n_in entries were written
-            unsafe { inside.set_len(n_in) };
-            let mut own = L::default();
-            let mut own_e = 0.0;
-            // pad to whole batches with copies of the first neighbour (their results are ignored)
-            if n_in > 0 {
-                while inside.len() % LANES != 0 {
-                    inside.push(inside[0]);
-                }
-            }
-            for (start, batch) in (0..n_in).step_by(LANES).zip(inside.chunks_exact(LANES)) {
-                let n = (n_in - start).min(LANES);
-                let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
-                // SAFETY: neighbour indices are below nall = recs.len()
-                let rj: [&Record; LANES] = js.map(|j| unsafe { recs.get_unchecked(j) });
-                let c0 = transpose4([&rj[0].0[0], &rj[1].0[0], &rj[2].0[0], &rj[3].0[0]]);
-                let c1 = transpose4([&rj[0].0[1], &rj[1].0[1], &rj[2].0[1], &rj[3].0[1]]);
-                let tj = js.map(|j| at(&typ, j) as usize);
-                let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
-                    (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
-                } else {
-                    let v3 = [c0[3], c1[0], c1[1]];
-                    (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| v3[k]), c1[2], c1[3], lanes(|l| at(input.type_mass, tj[l])))
-                };
-                let del: [L; D] = std::array::from_fn(|k| xi[k] - xj[k]);
-                let b = Batch { tj, del, rsq: dot_lanes(&del, &del), v: vj, a: aj, b: bj, m: mj };
-                let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
-                // rows per lane: what i gets and what j gets (minus the force)
-                let nf: [L; D] = c.f.map(|f| -f);
-                let (ri, rj) = if D == 2 {
-                    (transpose4([&c.f[0].0, &c.f[1].0, &c.drho_i.0, &c.de_i.0]), transpose4([&nf[0].0, &nf[1].0, &c.drho_j.0, &c.de_j.0]))
-                } else {
-                    (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
-                };
-                // apply in list order (the sums of a one-pair-at-a-time loop)
-                for l in 0..n {
-                    let j = js[l];
-                    own += ri[l];
-                    if D == 3 {
-                        own_e += c.de_i[l];
-                    }
-                    if j < nlocal {
-                        // SAFETY: an owned j is in this chunk or the next (slab schedule)
-                        unsafe {
-                            *shared.get(j) += rj[l];
-                            if D == 3 {
-                                *shared_e.get(j) += c.de_j[l];
-                            }
-                        }
-                    }
-                }
-                if eflag {
-                    for l in 0..n {
-                        let w = if js[l] < nlocal { 1.0 } else { 0.5 };
-                        let fp = c.fpair[l];
-                        let d: [f64; D] = std::array::from_fn(|k| b.del[k][l]);
-                        t.virial[0] += w * d[0] * d[0] * fp;
-                        t.virial[1] += w * d[1] * d[1] * fp;
-                        t.virial[3] += w * d[0] * d[1] * fp;
-                        if D == 3 {
-                            t.virial[2] += w * d[D - 1] * d[D - 1] * fp;
-                            t.virial[4] += w * d[0] * d[D - 1] * fp;
-                            t.virial[5] += w * d[1] * d[D - 1] * fp;
-                        }
-                    }
-                }
-            }
-            // SAFETY: i belongs to this chunk
-            unsafe {
-                *shared.get(i) += own;
-                if D == 3 {
-                    *shared_e.get(i) += own_e;
-                }
-            }
-        }
-        t
-    });
-    // add to what other styles (hybrid/overlay) put there already
+    // the sums go to the outputs chunk by chunk as chunks complete, added to what other styles
+    // (hybrid/overlay) put there already
     let has_rates = !out.drho.is_empty();
     let water = kernel.rate_is_water() && !out.dwater.is_empty();
     let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
-    crate::fix::for_each_range(nlocal, 1024, |range| {
-        for i in range {
-            let r = acc[i];
-            // 2D: fx fy drho desph; 3D: fx fy fz drho, desph beside
-            let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], acc_e[i]) };
-            // SAFETY: each index belongs to one range only; the rate arrays are used only when
-            // they exist (has_rates, water)
+    let flush = |chunk: &crate::neighbor::ChunkList| {
+        for i in chunk.start..chunk.end {
+            // SAFETY: a complete chunk's atoms are touched by this task only (for_each_chunk_then);
+            // the rate arrays are used only when they exist (has_rates, water)
             unsafe {
+                let r = *shared.get(i);
+                // 2D: fx fy drho desph; 3D: fx fy fz drho, desph beside
+                let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], *shared_e.get(i)) };
                 let fi = f.get(i);
                 fi[0] += r[0];
                 fi[1] += r[1];
@@ -306,6 +210,107 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 }
             }
         }
-    });
+    };
+    let parts = for_each_chunk_then(
+        input.list,
+        |chunk| {
+            let mut t = Tally::default();
+            let mut inside: Vec<u32> = Vec::with_capacity(128);
+            for i in chunk.start..chunk.end {
+                let pi = recs[i].packed::<D>();
+                let xi = pi.x;
+                let ti = typ[i] as usize;
+                let cutsq = kernel.cutsq_row(ti);
+                let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
+                // gather the neighbours inside the cutoff (and the type filter), branch-free
+                let neigh = chunk.neighbors(i);
+                inside.clear();
+                inside.reserve(neigh.len() + LANES);
+                let n_in = match uniform_cut[ti] {
+                    Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
+                    None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
+                        let tj = at(&typ, j) as usize;
+                        rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)
+                    }),
+                };
+                // SAFETY: the first n_in entries were written
+                unsafe { inside.set_len(n_in) };
+                let mut own = L::default();
+                let mut own_e = 0.0;
+                // pad to whole batches with copies of the first neighbour (their results are ignored)
+                if n_in > 0 {
+                    while inside.len() % LANES != 0 {
+                        inside.push(inside[0]);
+                    }
+                }
+                for (start, batch) in (0..n_in).step_by(LANES).zip(inside.chunks_exact(LANES)) {
+                    let n = (n_in - start).min(LANES);
+                    let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
+                    // SAFETY: neighbour indices are below nall = recs.len()
+                    let rj: [&Record; LANES] = js.map(|j| unsafe { recs.get_unchecked(j) });
+                    let c0 = transpose4([&rj[0].0[0], &rj[1].0[0], &rj[2].0[0], &rj[3].0[0]]);
+                    let c1 = transpose4([&rj[0].0[1], &rj[1].0[1], &rj[2].0[1], &rj[3].0[1]]);
+                    let tj = js.map(|j| at(&typ, j) as usize);
+                    let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
+                        (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
+                    } else {
+                        let v3 = [c0[3], c1[0], c1[1]];
+                        (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| v3[k]), c1[2], c1[3], lanes(|l| at(input.type_mass, tj[l])))
+                    };
+                    let del: [L; D] = std::array::from_fn(|k| xi[k] - xj[k]);
+                    let b = Batch { tj, del, rsq: dot_lanes(&del, &del), v: vj, a: aj, b: bj, m: mj };
+                    let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
+                    // rows per lane: what i gets and what j gets (minus the force)
+                    let nf: [L; D] = c.f.map(|f| -f);
+                    let (ri, rj) = if D == 2 {
+                        (transpose4([&c.f[0].0, &c.f[1].0, &c.drho_i.0, &c.de_i.0]), transpose4([&nf[0].0, &nf[1].0, &c.drho_j.0, &c.de_j.0]))
+                    } else {
+                        (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
+                    };
+                    // apply in list order (the sums of a one-pair-at-a-time loop)
+                    for l in 0..n {
+                        let j = js[l];
+                        own += ri[l];
+                        if D == 3 {
+                            own_e += c.de_i[l];
+                        }
+                        if j < nlocal {
+                            // SAFETY: an owned j is in this chunk or the next (slab schedule)
+                            unsafe {
+                                *shared.get(j) += rj[l];
+                                if D == 3 {
+                                    *shared_e.get(j) += c.de_j[l];
+                                }
+                            }
+                        }
+                    }
+                    if eflag {
+                        for l in 0..n {
+                            let w = if js[l] < nlocal { 1.0 } else { 0.5 };
+                            let fp = c.fpair[l];
+                            let d: [f64; D] = std::array::from_fn(|k| b.del[k][l]);
+                            t.virial[0] += w * d[0] * d[0] * fp;
+                            t.virial[1] += w * d[1] * d[1] * fp;
+                            t.virial[3] += w * d[0] * d[1] * fp;
+                            if D == 3 {
+                                t.virial[2] += w * d[D - 1] * d[D - 1] * fp;
+                                t.virial[4] += w * d[0] * d[D - 1] * fp;
+                                t.virial[5] += w * d[1] * d[D - 1] * fp;
+                            }
+                        }
+                    }
+                }
+                // SAFETY: i belongs to this chunk
+                unsafe {
+                    *shared.get(i) += own;
+                    if D == 3 {
+                        *shared_e.get(i) += own_e;
+                    }
+                }
+            }
+            t
+        },
+        flush,
+    );
     sum_tallies(&parts)
 }

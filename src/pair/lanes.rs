@@ -74,6 +74,11 @@ mod imp {
         // SAFETY: AVX is enabled at compile time
         store(unsafe { _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(load(a), load(b)), load(yes)) })
     }
+    #[inline(always)]
+    pub fn lt_bits(a: &L, b: &L) -> u32 {
+        // SAFETY: AVX is enabled at compile time
+        unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(load(a), load(b))) as u32 }
+    }
     /// Rows to columns of a 4x4 block: `out[k][l] = m[l][k]`.
     #[inline(always)]
     pub fn transpose(m: [&[f64; 4]; 4]) -> [L; 4] {
@@ -131,6 +136,10 @@ mod imp {
         lanes(|l| if a.0[l] < b.0[l] { yes.0[l] } else { 0.0 })
     }
     #[inline(always)]
+    pub fn lt_bits(a: &L, b: &L) -> u32 {
+        (0..4).map(|l| ((a.0[l] < b.0[l]) as u32) << l).sum()
+    }
+    #[inline(always)]
     pub fn transpose(m: [&[f64; 4]; 4]) -> [L; 4] {
         std::array::from_fn(|k| lanes(|l| m[l][k]))
     }
@@ -150,6 +159,11 @@ impl L {
     #[inline(always)]
     pub fn lt_or_zero(&self, other: &L, yes: &L) -> L {
         imp::select_lt(self, other, yes)
+    }
+    /// Bit l set where lane l of `self` is less than that of `other` (a NaN lane is not less).
+    #[inline(always)]
+    pub fn lt_bits(&self, other: &L) -> u32 {
+        imp::lt_bits(self, other)
     }
 }
 
@@ -244,6 +258,7 @@ mod tests {
         same(2.0 * a, &|x, _| 2.0 * x);
         same(a.sqrt(), &|x, _| x.sqrt());
         same(b.lt_or_zero(&L::splat(0.0), &a), &|x, y| if y < 0.0 { x } else { 0.0 });
+        assert_eq!(L([1.0, f64::NAN, -2.0, 5.0]).lt_bits(&L::splat(2.0)), 0b0101);
     }
 
     #[test]

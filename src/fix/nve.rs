@@ -29,20 +29,36 @@ impl FixNve {
         let n = a.nlocal;
         let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
         let (x, v) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]));
-        super::for_each_range(n, 1024, |range| {
-            for i in range {
-                if mask[i] & groupbit == 0 {
-                    continue;
-                }
-                let dtfm = if per_atom { dtf / rmass[i] } else { dtfm_of_type[typ[i]] };
-                // SAFETY: each index belongs to one range only
-                let (xi, vi) = unsafe { (x.get(i), v.get(i)) };
-                super::kick(vi, dtfm, &f[i]);
-                if first {
-                    super::drift(xi, dtv, vi);
-                }
+        super::for_each_range(n, 1024, |r| {
+            // SAFETY: each range belongs to one task only. Plain slices, not writes through
+            // SharedMut::get, so that the compiler need not reload the other arrays after each
+            // store (as in fix sph)
+            let (x, v) = unsafe { (x.slice(r.clone()), v.slice(r.clone())) };
+            let (f, mask, typ) = (&f[r.clone()], &mask[r.clone()], &typ[r.clone()]);
+            let rmass = if per_atom { &rmass[r.clone()] } else { &[][..] };
+            if first {
+                kick_range::<true>(x, v, f, mask, groupbit, dtv, |k| if per_atom { dtf / rmass[k] } else { dtfm_of_type[typ[k]] });
+            } else {
+                kick_range::<false>(x, v, f, mask, groupbit, dtv, |k| if per_atom { dtf / rmass[k] } else { dtfm_of_type[typ[k]] });
             }
         });
+    }
+}
+
+/// v += dtfm f for the atoms of a range in the group, and in the first half (`FIRST`) x += dt v;
+/// `dtfm(k)` is dtf/m of the range's k-th atom.
+#[inline(always)]
+fn kick_range<const FIRST: bool>(x: &mut [[f64; 3]], v: &mut [[f64; 3]], f: &[[f64; 3]], mask: &[u32], groupbit: u32, dtv: f64, dtfm: impl Fn(usize) -> f64) {
+    let m = x.len();
+    let (v, f, mask) = (&mut v[..m], &f[..m], &mask[..m]);
+    for k in 0..m {
+        if mask[k] & groupbit == 0 {
+            continue;
+        }
+        super::kick(&mut v[k], dtfm(k), &f[k]);
+        if FIRST {
+            super::drift(&mut x[k], dtv, &v[k]);
+        }
     }
 }
 

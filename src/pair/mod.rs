@@ -536,3 +536,40 @@ pub fn coeff_type_ranges(args: &mut Args, ntypes: usize) -> DResult<(usize, usiz
 pub fn no_pairs_set(cmd: &Command) -> Diagnostic {
     Diagnostic::at(cmd.span, "pair_coeff sets no type pair (LAMMPS needs I <= J)", "no I <= J pair in these ranges")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// `done(c)` comes once per chunk, after both tasks that write to the chunk (c - 1 and c),
+    /// for any number of chunks and threads.
+    #[test]
+    fn slab_schedule_finishes_every_chunk_once_after_its_writers() {
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            for n in 0..9 {
+                let writes: Vec<AtomicUsize> = (0..n + 1).map(|_| AtomicUsize::new(0)).collect();
+                let done: Vec<AtomicUsize> = (0..n).map(|_| AtomicUsize::new(0)).collect();
+                let out = pool.install(|| {
+                    for_each_slab_then(
+                        n,
+                        PARALLEL_MIN_ATOMS,
+                        |c| {
+                            writes[c].fetch_add(1, Ordering::SeqCst);
+                            writes[c + 1].fetch_add(1, Ordering::SeqCst);
+                            c
+                        },
+                        |c| {
+                            let writers = if c == 0 { 1 } else { 2 };
+                            assert_eq!(writes[c].load(Ordering::SeqCst), writers, "chunk {c} of {n} finished early");
+                            done[c].fetch_add(1, Ordering::SeqCst);
+                        },
+                    )
+                });
+                assert_eq!(out, (0..n).collect::<Vec<_>>());
+                assert!(done.iter().all(|d| d.load(Ordering::SeqCst) == 1), "{threads} threads, {n} chunks");
+            }
+        }
+    }
+}

@@ -151,7 +151,8 @@ pub fn report(sim: &Simulation, limits: &[Limit]) -> (String, Vec<String>) {
     for l in limits {
         let ratio = sim.dt / l.dt_max;
         s += &format!("  {:<14} {:<60} dt <= {:.4e}   (timestep {:.4e} = {:.2}x)\n", l.model, l.rule, l.dt_max, sim.dt, ratio);
-        if ratio > 1.0 {
+        // a time step set to the limit itself is within it (rounding of the two expressions)
+        if ratio > 1.0 + 1e-9 {
             warnings.push(format!("the time step {:.4e} is {:.2}x the {} limit of {} ({:.4e}): the run may go unstable", sim.dt, ratio, l.rule.split(" (").next().unwrap_or(""), l.model, l.dt_max));
         }
     }

@@ -103,7 +103,7 @@ fn heights_by_molecule(sim: &Simulation) -> Vec<f64> {
 fn c_heavy_brittle_cubes_sink_intact_and_deposit() {
     // two cubes start at 0.13 H and 0.42 H: the lower one sinks to the floor, the upper one
     // sinks after it (a water film between the two drains slowly); bonds break beyond 0.1%
-    // strain, which sinking never reaches (README: at most 0.07% in the full run)
+    // strain, which sinking never reaches (README: at most 0.01% in the full run)
     let sim = run_case("C");
     let ys = cube_heights(&sim);
     let bonds = bonds_per_cube(&sim);

@@ -296,6 +296,7 @@ impl PairStyle for Hybrid {
                 (x, y) => x.or(y),
             },
             rho0: if a.rho0.iter().any(|&r| r > 0.0) { a.rho0.clone() } else { b.rho0.clone() },
+            sound_visc: a.sound_visc.iter().chain(&b.sound_visc).copied().collect(),
         }))
     }
 

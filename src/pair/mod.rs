@@ -210,16 +210,22 @@ pub struct SphInfo {
     pub mu_max: Option<f64>,
     /// Reference density per type (index 0 unused; 0 = no Tait parameters for that type).
     pub rho0: Vec<f64>,
+    /// Morris styles: (type, rho0, c0, mu of the type with itself) for each type with Tait
+    /// parameters, for the sound-viscosity limit (stability.rs).
+    pub sound_visc: Vec<(usize, f64, f64, f64)>,
 }
 
 impl SphInfo {
     /// From the Tait tables; `morris`: the pair value is a dynamic viscosity.
     pub fn from_tait(types: &sph::TaitTypes, pairs: &sph::PairTable<(f64, f64)>, n: usize, morris: Option<()>) -> SphInfo {
-        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0), rho0: types.rho0.clone() };
+        let mut info = SphInfo { h_min: f64::INFINITY, c_max: 0.0, rho0_min: f64::INFINITY, mu_max: morris.map(|_| 0.0), rho0: types.rho0.clone(), sound_visc: vec![] };
         for i in 1..=n.min(types.rho0.len().saturating_sub(1)) {
             if types.rho0[i] > 0.0 {
                 info.c_max = info.c_max.max(types.c0[i]);
                 info.rho0_min = info.rho0_min.min(types.rho0[i]);
+                if morris.is_some() && i <= pairs.n && pairs.is_set(i, i) {
+                    info.sound_visc.push((i, types.rho0[i], types.c0[i], pairs.get(i, i).0));
+                }
             }
             for j in i..=n.min(pairs.n) {
                 if pairs.is_set(i, j) {

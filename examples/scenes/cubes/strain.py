@@ -1,0 +1,81 @@
+"""Lattice vibration and water noise of a cubes run (README, "The time step").
+
+    dmhs run in.cubes -var case C -var dumpn 32000   # writes cubes_C.dump
+    python3 strain.py cubes_C.data cubes_C.dump
+
+Per dump frame: the largest and smallest bond strain (r - r0)/r0 of all cube bonds in the data
+file (broken bonds included: a broken bond shows as a large strain), the largest kinetic energy of
+a cube relative to its own centre of mass (its lattice vibration, J per m of depth), and the
+kinetic energy of the water relative to the mean velocity of its layer (bins one spacing high:
+the acoustic noise; the mean shear flow is not counted). Python 3 standard library only.
+"""
+import math
+import sys
+
+R0 = 0.0023874672772626646  # bond length = water spacing (gen_cubes.py)
+
+
+def read_data(name):
+    bonds, masses, lx, sec = [], {}, None, None
+    for line in open(name):
+        s = line.strip()
+        if s in ("Masses", "Atoms # hybrid", "Bonds", "Angles"):
+            sec = s
+            continue
+        w = s.split()
+        if not w:
+            continue
+        if "xlo" in s:
+            lx = float(w[1]) - float(w[0])
+        elif sec == "Bonds":
+            bonds.append((int(w[2]), int(w[3])))
+        elif sec == "Masses":
+            masses[int(w[0])] = float(w[1])
+    return bonds, masses, lx
+
+
+def frames(name):
+    """(step, {id: (mol, type, x, y, vx, vy)}) per snapshot of a `dump custom` with those columns."""
+    f = open(name)
+    while f.readline():
+        step = int(f.readline())
+        f.readline()
+        n = int(f.readline())
+        for _ in range(5):
+            f.readline()
+        atoms = {}
+        for _ in range(n):
+            w = f.readline().split()
+            atoms[int(w[0])] = (int(w[1]), int(w[2])) + tuple(float(x) for x in w[3:7])
+        yield step, atoms
+
+
+def internal_ke(m, vs):
+    """Kinetic energy of particles of mass m with velocities vs relative to their mean velocity."""
+    cx = sum(v[0] for v in vs) / len(vs)
+    cy = sum(v[1] for v in vs) / len(vs)
+    return 0.5 * m * sum((v[0] - cx) ** 2 + (v[1] - cy) ** 2 for v in vs)
+
+
+def main():
+    bonds, masses, lx = read_data(sys.argv[1])
+    print("step max_strain min_strain max_cube_internal_KE water_noise_KE")
+    for step, at in frames(sys.argv[2]):
+        strains = []
+        for a, b in bonds:
+            dx = at[a][2] - at[b][2]
+            dx -= lx * round(dx / lx)
+            strains.append((math.hypot(dx, at[a][3] - at[b][3]) - R0) / R0)
+        cubes, layers = {}, {}
+        for mol, typ, x, y, vx, vy in at.values():
+            if typ == 2:
+                cubes.setdefault(mol, []).append((vx, vy))
+            elif typ == 1:
+                layers.setdefault(math.floor(y / R0), []).append((vx, vy))
+        kc = max(internal_ke(masses[2], vs) for vs in cubes.values())
+        kw = sum(internal_ke(masses[1], vs) for vs in layers.values())
+        print(f"{step} {max(strains):.3e} {min(strains):.3e} {kc:.2e} {kw:.2e}")
+
+
+if __name__ == "__main__":
+    main()

@@ -38,7 +38,36 @@ pub fn time_dmhs(deck: &std::path::Path, vars: &[(String, Vec<String>)], threads
     })
 }
 
-pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], threads: Vec<usize>) -> i32 {
+/// One engine of a bench: a reference engine (serial) or dmhs at a thread count.
+#[derive(Clone, Copy)]
+enum Engine<'a> {
+    Reference(&'a str),
+    Dmhs(usize),
+}
+
+impl Engine<'_> {
+    fn time(&self, deck: &std::path::Path, vars: &[(String, Vec<String>)]) -> Result<Timing, String> {
+        match *self {
+            Engine::Reference(name) => {
+                let (seconds, steps, atoms) = if name == "lammps" { crate::lammps::time_lmp(deck, vars)? } else { crate::liggghts::time_liggghts(deck, vars)? };
+                Ok(Timing { engine: format!("{name} 1t"), seconds, steps, atoms, bytes_per_particle: None })
+            }
+            Engine::Dmhs(n) => time_dmhs(deck, vars, n),
+        }
+    }
+}
+
+/// The median of `v` (not empty; the mean of the middle two for an even count).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+}
+
+/// `repeat` rounds, each timing every engine once in turn (so that a slow spell of a shared
+/// machine hits all engines of a round alike); each engine's row gives its median time, and with
+/// more than one round the lowest and highest of the per-round ratios.
+pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], threads: Vec<usize>, repeat: usize) -> i32 {
     if decks.is_empty() {
         eprintln!("dmhs bench: give at least one deck");
         return 2;
@@ -50,54 +79,57 @@ pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], thre
         }
     }
     // LAMMPS first: it is the reference of the ratio column
-    let mut engines: Vec<&str> = vec![];
-    if against.iter().any(|a| a == "lammps") {
-        engines.push("lammps");
+    let mut engines: Vec<Engine> = vec![];
+    for name in ["lammps", "liggghts"] {
+        if against.iter().any(|a| a == name) {
+            engines.push(Engine::Reference(name));
+        }
     }
-    if against.iter().any(|a| a == "liggghts") {
-        engines.push("liggghts");
-    }
-    println!("{:<40} {:<12} {:>10} {:>8} {:>9} {:>14} {:>8} {:>10}", "deck", "engine", "atoms", "steps", "seconds", "particle-st/s", "ratio", "bytes/part");
+    engines.extend(threads.iter().map(|&n| Engine::Dmhs(n)));
+    let rounds_col = if repeat > 1 { format!(" {:>13}", "round ratios") } else { String::new() };
+    println!("{:<40} {:<12} {:>10} {:>8} {:>9} {:>14} {:>8} {:>10}{}", "deck", "engine", "atoms", "steps", "seconds", "particle-st/s", "ratio", "bytes/part", rounds_col);
     let mut status = 0;
     for deck in decks {
         let name = deck.display().to_string();
-        let mut reference: Option<f64> = None;
-        for engine in &engines {
-            let timed = if *engine == "lammps" { crate::lammps::time_lmp(deck, &opts.vars) } else { crate::liggghts::time_liggghts(deck, &opts.vars) };
-            match timed {
-                Ok((sec, steps, atoms)) => {
-                    let t = Timing { engine: format!("{engine} 1t"), seconds: sec, steps, atoms, bytes_per_particle: None };
-                    let pss = t.particle_steps_per_second();
-                    let ratio = match reference {
-                        Some(r) => format!("{:.2}", pss / r),
-                        None => {
-                            reference = Some(pss);
-                            "1.00".to_string()
-                        }
-                    };
-                    println!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>10}", name, t.engine, atoms, steps, sec, pss, ratio, "-");
-                }
-                Err(e) => {
-                    eprintln!("dmhs bench: {e}");
+        // times[e][r]: engine e in round r (None where it failed)
+        let mut times: Vec<Vec<Option<Timing>>> = vec![vec![]; engines.len()];
+        for _ in 0..repeat {
+            for (e, engine) in engines.iter().enumerate() {
+                let t = engine.time(deck, &opts.vars);
+                if let Err(msg) = &t {
+                    eprintln!("dmhs bench: {}", msg.trim_end());
                     status = 1;
                 }
+                times[e].push(t.ok());
             }
         }
-        for &n in &threads {
-            match time_dmhs(deck, &opts.vars, n) {
-                Ok(t) => {
-                    let pss = t.particle_steps_per_second();
-                    let ratio = reference.map(|r| format!("{:.2}", pss / r)).unwrap_or("-".into());
-                    println!(
-                        "{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>10.0}",
-                        name, t.engine, t.atoms, t.steps, t.seconds, pss, ratio, t.bytes_per_particle.unwrap_or(0.0)
-                    );
-                }
-                Err(e) => {
-                    eprint!("{e}");
-                    status = 1;
-                }
+        let pss = |t: &Option<Timing>| t.as_ref().map(|t| t.particle_steps_per_second());
+        // the reference: the first engine, if it is a reference engine and ran
+        let reference_rounds: Option<&Vec<Option<Timing>>> = match engines.first() {
+            Some(Engine::Reference(_)) => times.first(),
+            _ => None,
+        };
+        let reference = reference_rounds.and_then(|r| {
+            let ok: Vec<f64> = r.iter().filter_map(pss).collect();
+            if ok.is_empty() { None } else { Some(median(ok)) }
+        });
+        for rounds in &times {
+            let ok: Vec<&Timing> = rounds.iter().flatten().collect();
+            let Some(first) = ok.first() else { continue };
+            let seconds = median(ok.iter().map(|t| t.seconds).collect());
+            let p = median(ok.iter().map(|t| t.particle_steps_per_second()).collect());
+            let ratio = reference.map(|r| format!("{:.2}", p / r)).unwrap_or("-".into());
+            let bytes = first.bytes_per_particle.map(|b| format!("{b:.0}")).unwrap_or("-".into());
+            let mut line = format!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>10}", name, first.engine, first.atoms, first.steps, seconds, p, ratio, bytes);
+            if repeat > 1 {
+                let per_round: Vec<f64> = match reference_rounds {
+                    Some(r) => rounds.iter().zip(r).filter_map(|(t, rt)| Some(pss(t)? / pss(rt)?)).collect(),
+                    None => vec![],
+                };
+                let range = if per_round.is_empty() { "-".to_string() } else { format!("{:.2}-{:.2}", per_round.iter().copied().fold(f64::INFINITY, f64::min), per_round.iter().copied().fold(0.0, f64::max)) };
+                line += &format!(" {range:>13}");
             }
+            println!("{line}");
         }
     }
     status

@@ -39,6 +39,8 @@ options:
               --pos-tol X   (default 1e-9, relative to the box length)
               --vel-tol X   (default 1e-8, relative to the largest speed)
   bench: --threads-list 1,2 (dmhs thread counts to time; default 1,2)
+         --repeat N    (N interleaved rounds of all engines; medians and the
+                        range of the per-round ratios; default 1)
   validate: --quick (the fast variants the tests run), --engine dmhs|lammps,
             --json FILE (default out/validate/CASE.json), --img DIR (also draw the charts)
 ";
@@ -54,6 +56,7 @@ struct Cli {
     pos_tol: Option<f64>,
     vel_tol: Option<f64>,
     threads_list: Option<Vec<usize>>,
+    repeat: Option<usize>,
     quick: bool,
     engine: Option<String>,
     json: Option<PathBuf>,
@@ -154,6 +157,11 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 c.threads_list = Some(list.map_err(|_| format!("--threads-list: `{v}` is not a list like 1,2"))?);
                 i += 2;
             }
+            "--repeat" => {
+                let v = value(i, a)?;
+                c.repeat = Some(v.parse::<usize>().ok().filter(|&n| n >= 1).ok_or_else(|| format!("--repeat: `{v}` is not a count of 1 or more"))?);
+                i += 2;
+            }
             "--quick" => {
                 c.quick = true;
                 i += 1;
@@ -198,7 +206,7 @@ pub fn main_with_args(args: &[String]) -> i32 {
     };
     if cli.sub == "bench" {
         // the benchmark makes its own pool per thread count
-        return crate::bench::bench_cmd(&cli.decks, &cli.opts, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]));
+        return crate::bench::bench_cmd(&cli.decks, &cli.opts, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1));
     }
     // The whole command runs on a worker of its pool: each parallel loop is then started from
     // inside the pool (work is pushed to the local queue and stolen) instead of being sent in

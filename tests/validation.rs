@@ -86,10 +86,7 @@ fn dam_break_front_against_martin_moyce() {
 /// dmhs and LAMMPS on the same validation deck: the same state, hence the same error.
 #[test]
 fn validation_deck_matches_lammps() {
-    let required = std::env::var("DMHS_REQUIRE_LAMMPS").map(|v| v == "1").unwrap_or(false);
-    if let Err(e) = dmhs::lammps::find_python() {
-        assert!(!required, "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
-        eprintln!("skipping: {e}");
+    if dmhs::lammps::python_for_live_test().is_none() {
         return;
     }
     let vars = vec![("N".to_string(), "20".to_string())];

@@ -9,6 +9,7 @@
 pub use super::lanes::{lanes, L, LANES};
 pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
 use super::PairInput;
+use std::ops::{Mul, Sub};
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
 
 /// The smoothing kernel of the force and rate terms. `Lucy` is what LAMMPS uses; the others are
@@ -59,15 +60,8 @@ impl Kernel {
     pub fn wfd_lanes(self, rsq: &L, s: &SupportLanes, dim3: bool) -> L {
         let r = rsq.sqrt();
         match (self, dim3) {
-            // lucy_wfd_2d and _3d: the same operations in the same order
-            (Kernel::Lucy, false) => {
-                let w = s.h - r;
-                -19.098593171027440292 * w * w * s.ihsq * s.ihsq * s.ihsq
-            }
-            (Kernel::Lucy, true) => {
-                let w = s.h - r;
-                -25.066903536973515383 * w * w * s.ihsq * s.ihsq * s.ihsq * s.ih
-            }
+            (Kernel::Lucy, false) => lucy_wfd_2d(r, s.h, s.ihsq),
+            (Kernel::Lucy, true) => lucy_wfd_3d(r, s.h, s.ih, s.ihsq),
             (Kernel::Wendland2, false) => lanes(|l| wendland2_wfd(r[l], s.h[l], false)),
             (Kernel::Wendland2, true) => lanes(|l| wendland2_wfd(r[l], s.h[l], true)),
             (Kernel::Cubic, false) => lanes(|l| cubic_wfd(r[l], s.h[l], false)),
@@ -101,16 +95,23 @@ impl Kernel {
     }
 }
 
-/// Lucy's `(1/r) dW/dr` in 2D at distance r, in LAMMPS' order of operations.
+/// Lucy's `(1/r) dW/dr` in 2D at distance r, in LAMMPS' order of operations; for one pair
+/// (f64) or a batch ([`L`]), the same operations either way.
 #[inline(always)]
-fn lucy_wfd_2d(r: f64, h: f64, ihsq: f64) -> f64 {
+fn lucy_wfd_2d<T: Copy + Sub<Output = T> + Mul<Output = T>>(r: T, h: T, ihsq: T) -> T
+where
+    f64: Mul<T, Output = T>,
+{
     let w = h - r;
     -19.098593171027440292 * w * w * ihsq * ihsq * ihsq
 }
 
-/// Lucy's `(1/r) dW/dr` in 3D at distance r, in LAMMPS' order of operations.
+/// Lucy's `(1/r) dW/dr` in 3D at distance r, in LAMMPS' order of operations (f64 or [`L`]).
 #[inline(always)]
-fn lucy_wfd_3d(r: f64, h: f64, ih: f64, ihsq: f64) -> f64 {
+fn lucy_wfd_3d<T: Copy + Sub<Output = T> + Mul<Output = T>>(r: T, h: T, ih: T, ihsq: T) -> T
+where
+    f64: Mul<T, Output = T>,
+{
     let w = h - r;
     -25.066903536973515383 * w * w * ihsq * ihsq * ihsq * ih
 }

@@ -112,11 +112,12 @@ fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], o
     n_in
 }
 
-/// [`gather_inside`] for one cutoff `cutsq` for all partners, four neighbours at a time (one
-/// transpose of their first rows gives the position differences as lane vectors); the same
-/// rsq, so the same neighbours in the same order.
+/// [`gather_inside`] in 2D for one cutoff `cutsq` for all partners, four neighbours at a time
+/// (one transpose of their first rows gives the position differences as lane vectors); the same
+/// rsq, so the same neighbours in the same order. (In 3D this measured slower than the scalar
+/// gather, although it ran 10% fewer instructions.)
 #[inline(always)]
-fn gather_inside_uniform<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: *mut u32, cutsq: f64) -> usize {
+fn gather_inside_uniform_2d(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: *mut u32, cutsq: f64) -> usize {
     let quads = neigh.chunks_exact(LANES);
     let rest = quads.remainder();
     let c = L::splat(cutsq);
@@ -127,13 +128,7 @@ fn gather_inside_uniform<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f6
         let r: [&Record; LANES] = j.map(|j| unsafe { recs.get_unchecked(j as usize) });
         let t = transpose4([&r[0].0[0], &r[1].0[0], &r[2].0[0], &r[3].0[0]]);
         let (dx, dy) = (xi[0] - t[0], xi[1] - t[1]);
-        let rsq = if D == 2 {
-            dx * dx + dy * dy
-        } else {
-            let dz = xi[2] - t[2];
-            dx * dx + dy * dy + dz * dz
-        };
-        let inside = rsq.lt_bits(&c);
+        let inside = (dx * dx + dy * dy).lt_bits(&c);
         for (l, &jl) in j.iter().enumerate() {
             // SAFETY: the caller reserved room for every neighbour
             unsafe { *out.add(n_in) = jl };
@@ -141,7 +136,7 @@ fn gather_inside_uniform<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f6
         }
     }
     // SAFETY: room for the rest follows the n_in written
-    n_in + gather_inside::<D>(rest, recs, xi, unsafe { out.add(n_in) }, |_, rsq| rsq < cutsq)
+    n_in + gather_inside::<2>(rest, recs, xi, unsafe { out.add(n_in) }, |_, rsq| rsq < cutsq)
 }
 
 /// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
@@ -259,7 +254,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 inside.clear();
                 inside.reserve(neigh.len() + LANES);
                 let n_in = match uniform_cut[ti] {
-                    Some(c) if D == 2 => gather_inside_uniform::<D>(neigh, recs, xi, inside.as_mut_ptr(), c),
+                    Some(c) if D == 2 => gather_inside_uniform_2d(neigh, recs, xi, inside.as_mut_ptr(), c),
                     Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
                     None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
                         let tj = at(&typ, j) as usize;

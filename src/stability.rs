@@ -171,10 +171,11 @@ pub fn dt_hint(sim: &Simulation) -> String {
     }
 }
 
-/// Whether every component is finite: `v * 0` is 0 for finite v and NaN otherwise (so the test
-/// has no branch and vectorizes), over chunks in parallel with [`any_index`].
-fn all_finite(p: &[[f64; 3]]) -> bool {
-    !any_index(p.len(), |i| p[i][0] * 0.0 + p[i][1] * 0.0 + p[i][2] * 0.0 != 0.0)
+/// Whether some component is not finite: `v * 0` is 0 for finite v and NaN otherwise (a test
+/// without branches, so the pass vectorizes).
+#[inline(always)]
+fn not_finite3(v: &[f64; 3]) -> bool {
+    v[0] * 0.0 + v[1] * 0.0 + v[2] * 0.0 != 0.0
 }
 
 /// Stop the run if the state went bad: non-finite positions, velocities or SPH fields, or an
@@ -187,28 +188,40 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     let a = &sim.atoms;
     let step = sim.step;
     let hint = || dt_hint(sim);
-    // fast path: x * 0 is 0 for finite x and NaN otherwise, so vectorizable sums tell whether
-    // any coordinate is bad; only then is the particle searched for
     let n = a.nlocal;
-    if !all_finite(&a.x[..n]) || !all_finite(&a.v[..n]) {
-        for i in 0..a.nlocal {
-            for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
-                if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
-                    return Err(RunError::new(step, format!("particle {} has a non-finite {name} ({}, {}, {}): the run is unstable{}", a.tag[i], v[0], v[1], v[2], hint())));
-                }
+    let rho0 = if a.features.sph { sim.pair.as_ref().and_then(|p| p.sph_info()).map(|s| s.rho0).unwrap_or_default() } else { Vec::new() };
+    // fast path, one pass without branches over every atom; only when it finds something is the
+    // particle searched for. A density is good inside (lo, hi] of its type: for a type without
+    // rho0, (-inf, MAX], which only a non-finite density leaves (a NaN compares false).
+    let (x, v) = (&a.x[..n], &a.v[..n]);
+    let bad_motion = |i: usize| not_finite3(&x[i]) | not_finite3(&v[i]);
+    let all_good = if a.features.sph {
+        let bounds: Vec<(f64, f64)> = (0..=sim.ntypes)
+            .map(|t| match rho0.get(t).copied().unwrap_or(0.0) {
+                r0 if r0 > 0.0 => (g.rho_lo * r0, (g.rho_hi * r0).min(f64::MAX)),
+                _ => (f64::NEG_INFINITY, f64::MAX),
+            })
+            .collect();
+        let (rho, esph, typ) = (&a.rho[..n], &a.esph[..n], &a.typ[..n]);
+        !any_index(n, |i| {
+            let (lo, hi) = crate::pair::at(&bounds, typ[i]);
+            let r = rho[i];
+            bad_motion(i) | !(r > lo && r <= hi) | (esph[i] * 0.0 != 0.0)
+        })
+    } else {
+        !any_index(n, bad_motion)
+    };
+    if all_good {
+        return Ok(());
+    }
+    for i in 0..a.nlocal {
+        for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
+            if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
+                return Err(RunError::new(step, format!("particle {} has a non-finite {name} ({}, {}, {}): the run is unstable{}", a.tag[i], v[0], v[1], v[2], hint())));
             }
         }
     }
     if a.features.sph {
-        let rho0 = sim.pair.as_ref().and_then(|p| p.sph_info()).map(|s| s.rho0).unwrap_or_default();
-        let bad = |i: usize| {
-            let r = a.rho[i];
-            let r0 = rho0.get(a.typ[i]).copied().unwrap_or(0.0);
-            !r.is_finite() || !a.esph[i].is_finite() || (r0 > 0.0 && (r <= g.rho_lo * r0 || r > g.rho_hi * r0))
-        };
-        if !any_index(n, bad) {
-            return Ok(());
-        }
         for i in 0..a.nlocal {
             let r = a.rho[i];
             if !r.is_finite() || !a.esph[i].is_finite() {
@@ -227,4 +240,47 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_state;
+    use crate::sim::Simulation;
+
+    /// A quiet 2D water box, with type 2 (rho0 0: no density bound) beside type 1 (rho0 1; its
+    /// pair_coeff comes last, as the pair_coeff I J of a Tait style sets rho0 of type I).
+    fn water_box() -> Simulation {
+        let deck = "dimension 2\nunits lj\natom_style sph\nboundary p p p\nregion box block 0 10 0 10 -0.5 0.5\ncreate_box 2 box\n\
+                    lattice sq 1.0\ncreate_atoms 1 box\nset atom 90*100 type 2\nmass * 1.0\nset group all sph/rho 1.0\n\
+                    pair_style sph/taitwater\npair_coeff 1 2 0.0 0.0 0.1 1.3\npair_coeff 2 2 0.0 0.0 0.1 1.3\npair_coeff 1 1 1.0 10.0 0.1 1.3\n\
+                    fix 1 all sph/stationary\ntimestep 0.001\nrun 0\n";
+        let mut sim = Simulation::new();
+        sim.out.captured = Some(String::new());
+        crate::commands::run_plain(&mut sim, deck).unwrap();
+        sim.step = 1;
+        sim
+    }
+
+    /// The one-pass check finds each kind of bad value, and the search names particle and value.
+    #[test]
+    fn the_one_pass_check_finds_every_bad_value() {
+        assert_eq!(check_state(&water_box()), Ok(()));
+        let cases: [(&str, fn(&mut crate::atoms::Atoms, usize), &str); 6] = [
+            ("position", |a, i| a.x[i][1] = f64::NAN, "has a non-finite position (5, NaN, 0)"),
+            ("velocity", |a, i| a.v[i][2] = f64::NEG_INFINITY, "has a non-finite velocity (0, 0, -inf)"),
+            ("energy", |a, i| a.esph[i] = f64::INFINITY, "has a non-finite density or energy (rho 1, esph inf)"),
+            ("density NaN", |a, i| a.rho[i] = f64::NAN, "has a non-finite density or energy (rho NaN, esph 0)"),
+            ("density of a type without rho0", |a, i| a.rho[i] = f64::INFINITY, "has a non-finite density or energy (rho inf, esph 0)"),
+            ("density above the bound", |a, i| a.rho[i] = 2.5, "has density 2.500000e0, outside the sane range"),
+        ];
+        for (what, spoil, expect) in cases {
+            let mut sim = water_box();
+            let tag = if what.contains("without rho0") { 95 } else { 46 };
+            let i = (0..sim.atoms.nlocal).find(|&i| sim.atoms.tag[i] == tag).unwrap();
+            spoil(&mut sim.atoms, i);
+            let e = check_state(&sim).expect_err(what);
+            assert_eq!(e.step, 1);
+            assert!(e.message.starts_with(&format!("particle {tag} ")) && e.message.contains(expect), "{what}: {}", e.message);
+        }
+    }
 }

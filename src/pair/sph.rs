@@ -252,6 +252,42 @@ pub fn tait_p_over_rho2_min(rho: f64, rho0: f64, b: f64, pmin: Option<f64>) -> f
     }
 }
 
+/// The record of particle i for the Tait styles (sph/taitwater and /morris): a = rho,
+/// b = the Tait P/rho^2 (0 for a type without rho0).
+#[inline(always)]
+pub fn tait_pack(types: &TaitTypes, pmin: Option<f64>, input: &PairInput, i: usize) -> Packed {
+    let a = input.atoms;
+    let t = a.typ[i];
+    let rho0 = types.rho0.get(t).copied().unwrap_or(0.0);
+    let p = if rho0 == 0.0 { 0.0 } else { tait_p_over_rho2_min(a.rho[i], rho0, types.b[t], pmin) };
+    Packed { x: a.x[i], v: a.vest[i], a: a.rho[i], b: p }
+}
+
+/// [`tait_pack`] of particles `i0..i0 + LANES` (to `each`, as [`SphKernel::pack_lanes`]), the pressures as lane vectors: the same
+/// operations per lane, so the same bits, with one vector division where the scalar code makes
+/// four (the divisions' latency dominated the per-particle preparation).
+#[inline(always)]
+pub fn tait_pack_lanes(types: &TaitTypes, pmin: Option<f64>, input: &PairInput, i0: usize, mut each: impl FnMut(usize, &Packed)) {
+    if pmin.is_some() {
+        for l in 0..LANES {
+            each(l, &tait_pack(types, pmin, input, i0 + l));
+        }
+        return;
+    }
+    let a = input.atoms;
+    let t: [usize; LANES] = std::array::from_fn(|l| a.typ[i0 + l]);
+    let rho = lanes(|l| a.rho[i0 + l]);
+    let rho0 = lanes(|l| types.rho0.get(t[l]).copied().unwrap_or(0.0));
+    let b = lanes(|l| types.b.get(t[l]).copied().unwrap_or(0.0));
+    // tait_p_over_rho2, lane by lane
+    let tmp = rho / rho0;
+    let f = tmp * tmp * tmp;
+    let p = b * (f * f * tmp - 1.0) / (rho * rho);
+    for l in 0..LANES {
+        each(l, &Packed { x: a.x[i0 + l], v: a.vest[i0 + l], a: rho[l], b: if rho0[l] == 0.0 { 0.0 } else { p[l] } });
+    }
+}
+
 /// LAMMPS' Tait equation of state written as P/rho^2 (`fi` in pair_sph_taitwater.cpp):
 /// t = rho/rho0; f = t^3; B (f^2 t - 1) / rho^2.
 #[inline(always)]
@@ -395,6 +431,15 @@ pub struct Packed {
 pub trait SphKernel: Sync {
     /// The record of particle i (owned or ghost).
     fn pack(&self, input: &PairInput, i: usize) -> Packed;
+    /// `each(l, record)` for the particles `i0 + l`, l in `0..LANES` ([`Self::pack`] of each,
+    /// unless the style computes them together). A callback rather than an array of records:
+    /// the array went through the stack.
+    #[inline(always)]
+    fn pack_lanes(&self, input: &PairInput, i0: usize, mut each: impl FnMut(usize, &Packed)) {
+        for l in 0..LANES {
+            each(l, &self.pack(input, i0 + l));
+        }
+    }
     /// Squared cutoffs of type pairs (ti, 0..=ntypes) (0: no interaction).
     fn cutsq_row(&self, ti: usize) -> &[f64];
     /// The contributions of a batch of pairs (i, j) inside the cutoff, written lane by lane with

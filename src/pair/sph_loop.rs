@@ -154,30 +154,40 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
     if input.dimension == 2 {
         // a 2D record needs every particle in the plane of the first, at rest across it
         let z0 = a.x.first().map(|x| x[2]).unwrap_or(0.0);
-        let (recs, off_plane) = records(nall, parallel, |i| {
-            let p = kernel.pack(input, i);
-            (Record::new::<2>(&p, at(input.type_mass, a.typ[i])), p.x[2] != z0 || p.v[2] != 0.0)
-        });
+        let rec = |p: &Packed, i: usize| (Record::new::<2>(p, at(input.type_mass, a.typ[i])), p.x[2] != z0 || p.v[2] != 0.0);
+        let (recs, off_plane) = records(nall, parallel, kernel, input, rec);
         if !off_plane {
             return sph_loop::<K, 2>(kernel, input, out, &recs);
         }
     }
-    let (recs, _) = records(nall, parallel, |i| (Record::new::<3>(&kernel.pack(input, i), 0.0), false));
+    let (recs, _) = records(nall, parallel, kernel, input, |p, _| (Record::new::<3>(p, 0.0), false));
     sph_loop::<K, 3>(kernel, input, out, &recs)
 }
 
-/// The records of atoms `0..n` made by `rec` (in parallel when `parallel`), and whether `rec`
-/// flagged any atom. Written in place: returned one by one and collected, a record went
-/// through the stack in scalar pieces and was read back whole, a store-forwarding stall.
-fn records(n: usize, parallel: bool, rec: impl Fn(usize) -> (Record, bool) + Sync) -> (Vec<Record>, bool) {
-    const CHUNK: usize = 1024;
+/// The records of atoms `0..n`, `rec(packed, i)` of the kernel's records (in parallel when
+/// `parallel`), and whether `rec` flagged any atom. The kernel packs [`LANES`] atoms at a time.
+/// Written in place: returned one by one and collected, a record went through the stack in
+/// scalar pieces and was read back whole, a store-forwarding stall.
+fn records<K: SphKernel>(n: usize, parallel: bool, kernel: &K, input: &PairInput, rec: impl Fn(&Packed, usize) -> (Record, bool) + Sync) -> (Vec<Record>, bool) {
+    const CHUNK: usize = 1024; // a multiple of LANES
     let mut v: Vec<Record> = Vec::with_capacity(n);
     let fill = |c: usize, slots: &mut [std::mem::MaybeUninit<Record>]| {
         let mut flagged = false;
-        for (k, slot) in slots.iter_mut().enumerate() {
-            let (r, f) = rec(c * CHUNK + k);
+        let mut quads = slots.chunks_exact_mut(LANES);
+        let mut i = c * CHUNK;
+        for quad in &mut quads {
+            kernel.pack_lanes(input, i, |l, p| {
+                let (r, f) = rec(p, i + l);
+                quad[l].write(r);
+                flagged |= f;
+            });
+            i += LANES;
+        }
+        for slot in quads.into_remainder() {
+            let (r, f) = rec(&kernel.pack(input, i), i);
             slot.write(r);
             flagged |= f;
+            i += 1;
         }
         flagged
     };

@@ -5,7 +5,7 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_p_over_rho2_min, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_pack, tait_pack_lanes, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
 use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -40,11 +40,11 @@ impl SphKernel for SphTaitwater {
     /// pair with the same arithmetic).
     #[inline(always)]
     fn pack(&self, input: &PairInput, i: usize) -> Packed {
-        let a = input.atoms;
-        let t = a.typ[i];
-        let rho0 = self.types.rho0.get(t).copied().unwrap_or(0.0);
-        let p = if rho0 == 0.0 { 0.0 } else { tait_p_over_rho2_min(a.rho[i], rho0, self.types.b[t], self.pmin) };
-        Packed { x: a.x[i], v: a.vest[i], a: a.rho[i], b: p }
+        tait_pack(&self.types, self.pmin, input, i)
+    }
+    #[inline(always)]
+    fn pack_lanes(&self, input: &PairInput, i0: usize, each: impl FnMut(usize, &Packed)) {
+        tait_pack_lanes(&self.types, self.pmin, input, i0, each)
     }
     #[inline(always)]
     fn cutsq_row(&self, ti: usize) -> &[f64] {

@@ -306,7 +306,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                         (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
                     };
                     // apply in list order (the sums of a one-pair-at-a-time loop)
-                    for l in 0..n {
+                    let mut apply = |l: usize| {
                         let j = js[l];
                         own += ri[l];
                         if D == 3 {
@@ -321,6 +321,12 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                                 }
                             }
                         }
+                    };
+                    // a whole batch with a constant count, which the compiler unrolls
+                    if n == LANES {
+                        (0..LANES).for_each(&mut apply);
+                    } else {
+                        (0..n).for_each(&mut apply);
                     }
                     if eflag {
                         for l in 0..n {

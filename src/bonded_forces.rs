@@ -290,7 +290,7 @@ impl Simulation {
         }
         let ctx = Kernels { shifts: true, ..ctx };
         ctx.run(&lists.bonds.leftover, &lists.angles.leftover, &lists.dihedrals.leftover, &shared, &mut tally);
-        drop(shared);
+        // `shared` points into f: not used after this
         self.atoms.f = f;
         Ok(tally)
     }

@@ -305,8 +305,16 @@ pub fn at<T: Copy>(s: &[T], i: usize) -> T {
     unsafe { *s.get_unchecked(i) }
 }
 
-/// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`].
+/// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`]. Copy, so
+/// that a task can hold its own copy: through a captured reference the compiler reloaded the
+/// pointer after every store made through it.
 pub struct SharedMut<T>(*mut T, usize);
+impl<T> Clone for SharedMut<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for SharedMut<T> {}
 unsafe impl<T> Sync for SharedMut<T> {}
 unsafe impl<T> Send for SharedMut<T> {}
 impl<T> SharedMut<T> {

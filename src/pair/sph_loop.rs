@@ -251,6 +251,9 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let parts = for_each_chunk_then(
         input.list,
         |chunk| {
+            // the task's own copies: values read through the closure's captures were loaded
+            // again after every store to the accumulators
+            let (shared, shared_e, nlocal) = (shared, shared_e, nlocal);
             let mut t = Tally::default();
             let mut inside: Vec<u32> = Vec::with_capacity(128);
             for i in chunk.start..chunk.end {

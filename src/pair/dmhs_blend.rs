@@ -106,6 +106,7 @@ impl PairStyle for DmhsBlend {
                             m: L::splat(input.type_mass[tj]),
                             del: [L::splat(del[0]), L::splat(del[1]), L::splat(del[2])],
                             rsq: L::splat(rsq),
+                            r: L::splat(rsq.sqrt()),
                             v: [L::splat(pj.v[0]), L::splat(pj.v[1]), L::splat(pj.v[2])],
                             a: L::splat(pj.a),
                             b: L::splat(pj.b),

@@ -80,7 +80,7 @@ impl SphKernel for DmhsHeatConduction {
     fn pair_lanes<const D: usize>(&self, _input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
         let kh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
         let sup = SupportLanes::gather(|l| Support::new(kh[l].1));
-        let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
+        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
         // dE_i = m_i m_j (kappa_i + kappa_j)(T_i - T_j) wfd / (rho_i rho_j) = -dE_j
         let de = lanes(|l| pi.v[0] * b.v[0][l] * (2.0 * kh[l].0 * (pi.b - b.b[l]) * wfd[l] / (pi.a * b.a[l])));
         SphContribution { de_i: de, de_j: lanes(|l| -de[l]), ..SphContribution::default() }

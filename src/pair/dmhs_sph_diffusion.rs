@@ -51,7 +51,7 @@ impl SphKernel for SphDiffusion {
     fn pair_lanes<const D: usize>(&self, _input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
         let dh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
         let sup = SupportLanes::gather(|l| Support::new(dh[l].1));
-        let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
+        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
         let dw = lanes(|l| pi.a * b.a[l] * dh[l].0 * (pi.b - b.b[l]) * wfd[l]);
         SphContribution { de_i: dw, de_j: lanes(|l| -dw[l]), ..SphContribution::default() }
     }

@@ -55,10 +55,10 @@ impl Kernel {
 
     /// [`Kernel::wfd_with`] for a batch of pairs, lane by lane (the kernel and dimension are
     /// chosen once per batch, so the compiler vectorizes each arm; the same operations per lane
-    /// give the same bits).
+    /// give the same bits). `r` is the pairs' distance, [`Batch::r`].
     #[inline(always)]
-    pub fn wfd_lanes(self, rsq: &L, s: &SupportLanes, dim3: bool) -> L {
-        let r = rsq.sqrt();
+    pub fn wfd_lanes(self, r: &L, s: &SupportLanes, dim3: bool) -> L {
+        let r = *r;
         match (self, dim3) {
             (Kernel::Lucy, false) => lucy_wfd_2d(r, s.h, s.ihsq),
             (Kernel::Lucy, true) => lucy_wfd_3d(r, s.h, s.ih, s.ihsq),

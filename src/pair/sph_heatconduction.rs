@@ -43,7 +43,7 @@ impl SphKernel for SphHeatConduction {
         let dh: [(f64, f64); LANES] = std::array::from_fn(|l| *self.pairs.get(ti, b.tj[l]));
         // LAMMPS computes 1/h per pair: Support::new does the same arithmetic
         let sup = SupportLanes::gather(|l| Support::new(dh[l].1));
-        let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
+        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
         let imass = at(input.type_mass, ti);
         let jmass = b.m;
         let de = lanes(|l| 2.0 * imass * jmass[l] / (imass + jmass[l]));

@@ -56,7 +56,7 @@ impl SphKernel for SphTaitwater {
         let sup = SupportLanes::gather(|l| d[l].0);
         let (eps, visc_c) = (lanes(|l| d[l].1), lanes(|l| d[l].2));
         let (del, rsq) = (&b.del, &b.rsq);
-        let wfd = self.kernel.wfd_lanes(rsq, &sup, self.dim3);
+        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
         let imass = at(input.type_mass, ti);
         let jmass = b.m;
         let vi = pi.v;

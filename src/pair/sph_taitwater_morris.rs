@@ -57,7 +57,7 @@ impl SphKernel for SphTaitwaterMorris {
         let sup = SupportLanes::gather(|l| d[l].1);
         let mu = lanes(|l| d[l].0);
         let del = &b.del;
-        let wfd = self.kernel.wfd_lanes(&b.rsq, &sup, self.dim3);
+        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
         let imass = at(input.type_mass, ti);
         let jmass = b.m;
         let vi = pi.v;

@@ -200,6 +200,9 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let update = input.advance;
     let dt = input.dt;
     let parts = for_each_slab(input.list.chunks.len(), nlocal, |c| {
+        // the task's own copies: read through the closure's captures, they were loaded again
+        // after every store to the forces
+        let (fsh, tsh, nlocal) = (fsh, tsh, nlocal);
         let chunk = &input.list.chunks[c];
         let mut t = Tally::default();
         // SAFETY: chunk c of the store is used only by the work item of list chunk c
@@ -223,7 +226,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
             }
             let src = LaneSrc { n: b.n, ij: [b.i, b.j], e: b.e, x, v, omega, radius, rmass, typ, values, hsize };
             let mut r = model.contact_lanes(&src, update, dt);
-            for l in 0..b.n {
+            let mut apply = |l: usize| {
                 let e = b.e[l];
                 for d in 0..hsize {
                     values[e * hsize + d] = r.hist[d][l];
@@ -269,6 +272,12 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     t.virial[4] += w * del[0] * f[2];
                     t.virial[5] += w * del[1] * f[2];
                 }
+            };
+            // a whole batch with a constant count, which the compiler unrolls
+            if b.n == LANES {
+                (0..LANES).for_each(&mut apply);
+            } else {
+                (0..b.n).for_each(&mut apply);
             }
         };
         // lanes filled so far (a local, so it stays in a register)

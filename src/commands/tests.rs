@@ -2,7 +2,8 @@ use super::run_plain;
 use crate::sim::Simulation;
 
 /// The LAMMPS LJ melt, run through the library: every atom stays, the total momentum (zero from
-/// `velocity ... create`) stays zero, and fix nve keeps the total energy within 1% (the lattice melting at T = 3 drifts it by 0.3%).
+/// `velocity ... create`) stays zero, and fix nve keeps the total energy within 1% (the lattice
+/// melting at T = 3 drifts it by 0.3%).
 #[test]
 fn lj_melt_runs() {
     let deck = "units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 box\n\

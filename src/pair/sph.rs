@@ -263,9 +263,10 @@ pub fn tait_pack(types: &TaitTypes, pmin: Option<f64>, input: &PairInput, i: usi
     Packed { x: a.x[i], v: a.vest[i], a: a.rho[i], b: p }
 }
 
-/// [`tait_pack`] of particles `i0..i0 + LANES` (to `each`, as [`SphKernel::pack_lanes`]), the pressures as lane vectors: the same
-/// operations per lane, so the same bits, with one vector division where the scalar code makes
-/// four (the divisions' latency dominated the per-particle preparation).
+/// [`tait_pack`] of particles `i0..i0 + LANES` (to `each`, as [`SphKernel::pack_lanes`]), with
+/// the pressures as lane vectors: the same operations per lane, so the same bits, with one vector
+/// division where the scalar code makes four (the divisions' latency dominated the per-particle
+/// preparation).
 #[inline(always)]
 pub fn tait_pack_lanes(types: &TaitTypes, pmin: Option<f64>, input: &PairInput, i0: usize, mut each: impl FnMut(usize, &Packed)) {
     if pmin.is_some() {

@@ -226,7 +226,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
             }
             let src = LaneSrc { n: b.n, ij: [b.i, b.j], e: b.e, x, v, omega, radius, rmass, typ, values, hsize };
             let mut r = model.contact_lanes(&src, update, dt);
-            let mut apply = |l: usize| {
+            let apply = |l: usize| {
                 let e = b.e[l];
                 for d in 0..hsize {
                     values[e * hsize + d] = r.hist[d][l];
@@ -273,12 +273,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     t.virial[5] += w * del[1] * f[2];
                 }
             };
-            // a whole batch with a constant count, which the compiler unrolls
-            if b.n == LANES {
-                (0..LANES).for_each(&mut apply);
-            } else {
-                (0..b.n).for_each(&mut apply);
-            }
+            super::lanes::for_each_lane(b.n, apply);
         };
         // lanes filled so far (a local, so it stays in a register)
         let mut n = 0usize;

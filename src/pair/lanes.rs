@@ -167,6 +167,18 @@ impl L {
     }
 }
 
+/// `f(l)` for the lanes `0..n` (n <= LANES) in order. A full batch runs with the constant count
+/// [`LANES`], which the compiler unrolls: with the count a variable, a running sum the calls add to
+/// lived in a stack slot.
+#[inline(always)]
+pub fn for_each_lane(n: usize, mut f: impl FnMut(usize)) {
+    if n == LANES {
+        (0..LANES).for_each(&mut f);
+    } else {
+        (0..n).for_each(f);
+    }
+}
+
 /// Rows to columns of a 4x4 block: `out[k][l] = m[l][k]`.
 #[inline(always)]
 pub fn transpose4(m: [&[f64; 4]; 4]) -> [L; 4] {

@@ -9,7 +9,7 @@
 pub use super::lanes::{lanes, L, LANES};
 pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
 use super::PairInput;
-use std::ops::{Mul, Sub};
+use std::ops::{Div, Mul, Sub};
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
 
 /// The smoothing kernel of the force and rate terms. `Lucy` is what LAMMPS uses; the others are
@@ -280,19 +280,17 @@ pub fn tait_pack_lanes(types: &TaitTypes, pmin: Option<f64>, input: &PairInput, 
     let rho = lanes(|l| a.rho[i0 + l]);
     let rho0 = lanes(|l| types.rho0.get(t[l]).copied().unwrap_or(0.0));
     let b = lanes(|l| types.b.get(t[l]).copied().unwrap_or(0.0));
-    // tait_p_over_rho2, lane by lane
-    let tmp = rho / rho0;
-    let f = tmp * tmp * tmp;
-    let p = b * (f * f * tmp - 1.0) / (rho * rho);
+    let p = tait_p_over_rho2(rho, rho0, b);
     for l in 0..LANES {
         each(l, &Packed { x: a.x[i0 + l], v: a.vest[i0 + l], a: rho[l], b: if rho0[l] == 0.0 { 0.0 } else { p[l] } });
     }
 }
 
 /// LAMMPS' Tait equation of state written as P/rho^2 (`fi` in pair_sph_taitwater.cpp):
-/// t = rho/rho0; f = t^3; B (f^2 t - 1) / rho^2.
+/// t = rho/rho0; f = t^3; B (f^2 t - 1) / rho^2. For one particle (f64) or four ([`L`]), the
+/// same operations either way.
 #[inline(always)]
-pub fn tait_p_over_rho2(rho: f64, rho0: f64, b: f64) -> f64 {
+pub fn tait_p_over_rho2<T: Copy + Mul<Output = T> + Div<Output = T> + Sub<f64, Output = T>>(rho: T, rho0: T, b: T) -> T {
     let tmp = rho / rho0;
     let f = tmp * tmp * tmp;
     b * (f * f * tmp - 1.0) / (rho * rho)

@@ -12,7 +12,7 @@
 //! Rates and forces of a particle are kept as one row of four (2D: fx fy drho desph; 3D: fx fy
 //! fz drho, with desph beside), added with one vector operation per pair and partner.
 
-use super::lanes::{lanes, transpose4, L, LANES};
+use super::lanes::{for_each_lane, lanes, transpose4, L, LANES};
 use super::sph::{Packed, SphKernel};
 use super::{at, for_each_chunk_then, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
 use crate::neighbor::NEIGH_MASK;
@@ -313,7 +313,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                         (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
                     };
                     // apply in list order (the sums of a one-pair-at-a-time loop)
-                    let mut apply = |l: usize| {
+                    let apply = |l: usize| {
                         let j = js[l];
                         own += ri[l];
                         if D == 3 {
@@ -329,12 +329,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                             }
                         }
                     };
-                    // a whole batch with a constant count, which the compiler unrolls
-                    if n == LANES {
-                        (0..LANES).for_each(&mut apply);
-                    } else {
-                        (0..n).for_each(&mut apply);
-                    }
+                    for_each_lane(n, apply);
                     if eflag {
                         for l in 0..n {
                             let w = if js[l] < nlocal { 1.0 } else { 0.5 };

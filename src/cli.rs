@@ -19,6 +19,9 @@ usage:
   dmhs crosscheck DECK [options]    run DECK in dmhs and in LAMMPS; compare per-atom forces at
                                     step 0 and positions/velocities at the end
                                     (--against liggghts: in LIGGGHTS 3.8, for granular decks)
+  dmhs capture DECK --out DIR       dmhs' step-0 forces and final state of DECK as the files
+                                    lammps-refs/lammps_driver.py writes for LAMMPS
+                                    (forces0.txt, final.txt: %.17g-exact, sorted by atom ID)
   dmhs bench --against lammps [--against liggghts] DECK... [options]
                                     particle-steps per second of dmhs and the reference engines
   dmhs validate CASE [--quick]      run an SPH validation case against its analytic reference:
@@ -61,13 +64,14 @@ struct Cli {
     engine: Option<String>,
     json: Option<PathBuf>,
     img: Option<PathBuf>,
+    out: Option<PathBuf>,
 }
 
 fn parse(args: &[String]) -> Result<Cli, String> {
     let mut c = Cli { opts: DeckOptions { screen: true, log: Some(PathBuf::from("log.dmhs")), ..Default::default() }, ..Default::default() };
     let mut i = 0;
     if let Some(first) = args.first() {
-        if ["run", "check", "crosscheck", "bench", "validate", "help"].contains(&first.as_str()) {
+        if ["run", "check", "crosscheck", "capture", "bench", "validate", "help"].contains(&first.as_str()) {
             c.sub = first.clone();
             i = 1;
         }
@@ -174,6 +178,10 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 c.json = Some(PathBuf::from(value(i, a)?));
                 i += 2;
             }
+            "--out" => {
+                c.out = Some(PathBuf::from(value(i, a)?));
+                i += 2;
+            }
             "--img" => {
                 c.img = Some(PathBuf::from(value(i, a)?));
                 i += 2;
@@ -236,6 +244,7 @@ fn dispatch(cli: &Cli) -> i32 {
         "" | "run" => run_cmd(cli),
         "check" => check_cmd(cli),
         "crosscheck" => crate::cli_crosscheck::crosscheck_cmd(&cli.decks, &cli.opts, &cli.against, [cli.force_tol, cli.pos_tol, cli.vel_tol]),
+        "capture" => crate::cli_crosscheck::capture_cmd(&cli.decks, &cli.opts, cli.out.as_deref()),
         "validate" => crate::validate::validate_cmd(&cli.decks, cli.quick, cli.engine.as_deref(), cli.json.as_deref(), cli.img.as_deref()),
         _ => unreachable!(),
     }

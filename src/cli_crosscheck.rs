@@ -24,6 +24,31 @@ pub fn dmhs_capture(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<(Atom
     Ok((f0, fin, box_len))
 }
 
+/// `dmhs capture DECK --out DIR`: forces0.txt and final.txt of dmhs, in the format of
+/// lammps_driver.py (two engines, or two builds of dmhs, compare with `diff`).
+pub fn capture_cmd(decks: &[std::path::PathBuf], opts: &DeckOptions, out: Option<&Path>) -> i32 {
+    let ([deck], Some(out)) = (decks, out) else {
+        eprintln!("dmhs capture: give one deck and --out DIR");
+        return 2;
+    };
+    let deck_abs = std::fs::canonicalize(deck).unwrap_or(deck.clone());
+    let (forces0, fin, _) = match dmhs_capture(&deck_abs, &opts.vars) {
+        Ok(x) => x,
+        Err(e) => {
+            eprint!("{e}");
+            return 1;
+        }
+    };
+    let write = |name: &str, t: &AtomTable| crate::output::write_atomic(&out.join(name), t.to_text().as_bytes());
+    match std::fs::create_dir_all(out).and_then(|_| write("forces0.txt", &forces0)).and_then(|_| write("final.txt", &fin)) {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("dmhs capture: cannot write into {}: {e}", out.display());
+            1
+        }
+    }
+}
+
 /// Whether every difference is within its tolerance.
 pub fn within(diffs: &[Difference], tols: [f64; 3]) -> Vec<String> {
     let mut bad = vec![];

@@ -1,55 +1,22 @@
 //! dmhs: the Discrete Multi-Hybrid System engine (SPH + CGMD + DEM), a LAMMPS companion.
+//!
+//! The crate is in layers; each imports only the layers above it in this list
+//! (docs/architecture.md):
+//! - [`engine`]: the state the stages borrow (atoms, box, topology, units) and the machinery
+//!   every model shares (neighbour lists, threading, contact history, timing);
+//! - [`models`]: the physics (pair and bonded styles, fixes, computes, regions), one file per
+//!   style and one registry per kind;
+//! - [`output`]: what a run writes (log, thermo, dumps, pictures, charts);
+//! - [`sim`]: the simulation a deck builds and the time step that drives it;
+//! - [`deck`]: LAMMPS commands, data and restart files turned into a simulation;
+//! - [`tools`]: the command line and what it offers besides running a deck (crosscheck, bench,
+//!   validate, plot).
 
-pub mod analytic;
-pub mod atoms;
-pub mod bonded;
-pub mod bonded_forces;
-pub mod check;
-pub mod colors;
-pub mod cli;
-pub mod cli_crosscheck;
-pub mod bench;
-pub mod boundary;
-pub mod compute;
-pub mod contact_history;
-pub mod crosscheck;
-pub mod deck;
-pub mod create_atoms;
-pub mod domain;
-pub mod dump;
-pub mod dump_image;
-pub mod dump_vtu;
-pub mod fix;
-pub mod format;
-pub mod groups;
-pub mod lammps;
-pub mod lattice;
-pub mod liggghts;
-pub mod memory;
-pub mod neighbor;
+pub mod engine;
+pub mod models;
 pub mod output;
-pub mod pair;
-pub mod plot;
-pub mod plot_cmd;
-pub mod progress;
-pub mod random_park;
-pub mod region;
-pub mod render;
-pub mod restart;
-pub mod run;
 pub mod sim;
-pub mod special;
-pub mod stability;
-pub mod styles;
-pub mod thermo;
-pub mod timing;
-pub mod topology;
-pub mod units;
-pub mod validate;
-pub mod velocity;
-pub mod velocity_create;
-pub mod water;
-pub mod commands;
-pub mod data;
+pub mod deck;
+pub mod tools;
 
 pub use dmhs_parser as parser;

@@ -57,14 +57,14 @@ fn stored_event_counts() {
 
 #[test]
 fn live_event_counts() {
-    if dmhs::lammps::python_for_live_test().is_none() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
     let mut bad = vec![];
     for name in DECKS {
         let tmp = tempfile::tempdir().unwrap();
         let deck = root().join("lammps-refs/decks").join(format!("in.{name}"));
-        dmhs::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
+        dmhs::tools::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
         // the log holds the driver's `run 0` table first, then the deck's run: `events` takes the last
         bad.extend(compare(name, &tmp.path().join("log.lammps")));
     }

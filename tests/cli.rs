@@ -146,7 +146,7 @@ fn check_and_run_report_the_active_models() {
 /// rounds, a ratio column relative to LAMMPS, and the range of the per-round ratios.
 #[test]
 fn bench_repeats_rounds_and_reports_medians() {
-    if dmhs::lammps::python_for_live_test().is_none() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
     let tmp = tempfile::tempdir().unwrap();

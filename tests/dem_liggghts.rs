@@ -11,8 +11,8 @@
 //! missing the tests are skipped, unless DMHS_REQUIRE_LIGGGHTS=1 (set by .ci/run), which makes
 //! that a failure.
 
-use dmhs::cli_crosscheck::dmhs_capture;
-use dmhs::crosscheck::{compare_runs, report, AtomTable};
+use dmhs::tools::cli_crosscheck::dmhs_capture;
+use dmhs::tools::crosscheck::{compare_runs, report, AtomTable};
 use std::path::{Path, PathBuf};
 
 fn root() -> PathBuf {
@@ -22,7 +22,7 @@ fn root() -> PathBuf {
 /// False (and a note) when LIGGGHTS is missing and not required.
 fn have_liggghts() -> bool {
     let required = std::env::var("DMHS_REQUIRE_LIGGGHTS").map(|v| v == "1").unwrap_or(false);
-    match dmhs::liggghts::find_liggghts() {
+    match dmhs::tools::liggghts::find_liggghts() {
         Ok(_) => true,
         Err(e) => {
             assert!(!required, "DMHS_REQUIRE_LIGGGHTS=1 but LIGGGHTS is not available: {e}");
@@ -37,7 +37,7 @@ fn both(deck: &Path, vars: &[(&str, &str)]) -> ((AtomTable, AtomTable, f64), (At
     let vars: Vec<(String, Vec<String>)> = vars.iter().map(|(k, v)| (k.to_string(), vec![v.to_string()])).collect();
     let ours = dmhs_capture(deck, &vars).unwrap();
     let tmp = tempfile::tempdir().unwrap();
-    dmhs::liggghts::run_driver(deck, &vars, tmp.path()).unwrap();
+    dmhs::tools::liggghts::run_driver(deck, &vars, tmp.path()).unwrap();
     let theirs = (AtomTable::read(&tmp.path().join("forces0.txt")).unwrap(), AtomTable::read(&tmp.path().join("final.txt")).unwrap());
     (ours, theirs)
 }
@@ -130,7 +130,7 @@ fn bed_statistics_spread() {
         std::fs::remove_file(&d).unwrap();
     }
     let tmp = tempfile::tempdir().unwrap();
-    dmhs::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
+    dmhs::tools::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
     let (phi, z) = bed_statistics(&AtomTable::read(&tmp.path().join("final.txt")).unwrap(), 10.5, 10.5);
     println!("LAMMPS: packing fraction {phi:.4} contacts {z:.3}");
 }

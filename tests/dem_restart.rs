@@ -3,7 +3,7 @@
 //! contact histories included; the same continuation without the stored histories does not.
 //! Also: granular runs give the same bits on 1, 2 and 3 threads.
 
-use dmhs::crosscheck::capture_state;
+use dmhs::tools::crosscheck::capture_state;
 use dmhs::deck::{run_file, DeckOptions};
 use std::path::{Path, PathBuf};
 

@@ -1,8 +1,8 @@
 //! Results are bit-identical whatever the number of threads (the slab-chunk pair loop gives
 //! every atom its force contributions in a fixed order), and between repeated runs.
 
-use dmhs::cli::deck_dir;
-use dmhs::crosscheck::capture_state;
+use dmhs::tools::cli::deck_dir;
+use dmhs::tools::crosscheck::capture_state;
 use dmhs::deck::{run_file, DeckOptions};
 use std::path::PathBuf;
 

@@ -62,7 +62,7 @@ fn stefan_front(n: usize) -> Vec<(f64, f64)> {
 
 /// Neumann's front for the deck's values.
 fn stefan_exact(t: f64) -> f64 {
-    let lambda = dmhs::analytic::stefan_lambda(1000.0, 1.0, 2.0, 1.0, 1.0, 50.0, 0.0, 25.0, 100.0);
+    let lambda = dmhs::tools::analytic::stefan_lambda(1000.0, 1.0, 2.0, 1.0, 1.0, 50.0, 0.0, 25.0, 100.0);
     2.0 * lambda * (t / 2000.0).sqrt()
 }
 
@@ -84,7 +84,7 @@ fn fitted_lambda_error(errs: &[(f64, f64, f64)]) -> f64 {
         xs += x * s;
         ss += s * s;
     }
-    let lambda = dmhs::analytic::stefan_lambda(1000.0, 1.0, 2.0, 1.0, 1.0, 50.0, 0.0, 25.0, 100.0);
+    let lambda = dmhs::tools::analytic::stefan_lambda(1000.0, 1.0, 2.0, 1.0, 1.0, 50.0, 0.0, 25.0, 100.0);
     xs / ss / lambda - 1.0
 }
 
@@ -122,7 +122,7 @@ fn stefan_front_at_200_per_metre() {
     for (t, x, e) in stefan_errors_of(&f100) {
         println!("N = 100  t = {t:5.1}  X = {x:.5}  error {e:+.4}");
     }
-    use dmhs::plot::{Chart, Series};
+    use dmhs::output::plot::{Chart, Series};
     let exact: Vec<(f64, f64)> = (0..=200).map(|k| 40.0 * k as f64 / 200.0).map(|t| (t, stefan_exact(t))).collect();
     let chart = Chart::new("Stefan problem: solidification front vs Neumann's solution")
         .x_label("t (s)")
@@ -395,18 +395,18 @@ fn blend_is_the_weighted_sum_of_sph_and_dem() {
 /// DMHS_REQUIRE_LAMMPS=1.
 #[test]
 fn hybrid_heat_exchange_matches_lammps() {
-    if dmhs::lammps::python_for_live_test().is_none() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
     let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/heat/in.conduct_hybrid");
-    let (ours0, ours, box_len) = dmhs::cli_crosscheck::dmhs_capture(&deck, &[]).unwrap();
+    let (ours0, ours, box_len) = dmhs::tools::cli_crosscheck::dmhs_capture(&deck, &[]).unwrap();
     let tmp = tempfile::tempdir().unwrap();
-    dmhs::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
-    let theirs0 = dmhs::crosscheck::AtomTable::read(&tmp.path().join("forces0.txt")).unwrap();
-    let theirs = dmhs::crosscheck::AtomTable::read(&tmp.path().join("final.txt")).unwrap();
-    let diffs = dmhs::crosscheck::compare_runs(&ours0, &theirs0, &ours, &theirs, box_len).unwrap();
-    let bad = dmhs::cli_crosscheck::within(&diffs, [1e-12, 1e-12, 1e-12]);
-    assert!(bad.is_empty(), "{}\n{}", dmhs::crosscheck::report(&diffs), bad.join("\n"));
+    dmhs::tools::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
+    let theirs0 = dmhs::tools::crosscheck::AtomTable::read(&tmp.path().join("forces0.txt")).unwrap();
+    let theirs = dmhs::tools::crosscheck::AtomTable::read(&tmp.path().join("final.txt")).unwrap();
+    let diffs = dmhs::tools::crosscheck::compare_runs(&ours0, &theirs0, &ours, &theirs, box_len).unwrap();
+    let bad = dmhs::tools::cli_crosscheck::within(&diffs, [1e-12, 1e-12, 1e-12]);
+    assert!(bad.is_empty(), "{}\n{}", dmhs::tools::crosscheck::report(&diffs), bad.join("\n"));
     // the wall (no integrator) kept esph = 0; the solids warmed
     let e = ours.column("esph").unwrap();
     let warm = ours.rows.values().filter(|r| r.1[e] > 1.0).count();

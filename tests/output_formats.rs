@@ -38,12 +38,12 @@ fn files_have_lammps_layout() {
 
 #[test]
 fn lammps_and_logfile_read_the_outputs() {
-    let Some(python) = dmhs::lammps::python_for_live_test() else {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
     let tmp = run_outputs();
     let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/outputs/check_outputs.py");
-    let o = Command::new(&python).arg(script).arg(tmp.path()).env("LD_LIBRARY_PATH", dmhs::lammps::library_path(&python)).output().unwrap();
+    let o = Command::new(&python).arg(script).arg(tmp.path()).env("LD_LIBRARY_PATH", dmhs::tools::lammps::library_path(&python)).output().unwrap();
     let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     println!("{text}");
     assert!(o.status.success() && text.contains("ALL OK"), "output check failed:\n{text}");
@@ -63,7 +63,7 @@ fn vtu_files_are_read_by_meshio() {
     }
     let text = std::fs::read_to_string(tmp.path().join("sel_10.vtu")).unwrap();
     assert!(text.contains("NumberOfPoints=\"36\"") && text.contains("Name=\"c_t\""));
-    let Some(python) = dmhs::lammps::python_for_live_test() else {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
     let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/outputs/check_vtu.py");

@@ -3,7 +3,7 @@
 //! the camera matches LAMMPS' (blob centres in LAMMPS' own PPM images, when LAMMPS is installed).
 
 use dmhs::deck::{run_text, DeckOptions};
-use dmhs::render::decode_png;
+use dmhs::output::render::decode_png;
 use std::path::Path;
 
 fn run_in(dir: &Path, deck: &str) -> Result<dmhs::deck::DeckRun, String> {
@@ -277,10 +277,10 @@ fn read_ppm(path: &Path) -> (usize, usize, Vec<u8>) {
 
 #[test]
 fn camera_matches_lammps() {
-    let lmp = match dmhs::lammps::find_python().and_then(|p| dmhs::lammps::find_lmp(&p).map(|l| (p, l))) {
+    let lmp = match dmhs::tools::lammps::find_python().and_then(|p| dmhs::tools::lammps::find_lmp(&p).map(|l| (p, l))) {
         Ok(x) => x,
         Err(e) => {
-            assert!(!dmhs::lammps::live_tests_required(), "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
+            assert!(!dmhs::tools::lammps::live_tests_required(), "DMHS_REQUIRE_LAMMPS=1 but LAMMPS is not available: {e}");
             println!("skipped: {e}");
             return;
         }
@@ -299,7 +299,7 @@ fn camera_matches_lammps() {
         let o = std::process::Command::new(&lmp.1)
             .args(["-in", "in.deck", "-log", "none", "-screen", "none"])
             .current_dir(tmp.path())
-            .env("LD_LIBRARY_PATH", dmhs::lammps::library_path(&lmp.0))
+            .env("LD_LIBRARY_PATH", dmhs::tools::lammps::library_path(&lmp.0))
             .output()
             .unwrap();
         assert!(o.status.success(), "LAMMPS failed: {}", String::from_utf8_lossy(&o.stdout));
@@ -327,7 +327,7 @@ thermo_style custom step temp ke pe\nthermo 10\nrun 30\nthermo_style custom step
     let o = run(&["run", "in.lj", "-log", "log.lj", "-screen", "none"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // both runs' tables: Temp spans steps 0..60, KinEng only the first run
-    let t = dmhs::plot_cmd::read_table(&std::fs::read_to_string(tmp.path().join("log.lj")).unwrap()).unwrap();
+    let t = dmhs::tools::plot_cmd::read_table(&std::fs::read_to_string(tmp.path().join("log.lj")).unwrap()).unwrap();
     assert_eq!(t.columns, ["Step", "Temp", "KinEng", "PotEng", "Press"]);
     assert_eq!(t.rows.len(), 8);
     assert_eq!((t.rows[0][0], t.rows[7][0]), (0.0, 60.0));

@@ -6,7 +6,7 @@
 //! complete solidification) is `#[ignore]`d: `cargo test --release --test scene_casting -- --ignored`.
 
 use dmhs::deck::{run_file, DeckOptions};
-use dmhs::validate::{parse_thermo, Thermo};
+use dmhs::tools::validate::{parse_thermo, Thermo};
 use std::path::Path;
 
 fn run_casting(vars: &[(&str, &str)]) -> Thermo {

@@ -7,7 +7,7 @@
 //! * c_cmax: the largest soil water concentration; c_rmax: the largest soil radius.
 
 use dmhs::deck::{run_text, DeckOptions};
-use dmhs::plot_cmd::read_table;
+use dmhs::tools::plot_cmd::read_table;
 
 #[test]
 fn soil_stays_on_the_wall_until_it_is_wet_then_is_washed_off() {

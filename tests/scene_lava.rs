@@ -8,7 +8,7 @@
 //! `cargo test --release --test scene_lava -- --ignored --nocapture`.
 
 use dmhs::deck::{run_file, DeckOptions, DeckRun};
-use dmhs::validate::parse_thermo;
+use dmhs::tools::validate::parse_thermo;
 use std::collections::HashMap;
 use std::path::Path;
 

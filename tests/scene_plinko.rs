@@ -4,7 +4,7 @@
 //! v_yC_flexible, the heights of the two populations' centres of mass (Fig 14b).
 
 use dmhs::deck::{run_text, DeckOptions};
-use dmhs::plot_cmd::read_table;
+use dmhs::tools::plot_cmd::read_table;
 
 #[test]
 fn flexible_cells_descend_faster_than_rigid_ones() {

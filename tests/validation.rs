@@ -8,7 +8,7 @@
 //! cases (a few minutes) and the quick speed-accuracy sweep (needs LAMMPS).
 //! The live LAMMPS comparison is skipped when LAMMPS is missing, unless DMHS_REQUIRE_LAMMPS=1.
 
-use dmhs::validate::{run_case, run_dmhs, run_lammps, CaseReport, Engine, Options};
+use dmhs::tools::validate::{run_case, run_dmhs, run_lammps, CaseReport, Engine, Options};
 
 fn quick() -> Options {
     Options { quick: true, engine: Engine::Dmhs }
@@ -86,14 +86,14 @@ fn dam_break_front_against_martin_moyce() {
 /// dmhs and LAMMPS on the same validation deck: the same state, hence the same error.
 #[test]
 fn validation_deck_matches_lammps() {
-    if dmhs::lammps::python_for_live_test().is_none() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
     let vars = vec![("N".to_string(), "20".to_string())];
     let ours = run_dmhs("poiseuille", &vars, &[0.1]).unwrap();
     let theirs = run_lammps("poiseuille", &vars, &[0.1]).unwrap();
     assert_eq!(ours.last().step, theirs.last().step);
-    let d = dmhs::crosscheck::compare(&ours.last().state, &theirs.last().state, "velocity", &["vx", "vy", "vz"], dmhs::crosscheck::Scale::MaxMagnitude).unwrap();
+    let d = dmhs::tools::crosscheck::compare(&ours.last().state, &theirs.last().state, "velocity", &["vx", "vy", "vz"], dmhs::tools::crosscheck::Scale::MaxMagnitude).unwrap();
     assert!(d.max_rel < 1e-10, "{d:?}");
 }
 
@@ -128,7 +128,7 @@ fn cli_writes_json_and_charts() {
 #[ignore]
 fn full_cases() {
     let opts = Options { quick: false, engine: Engine::Dmhs };
-    for case in dmhs::validate::CASES {
+    for case in dmhs::tools::validate::CASES {
         let rep = run_case(case, &opts).unwrap();
         println!("{}", rep.render());
         assert_passed(&rep);
@@ -139,7 +139,7 @@ fn full_cases() {
 #[test]
 #[ignore]
 fn speed_sweep_quick() {
-    let points = dmhs::validate::speed_sweep(true, &mut |_| {}).unwrap();
+    let points = dmhs::tools::validate::speed_sweep(true, &mut |_| {}).unwrap();
     for p in &points {
         assert!(p.error.is_some() && p.seconds > 0.0, "{p:?}");
     }

@@ -8,10 +8,10 @@
 //! * fix dmhs/stokes: terminal velocity F / (6 pi mu r);
 //! * restart keeps the water field; moving SPH walls (velocity set + setforce) carry their velocity.
 
-use dmhs::analytic::heat_half_spaces;
+use dmhs::tools::analytic::heat_half_spaces;
 use dmhs::deck::{run_text, DeckOptions};
 use dmhs::sim::Simulation;
-use dmhs::water::{conc, water};
+use dmhs::engine::water::{conc, water};
 use std::f64::consts::PI;
 
 fn run(deck: &str, vars: &[(&str, &str)]) -> Simulation {
@@ -366,7 +366,7 @@ fn dry_wet_lj_is_lj_cut() {
     };
     let mut a = run(&deck("lj/cut 2.5", "1.0 1.0"), &[]);
     let mut b = run(&deck("dmhs/lj/wet 2.5", "1.0 1.0 0.5"), &[]);
-    let (ea, eb) = (dmhs::thermo::values(&mut a), dmhs::thermo::values(&mut b));
+    let (ea, eb) = (dmhs::output::thermo::values(&mut a), dmhs::output::thermo::values(&mut b));
     let (ea, eb) = (ea.unwrap(), eb.unwrap());
     for k in 0..ea.len() {
         assert!((ea[k] - eb[k]).abs() <= 1e-9 * ea[k].abs().max(1.0), "thermo column {k}: {} vs {}", ea[k], eb[k]);
@@ -390,8 +390,8 @@ fn pair_rate_is_eq_26() {
          set atom 1 dmhs/conc 0.8\nset atom 2 dmhs/conc 0.1\n";
     let sim = start(deck);
     let (i, j) = (index_of(&sim, 1), index_of(&sim, 2));
-    let dw = sim.atoms.extra[sim.atoms.find_extra(dmhs::water::DWATER).unwrap()].data.clone();
-    let wfd = dmhs::pair::sph::Kernel::Lucy.wfd(0.05 * 0.05, 0.1, true);
+    let dw = sim.atoms.extra[sim.atoms.find_extra(dmhs::engine::water::DWATER).unwrap()].data.clone();
+    let wfd = dmhs::models::pair::sph::Kernel::Lucy.wfd(0.05 * 0.05, 0.1, true);
     let expected = (2.0 / 1000.0) * (3.0 / 1500.0) * 2.0 * 0.7 * (0.8 - 0.1) * wfd;
     assert!(expected < 0.0);
     assert!((dw[i] - expected).abs() <= 1e-14 * expected.abs(), "{} vs {expected}", dw[i]);
@@ -423,7 +423,7 @@ fn diffusion_reports_its_time_step_limit() {
     // 0.05 h^2/D keeps a factor of about 2 below that
     let deck = include_str!("../examples/diffusion/in.fick");
     let sim = run(&deck.replace("run          ${nsteps}", ""), &[]);
-    let limits = dmhs::stability::limits(&sim, false);
+    let limits = dmhs::sim::stability::limits(&sim, false);
     let l = limits.iter().find(|l| l.model == "water diffusion").expect("a diffusion limit");
     let (h, d) = (0.026, 1e-3);
     assert!((l.dt_max - 0.05 * h * h / d).abs() < 1e-15, "{l:?}");

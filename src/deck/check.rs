@@ -1,0 +1,81 @@
+//! `dmhs check`: what a deck sets up, without running it.
+
+use crate::sim::run::RunOptions;
+use crate::sim::Simulation;
+
+impl Simulation {
+    /// In check mode, `run` validates that the run could start, and records it.
+    pub fn check_run(&mut self, opts: &RunOptions) -> Result<(), String> {
+        self.init_run()?;
+        let n = if opts.upto { opts.nsteps - self.step } else { opts.nsteps };
+        self.out.print(&format!("check: run {} steps from step {} (not run)", n, self.step));
+        // the forces of the current state give the force-based limit
+        let known = self.setup(opts.pre).is_ok();
+        let (text, warnings) = crate::sim::stability::report(self, &crate::sim::stability::limits(self, known));
+        self.out.print(&text);
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
+        }
+        self.checked_runs += 1;
+        Ok(())
+    }
+
+    /// A human-readable summary of the simulation set-up.
+    pub fn describe(&self) -> String {
+        let mut s = String::new();
+        s += &format!("units {}, dimension {}, atom_style {}\n", self.units.name(), self.dimension, self.atom_style.join(" "));
+        match &self.domain {
+            Some(d) => {
+                let b: Vec<String> = (0..3).map(|k| format!("{}{}", d.boundary[k][0].letter(), d.boundary[k][1].letter())).collect();
+                s += &format!("box: ({}, {}, {}) to ({}, {}, {}), boundary {}\n", d.lo[0], d.lo[1], d.lo[2], d.hi[0], d.hi[1], d.hi[2], b.join(" "));
+            }
+            None => s += "box: not defined\n",
+        }
+        s += &format!("atoms: {} of {} types", self.atoms.nlocal, self.ntypes);
+        let t = &self.topo;
+        if !t.is_empty() {
+            s += &format!("; {} bonds, {} angles, {} dihedrals", t.bonds.len(), t.angles.len(), t.dihedrals.len());
+        }
+        s += "\n";
+        for k in 1..=self.ntypes {
+            let count = self.atoms.typ[..self.atoms.nlocal].iter().filter(|&&x| x == k).count();
+            let m = if self.atoms.features.per_atom_mass() { "per-atom".to_string() } else if self.mass_set[k] { format!("{}", self.type_mass[k]) } else { "NOT SET".to_string() };
+            s += &format!("  type {k}: {count} atoms, mass {m}\n");
+        }
+        let groups: Vec<String> = self.groups.names().map(|(k, n)| format!("{n} ({})", self.group_count(1 << k))).collect();
+        s += &format!("groups: {}\n", groups.join(", "));
+        s += "models:\n";
+        match &self.pair {
+            Some(p) => s += &format!("  pair {}\n", p.describe().replace('\n', "\n  ")),
+            None => s += "  pair: none\n",
+        }
+        if let Some(b) = &self.bond_style {
+            s += &format!("  bond {} ({} types)\n", b.name(), t.nbondtypes);
+        }
+        if let Some(b) = &self.angle_style {
+            s += &format!("  angle {} ({} types)\n", b.name(), t.nangletypes);
+        }
+        if let Some(b) = &self.dihedral_style {
+            s += &format!("  dihedral {} ({} types)\n", b.name(), t.ndihedraltypes);
+        }
+        let sb = &self.special_bonds;
+        s += &format!("  special_bonds lj {} {} {} coul {} {} {}\n", sb.lj[1], sb.lj[2], sb.lj[3], sb.coul[1], sb.coul[2], sb.coul[3]);
+        s += &format!("neighbor: skin {}, every {} delay {} check {}\n", self.neigh_settings.skin, self.neigh_settings.every, self.neigh_settings.delay, if self.neigh_settings.check { "yes" } else { "no" });
+        s += &format!("timestep: {}\n", self.dt);
+        s += "fixes:\n";
+        for f in &self.fixes {
+            let g = self.groups.names().find(|(k, _)| 1u32 << k == f.groupbit()).map(|(_, n)| n).unwrap_or("?");
+            s += &format!("  {} (group {g})\n", f.describe());
+        }
+        s += "computes:\n";
+        for c in self.computes.iter().skip(3) {
+            s += &format!("  {}\n", c.describe());
+        }
+        s += "outputs:\n";
+        s += &format!("  thermo every {} steps: {}\n", self.thermo.every, self.thermo.columns.iter().map(|c| c.label.as_str()).collect::<Vec<_>>().join(" "));
+        for d in &self.dumps {
+            s += &format!("  dump {} {} every {} -> {}\n", d.id, d.style, d.every, d.path.display());
+        }
+        s
+    }
+}

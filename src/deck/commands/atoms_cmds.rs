@@ -1,0 +1,360 @@
+//! Per-atom properties: mass, set, group, velocity.
+
+use super::need_box;
+use crate::sim::Simulation;
+use dmhs_parser::args::{word_f64, word_i64};
+use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
+
+pub fn mass(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let mut a = Args::new(cmd, "mass I value  (I: type or range n*m)");
+    let (lo, hi) = a.type_range("atom type", sim.ntypes)?;
+    let m = a.positive_f64("mass")?;
+    a.finish()?;
+    for t in lo..=hi {
+        sim.type_mass[t] = m;
+        sim.mass_set[t] = true;
+    }
+    Ok(())
+}
+
+/// Parse an ID or type list element: `n`, `n*m`, `*`, `n*`, `*m` or `n:m[:k]`, within `lo..=hi`.
+fn id_range(w: &Word, max: i64) -> DResult<Vec<(i64, i64, i64)>> {
+    let t = w.text.as_str();
+    let bad = || Diagnostic::at(w.span, format!("invalid range `{t}`"), "expected n, n*m or n:m:k");
+    if t.contains(':') {
+        let parts: Vec<&str> = t.split(':').collect();
+        if parts.len() < 2 || parts.len() > 3 {
+            return Err(bad());
+        }
+        let p = |s: &str| s.parse::<i64>().map_err(|_| bad());
+        let (a, b) = (p(parts[0])?, p(parts[1])?);
+        let k = if parts.len() == 3 { p(parts[2])? } else { 1 };
+        if k <= 0 || a > b {
+            return Err(bad());
+        }
+        return Ok(vec![(a, b, k)]);
+    }
+    match t.find('*') {
+        None => {
+            let n = word_i64(w, "an ID")?;
+            Ok(vec![(n, n, 1)])
+        }
+        Some(k) => {
+            let lo = if k == 0 { 1 } else { t[..k].parse().map_err(|_| bad())? };
+            let hi = if k + 1 == t.len() { max } else { t[k + 1..].parse().map_err(|_| bad())? };
+            Ok(vec![(lo, hi, 1)])
+        }
+    }
+}
+
+/// Which owned atoms a `group`/`set` selection of `type`, `id` or `molecule` values picks.
+fn select_by_value(sim: &Simulation, a: &mut Args, values: impl Fn(usize) -> i64, max: i64) -> DResult<Vec<bool>> {
+    let n = sim.atoms.nlocal;
+    let ops = ["<", "<=", ">", ">=", "==", "!=", "<>"];
+    if let Some(w) = a.peek() {
+        if let Some(k) = ops.iter().position(|o| *o == w.text) {
+            a.skip(1);
+            let v1 = word_i64(a.word("value")?, "value")?;
+            let v2 = if k == 6 { word_i64(a.word("upper value")?, "upper value")? } else { 0 };
+            return Ok((0..n)
+                .map(|i| {
+                    let x = values(i);
+                    match k {
+                        0 => x < v1,
+                        1 => x <= v1,
+                        2 => x > v1,
+                        3 => x >= v1,
+                        4 => x == v1,
+                        5 => x != v1,
+                        _ => x >= v1 && x <= v2,
+                    }
+                })
+                .collect());
+        }
+    }
+    if a.is_empty() {
+        return Err(a.missing("a value or range"));
+    }
+    let mut ranges = vec![];
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        ranges.extend(id_range(w, max)?);
+    }
+    Ok((0..n).map(|i| {
+        let x = values(i);
+        ranges.iter().any(|&(lo, hi, k)| x >= lo && x <= hi && (x - lo) % k == 0)
+    }).collect())
+}
+
+pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let syntax = "group ID style args  (style: type, id, molecule (values, ranges or <, <=, >, >=, ==, !=, <> v1 v2), region ID, subtract/union/intersect G1 G2 ..., delete, clear, empty)";
+    let mut a = Args::new(cmd, syntax);
+    let idw = a.word("group ID")?;
+    let style = a.word("group style")?;
+    if style.text == "delete" {
+        a.finish()?;
+        let k = sim.groups.find(&idw.text).ok_or_else(|| a.error_at(idw, format!("group `{}` does not exist", idw.text), "unknown group"))?;
+        if k == 0 {
+            return Err(a.error_at(idw, "cannot delete group all", "not allowed"));
+        }
+        if sim.fixes.iter().any(|f| f.groupbit() == 1 << k) || sim.computes.iter().any(|c| c.groupbit() == 1 << k) {
+            return Err(a.error_at(idw, format!("cannot delete group `{}` while a fix or compute uses it", idw.text), "in use"));
+        }
+        for m in &mut sim.atoms.mask {
+            *m &= !(1 << k);
+        }
+        sim.groups.delete(k);
+        return Ok(());
+    }
+    need_box(sim, cmd)?;
+    if idw.text == "all" {
+        return Err(a.error_at(idw, "group all cannot be changed", "reserved group"));
+    }
+    let k = sim.groups.find_or_create(&idw.text).map_err(|e| a.error_at(idw, e, "too many groups"))?;
+    let bit = 1u32 << k;
+    sim.atoms.clear_ghosts();
+    let n = sim.atoms.nlocal;
+    let sel: Vec<bool> = match style.text.as_str() {
+        "type" => {
+            let at = &sim.atoms;
+            let typ = at.typ.clone();
+            select_by_value(sim, &mut a, |i| typ[i] as i64, sim.ntypes as i64)?
+        }
+        "id" => {
+            let tag = sim.atoms.tag.clone();
+            let max = sim.atoms.max_tag();
+            select_by_value(sim, &mut a, |i| tag[i], max)?
+        }
+        "molecule" => {
+            if !sim.atoms.features.molecule {
+                return Err(a.error_at(style, "group molecule needs an atom style with molecule IDs", "no molecule IDs"));
+            }
+            let mol = sim.atoms.molecule.clone();
+            let max = mol.iter().copied().max().unwrap_or(0);
+            select_by_value(sim, &mut a, |i| mol[i], max)?
+        }
+        "region" => {
+            let w = a.word("region ID")?;
+            a.finish()?;
+            let r = sim.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))?;
+            (0..n).map(|i| r.matches(sim.atoms.x[i])).collect()
+        }
+        "subtract" | "union" | "intersect" => {
+            let mut bits = vec![];
+            while let Some(w) = a.peek() {
+                a.skip(1);
+                bits.push(sim.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?);
+            }
+            let need = if style.text == "union" { 1 } else { 2 };
+            if bits.len() < need {
+                return Err(a.missing(&format!("at least {need} group IDs")));
+            }
+            let m = &sim.atoms.mask;
+            (0..n)
+                .map(|i| match style.text.as_str() {
+                    "subtract" => m[i] & bits[0] != 0 && bits[1..].iter().all(|b| m[i] & b == 0),
+                    "union" => bits.iter().any(|b| m[i] & b != 0),
+                    _ => bits.iter().all(|b| m[i] & b != 0),
+                })
+                .collect()
+        }
+        "clear" => {
+            a.finish()?;
+            for m in &mut sim.atoms.mask {
+                *m &= !bit;
+            }
+            vec![false; n]
+        }
+        "empty" => {
+            a.finish()?;
+            vec![false; n]
+        }
+        other => {
+            let known = ["type", "id", "molecule", "region", "subtract", "union", "intersect", "delete", "clear", "empty"];
+            let msg = if ["variable", "include", "dynamic", "static"].contains(&other) {
+                format!("group style `{other}` is a LAMMPS style that dmhs does not support yet")
+            } else {
+                format!("unknown group style `{other}`")
+            };
+            let mut d = a.error_at(style, msg, "not a supported group style");
+            if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
+                d = d.with_help(h);
+            }
+            return Err(d);
+        }
+    };
+    for i in 0..n {
+        if sel[i] {
+            sim.atoms.mask[i] |= bit;
+        }
+    }
+    let count = sim.group_count(bit);
+    sim.out.print(&format!("{count} atoms in group {}", idw.text));
+    Ok(())
+}
+
+pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water)";
+    let mut a = Args::new(cmd, syntax);
+    sim.atoms.clear_ghosts();
+    let n = sim.atoms.nlocal;
+    let style = a.choice("selection style", &["atom", "type", "mol", "group", "region"])?;
+    let idw = a.word("ID or range")?;
+    let sel: Vec<bool> = match style {
+        0 | 1 | 2 => {
+            let (vals, max): (Vec<i64>, i64) = match style {
+                0 => (sim.atoms.tag.clone(), sim.atoms.max_tag()),
+                1 => (sim.atoms.typ.iter().map(|&t| t as i64).collect(), sim.ntypes as i64),
+                _ => {
+                    if !sim.atoms.features.molecule {
+                        return Err(a.error_at(idw, "set mol needs an atom style with molecule IDs", "no molecule IDs"));
+                    }
+                    let m = sim.atoms.molecule.clone();
+                    let max = m.iter().copied().max().unwrap_or(0);
+                    (m, max)
+                }
+            };
+            let ranges = id_range(idw, max)?;
+            (0..n).map(|i| ranges.iter().any(|&(lo, hi, k)| vals[i] >= lo && vals[i] <= hi && (vals[i] - lo) % k == 0)).collect()
+        }
+        3 => {
+            let bit = sim.groups.bit(&idw.text).ok_or_else(|| a.error_at(idw, format!("group `{}` does not exist", idw.text), "unknown group"))?;
+            (0..n).map(|i| sim.atoms.mask[i] & bit != 0).collect()
+        }
+        _ => {
+            let r = sim.regions.iter().find(|r| r.id == idw.text).ok_or_else(|| a.error_at(idw, format!("region `{}` does not exist", idw.text), "unknown region"))?;
+            (0..n).map(|i| r.matches(sim.atoms.x[i])).collect()
+        }
+    };
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    let count = sel.iter().filter(|&&s| s).count();
+    while let Some(kw) = a.peek() {
+        a.skip(1);
+        let ft = sim.atoms.features;
+        let need = |ok: bool, what: &str| -> DResult<()> {
+            if ok { Ok(()) } else { Err(Diagnostic::at(kw.span, format!("set {} needs an atom style with {what}", kw.text), "not available in this atom style")) }
+        };
+        let value = |a: &mut Args, what: &str| -> DResult<f64> {
+            let w = a.word(what)?;
+            if w.text.starts_with("v_") {
+                return Err(a.error_at(w, "per-atom variables in set are not supported yet", "use a number"));
+            }
+            word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {syntax}")))
+        };
+        let at = &mut sim.atoms;
+        let apply = |at: &mut crate::engine::atoms::Atoms, f: &mut dyn FnMut(&mut crate::engine::atoms::Atoms, usize)| {
+            for i in 0..n {
+                if sel[i] {
+                    f(at, i);
+                }
+            }
+        };
+        match kw.text.as_str() {
+            "type" => {
+                let t = a.i64_in("atom type", 1, sim.ntypes as i64)? as usize;
+                apply(at, &mut |at, i| at.typ[i] = t);
+            }
+            "mass" => {
+                need(ft.per_atom_mass(), "per-atom masses (sphere)")?;
+                let m = value(&mut a, "mass")?;
+                if m <= 0.0 {
+                    return Err(a.error_at(a.last().unwrap(), "mass must be > 0", "must be > 0"));
+                }
+                apply(at, &mut |at, i| at.rmass[i] = m);
+            }
+            "diameter" => {
+                need(ft.sphere, "radii (sphere)")?;
+                let d = value(&mut a, "diameter")?;
+                if d < 0.0 {
+                    return Err(a.error_at(a.last().unwrap(), "diameter must be >= 0", "must be >= 0"));
+                }
+                apply(at, &mut |at, i| at.radius[i] = 0.5 * d);
+            }
+            "density" | "density/disc" => {
+                need(ft.sphere, "radii (sphere)")?;
+                let rho = value(&mut a, "density")?;
+                let disc = kw.text == "density/disc";
+                apply(at, &mut |at, i| {
+                    let r = at.radius[i];
+                    at.rmass[i] = if disc { std::f64::consts::PI * r * r * rho } else { 4.0 * std::f64::consts::PI / 3.0 * r * r * r * rho };
+                });
+            }
+            "charge" => {
+                need(ft.charge, "charges")?;
+                let q = value(&mut a, "charge")?;
+                apply(at, &mut |at, i| at.q[i] = q);
+            }
+            "mol" => {
+                need(ft.molecule, "molecule IDs")?;
+                let m = a.i64("molecule ID")?;
+                apply(at, &mut |at, i| at.molecule[i] = m);
+            }
+            "image" => {
+                let mut img = [None; 3];
+                for d in 0..3 {
+                    let w = a.word(["ix", "iy", "iz"][d])?;
+                    if w.text != "NULL" {
+                        img[d] = Some(word_i64(w, "image flag")? as i32);
+                    }
+                }
+                apply(at, &mut |at, i| {
+                    for d in 0..3 {
+                        if let Some(v) = img[d] {
+                            at.image[i][d] = v;
+                        }
+                    }
+                });
+            }
+            "x" | "y" | "z" | "vx" | "vy" | "vz" => {
+                let v = value(&mut a, &kw.text)?;
+                let d = match &kw.text[kw.text.len() - 1..] {
+                    "x" => 0,
+                    "y" => 1,
+                    _ => 2,
+                };
+                let vel = kw.text.starts_with('v');
+                apply(at, &mut |at, i| if vel { at.v[i][d] = v } else { at.x[i][d] = v });
+            }
+            "omega" => {
+                need(ft.sphere, "angular velocities (sphere)")?;
+                let w = [value(&mut a, "wx")?, value(&mut a, "wy")?, value(&mut a, "wz")?];
+                apply(at, &mut |at, i| at.omega[i] = w);
+            }
+            "sph/rho" | "sph/e" | "sph/cv" => {
+                need(ft.sph, "SPH attributes (sph)")?;
+                let v = value(&mut a, &kw.text)?;
+                let which = kw.text.clone();
+                apply(at, &mut |at, i| match which.as_str() {
+                    "sph/rho" => at.rho[i] = v,
+                    "sph/e" => at.esph[i] = v,
+                    _ => at.cv[i] = v,
+                });
+            }
+            "dmhs/conc" | "dmhs/water" => {
+                let v = value(&mut a, &kw.text)?;
+                let sel = &sel;
+                crate::engine::water::set(at, &sim.type_mass, &sim.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
+            }
+            other => {
+                let known = ["type", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water"];
+                let mut d = a.error_at(kw, format!("set keyword `{other}` is not supported"), "unknown or unsupported keyword");
+                if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
+                    d = d.with_help(h);
+                }
+                return Err(d);
+            }
+        }
+        sim.out.print(&format!("Setting atom values ...\n  {count} settings made for {}", kw.text));
+    }
+    sim.lists_valid = false;
+    Ok(())
+}
+
+pub fn velocity(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    crate::deck::velocity::velocity_command(sim, cmd, sources)
+}

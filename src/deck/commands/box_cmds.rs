@@ -1,0 +1,260 @@
+//! The box and its atoms: lattice, region, create_box, create_atoms, delete_atoms,
+//! displace_atoms, read_data, write_data.
+
+use super::{before_box, need_box};
+use crate::engine::atoms::NewAtom;
+use crate::sim::Simulation;
+use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap};
+
+pub fn lattice(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let l = crate::deck::lattice::Lattice::from_lammps(cmd, &sim.units, sim.dimension)?;
+    if !l.is_none() {
+        sim.out.print(&format!("Lattice spacing in x,y,z = {} {} {}", crate::output::format::g8(l.xlattice), crate::output::format::g8(l.ylattice), crate::output::format::g8(l.zlattice)));
+    }
+    sim.lattice = Some(l);
+    Ok(())
+}
+
+pub fn region(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let r = crate::models::region::Region::from_lammps(cmd, sim.domain.as_ref(), sim.lattice.as_ref(), &sim.regions)?;
+    sim.regions.push(r);
+    Ok(())
+}
+
+pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    before_box(sim, cmd)?;
+    let b = crate::deck::create_atoms::create_box(cmd, &sim.regions, sim.dimension, sim.boundary)?;
+    sim.ntypes = b.ntypes;
+    sim.type_mass = vec![0.0; b.ntypes + 1];
+    sim.mass_set = vec![false; b.ntypes + 1];
+    let t = &mut sim.topo;
+    t.nbondtypes = b.bond_types;
+    t.nangletypes = b.angle_types;
+    t.ndihedraltypes = b.dihedral_types;
+    t.nimpropertypes = b.improper_types;
+    let d = &b.domain;
+    sim.out.print(&format!(
+        "Created orthogonal box = ({} {} {}) to ({} {} {})",
+        crate::output::format::g8(d.lo[0]),
+        crate::output::format::g8(d.lo[1]),
+        crate::output::format::g8(d.lo[2]),
+        crate::output::format::g8(d.hi[0]),
+        crate::output::format::g8(d.hi[1]),
+        crate::output::format::g8(d.hi[2])
+    ));
+    sim.box_initial = Some(b.domain.clone());
+    sim.domain = Some(b.domain);
+    Ok(())
+}
+
+pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    sim.atoms.clear_ghosts();
+    let existing: Vec<[f64; 3]> = sim.atoms.x[..sim.atoms.nlocal].to_vec();
+    let domain = sim.domain.clone().unwrap();
+    let made = crate::deck::create_atoms::create_atoms(cmd, &domain, sim.ntypes, sim.lattice.as_ref(), &sim.regions, &existing)?;
+    for w in made.warnings {
+        sim.out.print(&format!("WARNING: {}", w.message));
+    }
+    let mut tag = sim.atoms.max_tag();
+    for (x, typ) in &made.atoms {
+        tag += 1;
+        sim.atoms.push(&NewAtom::at(tag, *typ, *x));
+    }
+    sim.lists_valid = false;
+    sim.out.print(&format!("Created {} atoms", made.atoms.len()));
+    Ok(())
+}
+
+pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let syntax = "delete_atoms group ID | region ID | overlap cutoff group1 group2  [compress yes|no] [bond yes|no] [mol yes|no]";
+    let mut a = Args::new(cmd, syntax);
+    sim.atoms.clear_ghosts();
+    let n = sim.atoms.nlocal;
+    let mut gone = vec![false; n];
+    match a.choice("delete style", &["group", "region", "overlap", "porosity", "random", "variable"])? {
+        0 => {
+            let w = a.word("group ID")?;
+            let bit = sim.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?;
+            for i in 0..n {
+                gone[i] = sim.atoms.mask[i] & bit != 0;
+            }
+        }
+        1 => {
+            let w = a.word("region ID")?;
+            let r = sim.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))?;
+            for i in 0..n {
+                gone[i] = r.matches(sim.atoms.x[i]);
+            }
+        }
+        2 => {
+            let cut = a.positive_f64("cutoff")?;
+            let g1w = a.word("group1")?;
+            let g1 = sim.groups.bit(&g1w.text).ok_or_else(|| a.error_at(g1w, format!("group `{}` does not exist", g1w.text), "unknown group"))?;
+            let g2w = a.word("group2")?;
+            let g2 = sim.groups.bit(&g2w.text).ok_or_else(|| a.error_at(g2w, format!("group `{}` does not exist", g2w.text), "unknown group"))?;
+            gone = overlap_deletions(sim, cut, g1, g2);
+        }
+        _ => {
+            let w = a.last().unwrap();
+            return Err(a.error_at(w, format!("delete_atoms {} is not supported yet", w.text), "supported: group, region, overlap"));
+        }
+    }
+    let mut compress = true;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "compress" => compress = a.yes_no("compress")?,
+            "bond" | "mol" => {
+                if a.yes_no(&w.text)? {
+                    return Err(a.error_at(w, format!("delete_atoms {} yes is not supported yet", w.text), "not supported"));
+                }
+            }
+            _ => return Err(a.unknown_keyword(w, &["compress", "bond", "mol"])),
+        }
+    }
+    let tags: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i]).map(|i| sim.atoms.tag[i]).collect();
+    let ndel = tags.len();
+    sim.atoms.retain(&gone);
+    sim.topo.remove_atoms(&tags);
+    // LAMMPS renumbers IDs 1..N only for atomic systems; it walks atoms in local order,
+    // which before any run is ID order: dmhs uses ID order always.
+    if compress && !sim.atoms.features.molecular() {
+        let mut order: Vec<usize> = (0..sim.atoms.nlocal).collect();
+        order.sort_by_key(|&i| sim.atoms.tag[i]);
+        for (k, &i) in order.iter().enumerate() {
+            sim.atoms.tag[i] = k as i64 + 1;
+        }
+    }
+    sim.lists_valid = false;
+    sim.out.print(&format!("Deleted {ndel} atoms, new total = {}", sim.atoms.nlocal));
+    Ok(())
+}
+
+/// Atoms of group1 within `cut` of an atom of group2 (LAMMPS `delete_atoms overlap`: of a
+/// pair in both groups only one is deleted, the one with the larger ID).
+fn overlap_deletions(sim: &Simulation, cut: f64, g1: u32, g2: u32) -> Vec<bool> {
+    let a = &sim.atoms;
+    let d = sim.domain.as_ref().unwrap();
+    let n = a.nlocal;
+    let mut gone = vec![false; n];
+    let cutsq = cut * cut;
+    // cell list over the box
+    let prd = d.prd();
+    let nc: Vec<usize> = (0..3).map(|k| ((prd[k] / cut).floor() as usize).clamp(1, 1024)).collect();
+    let cell = |x: &[f64; 3]| -> [usize; 3] {
+        let mut c = [0usize; 3];
+        for k in 0..3 {
+            let f = ((x[k] - d.lo[k]) / prd[k] * nc[k] as f64).floor();
+            c[k] = (f.max(0.0) as usize).min(nc[k] - 1);
+        }
+        c
+    };
+    let mut cells: std::collections::HashMap<[usize; 3], Vec<usize>> = Default::default();
+    for j in 0..n {
+        if a.mask[j] & g2 != 0 {
+            cells.entry(cell(&a.x[j])).or_default().push(j);
+        }
+    }
+    for i in 0..n {
+        if a.mask[i] & g1 == 0 {
+            continue;
+        }
+        let c = cell(&a.x[i]);
+        'search: for dz in -1i64..=1 {
+            for dy in -1i64..=1 {
+                for dx in -1i64..=1 {
+                    let mut cc = [0usize; 3];
+                    for (k, off) in [dx, dy, dz].into_iter().enumerate() {
+                        let v = c[k] as i64 + off;
+                        let m = nc[k] as i64;
+                        cc[k] = if d.periodic(k) { v.rem_euclid(m) as usize } else if v < 0 || v >= m { continue } else { v as usize };
+                    }
+                    let Some(list) = cells.get(&cc) else { continue };
+                    for &j in list {
+                        if j == i || gone[j] {
+                            continue;
+                        }
+                        let mut del = [a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1], a.x[i][2] - a.x[j][2]];
+                        d.minimum_image(&mut del);
+                        if del[0] * del[0] + del[1] * del[1] + del[2] * del[2] >= cutsq {
+                            continue;
+                        }
+                        // j also in group1: only the one with the larger ID goes
+                        if a.mask[j] & g1 != 0 && a.tag[i] < a.tag[j] {
+                            continue;
+                        }
+                        gone[i] = true;
+                        break 'search;
+                    }
+                }
+            }
+        }
+    }
+    gone
+}
+
+pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let syntax = "displace_atoms group-ID move dx dy dz [units box|lattice]";
+    let mut a = Args::new(cmd, syntax);
+    let gw = a.word("group ID")?;
+    let bit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let sw = a.word("displacement style")?;
+    if sw.text != "move" {
+        return Err(a.error_at(sw, format!("displace_atoms {} is not supported yet", sw.text), "supported: move"));
+    }
+    let mut delta = [a.f64("dx")?, a.f64("dy")?, a.f64("dz")?];
+    let mut lattice_units = true;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
+            _ => return Err(a.unknown_keyword(w, &["units"])),
+        }
+    }
+    if lattice_units {
+        let s = sim.lattice_scale().map_err(|e| a.error_at(sw, e, "needs a lattice"))?;
+        for k in 0..3 {
+            delta[k] *= s[k];
+        }
+    }
+    sim.atoms.clear_ghosts();
+    let d = sim.domain.clone().unwrap();
+    let at = &mut sim.atoms;
+    for i in 0..at.nlocal {
+        if at.mask[i] & bit != 0 {
+            for k in 0..3 {
+                at.x[i][k] += delta[k];
+            }
+            // LAMMPS remaps moved atoms back into a periodic box, updating image flags
+            let (x, img) = (&mut at.x[i], &mut at.image[i]);
+            for k in 0..3 {
+                if d.periodic(k) {
+                    let p = d.hi[k] - d.lo[k];
+                    while x[k] < d.lo[k] {
+                        x[k] += p;
+                        img[k] -= 1;
+                    }
+                    while x[k] >= d.hi[k] {
+                        x[k] -= p;
+                        img[k] += 1;
+                    }
+                    x[k] = x[k].max(d.lo[k]);
+                }
+            }
+        }
+    }
+    sim.lists_valid = false;
+    Ok(())
+}
+
+pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {
+    crate::deck::data::read_data(sim, cmd, sources)
+}
+
+pub fn write_data(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    crate::deck::data::write_data(sim, cmd).map_err(|e| Diagnostic::at(cmd.span, e, "write_data failed"))
+}

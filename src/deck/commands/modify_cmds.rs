@@ -1,0 +1,74 @@
+//! fix, unfix, compute, uncompute.
+
+use super::need_box;
+use crate::sim::Simulation;
+use dmhs_parser::{Args, Command, DResult, SourceMap};
+
+fn valid_id(id: &str) -> bool {
+    !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let mut a = Args::new(cmd, "fix ID group-ID style args");
+    let id = a.word("fix ID")?;
+    if !valid_id(&id.text) {
+        return Err(a.error_at(id, format!("fix ID `{}` must use only letters, digits and underscores", id.text), "invalid ID"));
+    }
+    let gw = a.word("group ID")?;
+    let bit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let style = a.word("fix style")?;
+    let rest = a.remaining();
+    let existing = sim.find_fix(&id.text);
+    if let Some(k) = existing {
+        if sim.fixes[k].style() != style.text {
+            return Err(a.error_at(id, format!("fix `{}` already exists with style {}; replacing it needs the same style", id.text, sim.fixes[k].style()), "ID in use"));
+        }
+    }
+    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, sim)?;
+    match existing {
+        Some(k) => {
+            let mut old = std::mem::replace(&mut sim.fixes[k], f);
+            old.cleanup(sim);
+        }
+        None => sim.fixes.push(f),
+    }
+    Ok(())
+}
+
+pub fn unfix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "unfix ID");
+    let id = a.word("fix ID")?;
+    a.finish()?;
+    let k = sim.find_fix(&id.text).ok_or_else(|| a.error_at(id, format!("fix `{}` does not exist", id.text), "unknown fix"))?;
+    let mut f = sim.fixes.remove(k);
+    f.cleanup(sim);
+    Ok(())
+}
+
+pub fn compute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let mut a = Args::new(cmd, "compute ID group-ID style args");
+    let id = a.word("compute ID")?;
+    if !valid_id(&id.text) {
+        return Err(a.error_at(id, format!("compute ID `{}` must use only letters, digits and underscores", id.text), "invalid ID"));
+    }
+    if sim.find_compute(&id.text).is_some() {
+        return Err(a.error_at(id, format!("reuse of compute ID `{}`", id.text), "already defined"));
+    }
+    let gw = a.word("group ID")?;
+    let bit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let style = a.word("compute style")?;
+    let c = crate::models::compute::new_compute(cmd, id, bit, style, a.remaining(), sim)?;
+    sim.computes.push(c);
+    Ok(())
+}
+
+pub fn uncompute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "uncompute ID");
+    let id = a.word("compute ID")?;
+    a.finish()?;
+    let k = sim.find_compute(&id.text).ok_or_else(|| a.error_at(id, format!("compute `{}` does not exist", id.text), "unknown compute"))?;
+    sim.computes.remove(k);
+    Ok(())
+}

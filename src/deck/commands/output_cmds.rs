@@ -1,0 +1,137 @@
+//! thermo, thermo_style, thermo_modify, dump, undump, dump_modify.
+
+use super::need_box;
+use crate::output::dump::Dump;
+use crate::sim::Simulation;
+use crate::output::thermo::{parse_column, parse_columns};
+use dmhs_parser::{Args, Command, DResult, SourceMap};
+
+pub fn thermo(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "thermo N");
+    let w = a.word("N")?;
+    if w.text.starts_with("v_") {
+        return Err(a.error_at(w, "a variable thermo interval is not supported yet", "use a number"));
+    }
+    let n = dmhs_parser::args::word_i64(w, "N").map_err(|d| d.with_help("syntax: thermo N"))?;
+    if n < 0 {
+        return Err(a.error_at(w, "thermo N must be >= 0", "negative"));
+    }
+    a.finish()?;
+    sim.thermo.every = n;
+    Ok(())
+}
+
+pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "thermo_style one | custom keyword1 keyword2 ...");
+    let style = a.choice("thermo style", &["one", "custom", "multi", "yaml"])?;
+    match style {
+        0 => {
+            a.finish()?;
+            sim.thermo.columns = parse_columns(&["step", "temp", "epair", "emol", "etotal", "press"]).unwrap();
+            sim.thermo.custom = false;
+        }
+        1 => {
+            if a.is_empty() {
+                return Err(a.missing("at least one keyword"));
+            }
+            let mut cols = vec![];
+            while let Some(w) = a.peek() {
+                a.skip(1);
+                let c = parse_column(&w.text).map_err(|e| {
+                    let mut d = a.error_at(w, e, "not a thermo keyword");
+                    if let Some(h) = dmhs_parser::suggest::did_you_mean_help(&w.text, crate::output::thermo::KEYWORDS.iter().map(|(k, _)| *k)) {
+                        d = d.with_help(h);
+                    }
+                    d
+                })?;
+                cols.push(c);
+            }
+            sim.thermo.columns = cols;
+            sim.thermo.custom = true;
+        }
+        _ => return Err(a.error_at(&cmd.args[0], format!("thermo_style {} is not supported yet", cmd.args[0].text), "supported: one, custom")),
+    }
+    // a new style resets thermo_modify formats, as in LAMMPS
+    sim.thermo.format_line = None;
+    sim.thermo.format_int = None;
+    sim.thermo.format_float = None;
+    sim.thermo.format_column.clear();
+    Ok(())
+}
+
+pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "thermo_modify keyword value ...  (norm yes|no, format line|int|float|N|none str, lost error|warn|ignore, flush yes|no)");
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "norm" => sim.thermo.norm = Some(a.yes_no("norm")?),
+            "flush" => sim.thermo.flush = a.yes_no("flush")?,
+            "lost" => sim.thermo.lost_ignore = a.choice("lost", &["error", "warn", "ignore"])? != 0,
+            "lost/bond" => {
+                a.choice("lost/bond", &["error", "warn", "ignore"])?;
+            }
+            "format" => {
+                let which = a.word("format kind")?;
+                match which.text.as_str() {
+                    "none" => {
+                        sim.thermo.format_line = None;
+                        sim.thermo.format_int = None;
+                        sim.thermo.format_float = None;
+                        sim.thermo.format_column.clear();
+                    }
+                    "line" => sim.thermo.format_line = Some(a.str("format string")?.split_whitespace().map(String::from).collect()),
+                    "int" => sim.thermo.format_int = Some(a.str("format string")?.to_string()),
+                    "float" => sim.thermo.format_float = Some(a.str("format string")?.to_string()),
+                    n => match n.parse::<usize>() {
+                        Ok(k) if k >= 1 && k <= sim.thermo.columns.len() => {
+                            let f = a.str("format string")?.to_string();
+                            sim.thermo.format_column.retain(|(c, _)| *c != k);
+                            sim.thermo.format_column.push((k, f));
+                        }
+                        _ => return Err(a.error_at(which, format!("expected line, int, float, none or a column 1..{}", sim.thermo.columns.len()), "bad format kind")),
+                    },
+                }
+            }
+            "temp" | "press" | "warn" | "line" | "every" => {
+                return Err(a.error_at(w, format!("thermo_modify {} is not supported yet", w.text), "not supported"));
+            }
+            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush"])),
+        }
+    }
+    Ok(())
+}
+
+pub fn dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let d = Dump::from_lammps(cmd, sim)?;
+    if sim.dumps.iter().any(|x| x.id == d.id) {
+        return Err(dmhs_parser::Diagnostic::at(cmd.args[0].span, format!("reuse of dump ID `{}`", d.id), "already defined"));
+    }
+    if let Some(note) = d.picture.as_ref().and_then(|p| p.movie_note(&d.id)) {
+        sim.out.print(&note);
+    }
+    sim.dumps.push(d);
+    Ok(())
+}
+
+pub fn undump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "undump ID");
+    let w = a.word("dump ID")?;
+    a.finish()?;
+    let k = crate::output::dump::find(sim, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
+    sim.dumps.remove(k);
+    Ok(())
+}
+
+pub fn dump_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "dump_modify ID keyword value ...  (sort id|off, format line|int|float|N str, every N, first yes|no, image yes|no, append yes|no)");
+    let w = a.word("dump ID")?;
+    let k = crate::output::dump::find(sim, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    sim.dumps[k].modify(&mut a)
+}

@@ -1,0 +1,64 @@
+//! run and reset_timestep.
+
+use super::need_box;
+use crate::sim::run::RunOptions;
+use crate::sim::Simulation;
+use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap};
+
+pub const RUN_SYNTAX: &str = "run N [upto] [start N1] [stop N2] [pre yes|no] [post yes|no]";
+
+pub fn parse_run(cmd: &Command) -> DResult<RunOptions> {
+    let mut a = Args::new(cmd, RUN_SYNTAX);
+    let w = a.word("N")?;
+    let n = dmhs_parser::args::word_i64(w, "N (number of steps)").map_err(|d| d.with_help(format!("syntax: {RUN_SYNTAX}")))?;
+    if n < 0 {
+        return Err(a.error_at(w, "run N must be >= 0", "negative"));
+    }
+    let mut o = RunOptions::steps(n);
+    while let Some(kw) = a.peek() {
+        a.skip(1);
+        match kw.text.as_str() {
+            "upto" => o.upto = true,
+            "start" => o.start = Some(a.i64("start step")?),
+            "stop" => o.stop = Some(a.i64("stop step")?),
+            "pre" => o.pre = a.yes_no("pre")?,
+            "post" => o.post = a.yes_no("post")?,
+            "every" => return Err(a.error_at(kw, "run ... every is not supported yet (use a loop with label/jump)", "not supported")),
+            _ => return Err(a.unknown_keyword(kw, &["upto", "start", "stop", "pre", "post"])),
+        }
+    }
+    Ok(o)
+}
+
+pub fn run(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let opts = parse_run(cmd)?;
+    if sim.check_only {
+        return sim.check_run(&opts).map_err(|e| Diagnostic::at(cmd.span, e, "this run"));
+    }
+    sim.run(&opts).map_err(|e| {
+        sim.runtime_failed = true;
+        Diagnostic::at(cmd.span, format!("run stopped at step {}: {}", e.step, e.message), "this run").with_note("results written before the failure (log, dumps) are kept")
+    })
+}
+
+pub fn reset_timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "reset_timestep N [time t]");
+    let n = a.i64_in("N", 0, i64::MAX)?;
+    let mut time = None;
+    while let Some(kw) = a.peek() {
+        a.skip(1);
+        match kw.text.as_str() {
+            "time" => time = Some(a.f64("time")?),
+            _ => return Err(a.unknown_keyword(kw, &["time"])),
+        }
+    }
+    // LAMMPS: time continues from the current value unless given
+    sim.atime = time.unwrap_or_else(|| sim.time());
+    sim.atimestep = n;
+    sim.step = n;
+    for d in &mut sim.dumps {
+        d.last_written = None;
+    }
+    Ok(())
+}

@@ -1,0 +1,377 @@
+//! Global settings: units, dimension, boundary, atom_style, newton, timestep, neighbor, ...
+
+use super::before_box;
+use crate::engine::atoms::{AtomFeatures, Atoms};
+use crate::engine::domain::BoundaryKind;
+use crate::sim::Simulation;
+use crate::engine::special::SpecialBonds;
+use crate::engine::units::{UnitStyle, Units};
+use dmhs_parser::{Args, Command, DResult, SourceMap};
+
+pub fn units(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    before_box(sim, cmd)?;
+    let mut a = Args::new(cmd, "units lj|si|cgs");
+    let w = a.word("unit style")?;
+    let style = match w.text.as_str() {
+        "lj" => UnitStyle::Lj,
+        "si" => UnitStyle::Si,
+        "cgs" => UnitStyle::Cgs,
+        "real" | "metal" | "electron" | "micro" | "nano" => {
+            return Err(a.error_at(w, format!("units {} is a LAMMPS unit style that dmhs does not support yet", w.text), "supported: lj, si, cgs"))
+        }
+        _ => {
+            a.skip(0);
+            return Err(a.error_at(w, format!("unknown unit style `{}`", w.text), "expected lj, si or cgs"));
+        }
+    };
+    a.finish()?;
+    let old = sim.units;
+    sim.units = Units::new(style);
+    // defaults that follow the unit style unless the user set them
+    if !sim.dt_set {
+        sim.dt = sim.units.dt;
+    }
+    if sim.neigh_settings.skin == old.skin {
+        sim.neigh_settings.skin = sim.units.skin;
+    }
+    Ok(())
+}
+
+pub fn dimension(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    before_box(sim, cmd)?;
+    let mut a = Args::new(cmd, "dimension 2|3");
+    sim.dimension = a.i64_in("dimension", 2, 3)? as usize;
+    a.finish()?;
+    if sim.dimension == 2 {
+        sim.boundary[2] = [BoundaryKind::Periodic; 2];
+    }
+    Ok(())
+}
+
+pub fn boundary(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    before_box(sim, cmd)?;
+    let syntax = "boundary x y z  (each p, f, s, m or a pair like fs)";
+    let mut a = Args::new(cmd, syntax);
+    let mut b = sim.boundary;
+    for d in 0..3 {
+        let w = a.word(["x boundary", "y boundary", "z boundary"][d])?;
+        let letter = |c: char| match c {
+            'p' => Some(BoundaryKind::Periodic),
+            'f' => Some(BoundaryKind::Fixed),
+            's' => Some(BoundaryKind::Shrink),
+            'm' => Some(BoundaryKind::ShrinkMin),
+            _ => None,
+        };
+        let chars: Vec<char> = w.text.chars().collect();
+        let pair = match chars.as_slice() {
+            [c] => letter(*c).map(|k| [k, k]),
+            [c1, c2] => letter(*c1).zip(letter(*c2)).map(|(k1, k2)| [k1, k2]),
+            _ => None,
+        };
+        let Some(pair) = pair else {
+            return Err(a.error_at(w, format!("invalid boundary `{}`", w.text), "expected p, f, s, m or a pair of f/s/m"));
+        };
+        if (pair[0] == BoundaryKind::Periodic) != (pair[1] == BoundaryKind::Periodic) {
+            return Err(a.error_at(w, "both faces must be periodic or neither", "mixed periodic boundary"));
+        }
+        b[d] = pair;
+    }
+    a.finish()?;
+    if sim.dimension == 2 && b[2][0] != BoundaryKind::Periodic {
+        return Err(a.error_at(&cmd.args[2], "a 2d simulation must be periodic in z", "must be p"));
+    }
+    sim.boundary = b;
+    Ok(())
+}
+
+/// The atom styles dmhs implements (LAMMPS names).
+pub const ATOM_STYLES: &[&str] = &["atomic", "bond", "angle", "molecular", "full", "charge", "sphere", "sph", "hybrid"];
+
+/// Features of an atom style given as words (`hybrid a b ...` included).
+pub fn features_of(styles: &[&str]) -> Result<AtomFeatures, String> {
+    let mut f = AtomFeatures::default();
+    for &s in styles {
+        match s {
+            "atomic" => {}
+            "bond" => {
+                f.molecule = true;
+                f.bonds = true;
+            }
+            "angle" => {
+                f.molecule = true;
+                f.bonds = true;
+                f.angles = true;
+            }
+            "molecular" => {
+                f.molecule = true;
+                f.bonds = true;
+                f.angles = true;
+                f.dihedrals = true;
+            }
+            "full" => {
+                f.molecule = true;
+                f.charge = true;
+                f.bonds = true;
+                f.angles = true;
+                f.dihedrals = true;
+            }
+            "charge" => f.charge = true,
+            "sphere" => f.sphere = true,
+            "sph" => f.sph = true,
+            other => return Err(other.to_string()),
+        }
+    }
+    Ok(f)
+}
+
+pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    before_box(sim, cmd)?;
+    let syntax = "atom_style atomic|bond|angle|molecular|full|charge|sphere|sph|hybrid style1 style2 ...";
+    let a = Args::new(cmd, syntax);
+    let Some(first) = cmd.args.first() else { return Err(a.missing("an atom style")) };
+    let mut names: Vec<&str> = vec![];
+    if first.text == "hybrid" {
+        let subs = &cmd.args[1..];
+        if subs.is_empty() {
+            return Err(a.missing("the sub-styles of atom_style hybrid"));
+        }
+        for w in subs {
+            if w.text == "hybrid" {
+                return Err(a.error_at(w, "atom_style hybrid cannot contain hybrid", "not allowed"));
+            }
+            // `sphere 0|1` takes an optional flag (dynamic radius): accept 0 only
+            if w.text == "0" || w.text == "1" {
+                if names.last() == Some(&"sphere") {
+                    if w.text == "1" {
+                        return Err(a.error_at(w, "atom_style sphere with dynamic radius (1) is not supported", "use 0"));
+                    }
+                    continue;
+                }
+            }
+            if !ATOM_STYLES.contains(&w.text.as_str()) {
+                return Err(crate::models::styles::unsupported_style("atom_style", w, &w.text, ATOM_STYLES));
+            }
+            names.push(&w.text);
+        }
+    } else {
+        if !ATOM_STYLES.contains(&first.text.as_str()) {
+            return Err(crate::models::styles::unsupported_style("atom_style", first, &first.text, ATOM_STYLES));
+        }
+        names.push(&first.text);
+        let rest = &cmd.args[1..];
+        let ok_extra = first.text == "sphere" && rest.len() == 1 && rest[0].text == "0";
+        if !rest.is_empty() && !ok_extra {
+            return Err(a.error_at(&rest[0], format!("unexpected argument `{}`", rest[0].text), "not expected here"));
+        }
+    }
+    let features = features_of(&names).unwrap();
+    sim.atom_style = cmd.args.iter().map(|w| w.text.clone()).filter(|t| t != "0").collect();
+    sim.atoms = Atoms::new(features);
+    Ok(())
+}
+
+pub fn atom_modify(_sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let syntax = "atom_modify keyword value ...  (map array|hash|yes, sort Nfreq binsize, id yes, first group)";
+    let mut a = Args::new(cmd, syntax);
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "map" => {
+                a.choice("map style", &["array", "hash", "yes"])?;
+            }
+            // dmhs sorts atoms spatially at every neighbour-list rebuild; the setting is accepted
+            "sort" => {
+                a.i64_in("sort frequency", 0, i64::MAX)?;
+                a.non_negative_f64("sort bin size")?;
+            }
+            "id" => {
+                if !a.yes_no("id")? {
+                    return Err(a.error_at(a.last().unwrap(), "atom_modify id no is not supported (atoms always have IDs)", "use yes"));
+                }
+            }
+            "first" => {
+                let g = a.word("group ID")?;
+                if g.text != "all" {
+                    return Err(a.error_at(g, "atom_modify first is not supported (only `all`)", "not supported"));
+                }
+            }
+            _ => return Err(a.unknown_keyword(w, &["map", "sort", "id", "first"])),
+        }
+    }
+    Ok(())
+}
+
+pub fn newton(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "newton on|off [on|off]");
+    let pair = a.on_off("newton pair setting")?;
+    let bond = if a.is_empty() { pair } else { a.on_off("newton bond setting")? };
+    a.finish()?;
+    // results do not depend on these (see docs/commands.md); they are recorded for check output
+    sim.newton_pair = pair;
+    sim.newton_bond = bond;
+    Ok(())
+}
+
+pub fn processors(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "processors Px Py Pz  (dmhs runs one process: each must be * or 1)");
+    for what in ["Px", "Py", "Pz"] {
+        let w = a.word(what)?;
+        if w.text != "*" && w.text != "1" {
+            return Err(a.error_at(w, format!("dmhs runs in one process (with threads): {what} must be * or 1"), "expected * or 1"));
+        }
+    }
+    let _ = sim;
+    // further keywords (grid, map, part, file) only concern MPI layouts
+    Ok(())
+}
+
+pub fn timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "timestep dt");
+    let dt = a.f64("dt")?;
+    a.finish()?;
+    sim.atime = sim.time();
+    sim.atimestep = sim.step;
+    sim.dt = dt;
+    sim.dt_set = true;
+    Ok(())
+}
+
+pub fn neighbor(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "neighbor skin bin|nsq|multi");
+    let skin = a.non_negative_f64("skin")?;
+    a.choice("neighbor style", &["bin", "nsq", "multi"])?;
+    a.finish()?;
+    sim.neigh_settings.skin = skin;
+    sim.lists_valid = false;
+    Ok(())
+}
+
+pub fn neigh_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let syntax = "neigh_modify keyword value ...  (every N, delay N, check yes|no, once yes|no, one N, page N, binsize x, exclude type|group|molecule/intra|molecule/inter|none ...)";
+    let mut a = Args::new(cmd, syntax);
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    let keys = ["every", "delay", "check", "once", "one", "page", "binsize", "exclude", "cluster"];
+    let ntypes = sim.ntypes;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        let s = &mut sim.neigh_settings;
+        match w.text.as_str() {
+            "every" => s.every = a.i64_in("every", 1, i64::MAX)?,
+            "delay" => s.delay = a.i64_in("delay", 0, i64::MAX)?,
+            "check" => s.check = a.yes_no("check")?,
+            "once" => s.once = a.yes_no("once")?,
+            "cluster" => {
+                a.yes_no("cluster")?;
+            }
+            // list storage grows as needed: the limits are accepted and not needed
+            "one" | "page" => {
+                a.i64_in(&w.text, 1, i64::MAX)?;
+            }
+            "binsize" => s.binsize = a.f64("binsize")?,
+            "exclude" => {
+                let kind = a.choice("exclusion kind", &["type", "group", "molecule/intra", "molecule/inter", "molecule", "none"])?;
+                match kind {
+                    0 => {
+                        if ntypes == 0 {
+                            return Err(a.error_at(w, "neigh_modify exclude type needs the box (atom types) to be defined", "no box yet"));
+                        }
+                        let t1 = a.i64_in("type 1", 1, ntypes as i64)? as usize;
+                        let t2 = a.i64_in("type 2", 1, ntypes as i64)? as usize;
+                        sim.neigh_settings.exclusions.types.push((t1, t2));
+                    }
+                    1 => {
+                        let g1 = group_bit(&mut a, &sim.groups)?;
+                        let g2 = group_bit(&mut a, &sim.groups)?;
+                        sim.neigh_settings.exclusions.groups.push((g1, g2));
+                    }
+                    2..=4 => {
+                        if !sim.atoms.features.molecule {
+                            return Err(a.error_at(w, "neigh_modify exclude molecule needs an atom style with molecule IDs", "no molecule IDs"));
+                        }
+                        let g = group_bit(&mut a, &sim.groups)?;
+                        // plain `molecule` is the old name of molecule/intra
+                        sim.neigh_settings.exclusions.molecule.push((g, kind != 3));
+                    }
+                    _ => sim.neigh_settings.exclusions = Default::default(),
+                }
+            }
+            _ => return Err(a.unknown_keyword(w, &keys)),
+        }
+    }
+    sim.lists_valid = false;
+    Ok(())
+}
+
+fn group_bit(a: &mut Args, groups: &crate::engine::groups::Groups) -> DResult<u32> {
+    let w = a.word("group ID")?;
+    groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))
+}
+
+pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "comm_modify keyword value ...  (vel yes|no, cutoff x, mode single)");
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "vel" => sim.comm_vel = a.yes_no("vel")?,
+            // ghost atoms are made for the list cutoff; a longer ghost cutoff changes nothing
+            "cutoff" => {
+                a.non_negative_f64("cutoff")?;
+            }
+            "mode" => {
+                a.choice("mode", &["single"])?;
+            }
+            _ => return Err(a.unknown_keyword(w, &["vel", "cutoff", "mode"])),
+        }
+    }
+    Ok(())
+}
+
+pub fn special_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "");
+    sim.special_bonds = SpecialBonds::parse(&mut a)?;
+    sim.lists_valid = false;
+    Ok(())
+}
+
+pub fn log(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "log file|none [append]");
+    let w = a.word("file name")?;
+    let append = if a.is_empty() { false } else { a.choice("keyword", &["append"]).map(|_| true)? };
+    a.finish()?;
+    let path = if w.text == "none" { None } else { Some(sim.path(&w.text)) };
+    sim.out.set_log(path.as_deref(), append).map_err(|e| a.error_at(w, format!("cannot open log file `{}`: {e}", w.text), "cannot open"))
+}
+
+/// `dmhs/stability keyword value ...` (dmhs extension): the run-time guards of
+/// src/stability.rs. Keywords: `rho LO HI` (allowed SPH density as factors of rho0, default
+/// 0 2: positive and at most twice rho0), `every N` (check every N steps, default 1), `off`, `on`.
+pub fn dmhs_stability(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "dmhs/stability [rho LO HI] [every N] [on|off]");
+    if a.is_empty() {
+        return Err(a.missing("a keyword"));
+    }
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "rho" => {
+                let lo = a.non_negative_f64("LO (factor of rho0)")?;
+                let hi = a.f64_where("HI (factor of rho0)", "> LO", |x| x > lo)?;
+                sim.guard.rho_lo = lo;
+                sim.guard.rho_hi = hi;
+            }
+            "every" => sim.guard.every = a.i64_in("every", 1, i64::MAX)?,
+            "off" => sim.guard.enabled = false,
+            "on" => sim.guard.enabled = true,
+            _ => return Err(a.unknown_keyword(w, &["rho", "every", "on", "off"])),
+        }
+    }
+    Ok(())
+}

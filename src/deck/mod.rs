@@ -1,0 +1,123 @@
+//! Running an input deck: the interpreter (flow control, variables) drives the simulation.
+
+pub mod check;
+pub mod commands;
+pub mod create_atoms;
+pub mod data;
+pub mod lattice;
+pub mod restart;
+pub mod velocity;
+pub mod velocity_create;
+
+use crate::sim::Simulation;
+use dmhs_parser::interp::{Exit, Interpreter};
+use dmhs_parser::Diagnostic;
+use std::path::{Path, PathBuf};
+
+/// How to run a deck.
+#[derive(Clone, Debug, Default)]
+pub struct DeckOptions {
+    /// `-var NAME VALUE...` definitions (index-style variables).
+    pub vars: Vec<(String, Vec<String>)>,
+    /// Write to the screen.
+    pub screen: bool,
+    /// Log file (None: no log).
+    pub log: Option<PathBuf>,
+    /// Resolve relative paths in the deck against this directory (None: working directory).
+    pub base_dir: Option<PathBuf>,
+    /// Parse and build without running (`dmhs check`): `run` commands are skipped and
+    /// errors are collected rather than stopping at the first.
+    pub check_only: bool,
+    /// Capture the per-atom forces after the setup of the first run.
+    pub capture: bool,
+    /// Keep screen text in `Simulation::out.captured`.
+    pub capture_text: bool,
+    /// `-echo screen|log|both|none`.
+    pub echo: Option<(bool, bool)>,
+    /// Keep every executed command in `Simulation::command_log`.
+    pub record_commands: bool,
+}
+
+/// Why a deck did not complete.
+#[derive(Debug)]
+pub struct DeckFailure {
+    pub diagnostics: Vec<Diagnostic>,
+    /// The diagnostics rendered with source lines.
+    pub rendered: String,
+    /// A run failed (as opposed to an error in the deck itself).
+    pub runtime: bool,
+}
+
+/// The result of a deck: the simulation as the deck left it, the `quit` status, and the
+/// errors recorded in check mode.
+pub struct DeckRun {
+    pub sim: Simulation,
+    pub interp: Interpreter,
+    pub quit: Option<i32>,
+    pub check_errors: Vec<Diagnostic>,
+}
+
+fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> {
+    let mut sim = Simulation::new();
+    sim.out.screen = opts.screen;
+    if opts.capture_text {
+        sim.out.captured = Some(String::new());
+    }
+    if let Some(log) = &opts.log {
+        sim.out.set_log(Some(log), false).map_err(|e| format!("cannot open log file {}: {e}", log.display()))?;
+    }
+    sim.base_dir = opts.base_dir.clone();
+    sim.want_capture = opts.capture;
+    sim.check_only = opts.check_only;
+    if opts.record_commands {
+        sim.command_log = Some(Vec::new());
+    }
+    for (name, values) in &opts.vars {
+        sim.variables.define_index(name, values.clone());
+    }
+    let mut interp = Interpreter::new();
+    interp.set_base_dir(opts.base_dir.clone());
+    interp.set_keep_going(opts.check_only);
+    if let Some((s, l)) = opts.echo {
+        interp.set_echo(s, l);
+    }
+    Ok((sim, interp))
+}
+
+/// Run a deck given as text (`name` is shown in error locations).
+pub fn run_text(name: &str, text: &str, opts: &DeckOptions) -> Result<DeckRun, DeckFailure> {
+    let (mut sim, mut interp) = prepare(opts).map_err(|e| DeckFailure { rendered: format!("error: {e}\n"), diagnostics: vec![Diagnostic::error(e)], runtime: true })?;
+    sim.out.print(&format!("dmhs {} (LAMMPS-compatible input)", env!("CARGO_PKG_VERSION")));
+    let result = interp.run_source(name, text, &mut sim);
+    finish(sim, interp, result)
+}
+
+/// Run a deck file.
+pub fn run_file(path: &Path, opts: &DeckOptions) -> Result<DeckRun, DeckFailure> {
+    let text = std::fs::read(path).map_err(|e| {
+        let msg = format!("cannot read input script {}: {e}", path.display());
+        DeckFailure { rendered: format!("error: {msg}\n"), diagnostics: vec![Diagnostic::error(msg)], runtime: false }
+    })?;
+    run_text(&path.to_string_lossy(), &String::from_utf8_lossy(&text), opts)
+}
+
+fn finish(
+    mut sim: Simulation,
+    interp: Interpreter,
+    result: Result<dmhs_parser::interp::Outcome, Vec<Diagnostic>>,
+) -> Result<DeckRun, DeckFailure> {
+    sim.out.flush();
+    match result {
+        Ok(outcome) => {
+            let quit = match outcome.exit {
+                Exit::Quit(c) => Some(c),
+                Exit::EndOfInput => None,
+            };
+            Ok(DeckRun { sim, interp, quit, check_errors: outcome.errors })
+        }
+        Err(diags) => {
+            let rendered: String = diags.iter().map(|d| d.render(interp.sources())).collect::<Vec<_>>().join("\n");
+            Err(DeckFailure { diagnostics: diags, rendered, runtime: sim.runtime_failed })
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! The engine-owned contact history of granular pair styles: a few values per contact (the
+//! tangential spring of gran/hooke/history and granular) that must follow the contact from step
+//! to step.
+//!
+//! * Between neighbour-list rebuilds the values sit next to the list: chunk `c` of the store holds
+//!   a touch flag and `size` values per entry of chunk `c` of the list, so the pair loop reads and
+//!   writes them by entry index (no lookups) and chunks stay independent under the slab schedule.
+//! * At a rebuild atoms are re-sorted and wrapped, so entries move. A contact is identified by the
+//!   atom IDs of its two atoms and the periodic image of the partner, written as the difference of
+//!   "effective images" (image flags minus the ghost shift), which does not change when either atom
+//!   is wrapped. The store keeps the IDs and effective images of every atom index as they were at
+//!   the last rebuild, so it can name its contacts after the atoms have moved.
+//! * A contact is stored from the side of the atom that lists it. Listed from the other side, its
+//!   values are negated (all tangential histories flip sign with the pair, as LAMMPS' default
+//!   history transfer). A pair with a periodic image is listed by both owned atoms (each keeps its
+//!   own record); a pair of owned atoms is listed once.
+//! * Only contacts that touch after the rebuild are looked up: the pair loop zeroes the history of
+//!   every pair that does not touch, so carrying anything else would change nothing.
+//! * [`ContactHistory::records`] lists the contacts by key (for write_restart);
+//!   [`ContactHistory::restore`] takes them back and applies them at the next rebuild.
+
+use crate::engine::atoms::Atoms;
+use crate::engine::neighbor::{ChunkList, NeighList, NEIGH_MASK};
+use crate::models::pair::SharedMut;
+use rayon::prelude::*;
+
+/// Touch flags and values aligned with one chunk of the neighbour list.
+#[derive(Clone, Debug, Default)]
+pub struct HistoryChunk {
+    pub touch: Vec<u8>,
+    pub values: Vec<f64>,
+}
+
+/// One contact by key, as written to restart files.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactRecord {
+    /// Atom ID of the atom that lists the contact.
+    pub owner: i64,
+    pub partner: i64,
+    /// Effective image of the owner minus that of the partner (see the module comment).
+    pub image: [i32; 3],
+    pub values: Vec<f64>,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct ContactHistory {
+    size: usize,
+    pub chunks: Vec<HistoryChunk>,
+    /// Atom ID and effective image of every atom index (owned, then ghosts) at the last rebuild.
+    tags: Vec<i64>,
+    eimg: Vec<[i32; 3]>,
+    /// The list the chunks are aligned with (a copy: the engine replaces its list before the
+    /// store is told about the rebuild).
+    list: Vec<ChunkList>,
+    /// Contacts from a restart file, applied at the next rebuild.
+    pending: Option<Vec<ContactRecord>>,
+}
+
+impl ContactHistory {
+    /// A store for `size` values per contact.
+    pub fn new(size: usize) -> ContactHistory {
+        ContactHistory { size, ..ContactHistory::default() }
+    }
+
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    /// Every touching contact, by key, in list order (contacts restored from a restart file and
+    /// not yet applied are returned as they are).
+    pub fn records(&self) -> Vec<ContactRecord> {
+        if let Some(p) = &self.pending {
+            return p.clone();
+        }
+        let mut out = Vec::new();
+        for (chunk, hist) in self.list.iter().zip(&self.chunks) {
+            for i in chunk.start..chunk.end {
+                let k0 = chunk.offsets[i - chunk.start] as usize;
+                for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
+                    let e = k0 + k;
+                    if hist.touch[e] == 0 {
+                        continue;
+                    }
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    out.push(ContactRecord {
+                        owner: self.tags[i],
+                        partner: self.tags[j],
+                        image: sub3i(self.eimg[i], self.eimg[j]),
+                        values: hist.values[e * self.size..(e + 1) * self.size].to_vec(),
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Contacts to apply at the next rebuild (from a restart file), replacing the stored ones.
+    pub fn restore(&mut self, records: Vec<ContactRecord>) {
+        self.pending = Some(records);
+    }
+
+    /// Number of contacts currently touching.
+    pub fn ntouching(&self) -> usize {
+        self.chunks.iter().map(|c| c.touch.iter().filter(|&&t| t != 0).count()).sum()
+    }
+
+    /// Carry the contacts over to a freshly built list. `touching(i, j)` says whether listed pair
+    /// (i, j) is in contact now (the same test as the pair loop's).
+    pub fn rebuilt(&mut self, atoms: &Atoms, list: &NeighList, touching: impl Fn(usize, usize) -> bool + Sync) {
+        let size = self.size;
+        let records = match self.pending.take() {
+            Some(r) => r,
+            None => self.records(),
+        };
+        // records grouped by owner ID: dense offsets over IDs
+        let maxtag = records.iter().map(|r| r.owner).chain(atoms.tag.iter().copied()).max().unwrap_or(0).max(0) as usize;
+        let mut start = vec![0u32; maxtag + 2];
+        for r in &records {
+            if r.owner >= 0 {
+                start[r.owner as usize + 1] += 1;
+            }
+        }
+        for t in 0..=maxtag {
+            start[t + 1] += start[t];
+        }
+        let mut fill = start.clone();
+        let mut by_owner: Vec<u32> = vec![0; records.len()];
+        for (k, r) in records.iter().enumerate() {
+            if r.owner >= 0 {
+                by_owner[fill[r.owner as usize] as usize] = k as u32;
+                fill[r.owner as usize] += 1;
+            }
+        }
+        let find = |owner: i64, partner: i64, image: [i32; 3]| -> Option<&ContactRecord> {
+            if owner < 0 || owner as usize > maxtag {
+                return None;
+            }
+            let t = owner as usize;
+            by_owner[start[t] as usize..start[t + 1] as usize]
+                .iter()
+                .map(|&k| &records[k as usize])
+                .find(|r| r.partner == partner && r.image == image && r.values.len() == size)
+        };
+
+        // the new atoms' keys
+        let n = atoms.nlocal;
+        self.tags.clear();
+        self.tags.extend_from_slice(&atoms.tag);
+        self.eimg.clear();
+        self.eimg.extend_from_slice(&atoms.image[..n]);
+        for (k, s) in atoms.ghost_shift.iter().enumerate() {
+            let img = atoms.image[n + k];
+            self.eimg.push([img[0] - s[0] as i32, img[1] - s[1] as i32, img[2] - s[2] as i32]);
+        }
+
+        let tags = &self.tags;
+        let eimg = &self.eimg;
+        self.chunks = list
+            .chunks
+            .par_iter()
+            .map(|chunk| {
+                let len = chunk.neigh.len();
+                let mut h = HistoryChunk { touch: vec![0; len], values: vec![0.0; len * size] };
+                if records.is_empty() {
+                    return h;
+                }
+                for i in chunk.start..chunk.end {
+                    let k0 = chunk.offsets[i - chunk.start] as usize;
+                    for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
+                        let j = (jraw & NEIGH_MASK) as usize;
+                        if !touching(i, j) {
+                            continue;
+                        }
+                        let e = k0 + k;
+                        let image = sub3i(eimg[i], eimg[j]);
+                        let dst = &mut h.values[e * size..(e + 1) * size];
+                        if let Some(r) = find(tags[i], tags[j], image) {
+                            dst.copy_from_slice(&r.values);
+                            h.touch[e] = 1;
+                        } else if let Some(r) = find(tags[j], tags[i], neg3i(image)) {
+                            for (d, s) in dst.iter_mut().zip(&r.values) {
+                                *d = -*s;
+                            }
+                            h.touch[e] = 1;
+                        }
+                    }
+                }
+                h
+            })
+            .collect();
+        self.list.clone_from(&list.chunks);
+    }
+
+    /// Shared mutable access to the chunks for the slab schedule: chunk `c` of the store is
+    /// touched only by the work item of list chunk `c`.
+    pub fn shared(&mut self) -> SharedMut<HistoryChunk> {
+        SharedMut::new(&mut self.chunks)
+    }
+}
+
+#[inline]
+fn sub3i(a: [i32; 3], b: [i32; 3]) -> [i32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+fn neg3i(a: [i32; 3]) -> [i32; 3] {
+    [-a[0], -a[1], -a[2]]
+}

@@ -1,0 +1,643 @@
+//! Neighbour search: periodic ghost images, cell binning, and half Verlet lists with a skin,
+//! rebuilt by LAMMPS' rules (`neigh_modify every/delay/check`).
+//!
+//! Layout choices (see docs/performance.md):
+//! * Owned atoms are re-sorted into bin order along one "slab" axis at every rebuild.
+//! * A pair of owned atoms is listed once (at the lower index); a pair with a ghost is listed
+//!   by the owned atom only and forces are applied to owned atoms only (LAMMPS' `newton off`
+//!   treatment of ghost pairs), so forces never need to be folded back from ghosts.
+//! * The owned atoms are cut into slab chunks at least one cutoff thick. A chunk writes only to
+//!   its own atoms and to the next chunk's, so even chunks and then odd chunks can run in
+//!   parallel without locks, and every atom receives its contributions in the same order
+//!   whatever the number of threads: results are bit-identical across thread counts.
+
+use crate::engine::atoms::Atoms;
+use crate::engine::domain::Domain;
+use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
+use rayon::prelude::*;
+
+/// Bits of a neighbour entry that hold the special-bond level (as LAMMPS' SBBITS).
+pub const SPECIAL_SHIFT: u32 = 30;
+pub const NEIGH_MASK: u32 = (1 << SPECIAL_SHIFT) - 1;
+
+/// Special level of a neighbour entry: 0 = ordinary pair, 1/2/3 = 1-2/1-3/1-4 neighbours.
+#[inline]
+pub fn special_level(j: u32) -> usize {
+    (j >> SPECIAL_SHIFT) as usize
+}
+
+/// Special partner lists by atom ID (flattened: `partners[offsets[t]..offsets[t+1]]` are atom
+/// t's partners with their level) and what the list does with each level.
+#[derive(Clone, Debug)]
+pub struct SpecialTable {
+    pub offsets: Vec<u32>,
+    pub partners: Vec<(i64, u8)>,
+    pub flags: [SpecialFlag; 4],
+    /// Every list is symmetric (true unless `special_bonds angle/dihedral yes` trimmed one
+    /// side), so only atom i's list needs searching.
+    pub symmetric: bool,
+}
+
+impl Default for SpecialTable {
+    fn default() -> Self {
+        SpecialTable { offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
+    }
+}
+
+impl SpecialTable {
+    /// Flatten per-atom lists (`lists[k]` belongs to atom ID `ids[k]`).
+    pub fn from_lists(ids: &[i64], lists: Vec<SpecialList>, flags: [SpecialFlag; 4], symmetric: bool) -> SpecialTable {
+        let maxtag = ids.iter().copied().max().unwrap_or(0).max(0) as usize;
+        let mut by_tag: Vec<Option<SpecialList>> = vec![None; maxtag + 1];
+        for (k, l) in lists.into_iter().enumerate() {
+            by_tag[ids[k] as usize] = Some(l);
+        }
+        let mut offsets = Vec::with_capacity(maxtag + 2);
+        let mut partners = Vec::new();
+        offsets.push(0u32);
+        for l in &by_tag {
+            if let Some(l) = l {
+                for &t in &l.ids {
+                    partners.push((t, l.level(t).unwrap_or(0)));
+                }
+            }
+            offsets.push(partners.len() as u32);
+        }
+        SpecialTable { offsets, partners, flags, symmetric }
+    }
+    pub fn is_empty(&self) -> bool {
+        self.partners.is_empty()
+    }
+    #[inline]
+    fn level(&self, itag: i64, jtag: i64) -> u8 {
+        let t = itag as usize;
+        if t + 1 >= self.offsets.len() {
+            return 0;
+        }
+        self.partners[self.offsets[t] as usize..self.offsets[t + 1] as usize].iter().find(|p| p.0 == jtag).map(|p| p.1).unwrap_or(0)
+    }
+    /// The action for pair (i, j): atom i's list is searched first (LAMMPS `find_special`);
+    /// dmhs also searches atom j's when lists can be one-sided (`special_bonds angle yes`),
+    /// so the result does not depend on which atom of the pair owns the list entry.
+    #[inline]
+    fn action(&self, itag: i64, jtag: i64, far_image: bool) -> PairAction {
+        let mut level = self.level(itag, jtag);
+        if level == 0 && !self.symmetric {
+            level = self.level(jtag, itag);
+        }
+        if level == 0 {
+            return PairAction::Keep;
+        }
+        match self.flags[level as usize] {
+            SpecialFlag::Normal => PairAction::Keep,
+            _ if far_image => PairAction::Keep,
+            SpecialFlag::Exclude => PairAction::Exclude,
+            SpecialFlag::Weighted => PairAction::Weighted(level),
+        }
+    }
+}
+
+/// `neigh_modify exclude ...` rules.
+#[derive(Clone, Debug, Default)]
+pub struct Exclusions {
+    /// Excluded type pairs (both orders are excluded).
+    pub types: Vec<(usize, usize)>,
+    /// Excluded group pairs, as group bitmasks.
+    pub groups: Vec<(u32, u32)>,
+    /// `molecule/intra GROUP` (true) and `molecule/inter GROUP` (false), as group bitmasks.
+    pub molecule: Vec<(u32, bool)>,
+}
+
+impl Exclusions {
+    pub fn is_empty(&self) -> bool {
+        self.types.is_empty() && self.groups.is_empty() && self.molecule.is_empty()
+    }
+    #[inline]
+    fn excluded(&self, a: &Atoms, i: usize, j: usize) -> bool {
+        let (ti, tj) = (a.typ[i], a.typ[j]);
+        if self.types.iter().any(|&(p, q)| (p == ti && q == tj) || (p == tj && q == ti)) {
+            return true;
+        }
+        let (mi, mj) = (a.mask[i], a.mask[j]);
+        if self
+            .groups
+            .iter()
+            .any(|&(g1, g2)| (mi & g1 != 0 && mj & g2 != 0) || (mi & g2 != 0 && mj & g1 != 0))
+        {
+            return true;
+        }
+        for &(g, intra) in &self.molecule {
+            if mi & g != 0 && mj & g != 0 {
+                let same = a.molecule[i] == a.molecule[j];
+                if same == intra {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+/// Settings from `neighbor` and `neigh_modify`.
+#[derive(Clone, Debug)]
+pub struct NeighborSettings {
+    pub skin: f64,
+    pub every: i64,
+    pub delay: i64,
+    pub check: bool,
+    pub once: bool,
+    /// Bin size given by `neigh_modify binsize` (0 = half the largest cutoff, as LAMMPS).
+    pub binsize: f64,
+    pub exclusions: Exclusions,
+}
+
+impl NeighborSettings {
+    pub fn new(skin: f64) -> NeighborSettings {
+        NeighborSettings { skin, every: 1, delay: 0, check: true, once: false, binsize: 0.0, exclusions: Exclusions::default() }
+    }
+}
+
+/// The neighbours of a contiguous range of owned atoms (one slab chunk).
+#[derive(Clone, Debug, Default)]
+pub struct ChunkList {
+    /// Owned atoms `start..end`.
+    pub start: usize,
+    pub end: usize,
+    /// `offsets[k]..offsets[k+1]` indexes `neigh` for atom `start + k`.
+    pub offsets: Vec<u32>,
+    /// Neighbour index with the special level in the top two bits.
+    pub neigh: Vec<u32>,
+}
+
+impl ChunkList {
+    #[inline]
+    pub fn neighbors(&self, i: usize) -> &[u32] {
+        let k = i - self.start;
+        &self.neigh[self.offsets[k] as usize..self.offsets[k + 1] as usize]
+    }
+}
+
+/// The half neighbour list, cut into slab chunks.
+#[derive(Clone, Debug, Default)]
+pub struct NeighList {
+    pub chunks: Vec<ChunkList>,
+    /// Squared list cutoff (cutoff + skin)^2 per type pair, row-major over `0..=ntypes`.
+    pub cutneighsq: Vec<f64>,
+    pub ntypes: usize,
+    /// Some entry carries a special-bond level.
+    pub has_special: bool,
+    /// Build number, unique in the process (0: never built): lists derived from this one
+    /// (hybrid sub-lists) know when they are stale.
+    pub generation: u64,
+}
+
+impl NeighList {
+    pub fn npairs(&self) -> usize {
+        self.chunks.iter().map(|c| c.neigh.len()).sum()
+    }
+
+    /// The entries whose type pair `keep` marks (row-major over `0..=ntypes`), in the same
+    /// chunks and order (LAMMPS' skip lists for hybrid sub-styles).
+    pub fn filtered(&self, typ: &[usize], keep: &[bool]) -> NeighList {
+        let stride = self.ntypes + 1;
+        let chunks = self
+            .chunks
+            .iter()
+            .map(|c| {
+                let mut offsets = Vec::with_capacity(c.offsets.len());
+                let mut neigh = Vec::with_capacity(c.neigh.len());
+                offsets.push(0);
+                for i in c.start..c.end {
+                    let row = &keep[typ[i] * stride..(typ[i] + 1) * stride];
+                    neigh.extend(c.neighbors(i).iter().filter(|&&j| row[typ[(j & NEIGH_MASK) as usize]]));
+                    offsets.push(neigh.len() as u32);
+                }
+                ChunkList { start: c.start, end: c.end, offsets, neigh }
+            })
+            .collect();
+        NeighList { chunks, ..self.clone_header() }
+    }
+
+    /// Everything but the entries.
+    fn clone_header(&self) -> NeighList {
+        NeighList { chunks: Vec::new(), cutneighsq: self.cutneighsq.clone(), ntypes: self.ntypes, has_special: self.has_special, generation: self.generation }
+    }
+}
+
+/// Neighbour-list state across steps.
+#[derive(Clone, Debug, Default)]
+pub struct Neighbor {
+    pub list: NeighList,
+    /// Positions at the last build (for the distance check).
+    xhold: Vec<[f64; 3]>,
+    /// Steps since the last build.
+    pub ago: i64,
+    pub nbuilds: u64,
+    /// Builds triggered on the first step they were allowed (LAMMPS' "dangerous builds").
+    pub ndanger: u64,
+    /// Largest list cutoff (pair cutoff + skin): the ghost shell thickness.
+    pub cutneighmax: f64,
+}
+
+/// Error raised while building lists (reported by the engine with the step number).
+#[derive(Debug, Clone, PartialEq)]
+pub enum NeighError {
+    /// The ghost shell is thicker than the periodic box.
+    BoxTooSmall { dim: usize, cut: f64, length: f64 },
+    /// Non-finite coordinates.
+    BadPosition { index: usize },
+}
+
+impl Neighbor {
+    /// LAMMPS `Neighbor::decide`: is a rebuild due on this step?
+    pub fn decide(&mut self, settings: &NeighborSettings, atoms: &Atoms) -> bool {
+        self.ago += 1;
+        if self.ago >= settings.delay && self.ago % settings.every == 0 {
+            if settings.once {
+                return false;
+            }
+            if !settings.check {
+                return true;
+            }
+            let trigger = 0.5 * settings.skin;
+            let triggersq = trigger * trigger;
+            let m = atoms.nlocal.min(self.xhold.len());
+            let (x, hold) = (&atoms.x[..m], &self.xhold[..m]);
+            let moved = crate::models::fix::any_index(x.len(), |i| {
+                let dx = x[i][0] - hold[i][0];
+                let dy = x[i][1] - hold[i][1];
+                let dz = x[i][2] - hold[i][2];
+                dx * dx + dy * dy + dz * dz > triggersq
+            });
+            if moved && self.ago == settings.every.max(settings.delay) {
+                self.ndanger += 1;
+            }
+            return moved;
+        }
+        false
+    }
+
+    /// Rebuild: sort owned atoms into slab order, make ghosts, build the half list.
+    /// `cutsq_pair(i, j)` is the squared interaction cutoff per type pair (0 = no interaction).
+    /// Returns the permutation applied to owned atoms (`new k <- old order[k]`).
+    #[allow(clippy::too_many_arguments)]
+    pub fn build(
+        &mut self,
+        atoms: &mut Atoms,
+        domain: &Domain,
+        settings: &NeighborSettings,
+        ntypes: usize,
+        cut_pair: &dyn Fn(usize, usize) -> f64,
+        special: &SpecialTable,
+    ) -> Result<Vec<usize>, NeighError> {
+        atoms.clear_ghosts();
+        let n = atoms.nlocal;
+        for (i, x) in atoms.x.iter().enumerate() {
+            if !(x[0].is_finite() && x[1].is_finite() && x[2].is_finite()) {
+                return Err(NeighError::BadPosition { index: i });
+            }
+        }
+
+        // list cutoffs per type pair
+        let stride = ntypes + 1;
+        let mut cutneighsq = vec![0.0; stride * stride];
+        let mut cutmax: f64 = 0.0;
+        for it in 1..=ntypes {
+            for jt in 1..=ntypes {
+                let c = cut_pair(it, jt);
+                if c > 0.0 {
+                    let cn = c + settings.skin;
+                    cutneighsq[it * stride + jt] = cn * cn;
+                    cutmax = cutmax.max(cn);
+                }
+            }
+        }
+        self.cutneighmax = cutmax;
+        let dim = domain.dimension;
+        let prd = domain.prd();
+        for d in 0..dim {
+            if domain.periodic(d) && cutmax > prd[d] {
+                return Err(NeighError::BoxTooSmall { dim: d, cut: cutmax, length: prd[d] });
+            }
+        }
+
+        // grid over the owned atoms' extent widened by the ghost shell
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for x in &atoms.x[..n] {
+            for d in 0..3 {
+                lo[d] = lo[d].min(x[d]);
+                hi[d] = hi[d].max(x[d]);
+            }
+        }
+        if n == 0 {
+            lo = domain.lo;
+            hi = domain.hi;
+        }
+        for d in 0..dim {
+            if domain.periodic(d) {
+                lo[d] = lo[d].min(domain.lo[d]);
+                hi[d] = hi[d].max(domain.hi[d]);
+            }
+            lo[d] -= cutmax;
+            hi[d] += cutmax;
+        }
+        let binsize = if settings.binsize > 0.0 { settings.binsize } else if cutmax > 0.0 { cutmax / 3.0 } else { 1.0 };
+        let grid = Grid::new(lo, hi, binsize, dim, cutmax);
+
+        // sort owned atoms by bin: bins are numbered slab axis first, so this is slab order
+        let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
+        // counting sort (stable: atoms of one bin keep their order)
+        let mut start = vec![0u32; grid.total + 1];
+        for &k in &keys {
+            start[k as usize + 1] += 1;
+        }
+        for b in 0..grid.total {
+            start[b + 1] += start[b];
+        }
+        let mut order = vec![0usize; n];
+        for (i, &k) in keys.iter().enumerate() {
+            order[start[k as usize] as usize] = i;
+            start[k as usize] += 1;
+        }
+        atoms.permute(&order);
+        // bin of each owned atom in its new place
+        let bin_of: Vec<u32> = order.iter().map(|&o| keys[o]).collect();
+
+        // ghosts, dimension by dimension so edges and corners get images too (LAMMPS borders())
+        if cutmax > 0.0 {
+            for d in 0..dim {
+                if !domain.periodic(d) {
+                    continue;
+                }
+                let count = atoms.nall();
+                for k in 0..count {
+                    let xk = atoms.x[k][d];
+                    let near_lo = xk < domain.lo[d] + cutmax;
+                    let near_hi = xk >= domain.hi[d] - cutmax;
+                    if !near_lo && !near_hi {
+                        continue;
+                    }
+                    let (owner, shift) = if k < n {
+                        (k, [0i8; 3])
+                    } else {
+                        (atoms.ghost_owner[k - n] as usize, atoms.ghost_shift[k - n])
+                    };
+                    if near_lo {
+                        let mut s = shift;
+                        s[d] = 1;
+                        atoms.push_ghost(owner, s, prd);
+                    }
+                    if near_hi {
+                        let mut s = shift;
+                        s[d] = -1;
+                        atoms.push_ghost(owner, s, prd);
+                    }
+                }
+            }
+        }
+
+        // owned atoms of bin b are the index range local_start[b]..local_start[b+1];
+        // ghosts are counting-sorted into their own bins
+        let nall = atoms.nall();
+        let mut local_start = vec![0u32; grid.total + 1];
+        for &b in keys.iter() {
+            local_start[b as usize + 1] += 1;
+        }
+        for b in 0..grid.total {
+            local_start[b + 1] += local_start[b];
+        }
+        let ghost_bin: Vec<u32> = atoms.x[n..].iter().map(|x| grid.bin(x) as u32).collect();
+        let mut ghost_start = vec![0u32; grid.total + 1];
+        for &b in &ghost_bin {
+            ghost_start[b as usize + 1] += 1;
+        }
+        for b in 0..grid.total {
+            ghost_start[b + 1] += ghost_start[b];
+        }
+        let mut fill = ghost_start.clone();
+        let mut ghosts_by_bin = vec![0u32; nall - n];
+        for (k, &b) in ghost_bin.iter().enumerate() {
+            ghosts_by_bin[fill[b as usize] as usize] = (n + k) as u32;
+            fill[b as usize] += 1;
+        }
+
+        // stencil rows: runs of consecutive bins along the fastest grid axis within reach;
+        // atoms of consecutive bins are consecutive (owned atoms are sorted by bin, ghosts are
+        // counting-sorted), so each row is one contiguous range of candidates
+        let rows = grid.stencil_rows(cutmax);
+        // owned partners come from the forward half: rows after the atom's own row, and the
+        // atom's own row from its bin on (later atoms of its own bin only)
+        let own_row_end = rows.iter().find(|r| r.0 <= 0 && r.1 >= 0).map(|r| r.1).unwrap_or(0);
+        let forward: Vec<(i64, i64)> = rows.iter().copied().filter(|r| r.0 > 0).collect();
+
+        // slab chunks: consecutive planes along the slab axis, at least `reach` planes thick
+        let thick = grid.reach[grid.axis].max(1) as usize;
+        let plane_of = |i: usize| grid.plane(bin_of[i]) / thick;
+        let mut bounds = vec![0usize];
+        for i in 1..n {
+            if plane_of(i) != plane_of(i - 1) {
+                bounds.push(i);
+            }
+        }
+        bounds.push(n);
+        if n == 0 {
+            bounds = vec![0, 0];
+        }
+
+        let a: &Atoms = atoms;
+        let excl = &settings.exclusions;
+        let use_special = !special.is_empty();
+        let chunks: Vec<ChunkList> = bounds
+            .windows(2)
+            .collect::<Vec<_>>()
+            .par_iter()
+            .with_max_len(1)
+            .map(|w| {
+                let (start, end) = (w[0], w[1]);
+                let mut offsets = Vec::with_capacity(end - start + 1);
+                let mut neigh = Vec::with_capacity((end - start) * 48);
+                offsets.push(0u32);
+                for i in start..end {
+                    let xi = a.x[i];
+                    let ti = a.typ[i];
+                    let row = &cutneighsq[ti * stride..(ti + 1) * stride];
+                    let bi = bin_of[i] as i64;
+                    let plain = !use_special && excl.is_empty();
+                    let consider = |j: usize, neigh: &mut Vec<u32>| {
+                        let xj = a.x[j];
+                        let dx = xi[0] - xj[0];
+                        let dy = xi[1] - xj[1];
+                        let dz = xi[2] - xj[2];
+                        let rsq = dx * dx + dy * dy + dz * dz;
+                        if rsq > row[a.typ[j]] {
+                            return;
+                        }
+                        if !excl.is_empty() && excl.excluded(a, i, j) {
+                            return;
+                        }
+                        let mut entry = j as u32;
+                        if use_special {
+                            let far = j >= n && minimum_image_check(domain, [dx, dy, dz]);
+                            match special.action(a.tag[i], a.tag[j], far) {
+                                PairAction::Keep => {}
+                                PairAction::Exclude => return,
+                                PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
+                            }
+                        }
+                        neigh.push(entry);
+                    };
+                    // candidates of a contiguous index range: without exclusions or special
+                    // bonds every candidate is written and kept only if within the cutoff
+                    // (branch-free: the hit rate is about 1 in 4, badly predicted)
+                    let range = |j0: usize, j1: usize, neigh: &mut Vec<u32>| {
+                        if !plain {
+                            for j in j0..j1 {
+                                consider(j, neigh);
+                            }
+                            return;
+                        }
+                        if j1 <= j0 {
+                            return;
+                        }
+                        neigh.reserve(j1 - j0);
+                        let mut len = neigh.len();
+                        let base = neigh.as_mut_ptr();
+                        // slices taken before the loop: read through `a`, their addresses
+                        // were reloaded after every store through `base`
+                        let (xs, ts) = (&a.x[j0..j1], &a.typ[j0..j1]);
+                        for (k, (xj, &tj)) in xs.iter().zip(ts).enumerate() {
+                            let dx = xi[0] - xj[0];
+                            let dy = xi[1] - xj[1];
+                            let dz = xi[2] - xj[2];
+                            let rsq = dx * dx + dy * dy + dz * dz;
+                            // SAFETY: capacity reserved for every candidate of this range
+                            unsafe { *base.add(len) = (j0 + k) as u32 };
+                            len += (rsq <= row[tj]) as usize;
+                        }
+                        // SAFETY: the first `len` entries are initialised
+                        unsafe { neigh.set_len(len) };
+                    };
+                    // owned partners: later atoms of the own row, then the forward rows
+                    range(i + 1, local_start[(bi + own_row_end) as usize + 1] as usize, &mut neigh);
+                    for &(r0, r1) in &forward {
+                        range(local_start[(bi + r0) as usize] as usize, local_start[(bi + r1) as usize + 1] as usize, &mut neigh);
+                    }
+                    // ghost partners: every bin in reach (ghosts are images of atoms within
+                    // cutmax of a periodic face, so only atoms that near a face can see one)
+                    let near_face = (0..dim).any(|d| domain.periodic(d) && (xi[d] < domain.lo[d] + cutmax || xi[d] >= domain.hi[d] - cutmax));
+                    if near_face {
+                        for &(r0, r1) in &rows {
+                            let (b0, b1) = ((bi + r0) as usize, (bi + r1) as usize);
+                            for &g in &ghosts_by_bin[ghost_start[b0] as usize..ghost_start[b1 + 1] as usize] {
+                                consider(g as usize, &mut neigh);
+                            }
+                        }
+                    }
+                    offsets.push(neigh.len() as u32);
+                }
+                ChunkList { start, end, offsets, neigh }
+            })
+            .collect();
+
+        let has_special = use_special && chunks.iter().any(|c| c.neigh.iter().any(|&j| j > NEIGH_MASK));
+        // unique over the process, so no derived list can mistake a new build for its own
+        static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        let generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.list = NeighList { chunks, cutneighsq, ntypes, has_special, generation };
+        self.xhold.clear();
+        self.xhold.extend_from_slice(&atoms.x[..n]);
+        self.ago = 0;
+        self.nbuilds += 1;
+        Ok(order)
+    }
+}
+
+/// A regular grid of bins covering `lo..hi` plus a margin of `reach` bins on each side, so
+/// that a stencil around any atom's bin stays inside the grid. Bins are numbered with the slab
+/// axis (the dimension with the most bins) varying slowest.
+struct Grid {
+    lo: [f64; 3],
+    size: [f64; 3],
+    inv: [f64; 3],
+    nb: [usize; 3],
+    reach: [i64; 3],
+    total: usize,
+    /// The slab axis, then the other two dimensions (slowest to fastest).
+    axis: usize,
+    order: [usize; 3],
+}
+
+impl Grid {
+    fn new(lo: [f64; 3], hi: [f64; 3], binsize: f64, dim: usize, cut: f64) -> Grid {
+        let mut nb = [1usize; 3];
+        let mut size = [1.0; 3];
+        let mut ext = [0.0; 3];
+        let mut binsize = binsize;
+        // keep the bin count bounded for very sparse systems
+        loop {
+            for d in 0..dim {
+                ext[d] = (hi[d] - lo[d]).max(binsize);
+                nb[d] = ((ext[d] / binsize) as usize).max(1);
+                size[d] = ext[d] / nb[d] as f64;
+            }
+            if nb[0] * nb[1] * nb[2] <= 1 << 24 {
+                break;
+            }
+            binsize *= 2.0;
+        }
+        let mut reach = [0i64; 3];
+        let mut inv = [1.0; 3];
+        let mut glo = lo;
+        for d in 0..dim {
+            reach[d] = (cut / size[d]).ceil() as i64;
+            glo[d] = lo[d] - reach[d] as f64 * size[d];
+            nb[d] += 2 * reach[d] as usize;
+            inv[d] = 1.0 / size[d];
+        }
+        let axis = (0..dim).max_by_key(|&d| nb[d]).unwrap_or(0);
+        // the fastest-varying axis is an active one, so stencil rows are long (in 2D: z, with
+        // one bin, goes in the middle)
+        let mut rest: Vec<usize> = (0..3).filter(|&d| d != axis).collect();
+        if dim == 2 {
+            rest.sort_by_key(|&d| if d == 2 { 0 } else { 1 });
+        }
+        Grid { lo: glo, size, inv, nb, reach, total: nb[0] * nb[1] * nb[2], axis, order: [axis, rest[0], rest[1]] }
+    }
+    #[inline]
+    fn coord(&self, x: f64, d: usize) -> usize {
+        let c = ((x - self.lo[d]) * self.inv[d]).floor();
+        if c <= 0.0 { 0 } else { (c as usize).min(self.nb[d] - 1) }
+    }
+    #[inline]
+    fn bin(&self, x: &[f64; 3]) -> usize {
+        let [a, b, c] = self.order;
+        (self.coord(x[a], a) * self.nb[b] + self.coord(x[b], b)) * self.nb[c] + self.coord(x[c], c)
+    }
+    /// Slab plane of a bin.
+    #[inline]
+    fn plane(&self, bin: u32) -> usize {
+        bin as usize / (self.nb[self.order[1]] * self.nb[self.order[2]])
+    }
+    /// The stencil as rows along the fastest axis: `(first, last)` bin-index offsets of each
+    /// run of bins whose closest point can be within `cut`, in increasing order.
+    fn stencil_rows(&self, cut: f64) -> Vec<(i64, i64)> {
+        let [a, b, c] = self.order;
+        let (nbb, nbc) = (self.nb[b] as i64, self.nb[c] as i64);
+        let gap = |k: i64, d: usize| if k == 0 { 0.0 } else { (k.abs() - 1) as f64 * self.size[d] };
+        let within = |ga: f64, gb: f64, gc: f64| ga * ga + gb * gb + gc * gc <= cut * cut * (1.0 + 1e-12);
+        let mut rows = Vec::new();
+        for ka in -self.reach[a]..=self.reach[a] {
+            for kb in -self.reach[b]..=self.reach[b] {
+                let (ga, gb) = (gap(ka, a), gap(kb, b));
+                if !within(ga, gb, 0.0) {
+                    continue;
+                }
+                let kmax = (0..=self.reach[c]).rev().find(|&k| within(ga, gb, gap(k, c))).unwrap_or(0);
+                let base = (ka * nbb + kb) * nbc;
+                rows.push((base - kmax, base + kmax));
+            }
+        }
+        rows
+    }
+}

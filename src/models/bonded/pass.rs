@@ -1,0 +1,418 @@
+//! The bonded pass: bonds, angles and dihedrals between owned atoms, each partner taken at
+//! its periodic image closest to the atom LAMMPS stores the interaction on (atom 1 of a bond,
+//! atom 2 of an angle or dihedral), with the image's coordinate computed as LAMMPS' ghost
+//! copy is (`x + shift * L`), so displacements match LAMMPS bit for bit.
+
+use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
+use crate::models::pair::{for_each_slab, SharedMut};
+use crate::sim::{RunError, Simulation};
+use crate::engine::neighbor::SpecialTable;
+use crate::engine::special::{build_special, Topology as SpecialTopology};
+
+/// One interaction: local indices of its atoms, the periodic shift of each (relative to the
+/// reference atom), and its type.
+#[derive(Clone, Copy, Debug)]
+pub struct Entry<const N: usize> {
+    pub atoms: [u32; N],
+    pub shift: [[i8; 3]; N],
+    pub typ: usize,
+}
+
+impl<const N: usize> Entry<N> {
+    /// Some atom is taken at a periodic image.
+    pub fn shifted(&self) -> bool {
+        self.shift.iter().any(|s| *s != [0; 3])
+    }
+}
+
+/// Interactions grouped by the slab chunk of their lowest-index atom, when all their atoms
+/// lie in that chunk or the next (so chunks can run with the pair loop's even/odd schedule);
+/// the rest (e.g. interactions spanning a periodic boundary) are done afterwards in order.
+/// Chunk `c` holds `entries[offsets[c]..offsets[c+1]]`.
+#[derive(Clone, Debug)]
+pub struct Slabbed<E> {
+    pub entries: Vec<E>,
+    pub offsets: Vec<u32>,
+    pub leftover: Vec<E>,
+}
+
+impl<E> Default for Slabbed<E> {
+    fn default() -> Self {
+        Slabbed { entries: vec![], offsets: vec![0], leftover: vec![] }
+    }
+}
+
+impl<E> Slabbed<E> {
+    pub fn len(&self) -> usize {
+        self.entries.len() + self.leftover.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    pub fn nchunks(&self) -> usize {
+        self.offsets.len() - 1
+    }
+}
+
+/// The interactions of chunk `c` (none if the kind has fewer chunks).
+fn chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
+    if c + 1 < s.offsets.len() {
+        &s.entries[s.offsets[c] as usize..s.offsets[c + 1] as usize]
+    } else {
+        &[]
+    }
+}
+
+/// Group entries by chunk (`chunk_of[i]` = chunk of owned atom i); entries that need a periodic
+/// image go to the leftovers, so chunk entries read positions directly. Within a chunk, entries are
+/// taken with a stride of N (0, N, 2N, ..., then 1, N+1, ...): interactions along a chain
+/// (bond k and k+1 share an atom) would otherwise form one long dependency through the force
+/// accumulators and run at the latency of sqrt/acos instead of their throughput.
+fn slab<E: Copy, const N: usize>(entries: &[E], atoms: impl Fn(&E) -> [u32; N], shifted: impl Fn(&E) -> bool, chunk_of: &[u32], nchunks: usize) -> Slabbed<E> {
+    let mut target: Vec<u32> = Vec::with_capacity(entries.len());
+    let mut counts = vec![0u32; nchunks + 1];
+    let mut leftover = Vec::new();
+    for e in entries {
+        let idx = atoms(e);
+        let (lo, hi) = (*idx.iter().min().unwrap() as usize, *idx.iter().max().unwrap() as usize);
+        let (c, ch) = (chunk_of[lo], chunk_of[hi]);
+        if ch <= c + 1 && !shifted(e) {
+            target.push(c);
+            counts[c as usize + 1] += 1;
+        } else {
+            target.push(u32::MAX);
+            leftover.push(*e);
+        }
+    }
+    for c in 0..nchunks {
+        counts[c + 1] += counts[c];
+    }
+    let offsets = counts.clone();
+    let mut fill = counts;
+    let total = offsets[nchunks] as usize;
+    let Some(&first) = entries.iter().zip(&target).find(|(_, &t)| t != u32::MAX).map(|(e, _)| e) else {
+        return Slabbed { entries: vec![], offsets, leftover };
+    };
+    let mut out = vec![first; total];
+    for (e, &t) in entries.iter().zip(&target) {
+        if t != u32::MAX {
+            out[fill[t as usize] as usize] = *e;
+            fill[t as usize] += 1;
+        }
+    }
+    let mut scratch = Vec::new();
+    for c in 0..nchunks {
+        let chunk = &mut out[offsets[c] as usize..offsets[c + 1] as usize];
+        scratch.clear();
+        for pass in 0..N {
+            scratch.extend(chunk.iter().skip(pass).step_by(N).copied());
+        }
+        chunk.copy_from_slice(&scratch);
+    }
+    Slabbed { entries: out, offsets, leftover }
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct BondedLists {
+    pub bonds: Slabbed<Entry<2>>,
+    pub angles: Slabbed<Entry<3>>,
+    pub dihedrals: Slabbed<Entry<4>>,
+}
+
+/// Energies and virial of the bonded pass.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BondedTally {
+    pub ebond: f64,
+    pub eangle: f64,
+    pub edihed: f64,
+    pub virial: [f64; 6],
+}
+
+impl Simulation {
+    /// Checks before a run: every used type has coefficients; the special lists.
+    pub fn init_bonded(&mut self) -> Result<(), String> {
+        let t = &self.topo;
+        if let Some(s) = self.bond_style.as_mut() {
+            s.set_types(t.nbondtypes);
+            if t.nbondtypes > 0 {
+                s.check_all_set()?;
+            }
+        }
+        if let Some(s) = self.angle_style.as_mut() {
+            s.set_types(t.nangletypes);
+            if t.nangletypes > 0 {
+                s.check_all_set()?;
+            }
+        }
+        if let Some(s) = self.dihedral_style.as_mut() {
+            s.set_types(t.ndihedraltypes);
+            if t.ndihedraltypes > 0 {
+                s.check_all_set()?;
+            }
+        }
+        let missing = |n: usize, style: bool, what: &str| -> Option<String> {
+            (n > 0 && !style).then(|| format!("{n} {what}s are defined but no {what}_style is set"))
+        };
+        for w in [
+            missing(t.bonds.len(), self.bond_style.is_some(), "bond"),
+            missing(t.angles.len(), self.angle_style.is_some(), "angle"),
+            missing(t.dihedrals.len(), self.dihedral_style.is_some(), "dihedral"),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            self.out.print(&format!("WARNING: {w}"));
+        }
+        self.rebuild_special()
+    }
+
+    /// The special partners (1-2, 1-3, 1-4) by atom ID from the current topology.
+    pub fn rebuild_special(&mut self) -> Result<(), String> {
+        let flags = self.special_bonds.flags(false);
+        if self.topo.bonds.is_empty() {
+            self.special_table = SpecialTable { flags, ..SpecialTable::default() };
+        } else {
+            let bonds: Vec<[i64; 2]> = self.topo.bonds.iter().map(|b| b.atoms).collect();
+            let angles: Vec<[i64; 3]> = self.topo.angles.iter().map(|a| a.atoms).collect();
+            let dihedrals: Vec<[i64; 4]> = self.topo.dihedrals.iter().map(|d| d.atoms).collect();
+            let ids = &self.atoms.tag[..self.atoms.nlocal];
+            let (lists, _stats) = build_special(&self.special_bonds, ids, SpecialTopology { bonds: &bonds, angles: &angles, dihedrals: &dihedrals })?;
+            let symmetric = !self.special_bonds.angle && !self.special_bonds.dihedral;
+            self.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
+        }
+        self.special_dirty = false;
+        Ok(())
+    }
+
+    /// Fixes that add or remove bonds, angles or dihedrals call this: the special lists are
+    /// rebuilt and the neighbour lists rebuilt on this step (after the integrator), as LAMMPS
+    /// does for fix bond/break and bond/create.
+    pub fn topology_changed(&mut self) {
+        self.special_dirty = true;
+        self.rebuild_requested = true;
+    }
+
+    /// Map every interaction to local indices and closest-image shifts (after a rebuild).
+    pub fn build_bonded_lists(&mut self) -> Result<(), RunError> {
+        let t = &self.topo;
+        if t.is_empty() {
+            self.bonded_lists = BondedLists::default();
+            return Ok(());
+        }
+        let map = self.atoms.tag_map();
+        let domain = self.domain.as_ref().unwrap();
+        let prd = domain.prd();
+        let x = &self.atoms.x;
+        let step = self.step;
+        let find = |tag: i64, what: &str| -> Result<u32, RunError> {
+            map.get(tag).map(|i| i as u32).ok_or_else(|| RunError::new(step, format!("{what} atom {tag} is missing")))
+        };
+        // shift of atom `o` that brings it closest to atom `r`, per periodic dimension
+        let closest = |r: usize, o: usize| -> [i8; 3] {
+            let mut s = [0i8; 3];
+            for d in 0..3 {
+                if domain.periodic(d) {
+                    let dx = x[r][d] - x[o][d];
+                    if dx > 0.5 * prd[d] {
+                        s[d] = 1;
+                    } else if dx < -0.5 * prd[d] {
+                        s[d] = -1;
+                    }
+                }
+            }
+            s
+        };
+        let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
+        if self.bond_style.is_some() {
+            for b in &t.bonds {
+                let i = [find(b.atoms[0], "bond")?, find(b.atoms[1], "bond")?];
+                bonds.push(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ });
+            }
+        }
+        if self.angle_style.is_some() {
+            for a in &t.angles {
+                let i = [find(a.atoms[0], "angle")?, find(a.atoms[1], "angle")?, find(a.atoms[2], "angle")?];
+                let r = i[1] as usize;
+                angles.push(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ });
+            }
+        }
+        if self.dihedral_style.is_some() {
+            for d in &t.dihedrals {
+                let i = [find(d.atoms[0], "dihedral")?, find(d.atoms[1], "dihedral")?, find(d.atoms[2], "dihedral")?, find(d.atoms[3], "dihedral")?];
+                let r = i[1] as usize;
+                let shift = [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize), closest(r, i[3] as usize)];
+                dihedrals.push(Entry { atoms: i, shift, typ: d.typ });
+            }
+        }
+        let chunks = &self.neighbor.list.chunks;
+        let mut chunk_of = vec![0u32; self.atoms.nlocal];
+        for (c, ch) in chunks.iter().enumerate() {
+            chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
+        }
+        let n = chunks.len();
+        self.bonded_lists = BondedLists {
+            bonds: slab(&bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
+            angles: slab(&angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
+            dihedrals: slab(&dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
+        };
+        Ok(())
+    }
+
+    /// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd
+    /// schedule, then the leftovers, so results do not depend on the thread count.
+    pub fn compute_bonded(&mut self, eflag: bool) -> Result<BondedTally, RunError> {
+        let lists = &self.bonded_lists;
+        if lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty() {
+            return Ok(BondedTally::default());
+        }
+        let prd = self.domain.as_ref().unwrap().prd();
+        let ctx = Kernels {
+            x: &self.atoms.x,
+            prd,
+            shifts: false,
+            eflag,
+            bond: self.bond_style.as_deref(),
+            angle: self.angle_style.as_deref(),
+            dihedral: self.dihedral_style.as_deref(),
+        };
+        let mut f = std::mem::take(&mut self.atoms.f);
+        let nchunks = lists.bonds.nchunks().max(lists.angles.nchunks()).max(lists.dihedrals.nchunks());
+        let shared = SharedMut::new(&mut f);
+        let parts = for_each_slab(nchunks, self.atoms.nlocal, |c| {
+            // SAFETY: a chunk's interactions touch only atoms of this chunk and the next
+            let mut t = BondedTally::default();
+            ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &shared, &mut t);
+            t
+        });
+        let mut tally = BondedTally::default();
+        for p in &parts {
+            tally.add(p);
+        }
+        let ctx = Kernels { shifts: true, ..ctx };
+        ctx.run(&lists.bonds.leftover, &lists.angles.leftover, &lists.dihedrals.leftover, &shared, &mut tally);
+        // `shared` points into f: not used after this
+        self.atoms.f = f;
+        Ok(tally)
+    }
+}
+
+impl BondedTally {
+    fn add(&mut self, o: &BondedTally) {
+        self.ebond += o.ebond;
+        self.eangle += o.eangle;
+        self.edihed += o.edihed;
+        for k in 0..6 {
+            self.virial[k] += o.virial[k];
+        }
+    }
+}
+
+/// What the bonded kernels read.
+pub struct Kernels<'a> {
+    x: &'a [[f64; 3]],
+    prd: [f64; 3],
+    /// Entries may carry periodic shifts (the leftovers).
+    shifts: bool,
+    eflag: bool,
+    bond: Option<&'a dyn BondStyle>,
+    angle: Option<&'a dyn AngleStyle>,
+    dihedral: Option<&'a dyn DihedralStyle>,
+}
+
+fn sub(p: [f64; 3], q: [f64; 3]) -> [f64; 3] {
+    [p[0] - q[0], p[1] - q[1], p[2] - q[2]]
+}
+
+fn add_virial(t: &mut [f64; 6], v: [f64; 6]) {
+    for k in 0..6 {
+        t[k] += v[k];
+    }
+}
+
+impl Kernels<'_> {
+    /// Position of an atom at a periodic shift, computed as LAMMPS' ghost copy (`x + s*L`).
+    /// Chunk entries have no shifts (see `slab`), so their positions are read directly.
+    #[inline(always)]
+    fn pos(&self, i: u32, s: [i8; 3]) -> [f64; 3] {
+        let mut p = self.x[i as usize];
+        if self.shifts {
+            for d in 0..3 {
+                if s[d] != 0 {
+                    p[d] += s[d] as f64 * self.prd[d];
+                }
+            }
+        }
+        p
+    }
+
+    fn run(&self, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+        if let Some(style) = self.bond {
+            style.apply(bonds, self, f, tally);
+        }
+        if let Some(style) = self.angle {
+            style.apply(angles, self, f, tally);
+        }
+        if let Some(style) = self.dihedral {
+            style.apply(dihedrals, self, f, tally);
+        }
+    }
+}
+
+/// Add `fk` to atom `i` (the caller has exclusive access to the atoms of its entries).
+#[inline(always)]
+fn add_force(f: &SharedMut<[f64; 3]>, i: u32, fk: [f64; 3]) {
+    // SAFETY: see `compute_bonded`: entries of concurrent chunks touch disjoint atoms
+    let fa = unsafe { f.get(i as usize) };
+    for d in 0..3 {
+        fa[d] += fk[d];
+    }
+}
+
+pub fn apply_bonds<S: BondStyle + ?Sized>(style: &S, entries: &[Entry<2>], k: &Kernels, f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+    for e in entries {
+        let del = sub(k.pos(e.atoms[0], e.shift[0]), k.pos(e.atoms[1], e.shift[1]));
+        let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+        let (fbond, energy) = style.compute(e.typ, del, rsq);
+        add_force(f, e.atoms[0], [del[0] * fbond, del[1] * fbond, del[2] * fbond]);
+        // LAMMPS subtracts del*fbond (not adds its negative): identical bits
+        let fa = unsafe { f.get(e.atoms[1] as usize) };
+        for d in 0..3 {
+            fa[d] -= del[d] * fbond;
+        }
+        if k.eflag {
+            tally.ebond += energy;
+            add_virial(&mut tally.virial, bond_virial(del, fbond));
+        }
+    }
+}
+
+pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: &Kernels, f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+    for e in entries {
+        let x2 = k.pos(e.atoms[1], e.shift[1]);
+        let del1 = sub(k.pos(e.atoms[0], e.shift[0]), x2);
+        let del2 = sub(k.pos(e.atoms[2], e.shift[2]), x2);
+        let r = style.compute(e.typ, del1, del2);
+        add_force(f, e.atoms[0], r.f1);
+        add_force(f, e.atoms[1], r.f2());
+        add_force(f, e.atoms[2], r.f3);
+        if k.eflag {
+            tally.eangle += r.energy;
+            add_virial(&mut tally.virial, angle_virial(del1, del2, r.f1, r.f3));
+        }
+    }
+}
+
+pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>], k: &Kernels, f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+    for e in entries {
+        let p: [[f64; 3]; 4] = std::array::from_fn(|m| k.pos(e.atoms[m], e.shift[m]));
+        let (vb1, vb2, vb3) = (sub(p[0], p[1]), sub(p[2], p[1]), sub(p[3], p[2]));
+        let r = style.compute(e.typ, vb1, vb2, vb3);
+        for (m, fm) in [r.f1, r.f2, r.f3, r.f4].into_iter().enumerate() {
+            add_force(f, e.atoms[m], fm);
+        }
+        if k.eflag {
+            tally.edihed += r.energy;
+            add_virial(&mut tally.virial, dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4));
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! Computes: quantities derived from the current state (LAMMPS `compute`), read by thermo
+//! output, variables and dumps. Each style lives in its own file; [`new_compute`] is the
+//! registry. Computes only read the simulation.
+
+pub mod com;
+pub mod dmhs_phase_atom;
+pub mod ke;
+pub mod pe;
+pub mod pressure;
+pub mod property;
+pub mod property_atom;
+pub mod reduce;
+pub mod sph_atom;
+pub mod temp;
+
+use crate::sim::Simulation;
+use dmhs_parser::{Command, DResult, Word};
+
+/// Per-atom values of a compute: `cols` values per owned atom (1 for a per-atom vector).
+#[derive(Clone, Debug, Default)]
+pub struct PerAtom {
+    pub cols: usize,
+    pub data: Vec<f64>,
+}
+
+impl PerAtom {
+    #[inline]
+    pub fn get(&self, i: usize, col: usize) -> f64 {
+        self.data[i * self.cols + col]
+    }
+}
+
+pub trait Compute: Send + Sync {
+    fn id(&self) -> &str;
+    fn style(&self) -> &str;
+    fn groupbit(&self) -> u32;
+    /// Global scalar.
+    fn scalar(&self, _sim: &Simulation) -> Result<f64, String> {
+        Err(format!("compute {} ({}) does not compute a global scalar", self.id(), self.style()))
+    }
+    /// Global vector.
+    fn vector(&self, _sim: &Simulation) -> Result<Vec<f64>, String> {
+        Err(format!("compute {} ({}) does not compute a global vector", self.id(), self.style()))
+    }
+    /// Per-atom values (for owned atoms, in local order).
+    fn peratom(&self, _sim: &Simulation) -> Result<PerAtom, String> {
+        Err(format!("compute {} ({}) does not compute per-atom values", self.id(), self.style()))
+    }
+    /// Columns of per-atom output (None: not per-atom).
+    fn peratom_cols(&self) -> Option<usize> {
+        None
+    }
+    /// Degrees of freedom (temperature computes only).
+    fn dof(&self, _sim: &Simulation) -> Option<f64> {
+        None
+    }
+    fn describe(&self) -> String {
+        format!("compute {} {}", self.id(), self.style())
+    }
+}
+
+/// Compute styles this build implements.
+pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce", "sph/rho/atom", "sph/e/atom", "sph/t/atom", "dmhs/phase/atom"];
+
+/// Build a compute from `compute ID group style args...`.
+pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &Simulation) -> DResult<Box<dyn Compute>> {
+    let id = id.text.clone();
+    match style.text.as_str() {
+        "temp" => Ok(Box::new(temp::ComputeTemp::from_lammps(id, groupbit, args, cmd)?)),
+        "ke" => Ok(Box::new(ke::ComputeKe::from_lammps(id, groupbit, args, cmd)?)),
+        "pe" => Ok(Box::new(pe::ComputePe::from_lammps(id, groupbit, args, cmd)?)),
+        "pressure" => Ok(Box::new(pressure::ComputePressure::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "com" => Ok(Box::new(com::ComputeCom::from_lammps(id, groupbit, args, cmd)?)),
+        "property/atom" => Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "reduce" => Ok(Box::new(reduce::ComputeReduce::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "sph/rho/atom" | "sph/e/atom" | "sph/t/atom" => Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "dmhs/phase/atom" => Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        other => Err(crate::models::styles::unsupported_style("compute", style, other, SUPPORTED)),
+    }
+}
+
+/// The computes LAMMPS creates for thermo output: thermo_temp, thermo_press, thermo_pe.
+pub fn default_computes() -> Vec<Box<dyn Compute>> {
+    vec![
+        Box::new(temp::ComputeTemp::new("thermo_temp".into(), 1)),
+        Box::new(pressure::ComputePressure::new("thermo_press".into(), "thermo_temp".into())),
+        Box::new(pe::ComputePe::new("thermo_pe".into())),
+    ]
+}
+
+/// Group functions of expressions: count(g[,region]), mass(g[,region]), xcm(g,dim), vcm(g,dim), fcm(g,dim),
+/// bound(g,xmin|xmax|...), ke(g). `None` if `name` is not a group function.
+pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<Result<f64, String>> {
+    let known = ["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "ke", "gyration"];
+    if !known.contains(&name) {
+        return None;
+    }
+    Some((|| {
+        let g = args.first().ok_or_else(|| format!("{name}() needs a group ID"))?;
+        let bit = sim.group_bit(g)?;
+        let a = &sim.atoms;
+        // LAMMPS' optional last argument of count() and mass(): only atoms in a region
+        let region = match (name, args.get(1)) {
+            ("count" | "mass", Some(r)) => Some(sim.regions.iter().find(|reg| &reg.id == r).ok_or_else(|| format!("{name}(): region `{r}` does not exist"))?),
+            _ => None,
+        };
+        let members = (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0);
+        let dim_of = |k: usize| -> Result<usize, String> {
+            match args.get(k).map(|s| s.as_str()) {
+                Some("x") => Ok(0),
+                Some("y") => Ok(1),
+                Some("z") => Ok(2),
+                _ => Err(format!("{name}() needs a dimension x, y or z")),
+            }
+        };
+        Ok(match name {
+            "count" => match region {
+                Some(r) => members.filter(|&i| r.matches(a.x[i])).count() as f64,
+                None => sim.group_count(bit) as f64,
+            },
+            "mass" => members.filter(|&i| region.is_none_or(|r| r.matches(a.x[i]))).map(|i| sim.mass(i)).sum(),
+            "charge" => {
+                if !a.features.charge {
+                    return Err("charge() needs an atom style with charges".into());
+                }
+                members.map(|i| a.q[i]).sum()
+            }
+            "xcm" => sim.group_xcm(bit).0[dim_of(1)?],
+            "vcm" => sim.group_vcm(bit)[dim_of(1)?],
+            "fcm" => {
+                let d = dim_of(1)?;
+                members.map(|i| a.f[i][d]).sum()
+            }
+            "ke" => sim.kinetic_energy(bit),
+            "gyration" => {
+                let (c, m) = sim.group_xcm(bit);
+                let dom = sim.domain()?;
+                let mut rg = 0.0;
+                for i in (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0) {
+                    let u = dom.unmap(a.x[i], a.image[i]);
+                    let d = [u[0] - c[0], u[1] - c[1], u[2] - c[2]];
+                    rg += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * sim.mass(i);
+                }
+                if m > 0.0 { (rg / m).sqrt() } else { 0.0 }
+            }
+            "bound" => {
+                let which = args.get(1).map(|s| s.as_str()).unwrap_or("");
+                let (d, max) = match which {
+                    "xmin" => (0, false),
+                    "xmax" => (0, true),
+                    "ymin" => (1, false),
+                    "ymax" => (1, true),
+                    "zmin" => (2, false),
+                    "zmax" => (2, true),
+                    _ => return Err("bound() needs xmin, xmax, ymin, ymax, zmin or zmax".into()),
+                };
+                let vals = members.map(|i| a.x[i][d]);
+                if max { vals.fold(f64::NEG_INFINITY, f64::max) } else { vals.fold(f64::INFINITY, f64::min) }
+            }
+            _ => unreachable!(),
+        })
+    })())
+}
+
+/// `x[ID]`-style references in expressions.
+pub fn atom_value(sim: &Simulation, keyword: &str, id: i64) -> Option<Result<f64, String>> {
+    let field = property::Field::parse(keyword)?;
+    Some((|| {
+        field.check(sim)?;
+        let i = (0..sim.atoms.nlocal).find(|&i| sim.atoms.tag[i] == id).ok_or_else(|| format!("atom ID {id} does not exist"))?;
+        Ok(field.value(sim, i))
+    })())
+}
+
+/// Parse `compute ID group style` with no further arguments.
+pub fn expect_no_args(args: &[Word], cmd: &Command, syntax: &str) -> DResult<()> {
+    dmhs_parser::Args::from_words(args, cmd.span, syntax).finish()
+}

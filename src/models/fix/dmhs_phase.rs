@@ -1,0 +1,435 @@
+//! `fix ID group dmhs/phase Tstar T cvs Cs cvl Cl latent L liquid LT solid ST [bond BT cutoff RC]
+//! [mix Tlow Thigh]` — solidification and melting with latent heat (Alexiadis 2015, Eq 24 and
+//! the casting example).
+//!
+//! Equation of state (e = esph/m, the specific internal energy: esph is the particle's energy
+//! m e as in LAMMPS' SPH package; e_0 = T_0 = 0):
+//!   e_sol = cvs T*,  e_liq = e_sol + L
+//!   T = e/cvs                      for e < e_sol          (solid)
+//!   T = T*                         for e_sol <= e <= e_liq (transition plateau)
+//!   T = T* + (e - e_liq)/cvl       for e > e_liq          (liquid)
+//! The temperature of every atom is published in the per-atom field `dmhs/T` (ghosts too), read
+//! by `pair_style dmhs/heatconduction` and `fix dmhs/cooling`; atoms outside the group get
+//! esph/cv. The particle's heat capacity in its current state (m cvs below e_sol, m cvl above;
+//! cv outside the group) goes to `dmhs/c`.
+//!
+//! Label and switch of models (checked at the end of every step, on group atoms):
+//! - a liquid atom whose e falls below e_sol becomes solid: its type becomes ST (so the per-type
+//!   pair styles treat it as DEM/CGMD) and, with `bond`, it creates a bond of type BT to every
+//!   solid atom within RC. Atoms that solidify on the same step are handled in ID order, so a
+//!   later one bonds to an earlier one. An atom that is already solid never creates bonds itself
+//!   (it only receives them from newly solidified neighbours), as the paper's rule says.
+//! - a solid atom whose e rises above e_liq melts: every bond, angle and dihedral it is part of
+//!   is deleted and its type becomes LT (SPH).
+//! Initial labels come from the types (ST: solid, LT: liquid). Type and topology changes ask for
+//! a neighbour-list rebuild (and a special-list rebuild) on the next step.
+//!
+//! `mix Tlow Thigh`: the per-atom weight phi(T) = clamp((T - Tlow)/(Thigh - Tlow), 0, 1) of the
+//! liquid (SPH) part, published as `dmhs/phi` for `pair_style dmhs/blend` (lava, Fig 13).
+//! Without `mix`, phi = 1 for liquid and 0 for solid atoms.
+//!
+//! Output: f_ID = solid fraction (solid atoms / group atoms); f_ID[1..5] = solid fraction,
+//! number of solid atoms, bonds created, bonds deleted (since the fix was defined), and the
+//! solid fraction by enthalpy (mean over the group of clamp((e_liq - e)/L, 0, 1)), atoms on the
+//! plateau (e_sol <= e <= e_liq: the transition zone), and the numbers of solidification and
+//! melting events (since the fix was defined).
+//! Per-atom: `compute ID group dmhs/phase/atom` (T, label, melt fraction, phi).
+
+use super::{Fix, FixHooks};
+use crate::sim::{RunError, Simulation};
+use crate::engine::topology::Bond;
+use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+
+pub const SYNTAX: &str = "fix ID group dmhs/phase Tstar T cvs Cs cvl Cl latent L liquid LT solid ST [bond BT cutoff RC] [mix Tlow Thigh]";
+
+pub const LABEL_FIELD: &str = "dmhs/phase";
+pub const C_FIELD: &str = "dmhs/c";
+pub const PHI_FIELD: &str = "dmhs/phi";
+pub use crate::models::pair::dmhs_heatconduction::T_FIELD;
+
+/// The phase-change equation of state (Eq 24).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhaseEos {
+    pub tstar: f64,
+    pub cvs: f64,
+    pub cvl: f64,
+    pub esol: f64,
+    pub eliq: f64,
+}
+
+impl PhaseEos {
+    pub fn new(tstar: f64, cvs: f64, cvl: f64, latent: f64) -> PhaseEos {
+        let esol = cvs * tstar;
+        PhaseEos { tstar, cvs, cvl, esol, eliq: esol + latent }
+    }
+    pub fn temperature(&self, e: f64) -> f64 {
+        if e < self.esol {
+            e / self.cvs
+        } else if e <= self.eliq {
+            self.tstar
+        } else {
+            self.tstar + (e - self.eliq) / self.cvl
+        }
+    }
+    /// dE/dT of the current state (the liquid's on the plateau).
+    pub fn capacity(&self, e: f64) -> f64 {
+        if e < self.esol { self.cvs } else { self.cvl }
+    }
+    /// Inverse of [`PhaseEos::temperature`] off the plateau (for setting initial states).
+    pub fn energy(&self, t: f64) -> f64 {
+        if t < self.tstar { self.cvs * t } else { self.eliq + self.cvl * (t - self.tstar) }
+    }
+    /// Melt fraction by enthalpy: 0 below e_sol, 1 above e_liq, linear between.
+    pub fn melt_fraction(&self, e: f64) -> f64 {
+        let l = self.eliq - self.esol;
+        if l <= 0.0 {
+            return if e > self.esol { 1.0 } else { 0.0 };
+        }
+        ((e - self.esol) / l).clamp(0.0, 1.0)
+    }
+}
+
+pub struct FixDmhsPhase {
+    id: String,
+    groupbit: u32,
+    pub eos: PhaseEos,
+    liquid: usize,
+    solid: usize,
+    bond: Option<(usize, f64)>,
+    mix: Option<(f64, f64)>,
+    created: u64,
+    deleted: u64,
+    /// atoms that became solid / liquid (since the fix was defined)
+    frozen: u64,
+    melted: u64,
+}
+
+impl FixDmhsPhase {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        if !sim.atoms.features.sph {
+            return Err(Diagnostic::at(style.span, "fix dmhs/phase needs an atom style with SPH attributes (atom_style sph or hybrid ... sph)", "atom style has no esph").with_help(format!("syntax: {SYNTAX}")));
+        }
+        let nt = sim.ntypes.max(1) as i64;
+        let (mut tstar, mut cvs, mut cvl, mut latent, mut liquid, mut solid) = (None, None, None, None, None, None);
+        let (mut bond, mut cutoff, mut mix) = (None, None, None);
+        let mut bond_word = None;
+        const KEYS: &[&str] = &["Tstar", "cvs", "cvl", "latent", "liquid", "solid", "bond", "cutoff", "mix"];
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            match w.text.as_str() {
+                "Tstar" => tstar = Some(a.f64("T* (transition temperature)")?),
+                "cvs" => cvs = Some(a.positive_f64("cvs (heat capacity of the solid)")?),
+                "cvl" => cvl = Some(a.positive_f64("cvl (heat capacity of the liquid)")?),
+                "latent" => latent = Some(a.non_negative_f64("L (latent heat, e_liq - e_sol)")?),
+                "liquid" => liquid = Some(a.i64_in("liquid atom type", 1, nt)? as usize),
+                "solid" => solid = Some(a.i64_in("solid atom type", 1, nt)? as usize),
+                "bond" => {
+                    bond_word = Some(w);
+                    bond = Some(a.i64_in("bond type", 1, i64::MAX)? as usize)
+                }
+                "cutoff" => cutoff = Some(a.positive_f64("bonding cut-off distance")?),
+                "mix" => {
+                    let lo = a.f64("Tlow (fully solid below)")?;
+                    let hi = a.f64_where("Thigh (fully liquid above)", "> Tlow", |x| x > lo)?;
+                    mix = Some((lo, hi));
+                }
+                _ => return Err(a.unknown_keyword(w, KEYS)),
+            }
+        }
+        let need = |v: Option<f64>, k: &str| v.ok_or_else(|| Diagnostic::at(cmd.span, format!("fix dmhs/phase needs the keyword `{k}`"), "missing keyword").with_help(format!("syntax: {SYNTAX}")));
+        let eos = PhaseEos::new(need(tstar, "Tstar")?, need(cvs, "cvs")?, need(cvl, "cvl")?, need(latent, "latent")?);
+        let liquid = need(liquid.map(|x| x as f64), "liquid")? as usize;
+        let solid = need(solid.map(|x| x as f64), "solid")? as usize;
+        if liquid == solid {
+            return Err(Diagnostic::at(cmd.span, "fix dmhs/phase: the liquid and solid types must differ", "same type").with_help(format!("syntax: {SYNTAX}")));
+        }
+        let bond = match (bond, cutoff) {
+            (Some(b), Some(rc)) => {
+                let w = bond_word.unwrap();
+                if !sim.atoms.features.bonds {
+                    return Err(Diagnostic::at(w.span, "fix dmhs/phase bond needs an atom style with bonds (e.g. atom_style hybrid sph bond)", "atom style has no bonds"));
+                }
+                if b > sim.topo.nbondtypes {
+                    return Err(Diagnostic::at(w.span, format!("bond type {b} is larger than the number of bond types ({})", sim.topo.nbondtypes), "no such bond type"));
+                }
+                Some((b, rc))
+            }
+            (None, None) => None,
+            _ => return Err(Diagnostic::at(cmd.span, "fix dmhs/phase: `bond BT` and `cutoff RC` go together", "give both or neither").with_help(format!("syntax: {SYNTAX}"))),
+        };
+        // per-atom fields (registered with no ghosts present)
+        sim.atoms.clear_ghosts();
+        sim.lists_valid = false;
+        sim.atoms.extra_field(T_FIELD, 1, true);
+        sim.atoms.extra_array(LABEL_FIELD, 1);
+        sim.atoms.extra_array(C_FIELD, 1);
+        if mix.is_some() {
+            sim.atoms.extra_field(PHI_FIELD, 1, true);
+        }
+        Ok(FixDmhsPhase { id, groupbit, eos, liquid, solid, bond, mix, created: 0, deleted: 0, frozen: 0, melted: 0 })
+    }
+
+    fn field(sim: &Simulation, name: &str) -> usize {
+        sim.atoms.find_extra(name).expect("dmhs/phase fields are registered at definition")
+    }
+
+    /// Labels from the types (1 solid, 0 liquid).
+    fn label_from_types(&self, sim: &mut Simulation) {
+        let kl = Self::field(sim, LABEL_FIELD);
+        let a = &mut sim.atoms;
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit != 0 {
+                a.extra[kl].data[i] = if a.typ[i] == self.solid { 1.0 } else { 0.0 };
+            }
+        }
+    }
+
+    /// T, c (and phi) of owned atoms from their energies.
+    fn update_fields(&self, sim: &mut Simulation) {
+        let (kt, kc, kl) = (Self::field(sim, T_FIELD), Self::field(sim, C_FIELD), Self::field(sim, LABEL_FIELD));
+        let kp = sim.atoms.find_extra(PHI_FIELD);
+        let a = &mut sim.atoms;
+        for i in 0..a.nlocal {
+            let (t, c) = if a.mask[i] & self.groupbit != 0 {
+                let m = a.mass(i, &sim.type_mass);
+                let e = a.esph[i] / m;
+                (self.eos.temperature(e), m * self.eos.capacity(e))
+            } else {
+                let e = a.esph[i];
+                let cv = a.cv[i];
+                (if cv > 0.0 { e / cv } else { 0.0 }, cv)
+            };
+            a.extra[kt].data[i] = t;
+            a.extra[kc].data[i] = c;
+            if let Some(kp) = kp {
+                let phi = match self.mix {
+                    Some((lo, hi)) if a.mask[i] & self.groupbit != 0 => ((t - lo) / (hi - lo)).clamp(0.0, 1.0),
+                    _ => 1.0 - a.extra[kl].data[i],
+                };
+                a.extra[kp].data[i] = phi;
+            }
+        }
+    }
+
+    /// Copy the ghost-carried fields to the existing ghosts.
+    fn forward(sim: &mut Simulation) {
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        for name in [T_FIELD, PHI_FIELD] {
+            if let Some(k) = a.find_extra(name) {
+                crate::engine::atoms::Atoms::forward_field(&mut a.extra[k].data, n, &a.ghost_owner);
+            }
+        }
+    }
+
+    /// Apply the solidification and melting rules; returns whether anything changed.
+    fn transitions(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        let kl = Self::field(sim, LABEL_FIELD);
+        let a = &sim.atoms;
+        let mut freeze = vec![];
+        let mut melt = vec![];
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit == 0 {
+                continue;
+            }
+            let solid = a.extra[kl].data[i] != 0.0;
+            let e = a.esph[i] / a.mass(i, &sim.type_mass);
+            if !solid && e < self.eos.esol {
+                freeze.push(i);
+            } else if solid && e > self.eos.eliq {
+                melt.push(i);
+            }
+        }
+        if freeze.is_empty() && melt.is_empty() {
+            return Ok(());
+        }
+        let mut topo_changed = false;
+        if !melt.is_empty() {
+            let gone: std::collections::HashSet<i64> = melt.iter().map(|&i| sim.atoms.tag[i]).collect();
+            let t = &mut sim.topo;
+            let before = t.bonds.len() + t.angles.len() + t.dihedrals.len();
+            let nb = t.bonds.len();
+            t.remove_atoms(&gone);
+            self.deleted += (nb - t.bonds.len()) as u64;
+            topo_changed |= t.bonds.len() + t.angles.len() + t.dihedrals.len() != before;
+            self.melted += melt.len() as u64;
+            for &i in &melt {
+                sim.atoms.extra[kl].data[i] = 0.0;
+                sim.atoms.typ[i] = self.liquid;
+            }
+        }
+        self.frozen += freeze.len() as u64;
+        // newly solid atoms in ID order, each bonding to solid atoms within the cut-off
+        freeze.sort_by_key(|&i| sim.atoms.tag[i]);
+        let mut bonded: std::collections::HashSet<(i64, i64)> = std::collections::HashSet::new();
+        if self.bond.is_some() {
+            bonded = sim.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect();
+        }
+        for &i in &freeze {
+            if let Some((btype, rc)) = self.bond {
+                let domain = sim.domain.as_ref().ok_or_else(|| RunError::new(sim.step, "no simulation box"))?;
+                let a = &sim.atoms;
+                let xi = a.x[i];
+                let ti = a.tag[i];
+                for j in 0..a.nlocal {
+                    if j == i || a.extra[kl].data[j] == 0.0 {
+                        continue;
+                    }
+                    let mut d = [xi[0] - a.x[j][0], xi[1] - a.x[j][1], xi[2] - a.x[j][2]];
+                    domain.minimum_image(&mut d);
+                    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= rc * rc {
+                        continue;
+                    }
+                    let tj = a.tag[j];
+                    if bonded.insert((ti.min(tj), ti.max(tj))) {
+                        sim.topo.bonds.push(Bond { typ: btype, atoms: [ti, tj] });
+                        self.created += 1;
+                        topo_changed = true;
+                    }
+                }
+            }
+            sim.atoms.extra[kl].data[i] = 1.0;
+            sim.atoms.typ[i] = self.solid;
+        }
+        if topo_changed {
+            sim.topology_changed();
+        }
+        // new types change cutoffs and ghost types: rebuild the lists on the next step
+        sim.rebuild_requested = true;
+        Ok(())
+    }
+
+    /// (group atoms, solid-labelled atoms, solid fraction by enthalpy summed, atoms on the
+    /// plateau e_sol <= e <= e_liq).
+    fn counts(&self, sim: &Simulation) -> (f64, f64, f64, f64) {
+        let kl = Self::field(sim, LABEL_FIELD);
+        let a = &sim.atoms;
+        let (mut n, mut ns, mut fs, mut np) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit != 0 {
+                let e = a.esph[i] / a.mass(i, &sim.type_mass);
+                n += 1.0;
+                ns += a.extra[kl].data[i];
+                fs += 1.0 - self.eos.melt_fraction(e);
+                if e >= self.eos.esol && e <= self.eos.eliq {
+                    np += 1.0;
+                }
+            }
+        }
+        (n, ns, fs, np)
+    }
+}
+
+impl Fix for FixDmhsPhase {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "dmhs/phase"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { post_integrate: true, end_of_step: true, ..FixHooks::default() }
+    }
+    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
+        let a = &sim.atoms;
+        for t in [self.liquid, self.solid] {
+            if t > sim.ntypes {
+                return Err(format!("atom type {t} does not exist ({} types)", sim.ntypes));
+            }
+        }
+        if let Some(i) = (0..a.nlocal).find(|&i| a.mask[i] & self.groupbit != 0 && a.typ[i] != self.liquid && a.typ[i] != self.solid) {
+            return Err(format!("atom {} of the group has type {}, neither the liquid type {} nor the solid type {}", a.tag[i], a.typ[i], self.liquid, self.solid));
+        }
+        if self.bond.is_some() && sim.bond_style.is_none() {
+            return Err("bond needs a bond_style (e.g. bond_style harmonic) with coefficients for the bond type".into());
+        }
+        Ok(())
+    }
+    fn setup_pre_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.label_from_types(sim);
+        self.update_fields(sim);
+        Self::forward(sim);
+        Ok(())
+    }
+    /// After the first half step of e: the temperatures the forces of this step use.
+    fn post_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.update_fields(sim);
+        Ok(())
+    }
+    fn end_of_step(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.transitions(sim)?;
+        self.update_fields(sim);
+        Ok(())
+    }
+    fn scalar(&self, sim: &Simulation) -> Option<f64> {
+        let (n, ns, _, _) = self.counts(sim);
+        Some(if n > 0.0 { ns / n } else { 0.0 })
+    }
+    fn vector(&self, sim: &Simulation, i: usize) -> Option<f64> {
+        let (n, ns, fs, np) = self.counts(sim);
+        match i {
+            1 => Some(if n > 0.0 { ns / n } else { 0.0 }),
+            2 => Some(ns),
+            3 => Some(self.created as f64),
+            4 => Some(self.deleted as f64),
+            5 => Some(if n > 0.0 { fs / n } else { 0.0 }),
+            6 => Some(np),
+            7 => Some(self.frozen as f64),
+            8 => Some(self.melted as f64),
+            _ => None,
+        }
+    }
+    fn phase_eos(&self) -> Option<PhaseEos> {
+        Some(self.eos)
+    }
+    fn cleanup(&mut self, sim: &mut Simulation) {
+        sim.atoms.clear_ghosts();
+        sim.lists_valid = false;
+        for f in [T_FIELD, LABEL_FIELD, C_FIELD, PHI_FIELD] {
+            sim.atoms.remove_extra(f);
+        }
+    }
+    fn describe(&self) -> String {
+        let e = &self.eos;
+        format!(
+            "fix {} dmhs/phase: T* {} cvs {} cvl {} e_sol {} e_liq {}, liquid type {} <-> solid type {}{}{}",
+            self.id,
+            e.tstar,
+            e.cvs,
+            e.cvl,
+            e.esol,
+            e.eliq,
+            self.liquid,
+            self.solid,
+            self.bond.map(|(b, rc)| format!(", bonds of type {b} within {rc}")).unwrap_or_default(),
+            self.mix.map(|(l, h)| format!(", SPH weight from T {l} to {h}")).unwrap_or_default()
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eos_is_eq24_with_the_paper_numbers() {
+        // casting example: e_sol = 50, e_liq = 100, cvs = 2, cvl = 1 -> T* = 25, L = 50
+        let eos = PhaseEos::new(25.0, 2.0, 1.0, 50.0);
+        assert_eq!((eos.esol, eos.eliq), (50.0, 100.0));
+        assert_eq!(eos.temperature(20.0), 10.0);
+        assert_eq!(eos.temperature(50.0), 25.0);
+        assert_eq!(eos.temperature(75.0), 25.0);
+        assert_eq!(eos.temperature(100.0), 25.0);
+        assert_eq!(eos.temperature(175.0), 100.0);
+        for t in [0.0, 10.0, 24.0, 26.0, 100.0] {
+            assert!((eos.temperature(eos.energy(t)) - t).abs() < 1e-12);
+        }
+        assert_eq!(eos.melt_fraction(75.0), 0.5);
+        assert_eq!(eos.capacity(49.0), 2.0);
+        assert_eq!(eos.capacity(60.0), 1.0);
+    }
+}

@@ -1,0 +1,120 @@
+//! `fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta`:
+//! f += m * g (acceleration `magnitude` along the normalised direction, LAMMPS' arithmetic).
+
+use super::value::FixValue;
+use super::{Fix, FixHooks};
+use crate::models::pair::SharedMut;
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta";
+
+pub struct FixGravity {
+    id: String,
+    groupbit: u32,
+    magnitude: FixValue,
+    dir: [f64; 3],
+    /// The acceleration vector of the last force step.
+    acc: [f64; 3],
+}
+
+impl FixGravity {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let w = a.word("magnitude")?;
+        let magnitude = FixValue::parse(w, "magnitude", false).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
+        let deg = std::f64::consts::PI / 180.0;
+        let three_d = sim.dimension == 3;
+        let dir = match a.choice("direction style", &["vector", "chute", "spherical"])? {
+            0 => {
+                let (x, y, z) = (a.f64("x")?, a.f64("y")?, a.f64("z")?);
+                if three_d {
+                    let len = (x * x + y * y + z * z).sqrt();
+                    [x / len, y / len, z / len]
+                } else {
+                    let len = (x * x + y * y).sqrt();
+                    [x / len, y / len, 0.0]
+                }
+            }
+            1 => {
+                let angle = a.f64("angle")?;
+                let (phi, theta) = (0.0, 180.0 - angle);
+                angles(phi, theta, deg, three_d)
+            }
+            _ => {
+                let (phi, theta) = (a.f64("phi")?, a.f64("theta")?);
+                angles(phi, theta, deg, three_d)
+            }
+        };
+        if !dir.iter().all(|v| v.is_finite()) {
+            return Err(a.error_at(&args[1], "gravity direction has zero length", "zero vector"));
+        }
+        a.finish()?;
+        Ok(FixGravity { id, groupbit, magnitude, dir, acc: [0.0; 3] })
+    }
+}
+
+fn angles(phi: f64, theta: f64, deg: f64, three_d: bool) -> [f64; 3] {
+    if three_d {
+        [(deg * theta).sin() * (deg * phi).cos(), (deg * theta).sin() * (deg * phi).sin(), (deg * theta).cos()]
+    } else {
+        [(deg * theta).sin(), (deg * theta).cos(), 0.0]
+    }
+}
+
+impl Fix for FixGravity {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "gravity"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { post_force: true, ..FixHooks::default() }
+    }
+    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        let g = self.magnitude.eval(sim)?.unwrap_or(0.0);
+        let acc = [g * self.dir[0], g * self.dir[1], g * self.dir[2]];
+        self.acc = acc;
+        let per_atom = sim.atoms.features.per_atom_mass();
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let (mask, typ, rmass, type_mass, groupbit) = (&a.mask[..n], &a.typ[..n], &a.rmass, &sim.type_mass, self.groupbit);
+        let f = SharedMut::new(&mut a.f[..n]);
+        // atoms are independent: ranges in parallel (the energy is summed in `scalar`)
+        super::for_each_range(n, 4096, |r| {
+            // SAFETY: each range belongs to one task only
+            let f = unsafe { f.slice(r.clone()) };
+            for (k, i) in r.enumerate() {
+                if mask[i] & groupbit != 0 {
+                    let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };
+                    f[k][0] += m * acc[0];
+                    f[k][1] += m * acc[1];
+                    f[k][2] += m * acc[2];
+                }
+            }
+        });
+        Ok(())
+    }
+    /// LAMMPS' egrav = -sum m (g . x) over the group, with the acceleration of the last force
+    /// step, summed here in atom order (what LAMMPS sums in post_force: positions, masses and
+    /// the group do not change between the force step and the end of the step, when thermo and
+    /// variables read it).
+    fn scalar(&self, sim: &Simulation) -> Option<f64> {
+        let a = &sim.atoms;
+        let per_atom = a.features.per_atom_mass();
+        let [xacc, yacc, zacc] = self.acc;
+        let mut egrav = 0.0;
+        for i in 0..a.nlocal {
+            if a.mask[i] & self.groupbit != 0 {
+                let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
+                let x = a.x[i];
+                egrav -= m * (xacc * x[0] + yacc * x[1] + zacc * x[2]);
+            }
+        }
+        Some(egrav)
+    }
+}

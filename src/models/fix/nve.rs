@@ -1,0 +1,86 @@
+//! `fix ID group nve`: velocity-Verlet integration (LAMMPS' arithmetic:
+//! dtf = dt/2 * ftm2v; v += dtf/m * f; x += dt * v).
+
+use super::{Fix, FixHooks};
+use crate::models::pair::SharedMut;
+use crate::sim::{RunError, Simulation};
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub struct FixNve {
+    id: String,
+    groupbit: u32,
+}
+
+impl FixNve {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command) -> DResult<Self> {
+        Args::from_words(args, cmd.span, "fix ID group nve").finish()?;
+        Ok(FixNve { id, groupbit })
+    }
+
+    /// One half step: v += dtf/m f, and in the first half x += dt v. Atoms are independent, so
+    /// chunks of atoms run in parallel (same bits).
+    fn half_step(&self, sim: &mut Simulation, first: bool) {
+        let dtv = sim.dt;
+        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
+        let per_atom = sim.atoms.features.per_atom_mass();
+        let groupbit = self.groupbit;
+        let dtfm_of_type = super::dtfm_by_type(dtf, &sim.type_mass, per_atom);
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
+        let (x, v) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]));
+        super::for_each_range(n, 1024, |r| {
+            // SAFETY: each range belongs to one task only. Plain slices, not writes through
+            // SharedMut::get, so that the compiler need not reload the other arrays after each
+            // store (as in fix sph)
+            let (x, v) = unsafe { (x.slice(r.clone()), v.slice(r.clone())) };
+            let (f, mask, typ) = (&f[r.clone()], &mask[r.clone()], &typ[r.clone()]);
+            let rmass = if per_atom { &rmass[r.clone()] } else { &[][..] };
+            if first {
+                kick_range::<true>(x, v, f, mask, groupbit, dtv, |k| if per_atom { dtf / rmass[k] } else { dtfm_of_type[typ[k]] });
+            } else {
+                kick_range::<false>(x, v, f, mask, groupbit, dtv, |k| if per_atom { dtf / rmass[k] } else { dtfm_of_type[typ[k]] });
+            }
+        });
+    }
+}
+
+/// v += dtfm f for the atoms of a range in the group, and in the first half (`FIRST`) x += dt v;
+/// `dtfm(k)` is dtf/m of the range's k-th atom.
+#[inline(always)]
+fn kick_range<const FIRST: bool>(x: &mut [[f64; 3]], v: &mut [[f64; 3]], f: &[[f64; 3]], mask: &[u32], groupbit: u32, dtv: f64, dtfm: impl Fn(usize) -> f64) {
+    let m = x.len();
+    let (v, f, mask) = (&mut v[..m], &f[..m], &mask[..m]);
+    for k in 0..m {
+        if mask[k] & groupbit == 0 {
+            continue;
+        }
+        super::kick(&mut v[k], dtfm(k), &f[k]);
+        if FIRST {
+            super::drift(&mut x[k], dtv, &v[k]);
+        }
+    }
+}
+
+impl Fix for FixNve {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "nve"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
+    }
+    fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.half_step(sim, true);
+        Ok(())
+    }
+    fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.half_step(sim, false);
+        Ok(())
+    }
+}

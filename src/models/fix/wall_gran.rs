@@ -1,0 +1,224 @@
+//! `fix ID group wall/gran granular hooke Kn eta_n0 [damping ...] [tangential ...] [limit_damping]
+//! xplane|yplane|zplane lo hi [wiggle dim A period | shear dim v]`: a flat frictional wall
+//! pair of planes at lo and hi (NULL: none) acting on spheres with the contact law of
+//! `pair_style granular` (see [`crate::models::pair::granular`]), as LAMMPS 2025's fix wall/gran.
+//!
+//! Each sphere interacts with the nearer of the two planes; its tangential spring (3 values per
+//! atom) lives in the atoms' extra arrays, so it follows the atom through sorting and is saved
+//! by write_restart. The wall has radius 0 and the sphere's full mass; the torque lever is the
+//! full radius.
+//!
+//! LAMMPS' classic forms (`wall/gran hooke/history ...`) are refused: in LAMMPS 2025 their
+//! tangential spring creeps (a sphere resting on a 0.2 slope with mu 0.3 moves 57 times the
+//! elastic m g sin(theta)/k_t), while the `granular` form gives the elastic value.
+
+use super::{Fix, FixHooks};
+use crate::models::pair::granular::{granular_contact, GranGeom, GranModel};
+use crate::sim::{RunError, Simulation};
+use crate::models::pair::SharedMut;
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "fix ID group wall/gran granular hooke Kn eta_n0 [damping velocity|mass_velocity|viscoelastic|tsuji] [tangential linear_history Kt x_gt mu | linear_nohistory x_gt mu] [limit_damping] xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]";
+
+const BIG: f64 = 1.0e20;
+
+enum Motion {
+    None,
+    Wiggle { axis: usize, amplitude: f64, omega: f64 },
+    Shear { axis: usize, v: f64 },
+}
+
+pub struct FixWallGran {
+    id: String,
+    groupbit: u32,
+    model: GranModel,
+    dim: usize,
+    lo: f64,
+    hi: f64,
+    motion: Motion,
+    /// Step at which the fix was defined (wiggle phase origin).
+    time_origin: i64,
+    /// Name of the per-atom history array in `Atoms::extra`.
+    array: String,
+}
+
+impl FixWallGran {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        if !sim.atoms.features.sphere {
+            return Err(a.error_at(&cmd.name, "fix wall/gran requires atom attributes radius and omega (atom_style sphere)", "no sphere attributes"));
+        }
+        let first = a.word("`granular` (the contact model form)")?;
+        if first.text != "granular" {
+            let msg = if ["hooke", "hooke/history", "hertz/history"].contains(&first.text.as_str()) {
+                format!("fix wall/gran {} (the classic form) is not supported: use the `granular` form", first.text)
+            } else {
+                format!("unknown fix wall/gran model form `{}`", first.text)
+            };
+            return Err(a.error_at(first, msg, "expected `granular`").with_help(
+                "LAMMPS 2025's classic wall/gran hooke/history lets a resting sphere creep; write e.g. `fix w all wall/gran granular hooke Kn eta_n0 tangential linear_history Kt x_gt mu damping mass_velocity zplane 0 NULL`",
+            ));
+        }
+        let model = GranModel::parse(&mut a, true)?;
+        let w = a.word("wall style (xplane, yplane or zplane)")?;
+        let dim = match w.text.as_str() {
+            "xplane" => 0,
+            "yplane" => 1,
+            "zplane" => 2,
+            "zcylinder" | "region" => return Err(a.error_at(w, format!("fix wall/gran {} is not supported (plane walls only)", w.text), "not supported")),
+            _ => return Err(a.unknown_keyword(w, &["xplane", "yplane", "zplane"])),
+        };
+        let bound = |a: &mut Args, what: &str, null: f64| -> DResult<f64> {
+            if a.peek().map(|w| w.text == "NULL").unwrap_or(false) {
+                a.skip(1);
+                Ok(null)
+            } else {
+                a.f64(what)
+            }
+        };
+        let lo = bound(&mut a, "lo (or NULL)", -BIG)?;
+        let hi = bound(&mut a, "hi (or NULL)", BIG)?;
+        let axis_of = |a: &mut Args| -> DResult<usize> { a.choice("axis", &["x", "y", "z"]) };
+        let mut motion = Motion::None;
+        while let Some(k) = a.peek() {
+            a.skip(1);
+            match k.text.as_str() {
+                "wiggle" => {
+                    let axis = axis_of(&mut a)?;
+                    let amplitude = a.f64("amplitude")?;
+                    let period = a.positive_f64("period")?;
+                    motion = Motion::Wiggle { axis, amplitude, omega: 2.0 * std::f64::consts::PI / period };
+                }
+                "shear" => {
+                    let axis = axis_of(&mut a)?;
+                    if axis == dim {
+                        return Err(a.error_at(a.last().unwrap(), "invalid shear direction for fix wall/gran (along the wall normal)", "normal direction"));
+                    }
+                    motion = Motion::Shear { axis, v: a.f64("shear velocity")? };
+                }
+                "contacts" | "temperature" => return Err(a.error_at(k, format!("fix wall/gran `{}` is not supported", k.text), "not supported")),
+                _ => return Err(a.unknown_keyword(k, &["wiggle", "shear"])),
+            }
+        }
+        let domain = sim.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/gran needs a simulation box", "no box yet"))?;
+        if domain.periodic(dim) {
+            return Err(a.error_at(w, "cannot use a wall in a periodic dimension", "periodic dimension"));
+        }
+        let array = format!("wall/gran:{id}");
+        sim.atoms.extra_array(&array, 3);
+        Ok(FixWallGran { id, groupbit, model, dim, lo, hi, motion, time_origin: sim.step, array })
+    }
+
+    /// The planes' positions and the wall velocity at the current step.
+    fn wall_now(&self, sim: &Simulation) -> (f64, f64, [f64; 3]) {
+        let (mut wlo, mut whi) = (self.lo, self.hi);
+        let mut vwall = [0.0f64; 3];
+        match self.motion {
+            Motion::Wiggle { axis, amplitude, omega } => {
+                let arg = omega * (sim.step - self.time_origin) as f64 * sim.dt;
+                if axis == self.dim {
+                    wlo = self.lo + amplitude - amplitude * arg.cos();
+                    whi = self.hi + amplitude - amplitude * arg.cos();
+                }
+                vwall[axis] = amplitude * omega * arg.sin();
+            }
+            Motion::Shear { axis, v } => vwall[axis] = v,
+            Motion::None => {}
+        }
+        (wlo, whi, vwall)
+    }
+
+    fn apply(&mut self, sim: &mut Simulation, update: bool) -> Result<(), RunError> {
+        let dt = sim.dt;
+        let (wlo, whi, vwall) = self.wall_now(sim);
+        let w0 = [0.0f64; 3];
+        let k = sim.atoms.extra_array(&self.array, 3);
+        let a = &mut sim.atoms;
+        let n = a.nlocal;
+        let mut hist = std::mem::take(&mut a.extra[k].data);
+        let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
+        let (f, torque, h3) = (SharedMut::new(&mut a.f[..n]), SharedMut::new(&mut a.torque[..n]), SharedMut::new(&mut hist[..3 * n]));
+        let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
+        // atoms are independent: ranges of them may run in parallel (same bits)
+        super::for_each_range(n, 1024, |range| {
+            for i in range {
+                if mask[i] & groupbit == 0 {
+                    continue;
+                }
+                let xi = x[i][dim];
+                let del1 = xi - wlo;
+                let del2 = whi - xi;
+                // signed distance from the nearer plane; |dx|^2 is just its square (the other
+                // components are zero)
+                let dist = if del1 < del2 { del1 } else { -del2 };
+                let rsq = dist * dist;
+                let radi = radius[i];
+                // SAFETY: each atom (and its 3 history values) belongs to one range only
+                let (h0, h1, h2) = unsafe { (h3.get(3 * i), h3.get(3 * i + 1), h3.get(3 * i + 2)) };
+                if rsq >= radi * radi {
+                    // no contact: history zero (written only if it is not, so the many atoms
+                    // away from the wall do not dirty their history's cache lines)
+                    if (h0.to_bits() | h1.to_bits() | h2.to_bits()) != 0 {
+                        (*h0, *h1, *h2) = (0.0, 0.0, 0.0);
+                    }
+                    continue;
+                }
+                let mut hv = [*h0, *h1, *h2];
+                let mut dx = [0.0f64; 3];
+                dx[dim] = dist;
+                let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+                let g = GranGeom { dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, meff: rmass[i], wall: true };
+                let r = granular_contact(model, &g, &mut hv, update, dt);
+                (*h0, *h1, *h2) = (hv[0], hv[1], hv[2]);
+                // SAFETY: as above
+                unsafe {
+                    let (fi, ti) = (f.get(i), torque.get(i));
+                    for d in 0..3 {
+                        fi[d] += r.f[d];
+                        ti[d] += r.ti[d];
+                    }
+                }
+            }
+        });
+        a.extra[k].data = hist;
+        Ok(())
+    }
+}
+
+impl Fix for FixWallGran {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "wall/gran"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { post_force: true, ..FixHooks::default() }
+    }
+    /// Forces of the current state; the spring is not advanced during setup.
+    fn setup(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.apply(sim, false)
+    }
+    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.apply(sim, true)
+    }
+    fn cleanup(&mut self, sim: &mut Simulation) {
+        sim.atoms.remove_extra(&self.array);
+    }
+    fn image_planes(&self, sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
+        let (wlo, whi, _) = self.wall_now(sim);
+        Ok([wlo, whi].into_iter().filter(|x| x.abs() < 0.5 * BIG).map(|x| (self.dim, x)).collect())
+    }
+    fn describe(&self) -> String {
+        format!("fix {} wall/gran granular {} {}plane {} {}", self.id, self.model_describe(), ["x", "y", "z"][self.dim], self.lo, self.hi)
+    }
+}
+
+impl FixWallGran {
+    fn model_describe(&self) -> String {
+        format!("hooke {} {} (mu {})", self.model.kn, self.model.damp_coeff, self.model.mu)
+    }
+}

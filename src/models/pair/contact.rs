@@ -1,0 +1,351 @@
+//! The engine's loop for granular contact styles (gran/hooke, gran/hooke/history, granular):
+//! every listed pair that overlaps (r < R_i + R_j) gets a force and torques from the style's
+//! [`ContactModel`], with its contact history (see [`crate::engine::contact_history`]) read and written
+//! next to the list entry. Forces and torques go to both atoms when both are owned; a pair with
+//! a periodic image is computed from both sides and applied to the owned atom only. The slab
+//! schedule of [`super::for_each_chunk`] keeps results identical for every thread count.
+//!
+//! Overlapping pairs are collected in batches of [`LANES`] and handed to the model together, so a
+//! model can evaluate them lane by lane in vector registers (the same IEEE operations per lane as
+//! one pair at a time, so the same bits); the results are applied in list order.
+
+use super::{for_each_slab, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use crate::engine::contact_history::{ContactHistory, HistoryChunk};
+use crate::engine::neighbor::{special_level, NEIGH_MASK};
+
+/// What a contact model sees of one overlapping pair (i is the atom that lists the pair).
+pub struct Contact<'a> {
+    /// x_i - x_j
+    pub del: [f64; 3],
+    pub rsq: f64,
+    pub radi: f64,
+    pub radj: f64,
+    pub vi: &'a [f64; 3],
+    pub vj: &'a [f64; 3],
+    pub omegai: &'a [f64; 3],
+    pub omegaj: &'a [f64; 3],
+    pub mi: f64,
+    pub mj: f64,
+}
+
+/// A contact's result: the force on i (j gets its negative) and the torques on i and j.
+pub struct ContactForce {
+    pub f: [f64; 3],
+    pub ti: [f64; 3],
+    pub tj: [f64; 3],
+}
+
+/// A granular contact law.
+pub trait ContactModel: Sync {
+    type Params: Sync;
+    /// History values per contact (0: the model keeps none).
+    const HISTORY: usize;
+    fn params(&self, ti: usize, tj: usize) -> &Self::Params;
+    /// The contact of an overlapping pair; `hist` holds its history (empty without one), and
+    /// `update` is false during run setup (LAMMPS' `shearupdate`).
+    fn contact(p: &Self::Params, c: &Contact, hist: &mut [f64], update: bool, dt: f64) -> ContactForce;
+    /// A batch of overlapping pairs (lanes `0..b.n`; the others repeat lane 0 and are
+    /// ignored). The default evaluates them one at a time with [`ContactModel::contact`].
+    fn contact_lanes(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
+        let mut o = LanesOut::default();
+        let (del, rsq, hist) = (b.del(), b.rsq(), b.hist());
+        let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
+        let (radi, radj, mi, mj) = (b.scalar(b.radius, 0), b.scalar(b.radius, 1), b.scalar(b.rmass, 0), b.scalar(b.rmass, 1));
+        for l in 0..b.n {
+            let pick = |a: &[L; 3]| [a[0][l], a[1][l], a[2][l]];
+            let (vil, vjl, wil, wjl) = (pick(&vi), pick(&vj), pick(&wi), pick(&wj));
+            let c = Contact { del: pick(&del), rsq: rsq[l], radi: radi[l], radj: radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: mi[l], mj: mj[l] };
+            let mut h = pick(&hist);
+            let (ti, tj) = b.types(l);
+            let r = Self::contact(self.params(ti, tj), &c, &mut h[..Self::HISTORY], update, dt);
+            for (d, hd) in h.iter().enumerate() {
+                o.hist[d][l] = *hd;
+                o.f[d][l] = r.f[d];
+                o.ti[d][l] = r.ti[d];
+                o.tj[d][l] = r.tj[d];
+            }
+        }
+        o
+    }
+}
+
+/// Pairs evaluated together.
+pub const LANES: usize = 4;
+pub type L = [f64; LANES];
+
+/// The loop's record of a batch: atoms, history entry and special weight of each lane.
+#[derive(Clone, Default)]
+struct Batch {
+    n: usize,
+    i: [usize; LANES],
+    j: [usize; LANES],
+    e: [usize; LANES],
+    factor: L,
+}
+
+/// Where a batch's inputs come from: the atoms of each lane and the atom arrays. A model reads
+/// them lane-wise with the accessors, which load straight into vector registers (gathering
+/// lane by lane through memory first would stall the vector loads).
+pub struct LaneSrc<'a> {
+    pub n: usize,
+    /// atoms i (index 0) and j (index 1) of each lane
+    pub ij: [[usize; LANES]; 2],
+    pub e: [usize; LANES],
+    pub x: &'a [[f64; 3]],
+    pub v: &'a [[f64; 3]],
+    pub omega: &'a [[f64; 3]],
+    pub radius: &'a [f64],
+    pub rmass: &'a [f64],
+    pub typ: &'a [usize],
+    pub values: &'a [f64],
+    pub hsize: usize,
+}
+
+impl LaneSrc<'_> {
+    /// x_i - x_j, computed again exactly as the loop computed it.
+    #[inline(always)]
+    pub fn del(&self) -> [L; 3] {
+        let [i, j] = &self.ij;
+        // SAFETY: the loop stores only list entries (< nall, the arrays' length)
+        unsafe { std::array::from_fn(|d| lanes(|l| self.x.get_unchecked(i[l])[d] - self.x.get_unchecked(j[l])[d])) }
+    }
+    #[inline(always)]
+    pub fn rsq(&self) -> L {
+        let del = self.del();
+        lanes(|l| del[0][l] * del[0][l] + del[1][l] * del[1][l] + del[2][l] * del[2][l])
+    }
+    /// A 3-vector per-atom array of atom i (`which` 0) or j (1).
+    #[inline(always)]
+    pub fn v3(&self, a: &[[f64; 3]], which: usize) -> [L; 3] {
+        let idx = &self.ij[which];
+        // SAFETY: as in `del`
+        unsafe { std::array::from_fn(|d| lanes(|l| a.get_unchecked(idx[l])[d])) }
+    }
+    /// A scalar per-atom array of atom i (`which` 0) or j (1).
+    #[inline(always)]
+    pub fn scalar(&self, a: &[f64], which: usize) -> L {
+        let idx = &self.ij[which];
+        // SAFETY: as in `del`
+        unsafe { lanes(|l| *a.get_unchecked(idx[l])) }
+    }
+    /// The history values (zeros beyond `hsize`).
+    #[inline(always)]
+    pub fn hist(&self) -> [L; 3] {
+        let (e, h) = (&self.e, self.hsize);
+        // SAFETY: e indexes the chunk's entries, `values` has hsize values per entry
+        unsafe { std::array::from_fn(|d| lanes(|l| if d < h { *self.values.get_unchecked(e[l] * h + d) } else { 0.0 })) }
+    }
+    /// Atom types of lane `l`.
+    pub fn types(&self, l: usize) -> (usize, usize) {
+        (self.typ[self.ij[0][l]], self.typ[self.ij[1][l]])
+    }
+}
+
+/// Results of a batch: force on i, torques on i and j, per lane.
+#[derive(Clone, Default)]
+pub struct LanesOut {
+    pub f: [L; 3],
+    pub ti: [L; 3],
+    pub tj: [L; 3],
+    /// the history values after the evaluation
+    pub hist: [L; 3],
+}
+
+/// `[f(0), f(1), ..]`: one value per lane (written so the compiler can vectorize it).
+#[inline(always)]
+pub fn lanes(f: impl Fn(usize) -> f64) -> L {
+    std::array::from_fn(f)
+}
+
+/// Compute all contacts of the list. `history` must be given when `M::HISTORY > 0` (and
+/// aligned with the list by [`ContactHistory::rebuilt`]).
+pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut PairOutput, history: Option<&mut ContactHistory>) -> Tally {
+    let special = input.list.has_special;
+    match (input.eflag, special || input.type_filter.is_some()) {
+        (false, false) => contact_loop::<M, false, false>(model, input, out, history),
+        (true, false) => contact_loop::<M, true, false>(model, input, out, history),
+        (false, true) => contact_loop::<M, false, true>(model, input, out, history),
+        (true, true) => contact_loop::<M, true, true>(model, input, out, history),
+    }
+}
+
+/// `EXTRA`: special weights or a type filter (hybrid) apply.
+fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
+    model: &M,
+    input: &PairInput,
+    out: &mut PairOutput,
+    history: Option<&mut ContactHistory>,
+) -> Tally {
+    let a = input.atoms;
+    let nlocal = a.nlocal;
+    let nall = a.nall();
+    assert!(a.radius.len() == nall && a.rmass.len() == nall && a.omega.len() == nall && a.v.len() == nall && a.typ.len() == nall);
+    assert!(out.f.len() >= nlocal && out.torque.len() >= nlocal);
+    let hsize = M::HISTORY;
+    assert!(hsize <= 3);
+    let hist_shared: Option<SharedMut<HistoryChunk>> = match history {
+        Some(h) if hsize > 0 => {
+            assert!(h.size() == hsize && h.chunks.len() == input.list.chunks.len(), "contact history not aligned with the neighbour list");
+            Some(h.shared())
+        }
+        _ => {
+            assert!(hsize == 0, "a contact model with history needs its history store");
+            None
+        }
+    };
+    let stride = input.ntypes + 1;
+    let fsh = SharedMut::new(out.f);
+    let tsh = SharedMut::new(out.torque);
+    let (x, v, omega, radius, rmass, typ) = (&a.x[..], &a.v[..], &a.omega[..], &a.radius[..], &a.rmass[..], &a.typ[..]);
+    let update = input.advance;
+    let dt = input.dt;
+    let parts = for_each_slab(input.list.chunks.len(), nlocal, |c| {
+        // the task's own copies: read through the closure's captures, they were loaded again
+        // after every store to the forces
+        let (fsh, tsh, nlocal) = (fsh, tsh, nlocal);
+        let chunk = &input.list.chunks[c];
+        let mut t = Tally::default();
+        // SAFETY: chunk c of the store is used only by the work item of list chunk c
+        let hist: Option<&mut HistoryChunk> = hist_shared.as_ref().map(|h| unsafe { h.get(c) });
+        let (touch, values): (&mut [u8], &mut [f64]) = match hist {
+            Some(h) => (&mut h.touch[..], &mut h.values[..]),
+            None => (&mut [], &mut []),
+        };
+        let mut b = Batch::default();
+        // evaluate the batch and apply its results in list order
+        let flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally| {
+            if n == 0 {
+                return;
+            }
+            b.n = n;
+            // unused lanes repeat lane 0 (valid numbers; their results are ignored)
+            for l in b.n..LANES {
+                b.i[l] = b.i[0];
+                b.j[l] = b.j[0];
+                b.e[l] = b.e[0];
+            }
+            let src = LaneSrc { n: b.n, ij: [b.i, b.j], e: b.e, x, v, omega, radius, rmass, typ, values, hsize };
+            let mut r = model.contact_lanes(&src, update, dt);
+            let apply = |l: usize| {
+                let e = b.e[l];
+                for d in 0..hsize {
+                    values[e * hsize + d] = r.hist[d][l];
+                }
+                if EXTRA && b.factor[l] != 1.0 {
+                    let fac = b.factor[l];
+                    for d in 0..3 {
+                        r.f[d][l] *= fac;
+                        r.ti[d][l] *= fac;
+                        r.tj[d][l] *= fac;
+                    }
+                }
+                let (i, j) = (b.i[l], b.j[l]);
+                // SAFETY: i is an atom of this chunk; j an owned atom of this chunk or the next
+                // (see for_each_chunk), or a ghost (not written)
+                unsafe {
+                    let (fi, ti) = (fsh.get(i), tsh.get(i));
+                    for d in 0..3 {
+                        fi[d] += r.f[d][l];
+                        ti[d] += r.ti[d][l];
+                    }
+                }
+                let w = if j < nlocal {
+                    unsafe {
+                        let (fj, tj) = (fsh.get(j), tsh.get(j));
+                        for d in 0..3 {
+                            fj[d] -= r.f[d][l];
+                            tj[d] += r.tj[d][l];
+                        }
+                    }
+                    1.0
+                } else {
+                    0.5
+                };
+                if EFLAG {
+                    let (i, j) = (b.i[l], b.j[l]);
+                    let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                    let f = [r.f[0][l], r.f[1][l], r.f[2][l]];
+                    t.virial[0] += w * del[0] * f[0];
+                    t.virial[1] += w * del[1] * f[1];
+                    t.virial[2] += w * del[2] * f[2];
+                    t.virial[3] += w * del[0] * f[1];
+                    t.virial[4] += w * del[0] * f[2];
+                    t.virial[5] += w * del[1] * f[2];
+                }
+            };
+            super::lanes::for_each_lane(b.n, apply);
+        };
+        // lanes filled so far (a local, so it stays in a register)
+        let mut n = 0usize;
+        for i in chunk.start..chunk.end {
+            let xi = x[i];
+            let radi = radius[i];
+            let ti = typ[i];
+            let k0 = chunk.offsets[i - chunk.start] as usize;
+            for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
+                let j = (jraw & NEIGH_MASK) as usize;
+                // SAFETY: the list builder stores only indices < nall, the length of every
+                // per-atom array checked above
+                let (xj, radj) = unsafe { (*x.get_unchecked(j), *radius.get_unchecked(j)) };
+                let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                let radsum = radi + radj;
+                let e = k0 + k;
+                let touching = rsq < radsum * radsum;
+                if !EXTRA {
+                    // the common case without branches on the (unpredictable) overlap test:
+                    // every entry is written to the next lane, which is kept only if touching
+                    b.i[n] = i;
+                    b.j[n] = j;
+                    b.e[n] = e;
+                    n += touching as usize;
+                    if hsize > 0 {
+                        let was = touch[e];
+                        touch[e] = touching as u8;
+                        if was > touching as u8 {
+                            // the contact is over
+                            values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+                        }
+                    }
+                    if n == LANES {
+                        flush(&mut b, n, values, &mut t);
+                        n = 0;
+                    }
+                    continue;
+                }
+                if !touching {
+                    if hsize > 0 && touch[e] != 0 {
+                        touch[e] = 0;
+                        values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+                    }
+                    continue;
+                }
+                let tj = typ[j];
+                if let Some(filter) = input.type_filter {
+                    if !filter[ti * stride + tj] {
+                        continue;
+                    }
+                }
+                let factor = input.special_lj[special_level(jraw)];
+                if factor == 0.0 {
+                    continue;
+                }
+                if hsize > 0 {
+                    touch[e] = 1;
+                }
+                b.i[n] = i;
+                b.j[n] = j;
+                b.e[n] = e;
+                b.factor[n] = factor;
+                n += 1;
+                if n == LANES {
+                    flush(&mut b, n, values, &mut t);
+                    n = 0;
+                }
+            }
+        }
+        flush(&mut b, n, values, &mut t);
+        t
+    });
+    sum_tallies(&parts)
+}

@@ -1,0 +1,178 @@
+//! `pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]` with
+//! `pair_coeff I J rho0 c0 mu h` — gradual SPH-to-DEM mixing with temperature (Alexiadis 2015,
+//! lava flow, Fig 13B): each pair force is a weighted sum of an SPH force and a DEM contact force,
+//!   F_ij = w_ij F_SPH,ij + (1 - w_ij) F_DEM,ij,   w_ij = (phi_i + phi_j)/2,
+//! where phi is the per-atom liquid weight `dmhs/phi` published by `fix dmhs/phase ... mix Tlow
+//! Thigh` (phi = 1 above Thigh: SPH only; 0 below Tlow: DEM only; linear in T between; without
+//! the field phi = 1). The pair weight is symmetric, so Newton's third law and momentum hold.
+//!
+//! F_SPH is sph/taitwater/morris with the pair_coeff values (Tait EOS + Morris viscosity, per-type
+//! mass, velocity estimates; drho and de are weighted by w_ij too). F_DEM is gran/hooke with the
+//! pair_style values (Hookean normal spring-dashpot, tangential damping limited by friction,
+//! contact when r < R_i + R_j; per-atom rmass and radius), torques weighted by 1 - w_ij.
+//! Needs atom_style hybrid sph sphere. Pairs are evaluated one at a time (no lanes): this style
+//! is for the blended particles; pure-SPH and pure-DEM pairs run faster with their own styles
+//! under hybrid/overlay.
+
+use super::contact::{Contact, ContactModel};
+use super::gran_hooke::NoHistory;
+use super::gran_hooke_history::Classic;
+use super::sph::{Batch, SphKernel, L};
+use super::sph_taitwater_morris::SphTaitwaterMorris;
+use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
+use crate::models::fix::dmhs_phase::PHI_FIELD;
+use crate::engine::neighbor::NEIGH_MASK;
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [kernel K] [pmin P]";
+
+pub struct DmhsBlend {
+    sph: SphTaitwaterMorris,
+    dem: NoHistory,
+    /// Largest radius per type (index 0 unused), for the contact cutoff.
+    maxrad: Vec<f64>,
+    n: usize,
+}
+
+impl DmhsBlend {
+    pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
+        // `kernel K` and `pmin P` (dmhs extensions of the SPH part) may follow the DEM values
+        let k = args.iter().position(|w| w.text == "kernel" || w.text == "pmin").unwrap_or(args.len());
+        let dem = NoHistory(Classic::from_lammps(&args[..k], cmd, SYNTAX)?);
+        let sph = SphTaitwaterMorris::from_lammps(&args[k..], cmd)?;
+        Ok(DmhsBlend { sph, dem, maxrad: vec![], n: 0 })
+    }
+}
+
+impl PairStyle for DmhsBlend {
+    fn style(&self) -> &str {
+        "dmhs/blend"
+    }
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        self.sph.coeff(ilo, ihi, jlo, jhi, args)
+    }
+    fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
+        let a = setup.atoms;
+        if !a.features.sphere || !a.features.sph {
+            return Err("pair dmhs/blend needs SPH and sphere attributes (atom_style hybrid sph sphere)".into());
+        }
+        self.maxrad = vec![0.0; setup.ntypes + 1];
+        for i in 0..a.nlocal {
+            let t = a.typ[i];
+            self.maxrad[t] = self.maxrad[t].max(a.radius[i]);
+        }
+        Ok(())
+    }
+    fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
+        self.n = ntypes;
+        self.maxrad.resize(ntypes + 1, 0.0);
+        self.sph.init(ntypes, modify, active).map_err(|e| e.replace("sph/taitwater/morris", "dmhs/blend"))
+    }
+    fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        let contact = self.maxrad.get(it).copied().unwrap_or(0.0) + self.maxrad.get(jt).copied().unwrap_or(0.0);
+        self.sph.cutoff(it, jt).max(contact)
+    }
+    fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
+        self.sph.set_dim3(input.dimension == 3);
+        let a = input.atoms;
+        let nlocal = a.nlocal;
+        let stride = input.ntypes + 1;
+        let phi = a.find_extra(PHI_FIELD).map(|k| &a.extra[k].data[..]);
+        let weight = |i: usize| phi.map(|p| p[i]).unwrap_or(1.0);
+        let has_rates = !out.drho.is_empty();
+        let mut t = Tally::default();
+        for chunk in &input.list.chunks {
+            for i in chunk.start..chunk.end {
+                let ti = a.typ[i];
+                let pi = self.sph.pack(input, i);
+                let sph_cut = self.sph.cutsq_row(ti);
+                for &jraw in chunk.neighbors(i) {
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    let tj = a.typ[j];
+                    if let Some(fl) = input.type_filter {
+                        if !fl[ti * stride + tj] {
+                            continue;
+                        }
+                    }
+                    let del = [a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1], a.x[i][2] - a.x[j][2]];
+                    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                    let w = 0.5 * (weight(i) + weight(j));
+                    let owned = j < nlocal;
+                    let mut fsum = [0.0; 3];
+                    if w > 0.0 && rsq < sph_cut[tj] {
+                        let pj = self.sph.pack(input, j);
+                        let b: Batch<3> = Batch {
+                            tj: [tj; 4],
+                            m: L::splat(input.type_mass[tj]),
+                            del: [L::splat(del[0]), L::splat(del[1]), L::splat(del[2])],
+                            rsq: L::splat(rsq),
+                            r: L::splat(rsq.sqrt()),
+                            v: [L::splat(pj.v[0]), L::splat(pj.v[1]), L::splat(pj.v[2])],
+                            a: L::splat(pj.a),
+                            b: L::splat(pj.b),
+                        };
+                        let c = self.sph.pair_lanes(input, &pi, ti, &b);
+                        for k in 0..3 {
+                            fsum[k] += w * c.f[k][0];
+                        }
+                        if has_rates {
+                            out.drho[i] += w * c.drho_i[0];
+                            out.desph[i] += w * c.de_i[0];
+                            if owned {
+                                out.drho[j] += w * c.drho_j[0];
+                                out.desph[j] += w * c.de_j[0];
+                            }
+                        }
+                    }
+                    let (ri, rj) = (a.radius[i], a.radius[j]);
+                    if w < 1.0 && rsq < (ri + rj) * (ri + rj) {
+                        let c = Contact {
+                            del,
+                            rsq,
+                            radi: ri,
+                            radj: rj,
+                            vi: &a.v[i],
+                            vj: &a.v[j],
+                            omegai: &a.omega[i],
+                            omegaj: &a.omega[j],
+                            mi: a.rmass[i],
+                            mj: a.rmass[j],
+                        };
+                        let cf = NoHistory::contact(&self.dem.0, &c, &mut [], input.advance, input.dt);
+                        let u = 1.0 - w;
+                        for k in 0..3 {
+                            fsum[k] += u * cf.f[k];
+                            out.torque[i][k] += u * cf.ti[k];
+                            if owned {
+                                out.torque[j][k] += u * cf.tj[k];
+                            }
+                        }
+                    }
+                    for k in 0..3 {
+                        out.f[i][k] += fsum[k];
+                        if owned {
+                            out.f[j][k] -= fsum[k];
+                        }
+                    }
+                    if input.eflag {
+                        // virial of the full pair force (SPH central part + contact force)
+                        let wv = if owned { 1.0 } else { 0.5 };
+                        t.virial[0] += wv * del[0] * fsum[0];
+                        t.virial[1] += wv * del[1] * fsum[1];
+                        t.virial[2] += wv * del[2] * fsum[2];
+                        t.virial[3] += wv * del[0] * fsum[1];
+                        t.virial[4] += wv * del[0] * fsum[2];
+                        t.virial[5] += wv * del[1] * fsum[2];
+                    }
+                }
+            }
+        }
+        t
+    }
+    fn needs_type_mass(&self) -> bool {
+        true
+    }
+    fn describe(&self) -> String {
+        format!("dmhs/blend: w sph/taitwater/morris + (1 - w) {}", self.dem.0.describe("gran/hooke"))
+    }
+}

@@ -1,0 +1,118 @@
+//! `pair_style sph/rhosum N` — SPH density by summation every N steps (LAMMPS SPH package),
+//! `pair_coeff I J h`: rho_i = m_i W(0) + sum_j m_j W_ij with LAMMPS' quartic kernel
+//! W = K (1 - r^2/h^2)^4, K = 2.1541870227086614782/h^3 (3D), 1.5915494309189533576/h^2 (2D).
+//! It runs on the setup step too (when step % N == 0); N = 0 never runs. Under hybrid/overlay
+//! only atoms of types with rhosum coefficients are summed, over neighbours of those types.
+
+use super::sph::PairTable;
+use super::{for_each_chunk, PairInput, PairModify, PairOutput, PairStyle, SharedMut, Tally};
+use crate::engine::neighbor::NEIGH_MASK;
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "pair_style sph/rhosum N";
+pub const COEFF_SYNTAX: &str = "pair_coeff I J h";
+
+pub struct SphRhoSum {
+    every: i64,
+    /// h per pair
+    pairs: PairTable<f64>,
+    cutsq: Vec<f64>,
+    n: usize,
+}
+
+impl SphRhoSum {
+    pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let every = a.i64_in("N (steps between density summations)", 0, i64::MAX)?;
+        a.finish()?;
+        Ok(SphRhoSum { every, pairs: PairTable::new(0), cutsq: vec![], n: 0 })
+    }
+}
+
+impl PairStyle for SphRhoSum {
+    fn style(&self) -> &str {
+        "sph/rhosum"
+    }
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        args.syntax = COEFF_SYNTAX;
+        let h = args.positive_f64("h (kernel support)")?;
+        args.finish()?;
+        self.pairs.put_range(ilo, ihi, jlo, jhi, h);
+        Ok(())
+    }
+    fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
+        self.pairs.check_all(ntypes, active, "sph/rhosum")?;
+        self.pairs.grow(ntypes);
+        self.n = ntypes;
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |h| *h);
+        Ok(())
+    }
+    fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
+    }
+    fn compute(&mut self, _input: &PairInput, _out: &mut PairOutput) -> Tally {
+        Tally::default()
+    }
+    fn needs_type_mass(&self) -> bool {
+        true
+    }
+    fn density_pass(&mut self, input: &PairInput, rho: &mut [f64]) -> bool {
+        if self.every == 0 || input.step % self.every != 0 {
+            return false;
+        }
+        let a = input.atoms;
+        let n = self.n;
+        let stride = n + 1;
+        let dim3 = input.dimension == 3;
+        // atoms of a type with any rhosum pair restart from their self term
+        let summed: Vec<bool> = (0..=n).map(|t| t > 0 && (1..=n).any(|u| self.cutsq[t * stride + u] > 0.0)).collect();
+        for i in 0..a.nlocal {
+            let t = a.typ[i];
+            if !summed[t] {
+                continue;
+            }
+            let h = if self.pairs.is_set(t, t) { *self.pairs.get(t, t) } else { 0.0 };
+            if h > 0.0 {
+                let wf = if dim3 { 2.1541870227086614782 / (h * h * h) } else { 1.5915494309189533576 / (h * h) };
+                rho[i] = input.type_mass[t] * wf;
+            }
+        }
+        let shared = SharedMut::new(rho);
+        for_each_chunk(input.list, |chunk| {
+            for i in chunk.start..chunk.end {
+                let ti = a.typ[i];
+                let xi = a.x[i];
+                for &jraw in chunk.neighbors(i) {
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    let tj = a.typ[j];
+                    if let Some(fl) = input.type_filter {
+                        if !fl[ti * stride + tj] {
+                            continue;
+                        }
+                    }
+                    let xj = a.x[j];
+                    let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
+                    let rsq = dx * dx + dy * dy + dz * dz;
+                    if !(rsq < self.cutsq[ti * stride + tj]) {
+                        continue;
+                    }
+                    let h = *self.pairs.get(ti, tj);
+                    let ih = 1.0 / h;
+                    let ihsq = ih * ih;
+                    let mut wf = 1.0 - rsq * ihsq;
+                    wf = wf * wf;
+                    wf = wf * wf;
+                    wf = if dim3 { 2.1541870227086614782 * wf * ihsq * ih } else { 1.5915494309189533576 * wf * ihsq };
+                    // SAFETY: slab schedule (i in this chunk, owned j in this or the next)
+                    unsafe {
+                        *shared.get(i) += input.type_mass[tj] * wf;
+                        if j < a.nlocal {
+                            *shared.get(j) += input.type_mass[ti] * wf;
+                        }
+                    }
+                }
+            }
+        });
+        true
+    }
+}

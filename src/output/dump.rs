@@ -1,0 +1,359 @@
+//! `dump atom` and `dump custom` snapshots in LAMMPS' text format (readable by OVITO and by
+//! LAMMPS' `read_dump`). Every snapshot is formatted in memory and written with one call;
+//! per-snapshot files (`*` in the name) are written atomically.
+
+use crate::models::compute::property::Field;
+use crate::output::log::write_atomic;
+use crate::sim::Simulation;
+use dmhs_parser::numfmt::format_printf;
+use dmhs_parser::{Args, Command, DResult, Word};
+use std::fs::{File, OpenOptions};
+use std::io::Write;
+use std::path::PathBuf;
+
+pub const SYNTAX: &str = "dump ID group atom|custom|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...]";
+
+#[derive(Clone, Debug)]
+pub(crate) enum Column {
+    Attr(Field),
+    /// per-atom compute, column (0-based; None for a per-atom vector)
+    Compute(String, Option<usize>),
+}
+
+pub struct Dump {
+    pub id: String,
+    pub groupbit: u32,
+    pub style: String,
+    pub every: i64,
+    pub path: PathBuf,
+    names: Vec<String>,
+    columns: Vec<Column>,
+    pub sort: bool,
+    pub image: bool,
+    pub first: bool,
+    pub append: bool,
+    format_line: Option<Vec<String>>,
+    format_int: Option<String>,
+    format_float: Option<String>,
+    format_column: Vec<(usize, String)>,
+    pub last_written: Option<i64>,
+    file: Option<File>,
+    /// `dump image` / `dump movie` settings.
+    pub picture: Option<Box<crate::output::dump_image::ImageDump>>,
+}
+
+impl Dump {
+    pub fn from_lammps(cmd: &Command, sim: &Simulation) -> DResult<Dump> {
+        let mut a = Args::new(cmd, SYNTAX);
+        let id = a.word("dump ID")?.text.clone();
+        let gw = a.word("group ID")?;
+        let groupbit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+        let style_w = a.word("dump style")?;
+        let style = style_w.text.clone();
+        if !["atom", "custom", "vtk", "image", "movie"].contains(&style.as_str()) {
+            let msg = if dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Dump, &style) {
+                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, vtk, image or movie)")
+            } else {
+                format!("unknown dump style `{style}`")
+            };
+            return Err(a.error_at(style_w, msg, "expected atom, custom, vtk, image or movie"));
+        }
+        let every = a.i64_in("N (dump every N steps)", 1, i64::MAX)?;
+        let fw = a.word("file name")?;
+        let picture = if style == "image" || style == "movie" {
+            let mut ia = Args::from_words(a.remaining(), cmd.span, crate::output::dump_image::SYNTAX);
+            Some(Box::new(crate::output::dump_image::ImageDump::from_lammps(&mut ia, fw, style == "movie", sim)?))
+        } else {
+            None
+        };
+        if picture.is_none() && (fw.text.ends_with(".gz") || fw.text.ends_with(".zst") || fw.text.contains('%')) {
+            return Err(a.error_at(fw, "compressed (.gz, .zst) and per-processor (%) dump files are not supported", "plain file name expected"));
+        }
+        let mut d = Dump {
+            id,
+            groupbit,
+            style: style.clone(),
+            every,
+            path: sim.path(&fw.text),
+            names: vec![],
+            columns: vec![],
+            sort: false,
+            image: false,
+            first: false,
+            append: false,
+            format_line: None,
+            format_int: None,
+            format_float: None,
+            format_column: vec![],
+            last_written: None,
+            file: None,
+            picture,
+        };
+        if d.picture.is_some() {
+            return Ok(d);
+        }
+        if style == "vtk" && !fw.text.ends_with(".vtu") {
+            return Err(a.error_at(fw, "dump vtk writes VTK XML files: the name must end in .vtu (with * for the step, e.g. out.*.vtu)", "expected a .vtu file name"));
+        }
+        if style == "atom" {
+            a.finish()?;
+            d.set_atom_columns();
+        } else if style == "vtk" && a.is_empty() {
+            for name in crate::output::dump_vtu::default_fields(sim) {
+                d.names.push(name.to_string());
+                d.columns.push(Column::Attr(Field::parse(name).unwrap()));
+            }
+        } else {
+            if a.is_empty() {
+                return Err(a.missing("at least one per-atom field"));
+            }
+            while let Some(w) = a.peek() {
+                a.skip(1);
+                let col = parse_column(&w.text, sim).map_err(|e| a.error_at(w, e, "bad dump field"))?;
+                d.names.push(w.text.clone());
+                d.columns.push(col);
+            }
+        }
+        Ok(d)
+    }
+
+    fn set_atom_columns(&mut self) {
+        let mut names = vec!["id", "type", "xs", "ys", "zs"];
+        if self.image {
+            names.extend(["ix", "iy", "iz"]);
+        }
+        self.names = names.iter().map(|s| s.to_string()).collect();
+        self.columns = names.iter().map(|n| Column::Attr(Field::parse(n).unwrap())).collect();
+    }
+
+    /// `dump_modify ID keyword value ...`
+    pub fn modify(&mut self, a: &mut Args) -> DResult<()> {
+        let keys = ["sort", "format", "every", "first", "image", "append", "flush"];
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            if let Some(p) = self.picture.as_mut() {
+                if p.modify(w, a)? {
+                    continue;
+                }
+            }
+            match w.text.as_str() {
+                "sort" => {
+                    let v = a.word("sort setting (id or off)")?;
+                    self.sort = match v.text.as_str() {
+                        "id" => true,
+                        "off" => false,
+                        _ => return Err(a.error_at(v, "dmhs sorts dumps only by `id` (or `off`)", "expected id or off")),
+                    };
+                }
+                "format" => {
+                    let which = a.word("format kind (line, int, float, N or none)")?;
+                    match which.text.as_str() {
+                        "none" => {
+                            self.format_line = None;
+                            self.format_int = None;
+                            self.format_float = None;
+                            self.format_column.clear();
+                        }
+                        "line" => self.format_line = Some(a.str("format string")?.split_whitespace().map(String::from).collect()),
+                        "int" => self.format_int = Some(a.str("format string")?.to_string()),
+                        "float" => self.format_float = Some(a.str("format string")?.to_string()),
+                        n => match n.parse::<usize>() {
+                            Ok(k) if k >= 1 && k <= self.columns.len() => {
+                                let f = a.str("format string")?.to_string();
+                                self.format_column.retain(|(c, _)| *c != k);
+                                self.format_column.push((k, f));
+                            }
+                            _ => return Err(a.error_at(which, format!("expected line, int, float, none or a column 1..{}", self.columns.len()), "bad format kind")),
+                        },
+                    }
+                }
+                "every" => self.every = a.i64_in("every", 1, i64::MAX)?,
+                "first" => self.first = a.yes_no("first")?,
+                "append" => self.append = a.yes_no("append")?,
+                "flush" => {
+                    a.yes_no("flush")?;
+                }
+                "image" => {
+                    self.image = a.yes_no("image")?;
+                    if self.style == "atom" {
+                        self.set_atom_columns();
+                    }
+                }
+                _ if self.picture.is_some() => return Err(a.unknown_keyword(w, &[&keys[..], crate::output::dump_image::MODIFY_KEYWORDS].concat())),
+                _ => return Err(a.unknown_keyword(w, &keys)),
+            }
+        }
+        Ok(())
+    }
+
+    /// Should a snapshot be written at this step?
+    pub fn due(&self, step: i64, setup: bool) -> bool {
+        if self.last_written == Some(step) {
+            return false;
+        }
+        step % self.every == 0 || (setup && self.first)
+    }
+
+    fn format_of(&self, k: usize, int: bool) -> String {
+        if let Some((_, f)) = self.format_column.iter().find(|(c, _)| *c == k + 1) {
+            return f.clone();
+        }
+        if let Some(line) = &self.format_line {
+            if let Some(f) = line.get(k) {
+                return f.clone();
+            }
+        }
+        if int {
+            self.format_int.clone().unwrap_or_else(|| "%d".into())
+        } else {
+            self.format_float.clone().unwrap_or_else(|| "%g".into())
+        }
+    }
+
+    /// Format a snapshot of the current state.
+    pub fn snapshot(&self, sim: &Simulation) -> Result<String, String> {
+        let dom = sim.domain()?;
+        let a = &sim.atoms;
+        let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        if self.sort {
+            idx.sort_by_key(|&i| a.tag[i]);
+        }
+        let mut peratom: Vec<Option<crate::models::compute::PerAtom>> = Vec::new();
+        for c in &self.columns {
+            peratom.push(match c {
+                Column::Compute(cid, _) => {
+                    let k = sim.find_compute(cid).ok_or_else(|| format!("dump {}: compute `{cid}` does not exist", self.id))?;
+                    Some(sim.computes[k].peratom(sim)?)
+                }
+                _ => None,
+            });
+        }
+        let ints: Vec<bool> = self.columns.iter().map(|c| matches!(c, Column::Attr(f) if f.is_int())).collect();
+        let fmts: Vec<String> = (0..self.columns.len()).map(|k| self.format_of(k, ints[k])).collect();
+        let mut s = String::with_capacity(64 * (idx.len() + 10));
+        s += &format!("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}\n", sim.step, idx.len());
+        let bstr: Vec<String> = (0..3).map(|d| format!("{}{}", dom.boundary[d][0].letter(), dom.boundary[d][1].letter())).collect();
+        s += &format!("ITEM: BOX BOUNDS {}\n", bstr.join(" "));
+        for d in 0..3 {
+            s += &format!("{} {}\n", sci16(dom.lo[d]), sci16(dom.hi[d]));
+        }
+        s += &format!("ITEM: ATOMS {}\n", self.names.join(" "));
+        for &i in &idx {
+            for (k, c) in self.columns.iter().enumerate() {
+                let v = match c {
+                    Column::Attr(f) => f.value(sim, i),
+                    Column::Compute(_, col) => peratom[k].as_ref().unwrap().get(i, col.unwrap_or(0)),
+                };
+                let text = format_printf(&fmts[k], if ints[k] { v.round() } else { v }).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
+                s += &text;
+                s.push(' ');
+            }
+            s.pop();
+            s.push('\n');
+        }
+        Ok(s)
+    }
+
+    /// The snapshot as a VTK XML document (positions as points, columns as point data;
+    /// x, y, z columns are left out: they are the points).
+    fn snapshot_vtu(&self, sim: &Simulation) -> Result<String, String> {
+        let a = &sim.atoms;
+        let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        idx.sort_by_key(|&i| a.tag[i]);
+        let points: Vec<[f64; 3]> = idx.iter().map(|&i| a.x[i]).collect();
+        let mut fields = vec![];
+        for (name, c) in self.names.iter().zip(&self.columns) {
+            if matches!(name.as_str(), "x" | "y" | "z") {
+                continue;
+            }
+            let values = column_values(c, sim, &idx).map_err(|e| format!("dump {}: {e}", self.id))?;
+            fields.push(crate::output::dump_vtu::Field { name: name.clone(), components: 1, values });
+        }
+        Ok(crate::output::dump_vtu::document(&points, &fields, sim.step, sim.time()))
+    }
+
+    /// Write a snapshot now.
+    pub fn write(&mut self, sim: &mut Simulation) -> Result<(), String> {
+        if let Some(p) = &self.picture {
+            p.write(sim, self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;
+            self.last_written = Some(sim.step);
+            return Ok(());
+        }
+        if self.style == "vtk" {
+            let text = self.snapshot_vtu(sim)?;
+            let name = self.path.to_string_lossy().to_string();
+            let p = if name.contains('*') { PathBuf::from(name.replace('*', &sim.step.to_string())) } else { PathBuf::from(name.replace(".vtu", &format!(".{}.vtu", sim.step))) };
+            write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
+            self.last_written = Some(sim.step);
+            return Ok(());
+        }
+        let text = self.snapshot(sim)?;
+        let name = self.path.to_string_lossy().to_string();
+        if name.contains('*') {
+            let p = PathBuf::from(name.replace('*', &sim.step.to_string()));
+            write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
+        } else {
+            if self.file.is_none() {
+                let f = if self.append {
+                    OpenOptions::new().create(true).append(true).open(&self.path)
+                } else {
+                    File::create(&self.path)
+                };
+                self.file = Some(f.map_err(|e| format!("dump {}: cannot open {}: {e}", self.id, self.path.display()))?);
+            }
+            let f = self.file.as_mut().unwrap();
+            f.write_all(text.as_bytes()).and_then(|_| f.flush()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, self.path.display()))?;
+        }
+        self.last_written = Some(sim.step);
+        Ok(())
+    }
+}
+
+/// The values of one column for the owned atoms `idx`.
+pub(crate) fn column_values(c: &Column, sim: &Simulation, idx: &[usize]) -> Result<Vec<f64>, String> {
+    Ok(match c {
+        Column::Attr(f) => idx.iter().map(|&i| f.value(sim, i)).collect(),
+        Column::Compute(cid, col) => {
+            let k = sim.find_compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?;
+            let p = sim.computes[k].peratom(sim)?;
+            idx.iter().map(|&i| p.get(i, col.unwrap_or(0))).collect()
+        }
+    })
+}
+
+/// LAMMPS' `%-1.16e` for box bounds.
+fn sci16(x: f64) -> String {
+    format_printf("%-1.16e", x).unwrap_or_else(|_| format!("{x:e}"))
+}
+
+pub(crate) fn parse_column(name: &str, sim: &Simulation) -> Result<Column, String> {
+    if let Some(rest) = name.strip_prefix("c_") {
+        let (cid, col) = match rest.find('[') {
+            Some(k) if rest.ends_with(']') => {
+                let n: usize = rest[k + 1..rest.len() - 1].parse().map_err(|_| format!("bad column in `{name}`"))?;
+                (&rest[..k], Some(n))
+            }
+            _ => (rest, None),
+        };
+        let k = sim.find_compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?;
+        let cols = sim.computes[k].peratom_cols().ok_or_else(|| format!("compute `{cid}` does not compute per-atom values"))?;
+        let col = match col {
+            None if cols == 1 => None,
+            None => return Err(format!("compute `{cid}` has {cols} columns: use c_{cid}[N]")),
+            Some(n) if n >= 1 && n <= cols => Some(n - 1),
+            Some(n) => return Err(format!("column {n} is out of range 1..{cols}")),
+        };
+        return Ok(Column::Compute(cid.to_string(), col));
+    }
+    if name.starts_with("v_") || name.starts_with("f_") || name.starts_with("d_") || name.starts_with("i_") {
+        return Err(format!("dump field `{name}` is not supported yet (attributes and per-atom computes are)"));
+    }
+    let f = Field::parse(name).ok_or_else(|| format!("unknown dump field `{name}`"))?;
+    f.check(sim)?;
+    Ok(Column::Attr(f))
+}
+
+/// Parse the `dump` words needed to find the ID (for `undump` / `dump_modify`).
+pub fn find(sim: &Simulation, w: &Word) -> Option<usize> {
+    sim.dumps.iter().position(|d| d.id == w.text)
+}

@@ -1,0 +1,321 @@
+//! Thermodynamic output in LAMMPS' layout (`thermo`, `thermo_style`, `thermo_modify`), and the
+//! values of thermo keywords (also used by expressions).
+
+use crate::sim::Simulation;
+use dmhs_parser::numfmt::format_printf;
+
+/// One column of thermo output.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Field {
+    Keyword(String),
+    Compute(String, Option<usize>),
+    Fix(String, Option<usize>),
+    Variable(String),
+}
+
+#[derive(Clone, Debug)]
+pub struct Column {
+    pub field: Field,
+    /// Header text.
+    pub label: String,
+    pub int: bool,
+}
+
+#[derive(Clone, Debug)]
+pub struct Thermo {
+    pub every: i64,
+    pub columns: Vec<Column>,
+    pub custom: bool,
+    /// `thermo_modify norm`; None: LAMMPS' default (yes for lj units).
+    pub norm: Option<bool>,
+    pub format_line: Option<Vec<String>>,
+    pub format_int: Option<String>,
+    pub format_float: Option<String>,
+    /// Per-column formats (1-based column -> format).
+    pub format_column: Vec<(usize, String)>,
+    pub lost_ignore: bool,
+    pub flush: bool,
+}
+
+impl Default for Thermo {
+    fn default() -> Self {
+        Thermo {
+            every: 0,
+            columns: parse_columns(&["step", "temp", "epair", "emol", "etotal", "press"]).unwrap(),
+            custom: false,
+            norm: None,
+            format_line: None,
+            format_int: None,
+            format_float: None,
+            format_column: vec![],
+            lost_ignore: false,
+            flush: false,
+        }
+    }
+}
+
+/// Keywords whose values are integers.
+const INT_KEYWORDS: &[&str] = &["step", "elapsed", "elaplong", "atoms", "bonds", "angles", "dihedrals", "impropers", "nbuild", "ndanger", "part"];
+
+/// All thermo keywords dmhs knows, with their header labels.
+pub const KEYWORDS: &[(&str, &str)] = &[
+    ("step", "Step"),
+    ("elapsed", "Elapsed"),
+    ("elaplong", "Elaplong"),
+    ("dt", "Dt"),
+    ("time", "Time"),
+    ("cpu", "CPU"),
+    ("tpcpu", "T/CPU"),
+    ("spcpu", "S/CPU"),
+    ("atoms", "Atoms"),
+    ("temp", "Temp"),
+    ("press", "Press"),
+    ("pe", "PotEng"),
+    ("ke", "KinEng"),
+    ("etotal", "TotEng"),
+    ("evdwl", "E_vdwl"),
+    ("ecoul", "E_coul"),
+    ("epair", "E_pair"),
+    ("ebond", "E_bond"),
+    ("eangle", "E_angle"),
+    ("edihed", "E_dihed"),
+    ("eimp", "E_impro"),
+    ("emol", "E_mol"),
+    ("elong", "E_long"),
+    ("etail", "E_tail"),
+    ("vol", "Volume"),
+    ("density", "Density"),
+    ("lx", "Lx"),
+    ("ly", "Ly"),
+    ("lz", "Lz"),
+    ("xlo", "Xlo"),
+    ("xhi", "Xhi"),
+    ("ylo", "Ylo"),
+    ("yhi", "Yhi"),
+    ("zlo", "Zlo"),
+    ("zhi", "Zhi"),
+    ("xlat", "Xlat"),
+    ("ylat", "Ylat"),
+    ("zlat", "Zlat"),
+    ("bonds", "Bonds"),
+    ("angles", "Angles"),
+    ("dihedrals", "Diheds"),
+    ("impropers", "Impros"),
+    ("pxx", "Pxx"),
+    ("pyy", "Pyy"),
+    ("pzz", "Pzz"),
+    ("pxy", "Pxy"),
+    ("pxz", "Pxz"),
+    ("pyz", "Pyz"),
+    ("fmax", "Fmax"),
+    ("fnorm", "Fnorm"),
+    ("nbuild", "Nbuild"),
+    ("ndanger", "Ndanger"),
+];
+
+/// Parse `c_ID`, `c_ID[2]`, `f_ID`, `v_name` or a keyword into a column.
+pub fn parse_column(word: &str) -> Result<Column, String> {
+    let indexed = |rest: &str| -> Result<(String, Option<usize>), String> {
+        match rest.find('[') {
+            Some(k) if rest.ends_with(']') => {
+                let n: usize = rest[k + 1..rest.len() - 1].parse().map_err(|_| format!("bad index in `{word}`"))?;
+                if n == 0 {
+                    return Err(format!("index in `{word}` must be >= 1"));
+                }
+                Ok((rest[..k].to_string(), Some(n)))
+            }
+            _ => Ok((rest.to_string(), None)),
+        }
+    };
+    let field = if let Some(r) = word.strip_prefix("c_") {
+        let (id, i) = indexed(r)?;
+        Field::Compute(id, i)
+    } else if let Some(r) = word.strip_prefix("f_") {
+        let (id, i) = indexed(r)?;
+        Field::Fix(id, i)
+    } else if let Some(r) = word.strip_prefix("v_") {
+        Field::Variable(r.to_string())
+    } else if let Some((_, label)) = KEYWORDS.iter().find(|(k, _)| *k == word) {
+        return Ok(Column { field: Field::Keyword(word.to_string()), label: label.to_string(), int: INT_KEYWORDS.contains(&word) });
+    } else {
+        return Err(format!("unknown thermo keyword `{word}`"));
+    };
+    Ok(Column { field, label: word.to_string(), int: false })
+}
+
+pub fn parse_columns(words: &[&str]) -> Result<Vec<Column>, String> {
+    words.iter().map(|w| parse_column(w)).collect()
+}
+
+/// Whether extensive quantities are divided by the number of atoms.
+pub fn normalize(sim: &Simulation) -> bool {
+    sim.thermo.norm.unwrap_or(sim.units.style == crate::engine::units::UnitStyle::Lj) && sim.natoms() > 0
+}
+
+fn temp_compute(sim: &Simulation) -> Result<(f64, f64), String> {
+    let k = sim.find_compute("thermo_temp").ok_or("compute thermo_temp is missing")?;
+    let c = &sim.computes[k];
+    Ok((c.scalar(sim)?, c.dof(sim).unwrap_or(0.0)))
+}
+
+fn press_compute(sim: &Simulation) -> Result<&dyn crate::models::compute::Compute, String> {
+    let k = sim.find_compute("thermo_press").ok_or("compute thermo_press is missing")?;
+    Ok(sim.computes[k].as_ref())
+}
+
+/// The value of a thermo keyword, with LAMMPS' normalisation of extensive quantities.
+pub fn keyword_value(sim: &Simulation, name: &str) -> Option<Result<f64, String>> {
+    if !KEYWORDS.iter().any(|(k, _)| *k == name) {
+        return None;
+    }
+    Some((|| -> Result<f64, String> {
+        let norm = normalize(sim);
+        let n = sim.natoms() as f64;
+        let ext = |v: f64| if norm { v / n } else { v };
+        let e = &sim.energies;
+        let box_value = |f: &dyn Fn(&crate::engine::domain::Domain) -> f64| sim.domain().map(f);
+        Ok(match name {
+            "step" => sim.step as f64,
+            "elapsed" => (sim.step - sim.run_window.map(|w| w.0).unwrap_or(sim.step)) as f64,
+            "elaplong" => (sim.step - sim.run_window.map(|w| w.0).unwrap_or(sim.step)) as f64,
+            "dt" => sim.dt,
+            "time" => sim.time(),
+            "cpu" | "tpcpu" | "spcpu" => sim.last_loop_seconds,
+            "atoms" => n,
+            "temp" => temp_compute(sim)?.0,
+            "press" => press_compute(sim)?.scalar(sim)?,
+            "pe" => ext(sim.potential_energy()),
+            "ke" => {
+                let (t, dof) = temp_compute(sim)?;
+                ext(t * 0.5 * dof * sim.units.boltz)
+            }
+            "etotal" => {
+                let (t, dof) = temp_compute(sim)?;
+                ext(sim.potential_energy()) + ext(t * 0.5 * dof * sim.units.boltz)
+            }
+            "evdwl" => ext(e.pair.evdwl),
+            "ecoul" => ext(e.pair.ecoul),
+            "epair" => ext(e.pair.evdwl + e.pair.ecoul),
+            "ebond" => ext(e.ebond),
+            "eangle" => ext(e.eangle),
+            "edihed" => ext(e.edihed),
+            "eimp" | "elong" | "etail" => 0.0,
+            "emol" => ext(e.ebond + e.eangle + e.edihed),
+            "vol" => box_value(&|d| d.volume())?,
+            "density" => {
+                let m: f64 = (0..sim.natoms()).map(|i| sim.mass(i)).sum();
+                m / box_value(&|d| d.volume())?
+            }
+            "lx" => box_value(&|d| d.prd()[0])?,
+            "ly" => box_value(&|d| d.prd()[1])?,
+            "lz" => box_value(&|d| d.prd()[2])?,
+            "xlo" => box_value(&|d| d.lo[0])?,
+            "xhi" => box_value(&|d| d.hi[0])?,
+            "ylo" => box_value(&|d| d.lo[1])?,
+            "yhi" => box_value(&|d| d.hi[1])?,
+            "zlo" => box_value(&|d| d.lo[2])?,
+            "zhi" => box_value(&|d| d.hi[2])?,
+            "xlat" | "ylat" | "zlat" => {
+                let s = sim.lattice_scale()?;
+                s[["xlat", "ylat", "zlat"].iter().position(|k| *k == name).unwrap()]
+            }
+            "bonds" => sim.topo.bonds.len() as f64,
+            "angles" => sim.topo.angles.len() as f64,
+            "dihedrals" => sim.topo.dihedrals.len() as f64,
+            "impropers" => 0.0,
+            "pxx" | "pyy" | "pzz" | "pxy" | "pxz" | "pyz" => {
+                let v = press_compute(sim)?.vector(sim)?;
+                v[["pxx", "pyy", "pzz", "pxy", "pxz", "pyz"].iter().position(|k| *k == name).unwrap()]
+            }
+            "fmax" => sim.atoms.f[..sim.natoms()].iter().flat_map(|f| f.iter()).fold(0.0, |m: f64, v| m.max(v.abs())),
+            "fnorm" => sim.atoms.f[..sim.natoms()].iter().flat_map(|f| f.iter()).map(|v| v * v).sum::<f64>().sqrt(),
+            "nbuild" => sim.neighbor.nbuilds as f64,
+            "ndanger" => sim.neighbor.ndanger as f64,
+            _ => unreachable!(),
+        })
+    })())
+}
+
+/// Centre `s` in `width` columns ({fmt} `^` alignment: extra space goes right).
+fn center(s: &str, width: usize) -> String {
+    let n = s.chars().count();
+    if n >= width {
+        return s.to_string();
+    }
+    let left = (width - n) / 2;
+    format!("{}{}{}", " ".repeat(left), s, " ".repeat(width - n - left))
+}
+
+impl Thermo {
+    /// The header line (custom/one style).
+    pub fn header(&self) -> String {
+        let mut h = String::new();
+        for c in &self.columns {
+            h += &center(&c.label, if c.int { 11 } else { 14 });
+            h.push(' ');
+        }
+        h.pop();
+        h
+    }
+
+    fn format_of(&self, k: usize, int: bool) -> String {
+        if let Some((_, f)) = self.format_column.iter().find(|(c, _)| *c == k + 1) {
+            return f.clone();
+        }
+        if int {
+            if let Some(f) = &self.format_int {
+                return f.clone();
+            }
+        } else if let Some(f) = &self.format_float {
+            return f.clone();
+        }
+        if let Some(line) = &self.format_line {
+            if let Some(f) = line.get(k) {
+                return f.clone();
+            }
+        }
+        if int { "%10d ".to_string() } else { "% -14.8g".to_string() }
+    }
+
+    /// Format one line of values (already computed, in column order).
+    pub fn format_line(&self, values: &[f64]) -> String {
+        let mut line = String::new();
+        for (k, (c, &v)) in self.columns.iter().zip(values).enumerate() {
+            let fmt = self.format_of(k, c.int);
+            let s = if c.int { format_printf(&fmt, v.round()) } else { format_printf(&fmt, v) };
+            line += &s.unwrap_or_else(|_| format!("{v}"));
+            line.push(' ');
+        }
+        line.pop();
+        line
+    }
+}
+
+/// Evaluate every column for the current step.
+pub fn values(sim: &mut Simulation) -> Result<Vec<f64>, String> {
+    let cols = sim.thermo.columns.clone();
+    let mut out = Vec::with_capacity(cols.len());
+    for c in &cols {
+        let v = match &c.field {
+            Field::Keyword(k) => keyword_value(sim, k).unwrap()?,
+            Field::Compute(id, i) => dmhs_parser::EvalContext::compute_value(sim, id, *i)?,
+            Field::Fix(id, i) => dmhs_parser::EvalContext::fix_value(sim, id, *i)?,
+            Field::Variable(name) => dmhs_parser::variables::compute_equal(sim, name)?,
+        };
+        out.push(v);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn header_matches_lammps_layout() {
+        let t = Thermo::default();
+        assert_eq!(
+            t.header(),
+            "   Step          Temp          E_pair         E_mol          TotEng         Press     "
+        );
+    }
+}

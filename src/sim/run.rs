@@ -1,0 +1,463 @@
+//! The time step, read top to bottom as LAMMPS' Verlet integrator does it:
+//! initial integrate -> (rebuild | refresh ghosts) -> forces -> post-force -> final integrate
+//! -> output. Each stage is timed.
+
+use crate::models::fix::{Fix, FixHooks};
+use crate::engine::neighbor::NeighError;
+use crate::models::pair::{PairInput, PairOutput, Tally};
+use crate::sim::{Energies, RunError, Simulation};
+use crate::engine::timing::Stage;
+use std::time::Instant;
+
+/// Options of the `run` command.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    pub nsteps: i64,
+    pub upto: bool,
+    pub start: Option<i64>,
+    pub stop: Option<i64>,
+    /// `pre no`: skip reneighbouring in setup when nothing changed since the last run.
+    pub pre: bool,
+    /// `post no`: skip the timing summary.
+    pub post: bool,
+}
+
+impl RunOptions {
+    pub fn steps(n: i64) -> RunOptions {
+        RunOptions { nsteps: n, upto: false, start: None, stop: None, pre: true, post: true }
+    }
+}
+
+type Hook = fn(&mut dyn Fix, &mut Simulation) -> Result<(), RunError>;
+
+impl Simulation {
+    /// Call one hook of every fix that uses it, in definition order.
+    fn fix_hook(&mut self, wanted: fn(&FixHooks) -> bool, hook: Hook) -> Result<(), RunError> {
+        if !self.fixes.iter().any(|f| wanted(&f.hooks())) {
+            return Ok(());
+        }
+        let mut fixes = std::mem::take(&mut self.fixes);
+        let mut result = Ok(());
+        for (k, f) in fixes.iter_mut().enumerate() {
+            if wanted(&f.hooks()) {
+                let t0 = std::time::Instant::now();
+                result = hook(f.as_mut(), self);
+                self.timers.charge_fix(k, t0.elapsed().as_secs_f64());
+                if result.is_err() {
+                    break;
+                }
+            }
+        }
+        self.fixes = fixes;
+        result
+    }
+
+    /// Checks before a run; errors name what is missing.
+    pub fn init_run(&mut self) -> Result<(), String> {
+        let domain = self.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
+        let _ = domain;
+        let type_mass_needed = !self.atoms.features.per_atom_mass() || self.pair.as_ref().map(|p| p.needs_type_mass()).unwrap_or(false);
+        if type_mass_needed {
+            for t in 1..=self.ntypes {
+                if !self.mass_set[t] {
+                    return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)"));
+                }
+            }
+        }
+        let ntypes = self.ntypes;
+        if let Some(mut p) = self.pair.take() {
+            let setup = crate::models::pair::PairSetup { atoms: &self.atoms, ntypes, comm_vel: self.comm_vel };
+            let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
+            self.pair = Some(p);
+            r?;
+        }
+        self.init_bonded()?;
+        let mut fixes = std::mem::take(&mut self.fixes);
+        let mut res = Ok(());
+        for f in fixes.iter_mut() {
+            if let Err(e) = f.init(self) {
+                res = Err(format!("fix {} ({}): {e}", f.id(), f.style()));
+                break;
+            }
+        }
+        self.fixes = fixes;
+        res
+    }
+
+    /// Wrap periodic coordinates, resize shrink-wrapped boxes, remove atoms that left a fixed
+    /// box, sort, make ghosts and build the lists.
+    pub fn rebuild(&mut self) -> Result<(), RunError> {
+        let step = self.step;
+        if self.special_dirty {
+            self.rebuild_special().map_err(|e| RunError::new(step, e))?;
+        }
+        let Some(domain) = self.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
+        self.atoms.clear_ghosts();
+        for i in 0..self.atoms.nlocal {
+            let (x, img) = (&mut self.atoms.x[i], &mut self.atoms.image[i]);
+            domain.wrap(x, img);
+        }
+        if let Some(initial) = self.box_initial.as_ref() {
+            crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.atoms);
+        }
+        crate::engine::boundary::check_lost(self)?;
+        let domain = self.domain.as_ref().unwrap();
+        let pair = self.pair.as_deref();
+        let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
+        let order = self
+            .neighbor
+            .build(&mut self.atoms, domain, &self.neigh_settings, self.ntypes, &cut, &self.special_table)
+            .map_err(|e| match e {
+                NeighError::BoxTooSmall { dim, cut, length } => RunError::new(
+                    step,
+                    format!("the neighbour cutoff {cut} (pair cutoff + skin) is longer than the periodic box ({length}) in dimension {}", ["x", "y", "z"][dim]),
+                ),
+                NeighError::BadPosition { index } => RunError::new(step, format!("atom {} has a non-finite position", self.atoms.tag[index])),
+            })?;
+        if self.pair.is_some() {
+            self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
+        }
+        self.build_bonded_lists()?;
+        self.lists_valid = true;
+        Ok(())
+    }
+
+    /// Call `work` with the pair style, its input and the per-atom outputs (taken out of the
+    /// atoms for the duration, so the style can read the atoms while writing forces).
+    pub fn with_pair<R>(&mut self, work: impl FnOnce(&mut dyn crate::models::pair::PairStyle, &PairInput, &mut PairOutput) -> R, eflag: bool, advance: bool) -> R {
+        let mut pair = self.pair.take().expect("pair style");
+        let (mut f, mut torque, mut drho, mut desph) = (
+            std::mem::take(&mut self.atoms.f),
+            std::mem::take(&mut self.atoms.torque),
+            std::mem::take(&mut self.atoms.drho),
+            std::mem::take(&mut self.atoms.desph),
+        );
+        let kw = self.atoms.find_extra(crate::engine::water::DWATER);
+        let mut dwater = kw.map(|k| std::mem::take(&mut self.atoms.extra[k].data)).unwrap_or_default();
+        let input = PairInput {
+            atoms: &self.atoms,
+            list: &self.neighbor.list,
+            special_lj: self.special_bonds.lj,
+            special_coul: self.special_bonds.coul,
+            eflag,
+            ntypes: self.ntypes,
+            type_filter: None,
+            type_mass: &self.type_mass,
+            dt: self.dt,
+            step: self.step,
+            advance,
+            dimension: self.dimension,
+        };
+        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, dwater: &mut dwater };
+        let r = work(pair.as_mut(), &input, &mut out);
+        self.atoms.f = f;
+        self.atoms.torque = torque;
+        self.atoms.drho = drho;
+        self.atoms.desph = desph;
+        if let Some(k) = kw {
+            self.atoms.extra[k].data = dwater;
+        }
+        self.pair = Some(pair);
+        r
+    }
+
+    /// Zero forces and rates, then pair and bonded forces. Tallies energies if `eflag`.
+    /// `advance`: false during run setup (contact histories are not advanced, as in LAMMPS).
+    pub fn compute_forces(&mut self, eflag: bool, advance: bool) -> Result<(), RunError> {
+        let a = &mut self.atoms;
+        clear(&mut a.f, [0.0; 3]);
+        if a.features.sphere {
+            clear(&mut a.torque, [0.0; 3]);
+        }
+        if a.features.sph {
+            clear(&mut a.drho, 0.0);
+            clear(&mut a.desph, 0.0);
+        }
+        if let Some(k) = a.find_extra(crate::engine::water::DWATER) {
+            a.extra[k].data.iter_mut().for_each(|x| *x = 0.0);
+        }
+        self.timers.stamp();
+        let mut pair_tally = Tally::default();
+        if self.pair.is_some() && self.atoms.features.sph {
+            // density summation (sph/rhosum) before the forces that read the densities
+            let mut rho = std::mem::take(&mut self.atoms.rho);
+            let changed = self.with_pair(|p, input, _| p.density_pass(input, &mut rho), false, advance);
+            self.atoms.rho = rho;
+            if changed {
+                let n = self.atoms.nlocal;
+                crate::engine::atoms::Atoms::forward_field(&mut self.atoms.rho, n, &self.atoms.ghost_owner);
+            }
+        }
+        if self.pair.is_some() {
+            pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
+        }
+        self.timers.charge(Stage::Pair);
+        let bonded = self.compute_bonded(eflag)?;
+        self.timers.charge(Stage::Bond);
+        if eflag {
+            let mut virial = pair_tally.virial;
+            for k in 0..6 {
+                virial[k] += bonded.virial[k];
+            }
+            self.energies = Energies {
+                pair: pair_tally,
+                ebond: bonded.ebond,
+                eangle: bonded.eangle,
+                edihed: bonded.edihed,
+                virial,
+                step: self.step,
+            };
+        }
+        Ok(())
+    }
+
+    /// LAMMPS `Verlet::setup`: lists, forces of the current state, fix setup, first output.
+    pub fn setup(&mut self, pre: bool) -> Result<(), RunError> {
+        self.timers.reset();
+        if let Some(p) = self.pair.as_mut() {
+            p.reset_model_seconds();
+        }
+        if pre || !self.lists_valid {
+            self.timers.stamp();
+            self.rebuild()?;
+            self.timers.charge(Stage::Neigh);
+        } else {
+            let prd = self.domain.as_ref().unwrap().prd();
+            self.atoms.forward_positions(prd);
+            self.atoms.forward_state();
+        }
+        self.natoms_expected = self.atoms.nlocal;
+        self.timers.stamp();
+        // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and
+        // not refreshed after it, so at the first setup a ghost keeps the velocity estimate it
+        // had when it was made (fix sph sets vest = v on owned atoms only). Step-0 forces of
+        // pairs across periodic faces see the old vest, exactly as in LAMMPS.
+        self.fix_hook(|_| true, |f, s| f.setup_pre_force(s))?;
+        self.timers.charge(Stage::Modify);
+        self.compute_forces(true, false)?;
+        self.timers.stamp();
+        self.fix_hook(|_| true, |f, s| f.setup(s))?;
+        self.timers.charge(Stage::Modify);
+        Ok(())
+    }
+
+    /// Advance one step (LAMMPS `Verlet::run` body).
+    pub fn step_once(&mut self, eflag: bool) -> Result<(), RunError> {
+        self.step += 1;
+        self.timers.stamp();
+        self.fix_hook(|h| h.initial_integrate, |f, s| f.initial_integrate(s))?;
+        self.fix_hook(|h| h.post_integrate, |f, s| f.post_integrate(s))?;
+        self.timers.charge(Stage::Modify);
+
+        // a fix that changed the topology or must see fresh lists asks for a rebuild
+        // (LAMMPS' Neighbor::decide checks fixes' next_reneighbor before counting steps)
+        let requested = std::mem::take(&mut self.rebuild_requested);
+        if requested || self.neighbor.decide(&self.neigh_settings, &self.atoms) {
+            self.rebuild()?;
+            self.timers.charge(Stage::Neigh);
+        } else {
+            let prd = self.domain.as_ref().unwrap().prd();
+            self.atoms.forward_positions(prd);
+            if self.needs_ghost_state() {
+                self.atoms.forward_state();
+            }
+            self.timers.charge(Stage::Comm);
+        }
+
+        self.compute_forces(eflag, true)?;
+
+        self.timers.stamp();
+        self.fix_hook(|h| h.post_force, |f, s| f.post_force(s))?;
+        self.fix_hook(|h| h.final_integrate, |f, s| f.final_integrate(s))?;
+        self.fix_hook(|h| h.end_of_step, |f, s| f.end_of_step(s))?;
+        self.timers.charge(Stage::Modify);
+        Ok(())
+    }
+
+    /// Each active model with its seconds in this run: pair styles (hybrid: per sub-style and
+    /// its type pairs), the bonded styles together (they share one pass), and each fix.
+    fn model_rows(&self) -> Vec<(String, f64)> {
+        use crate::engine::timing::Stage;
+        let stage = |st: Stage| self.timers.seconds[crate::engine::timing::STAGES.iter().position(|(s, _)| *s == st).unwrap()];
+        let mut rows = Vec::new();
+        if let Some(p) = &self.pair {
+            let parts = p.model_seconds();
+            if parts.is_empty() {
+                rows.push((format!("pair {}", p.style()), stage(Stage::Pair)));
+            } else {
+                rows.extend(parts.into_iter().map(|(l, t)| (format!("pair {l}"), t)));
+            }
+        }
+        let bonded: Vec<String> = [
+            self.bond_style.as_ref().filter(|_| !self.topo.bonds.is_empty()).map(|b| format!("bond {}", b.name())),
+            self.angle_style.as_ref().filter(|_| !self.topo.angles.is_empty()).map(|b| format!("angle {}", b.name())),
+            self.dihedral_style.as_ref().filter(|_| !self.topo.dihedrals.is_empty()).map(|b| format!("dihedral {}", b.name())),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if !bonded.is_empty() {
+            rows.push((bonded.join(" + "), stage(Stage::Bond)));
+        }
+        for (k, f) in self.fixes.iter().enumerate() {
+            rows.push((format!("fix {} {}", f.id(), f.style()), self.timers.fix_seconds.get(k).copied().unwrap_or(0.0)));
+        }
+        rows
+    }
+
+    /// Ghost atoms need fresh velocities and per-atom state only for styles that read them.
+    fn needs_ghost_state(&self) -> bool {
+        self.comm_vel || self.atoms.features.sph || self.atoms.features.sphere || self.atoms.extra.iter().any(|e| e.ghosts)
+    }
+
+    /// The `run` command.
+    pub fn run(&mut self, opts: &RunOptions) -> Result<(), RunError> {
+        let nsteps = if opts.upto { opts.nsteps - self.step } else { opts.nsteps };
+        if nsteps < 0 {
+            return Err(RunError::new(self.step, format!("run upto {} is before the current step {}", opts.nsteps, self.step)));
+        }
+        let first = self.step;
+        let last = self.step + nsteps;
+        let start = opts.start.unwrap_or(first);
+        let stop = opts.stop.unwrap_or(last);
+        if start > first || stop < last {
+            return Err(RunError::new(self.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
+        }
+        self.run_window = Some((start, stop));
+        self.init_run().map_err(|e| RunError::new(self.step, e))?;
+
+        self.out.print(&format!(
+            "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",
+            self.units.name(),
+            self.step,
+            crate::output::format::g(self.dt)
+        ));
+        if self.want_capture && self.capture_setup.is_none() {
+            // crosscheck: the forces of a separate setup before the first run, exactly as
+            // lammps_driver.py issues `run 0 post no` before the deck's first run in LAMMPS
+            self.setup(opts.pre)?;
+            self.capture_setup = Some(crate::tools::crosscheck::capture_forces(self));
+        }
+        self.setup(opts.pre)?;
+        let (_, warnings) = crate::sim::stability::report(self, &crate::sim::stability::limits(self, true));
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
+        }
+        let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
+        self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
+        self.out.print(&self.thermo.header());
+        self.output_step(true, last)?;
+
+        let t0 = Instant::now();
+        let progress = crate::output::progress::Progress::new(nsteps as u64, self.out.screen);
+        let mut result = Ok(());
+        for _ in 0..nsteps {
+            let next = self.step + 1;
+            let eflag = self.output_due(next, last);
+            if let Err(e) = self.step_once(eflag).and_then(|_| crate::sim::stability::check_state(self)) {
+                result = Err(e);
+                break;
+            }
+            if eflag {
+                self.timers.stamp();
+                if let Err(e) = self.output_step(false, last) {
+                    result = Err(e);
+                    break;
+                }
+                self.timers.charge(Stage::Output);
+            }
+            progress.tick();
+        }
+        progress.finish();
+        let loop_time = t0.elapsed().as_secs_f64();
+        let done = self.step - first;
+        self.last_loop_seconds = loop_time;
+        self.last_loop_steps = done;
+        self.out.print(&format!(
+            "Loop time of {} on 1 procs for {} steps with {} atoms\n",
+            crate::output::format::g6(loop_time),
+            done,
+            self.atoms.nlocal
+        ));
+        if opts.post && result.is_ok() {
+            self.print_run_summary(loop_time, done);
+        }
+        self.out.flush();
+        // thermo keywords and variables refer to the current run window until the next run
+        result
+    }
+
+    /// Energies are needed on thermo steps, the last step and dump steps.
+    fn output_due(&self, step: i64, last: i64) -> bool {
+        step == last || (self.thermo.every > 0 && step % self.thermo.every == 0) || self.dumps.iter().any(|d| d.due(step, false))
+    }
+
+    /// Thermo line and dumps for the current step.
+    fn output_step(&mut self, setup: bool, last: i64) -> Result<(), RunError> {
+        let step = self.step;
+        let thermo_now = setup || step == last || (self.thermo.every > 0 && step % self.thermo.every == 0);
+        if thermo_now {
+            let vals = crate::output::thermo::values(self).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
+            let line = self.thermo.format_line(&vals);
+            self.out.print(&line);
+            if self.thermo.flush {
+                self.out.flush();
+            }
+        }
+        let mut dumps = std::mem::take(&mut self.dumps);
+        let mut res = Ok(());
+        for d in dumps.iter_mut() {
+            if d.due(step, setup) {
+                if let Err(e) = d.write(self) {
+                    res = Err(RunError::new(step, e));
+                    break;
+                }
+            }
+        }
+        self.dumps = dumps;
+        res
+    }
+
+    fn print_run_summary(&mut self, loop_time: f64, steps: i64) {
+        let n = self.atoms.nlocal as f64;
+        if loop_time > 0.0 && steps > 0 {
+            let tps = steps as f64 / loop_time;
+            let unit_time = if self.units.style == crate::engine::units::UnitStyle::Lj { "tau/day" } else { "ns/day" };
+            let per_day = if self.units.style == crate::engine::units::UnitStyle::Lj { 86400.0 * tps * self.dt } else { 86400.0 * tps * self.dt * 1e9 };
+            self.out.print(&format!(
+                "Performance: {per_day:.3} {unit_time}, {tps:.3} timesteps/s, {:.3} Matom-step/s\n",
+                tps * n / 1e6
+            ));
+        }
+        let threads = rayon::current_num_threads();
+        self.out.print(&format!("100.0% CPU use with 1 MPI tasks x {threads} threads\n"));
+        self.out.print(&self.timers.report(loop_time));
+        self.out.print(&crate::engine::timing::model_report(&self.model_rows(), loop_time));
+        self.out.print(&format!(
+            "Memory per particle: {:.0} bytes ({:.4} Mbytes in all)\n",
+            crate::sim::memory::bytes_per_particle(self),
+            crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0)
+        ));
+        let npairs = self.neighbor.list.npairs();
+        self.out.print(&format!(
+            "Nlocal:    {} ave {} max {} min\nNghost:    {} ave {} max {} min\nNeighs:    {} ave {} max {} min\n\nTotal # of neighbors = {}\nAve neighs/atom = {:.7}\nNeighbor list builds = {}\nDangerous builds = {}\n",
+            self.atoms.nlocal, self.atoms.nlocal, self.atoms.nlocal,
+            self.atoms.nghost(), self.atoms.nghost(), self.atoms.nghost(),
+            npairs, npairs, npairs,
+            npairs,
+            if n > 0.0 { npairs as f64 / n } else { 0.0 },
+            self.neighbor.nbuilds,
+            self.neighbor.ndanger
+        ));
+    }
+}
+
+/// Set every element to `zero` (in parallel chunks for large arrays).
+fn clear<T: Copy + Send + Sync>(v: &mut [T], zero: T) {
+    use rayon::prelude::*;
+    if rayon::current_num_threads() > 1 && v.len() > 16384 {
+        v.par_chunks_mut(8192).for_each(|c| c.fill(zero));
+    } else {
+        v.fill(zero);
+    }
+}

@@ -1,0 +1,286 @@
+//! Stability: time-step limits of the active models (shown by `dmhs check` and warned about at
+//! the start of a run) and guards that stop an unstable run with a clear message, keeping every
+//! file written so far.
+//!
+//! Limits, with the smoothing length hs = h/2 (LAMMPS' h in pair_coeff is the kernel support),
+//! c the sound speed and mu the dynamic viscosity: acoustic CFL dt <= 0.25 hs/c; viscous
+//! dt <= 0.125 hs^2 rho0/mu; force dt <= 0.25 sqrt(hs/|a|max); harmonic bonds dt <= T/20 with
+//! T = 2 pi sqrt(m_min/(2K)) the period of the lightest pair. The acoustic limit is where the dam
+//! break of docs/validation.md turns unstable (stable at 1x, unstable at 2x, all resolutions).
+//! Sound-viscosity (Morris viscosity, fix sph): dt <= 2 nu/c^2 with nu = mu/rho0 of a fluid type
+//! (one with atoms outside bonds). fix sph moves the density half a step behind the positions, so
+//! the pressure of a sound wave lags it by dt/2: an anti-damping of energy rate k^2 c^2 dt/2 against
+//! the viscous k^2 nu, for every wavelength. Measured in a periodic water box (tests/
+//! stability_sound_viscosity.rs, examples/scenes/cubes/README.md): noise decays at 1x, grows from
+//! about 1.3x (the same in LAMMPS).
+
+use crate::models::fix::any_index;
+use crate::sim::{RunError, Simulation};
+
+/// One time-step limit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Limit {
+    pub model: String,
+    pub rule: String,
+    pub dt_max: f64,
+}
+
+/// Settings of the guards (`dmhs/stability` extension command).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Guard {
+    pub enabled: bool,
+    /// Allowed density range as factors of each type's rho0.
+    pub rho_lo: f64,
+    pub rho_hi: f64,
+    /// Check every N steps.
+    pub every: i64,
+}
+
+impl Default for Guard {
+    /// Densities must stay positive and below 2 rho0 (the Tait pressure is then 127 B: no
+    /// weakly compressible flow gets there). There is no useful lower bound by default:
+    /// free-surface particles with density summation sit well below rho0.
+    fn default() -> Self {
+        Guard { enabled: true, rho_lo: 0.0, rho_hi: 2.0, every: 1 }
+    }
+}
+
+/// Largest |f|/m over owned atoms (the current forces).
+fn max_acceleration(sim: &Simulation) -> f64 {
+    let a = &sim.atoms;
+    (0..a.nlocal)
+        .map(|i| {
+            let f = a.f[i];
+            (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / sim.mass(i)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The time-step limits of the active models (forces must be current for the force limit).
+pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
+    let mut out = vec![];
+    if let Some(info) = sim.pair.as_ref().and_then(|p| p.sph_info()) {
+        let hs = 0.5 * info.h_min;
+        if info.c_max > 0.0 && info.h_min.is_finite() {
+            out.push(Limit { model: "SPH".into(), rule: format!("acoustic CFL 0.25 hs/c (hs = h/2 = {hs}, c = {})", info.c_max), dt_max: 0.25 * hs / info.c_max });
+        }
+        if let Some(mu) = info.mu_max.filter(|&m| m > 0.0) {
+            if info.rho0_min.is_finite() {
+                out.push(Limit {
+                    model: "SPH".into(),
+                    rule: format!("viscous 0.125 hs^2 rho0/mu (rho0 = {}, mu = {})", info.rho0_min, mu),
+                    dt_max: 0.125 * hs * hs * info.rho0_min / mu,
+                });
+            }
+        }
+        if forces_known && info.h_min.is_finite() {
+            let amax = max_acceleration(sim);
+            if amax > 0.0 {
+                out.push(Limit { model: "SPH".into(), rule: format!("force 0.25 sqrt(hs/|a|max) (|a|max = {amax:.4e})"), dt_max: 0.25 * (hs / amax).sqrt() });
+            }
+        }
+    }
+    if let Some(l) = sound_viscosity_limit(sim) {
+        out.push(l);
+    }
+    if let Some(kn) = sim.pair.as_ref().and_then(|p| p.contact_stiffness()).filter(|&k| k > 0.0) {
+        let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);
+        if m_min.is_finite() && m_min > 0.0 {
+            // undamped contact of the two lightest particles: m_eff = m/2, t_c = pi sqrt(m_eff/k_n)
+            // (damping lengthens it, so this is the conservative value); t_c/10 is T/20 of the
+            // contact oscillation, the rule used for harmonic bonds below
+            let tc = std::f64::consts::PI * (0.5 * m_min / kn).sqrt();
+            out.push(Limit { model: "DEM contact".into(), rule: format!("t_c/10, t_c = pi sqrt(m_eff/k_n) (k_n = {kn}, m_eff = {:.4e})", 0.5 * m_min), dt_max: tc / 10.0 });
+        }
+    }
+    if let Some(p) = sim.pair.as_ref() {
+        out.extend(p.dt_limits());
+    }
+    if let Some(bond) = sim.bond_style.as_ref() {
+        if bond.name() == "harmonic" && sim.topo.nbondtypes > 0 {
+            let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);
+            if m_min.is_finite() {
+                let k_max = (1..=sim.topo.nbondtypes).map(|t| bond.stiffness(t)).fold(0.0, f64::max);
+                if k_max > 0.0 {
+                    // reduced mass of two lightest atoms; E = K (r - r0)^2 is a spring of 2K
+                    let period = 2.0 * std::f64::consts::PI * (0.5 * m_min / (2.0 * k_max)).sqrt();
+                    out.push(Limit { model: "bond harmonic".into(), rule: format!("T/20, T = 2 pi sqrt(m/(2K)) (K = {k_max}, m = {m_min})"), dt_max: period / 20.0 });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The sound-viscosity limit 2 nu/c^2 of the tightest fluid type of a Morris style. Types whose
+/// atoms are all bonded (CGMD solids inside the fluid) are left out: their bonded pairs have no SPH
+/// (special_bonds), so no sound wave runs through them (a cube at 8x its own limit in water
+/// within the water's limit stays quiet: examples/scenes/cubes/README.md).
+fn sound_viscosity_limit(sim: &Simulation) -> Option<Limit> {
+    let sv = sim.pair.as_ref().and_then(|p| p.sph_info())?.sound_visc;
+    if sv.is_empty() {
+        return None;
+    }
+    let bonded: std::collections::HashSet<i64> = sim.topo.bonds.iter().flat_map(|b| b.atoms).collect();
+    let a = &sim.atoms;
+    let mut fluid = vec![false; sim.ntypes + 1];
+    for i in 0..a.nlocal {
+        if !bonded.contains(&a.tag[i]) {
+            if let Some(f) = fluid.get_mut(a.typ[i]) {
+                *f = true;
+            }
+        }
+    }
+    sv.iter()
+        .filter(|&&(t, rho0, c0, mu)| fluid.get(t).copied().unwrap_or(false) && rho0 > 0.0 && c0 > 0.0 && mu > 0.0)
+        .map(|&(t, rho0, c0, mu)| Limit {
+            model: "SPH".into(),
+            rule: format!("sound-viscosity 2 nu/c^2 (type {t}: nu = mu/rho0 = {mu}/{rho0}, c = {c0})"),
+            dt_max: 2.0 * mu / rho0 / (c0 * c0),
+        })
+        .min_by(|x, y| x.dt_max.total_cmp(&y.dt_max))
+}
+
+/// Text for `dmhs check` and the warnings at the start of a run.
+pub fn report(sim: &Simulation, limits: &[Limit]) -> (String, Vec<String>) {
+    let mut s = String::from("stable time step estimates:\n");
+    let mut warnings = vec![];
+    if limits.is_empty() {
+        s += "  (no estimate for the active models)\n";
+    }
+    for l in limits {
+        let ratio = sim.dt / l.dt_max;
+        s += &format!("  {:<14} {:<60} dt <= {:.4e}   (timestep {:.4e} = {:.2}x)\n", l.model, l.rule, l.dt_max, sim.dt, ratio);
+        // a time step set to the limit itself is within it (rounding of the two expressions)
+        if ratio > 1.0 + 1e-9 {
+            warnings.push(format!("the time step {:.4e} is {:.2}x the {} limit of {} ({:.4e}): the run may go unstable", sim.dt, ratio, l.rule.split(" (").next().unwrap_or(""), l.model, l.dt_max));
+        }
+    }
+    (s, warnings)
+}
+
+/// "; the time step is N x the ... limit" when the time step exceeds the tightest limit.
+pub fn dt_hint(sim: &Simulation) -> String {
+    let l = limits(sim, false);
+    let worst = l.iter().max_by(|x, y| (sim.dt / x.dt_max).total_cmp(&(sim.dt / y.dt_max)));
+    match worst {
+        Some(w) if sim.dt > w.dt_max => {
+            format!("; the time step {:.4e} is {:.2}x the {} limit {:.4e}", sim.dt, sim.dt / w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.dt_max)
+        }
+        _ => String::new(),
+    }
+}
+
+/// Whether some component is not finite: `v * 0` is 0 for finite v and NaN otherwise (a test
+/// without branches, so the pass vectorizes).
+#[inline(always)]
+fn not_finite3(v: &[f64; 3]) -> bool {
+    v[0] * 0.0 + v[1] * 0.0 + v[2] * 0.0 != 0.0
+}
+
+/// Stop the run if the state went bad: non-finite positions, velocities or SPH fields, or an
+/// SPH density outside the sane range. The message names step, particle, quantity and bound.
+pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
+    let g = &sim.guard;
+    if !g.enabled || sim.step % g.every != 0 {
+        return Ok(());
+    }
+    let a = &sim.atoms;
+    let step = sim.step;
+    let hint = || dt_hint(sim);
+    let n = a.nlocal;
+    let rho0 = if a.features.sph { sim.pair.as_ref().and_then(|p| p.sph_info()).map(|s| s.rho0).unwrap_or_default() } else { Vec::new() };
+    // fast path, one pass without branches over every atom; only when it finds something is the
+    // particle searched for. A density is good inside (lo, hi] of its type: for a type without
+    // rho0, (-inf, MAX], which only a non-finite density leaves (a NaN compares false).
+    let (x, v) = (&a.x[..n], &a.v[..n]);
+    let bad_motion = |i: usize| not_finite3(&x[i]) | not_finite3(&v[i]);
+    let all_good = if a.features.sph {
+        let bounds: Vec<(f64, f64)> = (0..=sim.ntypes)
+            .map(|t| match rho0.get(t).copied().unwrap_or(0.0) {
+                r0 if r0 > 0.0 => (g.rho_lo * r0, (g.rho_hi * r0).min(f64::MAX)),
+                _ => (f64::NEG_INFINITY, f64::MAX),
+            })
+            .collect();
+        let (rho, esph, typ) = (&a.rho[..n], &a.esph[..n], &a.typ[..n]);
+        !any_index(n, |i| {
+            let (lo, hi) = crate::models::pair::at(&bounds, typ[i]);
+            let r = rho[i];
+            bad_motion(i) | !(r > lo && r <= hi) | (esph[i] * 0.0 != 0.0)
+        })
+    } else {
+        !any_index(n, bad_motion)
+    };
+    if all_good {
+        return Ok(());
+    }
+    for i in 0..a.nlocal {
+        for (name, v) in [("position", a.x[i]), ("velocity", a.v[i])] {
+            if !(v[0].is_finite() && v[1].is_finite() && v[2].is_finite()) {
+                return Err(RunError::new(step, format!("particle {} has a non-finite {name} ({}, {}, {}): the run is unstable{}", a.tag[i], v[0], v[1], v[2], hint())));
+            }
+        }
+    }
+    if a.features.sph {
+        for i in 0..a.nlocal {
+            let r = a.rho[i];
+            if !r.is_finite() || !a.esph[i].is_finite() {
+                return Err(RunError::new(step, format!("particle {} has a non-finite density or energy (rho {}, esph {}): the run is unstable{}", a.tag[i], r, a.esph[i], hint())));
+            }
+            let r0 = rho0.get(a.typ[i]).copied().unwrap_or(0.0);
+            if r0 > 0.0 && (r <= g.rho_lo * r0 || r > g.rho_hi * r0) {
+                return Err(RunError::new(
+                    step,
+                    format!(
+                        "particle {} (type {}) has density {:.6e}, outside the sane range ({:.4e}, {:.4e}] ({} to {} x rho0 = {}): the run is unstable{}",
+                        a.tag[i], a.typ[i], r, g.rho_lo * r0, g.rho_hi * r0, g.rho_lo, g.rho_hi, r0, hint()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_state;
+    use crate::sim::Simulation;
+
+    /// A quiet 2D water box, with type 2 (rho0 0: no density bound) beside type 1 (rho0 1; its
+    /// pair_coeff comes last, as the pair_coeff I J of a Tait style sets rho0 of type I).
+    fn water_box() -> Simulation {
+        let deck = "dimension 2\nunits lj\natom_style sph\nboundary p p p\nregion box block 0 10 0 10 -0.5 0.5\ncreate_box 2 box\n\
+                    lattice sq 1.0\ncreate_atoms 1 box\nset atom 90*100 type 2\nmass * 1.0\nset group all sph/rho 1.0\n\
+                    pair_style sph/taitwater\npair_coeff 1 2 0.0 0.0 0.1 1.3\npair_coeff 2 2 0.0 0.0 0.1 1.3\npair_coeff 1 1 1.0 10.0 0.1 1.3\n\
+                    fix 1 all sph/stationary\ntimestep 0.001\nrun 0\n";
+        let mut sim = Simulation::new();
+        sim.out.captured = Some(String::new());
+        crate::deck::commands::run_plain(&mut sim, deck).unwrap();
+        sim.step = 1;
+        sim
+    }
+
+    /// The one-pass check finds each kind of bad value, and the search names particle and value.
+    #[test]
+    fn the_one_pass_check_finds_every_bad_value() {
+        assert_eq!(check_state(&water_box()), Ok(()));
+        let cases: [(&str, fn(&mut crate::engine::atoms::Atoms, usize), &str); 6] = [
+            ("position", |a, i| a.x[i][1] = f64::NAN, "has a non-finite position (5, NaN, 0)"),
+            ("velocity", |a, i| a.v[i][2] = f64::NEG_INFINITY, "has a non-finite velocity (0, 0, -inf)"),
+            ("energy", |a, i| a.esph[i] = f64::INFINITY, "has a non-finite density or energy (rho 1, esph inf)"),
+            ("density NaN", |a, i| a.rho[i] = f64::NAN, "has a non-finite density or energy (rho NaN, esph 0)"),
+            ("density of a type without rho0", |a, i| a.rho[i] = f64::INFINITY, "has a non-finite density or energy (rho inf, esph 0)"),
+            ("density above the bound", |a, i| a.rho[i] = 2.5, "has density 2.500000e0, outside the sane range"),
+        ];
+        for (what, spoil, expect) in cases {
+            let mut sim = water_box();
+            let tag = if what.contains("without rho0") { 95 } else { 46 };
+            let i = (0..sim.atoms.nlocal).find(|&i| sim.atoms.tag[i] == tag).unwrap();
+            spoil(&mut sim.atoms, i);
+            let e = check_state(&sim).expect_err(what);
+            assert_eq!(e.step, 1);
+            assert!(e.message.starts_with(&format!("particle {tag} ")) && e.message.contains(expect), "{what}: {}", e.message);
+        }
+    }
+}

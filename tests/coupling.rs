@@ -27,7 +27,7 @@ fn run(nsteps: usize) -> (Vec<(f64, f64, f64)>, f64) {
     let deck = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/coupling/in.couette_bonded_wall");
     let opts = DeckOptions { vars: vec![("nsteps".into(), vec![nsteps.to_string()])], base_dir: Some(deck.parent().unwrap().to_path_buf()), ..Default::default() };
     let sim = run_file(&deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim;
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let t = nsteps as f64 * DT;
     let mut rows = vec![];
     for r in 1..=10 {
@@ -84,7 +84,7 @@ pair_style zero 1.0\npair_coeff * *\nfix hot all dmhs/bond/break 1 1 5.0 temp 2.
     std::fs::write(&path, deck).unwrap();
     let opts = DeckOptions { base_dir: Some(dir.path().to_path_buf()), ..Default::default() };
     let mut sim = run_file(&path, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim;
-    let bonds: Vec<[i64; 2]> = sim.topo.bonds.iter().map(|b| b.atoms).collect();
+    let bonds: Vec<[i64; 2]> = sim.state.topo.bonds.iter().map(|b| b.atoms).collect();
     assert_eq!(bonds, vec![[3, 4]]);
     use dmhs::parser::EvalContext;
     assert_eq!(sim.fix_value("hot", Some(2)).unwrap(), 2.0);

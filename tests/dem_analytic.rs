@@ -27,10 +27,10 @@ fn step(sim: &mut Simulation) {
 
 /// Position, velocity and angular velocity of the atom with ID `tag`.
 fn atom(sim: &Simulation, tag: i64) -> ([f64; 3], [f64; 3], [f64; 3]) {
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let i = (0..a.nlocal).find(|&i| a.tag[i] == tag).unwrap();
     let img = a.image[i];
-    let prd = sim.domain.as_ref().unwrap().prd();
+    let prd = sim.state.domain.as_ref().unwrap().prd();
     let x = [a.x[i][0] + img[0] as f64 * prd[0], a.x[i][1] + img[1] as f64 * prd[1], a.x[i][2] + img[2] as f64 * prd[2]];
     (x, a.v[i], a.omega[i])
 }

@@ -44,7 +44,7 @@ fn col(h: &[String], name: &str) -> usize {
 /// Sum of esph (the particles' energies m e) over all atoms.
 fn total_energy(r: &DeckRun) -> f64 {
     let s = &r.sim;
-    s.atoms.esph[..s.atoms.nlocal].iter().sum()
+    s.state.atoms.esph[..s.state.atoms.nlocal].iter().sum()
 }
 
 /// Solidified length X(t) of examples/heat/in.stefan at every thermo sample (t > 0): the solid
@@ -180,7 +180,7 @@ fn closed_system_conserves_energy_to_round_off() {
     assert!(rel < 1e-13, "sum of esph: {e0} -> {e1} ({rel:e})");
     // the wall warmed: heat went from the liquid to the wall
     let s = &r.sim;
-    let ew: f64 = (0..s.atoms.nlocal).filter(|&i| s.atoms.typ[i] == 3).map(|i| s.atoms.esph[i]).sum();
+    let ew: f64 = (0..s.state.atoms.nlocal).filter(|&i| s.state.atoms.typ[i] == 3).map(|i| s.state.atoms.esph[i]).sum();
     assert!(ew > 0.0);
 }
 
@@ -278,7 +278,7 @@ run 1
     assert_eq!(rows.last().unwrap()[col(&h, "f_cool")], 20.0);
     // cv = 1: each boundary atom lost about dt kT T = 0.005 * 10 ... per unit of e
     let s = &r.sim;
-    let cooled = (0..s.atoms.nlocal).filter(|&i| s.atoms.esph[i] < 10.0).count();
+    let cooled = (0..s.state.atoms.nlocal).filter(|&i| s.state.atoms.esph[i] < 10.0).count();
     assert_eq!(cooled, 20);
 }
 
@@ -314,20 +314,20 @@ run 1
 fn solidifying_atoms_bond_to_solid_neighbours_and_melting_breaks_bonds() {
     let r = run("bonding", BONDING);
     let s = &r.sim;
-    let mut bonds: Vec<[i64; 2]> = s.topo.bonds.iter().map(|b| b.atoms).collect();
+    let mut bonds: Vec<[i64; 2]> = s.state.topo.bonds.iter().map(|b| b.atoms).collect();
     bonds.sort();
     // atoms 1, 2 were solid from the start (within the cut-off but not bonded: an already solid
     // atom creates no bonds); 3 then 4 solidify in ID order: 3-2, then 4-3; 5 stays liquid
     assert_eq!(bonds, vec![[3, 2], [4, 3]]);
-    let map = s.atoms.tag_map();
-    let ty = |t: i64| s.atoms.typ[map.get(t).unwrap()];
+    let map = s.state.atoms.tag_map();
+    let ty = |t: i64| s.state.atoms.typ[map.get(t).unwrap()];
     assert_eq!((ty(3), ty(4), ty(5)), (2, 2, 1));
     // heat atom 3 above e_liq: it melts, loses both bonds and becomes liquid
     let r = run("melting", &format!("{BONDING}\nset atom 3 sph/e 150.0\nrun 1\n"));
     let s = &r.sim;
-    assert!(s.topo.bonds.is_empty(), "{:?}", s.topo.bonds);
-    let map = s.atoms.tag_map();
-    assert_eq!(s.atoms.typ[map.get(3).unwrap()], 1);
+    assert!(s.state.topo.bonds.is_empty(), "{:?}", s.state.topo.bonds);
+    let map = s.state.atoms.tag_map();
+    assert_eq!(s.state.atoms.typ[map.get(3).unwrap()], 1);
     let (h, rows) = thermo(&r);
     let last = rows.last().unwrap();
     assert_eq!((last[col(&h, "f_phase[2]")], last[col(&h, "f_phase[3]")], last[col(&h, "f_phase[4]")]), (3.0, 2.0, 2.0));
@@ -363,8 +363,8 @@ run 0
 fn forces(pair: &str) -> Vec<[f64; 3]> {
     let r = run("two", &TWO.replace("PAIR", pair));
     let s = &r.sim;
-    let map = s.atoms.tag_map();
-    (1..=2).map(|t| s.atoms.f[map.get(t).unwrap()]).collect()
+    let map = s.state.atoms.tag_map();
+    (1..=2).map(|t| s.state.atoms.f[map.get(t).unwrap()]).collect()
 }
 
 #[test]

@@ -71,8 +71,8 @@ fn inside(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
 }
 
 fn cell_state(sim: &Simulation) -> CellState {
-    let a = &sim.atoms;
-    let d = sim.domain.as_ref().unwrap();
+    let a = &sim.state.atoms;
+    let d = sim.state.domain.as_ref().unwrap();
     let lx = d.hi[0] - d.lo[0];
     let unwrap = |i: usize| [a.x[i][0] + a.image[i][0] as f64 * lx, a.x[i][1]];
     let mut membrane: Vec<(i64, [f64; 2])> = (0..a.nlocal).filter(|&i| a.typ[i] == 3).map(|i| (a.tag[i], unwrap(i))).collect();
@@ -87,7 +87,7 @@ fn cell_state(sim: &Simulation) -> CellState {
     let com_x = all.iter().map(|p| p[0]).sum::<f64>() / all.len() as f64;
     let index: std::collections::HashMap<i64, [f64; 2]> = membrane.iter().cloned().collect();
     let longest_bond = sim
-        .topo
+        .state.topo
         .bonds
         .iter()
         .map(|b| {
@@ -96,7 +96,7 @@ fn cell_state(sim: &Simulation) -> CellState {
         })
         .fold(0.0, f64::max);
     CellState {
-        bonds: sim.topo.bonds.len(),
+        bonds: sim.state.topo.bonds.len(),
         longest_bond,
         com_x,
         membrane_min_x: poly.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min),

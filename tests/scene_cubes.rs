@@ -40,7 +40,7 @@ fn cube_heights(sim: &Simulation) -> Vec<f64> {
 }
 
 fn max_y(sim: &Simulation, typ: usize) -> f64 {
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     (0..a.nlocal).filter(|&i| a.typ[i] == typ).map(|i| a.x[i][1]).fold(f64::NEG_INFINITY, f64::max)
 }
 
@@ -48,14 +48,14 @@ fn max_y(sim: &Simulation, typ: usize) -> f64 {
 fn a_neutrally_buoyant_cubes_stay_suspended() {
     let sim = run_case("A");
     let ys = cube_heights(&sim);
-    println!("A: cube heights {ys:?} (channel 0..{H}), bonds {}", sim.topo.bonds.len());
+    println!("A: cube heights {ys:?} (channel 0..{H}), bonds {}", sim.state.topo.bonds.len());
     assert_eq!(ys.len(), 3);
     // started at 0.2, 0.5 and 0.8 H; none has come near a wall (a cube resting on the bottom
     // wall has its centre at HALF)
     for y in &ys {
         assert!(*y > HALF + 2.0 * R0 && *y < H - HALF - 2.0 * R0, "cube at {y} touches a wall");
     }
-    assert_eq!(sim.topo.bonds.len(), 3 * 84);
+    assert_eq!(sim.state.topo.bonds.len(), 3 * 84);
 }
 
 #[test]
@@ -76,10 +76,10 @@ fn b_light_cube_floats_at_the_free_surface() {
 
 /// Bonds left in each cube (by molecule ID), in molecule order.
 fn bonds_per_cube(sim: &Simulation) -> Vec<usize> {
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let mol: std::collections::HashMap<i64, i64> = (0..a.nlocal).map(|i| (a.tag[i], a.molecule[i])).collect();
     let mut n: std::collections::BTreeMap<i64, usize> = Default::default();
-    for b in &sim.topo.bonds {
+    for b in &sim.state.topo.bonds {
         *n.entry(mol[&b.atoms[0]]).or_insert(0) += 1;
     }
     n.values().copied().collect()
@@ -87,7 +87,7 @@ fn bonds_per_cube(sim: &Simulation) -> Vec<usize> {
 
 /// Centre-of-mass height of each cube, in molecule order.
 fn heights_by_molecule(sim: &Simulation) -> Vec<f64> {
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let mut sums: std::collections::BTreeMap<i64, (f64, f64)> = Default::default();
     for i in 0..a.nlocal {
         if a.typ[i] == 2 {

@@ -28,7 +28,7 @@ const SOLID: usize = 2;
 /// lattice of spacing 0.025 m an interior particle has 8 such neighbours, one on a flat surface 5.
 /// Returns (surface particles, solid among them, bulk particles, solid among them).
 fn surface_and_bulk(r: &DeckRun) -> (usize, usize, usize, usize) {
-    let a = &r.sim.atoms;
+    let a = &r.sim.state.atoms;
     let n = a.nlocal;
     let mut out = (0, 0, 0, 0);
     for i in (0..n).filter(|&i| a.typ[i] == LAVA || a.typ[i] == SOLID) {
@@ -49,7 +49,7 @@ fn surface_and_bulk(r: &DeckRun) -> (usize, usize, usize, usize) {
 /// bond graph) with at least `min` particles. Bonds form only between solid particles, so a
 /// fragment is a piece of crust; a crack that runs through the crust splits one into two.
 fn fragments(r: &DeckRun, min: usize) -> Vec<usize> {
-    let a = &r.sim.atoms;
+    let a = &r.sim.state.atoms;
     let index: HashMap<i64, usize> = (0..a.nlocal).map(|i| (a.tag[i], i)).collect();
     let mut parent: Vec<usize> = (0..a.nlocal).collect();
     fn root(p: &mut [usize], mut i: usize) -> usize {
@@ -59,7 +59,7 @@ fn fragments(r: &DeckRun, min: usize) -> Vec<usize> {
         }
         i
     }
-    for b in &r.sim.topo.bonds {
+    for b in &r.sim.state.topo.bonds {
         let (i, j) = (index[&b.atoms[0]], index[&b.atoms[1]]);
         let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
         parent[ri] = rj;

@@ -30,7 +30,7 @@ fn flexible_cells_descend_faster_than_rigid_ones() {
     let (time, rig, flex) = (col("Time"), col("v_yC_rigid"), col("v_yC_flexible"));
     let last = time.len() - 1;
     // 16 particles per cell, every bond and angle kept
-    assert_eq!(sim.atoms.nlocal, 6 * 16 + 20);
+    assert_eq!(sim.state.atoms.nlocal, 6 * 16 + 20);
     // both populations start at about the same height (within a cell radius, 12 um)
     assert!((rig[0] - flex[0]).abs() < 12e-6, "start: rigid {} flexible {}", rig[0], flex[0]);
     let (drop_r, drop_f) = (rig[0] - rig[last], flex[0] - flex[last]);

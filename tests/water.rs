@@ -28,11 +28,11 @@ fn start(deck: &str) -> Simulation {
 }
 
 fn total_water(sim: &Simulation) -> f64 {
-    water(&sim.atoms).unwrap()[..sim.atoms.nlocal].iter().sum()
+    water(&sim.state.atoms).unwrap()[..sim.state.atoms.nlocal].iter().sum()
 }
 
 fn index_of(sim: &Simulation, tag: i64) -> usize {
-    (0..sim.atoms.nlocal).find(|&i| sim.atoms.tag[i] == tag).unwrap()
+    (0..sim.state.atoms.nlocal).find(|&i| sim.state.atoms.tag[i] == tag).unwrap()
 }
 
 /// Max and RMS of c - c_exact over the strip for the Fick deck at resolution N.
@@ -40,11 +40,11 @@ fn fick_errors(n: usize) -> (f64, f64, f64) {
     let deck = include_str!("../examples/diffusion/in.fick");
     let ns = n.to_string();
     let sim = run(deck, &[("N", &ns)]);
-    let t = sim.step as f64 * sim.dt;
-    let a = &sim.atoms;
+    let t = sim.state.step as f64 * sim.state.dt;
+    let a = &sim.state.atoms;
     let (mut max, mut sq) = (0.0f64, 0.0);
     for i in 0..a.nlocal {
-        let e = conc(a, &sim.type_mass, i) - heat_half_spaces(a.x[i][0], t, 1.0e-3, 1.0, 0.0);
+        let e = conc(a, &sim.state.type_mass, i) - heat_half_spaces(a.x[i][0], t, 1.0e-3, 1.0, 0.0);
         max = max.max(e.abs());
         sq += e * e;
     }
@@ -102,15 +102,15 @@ fn water_mass_is_conserved_to_round_off() {
     for moving in [false, true] {
         let mut sim = start(&mixed_deck(moving));
         let w0 = total_water(&sim);
-        let rho0: Vec<f64> = sim.atoms.rho[..sim.atoms.nlocal].to_vec();
-        let c0: Vec<f64> = (0..sim.atoms.nlocal).map(|i| conc(&sim.atoms, &sim.type_mass, i)).collect();
+        let rho0: Vec<f64> = sim.state.atoms.rho[..sim.state.atoms.nlocal].to_vec();
+        let c0: Vec<f64> = (0..sim.state.atoms.nlocal).map(|i| conc(&sim.state.atoms, &sim.state.type_mass, i)).collect();
         for _ in 0..200 {
             sim.step_once(false).unwrap();
         }
         let w1 = total_water(&sim);
         let rel = (w1 - w0).abs() / w0;
-        let moved = (0..sim.atoms.nlocal).map(|i| (sim.atoms.rho[i] - rho0[i]).abs()).fold(0.0, f64::max);
-        let changed = (0..sim.atoms.nlocal).map(|i| (conc(&sim.atoms, &sim.type_mass, i) - c0[i]).abs()).fold(0.0, f64::max);
+        let moved = (0..sim.state.atoms.nlocal).map(|i| (sim.state.atoms.rho[i] - rho0[i]).abs()).fold(0.0, f64::max);
+        let changed = (0..sim.state.atoms.nlocal).map(|i| (conc(&sim.state.atoms, &sim.state.type_mass, i) - c0[i]).abs()).fold(0.0, f64::max);
         eprintln!("moving={moving}: sum w {w0:e} -> {w1:e}, relative change {rel:e}; max |drho| {moved:e}, max |dc| {changed:e}");
         assert!(changed > 1e-2, "water must move: {changed}");
         if moving {
@@ -141,12 +141,12 @@ fn swelling_radius_follows_the_absorbed_water() {
             sim.step_once(false).unwrap();
             for tag in [1, 2] {
                 let i = index_of(&sim, tag);
-                let w = water(&sim.atoms).unwrap()[i];
+                let w = water(&sim.state.atoms).unwrap()[i];
                 let v = v0 + w / 2.0;
                 let r = if dim == 3 { (3.0 * v / (4.0 * PI)).cbrt() } else { (v / PI).sqrt() };
-                assert!((sim.atoms.radius[i] - r).abs() < 1e-15, "dim {dim} atom {tag}: {} vs {r}", sim.atoms.radius[i]);
+                assert!((sim.state.atoms.radius[i] - r).abs() < 1e-15, "dim {dim} atom {tag}: {} vs {r}", sim.state.atoms.radius[i]);
                 if tag == 1 {
-                    grew = sim.atoms.radius[i] - r0;
+                    grew = sim.state.atoms.radius[i] - r0;
                 }
             }
         }
@@ -166,7 +166,7 @@ fn wet_force(style: &str, r: f64, c1: f64, c2: f64) -> f64 {
          fix w all dmhs/diffusion\nset atom 1 dmhs/conc {c1}\nset atom 2 dmhs/conc {c2}\nneighbor 1e-5 bin\n"
     );
     let sim = start(&deck);
-    sim.atoms.f[index_of(&sim, 1)][0]
+    sim.state.atoms.f[index_of(&sim, 1)][0]
 }
 
 fn lj_force(eps: f64, sigma: f64, r: f64) -> f64 {
@@ -212,12 +212,12 @@ fn wet_adhesion_follows_swelling() {
          fix w all dmhs/diffusion\nfix s all dmhs/swell 1.0\nset atom 1 dmhs/conc 0.2\nneighbor 1e-5 bin\n";
     let sim = start(deck);
     let i = index_of(&sim, 1);
-    let w = water(&sim.atoms).unwrap()[i];
+    let w = water(&sim.state.atoms).unwrap()[i];
     let r0: f64 = 2.35e-5;
     let v = 4.0 / 3.0 * PI * r0.powi(3) + w / 1.0;
     let g = (3.0 * v / (4.0 * PI)).cbrt() - r0;
     assert!(g > 1e-7 && g < 1e-5, "{g}");
-    let f = sim.atoms.f[i][0];
+    let f = sim.state.atoms.f[i][0];
     let expected = -lj_force(7e-11, 5e-5, 7e-5 - g) * (1.0 - 0.2 / 0.5);
     assert!((f - expected).abs() <= 1e-9 * expected.abs(), "{f:e} vs {expected:e} (growth {g:e})");
 }
@@ -235,13 +235,13 @@ fn stokes_drag_gives_the_terminal_velocity() {
             2.0 * r
         );
         let mut sim = start(&deck);
-        let m = sim.atoms.rmass[0];
+        let m = sim.state.atoms.rmass[0];
         let force = if body.contains("gravity") { m * g } else { 4.108908e-11 };
         for _ in 0..5000 {
             sim.step_once(false).unwrap();
         }
         let vt = force / (6.0 * PI * mu * r);
-        let v = -sim.atoms.v[0][1];
+        let v = -sim.state.atoms.v[0][1];
         eprintln!("stokes ({body}): v {v:e}, F/(6 pi mu r) {vt:e}, relative {:e}", (v - vt).abs() / vt);
         assert!((v - vt).abs() < 1e-9 * vt, "{v:e} vs {vt:e}");
     }
@@ -253,7 +253,7 @@ fn restart_keeps_the_water_field() {
     let file = dir.path().join("w.restart");
     let deck = format!("{}\nrun 20\nwrite_restart {}\n", mixed_deck(false), file.display());
     let sim = run(&deck, &[]);
-    let before: Vec<(i64, f64)> = (0..sim.atoms.nlocal).map(|i| (sim.atoms.tag[i], water(&sim.atoms).unwrap()[i])).collect();
+    let before: Vec<(i64, f64)> = (0..sim.state.atoms.nlocal).map(|i| (sim.state.atoms.tag[i], water(&sim.state.atoms).unwrap()[i])).collect();
     let deck2 = format!(
         "read_restart {}\npair_style dmhs/sph/diffusion\npair_coeff 1 1 1e-6 0.0026\npair_coeff 1 2 3e-7 0.0026\npair_coeff 2 2 2e-6 0.0026\nfix w all dmhs/diffusion\n",
         file.display()
@@ -261,7 +261,7 @@ fn restart_keeps_the_water_field() {
     let sim2 = run(&deck2, &[]);
     for (tag, w) in before {
         let i = index_of(&sim2, tag);
-        assert_eq!(water(&sim2.atoms).unwrap()[i], w);
+        assert_eq!(water(&sim2.state.atoms).unwrap()[i], w);
     }
 }
 
@@ -277,13 +277,13 @@ fn moving_sph_wall_carries_its_velocity() {
          pair_style sph/taitwater/morris\npair_coeff * * 1000 1.0 0.1 0.0013\n\
          velocity wall set 2e-4 0 0 units box\nfix f all sph\nfix s wall setforce 0 0 0\nneighbor 0.0002 bin\ntimestep 1e-5\n";
     let mut sim = start(deck);
-    let bit = sim.groups.bit("wall").unwrap();
-    let x0: Vec<f64> = (0..sim.atoms.nlocal).map(|i| sim.atoms.x[i][0]).collect();
-    let tags: Vec<i64> = sim.atoms.tag[..sim.atoms.nlocal].to_vec();
+    let bit = sim.state.groups.bit("wall").unwrap();
+    let x0: Vec<f64> = (0..sim.state.atoms.nlocal).map(|i| sim.state.atoms.x[i][0]).collect();
+    let tags: Vec<i64> = sim.state.atoms.tag[..sim.state.atoms.nlocal].to_vec();
     for _ in 0..100 {
         sim.step_once(false).unwrap();
     }
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let mut fluid_vx = 0.0f64;
     let mut walls = 0;
     for i in 0..a.nlocal {
@@ -339,13 +339,13 @@ fn water_fields_reach_dumps_and_reductions() {
     assert!(text.contains("ITEM: ATOMS id conc water dwater"), "{}", &text[..300.min(text.len())]);
     let last = text.rsplit("ITEM: ATOMS").next().unwrap();
     let rows: Vec<Vec<f64>> = last.lines().skip(1).map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect()).collect();
-    assert_eq!(rows.len(), sim.atoms.nlocal);
+    assert_eq!(rows.len(), sim.state.atoms.nlocal);
     for r in &rows {
         let i = index_of(&sim, r[0] as i64);
         // dump custom writes %g (6 significant digits)
-        let w = water(&sim.atoms).unwrap()[i];
+        let w = water(&sim.state.atoms).unwrap()[i];
         assert!((r[2] - w).abs() <= 1e-5 * w.abs(), "{} vs {w}", r[2]);
-        let c = conc(&sim.atoms, &sim.type_mass, i);
+        let c = conc(&sim.state.atoms, &sim.state.type_mass, i);
         assert!((r[1] - c).abs() <= 1e-5 * c.abs(), "{} vs {c}", r[1]);
     }
     assert!(rows.iter().any(|r| r[3] != 0.0), "rates are dumped");
@@ -366,15 +366,15 @@ fn dry_wet_lj_is_lj_cut() {
     };
     let mut a = run(&deck("lj/cut 2.5", "1.0 1.0"), &[]);
     let mut b = run(&deck("dmhs/lj/wet 2.5", "1.0 1.0 0.5"), &[]);
-    let (ea, eb) = (dmhs::output::thermo::values(&mut a), dmhs::output::thermo::values(&mut b));
+    let (ea, eb) = (a.thermo_values(), b.thermo_values());
     let (ea, eb) = (ea.unwrap(), eb.unwrap());
     for k in 0..ea.len() {
         assert!((ea[k] - eb[k]).abs() <= 1e-9 * ea[k].abs().max(1.0), "thermo column {k}: {} vs {}", ea[k], eb[k]);
     }
-    for i in 0..a.atoms.nlocal {
-        let j = index_of(&b, a.atoms.tag[i]);
+    for i in 0..a.state.atoms.nlocal {
+        let j = index_of(&b, a.state.atoms.tag[i]);
         for d in 0..3 {
-            assert!((a.atoms.x[i][d] - b.atoms.x[j][d]).abs() < 1e-9, "atom {}", a.atoms.tag[i]);
+            assert!((a.state.atoms.x[i][d] - b.state.atoms.x[j][d]).abs() < 1e-9, "atom {}", a.state.atoms.tag[i]);
         }
     }
 }
@@ -390,7 +390,7 @@ fn pair_rate_is_eq_26() {
          set atom 1 dmhs/conc 0.8\nset atom 2 dmhs/conc 0.1\n";
     let sim = start(deck);
     let (i, j) = (index_of(&sim, 1), index_of(&sim, 2));
-    let dw = sim.atoms.extra[sim.atoms.find_extra(dmhs::engine::water::DWATER).unwrap()].data.clone();
+    let dw = sim.state.atoms.extra[sim.state.atoms.find_extra(dmhs::engine::water::DWATER).unwrap()].data.clone();
     let wfd = dmhs::models::pair::sph::Kernel::Lucy.wfd(0.05 * 0.05, 0.1, true);
     let expected = (2.0 / 1000.0) * (3.0 / 1500.0) * 2.0 * 0.7 * (0.8 - 0.1) * wfd;
     assert!(expected < 0.0);
@@ -411,10 +411,10 @@ fn restart_keeps_the_dry_size_of_swollen_particles() {
     let b = run(&format!("read_restart {}\n{fixes}run 30\n", file.display()), &[]);
     for tag in [1, 2] {
         let (i, j) = (index_of(&a, tag), index_of(&b, tag));
-        assert_eq!(a.atoms.radius[i], b.atoms.radius[j], "atom {tag}");
-        assert_eq!(water(&a.atoms).unwrap()[i], water(&b.atoms).unwrap()[j]);
+        assert_eq!(a.state.atoms.radius[i], b.state.atoms.radius[j], "atom {tag}");
+        assert_eq!(water(&a.state.atoms).unwrap()[i], water(&b.state.atoms).unwrap()[j]);
     }
-    assert!(a.atoms.radius[index_of(&a, 1)] > 0.6);
+    assert!(a.state.atoms.radius[index_of(&a, 1)] > 0.6);
 }
 
 #[test]
@@ -429,7 +429,7 @@ fn diffusion_reports_its_time_step_limit() {
     assert!((l.dt_max - 0.05 * h * h / d).abs() < 1e-15, "{l:?}");
     let stable = |cdt: &str| {
         let s = run(deck, &[("N", "50"), ("cdt", cdt), ("tend", "40")]);
-        (0..s.atoms.nlocal).all(|i| conc(&s.atoms, &s.type_mass, i).abs() <= 1.0 + 1e-9)
+        (0..s.state.atoms.nlocal).all(|i| conc(&s.state.atoms, &s.state.type_mass, i).abs() <= 1.0 + 1e-9)
     };
     assert!(stable("0.7"));
     assert!(!stable("0.8"));

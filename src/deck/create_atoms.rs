@@ -4,9 +4,9 @@
 //! match LAMMPS' IDs atom by atom.
 
 use crate::engine::domain::{BoundaryKind, Domain};
-use crate::deck::lattice::Lattice;
+use crate::engine::lattice::Lattice;
 use crate::engine::random_park::RanPark;
-use crate::models::region::{Region, Shape};
+use crate::engine::region::{Region, Shape};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span};
 
 const BOX_SYNTAX: &str = "create_box N region-ID keyword value ... \
@@ -572,7 +572,7 @@ pub fn create_atoms(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::deck::lattice::tests::cmd;
+    use crate::engine::lattice::tests::cmd;
     use crate::engine::units::{UnitStyle, Units};
 
     /// What the geometry commands of a test deck produced.

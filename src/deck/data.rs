@@ -12,7 +12,7 @@ pub const READ_SYNTAX: &str = "read_data file";
 
 /// The data-file column layout of the current atom style.
 pub fn layout(sim: &Simulation) -> Result<AtomLayout, Diagnostic> {
-    let names: Vec<&str> = sim.atom_style.iter().map(|s| s.as_str()).collect();
+    let names: Vec<&str> = sim.state.atom_style.iter().map(|s| s.as_str()).collect();
     AtomLayout::from_names(&names)
 }
 
@@ -35,7 +35,7 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
     if let Some(kw) = a.peek() {
         return Err(a.error_at(kw, format!("read_data keyword `{}` is not supported yet", kw.text), "supported: read_data file"));
     }
-    if sim.domain.is_some() {
+    if sim.state.domain.is_some() {
         return Err(a.error_at(&cmd.name, "read_data after the box is defined (read_data ... add) is not supported yet", "box already defined"));
     }
     let path = sim.path(&fw.text);
@@ -55,17 +55,17 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
     if h.tilt.is_some() {
         return Err(Diagnostic::at(cmd.span, "triclinic boxes (xy xz yz in the data file) are not supported", "triclinic data file"));
     }
-    if sim.dimension == 2 && (h.boxlo[2] >= 0.0 || h.boxhi[2] <= 0.0) {
+    if sim.state.dimension == 2 && (h.boxlo[2] >= 0.0 || h.boxhi[2] <= 0.0) {
         return Err(Diagnostic::at(cmd.span, "a 2d data file must have zlo < 0 < zhi", "2d box"));
     }
     sim.out.print(&format!("Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})", h.boxlo[0], h.boxlo[1], h.boxlo[2], h.boxhi[0], h.boxhi[1], h.boxhi[2]));
-    let domain = Domain { dimension: sim.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.boundary };
-    sim.box_initial = Some(domain.clone());
-    sim.domain = Some(domain.clone());
-    sim.ntypes = h.atom_types;
-    sim.type_mass = vec![0.0; h.atom_types + 1];
-    sim.mass_set = vec![false; h.atom_types + 1];
-    let t = &mut sim.topo;
+    let domain = Domain { dimension: sim.state.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.state.boundary };
+    sim.state.box_initial = Some(domain.clone());
+    sim.state.domain = Some(domain.clone());
+    sim.state.ntypes = h.atom_types;
+    sim.state.type_mass = vec![0.0; h.atom_types + 1];
+    sim.state.mass_set = vec![false; h.atom_types + 1];
+    let t = &mut sim.state.topo;
     t.nbondtypes = h.bond_types;
     t.nangletypes = h.angle_types;
     t.ndihedraltypes = h.dihedral_types;
@@ -77,8 +77,8 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
         if m.mass <= 0.0 {
             return Err(Diagnostic::at(m.span, format!("mass of type {} must be > 0", m.atom_type), "invalid mass"));
         }
-        sim.type_mass[m.atom_type] = m.mass;
-        sim.mass_set[m.atom_type] = true;
+        sim.state.type_mass[m.atom_type] = m.mass;
+        sim.state.mass_set[m.atom_type] = true;
     }
     // coefficients, through the same code as the *_coeff commands
     for sec in &data.coeffs {
@@ -95,7 +95,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
         }
     }
     // atoms
-    let ft = sim.atoms.features;
+    let ft = sim.state.atoms.features;
     let two_pi_thirds = 4.0 * std::f64::consts::PI / 3.0;
     let mut seen = std::collections::HashSet::with_capacity(data.atoms.len());
     for al in &data.atoms {
@@ -113,11 +113,11 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
         if !(0..3).all(|d| domain.periodic(d) || (x[d] >= domain.lo[d] && x[d] < domain.hi[d]) || matches!(domain.boundary[d][0], crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin)) {
             return Err(Diagnostic::at(al.span, format!("atom {} at ({}, {}, {}) is outside the non-periodic box", al.id, x[0], x[1], x[2]), "outside the box"));
         }
-        if sim.dimension == 2 && x[2] != 0.0 {
+        if sim.state.dimension == 2 && x[2] != 0.0 {
             return Err(Diagnostic::at(al.span, format!("atom {} has z = {} in a 2d simulation (must be 0)", al.id, x[2]), "z must be 0"));
         }
-        if al.atom_type < 1 || al.atom_type > sim.ntypes {
-            return Err(Diagnostic::at(al.span, format!("atom {} has type {} outside 1..{}", al.id, al.atom_type, sim.ntypes), "bad type"));
+        if al.atom_type < 1 || al.atom_type > sim.state.ntypes {
+            return Err(Diagnostic::at(al.span, format!("atom {} has type {} outside 1..{}", al.id, al.atom_type, sim.state.ntypes), "bad type"));
         }
         let mut n = NewAtom::at(al.id, al.atom_type, x);
         n.image = image;
@@ -135,17 +135,17 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
         n.rho = al.rho;
         n.esph = al.esph;
         n.cv = al.cv;
-        sim.atoms.push(&n);
+        sim.state.atoms.push(&n);
     }
     if let Some(vels) = &data.velocities {
-        let map = sim.atoms.tag_map();
+        let map = sim.state.atoms.tag_map();
         for vl in vels {
             let Some(i) = map.get(vl.id) else {
                 return Err(Diagnostic::at(vl.span, format!("velocity for atom ID {} that does not exist", vl.id), "unknown atom"));
             };
-            sim.atoms.v[i] = vl.v;
+            sim.state.atoms.v[i] = vl.v;
             if ft.sphere {
-                sim.atoms.omega[i] = vl.omega;
+                sim.state.atoms.omega[i] = vl.omega;
             }
         }
     }
@@ -157,20 +157,20 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
     };
     for b in &data.bonds {
         check_type(b.topo_type, h.bond_types, b.span, "bond")?;
-        sim.topo.bonds.push(Bond { typ: b.topo_type, atoms: b.atoms });
+        sim.state.topo.bonds.push(Bond { typ: b.topo_type, atoms: b.atoms });
     }
     for b in &data.angles {
         check_type(b.topo_type, h.angle_types, b.span, "angle")?;
-        sim.topo.angles.push(Angle { typ: b.topo_type, atoms: b.atoms });
+        sim.state.topo.angles.push(Angle { typ: b.topo_type, atoms: b.atoms });
     }
     for b in &data.dihedrals {
         check_type(b.topo_type, h.dihedral_types, b.span, "dihedral")?;
-        sim.topo.dihedrals.push(Dihedral { typ: b.topo_type, atoms: b.atoms });
+        sim.state.topo.dihedrals.push(Dihedral { typ: b.topo_type, atoms: b.atoms });
     }
     let _ = layout;
-    let t = &sim.topo;
-    sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", sim.atoms.nlocal, t.bonds.len(), t.angles.len(), t.dihedrals.len()));
-    sim.lists_valid = false;
+    let t = &sim.state.topo;
+    sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", sim.state.atoms.nlocal, t.bonds.len(), t.angles.len(), t.dihedrals.len()));
+    sim.state.lists_valid = false;
     Ok(())
 }
 
@@ -216,23 +216,23 @@ pub fn write_data(sim: &Simulation, cmd: &Command) -> Result<(), String> {
 
 /// The simulation as a data file (atoms wrapped into the box, sorted by ID).
 pub fn to_data_file(sim: &Simulation, coeffs: bool) -> DataFile {
-    let d = sim.domain.as_ref().expect("box");
-    let a = &sim.atoms;
-    let mut f = DataFile { title: write_data_title(&format!("dmhs {}", env!("CARGO_PKG_VERSION")), sim.step, sim.units.name()), ..Default::default() };
+    let d = sim.state.domain.as_ref().expect("box");
+    let a = &sim.state.atoms;
+    let mut f = DataFile { title: write_data_title(&format!("dmhs {}", env!("CARGO_PKG_VERSION")), sim.state.step, sim.state.units.name()), ..Default::default() };
     let h = &mut f.header;
-    h.atom_types = sim.ntypes;
-    h.bond_types = sim.topo.nbondtypes;
-    h.angle_types = sim.topo.nangletypes;
-    h.dihedral_types = sim.topo.ndihedraltypes;
-    h.improper_types = sim.topo.nimpropertypes;
+    h.atom_types = sim.state.ntypes;
+    h.bond_types = sim.state.topo.nbondtypes;
+    h.angle_types = sim.state.topo.nangletypes;
+    h.dihedral_types = sim.state.topo.ndihedraltypes;
+    h.improper_types = sim.state.topo.nimpropertypes;
     h.boxlo = d.lo;
     h.boxhi = d.hi;
     if !a.features.per_atom_mass() {
-        f.masses = (1..=sim.ntypes).filter(|&t| sim.mass_set[t]).map(|t| MassLine::new(t, sim.type_mass[t])).collect();
+        f.masses = (1..=sim.state.ntypes).filter(|&t| sim.state.mass_set[t]).map(|t| MassLine::new(t, sim.state.type_mass[t])).collect();
     }
     if coeffs {
         if let Some(p) = &sim.pair {
-            let lines: Option<Vec<CoeffLine>> = (1..=sim.ntypes).map(|t| p.data_coeffs(t).map(|w| CoeffLine::new(vec![t], &w.split_whitespace().collect::<Vec<_>>()))).collect();
+            let lines: Option<Vec<CoeffLine>> = (1..=sim.state.ntypes).map(|t| p.data_coeffs(t).map(|w| CoeffLine::new(vec![t], &w.split_whitespace().collect::<Vec<_>>()))).collect();
             if let Some(lines) = lines {
                 f.coeffs.push(CoeffSection { kind: CoeffKind::Pair, style: Some(Word::new(p.style(), Default::default())), lines, span: Default::default() });
             }
@@ -244,13 +244,13 @@ pub fn to_data_file(sim: &Simulation, coeffs: bool) -> DataFile {
             }
         };
         if let Some(s) = &sim.bond_style {
-            push(CoeffKind::Bond, s.name(), sim.topo.nbondtypes, &|t| s.coeff_words(t));
+            push(CoeffKind::Bond, s.name(), sim.state.topo.nbondtypes, &|t| s.coeff_words(t));
         }
         if let Some(s) = &sim.angle_style {
-            push(CoeffKind::Angle, s.name(), sim.topo.nangletypes, &|t| s.coeff_words(t));
+            push(CoeffKind::Angle, s.name(), sim.state.topo.nangletypes, &|t| s.coeff_words(t));
         }
         if let Some(s) = &sim.dihedral_style {
-            push(CoeffKind::Dihedral, s.name(), sim.topo.ndihedraltypes, &|t| s.coeff_words(t));
+            push(CoeffKind::Dihedral, s.name(), sim.state.topo.ndihedraltypes, &|t| s.coeff_words(t));
         }
     }
     let mut order: Vec<usize> = (0..a.nlocal).collect();
@@ -282,8 +282,8 @@ pub fn to_data_file(sim: &Simulation, coeffs: bool) -> DataFile {
         vels.push(VelocityLine::new(a.tag[i], a.v[i], if a.features.sphere { a.omega[i] } else { [0.0; 3] }));
     }
     f.velocities = Some(vels);
-    f.bonds = sim.topo.bonds.iter().map(|b| TopoLine::new(b.typ, b.atoms)).collect();
-    f.angles = sim.topo.angles.iter().map(|b| TopoLine::new(b.typ, b.atoms)).collect();
-    f.dihedrals = sim.topo.dihedrals.iter().map(|b| TopoLine::new(b.typ, b.atoms)).collect();
+    f.bonds = sim.state.topo.bonds.iter().map(|b| TopoLine::new(b.typ, b.atoms)).collect();
+    f.angles = sim.state.topo.angles.iter().map(|b| TopoLine::new(b.typ, b.atoms)).collect();
+    f.dihedrals = sim.state.topo.dihedrals.iter().map(|b| TopoLine::new(b.typ, b.atoms)).collect();
     f
 }

@@ -4,7 +4,6 @@ pub mod check;
 pub mod commands;
 pub mod create_atoms;
 pub mod data;
-pub mod lattice;
 pub mod restart;
 pub mod velocity;
 pub mod velocity_create;

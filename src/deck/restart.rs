@@ -77,42 +77,42 @@ fn f3(s: &mut String, v: &[f64; 3]) {
 
 /// The restart text of the current state.
 pub fn restart_text(sim: &mut Simulation) -> Result<String, String> {
-    let domain = sim.domain.clone().ok_or("write_restart before the simulation box is defined")?;
+    let domain = sim.state.domain.clone().ok_or("write_restart before the simulation box is defined")?;
     let mut s = String::new();
     let _ = writeln!(s, "{MAGIC}");
-    let _ = writeln!(s, "step {}", sim.step);
-    let _ = writeln!(s, "atime {:?} {}", sim.atime, sim.atimestep);
-    let _ = writeln!(s, "dt {:?} {}", sim.dt, sim.dt_set as i32);
-    let _ = writeln!(s, "units {}", sim.units.name());
-    let _ = writeln!(s, "dimension {}", sim.dimension);
-    let _ = writeln!(s, "boundary {}", sim.boundary.iter().map(boundary_word).collect::<Vec<_>>().join(" "));
-    let _ = writeln!(s, "atom_style {}", sim.atom_style.iter().map(|w| enc(w)).collect::<Vec<_>>().join(" "));
-    let _ = writeln!(s, "newton {} {}", sim.newton_pair as i32, sim.newton_bond as i32);
-    let _ = writeln!(s, "comm_vel {}", sim.comm_vel as i32);
+    let _ = writeln!(s, "step {}", sim.state.step);
+    let _ = writeln!(s, "atime {:?} {}", sim.state.atime, sim.state.atimestep);
+    let _ = writeln!(s, "dt {:?} {}", sim.state.dt, sim.state.dt_set as i32);
+    let _ = writeln!(s, "units {}", sim.state.units.name());
+    let _ = writeln!(s, "dimension {}", sim.state.dimension);
+    let _ = writeln!(s, "boundary {}", sim.state.boundary.iter().map(boundary_word).collect::<Vec<_>>().join(" "));
+    let _ = writeln!(s, "atom_style {}", sim.state.atom_style.iter().map(|w| enc(w)).collect::<Vec<_>>().join(" "));
+    let _ = writeln!(s, "newton {} {}", sim.state.newton_pair as i32, sim.state.newton_bond as i32);
+    let _ = writeln!(s, "comm_vel {}", sim.state.comm_vel as i32);
     let mut line = String::from("box");
     f3(&mut line, &domain.lo);
     f3(&mut line, &domain.hi);
     let _ = writeln!(s, "{line}");
-    if let Some(b) = &sim.box_initial {
+    if let Some(b) = &sim.state.box_initial {
         let mut line = String::from("box_initial");
         f3(&mut line, &b.lo);
         f3(&mut line, &b.hi);
         let _ = writeln!(s, "{line}");
     }
-    let _ = writeln!(s, "ntypes {}", sim.ntypes);
+    let _ = writeln!(s, "ntypes {}", sim.state.ntypes);
     let mut line = String::from("masses");
-    for t in 1..=sim.ntypes {
-        let _ = write!(line, " {:?} {}", sim.type_mass[t], sim.mass_set[t] as i32);
+    for t in 1..=sim.state.ntypes {
+        let _ = write!(line, " {:?} {}", sim.state.type_mass[t], sim.state.mass_set[t] as i32);
     }
     let _ = writeln!(s, "{line}");
-    let t = &sim.topo;
+    let t = &sim.state.topo;
     let _ = writeln!(s, "topology_types {} {} {} {}", t.nbondtypes, t.nangletypes, t.ndihedraltypes, t.nimpropertypes);
-    for (k, name) in sim.groups.names() {
+    for (k, name) in sim.state.groups.names() {
         let _ = writeln!(s, "group {k} {}", enc(name));
     }
 
     // atoms, in storage order
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let n = a.nlocal;
     let ft = a.features;
     let _ = writeln!(s, "atoms {n}");
@@ -191,7 +191,7 @@ pub fn write_restart(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
             _ => return Err(a.unknown_keyword(k, &["noinit"])),
         }
     }
-    let name = w.text.replace('*', &sim.step.to_string());
+    let name = w.text.replace('*', &sim.state.step.to_string());
     let path = sim.path(&name);
     let text = restart_text(sim).map_err(|e| Diagnostic::at(cmd.span, e, "here"))?;
     let tmp = path.with_extension("tmp-restart");
@@ -269,7 +269,7 @@ pub fn read_restart(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap
             }
         }
     }
-    sim.out.print(&format!("Read restart file {} at step {}: {} atoms", path.display(), sim.step, sim.atoms.nlocal));
+    sim.out.print(&format!("Read restart file {} at step {}: {} atoms", path.display(), sim.state.step, sim.state.atoms.nlocal));
     Ok(())
 }
 
@@ -480,30 +480,30 @@ fn restore(sim: &mut Simulation, text: &str, file: &str) -> Result<(Vec<Vec<Stri
     }
 
     // all read: apply
-    let old = sim.units;
-    sim.units = Units::new(units);
-    if sim.neigh_settings.skin == old.skin {
-        sim.neigh_settings.skin = sim.units.skin;
+    let old = sim.state.units;
+    sim.state.units = Units::new(units);
+    if sim.state.neigh_settings.skin == old.skin {
+        sim.state.neigh_settings.skin = sim.state.units.skin;
     }
-    sim.dt = dt;
-    sim.dt_set = dt_set;
-    sim.step = step;
-    sim.atime = atime;
-    sim.atimestep = atimestep;
-    sim.dimension = dimension;
-    sim.boundary = boundary;
-    sim.atom_style = atom_style;
-    sim.newton_pair = newton.0;
-    sim.newton_bond = newton.1;
-    sim.comm_vel = comm_vel;
-    sim.domain = Some(domain);
-    sim.box_initial = box_initial;
-    sim.ntypes = ntypes;
-    sim.type_mass = type_mass;
-    sim.mass_set = mass_set;
-    sim.groups = groups;
-    sim.atoms = atoms;
-    sim.topo = topo;
-    sim.lists_valid = false;
+    sim.state.dt = dt;
+    sim.state.dt_set = dt_set;
+    sim.state.step = step;
+    sim.state.atime = atime;
+    sim.state.atimestep = atimestep;
+    sim.state.dimension = dimension;
+    sim.state.boundary = boundary;
+    sim.state.atom_style = atom_style;
+    sim.state.newton_pair = newton.0;
+    sim.state.newton_bond = newton.1;
+    sim.state.comm_vel = comm_vel;
+    sim.state.domain = Some(domain);
+    sim.state.box_initial = box_initial;
+    sim.state.ntypes = ntypes;
+    sim.state.type_mass = type_mass;
+    sim.state.mass_set = mass_set;
+    sim.state.groups = groups;
+    sim.state.atoms = atoms;
+    sim.state.topo = topo;
+    sim.state.lists_valid = false;
     Ok((commands, pending))
 }

@@ -10,7 +10,7 @@
 // Index loops mirror LAMMPS' formulas term by term (same evaluation order).
 #![allow(clippy::needless_range_loop)]
 
-use crate::deck::lattice::Lattice;
+use crate::engine::lattice::Lattice;
 use crate::engine::random_park::RanPark;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span, Word};
 
@@ -768,7 +768,7 @@ fn logical(a: &mut Args, what: &str) -> DResult<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::deck::lattice::tests::cmd;
+    use crate::engine::lattice::tests::cmd;
 
     use crate::deck::create_atoms::tests::run_deck_state;
 

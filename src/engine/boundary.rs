@@ -45,8 +45,8 @@ pub fn reset_shrink_wrap(domain: &mut Domain, initial: &Domain, atoms: &Atoms) {
 /// Atoms outside a fixed face are lost, as in LAMMPS: an error naming the first one
 /// (or, with `thermo_modify lost ignore`, they are removed).
 pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
-    let Some(domain) = sim.domain.as_ref() else { return Ok(()) };
-    let a = &sim.atoms;
+    let Some(domain) = sim.state.domain.as_ref() else { return Ok(()) };
+    let a = &sim.state.atoms;
     let mut gone = vec![false; a.nlocal];
     let mut first: Option<(usize, usize)> = None;
     for i in 0..a.nlocal {
@@ -63,13 +63,13 @@ pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
     let Some((i, d)) = first else { return Ok(()) };
     if sim.thermo.lost_ignore {
         let tags: std::collections::HashSet<i64> = (0..a.nlocal).filter(|&k| gone[k]).map(|k| a.tag[k]).collect();
-        sim.atoms.retain(&gone);
-        sim.topo.remove_atoms(&tags);
+        sim.state.atoms.retain(&gone);
+        sim.state.topo.remove_atoms(&tags);
         return Ok(());
     }
     let n_lost = gone.iter().filter(|&&g| g).count();
     Err(RunError::new(
-        sim.step,
+        sim.state.step,
         format!(
             "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {} = {}, box {}..{}){}",
             a.nlocal,

@@ -1,13 +1,19 @@
 //! The state the stages borrow and the machinery every model shares.
 
 pub mod atoms;
+pub mod bonded_lists;
 pub mod boundary;
 pub mod contact_history;
 pub mod domain;
 pub mod groups;
+pub mod lattice;
 pub mod neighbor;
+pub mod par;
 pub mod random_park;
+pub mod region;
 pub mod special;
+pub mod state;
+pub mod tally;
 pub mod timing;
 pub mod topology;
 pub mod units;

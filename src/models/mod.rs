@@ -5,5 +5,5 @@ pub mod bonded;
 pub mod compute;
 pub mod fix;
 pub mod pair;
-pub mod region;
 pub mod styles;
+pub mod world;

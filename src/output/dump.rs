@@ -4,7 +4,8 @@
 
 use crate::models::compute::property::Field;
 use crate::output::log::write_atomic;
-use crate::sim::Simulation;
+use crate::models::world::World;
+use std::path::Path;
 use dmhs_parser::numfmt::format_printf;
 use dmhs_parser::{Args, Command, DResult, Word};
 use std::fs::{File, OpenOptions};
@@ -43,11 +44,12 @@ pub struct Dump {
 }
 
 impl Dump {
-    pub fn from_lammps(cmd: &Command, sim: &Simulation) -> DResult<Dump> {
+    /// `base_dir`: the folder relative file names resolve in.
+    pub fn from_lammps(cmd: &Command, w: &World, base_dir: Option<&Path>) -> DResult<Dump> {
         let mut a = Args::new(cmd, SYNTAX);
         let id = a.word("dump ID")?.text.clone();
         let gw = a.word("group ID")?;
-        let groupbit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+        let groupbit = w.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
         let style_w = a.word("dump style")?;
         let style = style_w.text.clone();
         if !["atom", "custom", "vtk", "image", "movie"].contains(&style.as_str()) {
@@ -62,7 +64,7 @@ impl Dump {
         let fw = a.word("file name")?;
         let picture = if style == "image" || style == "movie" {
             let mut ia = Args::from_words(a.remaining(), cmd.span, crate::output::dump_image::SYNTAX);
-            Some(Box::new(crate::output::dump_image::ImageDump::from_lammps(&mut ia, fw, style == "movie", sim)?))
+            Some(Box::new(crate::output::dump_image::ImageDump::from_lammps(&mut ia, fw, style == "movie", w, base_dir)?))
         } else {
             None
         };
@@ -74,7 +76,7 @@ impl Dump {
             groupbit,
             style: style.clone(),
             every,
-            path: sim.path(&fw.text),
+            path: crate::output::log::resolve_path(base_dir, &fw.text),
             names: vec![],
             columns: vec![],
             sort: false,
@@ -99,7 +101,7 @@ impl Dump {
             a.finish()?;
             d.set_atom_columns();
         } else if style == "vtk" && a.is_empty() {
-            for name in crate::output::dump_vtu::default_fields(sim) {
+            for name in crate::output::dump_vtu::default_fields(w.state) {
                 d.names.push(name.to_string());
                 d.columns.push(Column::Attr(Field::parse(name).unwrap()));
             }
@@ -107,10 +109,10 @@ impl Dump {
             if a.is_empty() {
                 return Err(a.missing("at least one per-atom field"));
             }
-            while let Some(w) = a.peek() {
+            while let Some(word) = a.peek() {
                 a.skip(1);
-                let col = parse_column(&w.text, sim).map_err(|e| a.error_at(w, e, "bad dump field"))?;
-                d.names.push(w.text.clone());
+                let col = parse_column(&word.text, w).map_err(|e| a.error_at(word, e, "bad dump field"))?;
+                d.names.push(word.text.clone());
                 d.columns.push(col);
             }
         }
@@ -211,9 +213,9 @@ impl Dump {
     }
 
     /// Format a snapshot of the current state.
-    pub fn snapshot(&self, sim: &Simulation) -> Result<String, String> {
-        let dom = sim.domain()?;
-        let a = &sim.atoms;
+    pub fn snapshot(&self, w: &World) -> Result<String, String> {
+        let dom = w.state.domain()?;
+        let a = &w.state.atoms;
         let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         if self.sort {
             idx.sort_by_key(|&i| a.tag[i]);
@@ -222,8 +224,8 @@ impl Dump {
         for c in &self.columns {
             peratom.push(match c {
                 Column::Compute(cid, _) => {
-                    let k = sim.find_compute(cid).ok_or_else(|| format!("dump {}: compute `{cid}` does not exist", self.id))?;
-                    Some(sim.computes[k].peratom(sim)?)
+                    let c = w.compute(cid).ok_or_else(|| format!("dump {}: compute `{cid}` does not exist", self.id))?;
+                    Some(c.peratom(w)?)
                 }
                 _ => None,
             });
@@ -231,7 +233,7 @@ impl Dump {
         let ints: Vec<bool> = self.columns.iter().map(|c| matches!(c, Column::Attr(f) if f.is_int())).collect();
         let fmts: Vec<String> = (0..self.columns.len()).map(|k| self.format_of(k, ints[k])).collect();
         let mut s = String::with_capacity(64 * (idx.len() + 10));
-        s += &format!("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}\n", sim.step, idx.len());
+        s += &format!("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}\n", w.state.step, idx.len());
         let bstr: Vec<String> = (0..3).map(|d| format!("{}{}", dom.boundary[d][0].letter(), dom.boundary[d][1].letter())).collect();
         s += &format!("ITEM: BOX BOUNDS {}\n", bstr.join(" "));
         for d in 0..3 {
@@ -241,7 +243,7 @@ impl Dump {
         for &i in &idx {
             for (k, c) in self.columns.iter().enumerate() {
                 let v = match c {
-                    Column::Attr(f) => f.value(sim, i),
+                    Column::Attr(f) => f.value(w.state, i),
                     Column::Compute(_, col) => peratom[k].as_ref().unwrap().get(i, col.unwrap_or(0)),
                 };
                 let text = format_printf(&fmts[k], if ints[k] { v.round() } else { v }).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
@@ -256,8 +258,8 @@ impl Dump {
 
     /// The snapshot as a VTK XML document (positions as points, columns as point data;
     /// x, y, z columns are left out: they are the points).
-    fn snapshot_vtu(&self, sim: &Simulation) -> Result<String, String> {
-        let a = &sim.atoms;
+    fn snapshot_vtu(&self, w: &World) -> Result<String, String> {
+        let a = &w.state.atoms;
         let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         idx.sort_by_key(|&i| a.tag[i]);
         let points: Vec<[f64; 3]> = idx.iter().map(|&i| a.x[i]).collect();
@@ -266,31 +268,31 @@ impl Dump {
             if matches!(name.as_str(), "x" | "y" | "z") {
                 continue;
             }
-            let values = column_values(c, sim, &idx).map_err(|e| format!("dump {}: {e}", self.id))?;
+            let values = column_values(c, w, &idx).map_err(|e| format!("dump {}: {e}", self.id))?;
             fields.push(crate::output::dump_vtu::Field { name: name.clone(), components: 1, values });
         }
-        Ok(crate::output::dump_vtu::document(&points, &fields, sim.step, sim.time()))
+        Ok(crate::output::dump_vtu::document(&points, &fields, w.state.step, w.state.time()))
     }
 
-    /// Write a snapshot now.
-    pub fn write(&mut self, sim: &mut Simulation) -> Result<(), String> {
+    /// Write a snapshot now; `equal` evaluates equal-style variables (pictures' view settings).
+    pub fn write(&mut self, w: &World, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<(), String> {
         if let Some(p) = &self.picture {
-            p.write(sim, self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;
-            self.last_written = Some(sim.step);
+            p.write(w, equal, self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;
+            self.last_written = Some(w.state.step);
             return Ok(());
         }
         if self.style == "vtk" {
-            let text = self.snapshot_vtu(sim)?;
+            let text = self.snapshot_vtu(w)?;
             let name = self.path.to_string_lossy().to_string();
-            let p = if name.contains('*') { PathBuf::from(name.replace('*', &sim.step.to_string())) } else { PathBuf::from(name.replace(".vtu", &format!(".{}.vtu", sim.step))) };
+            let p = if name.contains('*') { PathBuf::from(name.replace('*', &w.state.step.to_string())) } else { PathBuf::from(name.replace(".vtu", &format!(".{}.vtu", w.state.step))) };
             write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
-            self.last_written = Some(sim.step);
+            self.last_written = Some(w.state.step);
             return Ok(());
         }
-        let text = self.snapshot(sim)?;
+        let text = self.snapshot(w)?;
         let name = self.path.to_string_lossy().to_string();
         if name.contains('*') {
-            let p = PathBuf::from(name.replace('*', &sim.step.to_string()));
+            let p = PathBuf::from(name.replace('*', &w.state.step.to_string()));
             write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
         } else {
             if self.file.is_none() {
@@ -304,18 +306,17 @@ impl Dump {
             let f = self.file.as_mut().unwrap();
             f.write_all(text.as_bytes()).and_then(|_| f.flush()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, self.path.display()))?;
         }
-        self.last_written = Some(sim.step);
+        self.last_written = Some(w.state.step);
         Ok(())
     }
 }
 
 /// The values of one column for the owned atoms `idx`.
-pub(crate) fn column_values(c: &Column, sim: &Simulation, idx: &[usize]) -> Result<Vec<f64>, String> {
+pub(crate) fn column_values(c: &Column, w: &World, idx: &[usize]) -> Result<Vec<f64>, String> {
     Ok(match c {
-        Column::Attr(f) => idx.iter().map(|&i| f.value(sim, i)).collect(),
+        Column::Attr(f) => idx.iter().map(|&i| f.value(w.state, i)).collect(),
         Column::Compute(cid, col) => {
-            let k = sim.find_compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?;
-            let p = sim.computes[k].peratom(sim)?;
+            let p = w.compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?.peratom(w)?;
             idx.iter().map(|&i| p.get(i, col.unwrap_or(0))).collect()
         }
     })
@@ -326,7 +327,7 @@ fn sci16(x: f64) -> String {
     format_printf("%-1.16e", x).unwrap_or_else(|_| format!("{x:e}"))
 }
 
-pub(crate) fn parse_column(name: &str, sim: &Simulation) -> Result<Column, String> {
+pub(crate) fn parse_column(name: &str, w: &World) -> Result<Column, String> {
     if let Some(rest) = name.strip_prefix("c_") {
         let (cid, col) = match rest.find('[') {
             Some(k) if rest.ends_with(']') => {
@@ -335,8 +336,7 @@ pub(crate) fn parse_column(name: &str, sim: &Simulation) -> Result<Column, Strin
             }
             _ => (rest, None),
         };
-        let k = sim.find_compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?;
-        let cols = sim.computes[k].peratom_cols().ok_or_else(|| format!("compute `{cid}` does not compute per-atom values"))?;
+        let cols = w.compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?.peratom_cols().ok_or_else(|| format!("compute `{cid}` does not compute per-atom values"))?;
         let col = match col {
             None if cols == 1 => None,
             None => return Err(format!("compute `{cid}` has {cols} columns: use c_{cid}[N]")),
@@ -349,11 +349,11 @@ pub(crate) fn parse_column(name: &str, sim: &Simulation) -> Result<Column, Strin
         return Err(format!("dump field `{name}` is not supported yet (attributes and per-atom computes are)"));
     }
     let f = Field::parse(name).ok_or_else(|| format!("unknown dump field `{name}`"))?;
-    f.check(sim)?;
+    f.check(w.state)?;
     Ok(Column::Attr(f))
 }
 
 /// Parse the `dump` words needed to find the ID (for `undump` / `dump_modify`).
-pub fn find(sim: &Simulation, w: &Word) -> Option<usize> {
-    sim.dumps.iter().position(|d| d.id == w.text)
+pub fn find(dumps: &[Dump], w: &Word) -> Option<usize> {
+    dumps.iter().position(|d| d.id == w.text)
 }

@@ -11,7 +11,7 @@ use crate::output::colors::NAMED;
 use crate::output::dump::{column_values, parse_column, Column};
 use crate::output::log::write_atomic;
 use crate::output::render::{Camera, Canvas, Rgb};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Args, DResult, Word};
 use std::path::{Path, PathBuf};
 
@@ -49,10 +49,10 @@ enum Param {
 }
 
 impl Param {
-    fn value(&self, sim: &mut Simulation) -> Result<f64, String> {
+    fn value(&self, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<f64, String> {
         match self {
             Param::Num(x) => Ok(*x),
-            Param::Var(name) => dmhs_parser::variables::compute_equal(sim, name),
+            Param::Var(name) => equal(name),
         }
     }
 }
@@ -221,7 +221,7 @@ fn word_param(a: &mut Args, what: &str) -> DResult<Param> {
 impl ImageDump {
     /// Parse `file color diameter keywords...` of `dump ID group image|movie N` (the file word
     /// is given; `a` is positioned after it).
-    pub fn from_lammps(a: &mut Args, file: &Word, movie: bool, sim: &Simulation) -> DResult<ImageDump> {
+    pub fn from_lammps(a: &mut Args, file: &Word, movie: bool, world: &World, base_dir: Option<&Path>) -> DResult<ImageDump> {
         let name = file.text.as_str();
         let lower = name.to_ascii_lowercase();
         let (pattern, ppm) = if movie {
@@ -247,17 +247,17 @@ impl ImageDump {
             }
             (name.to_string(), !lower.ends_with(".png"))
         };
-        let pattern = sim.path(&pattern).to_string_lossy().to_string();
-        let dom = sim.domain().map_err(|e| a.error_at(file, e, "no box"))?;
+        let pattern = crate::output::log::resolve_path(base_dir, &pattern).to_string_lossy().to_string();
+        let dom = world.state.domain().map_err(|e| a.error_at(file, e, "no box"))?;
         let cw = a.word("color (type or a per-atom value)")?;
-        let color = Self::atom_value(a, cw, sim, false)?;
+        let color = Self::atom_value(a, cw, world, false)?;
         let dw = a.word("diameter (type, a number or a per-atom value)")?;
-        let diameter = Self::atom_value(a, dw, sim, true)?;
-        let two_d = sim.dimension == 2;
-        let ntypes = sim.ntypes.max(1);
-        let nbondtypes = sim.topo.nbondtypes;
+        let diameter = Self::atom_value(a, dw, world, true)?;
+        let two_d = world.state.dimension == 2;
+        let ntypes = world.state.ntypes.max(1);
+        let nbondtypes = world.state.topo.nbondtypes;
         let palette: Vec<Rgb> = TYPE_COLORS.iter().map(|n| named(n, &[]).unwrap()).collect();
-        let has_bonds = sim.atoms.features.bonds && nbondtypes > 0;
+        let has_bonds = world.state.atoms.features.bonds && nbondtypes > 0;
         let mut d = ImageDump {
             movie,
             pattern,
@@ -383,7 +383,7 @@ impl ImageDump {
                 "fsaa" => d.fsaa = a.yes_no("fsaa")?,
                 "fix" => {
                     let fw = a.word("fix ID")?;
-                    let Some(f) = sim.fixes.iter().find(|f| f.id() == fw.text) else {
+                    let Some(f) = world.fix(&fw.text) else {
                         return Err(a.error_at(fw, format!("fix `{}` does not exist", fw.text), "unknown fix"));
                     };
                     if !["wall/reflect", "wall/gran"].contains(&f.style()) {
@@ -409,7 +409,7 @@ impl ImageDump {
         Ok(d)
     }
 
-    fn atom_value(a: &Args, w: &Word, sim: &Simulation, diameter: bool) -> DResult<AtomValue> {
+    fn atom_value(a: &Args, w: &Word, world: &World, diameter: bool) -> DResult<AtomValue> {
         let t = w.text.as_str();
         if t == "type" {
             return Ok(AtomValue::Type);
@@ -424,7 +424,7 @@ impl ImageDump {
             }
             return Ok(AtomValue::Const(v));
         }
-        let col = parse_column(t, sim).map_err(|e| a.error_at(w, e, if diameter { "bad diameter attribute" } else { "bad color attribute" }))?;
+        let col = parse_column(t, world).map_err(|e| a.error_at(w, e, if diameter { "bad diameter attribute" } else { "bad color attribute" }))?;
         Ok(AtomValue::Column(t.to_string(), col))
     }
 
@@ -600,37 +600,33 @@ impl ImageDump {
     }
 
     /// Render the atoms of `groupbit` as they are now.
-    pub fn render(&self, sim: &mut Simulation, groupbit: u32) -> Result<Canvas, String> {
-        let dom = sim.domain()?.clone();
-        let num = |p: &Param, sim: &mut Simulation| p.value(sim);
-        let theta = num(&self.theta, sim)?.to_radians();
-        let phi = num(&self.phi, sim)?.to_radians();
-        let zoom = num(&self.zoom, sim)?;
+    /// `equal` evaluates equal-style variables.
+    pub fn render(&self, world: &World, equal: &mut dyn FnMut(&str) -> Result<f64, String>, groupbit: u32) -> Result<Canvas, String> {
+        let dom = world.state.domain()?.clone();
+        let theta = self.theta.value(equal)?.to_radians();
+        let phi = self.phi.value(equal)?.to_radians();
+        let zoom = self.zoom.value(equal)?;
         if !(zoom > 0.0) {
             return Err(format!("dump image zoom must be > 0, got {zoom}"));
         }
-        let up = [num(&self.up[0], sim)?, num(&self.up[1], sim)?, num(&self.up[2], sim)?];
+        let up = [self.up[0].value(equal)?, self.up[1].value(equal)?, self.up[2].value(equal)?];
         let (lo, hi) = if self.center_dynamic { (dom.lo, dom.hi) } else { self.static_box };
         let mut center = [0.0; 3];
         for k in 0..3 {
-            center[k] = lo[k] + num(&self.center[k], sim)? * (hi[k] - lo[k]);
+            center[k] = lo[k] + self.center[k].value(equal)? * (hi[k] - lo[k]);
         }
         let mut planes = vec![];
         for (fid, color, diam) in &self.fixes {
-            let k = sim.fixes.iter().position(|f| f.id() == fid).ok_or_else(|| format!("fix `{fid}` (drawn by this dump) does not exist"))?;
-            let fixes = std::mem::take(&mut sim.fixes);
-            let p = fixes[k].image_planes(sim);
-            sim.fixes = fixes;
-            planes.extend(p?.into_iter().map(|(axis, c)| (axis, c, *color, *diam)));
+            let f = world.fix(fid).ok_or_else(|| format!("fix `{fid}` (drawn by this dump) does not exist"))?;
+            planes.extend(f.image_planes(world.state, equal)?.into_iter().map(|(axis, c)| (axis, c, *color, *diam)));
         }
-        let sim = &*sim;
-        let a = &sim.atoms;
+        let a = &world.state.atoms;
         let idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0).collect();
         let colors: Vec<Rgb> = match &self.color {
             AtomValue::Type => idx.iter().map(|&i| self.type_color[(a.typ[i].max(1) - 1) % self.ntypes]).collect(),
             AtomValue::Const(_) => vec![self.type_color[0]; idx.len()],
             AtomValue::Column(name, c) => {
-                let vals = column_values(c, sim, &idx).map_err(|e| format!("color `{name}`: {e}"))?;
+                let vals = column_values(c, world, &idx).map_err(|e| format!("color `{name}`: {e}"))?;
                 let (lo, hi) = self.amap.range(&vals);
                 vals.iter().map(|&v| self.amap.color(v, lo, hi)).collect()
             }
@@ -639,7 +635,7 @@ impl ImageDump {
             (Some(d), _) => vec![*d; idx.len()],
             (None, AtomValue::Type) => idx.iter().map(|&i| self.type_diam[(a.typ[i].max(1) - 1) % self.ntypes]).collect(),
             (None, AtomValue::Const(d)) => vec![*d; idx.len()],
-            (None, AtomValue::Column(name, c)) => column_values(c, sim, &idx).map_err(|e| format!("diameter `{name}`: {e}"))?,
+            (None, AtomValue::Column(name, c)) => column_values(c, world, &idx).map_err(|e| format!("diameter `{name}`: {e}"))?,
         };
         let ss = if self.fsaa { 2 } else { 1 };
         let (w, h) = (self.width * ss, self.height * ss);
@@ -655,8 +651,8 @@ impl ImageDump {
                 }
             }
         }
-        if self.bond_color != BondColor::None && !sim.topo.bonds.is_empty() {
-            self.draw_bonds(&mut cv, &cam, sim, &dom, &idx, &colors, &diams);
+        if self.bond_color != BondColor::None && !world.state.topo.bonds.is_empty() {
+            self.draw_bonds(&mut cv, &cam, world.state, &dom, &idx, &colors, &diams);
         }
         let two_d = dom.dimension == 2;
         let shortest = if two_d { prd[0].min(prd[1]) } else { prd[0].min(prd[1]).min(prd[2]) };
@@ -707,14 +703,14 @@ impl ImageDump {
     /// Bonds between drawn atoms, as two halves meeting at the minimum-image midpoint (so a bond
     /// across a periodic boundary is drawn at both atoms).
     #[allow(clippy::too_many_arguments)]
-    fn draw_bonds(&self, cv: &mut Canvas, cam: &Camera, sim: &Simulation, dom: &crate::engine::domain::Domain, idx: &[usize], colors: &[Rgb], diams: &[f64]) {
-        let a = &sim.atoms;
+    fn draw_bonds(&self, cv: &mut Canvas, cam: &Camera, state: &crate::engine::state::State, dom: &crate::engine::domain::Domain, idx: &[usize], colors: &[Rgb], diams: &[f64]) {
+        let a = &state.atoms;
         let mut slot: std::collections::HashMap<i64, usize> = std::collections::HashMap::with_capacity(idx.len());
         for (k, &i) in idx.iter().enumerate() {
             slot.insert(a.tag[i], k);
         }
         let prd = dom.prd();
-        for b in &sim.topo.bonds {
+        for b in &state.topo.bonds {
             if b.typ == 0 {
                 continue;
             }
@@ -751,9 +747,9 @@ impl ImageDump {
     }
 
     /// Render and write one snapshot (atomically: a temporary file renamed into place).
-    pub fn write(&self, sim: &mut Simulation, groupbit: u32) -> Result<PathBuf, String> {
-        let cv = self.render(sim, groupbit)?;
-        let path = self.file_for(sim.step);
+    pub fn write(&self, w: &World, equal: &mut dyn FnMut(&str) -> Result<f64, String>, groupbit: u32) -> Result<PathBuf, String> {
+        let cv = self.render(w, equal, groupbit)?;
+        let path = self.file_for(w.state.step);
         let bytes = if self.ppm { cv.ppm() } else { cv.png()? };
         write_atomic(&path, &bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         Ok(path)

@@ -1,7 +1,7 @@
 //! VTK XML unstructured-grid files (.vtu) for ParaView: one file per snapshot, particles as
 //! vertex cells, every per-particle field as point data (`dump ID group vtk N file*.vtu [fields]`).
 
-use crate::sim::Simulation;
+use crate::engine::state::State;
 use std::fmt::Write;
 
 /// A named per-particle array with 1 or 3 components, for the owned atoms selected.
@@ -50,8 +50,8 @@ pub fn document(points: &[[f64; 3]], fields: &[Field], step: i64, time: f64) -> 
 }
 
 /// Every per-particle field the atom style has (used when `dump vtk` names none).
-pub fn default_fields(sim: &Simulation) -> Vec<&'static str> {
-    let ft = sim.atoms.features;
+pub fn default_fields(state: &State) -> Vec<&'static str> {
+    let ft = state.atoms.features;
     let mut v = vec!["id", "type", "vx", "vy", "vz", "fx", "fy", "fz", "mass"];
     if ft.molecule {
         v.push("mol");

@@ -95,3 +95,12 @@ pub fn temp_file_in(dir: &Path, suffix: &str) -> std::io::Result<tempfile::Named
     }
     b.tempfile_in(dir)
 }
+
+/// A file name from a command, resolved against the deck's folder `base` (None: the working
+/// directory).
+pub fn resolve_path(base: Option<&Path>, name: &str) -> std::path::PathBuf {
+    match base {
+        Some(d) if Path::new(name).is_relative() => d.join(name),
+        _ => std::path::PathBuf::from(name),
+    }
+}

@@ -1,7 +1,9 @@
 //! Thermodynamic output in LAMMPS' layout (`thermo`, `thermo_style`, `thermo_modify`), and the
 //! values of thermo keywords (also used by expressions).
 
-use crate::sim::Simulation;
+use crate::engine::state::State;
+use crate::models::world::World;
+use dmhs_parser::EvalContext;
 use dmhs_parser::numfmt::format_printf;
 
 /// One column of thermo output.
@@ -148,50 +150,49 @@ pub fn parse_columns(words: &[&str]) -> Result<Vec<Column>, String> {
 }
 
 /// Whether extensive quantities are divided by the number of atoms.
-pub fn normalize(sim: &Simulation) -> bool {
-    sim.thermo.norm.unwrap_or(sim.units.style == crate::engine::units::UnitStyle::Lj) && sim.natoms() > 0
+pub fn normalize(thermo: &Thermo, state: &State) -> bool {
+    thermo.norm.unwrap_or(state.units.style == crate::engine::units::UnitStyle::Lj) && state.natoms() > 0
 }
 
-fn temp_compute(sim: &Simulation) -> Result<(f64, f64), String> {
-    let k = sim.find_compute("thermo_temp").ok_or("compute thermo_temp is missing")?;
-    let c = &sim.computes[k];
-    Ok((c.scalar(sim)?, c.dof(sim).unwrap_or(0.0)))
+fn temp_compute(w: &World) -> Result<(f64, f64), String> {
+    let c = w.compute("thermo_temp").ok_or("compute thermo_temp is missing")?;
+    Ok((c.scalar(w)?, c.dof(w).unwrap_or(0.0)))
 }
 
-fn press_compute(sim: &Simulation) -> Result<&dyn crate::models::compute::Compute, String> {
-    let k = sim.find_compute("thermo_press").ok_or("compute thermo_press is missing")?;
-    Ok(sim.computes[k].as_ref())
+fn press_compute<'a>(w: &World<'a>) -> Result<&'a dyn crate::models::compute::Compute, String> {
+    w.compute("thermo_press").ok_or_else(|| "compute thermo_press is missing".to_string())
 }
 
-/// The value of a thermo keyword, with LAMMPS' normalisation of extensive quantities.
-pub fn keyword_value(sim: &Simulation, name: &str) -> Option<Result<f64, String>> {
+/// The value of a thermo keyword, with LAMMPS' normalisation of extensive quantities; `cpu` is
+/// the seconds of the last run's loop.
+pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option<Result<f64, String>> {
     if !KEYWORDS.iter().any(|(k, _)| *k == name) {
         return None;
     }
     Some((|| -> Result<f64, String> {
-        let norm = normalize(sim);
-        let n = sim.natoms() as f64;
+        let norm = normalize(thermo, w.state);
+        let n = w.state.natoms() as f64;
         let ext = |v: f64| if norm { v / n } else { v };
-        let e = &sim.energies;
-        let box_value = |f: &dyn Fn(&crate::engine::domain::Domain) -> f64| sim.domain().map(f);
+        let e = &w.state.energies;
+        let box_value = |f: &dyn Fn(&crate::engine::domain::Domain) -> f64| w.state.domain().map(f);
         Ok(match name {
-            "step" => sim.step as f64,
-            "elapsed" => (sim.step - sim.run_window.map(|w| w.0).unwrap_or(sim.step)) as f64,
-            "elaplong" => (sim.step - sim.run_window.map(|w| w.0).unwrap_or(sim.step)) as f64,
-            "dt" => sim.dt,
-            "time" => sim.time(),
-            "cpu" | "tpcpu" | "spcpu" => sim.last_loop_seconds,
+            "step" => w.state.step as f64,
+            "elapsed" => (w.state.step - w.state.run_window.map(|w| w.0).unwrap_or(w.state.step)) as f64,
+            "elaplong" => (w.state.step - w.state.run_window.map(|w| w.0).unwrap_or(w.state.step)) as f64,
+            "dt" => w.state.dt,
+            "time" => w.state.time(),
+            "cpu" | "tpcpu" | "spcpu" => cpu,
             "atoms" => n,
-            "temp" => temp_compute(sim)?.0,
-            "press" => press_compute(sim)?.scalar(sim)?,
-            "pe" => ext(sim.potential_energy()),
+            "temp" => temp_compute(w)?.0,
+            "press" => press_compute(w)?.scalar(w)?,
+            "pe" => ext(w.state.potential_energy()),
             "ke" => {
-                let (t, dof) = temp_compute(sim)?;
-                ext(t * 0.5 * dof * sim.units.boltz)
+                let (t, dof) = temp_compute(w)?;
+                ext(t * 0.5 * dof * w.state.units.boltz)
             }
             "etotal" => {
-                let (t, dof) = temp_compute(sim)?;
-                ext(sim.potential_energy()) + ext(t * 0.5 * dof * sim.units.boltz)
+                let (t, dof) = temp_compute(w)?;
+                ext(w.state.potential_energy()) + ext(t * 0.5 * dof * w.state.units.boltz)
             }
             "evdwl" => ext(e.pair.evdwl),
             "ecoul" => ext(e.pair.ecoul),
@@ -203,7 +204,7 @@ pub fn keyword_value(sim: &Simulation, name: &str) -> Option<Result<f64, String>
             "emol" => ext(e.ebond + e.eangle + e.edihed),
             "vol" => box_value(&|d| d.volume())?,
             "density" => {
-                let m: f64 = (0..sim.natoms()).map(|i| sim.mass(i)).sum();
+                let m: f64 = (0..w.state.natoms()).map(|i| w.state.mass(i)).sum();
                 m / box_value(&|d| d.volume())?
             }
             "lx" => box_value(&|d| d.prd()[0])?,
@@ -216,21 +217,21 @@ pub fn keyword_value(sim: &Simulation, name: &str) -> Option<Result<f64, String>
             "zlo" => box_value(&|d| d.lo[2])?,
             "zhi" => box_value(&|d| d.hi[2])?,
             "xlat" | "ylat" | "zlat" => {
-                let s = sim.lattice_scale()?;
+                let s = w.state.lattice_scale()?;
                 s[["xlat", "ylat", "zlat"].iter().position(|k| *k == name).unwrap()]
             }
-            "bonds" => sim.topo.bonds.len() as f64,
-            "angles" => sim.topo.angles.len() as f64,
-            "dihedrals" => sim.topo.dihedrals.len() as f64,
+            "bonds" => w.state.topo.bonds.len() as f64,
+            "angles" => w.state.topo.angles.len() as f64,
+            "dihedrals" => w.state.topo.dihedrals.len() as f64,
             "impropers" => 0.0,
             "pxx" | "pyy" | "pzz" | "pxy" | "pxz" | "pyz" => {
-                let v = press_compute(sim)?.vector(sim)?;
+                let v = press_compute(w)?.vector(w)?;
                 v[["pxx", "pyy", "pzz", "pxy", "pxz", "pyz"].iter().position(|k| *k == name).unwrap()]
             }
-            "fmax" => sim.atoms.f[..sim.natoms()].iter().flat_map(|f| f.iter()).fold(0.0, |m: f64, v| m.max(v.abs())),
-            "fnorm" => sim.atoms.f[..sim.natoms()].iter().flat_map(|f| f.iter()).map(|v| v * v).sum::<f64>().sqrt(),
-            "nbuild" => sim.neighbor.nbuilds as f64,
-            "ndanger" => sim.neighbor.ndanger as f64,
+            "fmax" => w.state.atoms.f[..w.state.natoms()].iter().flat_map(|f| f.iter()).fold(0.0, |m: f64, v| m.max(v.abs())),
+            "fnorm" => w.state.atoms.f[..w.state.natoms()].iter().flat_map(|f| f.iter()).map(|v| v * v).sum::<f64>().sqrt(),
+            "nbuild" => w.state.neighbor.nbuilds as f64,
+            "ndanger" => w.state.neighbor.ndanger as f64,
             _ => unreachable!(),
         })
     })())
@@ -291,16 +292,19 @@ impl Thermo {
     }
 }
 
-/// Evaluate every column for the current step.
-pub fn values(sim: &mut Simulation) -> Result<Vec<f64>, String> {
-    let cols = sim.thermo.columns.clone();
-    let mut out = Vec::with_capacity(cols.len());
-    for c in &cols {
+/// Evaluate every column for the current step; extensive compute and fix values are divided by
+/// the atom count under `thermo_modify norm yes`, as LAMMPS' thermo output does (expressions see
+/// them whole).
+pub fn values(thermo: &Thermo, w: &World, ev: &mut dyn EvalContext) -> Result<Vec<f64>, String> {
+    let norm = normalize(thermo, w.state);
+    let per_atom = |v: f64, extensive: bool| if norm && extensive { v / w.state.natoms() as f64 } else { v };
+    let mut out = Vec::with_capacity(thermo.columns.len());
+    for c in &thermo.columns {
         let v = match &c.field {
-            Field::Keyword(k) => keyword_value(sim, k).unwrap()?,
-            Field::Compute(id, i) => dmhs_parser::EvalContext::compute_value(sim, id, *i)?,
-            Field::Fix(id, i) => dmhs_parser::EvalContext::fix_value(sim, id, *i)?,
-            Field::Variable(name) => dmhs_parser::variables::compute_equal(sim, name)?,
+            Field::Keyword(k) => ev.thermo_keyword(k).unwrap()?,
+            Field::Compute(id, i) => per_atom(ev.compute_value(id, *i)?, w.compute(id).is_some_and(|c| c.extensive(*i))),
+            Field::Fix(id, i) => per_atom(ev.fix_value(id, *i)?, w.fix(id).is_some_and(|f| f.extensive(*i))),
+            Field::Variable(name) => dmhs_parser::variables::compute_equal(ev, name)?,
         };
         out.push(v);
     }

@@ -2,10 +2,12 @@
 //! initial integrate -> (rebuild | refresh ghosts) -> forces -> post-force -> final integrate
 //! -> output. Each stage is timed.
 
-use crate::models::fix::{Fix, FixHooks};
+use crate::models::fix::{Fix, FixCtx, FixHooks};
+use crate::models::world::{FixesView, World};
+use crate::sim::eval::{Eval, HookExpressions};
 use crate::engine::neighbor::NeighError;
 use crate::models::pair::{PairInput, PairOutput, Tally};
-use crate::sim::{Energies, RunError, Simulation};
+use crate::sim::{Energies, RunError, Simulation, State};
 use crate::engine::timing::Stage;
 use std::time::Instant;
 
@@ -28,97 +30,94 @@ impl RunOptions {
     }
 }
 
-type Hook = fn(&mut dyn Fix, &mut Simulation) -> Result<(), RunError>;
+type Hook = fn(&mut dyn Fix, &mut State, &mut FixCtx) -> Result<(), RunError>;
 
 impl Simulation {
+    /// Run `work` on fix `k` with the state and a context in which expressions see every fix
+    /// (the running one passes itself), every compute and every variable.
+    fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
+        let (before, rest) = self.fixes.split_at_mut(k);
+        let (fix, after) = rest.split_first_mut().expect("fix index in range");
+        let mut expressions = HookExpressions { computes: &self.computes, before, after, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
+        let mut ctx = FixCtx { pair: self.pair.as_deref(), bond_style: self.bond_style.as_deref(), angle_style: self.angle_style.as_deref(), expressions: &mut expressions };
+        work(fix.as_mut(), &mut self.state, &mut ctx)
+    }
+
     /// Call one hook of every fix that uses it, in definition order.
     fn fix_hook(&mut self, wanted: fn(&FixHooks) -> bool, hook: Hook) -> Result<(), RunError> {
-        if !self.fixes.iter().any(|f| wanted(&f.hooks())) {
-            return Ok(());
-        }
-        let mut fixes = std::mem::take(&mut self.fixes);
-        let mut result = Ok(());
-        for (k, f) in fixes.iter_mut().enumerate() {
-            if wanted(&f.hooks()) {
-                let t0 = std::time::Instant::now();
-                result = hook(f.as_mut(), self);
-                self.timers.charge_fix(k, t0.elapsed().as_secs_f64());
-                if result.is_err() {
-                    break;
-                }
+        for k in 0..self.fixes.len() {
+            if !wanted(&self.fixes[k].hooks()) {
+                continue;
             }
+            let t0 = std::time::Instant::now();
+            let result = self.with_fix(k, hook);
+            self.timers.charge_fix(k, t0.elapsed().as_secs_f64());
+            result?;
         }
-        self.fixes = fixes;
-        result
+        Ok(())
     }
 
     /// Checks before a run; errors name what is missing.
     pub fn init_run(&mut self) -> Result<(), String> {
-        let domain = self.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
+        let domain = self.state.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
         let _ = domain;
-        let type_mass_needed = !self.atoms.features.per_atom_mass() || self.pair.as_ref().map(|p| p.needs_type_mass()).unwrap_or(false);
+        let type_mass_needed = !self.state.atoms.features.per_atom_mass() || self.pair.as_ref().map(|p| p.needs_type_mass()).unwrap_or(false);
         if type_mass_needed {
-            for t in 1..=self.ntypes {
-                if !self.mass_set[t] {
+            for t in 1..=self.state.ntypes {
+                if !self.state.mass_set[t] {
                     return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)"));
                 }
             }
         }
-        let ntypes = self.ntypes;
+        let ntypes = self.state.ntypes;
         if let Some(mut p) = self.pair.take() {
-            let setup = crate::models::pair::PairSetup { atoms: &self.atoms, ntypes, comm_vel: self.comm_vel };
+            let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel };
             let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
             self.pair = Some(p);
             r?;
         }
         self.init_bonded()?;
-        let mut fixes = std::mem::take(&mut self.fixes);
-        let mut res = Ok(());
-        for f in fixes.iter_mut() {
-            if let Err(e) = f.init(self) {
-                res = Err(format!("fix {} ({}): {e}", f.id(), f.style()));
-                break;
-            }
+        for k in 0..self.fixes.len() {
+            self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
-        self.fixes = fixes;
-        res
+        Ok(())
     }
 
     /// Wrap periodic coordinates, resize shrink-wrapped boxes, remove atoms that left a fixed
     /// box, sort, make ghosts and build the lists.
     pub fn rebuild(&mut self) -> Result<(), RunError> {
-        let step = self.step;
-        if self.special_dirty {
+        let step = self.state.step;
+        if self.state.special_dirty {
             self.rebuild_special().map_err(|e| RunError::new(step, e))?;
         }
-        let Some(domain) = self.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
-        self.atoms.clear_ghosts();
-        for i in 0..self.atoms.nlocal {
-            let (x, img) = (&mut self.atoms.x[i], &mut self.atoms.image[i]);
+        let Some(domain) = self.state.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
+        self.state.atoms.clear_ghosts();
+        for i in 0..self.state.atoms.nlocal {
+            let (x, img) = (&mut self.state.atoms.x[i], &mut self.state.atoms.image[i]);
             domain.wrap(x, img);
         }
-        if let Some(initial) = self.box_initial.as_ref() {
-            crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.atoms);
+        if let Some(initial) = self.state.box_initial.as_ref() {
+            crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
         }
         crate::engine::boundary::check_lost(self)?;
-        let domain = self.domain.as_ref().unwrap();
+        let domain = self.state.domain.as_ref().unwrap();
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
         let order = self
-            .neighbor
-            .build(&mut self.atoms, domain, &self.neigh_settings, self.ntypes, &cut, &self.special_table)
+            .state.neighbor
+            .build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table)
             .map_err(|e| match e {
                 NeighError::BoxTooSmall { dim, cut, length } => RunError::new(
                     step,
                     format!("the neighbour cutoff {cut} (pair cutoff + skin) is longer than the periodic box ({length}) in dimension {}", ["x", "y", "z"][dim]),
                 ),
-                NeighError::BadPosition { index } => RunError::new(step, format!("atom {} has a non-finite position", self.atoms.tag[index])),
+                NeighError::BadPosition { index } => RunError::new(step, format!("atom {} has a non-finite position", self.state.atoms.tag[index])),
             })?;
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }
         self.build_bonded_lists()?;
-        self.lists_valid = true;
+        self.state.lists_valid = true;
         Ok(())
     }
 
@@ -127,35 +126,35 @@ impl Simulation {
     pub fn with_pair<R>(&mut self, work: impl FnOnce(&mut dyn crate::models::pair::PairStyle, &PairInput, &mut PairOutput) -> R, eflag: bool, advance: bool) -> R {
         let mut pair = self.pair.take().expect("pair style");
         let (mut f, mut torque, mut drho, mut desph) = (
-            std::mem::take(&mut self.atoms.f),
-            std::mem::take(&mut self.atoms.torque),
-            std::mem::take(&mut self.atoms.drho),
-            std::mem::take(&mut self.atoms.desph),
+            std::mem::take(&mut self.state.atoms.f),
+            std::mem::take(&mut self.state.atoms.torque),
+            std::mem::take(&mut self.state.atoms.drho),
+            std::mem::take(&mut self.state.atoms.desph),
         );
-        let kw = self.atoms.find_extra(crate::engine::water::DWATER);
-        let mut dwater = kw.map(|k| std::mem::take(&mut self.atoms.extra[k].data)).unwrap_or_default();
+        let kw = self.state.atoms.find_extra(crate::engine::water::DWATER);
+        let mut dwater = kw.map(|k| std::mem::take(&mut self.state.atoms.extra[k].data)).unwrap_or_default();
         let input = PairInput {
-            atoms: &self.atoms,
-            list: &self.neighbor.list,
-            special_lj: self.special_bonds.lj,
-            special_coul: self.special_bonds.coul,
+            atoms: &self.state.atoms,
+            list: &self.state.neighbor.list,
+            special_lj: self.state.special_bonds.lj,
+            special_coul: self.state.special_bonds.coul,
             eflag,
-            ntypes: self.ntypes,
+            ntypes: self.state.ntypes,
             type_filter: None,
-            type_mass: &self.type_mass,
-            dt: self.dt,
-            step: self.step,
+            type_mass: &self.state.type_mass,
+            dt: self.state.dt,
+            step: self.state.step,
             advance,
-            dimension: self.dimension,
+            dimension: self.state.dimension,
         };
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, dwater: &mut dwater };
         let r = work(pair.as_mut(), &input, &mut out);
-        self.atoms.f = f;
-        self.atoms.torque = torque;
-        self.atoms.drho = drho;
-        self.atoms.desph = desph;
+        self.state.atoms.f = f;
+        self.state.atoms.torque = torque;
+        self.state.atoms.drho = drho;
+        self.state.atoms.desph = desph;
         if let Some(k) = kw {
-            self.atoms.extra[k].data = dwater;
+            self.state.atoms.extra[k].data = dwater;
         }
         self.pair = Some(pair);
         r
@@ -164,7 +163,7 @@ impl Simulation {
     /// Zero forces and rates, then pair and bonded forces. Tallies energies if `eflag`.
     /// `advance`: false during run setup (contact histories are not advanced, as in LAMMPS).
     pub fn compute_forces(&mut self, eflag: bool, advance: bool) -> Result<(), RunError> {
-        let a = &mut self.atoms;
+        let a = &mut self.state.atoms;
         clear(&mut a.f, [0.0; 3]);
         if a.features.sphere {
             clear(&mut a.torque, [0.0; 3]);
@@ -178,14 +177,14 @@ impl Simulation {
         }
         self.timers.stamp();
         let mut pair_tally = Tally::default();
-        if self.pair.is_some() && self.atoms.features.sph {
+        if self.pair.is_some() && self.state.atoms.features.sph {
             // density summation (sph/rhosum) before the forces that read the densities
-            let mut rho = std::mem::take(&mut self.atoms.rho);
+            let mut rho = std::mem::take(&mut self.state.atoms.rho);
             let changed = self.with_pair(|p, input, _| p.density_pass(input, &mut rho), false, advance);
-            self.atoms.rho = rho;
+            self.state.atoms.rho = rho;
             if changed {
-                let n = self.atoms.nlocal;
-                crate::engine::atoms::Atoms::forward_field(&mut self.atoms.rho, n, &self.atoms.ghost_owner);
+                let n = self.state.atoms.nlocal;
+                crate::engine::atoms::Atoms::forward_field(&mut self.state.atoms.rho, n, &self.state.atoms.ghost_owner);
             }
         }
         if self.pair.is_some() {
@@ -199,13 +198,13 @@ impl Simulation {
             for k in 0..6 {
                 virial[k] += bonded.virial[k];
             }
-            self.energies = Energies {
+            self.state.energies = Energies {
                 pair: pair_tally,
                 ebond: bonded.ebond,
                 eangle: bonded.eangle,
                 edihed: bonded.edihed,
                 virial,
-                step: self.step,
+                step: self.state.step,
             };
         }
         Ok(())
@@ -217,49 +216,49 @@ impl Simulation {
         if let Some(p) = self.pair.as_mut() {
             p.reset_model_seconds();
         }
-        if pre || !self.lists_valid {
+        if pre || !self.state.lists_valid {
             self.timers.stamp();
             self.rebuild()?;
             self.timers.charge(Stage::Neigh);
         } else {
-            let prd = self.domain.as_ref().unwrap().prd();
-            self.atoms.forward_positions(prd);
-            self.atoms.forward_state();
+            let prd = self.state.domain.as_ref().unwrap().prd();
+            self.state.atoms.forward_positions(prd);
+            self.state.atoms.forward_state();
         }
-        self.natoms_expected = self.atoms.nlocal;
+        self.state.natoms_expected = self.state.atoms.nlocal;
         self.timers.stamp();
         // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and
         // not refreshed after it, so at the first setup a ghost keeps the velocity estimate it
         // had when it was made (fix sph sets vest = v on owned atoms only). Step-0 forces of
         // pairs across periodic faces see the old vest, exactly as in LAMMPS.
-        self.fix_hook(|_| true, |f, s| f.setup_pre_force(s))?;
+        self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
         self.timers.charge(Stage::Modify);
         self.compute_forces(true, false)?;
         self.timers.stamp();
-        self.fix_hook(|_| true, |f, s| f.setup(s))?;
+        self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;
         self.timers.charge(Stage::Modify);
         Ok(())
     }
 
     /// Advance one step (LAMMPS `Verlet::run` body).
     pub fn step_once(&mut self, eflag: bool) -> Result<(), RunError> {
-        self.step += 1;
+        self.state.step += 1;
         self.timers.stamp();
-        self.fix_hook(|h| h.initial_integrate, |f, s| f.initial_integrate(s))?;
-        self.fix_hook(|h| h.post_integrate, |f, s| f.post_integrate(s))?;
+        self.fix_hook(|h| h.initial_integrate, |f, s, c| f.initial_integrate(s, c))?;
+        self.fix_hook(|h| h.post_integrate, |f, s, c| f.post_integrate(s, c))?;
         self.timers.charge(Stage::Modify);
 
         // a fix that changed the topology or must see fresh lists asks for a rebuild
         // (LAMMPS' Neighbor::decide checks fixes' next_reneighbor before counting steps)
-        let requested = std::mem::take(&mut self.rebuild_requested);
-        if requested || self.neighbor.decide(&self.neigh_settings, &self.atoms) {
+        let requested = std::mem::take(&mut self.state.rebuild_requested);
+        if requested || self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms) {
             self.rebuild()?;
             self.timers.charge(Stage::Neigh);
         } else {
-            let prd = self.domain.as_ref().unwrap().prd();
-            self.atoms.forward_positions(prd);
+            let prd = self.state.domain.as_ref().unwrap().prd();
+            self.state.atoms.forward_positions(prd);
             if self.needs_ghost_state() {
-                self.atoms.forward_state();
+                self.state.atoms.forward_state();
             }
             self.timers.charge(Stage::Comm);
         }
@@ -267,9 +266,9 @@ impl Simulation {
         self.compute_forces(eflag, true)?;
 
         self.timers.stamp();
-        self.fix_hook(|h| h.post_force, |f, s| f.post_force(s))?;
-        self.fix_hook(|h| h.final_integrate, |f, s| f.final_integrate(s))?;
-        self.fix_hook(|h| h.end_of_step, |f, s| f.end_of_step(s))?;
+        self.fix_hook(|h| h.post_force, |f, s, c| f.post_force(s, c))?;
+        self.fix_hook(|h| h.final_integrate, |f, s, c| f.final_integrate(s, c))?;
+        self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
         self.timers.charge(Stage::Modify);
         Ok(())
     }
@@ -289,9 +288,9 @@ impl Simulation {
             }
         }
         let bonded: Vec<String> = [
-            self.bond_style.as_ref().filter(|_| !self.topo.bonds.is_empty()).map(|b| format!("bond {}", b.name())),
-            self.angle_style.as_ref().filter(|_| !self.topo.angles.is_empty()).map(|b| format!("angle {}", b.name())),
-            self.dihedral_style.as_ref().filter(|_| !self.topo.dihedrals.is_empty()).map(|b| format!("dihedral {}", b.name())),
+            self.bond_style.as_ref().filter(|_| !self.state.topo.bonds.is_empty()).map(|b| format!("bond {}", b.name())),
+            self.angle_style.as_ref().filter(|_| !self.state.topo.angles.is_empty()).map(|b| format!("angle {}", b.name())),
+            self.dihedral_style.as_ref().filter(|_| !self.state.topo.dihedrals.is_empty()).map(|b| format!("dihedral {}", b.name())),
         ]
         .into_iter()
         .flatten()
@@ -307,30 +306,30 @@ impl Simulation {
 
     /// Ghost atoms need fresh velocities and per-atom state only for styles that read them.
     fn needs_ghost_state(&self) -> bool {
-        self.comm_vel || self.atoms.features.sph || self.atoms.features.sphere || self.atoms.extra.iter().any(|e| e.ghosts)
+        self.state.comm_vel || self.state.atoms.features.sph || self.state.atoms.features.sphere || self.state.atoms.extra.iter().any(|e| e.ghosts)
     }
 
     /// The `run` command.
     pub fn run(&mut self, opts: &RunOptions) -> Result<(), RunError> {
-        let nsteps = if opts.upto { opts.nsteps - self.step } else { opts.nsteps };
+        let nsteps = if opts.upto { opts.nsteps - self.state.step } else { opts.nsteps };
         if nsteps < 0 {
-            return Err(RunError::new(self.step, format!("run upto {} is before the current step {}", opts.nsteps, self.step)));
+            return Err(RunError::new(self.state.step, format!("run upto {} is before the current step {}", opts.nsteps, self.state.step)));
         }
-        let first = self.step;
-        let last = self.step + nsteps;
+        let first = self.state.step;
+        let last = self.state.step + nsteps;
         let start = opts.start.unwrap_or(first);
         let stop = opts.stop.unwrap_or(last);
         if start > first || stop < last {
-            return Err(RunError::new(self.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
+            return Err(RunError::new(self.state.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
         }
-        self.run_window = Some((start, stop));
-        self.init_run().map_err(|e| RunError::new(self.step, e))?;
+        self.state.run_window = Some((start, stop));
+        self.init_run().map_err(|e| RunError::new(self.state.step, e))?;
 
         self.out.print(&format!(
             "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",
-            self.units.name(),
-            self.step,
-            crate::output::format::g(self.dt)
+            self.state.units.name(),
+            self.state.step,
+            crate::output::format::g(self.state.dt)
         ));
         if self.want_capture && self.capture_setup.is_none() {
             // crosscheck: the forces of a separate setup before the first run, exactly as
@@ -352,7 +351,7 @@ impl Simulation {
         let progress = crate::output::progress::Progress::new(nsteps as u64, self.out.screen);
         let mut result = Ok(());
         for _ in 0..nsteps {
-            let next = self.step + 1;
+            let next = self.state.step + 1;
             let eflag = self.output_due(next, last);
             if let Err(e) = self.step_once(eflag).and_then(|_| crate::sim::stability::check_state(self)) {
                 result = Err(e);
@@ -370,14 +369,14 @@ impl Simulation {
         }
         progress.finish();
         let loop_time = t0.elapsed().as_secs_f64();
-        let done = self.step - first;
+        let done = self.state.step - first;
         self.last_loop_seconds = loop_time;
         self.last_loop_steps = done;
         self.out.print(&format!(
             "Loop time of {} on 1 procs for {} steps with {} atoms\n",
             crate::output::format::g6(loop_time),
             done,
-            self.atoms.nlocal
+            self.state.atoms.nlocal
         ));
         if opts.post && result.is_ok() {
             self.print_run_summary(loop_time, done);
@@ -394,36 +393,32 @@ impl Simulation {
 
     /// Thermo line and dumps for the current step.
     fn output_step(&mut self, setup: bool, last: i64) -> Result<(), RunError> {
-        let step = self.step;
+        let step = self.state.step;
         let thermo_now = setup || step == last || (self.thermo.every > 0 && step % self.thermo.every == 0);
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) };
+        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
         if thermo_now {
-            let vals = crate::output::thermo::values(self).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
+            let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
             let line = self.thermo.format_line(&vals);
             self.out.print(&line);
             if self.thermo.flush {
                 self.out.flush();
             }
         }
-        let mut dumps = std::mem::take(&mut self.dumps);
-        let mut res = Ok(());
-        for d in dumps.iter_mut() {
+        for d in self.dumps.iter_mut() {
             if d.due(step, setup) {
-                if let Err(e) = d.write(self) {
-                    res = Err(RunError::new(step, e));
-                    break;
-                }
+                d.write(&world, &mut |name| dmhs_parser::variables::compute_equal(&mut ev, name)).map_err(|e| RunError::new(step, e))?;
             }
         }
-        self.dumps = dumps;
-        res
+        Ok(())
     }
 
     fn print_run_summary(&mut self, loop_time: f64, steps: i64) {
-        let n = self.atoms.nlocal as f64;
+        let n = self.state.atoms.nlocal as f64;
         if loop_time > 0.0 && steps > 0 {
             let tps = steps as f64 / loop_time;
-            let unit_time = if self.units.style == crate::engine::units::UnitStyle::Lj { "tau/day" } else { "ns/day" };
-            let per_day = if self.units.style == crate::engine::units::UnitStyle::Lj { 86400.0 * tps * self.dt } else { 86400.0 * tps * self.dt * 1e9 };
+            let unit_time = if self.state.units.style == crate::engine::units::UnitStyle::Lj { "tau/day" } else { "ns/day" };
+            let per_day = if self.state.units.style == crate::engine::units::UnitStyle::Lj { 86400.0 * tps * self.state.dt } else { 86400.0 * tps * self.state.dt * 1e9 };
             self.out.print(&format!(
                 "Performance: {per_day:.3} {unit_time}, {tps:.3} timesteps/s, {:.3} Matom-step/s\n",
                 tps * n / 1e6
@@ -438,16 +433,16 @@ impl Simulation {
             crate::sim::memory::bytes_per_particle(self),
             crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0)
         ));
-        let npairs = self.neighbor.list.npairs();
+        let npairs = self.state.neighbor.list.npairs();
         self.out.print(&format!(
             "Nlocal:    {} ave {} max {} min\nNghost:    {} ave {} max {} min\nNeighs:    {} ave {} max {} min\n\nTotal # of neighbors = {}\nAve neighs/atom = {:.7}\nNeighbor list builds = {}\nDangerous builds = {}\n",
-            self.atoms.nlocal, self.atoms.nlocal, self.atoms.nlocal,
-            self.atoms.nghost(), self.atoms.nghost(), self.atoms.nghost(),
+            self.state.atoms.nlocal, self.state.atoms.nlocal, self.state.atoms.nlocal,
+            self.state.atoms.nghost(), self.state.atoms.nghost(), self.state.atoms.nghost(),
             npairs, npairs, npairs,
             npairs,
             if n > 0.0 { npairs as f64 / n } else { 0.0 },
-            self.neighbor.nbuilds,
-            self.neighbor.ndanger
+            self.state.neighbor.nbuilds,
+            self.state.neighbor.ndanger
         ));
     }
 }

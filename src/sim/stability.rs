@@ -47,11 +47,11 @@ impl Default for Guard {
 
 /// Largest |f|/m over owned atoms (the current forces).
 fn max_acceleration(sim: &Simulation) -> f64 {
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     (0..a.nlocal)
         .map(|i| {
             let f = a.f[i];
-            (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / sim.mass(i)
+            (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / sim.state.mass(i)
         })
         .fold(0.0, f64::max)
 }
@@ -84,7 +84,7 @@ pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
         out.push(l);
     }
     if let Some(kn) = sim.pair.as_ref().and_then(|p| p.contact_stiffness()).filter(|&k| k > 0.0) {
-        let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);
+        let m_min = (0..sim.state.atoms.nlocal).map(|i| sim.state.mass(i)).fold(f64::INFINITY, f64::min);
         if m_min.is_finite() && m_min > 0.0 {
             // undamped contact of the two lightest particles: m_eff = m/2, t_c = pi sqrt(m_eff/k_n)
             // (damping lengthens it, so this is the conservative value); t_c/10 is T/20 of the
@@ -97,10 +97,10 @@ pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
         out.extend(p.dt_limits());
     }
     if let Some(bond) = sim.bond_style.as_ref() {
-        if bond.name() == "harmonic" && sim.topo.nbondtypes > 0 {
-            let m_min = (0..sim.atoms.nlocal).map(|i| sim.mass(i)).fold(f64::INFINITY, f64::min);
+        if bond.name() == "harmonic" && sim.state.topo.nbondtypes > 0 {
+            let m_min = (0..sim.state.atoms.nlocal).map(|i| sim.state.mass(i)).fold(f64::INFINITY, f64::min);
             if m_min.is_finite() {
-                let k_max = (1..=sim.topo.nbondtypes).map(|t| bond.stiffness(t)).fold(0.0, f64::max);
+                let k_max = (1..=sim.state.topo.nbondtypes).map(|t| bond.stiffness(t)).fold(0.0, f64::max);
                 if k_max > 0.0 {
                     // reduced mass of two lightest atoms; E = K (r - r0)^2 is a spring of 2K
                     let period = 2.0 * std::f64::consts::PI * (0.5 * m_min / (2.0 * k_max)).sqrt();
@@ -121,9 +121,9 @@ fn sound_viscosity_limit(sim: &Simulation) -> Option<Limit> {
     if sv.is_empty() {
         return None;
     }
-    let bonded: std::collections::HashSet<i64> = sim.topo.bonds.iter().flat_map(|b| b.atoms).collect();
-    let a = &sim.atoms;
-    let mut fluid = vec![false; sim.ntypes + 1];
+    let bonded: std::collections::HashSet<i64> = sim.state.topo.bonds.iter().flat_map(|b| b.atoms).collect();
+    let a = &sim.state.atoms;
+    let mut fluid = vec![false; sim.state.ntypes + 1];
     for i in 0..a.nlocal {
         if !bonded.contains(&a.tag[i]) {
             if let Some(f) = fluid.get_mut(a.typ[i]) {
@@ -149,11 +149,11 @@ pub fn report(sim: &Simulation, limits: &[Limit]) -> (String, Vec<String>) {
         s += "  (no estimate for the active models)\n";
     }
     for l in limits {
-        let ratio = sim.dt / l.dt_max;
-        s += &format!("  {:<14} {:<60} dt <= {:.4e}   (timestep {:.4e} = {:.2}x)\n", l.model, l.rule, l.dt_max, sim.dt, ratio);
+        let ratio = sim.state.dt / l.dt_max;
+        s += &format!("  {:<14} {:<60} dt <= {:.4e}   (timestep {:.4e} = {:.2}x)\n", l.model, l.rule, l.dt_max, sim.state.dt, ratio);
         // a time step set to the limit itself is within it (rounding of the two expressions)
         if ratio > 1.0 + 1e-9 {
-            warnings.push(format!("the time step {:.4e} is {:.2}x the {} limit of {} ({:.4e}): the run may go unstable", sim.dt, ratio, l.rule.split(" (").next().unwrap_or(""), l.model, l.dt_max));
+            warnings.push(format!("the time step {:.4e} is {:.2}x the {} limit of {} ({:.4e}): the run may go unstable", sim.state.dt, ratio, l.rule.split(" (").next().unwrap_or(""), l.model, l.dt_max));
         }
     }
     (s, warnings)
@@ -162,10 +162,10 @@ pub fn report(sim: &Simulation, limits: &[Limit]) -> (String, Vec<String>) {
 /// "; the time step is N x the ... limit" when the time step exceeds the tightest limit.
 pub fn dt_hint(sim: &Simulation) -> String {
     let l = limits(sim, false);
-    let worst = l.iter().max_by(|x, y| (sim.dt / x.dt_max).total_cmp(&(sim.dt / y.dt_max)));
+    let worst = l.iter().max_by(|x, y| (sim.state.dt / x.dt_max).total_cmp(&(sim.state.dt / y.dt_max)));
     match worst {
-        Some(w) if sim.dt > w.dt_max => {
-            format!("; the time step {:.4e} is {:.2}x the {} limit {:.4e}", sim.dt, sim.dt / w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.dt_max)
+        Some(w) if sim.state.dt > w.dt_max => {
+            format!("; the time step {:.4e} is {:.2}x the {} limit {:.4e}", sim.state.dt, sim.state.dt / w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.dt_max)
         }
         _ => String::new(),
     }
@@ -182,11 +182,11 @@ fn not_finite3(v: &[f64; 3]) -> bool {
 /// SPH density outside the sane range. The message names step, particle, quantity and bound.
 pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     let g = &sim.guard;
-    if !g.enabled || sim.step % g.every != 0 {
+    if !g.enabled || sim.state.step % g.every != 0 {
         return Ok(());
     }
-    let a = &sim.atoms;
-    let step = sim.step;
+    let a = &sim.state.atoms;
+    let step = sim.state.step;
     let hint = || dt_hint(sim);
     let n = a.nlocal;
     let rho0 = if a.features.sph { sim.pair.as_ref().and_then(|p| p.sph_info()).map(|s| s.rho0).unwrap_or_default() } else { Vec::new() };
@@ -196,7 +196,7 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     let (x, v) = (&a.x[..n], &a.v[..n]);
     let bad_motion = |i: usize| not_finite3(&x[i]) | not_finite3(&v[i]);
     let all_good = if a.features.sph {
-        let bounds: Vec<(f64, f64)> = (0..=sim.ntypes)
+        let bounds: Vec<(f64, f64)> = (0..=sim.state.ntypes)
             .map(|t| match rho0.get(t).copied().unwrap_or(0.0) {
                 r0 if r0 > 0.0 => (g.rho_lo * r0, (g.rho_hi * r0).min(f64::MAX)),
                 _ => (f64::NEG_INFINITY, f64::MAX),
@@ -257,7 +257,7 @@ mod tests {
         let mut sim = Simulation::new();
         sim.out.captured = Some(String::new());
         crate::deck::commands::run_plain(&mut sim, deck).unwrap();
-        sim.step = 1;
+        sim.state.step = 1;
         sim
     }
 
@@ -276,8 +276,8 @@ mod tests {
         for (what, spoil, expect) in cases {
             let mut sim = water_box();
             let tag = if what.contains("without rho0") { 95 } else { 46 };
-            let i = (0..sim.atoms.nlocal).find(|&i| sim.atoms.tag[i] == tag).unwrap();
-            spoil(&mut sim.atoms, i);
+            let i = (0..sim.state.atoms.nlocal).find(|&i| sim.state.atoms.tag[i] == tag).unwrap();
+            spoil(&mut sim.state.atoms, i);
             let e = check_state(&sim).expect_err(what);
             assert_eq!(e.step, 1);
             assert!(e.message.starts_with(&format!("particle {tag} ")) && e.message.contains(expect), "{what}: {}", e.message);

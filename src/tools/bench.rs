@@ -33,7 +33,7 @@ pub fn time_dmhs(deck: &std::path::Path, vars: &[(String, Vec<String>)], threads
         engine: format!("dmhs {threads}t"),
         seconds: s.last_loop_seconds,
         steps: s.last_loop_steps as u64,
-        atoms: s.atoms.nlocal as u64,
+        atoms: s.state.atoms.nlocal as u64,
         bytes_per_particle: Some(crate::sim::memory::bytes_per_particle(s)),
     })
 }

@@ -18,7 +18,7 @@ pub fn dmhs_capture(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<(Atom
     let sim = run.sim;
     let f0 = sim.capture_setup.clone().ok_or("the deck has no run command: nothing to compare")?;
     let fin = capture_state(&sim);
-    let d = sim.domain.as_ref().ok_or("the deck defines no box")?;
+    let d = sim.state.domain.as_ref().ok_or("the deck defines no box")?;
     let prd = d.prd();
     let box_len = prd[..d.dimension].iter().cloned().fold(0.0, f64::max);
     Ok((f0, fin, box_len))

@@ -59,7 +59,7 @@ impl AtomTable {
 }
 
 fn table(sim: &Simulation, columns: &[&str], value: impl Fn(usize, &str) -> f64) -> AtomTable {
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     let mut t = AtomTable { columns: columns.iter().map(|s| s.to_string()).collect(), rows: BTreeMap::new() };
     for i in 0..a.nlocal {
         t.rows.insert(a.tag[i], (a.typ[i], columns.iter().map(|c| value(i, c)).collect()));
@@ -69,7 +69,7 @@ fn table(sim: &Simulation, columns: &[&str], value: impl Fn(usize, &str) -> f64)
 
 /// Forces (and SPH rates, torques) of the current state, as lammps_driver.py writes forces0.txt.
 pub fn capture_forces(sim: &Simulation) -> AtomTable {
-    let ft = sim.atoms.features;
+    let ft = sim.state.atoms.features;
     let mut cols = vec!["fx", "fy", "fz"];
     if ft.sph {
         cols.extend(["drho", "desph"]);
@@ -77,7 +77,7 @@ pub fn capture_forces(sim: &Simulation) -> AtomTable {
     if ft.sphere {
         cols.extend(["tqx", "tqy", "tqz"]);
     }
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     table(sim, &cols, |i, c| match c {
         "fx" => a.f[i][0],
         "fy" => a.f[i][1],
@@ -92,7 +92,7 @@ pub fn capture_forces(sim: &Simulation) -> AtomTable {
 
 /// Unwrapped positions and velocities (and SPH/sphere state), as final.txt.
 pub fn capture_state(sim: &Simulation) -> AtomTable {
-    let ft = sim.atoms.features;
+    let ft = sim.state.atoms.features;
     let mut cols = vec!["xu", "yu", "zu", "vx", "vy", "vz"];
     if ft.sph {
         cols.extend(["rho", "esph"]);
@@ -100,8 +100,8 @@ pub fn capture_state(sim: &Simulation) -> AtomTable {
     if ft.sphere {
         cols.extend(["omegax", "omegay", "omegaz"]);
     }
-    let a = &sim.atoms;
-    let prd = sim.domain.as_ref().map(|d| d.prd()).unwrap_or([0.0; 3]);
+    let a = &sim.state.atoms;
+    let prd = sim.state.domain.as_ref().map(|d| d.prd()).unwrap_or([0.0; 3]);
     table(sim, &cols, |i, c| match c {
         "xu" => a.x[i][0] + a.image[i][0] as f64 * prd[0],
         "yu" => a.x[i][1] + a.image[i][1] as f64 * prd[1],

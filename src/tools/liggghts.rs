@@ -149,7 +149,7 @@ pub fn translate(deck: &Path, vars: &[(String, Vec<String>)], out: Option<&Path>
     if let Some(e) = run.check_errors.first() {
         return Err(format!("the deck has errors (dmhs check): {}", e.message));
     }
-    let ntypes = run.sim.ntypes;
+    let ntypes = run.sim.state.ntypes;
     let commands = run.sim.command_log.unwrap_or_default();
     let mut t = String::from("# translated from a dmhs/LAMMPS deck by dmhs (src/liggghts.rs)\n");
     let mut pair: Option<Coeffs> = None;

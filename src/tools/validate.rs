@@ -7,7 +7,7 @@
 //! resolutions, kernels and time steps, dmhs on one thread and LAMMPS serial).
 //!
 //! The decks are embedded in the binary and run unmodified in either engine: in dmhs through the
-//! library (the state is read from `sim.atoms`; later sample times continue the same simulation
+//! library (the state is read from `sim.state.atoms`; later sample times continue the same simulation
 //! with `run` commands), in LAMMPS through lammps-refs/lammps_driver.py (one run per sample time).
 
 use crate::tools::analytic;
@@ -151,11 +151,11 @@ pub fn run_dmhs(case: &str, vars: &[(String, String)], times: &[f64]) -> Result<
     let opts = DeckOptions { vars: deck_vars(&vars), screen: false, log: None, capture_text: true, ..Default::default() };
     let mut run = run_text(path, text, &opts).map_err(|f| format!("dmhs failed on {path} {}:\n{}", show_vars(&vars), f.rendered))?;
     let mut seconds = run.sim.last_loop_seconds;
-    let sample = |sim: &crate::sim::Simulation| Sample { time: sim.step as f64 * sim.dt, step: sim.step, state: capture_state(sim) };
+    let sample = |sim: &crate::sim::Simulation| Sample { time: sim.state.step as f64 * sim.state.dt, step: sim.state.step, state: capture_state(sim) };
     let mut samples = vec![sample(&run.sim)];
     for &t in times.iter().skip(1) {
-        let target = (t / run.sim.dt).round() as i64;
-        let k = target - run.sim.step;
+        let target = (t / run.sim.state.dt).round() as i64;
+        let k = target - run.sim.state.step;
         if k <= 0 {
             continue;
         }
@@ -166,7 +166,7 @@ pub fn run_dmhs(case: &str, vars: &[(String, String)], times: &[f64]) -> Result<
         samples.push(sample(&run.sim));
     }
     let thermo = parse_thermo(run.sim.out.captured.as_deref().unwrap_or(""));
-    Ok(RunResult { engine: Engine::Dmhs, vars, samples, thermo, loop_seconds: seconds, atoms: run.sim.atoms.nlocal })
+    Ok(RunResult { engine: Engine::Dmhs, vars, samples, thermo, loop_seconds: seconds, atoms: run.sim.state.atoms.nlocal })
 }
 
 /// Run `case` in LAMMPS (lammps_driver.py), once per sample time (or once as `vars` say).

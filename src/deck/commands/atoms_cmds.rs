@@ -8,12 +8,12 @@ use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 pub fn mass(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
     let mut a = Args::new(cmd, "mass I value  (I: type or range n*m)");
-    let (lo, hi) = a.type_range("atom type", sim.ntypes)?;
+    let (lo, hi) = a.type_range("atom type", sim.state.ntypes)?;
     let m = a.positive_f64("mass")?;
     a.finish()?;
     for t in lo..=hi {
-        sim.type_mass[t] = m;
-        sim.mass_set[t] = true;
+        sim.state.type_mass[t] = m;
+        sim.state.mass_set[t] = true;
     }
     Ok(())
 }
@@ -50,7 +50,7 @@ fn id_range(w: &Word, max: i64) -> DResult<Vec<(i64, i64, i64)>> {
 
 /// Which owned atoms a `group`/`set` selection of `type`, `id` or `molecule` values picks.
 fn select_by_value(sim: &Simulation, a: &mut Args, values: impl Fn(usize) -> i64, max: i64) -> DResult<Vec<bool>> {
-    let n = sim.atoms.nlocal;
+    let n = sim.state.atoms.nlocal;
     let ops = ["<", "<=", ">", ">=", "==", "!=", "<>"];
     if let Some(w) = a.peek() {
         if let Some(k) = ops.iter().position(|o| *o == w.text) {
@@ -94,63 +94,63 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
     let style = a.word("group style")?;
     if style.text == "delete" {
         a.finish()?;
-        let k = sim.groups.find(&idw.text).ok_or_else(|| a.error_at(idw, format!("group `{}` does not exist", idw.text), "unknown group"))?;
+        let k = sim.state.groups.find(&idw.text).ok_or_else(|| a.error_at(idw, format!("group `{}` does not exist", idw.text), "unknown group"))?;
         if k == 0 {
             return Err(a.error_at(idw, "cannot delete group all", "not allowed"));
         }
         if sim.fixes.iter().any(|f| f.groupbit() == 1 << k) || sim.computes.iter().any(|c| c.groupbit() == 1 << k) {
             return Err(a.error_at(idw, format!("cannot delete group `{}` while a fix or compute uses it", idw.text), "in use"));
         }
-        for m in &mut sim.atoms.mask {
+        for m in &mut sim.state.atoms.mask {
             *m &= !(1 << k);
         }
-        sim.groups.delete(k);
+        sim.state.groups.delete(k);
         return Ok(());
     }
     need_box(sim, cmd)?;
     if idw.text == "all" {
         return Err(a.error_at(idw, "group all cannot be changed", "reserved group"));
     }
-    let k = sim.groups.find_or_create(&idw.text).map_err(|e| a.error_at(idw, e, "too many groups"))?;
+    let k = sim.state.groups.find_or_create(&idw.text).map_err(|e| a.error_at(idw, e, "too many groups"))?;
     let bit = 1u32 << k;
-    sim.atoms.clear_ghosts();
-    let n = sim.atoms.nlocal;
+    sim.state.atoms.clear_ghosts();
+    let n = sim.state.atoms.nlocal;
     let sel: Vec<bool> = match style.text.as_str() {
         "type" => {
-            let at = &sim.atoms;
+            let at = &sim.state.atoms;
             let typ = at.typ.clone();
-            select_by_value(sim, &mut a, |i| typ[i] as i64, sim.ntypes as i64)?
+            select_by_value(sim, &mut a, |i| typ[i] as i64, sim.state.ntypes as i64)?
         }
         "id" => {
-            let tag = sim.atoms.tag.clone();
-            let max = sim.atoms.max_tag();
+            let tag = sim.state.atoms.tag.clone();
+            let max = sim.state.atoms.max_tag();
             select_by_value(sim, &mut a, |i| tag[i], max)?
         }
         "molecule" => {
-            if !sim.atoms.features.molecule {
+            if !sim.state.atoms.features.molecule {
                 return Err(a.error_at(style, "group molecule needs an atom style with molecule IDs", "no molecule IDs"));
             }
-            let mol = sim.atoms.molecule.clone();
+            let mol = sim.state.atoms.molecule.clone();
             let max = mol.iter().copied().max().unwrap_or(0);
             select_by_value(sim, &mut a, |i| mol[i], max)?
         }
         "region" => {
             let w = a.word("region ID")?;
             a.finish()?;
-            let r = sim.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))?;
-            (0..n).map(|i| r.matches(sim.atoms.x[i])).collect()
+            let r = sim.state.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))?;
+            (0..n).map(|i| r.matches(sim.state.atoms.x[i])).collect()
         }
         "subtract" | "union" | "intersect" => {
             let mut bits = vec![];
             while let Some(w) = a.peek() {
                 a.skip(1);
-                bits.push(sim.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?);
+                bits.push(sim.state.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?);
             }
             let need = if style.text == "union" { 1 } else { 2 };
             if bits.len() < need {
                 return Err(a.missing(&format!("at least {need} group IDs")));
             }
-            let m = &sim.atoms.mask;
+            let m = &sim.state.atoms.mask;
             (0..n)
                 .map(|i| match style.text.as_str() {
                     "subtract" => m[i] & bits[0] != 0 && bits[1..].iter().all(|b| m[i] & b == 0),
@@ -161,7 +161,7 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
         }
         "clear" => {
             a.finish()?;
-            for m in &mut sim.atoms.mask {
+            for m in &mut sim.state.atoms.mask {
                 *m &= !bit;
             }
             vec![false; n]
@@ -186,10 +186,10 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
     };
     for i in 0..n {
         if sel[i] {
-            sim.atoms.mask[i] |= bit;
+            sim.state.atoms.mask[i] |= bit;
         }
     }
-    let count = sim.group_count(bit);
+    let count = sim.state.group_count(bit);
     sim.out.print(&format!("{count} atoms in group {}", idw.text));
     Ok(())
 }
@@ -198,20 +198,20 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     need_box(sim, cmd)?;
     let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water)";
     let mut a = Args::new(cmd, syntax);
-    sim.atoms.clear_ghosts();
-    let n = sim.atoms.nlocal;
+    sim.state.atoms.clear_ghosts();
+    let n = sim.state.atoms.nlocal;
     let style = a.choice("selection style", &["atom", "type", "mol", "group", "region"])?;
     let idw = a.word("ID or range")?;
     let sel: Vec<bool> = match style {
         0 | 1 | 2 => {
             let (vals, max): (Vec<i64>, i64) = match style {
-                0 => (sim.atoms.tag.clone(), sim.atoms.max_tag()),
-                1 => (sim.atoms.typ.iter().map(|&t| t as i64).collect(), sim.ntypes as i64),
+                0 => (sim.state.atoms.tag.clone(), sim.state.atoms.max_tag()),
+                1 => (sim.state.atoms.typ.iter().map(|&t| t as i64).collect(), sim.state.ntypes as i64),
                 _ => {
-                    if !sim.atoms.features.molecule {
+                    if !sim.state.atoms.features.molecule {
                         return Err(a.error_at(idw, "set mol needs an atom style with molecule IDs", "no molecule IDs"));
                     }
-                    let m = sim.atoms.molecule.clone();
+                    let m = sim.state.atoms.molecule.clone();
                     let max = m.iter().copied().max().unwrap_or(0);
                     (m, max)
                 }
@@ -220,12 +220,12 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             (0..n).map(|i| ranges.iter().any(|&(lo, hi, k)| vals[i] >= lo && vals[i] <= hi && (vals[i] - lo) % k == 0)).collect()
         }
         3 => {
-            let bit = sim.groups.bit(&idw.text).ok_or_else(|| a.error_at(idw, format!("group `{}` does not exist", idw.text), "unknown group"))?;
-            (0..n).map(|i| sim.atoms.mask[i] & bit != 0).collect()
+            let bit = sim.state.groups.bit(&idw.text).ok_or_else(|| a.error_at(idw, format!("group `{}` does not exist", idw.text), "unknown group"))?;
+            (0..n).map(|i| sim.state.atoms.mask[i] & bit != 0).collect()
         }
         _ => {
-            let r = sim.regions.iter().find(|r| r.id == idw.text).ok_or_else(|| a.error_at(idw, format!("region `{}` does not exist", idw.text), "unknown region"))?;
-            (0..n).map(|i| r.matches(sim.atoms.x[i])).collect()
+            let r = sim.state.regions.iter().find(|r| r.id == idw.text).ok_or_else(|| a.error_at(idw, format!("region `{}` does not exist", idw.text), "unknown region"))?;
+            (0..n).map(|i| r.matches(sim.state.atoms.x[i])).collect()
         }
     };
     if a.is_empty() {
@@ -234,7 +234,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     let count = sel.iter().filter(|&&s| s).count();
     while let Some(kw) = a.peek() {
         a.skip(1);
-        let ft = sim.atoms.features;
+        let ft = sim.state.atoms.features;
         let need = |ok: bool, what: &str| -> DResult<()> {
             if ok { Ok(()) } else { Err(Diagnostic::at(kw.span, format!("set {} needs an atom style with {what}", kw.text), "not available in this atom style")) }
         };
@@ -245,7 +245,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             }
             word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {syntax}")))
         };
-        let at = &mut sim.atoms;
+        let at = &mut sim.state.atoms;
         let apply = |at: &mut crate::engine::atoms::Atoms, f: &mut dyn FnMut(&mut crate::engine::atoms::Atoms, usize)| {
             for i in 0..n {
                 if sel[i] {
@@ -255,7 +255,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         };
         match kw.text.as_str() {
             "type" => {
-                let t = a.i64_in("atom type", 1, sim.ntypes as i64)? as usize;
+                let t = a.i64_in("atom type", 1, sim.state.ntypes as i64)? as usize;
                 apply(at, &mut |at, i| at.typ[i] = t);
             }
             "mass" => {
@@ -337,7 +337,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             "dmhs/conc" | "dmhs/water" => {
                 let v = value(&mut a, &kw.text)?;
                 let sel = &sel;
-                crate::engine::water::set(at, &sim.type_mass, &sim.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
+                crate::engine::water::set(at, &sim.state.type_mass, &sim.state.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
             }
             other => {
                 let known = ["type", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water"];
@@ -350,7 +350,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         }
         sim.out.print(&format!("Setting atom values ...\n  {count} settings made for {}", kw.text));
     }
-    sim.lists_valid = false;
+    sim.state.lists_valid = false;
     Ok(())
 }
 

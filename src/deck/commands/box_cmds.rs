@@ -7,27 +7,27 @@ use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap};
 
 pub fn lattice(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let l = crate::deck::lattice::Lattice::from_lammps(cmd, &sim.units, sim.dimension)?;
+    let l = crate::engine::lattice::Lattice::from_lammps(cmd, &sim.state.units, sim.state.dimension)?;
     if !l.is_none() {
         sim.out.print(&format!("Lattice spacing in x,y,z = {} {} {}", crate::output::format::g8(l.xlattice), crate::output::format::g8(l.ylattice), crate::output::format::g8(l.zlattice)));
     }
-    sim.lattice = Some(l);
+    sim.state.lattice = Some(l);
     Ok(())
 }
 
 pub fn region(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let r = crate::models::region::Region::from_lammps(cmd, sim.domain.as_ref(), sim.lattice.as_ref(), &sim.regions)?;
-    sim.regions.push(r);
+    let r = crate::engine::region::Region::from_lammps(cmd, sim.state.domain.as_ref(), sim.state.lattice.as_ref(), &sim.state.regions)?;
+    sim.state.regions.push(r);
     Ok(())
 }
 
 pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     before_box(sim, cmd)?;
-    let b = crate::deck::create_atoms::create_box(cmd, &sim.regions, sim.dimension, sim.boundary)?;
-    sim.ntypes = b.ntypes;
-    sim.type_mass = vec![0.0; b.ntypes + 1];
-    sim.mass_set = vec![false; b.ntypes + 1];
-    let t = &mut sim.topo;
+    let b = crate::deck::create_atoms::create_box(cmd, &sim.state.regions, sim.state.dimension, sim.state.boundary)?;
+    sim.state.ntypes = b.ntypes;
+    sim.state.type_mass = vec![0.0; b.ntypes + 1];
+    sim.state.mass_set = vec![false; b.ntypes + 1];
+    let t = &mut sim.state.topo;
     t.nbondtypes = b.bond_types;
     t.nangletypes = b.angle_types;
     t.ndihedraltypes = b.dihedral_types;
@@ -42,26 +42,26 @@ pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         crate::output::format::g8(d.hi[1]),
         crate::output::format::g8(d.hi[2])
     ));
-    sim.box_initial = Some(b.domain.clone());
-    sim.domain = Some(b.domain);
+    sim.state.box_initial = Some(b.domain.clone());
+    sim.state.domain = Some(b.domain);
     Ok(())
 }
 
 pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    sim.atoms.clear_ghosts();
-    let existing: Vec<[f64; 3]> = sim.atoms.x[..sim.atoms.nlocal].to_vec();
-    let domain = sim.domain.clone().unwrap();
-    let made = crate::deck::create_atoms::create_atoms(cmd, &domain, sim.ntypes, sim.lattice.as_ref(), &sim.regions, &existing)?;
+    sim.state.atoms.clear_ghosts();
+    let existing: Vec<[f64; 3]> = sim.state.atoms.x[..sim.state.atoms.nlocal].to_vec();
+    let domain = sim.state.domain.clone().unwrap();
+    let made = crate::deck::create_atoms::create_atoms(cmd, &domain, sim.state.ntypes, sim.state.lattice.as_ref(), &sim.state.regions, &existing)?;
     for w in made.warnings {
         sim.out.print(&format!("WARNING: {}", w.message));
     }
-    let mut tag = sim.atoms.max_tag();
+    let mut tag = sim.state.atoms.max_tag();
     for (x, typ) in &made.atoms {
         tag += 1;
-        sim.atoms.push(&NewAtom::at(tag, *typ, *x));
+        sim.state.atoms.push(&NewAtom::at(tag, *typ, *x));
     }
-    sim.lists_valid = false;
+    sim.state.lists_valid = false;
     sim.out.print(&format!("Created {} atoms", made.atoms.len()));
     Ok(())
 }
@@ -70,30 +70,30 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     need_box(sim, cmd)?;
     let syntax = "delete_atoms group ID | region ID | overlap cutoff group1 group2  [compress yes|no] [bond yes|no] [mol yes|no]";
     let mut a = Args::new(cmd, syntax);
-    sim.atoms.clear_ghosts();
-    let n = sim.atoms.nlocal;
+    sim.state.atoms.clear_ghosts();
+    let n = sim.state.atoms.nlocal;
     let mut gone = vec![false; n];
     match a.choice("delete style", &["group", "region", "overlap", "porosity", "random", "variable"])? {
         0 => {
             let w = a.word("group ID")?;
-            let bit = sim.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?;
+            let bit = sim.state.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?;
             for i in 0..n {
-                gone[i] = sim.atoms.mask[i] & bit != 0;
+                gone[i] = sim.state.atoms.mask[i] & bit != 0;
             }
         }
         1 => {
             let w = a.word("region ID")?;
-            let r = sim.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))?;
+            let r = sim.state.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))?;
             for i in 0..n {
-                gone[i] = r.matches(sim.atoms.x[i]);
+                gone[i] = r.matches(sim.state.atoms.x[i]);
             }
         }
         2 => {
             let cut = a.positive_f64("cutoff")?;
             let g1w = a.word("group1")?;
-            let g1 = sim.groups.bit(&g1w.text).ok_or_else(|| a.error_at(g1w, format!("group `{}` does not exist", g1w.text), "unknown group"))?;
+            let g1 = sim.state.groups.bit(&g1w.text).ok_or_else(|| a.error_at(g1w, format!("group `{}` does not exist", g1w.text), "unknown group"))?;
             let g2w = a.word("group2")?;
-            let g2 = sim.groups.bit(&g2w.text).ok_or_else(|| a.error_at(g2w, format!("group `{}` does not exist", g2w.text), "unknown group"))?;
+            let g2 = sim.state.groups.bit(&g2w.text).ok_or_else(|| a.error_at(g2w, format!("group `{}` does not exist", g2w.text), "unknown group"))?;
             gone = overlap_deletions(sim, cut, g1, g2);
         }
         _ => {
@@ -114,29 +114,29 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             _ => return Err(a.unknown_keyword(w, &["compress", "bond", "mol"])),
         }
     }
-    let tags: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i]).map(|i| sim.atoms.tag[i]).collect();
+    let tags: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i]).map(|i| sim.state.atoms.tag[i]).collect();
     let ndel = tags.len();
-    sim.atoms.retain(&gone);
-    sim.topo.remove_atoms(&tags);
+    sim.state.atoms.retain(&gone);
+    sim.state.topo.remove_atoms(&tags);
     // LAMMPS renumbers IDs 1..N only for atomic systems; it walks atoms in local order,
     // which before any run is ID order: dmhs uses ID order always.
-    if compress && !sim.atoms.features.molecular() {
-        let mut order: Vec<usize> = (0..sim.atoms.nlocal).collect();
-        order.sort_by_key(|&i| sim.atoms.tag[i]);
+    if compress && !sim.state.atoms.features.molecular() {
+        let mut order: Vec<usize> = (0..sim.state.atoms.nlocal).collect();
+        order.sort_by_key(|&i| sim.state.atoms.tag[i]);
         for (k, &i) in order.iter().enumerate() {
-            sim.atoms.tag[i] = k as i64 + 1;
+            sim.state.atoms.tag[i] = k as i64 + 1;
         }
     }
-    sim.lists_valid = false;
-    sim.out.print(&format!("Deleted {ndel} atoms, new total = {}", sim.atoms.nlocal));
+    sim.state.lists_valid = false;
+    sim.out.print(&format!("Deleted {ndel} atoms, new total = {}", sim.state.atoms.nlocal));
     Ok(())
 }
 
 /// Atoms of group1 within `cut` of an atom of group2 (LAMMPS `delete_atoms overlap`: of a
 /// pair in both groups only one is deleted, the one with the larger ID).
 fn overlap_deletions(sim: &Simulation, cut: f64, g1: u32, g2: u32) -> Vec<bool> {
-    let a = &sim.atoms;
-    let d = sim.domain.as_ref().unwrap();
+    let a = &sim.state.atoms;
+    let d = sim.state.domain.as_ref().unwrap();
     let n = a.nlocal;
     let mut gone = vec![false; n];
     let cutsq = cut * cut;
@@ -200,7 +200,7 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     let syntax = "displace_atoms group-ID move dx dy dz [units box|lattice]";
     let mut a = Args::new(cmd, syntax);
     let gw = a.word("group ID")?;
-    let bit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
     let sw = a.word("displacement style")?;
     if sw.text != "move" {
         return Err(a.error_at(sw, format!("displace_atoms {} is not supported yet", sw.text), "supported: move"));
@@ -215,14 +215,14 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
         }
     }
     if lattice_units {
-        let s = sim.lattice_scale().map_err(|e| a.error_at(sw, e, "needs a lattice"))?;
+        let s = sim.state.lattice_scale().map_err(|e| a.error_at(sw, e, "needs a lattice"))?;
         for k in 0..3 {
             delta[k] *= s[k];
         }
     }
-    sim.atoms.clear_ghosts();
-    let d = sim.domain.clone().unwrap();
-    let at = &mut sim.atoms;
+    sim.state.atoms.clear_ghosts();
+    let d = sim.state.domain.clone().unwrap();
+    let at = &mut sim.state.atoms;
     for i in 0..at.nlocal {
         if at.mask[i] & bit != 0 {
             for k in 0..3 {
@@ -246,7 +246,7 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
             }
         }
     }
-    sim.lists_valid = false;
+    sim.state.lists_valid = false;
     Ok(())
 }
 

@@ -14,7 +14,7 @@ pub fn pair_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         return Ok(());
     }
     sim.pair = Some(new_pair_style(name, &cmd.args[1..], cmd)?);
-    sim.lists_valid = false;
+    sim.state.lists_valid = false;
     Ok(())
 }
 
@@ -36,7 +36,7 @@ pub fn pair_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     let syntax = "pair_coeff I J args  (I, J: type or range n*m)";
     let args = ordered_type_words(cmd);
     let mut a = Args::from_words(&args, cmd.span, syntax);
-    let ntypes = sim.ntypes;
+    let ntypes = sim.state.ntypes;
     let Some(pair) = sim.pair.as_mut() else {
         return Err(Diagnostic::at(cmd.name.span, "pair_coeff used before pair_style", "no pair style yet").with_help("define the pair style first, e.g. `pair_style lj/cut 2.5`"));
     };
@@ -46,7 +46,7 @@ pub fn pair_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         return Err(Diagnostic::at(cmd.args[0].span.to(cmd.args[1].span), "pair_coeff sets no type pair (each pair needs I <= J)", "no I <= J pair in these ranges"));
     }
     pair.coeff(ilo, ihi, jlo, jhi, &mut a)?;
-    sim.lists_valid = false;
+    sim.state.lists_valid = false;
     Ok(())
 }
 
@@ -101,7 +101,7 @@ fn style_name<'a>(cmd: &'a Command, what: &str, supported: &[&str], allowed: boo
 
 pub fn bond_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let names: Vec<&str> = crate::models::bonded::bond_style_names().collect();
-    match style_name(cmd, "bond", &names, sim.atoms.features.bonds)? {
+    match style_name(cmd, "bond", &names, sim.state.atoms.features.bonds)? {
         None => sim.bond_style = None,
         Some(w) => {
             let mut s = crate::models::bonded::new_bond_style(&w.text).unwrap();
@@ -114,7 +114,7 @@ pub fn bond_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
 
 pub fn angle_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let names: Vec<&str> = crate::models::bonded::angle_style_names().collect();
-    match style_name(cmd, "angle", &names, sim.atoms.features.angles)? {
+    match style_name(cmd, "angle", &names, sim.state.atoms.features.angles)? {
         None => sim.angle_style = None,
         Some(w) => {
             let mut s = crate::models::bonded::new_angle_style(&w.text).unwrap();
@@ -127,7 +127,7 @@ pub fn angle_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
 
 pub fn dihedral_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let names: Vec<&str> = crate::models::bonded::dihedral_style_names().collect();
-    match style_name(cmd, "dihedral", &names, sim.atoms.features.dihedrals)? {
+    match style_name(cmd, "dihedral", &names, sim.state.atoms.features.dihedrals)? {
         None => sim.dihedral_style = None,
         Some(w) => {
             let mut s = crate::models::bonded::new_dihedral_style(&w.text).unwrap();
@@ -153,7 +153,7 @@ fn coeff_prelude<'a>(sim: &Simulation, cmd: &'a Command, what: &str, ntypes: usi
 }
 
 pub fn bond_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let n = sim.topo.nbondtypes;
+    let n = sim.state.topo.nbondtypes;
     let (lo, hi, mut a) = coeff_prelude(sim, cmd, "bond", n, sim.bond_style.is_some())?;
     let s = sim.bond_style.as_mut().unwrap();
     s.set_types(n);
@@ -161,7 +161,7 @@ pub fn bond_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
 }
 
 pub fn angle_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let n = sim.topo.nangletypes;
+    let n = sim.state.topo.nangletypes;
     let (lo, hi, mut a) = coeff_prelude(sim, cmd, "angle", n, sim.angle_style.is_some())?;
     let s = sim.angle_style.as_mut().unwrap();
     s.set_types(n);
@@ -169,7 +169,7 @@ pub fn angle_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
 }
 
 pub fn dihedral_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let n = sim.topo.ndihedraltypes;
+    let n = sim.state.topo.ndihedraltypes;
     let (lo, hi, mut a) = coeff_prelude(sim, cmd, "dihedral", n, sim.dihedral_style.is_some())?;
     let s = sim.dihedral_style.as_mut().unwrap();
     s.set_types(n);

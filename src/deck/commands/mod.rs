@@ -130,7 +130,7 @@ impl Simulation {
 
 /// Error unless the simulation box exists.
 pub(crate) fn need_box(sim: &Simulation, cmd: &Command) -> DResult<()> {
-    if sim.domain.is_none() {
+    if sim.state.domain.is_none() {
         return Err(Diagnostic::at(cmd.name.span, format!("{} used before the simulation box is defined", cmd.name()), "no box yet")
             .with_help("define the box first with create_box or read_data"));
     }
@@ -139,7 +139,7 @@ pub(crate) fn need_box(sim: &Simulation, cmd: &Command) -> DResult<()> {
 
 /// Error if the simulation box exists already.
 pub(crate) fn before_box(sim: &Simulation, cmd: &Command) -> DResult<()> {
-    if sim.domain.is_some() {
+    if sim.state.domain.is_some() {
         return Err(Diagnostic::at(cmd.name.span, format!("{} must be used before the simulation box is defined", cmd.name()), "box already defined"));
     }
     Ok(())

@@ -16,7 +16,7 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         return Err(a.error_at(id, format!("fix ID `{}` must use only letters, digits and underscores", id.text), "invalid ID"));
     }
     let gw = a.word("group ID")?;
-    let bit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
     let style = a.word("fix style")?;
     let rest = a.remaining();
     let existing = sim.find_fix(&id.text);
@@ -25,11 +25,11 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             return Err(a.error_at(id, format!("fix `{}` already exists with style {}; replacing it needs the same style", id.text, sim.fixes[k].style()), "ID in use"));
         }
     }
-    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, sim)?;
+    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, &mut sim.state)?;
     match existing {
         Some(k) => {
             let mut old = std::mem::replace(&mut sim.fixes[k], f);
-            old.cleanup(sim);
+            old.cleanup(&mut sim.state);
         }
         None => sim.fixes.push(f),
     }
@@ -42,7 +42,7 @@ pub fn unfix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
     a.finish()?;
     let k = sim.find_fix(&id.text).ok_or_else(|| a.error_at(id, format!("fix `{}` does not exist", id.text), "unknown fix"))?;
     let mut f = sim.fixes.remove(k);
-    f.cleanup(sim);
+    f.cleanup(&mut sim.state);
     Ok(())
 }
 
@@ -57,9 +57,9 @@ pub fn compute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResul
         return Err(a.error_at(id, format!("reuse of compute ID `{}`", id.text), "already defined"));
     }
     let gw = a.word("group ID")?;
-    let bit = sim.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
     let style = a.word("compute style")?;
-    let c = crate::models::compute::new_compute(cmd, id, bit, style, a.remaining(), sim)?;
+    let c = crate::models::compute::new_compute(cmd, id, bit, style, a.remaining(), &sim.world())?;
     sim.computes.push(c);
     Ok(())
 }

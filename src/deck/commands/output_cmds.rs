@@ -106,7 +106,7 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
 
 pub fn dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    let d = Dump::from_lammps(cmd, sim)?;
+    let d = Dump::from_lammps(cmd, &sim.world(), sim.base_dir.as_deref())?;
     if sim.dumps.iter().any(|x| x.id == d.id) {
         return Err(dmhs_parser::Diagnostic::at(cmd.args[0].span, format!("reuse of dump ID `{}`", d.id), "already defined"));
     }
@@ -121,7 +121,7 @@ pub fn undump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
     let mut a = Args::new(cmd, "undump ID");
     let w = a.word("dump ID")?;
     a.finish()?;
-    let k = crate::output::dump::find(sim, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
+    let k = crate::output::dump::find(&sim.dumps, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
     sim.dumps.remove(k);
     Ok(())
 }
@@ -129,7 +129,7 @@ pub fn undump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 pub fn dump_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "dump_modify ID keyword value ...  (sort id|off, format line|int|float|N str, every N, first yes|no, image yes|no, append yes|no)");
     let w = a.word("dump ID")?;
-    let k = crate::output::dump::find(sim, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
+    let k = crate::output::dump::find(&sim.dumps, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }

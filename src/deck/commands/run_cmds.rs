@@ -54,9 +54,9 @@ pub fn reset_timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
         }
     }
     // LAMMPS: time continues from the current value unless given
-    sim.atime = time.unwrap_or_else(|| sim.time());
-    sim.atimestep = n;
-    sim.step = n;
+    sim.state.atime = time.unwrap_or_else(|| sim.state.time());
+    sim.state.atimestep = n;
+    sim.state.step = n;
     for d in &mut sim.dumps {
         d.last_written = None;
     }

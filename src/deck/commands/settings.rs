@@ -25,14 +25,14 @@ pub fn units(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
         }
     };
     a.finish()?;
-    let old = sim.units;
-    sim.units = Units::new(style);
+    let old = sim.state.units;
+    sim.state.units = Units::new(style);
     // defaults that follow the unit style unless the user set them
-    if !sim.dt_set {
-        sim.dt = sim.units.dt;
+    if !sim.state.dt_set {
+        sim.state.dt = sim.state.units.dt;
     }
-    if sim.neigh_settings.skin == old.skin {
-        sim.neigh_settings.skin = sim.units.skin;
+    if sim.state.neigh_settings.skin == old.skin {
+        sim.state.neigh_settings.skin = sim.state.units.skin;
     }
     Ok(())
 }
@@ -40,10 +40,10 @@ pub fn units(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
 pub fn dimension(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     before_box(sim, cmd)?;
     let mut a = Args::new(cmd, "dimension 2|3");
-    sim.dimension = a.i64_in("dimension", 2, 3)? as usize;
+    sim.state.dimension = a.i64_in("dimension", 2, 3)? as usize;
     a.finish()?;
-    if sim.dimension == 2 {
-        sim.boundary[2] = [BoundaryKind::Periodic; 2];
+    if sim.state.dimension == 2 {
+        sim.state.boundary[2] = [BoundaryKind::Periodic; 2];
     }
     Ok(())
 }
@@ -52,7 +52,7 @@ pub fn boundary(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
     before_box(sim, cmd)?;
     let syntax = "boundary x y z  (each p, f, s, m or a pair like fs)";
     let mut a = Args::new(cmd, syntax);
-    let mut b = sim.boundary;
+    let mut b = sim.state.boundary;
     for d in 0..3 {
         let w = a.word(["x boundary", "y boundary", "z boundary"][d])?;
         let letter = |c: char| match c {
@@ -77,10 +77,10 @@ pub fn boundary(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
         b[d] = pair;
     }
     a.finish()?;
-    if sim.dimension == 2 && b[2][0] != BoundaryKind::Periodic {
+    if sim.state.dimension == 2 && b[2][0] != BoundaryKind::Periodic {
         return Err(a.error_at(&cmd.args[2], "a 2d simulation must be periodic in z", "must be p"));
     }
-    sim.boundary = b;
+    sim.state.boundary = b;
     Ok(())
 }
 
@@ -165,8 +165,8 @@ pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         }
     }
     let features = features_of(&names).unwrap();
-    sim.atom_style = cmd.args.iter().map(|w| w.text.clone()).filter(|t| t != "0").collect();
-    sim.atoms = Atoms::new(features);
+    sim.state.atom_style = cmd.args.iter().map(|w| w.text.clone()).filter(|t| t != "0").collect();
+    sim.state.atoms = Atoms::new(features);
     Ok(())
 }
 
@@ -210,8 +210,8 @@ pub fn newton(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
     let bond = if a.is_empty() { pair } else { a.on_off("newton bond setting")? };
     a.finish()?;
     // results do not depend on these (see docs/commands.md); they are recorded for check output
-    sim.newton_pair = pair;
-    sim.newton_bond = bond;
+    sim.state.newton_pair = pair;
+    sim.state.newton_bond = bond;
     Ok(())
 }
 
@@ -232,10 +232,10 @@ pub fn timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
     let mut a = Args::new(cmd, "timestep dt");
     let dt = a.f64("dt")?;
     a.finish()?;
-    sim.atime = sim.time();
-    sim.atimestep = sim.step;
-    sim.dt = dt;
-    sim.dt_set = true;
+    sim.state.atime = sim.state.time();
+    sim.state.atimestep = sim.state.step;
+    sim.state.dt = dt;
+    sim.state.dt_set = true;
     Ok(())
 }
 
@@ -244,8 +244,8 @@ pub fn neighbor(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
     let skin = a.non_negative_f64("skin")?;
     a.choice("neighbor style", &["bin", "nsq", "multi"])?;
     a.finish()?;
-    sim.neigh_settings.skin = skin;
-    sim.lists_valid = false;
+    sim.state.neigh_settings.skin = skin;
+    sim.state.lists_valid = false;
     Ok(())
 }
 
@@ -256,10 +256,10 @@ pub fn neigh_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         return Err(a.missing("a keyword"));
     }
     let keys = ["every", "delay", "check", "once", "one", "page", "binsize", "exclude", "cluster"];
-    let ntypes = sim.ntypes;
+    let ntypes = sim.state.ntypes;
     while let Some(w) = a.peek() {
         a.skip(1);
-        let s = &mut sim.neigh_settings;
+        let s = &mut sim.state.neigh_settings;
         match w.text.as_str() {
             "every" => s.every = a.i64_in("every", 1, i64::MAX)?,
             "delay" => s.delay = a.i64_in("delay", 0, i64::MAX)?,
@@ -282,28 +282,28 @@ pub fn neigh_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
                         }
                         let t1 = a.i64_in("type 1", 1, ntypes as i64)? as usize;
                         let t2 = a.i64_in("type 2", 1, ntypes as i64)? as usize;
-                        sim.neigh_settings.exclusions.types.push((t1, t2));
+                        sim.state.neigh_settings.exclusions.types.push((t1, t2));
                     }
                     1 => {
-                        let g1 = group_bit(&mut a, &sim.groups)?;
-                        let g2 = group_bit(&mut a, &sim.groups)?;
-                        sim.neigh_settings.exclusions.groups.push((g1, g2));
+                        let g1 = group_bit(&mut a, &sim.state.groups)?;
+                        let g2 = group_bit(&mut a, &sim.state.groups)?;
+                        sim.state.neigh_settings.exclusions.groups.push((g1, g2));
                     }
                     2..=4 => {
-                        if !sim.atoms.features.molecule {
+                        if !sim.state.atoms.features.molecule {
                             return Err(a.error_at(w, "neigh_modify exclude molecule needs an atom style with molecule IDs", "no molecule IDs"));
                         }
-                        let g = group_bit(&mut a, &sim.groups)?;
+                        let g = group_bit(&mut a, &sim.state.groups)?;
                         // plain `molecule` is the old name of molecule/intra
-                        sim.neigh_settings.exclusions.molecule.push((g, kind != 3));
+                        sim.state.neigh_settings.exclusions.molecule.push((g, kind != 3));
                     }
-                    _ => sim.neigh_settings.exclusions = Default::default(),
+                    _ => sim.state.neigh_settings.exclusions = Default::default(),
                 }
             }
             _ => return Err(a.unknown_keyword(w, &keys)),
         }
     }
-    sim.lists_valid = false;
+    sim.state.lists_valid = false;
     Ok(())
 }
 
@@ -320,7 +320,7 @@ pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
-            "vel" => sim.comm_vel = a.yes_no("vel")?,
+            "vel" => sim.state.comm_vel = a.yes_no("vel")?,
             // ghost atoms are made for the list cutoff; a longer ghost cutoff changes nothing
             "cutoff" => {
                 a.non_negative_f64("cutoff")?;
@@ -336,8 +336,8 @@ pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
 
 pub fn special_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "");
-    sim.special_bonds = SpecialBonds::parse(&mut a)?;
-    sim.lists_valid = false;
+    sim.state.special_bonds = SpecialBonds::parse(&mut a)?;
+    sim.state.lists_valid = false;
     Ok(())
 }
 

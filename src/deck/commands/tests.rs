@@ -12,7 +12,7 @@ fn lj_melt_runs() {
     let mut sim = Simulation::new();
     sim.out.captured = Some(String::new());
     run_plain(&mut sim, deck).unwrap();
-    let a = &sim.atoms;
+    let a = &sim.state.atoms;
     assert_eq!(a.nlocal, 256);
     let p: [f64; 3] = std::array::from_fn(|k| a.v[..a.nlocal].iter().map(|v| v[k]).sum());
     assert!(p.iter().all(|c| c.abs() < 1e-10), "momentum {p:?}");

@@ -21,7 +21,8 @@ pub mod dihedral_harmonic;
 pub mod dihedral_quadratic;
 pub mod pass;
 
-use crate::models::bonded::pass::{BondedTally, Entry, Kernels};
+use crate::engine::bonded_lists::Entry;
+use crate::models::bonded::pass::{BondedTally, Kernels};
 use crate::models::pair::SharedMut;
 use dmhs_parser::{Args, DResult};
 

@@ -6,118 +6,9 @@
 use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
 use crate::models::pair::{for_each_slab, SharedMut};
 use crate::sim::{RunError, Simulation};
+use crate::engine::bonded_lists::{chunk, slab, BondedLists, Entry};
 use crate::engine::neighbor::SpecialTable;
 use crate::engine::special::{build_special, Topology as SpecialTopology};
-
-/// One interaction: local indices of its atoms, the periodic shift of each (relative to the
-/// reference atom), and its type.
-#[derive(Clone, Copy, Debug)]
-pub struct Entry<const N: usize> {
-    pub atoms: [u32; N],
-    pub shift: [[i8; 3]; N],
-    pub typ: usize,
-}
-
-impl<const N: usize> Entry<N> {
-    /// Some atom is taken at a periodic image.
-    pub fn shifted(&self) -> bool {
-        self.shift.iter().any(|s| *s != [0; 3])
-    }
-}
-
-/// Interactions grouped by the slab chunk of their lowest-index atom, when all their atoms
-/// lie in that chunk or the next (so chunks can run with the pair loop's even/odd schedule);
-/// the rest (e.g. interactions spanning a periodic boundary) are done afterwards in order.
-/// Chunk `c` holds `entries[offsets[c]..offsets[c+1]]`.
-#[derive(Clone, Debug)]
-pub struct Slabbed<E> {
-    pub entries: Vec<E>,
-    pub offsets: Vec<u32>,
-    pub leftover: Vec<E>,
-}
-
-impl<E> Default for Slabbed<E> {
-    fn default() -> Self {
-        Slabbed { entries: vec![], offsets: vec![0], leftover: vec![] }
-    }
-}
-
-impl<E> Slabbed<E> {
-    pub fn len(&self) -> usize {
-        self.entries.len() + self.leftover.len()
-    }
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-    pub fn nchunks(&self) -> usize {
-        self.offsets.len() - 1
-    }
-}
-
-/// The interactions of chunk `c` (none if the kind has fewer chunks).
-fn chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
-    if c + 1 < s.offsets.len() {
-        &s.entries[s.offsets[c] as usize..s.offsets[c + 1] as usize]
-    } else {
-        &[]
-    }
-}
-
-/// Group entries by chunk (`chunk_of[i]` = chunk of owned atom i); entries that need a periodic
-/// image go to the leftovers, so chunk entries read positions directly. Within a chunk, entries are
-/// taken with a stride of N (0, N, 2N, ..., then 1, N+1, ...): interactions along a chain
-/// (bond k and k+1 share an atom) would otherwise form one long dependency through the force
-/// accumulators and run at the latency of sqrt/acos instead of their throughput.
-fn slab<E: Copy, const N: usize>(entries: &[E], atoms: impl Fn(&E) -> [u32; N], shifted: impl Fn(&E) -> bool, chunk_of: &[u32], nchunks: usize) -> Slabbed<E> {
-    let mut target: Vec<u32> = Vec::with_capacity(entries.len());
-    let mut counts = vec![0u32; nchunks + 1];
-    let mut leftover = Vec::new();
-    for e in entries {
-        let idx = atoms(e);
-        let (lo, hi) = (*idx.iter().min().unwrap() as usize, *idx.iter().max().unwrap() as usize);
-        let (c, ch) = (chunk_of[lo], chunk_of[hi]);
-        if ch <= c + 1 && !shifted(e) {
-            target.push(c);
-            counts[c as usize + 1] += 1;
-        } else {
-            target.push(u32::MAX);
-            leftover.push(*e);
-        }
-    }
-    for c in 0..nchunks {
-        counts[c + 1] += counts[c];
-    }
-    let offsets = counts.clone();
-    let mut fill = counts;
-    let total = offsets[nchunks] as usize;
-    let Some(&first) = entries.iter().zip(&target).find(|(_, &t)| t != u32::MAX).map(|(e, _)| e) else {
-        return Slabbed { entries: vec![], offsets, leftover };
-    };
-    let mut out = vec![first; total];
-    for (e, &t) in entries.iter().zip(&target) {
-        if t != u32::MAX {
-            out[fill[t as usize] as usize] = *e;
-            fill[t as usize] += 1;
-        }
-    }
-    let mut scratch = Vec::new();
-    for c in 0..nchunks {
-        let chunk = &mut out[offsets[c] as usize..offsets[c + 1] as usize];
-        scratch.clear();
-        for pass in 0..N {
-            scratch.extend(chunk.iter().skip(pass).step_by(N).copied());
-        }
-        chunk.copy_from_slice(&scratch);
-    }
-    Slabbed { entries: out, offsets, leftover }
-}
-
-#[derive(Clone, Debug, Default)]
-pub struct BondedLists {
-    pub bonds: Slabbed<Entry<2>>,
-    pub angles: Slabbed<Entry<3>>,
-    pub dihedrals: Slabbed<Entry<4>>,
-}
 
 /// Energies and virial of the bonded pass.
 #[derive(Clone, Copy, Debug, Default)]
@@ -131,7 +22,7 @@ pub struct BondedTally {
 impl Simulation {
     /// Checks before a run: every used type has coefficients; the special lists.
     pub fn init_bonded(&mut self) -> Result<(), String> {
-        let t = &self.topo;
+        let t = &self.state.topo;
         if let Some(s) = self.bond_style.as_mut() {
             s.set_types(t.nbondtypes);
             if t.nbondtypes > 0 {
@@ -168,42 +59,35 @@ impl Simulation {
 
     /// The special partners (1-2, 1-3, 1-4) by atom ID from the current topology.
     pub fn rebuild_special(&mut self) -> Result<(), String> {
-        let flags = self.special_bonds.flags(false);
-        if self.topo.bonds.is_empty() {
-            self.special_table = SpecialTable { flags, ..SpecialTable::default() };
+        let flags = self.state.special_bonds.flags(false);
+        if self.state.topo.bonds.is_empty() {
+            self.state.special_table = SpecialTable { flags, ..SpecialTable::default() };
         } else {
-            let bonds: Vec<[i64; 2]> = self.topo.bonds.iter().map(|b| b.atoms).collect();
-            let angles: Vec<[i64; 3]> = self.topo.angles.iter().map(|a| a.atoms).collect();
-            let dihedrals: Vec<[i64; 4]> = self.topo.dihedrals.iter().map(|d| d.atoms).collect();
-            let ids = &self.atoms.tag[..self.atoms.nlocal];
-            let (lists, _stats) = build_special(&self.special_bonds, ids, SpecialTopology { bonds: &bonds, angles: &angles, dihedrals: &dihedrals })?;
-            let symmetric = !self.special_bonds.angle && !self.special_bonds.dihedral;
-            self.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
+            let bonds: Vec<[i64; 2]> = self.state.topo.bonds.iter().map(|b| b.atoms).collect();
+            let angles: Vec<[i64; 3]> = self.state.topo.angles.iter().map(|a| a.atoms).collect();
+            let dihedrals: Vec<[i64; 4]> = self.state.topo.dihedrals.iter().map(|d| d.atoms).collect();
+            let ids = &self.state.atoms.tag[..self.state.atoms.nlocal];
+            let (lists, _stats) = build_special(&self.state.special_bonds, ids, SpecialTopology { bonds: &bonds, angles: &angles, dihedrals: &dihedrals })?;
+            let symmetric = !self.state.special_bonds.angle && !self.state.special_bonds.dihedral;
+            self.state.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
         }
-        self.special_dirty = false;
+        self.state.special_dirty = false;
         Ok(())
     }
 
-    /// Fixes that add or remove bonds, angles or dihedrals call this: the special lists are
-    /// rebuilt and the neighbour lists rebuilt on this step (after the integrator), as LAMMPS
-    /// does for fix bond/break and bond/create.
-    pub fn topology_changed(&mut self) {
-        self.special_dirty = true;
-        self.rebuild_requested = true;
-    }
 
     /// Map every interaction to local indices and closest-image shifts (after a rebuild).
     pub fn build_bonded_lists(&mut self) -> Result<(), RunError> {
-        let t = &self.topo;
+        let t = &self.state.topo;
         if t.is_empty() {
-            self.bonded_lists = BondedLists::default();
+            self.state.bonded_lists = BondedLists::default();
             return Ok(());
         }
-        let map = self.atoms.tag_map();
-        let domain = self.domain.as_ref().unwrap();
+        let map = self.state.atoms.tag_map();
+        let domain = self.state.domain.as_ref().unwrap();
         let prd = domain.prd();
-        let x = &self.atoms.x;
-        let step = self.step;
+        let x = &self.state.atoms.x;
+        let step = self.state.step;
         let find = |tag: i64, what: &str| -> Result<u32, RunError> {
             map.get(tag).map(|i| i as u32).ok_or_else(|| RunError::new(step, format!("{what} atom {tag} is missing")))
         };
@@ -244,13 +128,13 @@ impl Simulation {
                 dihedrals.push(Entry { atoms: i, shift, typ: d.typ });
             }
         }
-        let chunks = &self.neighbor.list.chunks;
-        let mut chunk_of = vec![0u32; self.atoms.nlocal];
+        let chunks = &self.state.neighbor.list.chunks;
+        let mut chunk_of = vec![0u32; self.state.atoms.nlocal];
         for (c, ch) in chunks.iter().enumerate() {
             chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
         }
         let n = chunks.len();
-        self.bonded_lists = BondedLists {
+        self.state.bonded_lists = BondedLists {
             bonds: slab(&bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
             angles: slab(&angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
             dihedrals: slab(&dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
@@ -261,13 +145,13 @@ impl Simulation {
     /// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd
     /// schedule, then the leftovers, so results do not depend on the thread count.
     pub fn compute_bonded(&mut self, eflag: bool) -> Result<BondedTally, RunError> {
-        let lists = &self.bonded_lists;
+        let lists = &self.state.bonded_lists;
         if lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty() {
             return Ok(BondedTally::default());
         }
-        let prd = self.domain.as_ref().unwrap().prd();
+        let prd = self.state.domain.as_ref().unwrap().prd();
         let ctx = Kernels {
-            x: &self.atoms.x,
+            x: &self.state.atoms.x,
             prd,
             shifts: false,
             eflag,
@@ -275,10 +159,10 @@ impl Simulation {
             angle: self.angle_style.as_deref(),
             dihedral: self.dihedral_style.as_deref(),
         };
-        let mut f = std::mem::take(&mut self.atoms.f);
+        let mut f = std::mem::take(&mut self.state.atoms.f);
         let nchunks = lists.bonds.nchunks().max(lists.angles.nchunks()).max(lists.dihedrals.nchunks());
         let shared = SharedMut::new(&mut f);
-        let parts = for_each_slab(nchunks, self.atoms.nlocal, |c| {
+        let parts = for_each_slab(nchunks, self.state.atoms.nlocal, |c| {
             // SAFETY: a chunk's interactions touch only atoms of this chunk and the next
             let mut t = BondedTally::default();
             ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &shared, &mut t);
@@ -291,7 +175,7 @@ impl Simulation {
         let ctx = Kernels { shifts: true, ..ctx };
         ctx.run(&lists.bonds.leftover, &lists.angles.leftover, &lists.dihedrals.leftover, &shared, &mut tally);
         // `shared` points into f: not used after this
-        self.atoms.f = f;
+        self.state.atoms.f = f;
         Ok(tally)
     }
 }

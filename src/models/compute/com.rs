@@ -1,7 +1,7 @@
 //! `compute ID group com`: center of mass of the group (unwrapped coordinates).
 
 use super::{expect_no_args, Compute};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Word};
 
 pub struct ComputeCom {
@@ -26,7 +26,7 @@ impl Compute for ComputeCom {
     fn groupbit(&self) -> u32 {
         self.groupbit
     }
-    fn vector(&self, sim: &Simulation) -> Result<Vec<f64>, String> {
-        Ok(sim.group_xcm(self.groupbit).0.to_vec())
+    fn vector(&self, w: &World) -> Result<Vec<f64>, String> {
+        Ok(w.state.group_xcm(self.groupbit).0.to_vec())
     }
 }

@@ -9,7 +9,7 @@
 use super::{expect_no_args, Compute, PerAtom};
 use crate::models::fix::dmhs_phase::{LABEL_FIELD, PHI_FIELD};
 use crate::models::pair::dmhs_heatconduction::{temperature, T_FIELD};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Diagnostic, Word};
 
 pub struct ComputeDmhsPhaseAtom {
@@ -18,9 +18,9 @@ pub struct ComputeDmhsPhaseAtom {
 }
 
 impl ComputeDmhsPhaseAtom {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, w: &World) -> DResult<Self> {
         expect_no_args(args, cmd, "compute ID group dmhs/phase/atom")?;
-        if !sim.atoms.features.sph {
+        if !w.state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, "compute dmhs/phase/atom needs an atom style with SPH attributes", "atom style has no esph"));
         }
         Ok(ComputeDmhsPhaseAtom { id, groupbit })
@@ -40,11 +40,11 @@ impl Compute for ComputeDmhsPhaseAtom {
     fn peratom_cols(&self) -> Option<usize> {
         Some(4)
     }
-    fn peratom(&self, sim: &Simulation) -> Result<PerAtom, String> {
-        let a = &sim.atoms;
+    fn peratom(&self, w: &World) -> Result<PerAtom, String> {
+        let a = &w.state.atoms;
         let (kt, kl, kp) = (a.find_extra(T_FIELD), a.find_extra(LABEL_FIELD), a.find_extra(PHI_FIELD));
         // the EOS of the phase fix, for the melt fraction
-        let eos = sim.fixes.iter().find_map(|f| f.phase_eos().map(|e| (e, f.groupbit())));
+        let eos = w.fixes.iter().find_map(|f| f.phase_eos().map(|e| (e, f.groupbit())));
         let mut data = Vec::with_capacity(4 * a.nlocal);
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
@@ -53,7 +53,7 @@ impl Compute for ComputeDmhsPhaseAtom {
             }
             let label = kl.map(|k| a.extra[k].data[i]).unwrap_or(0.0);
             let melt = match eos {
-                Some((e, bit)) if a.mask[i] & bit != 0 => e.melt_fraction(a.esph[i] / sim.mass(i)),
+                Some((e, bit)) if a.mask[i] & bit != 0 => e.melt_fraction(a.esph[i] / w.state.mass(i)),
                 _ => 1.0 - label,
             };
             let phi = kp.map(|k| a.extra[k].data[i]).unwrap_or(1.0 - label);

@@ -1,7 +1,7 @@
 //! `compute ID group ke`: 0.5 * mvv2e * sum m v^2 over the group.
 
 use super::{expect_no_args, Compute};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Word};
 
 pub struct ComputeKe {
@@ -26,7 +26,10 @@ impl Compute for ComputeKe {
     fn groupbit(&self) -> u32 {
         self.groupbit
     }
-    fn scalar(&self, sim: &Simulation) -> Result<f64, String> {
-        Ok(sim.kinetic_energy(self.groupbit))
+    fn scalar(&self, w: &World) -> Result<f64, String> {
+        Ok(w.state.kinetic_energy(self.groupbit))
+    }
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
     }
 }

@@ -13,7 +13,8 @@ pub mod reduce;
 pub mod sph_atom;
 pub mod temp;
 
-use crate::sim::Simulation;
+use crate::engine::state::State;
+use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Word};
 
 /// Per-atom values of a compute: `cols` values per owned atom (1 for a per-atom vector).
@@ -35,15 +36,20 @@ pub trait Compute: Send + Sync {
     fn style(&self) -> &str;
     fn groupbit(&self) -> u32;
     /// Global scalar.
-    fn scalar(&self, _sim: &Simulation) -> Result<f64, String> {
+    fn scalar(&self, _w: &World) -> Result<f64, String> {
         Err(format!("compute {} ({}) does not compute a global scalar", self.id(), self.style()))
     }
     /// Global vector.
-    fn vector(&self, _sim: &Simulation) -> Result<Vec<f64>, String> {
+    fn vector(&self, _w: &World) -> Result<Vec<f64>, String> {
         Err(format!("compute {} ({}) does not compute a global vector", self.id(), self.style()))
     }
+    /// Whether the global scalar (`index` None) or vector element `index` (1-based) is
+    /// extensive: thermo output divides it by the atom count under `thermo_modify norm yes`.
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        false
+    }
     /// Per-atom values (for owned atoms, in local order).
-    fn peratom(&self, _sim: &Simulation) -> Result<PerAtom, String> {
+    fn peratom(&self, _w: &World) -> Result<PerAtom, String> {
         Err(format!("compute {} ({}) does not compute per-atom values", self.id(), self.style()))
     }
     /// Columns of per-atom output (None: not per-atom).
@@ -51,7 +57,7 @@ pub trait Compute: Send + Sync {
         None
     }
     /// Degrees of freedom (temperature computes only).
-    fn dof(&self, _sim: &Simulation) -> Option<f64> {
+    fn dof(&self, _w: &World) -> Option<f64> {
         None
     }
     fn describe(&self) -> String {
@@ -63,18 +69,18 @@ pub trait Compute: Send + Sync {
 pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce", "sph/rho/atom", "sph/e/atom", "sph/t/atom", "dmhs/phase/atom"];
 
 /// Build a compute from `compute ID group style args...`.
-pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &Simulation) -> DResult<Box<dyn Compute>> {
+pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], w: &World) -> DResult<Box<dyn Compute>> {
     let id = id.text.clone();
     match style.text.as_str() {
         "temp" => Ok(Box::new(temp::ComputeTemp::from_lammps(id, groupbit, args, cmd)?)),
         "ke" => Ok(Box::new(ke::ComputeKe::from_lammps(id, groupbit, args, cmd)?)),
         "pe" => Ok(Box::new(pe::ComputePe::from_lammps(id, groupbit, args, cmd)?)),
-        "pressure" => Ok(Box::new(pressure::ComputePressure::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "pressure" => Ok(Box::new(pressure::ComputePressure::from_lammps(id, groupbit, args, cmd, w)?)),
         "com" => Ok(Box::new(com::ComputeCom::from_lammps(id, groupbit, args, cmd)?)),
-        "property/atom" => Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "reduce" => Ok(Box::new(reduce::ComputeReduce::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "sph/rho/atom" | "sph/e/atom" | "sph/t/atom" => Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "dmhs/phase/atom" => Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "property/atom" => Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(id, groupbit, args, cmd, w)?)),
+        "reduce" => Ok(Box::new(reduce::ComputeReduce::from_lammps(id, groupbit, args, cmd, w)?)),
+        "sph/rho/atom" | "sph/e/atom" | "sph/t/atom" => Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(id, groupbit, style, args, cmd, w)?)),
+        "dmhs/phase/atom" => Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(id, groupbit, style, args, cmd, w)?)),
         other => Err(crate::models::styles::unsupported_style("compute", style, other, SUPPORTED)),
     }
 }
@@ -90,18 +96,18 @@ pub fn default_computes() -> Vec<Box<dyn Compute>> {
 
 /// Group functions of expressions: count(g[,region]), mass(g[,region]), xcm(g,dim), vcm(g,dim), fcm(g,dim),
 /// bound(g,xmin|xmax|...), ke(g). `None` if `name` is not a group function.
-pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<Result<f64, String>> {
+pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Result<f64, String>> {
     let known = ["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "ke", "gyration"];
     if !known.contains(&name) {
         return None;
     }
     Some((|| {
         let g = args.first().ok_or_else(|| format!("{name}() needs a group ID"))?;
-        let bit = sim.group_bit(g)?;
-        let a = &sim.atoms;
+        let bit = state.group_bit(g)?;
+        let a = &state.atoms;
         // LAMMPS' optional last argument of count() and mass(): only atoms in a region
         let region = match (name, args.get(1)) {
-            ("count" | "mass", Some(r)) => Some(sim.regions.iter().find(|reg| &reg.id == r).ok_or_else(|| format!("{name}(): region `{r}` does not exist"))?),
+            ("count" | "mass", Some(r)) => Some(state.regions.iter().find(|reg| &reg.id == r).ok_or_else(|| format!("{name}(): region `{r}` does not exist"))?),
             _ => None,
         };
         let members = (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0);
@@ -116,30 +122,30 @@ pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<R
         Ok(match name {
             "count" => match region {
                 Some(r) => members.filter(|&i| r.matches(a.x[i])).count() as f64,
-                None => sim.group_count(bit) as f64,
+                None => state.group_count(bit) as f64,
             },
-            "mass" => members.filter(|&i| region.is_none_or(|r| r.matches(a.x[i]))).map(|i| sim.mass(i)).sum(),
+            "mass" => members.filter(|&i| region.is_none_or(|r| r.matches(a.x[i]))).map(|i| state.mass(i)).sum(),
             "charge" => {
                 if !a.features.charge {
                     return Err("charge() needs an atom style with charges".into());
                 }
                 members.map(|i| a.q[i]).sum()
             }
-            "xcm" => sim.group_xcm(bit).0[dim_of(1)?],
-            "vcm" => sim.group_vcm(bit)[dim_of(1)?],
+            "xcm" => state.group_xcm(bit).0[dim_of(1)?],
+            "vcm" => state.group_vcm(bit)[dim_of(1)?],
             "fcm" => {
                 let d = dim_of(1)?;
                 members.map(|i| a.f[i][d]).sum()
             }
-            "ke" => sim.kinetic_energy(bit),
+            "ke" => state.kinetic_energy(bit),
             "gyration" => {
-                let (c, m) = sim.group_xcm(bit);
-                let dom = sim.domain()?;
+                let (c, m) = state.group_xcm(bit);
+                let dom = state.domain()?;
                 let mut rg = 0.0;
                 for i in (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0) {
                     let u = dom.unmap(a.x[i], a.image[i]);
                     let d = [u[0] - c[0], u[1] - c[1], u[2] - c[2]];
-                    rg += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * sim.mass(i);
+                    rg += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * state.mass(i);
                 }
                 if m > 0.0 { (rg / m).sqrt() } else { 0.0 }
             }
@@ -163,12 +169,12 @@ pub fn group_function(sim: &Simulation, name: &str, args: &[String]) -> Option<R
 }
 
 /// `x[ID]`-style references in expressions.
-pub fn atom_value(sim: &Simulation, keyword: &str, id: i64) -> Option<Result<f64, String>> {
+pub fn atom_value(state: &State, keyword: &str, id: i64) -> Option<Result<f64, String>> {
     let field = property::Field::parse(keyword)?;
     Some((|| {
-        field.check(sim)?;
-        let i = (0..sim.atoms.nlocal).find(|&i| sim.atoms.tag[i] == id).ok_or_else(|| format!("atom ID {id} does not exist"))?;
-        Ok(field.value(sim, i))
+        field.check(state)?;
+        let i = (0..state.atoms.nlocal).find(|&i| state.atoms.tag[i] == id).ok_or_else(|| format!("atom ID {id} does not exist"))?;
+        Ok(field.value(state, i))
     })())
 }
 

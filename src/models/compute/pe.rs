@@ -2,7 +2,7 @@
 //! evaluation that tallied energies.
 
 use super::Compute;
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "compute ID all pe [pair] [bond] [angle] [dihedral] [improper] [kspace] [fix]";
@@ -51,8 +51,8 @@ impl Compute for ComputePe {
     fn groupbit(&self) -> u32 {
         1
     }
-    fn scalar(&self, sim: &Simulation) -> Result<f64, String> {
-        let e = &sim.energies;
+    fn scalar(&self, w: &World) -> Result<f64, String> {
+        let e = &w.state.energies;
         let mut s = 0.0;
         if self.pair {
             s += e.pair.evdwl + e.pair.ecoul;
@@ -67,5 +67,8 @@ impl Compute for ComputePe {
             s += e.edihed;
         }
         Ok(s)
+    }
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
     }
 }

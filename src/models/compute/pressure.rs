@@ -2,7 +2,7 @@
 //! and the pressure tensor (kinetic tensor + virial) / V.
 
 use super::{temp::ke_tensor, Compute};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "compute ID all pressure temp-ID";
@@ -16,23 +16,22 @@ impl ComputePressure {
     pub fn new(id: String, temp_id: String) -> Self {
         ComputePressure { id, temp_id }
     }
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, world: &World) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         if groupbit != 1 {
             return Err(a.error_at(&cmd.args[1], "compute pressure must use group all", "must be `all`"));
         }
         let w = a.word("temperature compute ID")?;
-        match sim.find_compute(&w.text) {
-            Some(k) if sim.computes[k].dof(sim).is_some() => {}
+        match world.compute(&w.text) {
+            Some(c) if c.dof(world).is_some() => {}
             Some(_) => return Err(a.error_at(w, format!("compute `{}` is not a temperature compute", w.text), "not a temperature")),
             None => return Err(a.error_at(w, format!("compute `{}` does not exist", w.text), "unknown compute")),
         }
         a.finish()?;
         Ok(Self::new(id, w.text.clone()))
     }
-    fn temp<'a>(&self, sim: &'a Simulation) -> Result<&'a dyn super::Compute, String> {
-        let k = sim.find_compute(&self.temp_id).ok_or_else(|| format!("compute `{}` used by pressure does not exist", self.temp_id))?;
-        Ok(sim.computes[k].as_ref())
+    fn temp<'a>(&self, w: &World<'a>) -> Result<&'a dyn super::Compute, String> {
+        w.compute(&self.temp_id).ok_or_else(|| format!("compute `{}` used by pressure does not exist", self.temp_id))
     }
 }
 
@@ -46,26 +45,26 @@ impl Compute for ComputePressure {
     fn groupbit(&self) -> u32 {
         1
     }
-    fn scalar(&self, sim: &Simulation) -> Result<f64, String> {
-        let tc = self.temp(sim)?;
-        let t = tc.scalar(sim)?;
-        let dof = tc.dof(sim).unwrap_or(0.0);
-        let v = &sim.energies.virial;
-        let vol = sim.domain()?.volume();
+    fn scalar(&self, w: &World) -> Result<f64, String> {
+        let tc = self.temp(w)?;
+        let t = tc.scalar(w)?;
+        let dof = tc.dof(w).unwrap_or(0.0);
+        let v = &w.state.energies.virial;
+        let vol = w.state.domain()?.volume();
         let inv = 1.0 / vol;
-        let u = &sim.units;
-        Ok(if sim.dimension == 3 {
+        let u = &w.state.units;
+        Ok(if w.state.dimension == 3 {
             (dof * u.boltz * t + v[0] + v[1] + v[2]) / 3.0 * inv * u.nktv2p
         } else {
             (dof * u.boltz * t + v[0] + v[1]) / 2.0 * inv * u.nktv2p
         })
     }
-    fn vector(&self, sim: &Simulation) -> Result<Vec<f64>, String> {
-        let tc = self.temp(sim)?;
-        let k = ke_tensor(sim, tc.groupbit());
-        let v = &sim.energies.virial;
-        let inv = 1.0 / sim.domain()?.volume();
-        let n = sim.units.nktv2p;
+    fn vector(&self, w: &World) -> Result<Vec<f64>, String> {
+        let tc = self.temp(w)?;
+        let k = ke_tensor(w, tc.groupbit());
+        let v = &w.state.energies.virial;
+        let inv = 1.0 / w.state.domain()?.volume();
+        let n = w.state.units.nktv2p;
         Ok((0..6).map(|c| (k[c] + v[c]) * inv * n).collect())
     }
 }

@@ -1,7 +1,7 @@
 //! Per-atom quantities by their LAMMPS names, shared by `compute property/atom`,
 //! `compute reduce`, `dump custom` and atom references in expressions (`x[12]`).
 
-use crate::sim::Simulation;
+use crate::engine::state::State;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Field {
@@ -73,14 +73,14 @@ impl Field {
     }
 
     /// Whether the atom style has this quantity (an error message if not).
-    pub fn check(&self, sim: &Simulation) -> Result<(), String> {
-        let ft = sim.atoms.features;
+    pub fn check(&self, state: &State) -> Result<(), String> {
+        let ft = state.atoms.features;
         let (ok, what) = match self {
             Field::Mol => (ft.molecule, "molecule IDs"),
             Field::Q => (ft.charge, "charges"),
             Field::Radius | Field::Diameter | Field::Omega(_) | Field::Torque(_) => (ft.sphere, "sphere attributes (atom_style sphere)"),
             Field::Rho | Field::Drho | Field::Esph | Field::Desph | Field::Cv | Field::Vest(_) => (ft.sph, "SPH attributes (atom_style sph)"),
-            Field::Conc | Field::Water | Field::DWater => (sim.atoms.find_extra(crate::engine::water::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
+            Field::Conc | Field::Water | Field::DWater => (state.atoms.find_extra(crate::engine::water::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
             _ => (true, ""),
         };
         if ok { Ok(()) } else { Err(format!("this atom style has no {what}")) }
@@ -93,21 +93,21 @@ impl Field {
 
     /// Value for owned atom `i` (the field must pass `check`).
     #[inline]
-    pub fn value(&self, sim: &Simulation, i: usize) -> f64 {
-        let a = &sim.atoms;
+    pub fn value(&self, state: &State, i: usize) -> f64 {
+        let a = &state.atoms;
         match *self {
             Field::Id => a.tag[i] as f64,
             Field::Mol => a.molecule[i] as f64,
             Field::Proc => 0.0,
             Field::Type => a.typ[i] as f64,
-            Field::Mass => sim.mass(i),
+            Field::Mass => state.mass(i),
             Field::X(d) => a.x[i][d],
             Field::Xs(d) => {
-                let dom = sim.domain.as_ref().unwrap();
+                let dom = state.domain.as_ref().unwrap();
                 (a.x[i][d] - dom.lo[d]) / (dom.hi[d] - dom.lo[d])
             }
             Field::Xu(d) => {
-                let dom = sim.domain.as_ref().unwrap();
+                let dom = state.domain.as_ref().unwrap();
                 a.x[i][d] + a.image[i][d] as f64 * (dom.hi[d] - dom.lo[d])
             }
             Field::Image(d) => a.image[i][d] as f64,
@@ -124,7 +124,7 @@ impl Field {
             Field::Desph => a.desph[i],
             Field::Cv => a.cv[i],
             Field::Vest(d) => a.vest[i][d],
-            Field::Conc => crate::engine::water::conc(a, &sim.type_mass, i),
+            Field::Conc => crate::engine::water::conc(a, &state.type_mass, i),
             Field::Water => crate::engine::water::extra_value(a, crate::engine::water::WATER, i),
             Field::DWater => crate::engine::water::extra_value(a, crate::engine::water::DWATER, i),
         }

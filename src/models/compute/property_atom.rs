@@ -1,7 +1,7 @@
 //! `compute ID group property/atom name1 name2 ...`: per-atom attributes (0 outside the group).
 
 use super::{property::Field, Compute, PerAtom};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "compute ID group property/atom input1 input2 ...  (id mol type mass x y z xu ix vx fx q radius rho esph ...)";
@@ -13,7 +13,7 @@ pub struct ComputePropertyAtom {
 }
 
 impl ComputePropertyAtom {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, world: &World) -> DResult<Self> {
         let a = Args::from_words(args, cmd.span, SYNTAX);
         if args.is_empty() {
             return Err(a.missing("an attribute name"));
@@ -21,7 +21,7 @@ impl ComputePropertyAtom {
         let mut fields = Vec::new();
         for w in args {
             let f = Field::parse(&w.text).ok_or_else(|| a.error_at(w, format!("unknown per-atom attribute `{}`", w.text), "not an attribute"))?;
-            f.check(sim).map_err(|e| a.error_at(w, e, "not available"))?;
+            f.check(world.state).map_err(|e| a.error_at(w, e, "not available"))?;
             fields.push(f);
         }
         Ok(ComputePropertyAtom { id, groupbit, fields })
@@ -41,14 +41,14 @@ impl Compute for ComputePropertyAtom {
     fn peratom_cols(&self) -> Option<usize> {
         Some(self.fields.len())
     }
-    fn peratom(&self, sim: &Simulation) -> Result<PerAtom, String> {
-        let n = sim.atoms.nlocal;
+    fn peratom(&self, w: &World) -> Result<PerAtom, String> {
+        let n = w.state.atoms.nlocal;
         let cols = self.fields.len();
         let mut data = vec![0.0; n * cols];
         for i in 0..n {
-            if sim.atoms.mask[i] & self.groupbit != 0 {
+            if w.state.atoms.mask[i] & self.groupbit != 0 {
                 for (c, f) in self.fields.iter().enumerate() {
-                    data[i * cols + c] = f.value(sim, i);
+                    data[i * cols + c] = f.value(w.state, i);
                 }
             }
         }

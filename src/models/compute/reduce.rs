@@ -2,7 +2,7 @@
 //! of per-atom quantities over a group; a scalar for one input, a vector for several.
 
 use super::{property::Field, Compute};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "compute ID group reduce sum|min|max|ave|sumsq|avesq|sumabs|aveabs input1 input2 ...  (x vx fx ... c_ID c_ID[N])";
@@ -37,7 +37,7 @@ pub struct ComputeReduce {
 }
 
 impl ComputeReduce {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, world: &World) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let mode = match a.choice("reduction mode", &["sum", "min", "max", "ave", "sumsq", "avesq", "sumabs", "aveabs"])? {
             0 => Mode::Sum,
@@ -61,8 +61,8 @@ impl ComputeReduce {
                     }
                     _ => (rest, None),
                 };
-                let k = sim.find_compute(cid).ok_or_else(|| a.error_at(w, format!("compute `{cid}` does not exist"), "unknown compute"))?;
-                let cols = sim.computes[k].peratom_cols().ok_or_else(|| a.error_at(w, format!("compute `{cid}` does not compute per-atom values"), "not per-atom"))?;
+                let c = world.compute(cid).ok_or_else(|| a.error_at(w, format!("compute `{cid}` does not exist"), "unknown compute"))?;
+                let cols = c.peratom_cols().ok_or_else(|| a.error_at(w, format!("compute `{cid}` does not compute per-atom values"), "not per-atom"))?;
                 let col = match col {
                     None if cols == 1 => None,
                     None => return Err(a.error_at(w, format!("compute `{cid}` has {cols} per-atom columns: pick one with c_{cid}[N]"), "needs a column")),
@@ -74,7 +74,7 @@ impl ComputeReduce {
                 return Err(a.error_at(w, format!("reduce input `{t}` is not supported yet (only attributes and per-atom computes)"), "not supported"));
             } else if ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"].contains(&t) || Field::parse(t).is_some() {
                 let f = Field::parse(t).unwrap();
-                f.check(sim).map_err(|e| a.error_at(w, e, "not available"))?;
+                f.check(world.state).map_err(|e| a.error_at(w, e, "not available"))?;
                 inputs.push(Input::Attr(f));
             } else {
                 return Err(a.error_at(w, format!("unknown reduce input `{t}`"), "expected an attribute or c_ID"));
@@ -86,13 +86,12 @@ impl ComputeReduce {
         Ok(ComputeReduce { id, groupbit, mode, inputs })
     }
 
-    fn reduce_one(&self, sim: &Simulation, input: &Input) -> Result<f64, String> {
-        let a = &sim.atoms;
+    fn reduce_one(&self, w: &World, input: &Input) -> Result<f64, String> {
+        let a = &w.state.atoms;
         let values: Vec<f64> = match input {
-            Input::Attr(f) => (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| f.value(sim, i)).collect(),
+            Input::Attr(f) => (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| f.value(w.state, i)).collect(),
             Input::Compute(cid, col) => {
-                let k = sim.find_compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?;
-                let p = sim.computes[k].peratom(sim)?;
+                let p = w.compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?.peratom(w)?;
                 let c = col.unwrap_or(0);
                 (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| p.get(i, c)).collect()
             }
@@ -127,16 +126,20 @@ impl Compute for ComputeReduce {
     fn groupbit(&self) -> u32 {
         self.groupbit
     }
-    fn scalar(&self, sim: &Simulation) -> Result<f64, String> {
+    fn scalar(&self, w: &World) -> Result<f64, String> {
         if self.inputs.len() != 1 {
             return Err(format!("compute {} reduces {} inputs: it is a vector, use c_{}[N]", self.id, self.inputs.len(), self.id));
         }
-        self.reduce_one(sim, &self.inputs[0])
+        self.reduce_one(w, &self.inputs[0])
     }
-    fn vector(&self, sim: &Simulation) -> Result<Vec<f64>, String> {
+    fn vector(&self, w: &World) -> Result<Vec<f64>, String> {
         if self.inputs.len() == 1 {
             return Err(format!("compute {} has a single input: it is a scalar, use c_{}", self.id, self.id));
         }
-        self.inputs.iter().map(|inp| self.reduce_one(sim, inp)).collect()
+        self.inputs.iter().map(|inp| self.reduce_one(w, inp)).collect()
+    }
+    /// Sums are extensive, minima, maxima and averages are not (as LAMMPS).
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        matches!(self.mode, Mode::Sum | Mode::SumSq | Mode::SumAbs)
     }
 }

@@ -2,7 +2,7 @@
 //! density, internal energy, and temperature esph/cv (0 outside the group, and 0 where cv = 0).
 
 use super::{expect_no_args, Compute, PerAtom};
-use crate::sim::Simulation;
+use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Diagnostic, Word};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,9 +19,9 @@ pub struct ComputeSphAtom {
 }
 
 impl ComputeSphAtom {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, w: &World) -> DResult<Self> {
         expect_no_args(args, cmd, &format!("compute ID group {}", style.text))?;
-        if !sim.atoms.features.sph {
+        if !w.state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, format!("compute {} needs an atom style with SPH attributes", style.text), "atom style has no rho/esph"));
         }
         let what = match style.text.as_str() {
@@ -50,8 +50,8 @@ impl Compute for ComputeSphAtom {
     fn peratom_cols(&self) -> Option<usize> {
         Some(1)
     }
-    fn peratom(&self, sim: &Simulation) -> Result<PerAtom, String> {
-        let a = &sim.atoms;
+    fn peratom(&self, w: &World) -> Result<PerAtom, String> {
+        let a = &w.state.atoms;
         let data = (0..a.nlocal)
             .map(|i| {
                 if a.mask[i] & self.groupbit == 0 {

@@ -2,8 +2,8 @@
 //! variable) force; f_ID is minus the work term, f_ID[1..3] the force before the addition.
 
 use super::value::FixValue;
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group addforce fx fy fz [every N] [region region-ID]";
@@ -19,7 +19,7 @@ pub struct FixAddForce {
 }
 
 impl FixAddForce {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let mut value = [FixValue::Null, FixValue::Null, FixValue::Null];
         for (k, what) in ["fx", "fy", "fz"].iter().enumerate() {
@@ -32,7 +32,7 @@ impl FixAddForce {
             a.skip(1);
             match w.text.as_str() {
                 "every" => every = a.i64_in("every", 1, i64::MAX)?,
-                "region" => region = Some(super::setforce::find_region(&mut a, sim)?),
+                "region" => region = Some(super::setforce::find_region(&mut a, state)?),
                 _ => return Err(a.unknown_keyword(w, &["every", "region"])),
             }
         }
@@ -53,17 +53,17 @@ impl Fix for FixAddForce {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        if sim.step % self.every != 0 {
+    fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        if state.step % self.every != 0 {
             return Ok(());
         }
         let mut fv = [0.0; 3];
         for k in 0..3 {
-            fv[k] = self.value[k].eval(sim)?.unwrap_or(0.0);
+            fv[k] = ctx.value(state, self, &self.value[k])?.unwrap_or(0.0);
         }
-        let domain = sim.domain.clone().ok_or_else(|| RunError::new(sim.step, "no box"))?;
-        let region = self.region.map(|k| &sim.regions[k]);
-        let a = &mut sim.atoms;
+        let domain = state.domain.clone().ok_or_else(|| RunError::new(state.step, "no box"))?;
+        let region = self.region.map(|k| &state.regions[k]);
+        let a = &mut state.atoms;
         self.foriginal = [0.0; 4];
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
@@ -86,10 +86,13 @@ impl Fix for FixAddForce {
         }
         Ok(())
     }
-    fn scalar(&self, _sim: &Simulation) -> Option<f64> {
+    fn scalar(&self, _state: &State) -> Option<f64> {
         Some(self.foriginal[0])
     }
-    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
         (1..=3).contains(&i).then(|| self.foriginal[i])
+    }
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
     }
 }

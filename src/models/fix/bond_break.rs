@@ -24,9 +24,9 @@
 //! partner, in atom-ID order), so runs are reproducible but not bit-identical to LAMMPS, whose
 //! draws follow its per-processor atom order.
 
-use super::{Fix, FixHooks};
+use super::{Fix, FixCtx, FixHooks};
 use crate::engine::random_park::RanPark;
-use crate::sim::{RunError, Simulation};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 use std::collections::HashMap;
 
@@ -87,15 +87,15 @@ pub struct FixBondBreak {
 }
 
 impl FixBondBreak {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let dmhs = style.text.starts_with("dmhs/");
         let mut a = Args::from_words(args, cmd.span, if dmhs { DMHS_SYNTAX } else { SYNTAX });
-        if !sim.atoms.features.bonds {
+        if !state.atoms.features.bonds {
             return Err(Diagnostic::at(style.span, format!("fix {} needs an atom style with bonds", style.text), "atom style has no bonds"));
         }
         let nevery = a.i64_in("Nevery", 1, i64::MAX)?;
-        let btype = a.i64_in("bond type", 1, sim.topo.nbondtypes.max(1) as i64)? as usize;
-        if btype > sim.topo.nbondtypes {
+        let btype = a.i64_in("bond type", 1, state.topo.nbondtypes.max(1) as i64)? as usize;
+        if btype > state.topo.nbondtypes {
             return Err(a.error_at(a.last().unwrap(), "Invalid bond type in fix bond/break command", "no bond types defined"));
         }
         let rmax = a.non_negative_f64("Rmax")?;
@@ -109,7 +109,7 @@ impl FixBondBreak {
                 }
                 "temp" if dmhs => {
                     tmax = Some(a.f64("temp Tmax")?);
-                    if !sim.atoms.features.sph {
+                    if !state.atoms.features.sph {
                         return Err(a.error_at(w, "the temp criterion needs per-atom esph and cv (an atom style with sph)", "atom style has no esph/cv"));
                     }
                 }
@@ -138,8 +138,8 @@ impl FixBondBreak {
 
 /// Refuse `special_bonds angle/dihedral yes`: LAMMPS rebuilds the special lists of the atoms a
 /// changed bond touches without the angle/dihedral trim, which dmhs' global rebuild does not copy.
-pub fn check_special(sim: &Simulation, style: &str) -> Result<(), String> {
-    if sim.special_bonds.angle || sim.special_bonds.dihedral {
+pub fn check_special(state: &State, style: &str) -> Result<(), String> {
+    if state.special_bonds.angle || state.special_bonds.dihedral {
         return Err(format!("fix {style} with special_bonds angle/dihedral yes is not supported (LAMMPS rebuilds the lists of changed atoms without that trim)"));
     }
     Ok(())
@@ -159,9 +159,9 @@ pub fn image(x: [f64; 3], s: [i8; 3], prd: [f64; 3]) -> [f64; 3] {
 
 /// Delete bond (a, b) (either order, first match) and, if asked, the angles and dihedrals that
 /// contain it as one of their consecutive pairs.
-pub fn remove_bond(sim: &mut Simulation, a: i64, b: i64, angles: bool, dihedrals: bool) {
+pub fn remove_bond(state: &mut State, a: i64, b: i64, angles: bool, dihedrals: bool) {
     let same = |p: i64, q: i64| (p == a && q == b) || (p == b && q == a);
-    let t = &mut sim.topo;
+    let t = &mut state.topo;
     if let Some(k) = t.bonds.iter().position(|bd| same(bd.atoms[0], bd.atoms[1])) {
         t.bonds.remove(k);
     }
@@ -186,27 +186,27 @@ impl Fix for FixBondBreak {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_integrate: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
-        check_special(sim, self.style())?;
-        if sim.bond_style.is_none() {
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
+        check_special(state, self.style())?;
+        if ctx.bond_style.is_none() {
             return Err("no bond_style is defined".into());
         }
-        self.angleflag = !sim.topo.angles.is_empty();
-        self.dihedralflag = !sim.topo.dihedrals.is_empty();
+        self.angleflag = !state.topo.angles.is_empty();
+        self.dihedralflag = !state.topo.dihedrals.is_empty();
         Ok(())
     }
-    fn post_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        if sim.step % self.nevery != 0 {
+    fn post_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        if state.step % self.nevery != 0 {
             return Ok(());
         }
-        let prd = sim.domain.as_ref().unwrap().prd();
-        let a = &sim.atoms;
+        let prd = state.domain.as_ref().unwrap().prd();
+        let a = &state.atoms;
         let n = a.nlocal;
         let mut partner = vec![0i64; n];
         let mut distsq = vec![0.0f64; n];
         let mut hot_bonds: Vec<(i64, i64)> = vec![];
         let temp = |i: usize| a.esph[i] / a.cv[i];
-        let lists = &sim.bonded_lists.bonds;
+        let lists = &state.bonded_lists.bonds;
         let mut longest_sq: f64 = 0.0;
         // bonds in list order: chunk entries, then the ones across periodic faces
         for e in lists.entries.iter().chain(&lists.leftover) {
@@ -247,14 +247,14 @@ impl Fix for FixBondBreak {
         self.longest_ever = self.longest_ever.max(self.longest);
         self.breakcounttotal += broken.len();
         for &(p, q) in &broken {
-            remove_bond(sim, p, q, self.angleflag, self.dihedralflag);
+            remove_bond(state, p, q, self.angleflag, self.dihedralflag);
         }
         if !broken.is_empty() {
-            sim.topology_changed();
+            state.topology_changed();
         }
         Ok(())
     }
-    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
         match i {
             1 => Some(self.breakcount as f64),
             2 => Some(self.breakcounttotal as f64),
@@ -275,21 +275,21 @@ mod tests {
 
     #[test]
     fn a_broken_bond_takes_its_angles_and_dihedrals_along() {
-        let mut sim = Simulation::new();
-        let t = &mut sim.topo;
+        let mut state = State::new();
+        let t = &mut state.topo;
         t.bonds = (1..5).map(|k| Bond { typ: 1, atoms: [k, k + 1] }).collect();
         t.angles = (1..4).map(|k| Angle { typ: 1, atoms: [k, k + 1, k + 2] }).collect();
         t.dihedrals = (1..3).map(|k| Dihedral { typ: 1, atoms: [k, k + 1, k + 2, k + 3] }).collect();
         // bond 4-3 given in the other order: 3-4 goes, with angles 2-3-4 and 3-4-5 and both dihedrals
-        remove_bond(&mut sim, 4, 3, true, true);
-        let bonds: Vec<[i64; 2]> = sim.topo.bonds.iter().map(|b| b.atoms).collect();
+        remove_bond(&mut state, 4, 3, true, true);
+        let bonds: Vec<[i64; 2]> = state.topo.bonds.iter().map(|b| b.atoms).collect();
         assert_eq!(bonds, vec![[1, 2], [2, 3], [4, 5]]);
-        let angles: Vec<[i64; 3]> = sim.topo.angles.iter().map(|a| a.atoms).collect();
+        let angles: Vec<[i64; 3]> = state.topo.angles.iter().map(|a| a.atoms).collect();
         assert_eq!(angles, vec![[1, 2, 3]]);
-        assert!(sim.topo.dihedrals.is_empty());
+        assert!(state.topo.dihedrals.is_empty());
         // without angles/dihedrals at run start (LAMMPS' angleflag), only the bond goes
-        remove_bond(&mut sim, 1, 2, false, false);
-        assert_eq!(sim.topo.angles.len(), 1);
+        remove_bond(&mut state, 1, 2, false, false);
+        assert_eq!(state.topo.angles.len(), 1);
     }
 
     #[test]

@@ -17,10 +17,10 @@
 //! atom-ID order): reproducible, not bit-identical to LAMMPS.
 
 use super::bond_break::{check_special, image, mutual_partners};
-use super::{Fix, FixHooks};
+use super::{Fix, FixCtx, FixHooks};
 use crate::engine::neighbor::NEIGH_MASK;
 use crate::engine::random_park::RanPark;
-use crate::sim::{RunError, Simulation};
+use crate::engine::state::{RunError, State};
 use crate::engine::topology::{Angle, Bond};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 use std::collections::{HashMap, HashSet};
@@ -49,18 +49,18 @@ pub struct FixBondCreate {
 }
 
 impl FixBondCreate {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        if !sim.atoms.features.bonds {
+        if !state.atoms.features.bonds {
             return Err(Diagnostic::at(style.span, "fix bond/create needs an atom style with bonds", "atom style has no bonds"));
         }
-        let nt = sim.ntypes as i64;
+        let nt = state.ntypes as i64;
         let nevery = a.i64_in("Nevery", 1, i64::MAX)?;
         let itype = a.i64_in("itype", 1, nt)? as usize;
         let jtype = a.i64_in("jtype", 1, nt)? as usize;
         let rmin = a.non_negative_f64("Rmin")?;
-        let btype = a.i64_in("bond type", 1, sim.topo.nbondtypes.max(1) as i64)? as usize;
-        if btype > sim.topo.nbondtypes {
+        let btype = a.i64_in("bond type", 1, state.topo.nbondtypes.max(1) as i64)? as usize;
+        if btype > state.topo.nbondtypes {
             return Err(a.error_at(a.last().unwrap(), "Invalid bond type in fix bond/create command", "no bond types defined"));
         }
         let mut f = FixBondCreate {
@@ -137,25 +137,25 @@ impl Fix for FixBondCreate {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_integrate: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
-        check_special(sim, "bond/create")?;
-        let cut = sim.pair.as_ref().map(|p| p.cutoff(self.itype, self.jtype)).unwrap_or(0.0);
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
+        check_special(state, "bond/create")?;
+        let cut = ctx.pair.map(|p| p.cutoff(self.itype, self.jtype)).unwrap_or(0.0);
         if self.cutsq > cut * cut {
             return Err("Fix bond/create cutoff is longer than pairwise cutoff".into());
         }
-        if self.atype > 0 && sim.angle_style.is_some() && self.atype > sim.topo.nangletypes {
+        if self.atype > 0 && ctx.angle_style.is_some() && self.atype > state.topo.nangletypes {
             return Err("Fix bond/create angle type is invalid".into());
         }
         Ok(())
     }
-    fn setup(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         if self.counted {
             return Ok(());
         }
         // first run: count the bonds of btype per atom (LAMMPS FixBondCreate::setup)
         self.counted = true;
         let name = self.count_name();
-        let a = &mut sim.atoms;
+        let a = &mut state.atoms;
         let n = a.nlocal;
         // an owned-atoms-only extra array (ghosts never read it); pushed directly since ghosts
         // exist during setup
@@ -165,7 +165,7 @@ impl Fix for FixBondCreate {
         });
         let map = a.tag_map();
         let mut count = vec![0.0; n];
-        for b in &sim.topo.bonds {
+        for b in &state.topo.bonds {
             if b.typ == self.btype {
                 for t in b.atoms {
                     if let Some(i) = map.get(t) {
@@ -177,23 +177,23 @@ impl Fix for FixBondCreate {
         a.extra[k].data = count;
         Ok(())
     }
-    fn post_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        if sim.step % self.nevery != 0 {
+    fn post_integrate(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        if state.step % self.nevery != 0 {
             return Ok(());
         }
-        let prd = sim.domain.as_ref().unwrap().prd();
-        let a = &sim.atoms;
+        let prd = state.domain.as_ref().unwrap().prd();
+        let a = &state.atoms;
         let n = a.nlocal;
         let k = a.find_extra(&self.count_name()).expect("bond count array");
         let count = |i: usize| a.extra[k].data[i] as usize;
         let owner = |j: usize| if j < n { j } else { a.ghost_owner[j - n] as usize };
-        let mut bonded: HashSet<(i64, i64)> = HashSet::with_capacity(sim.topo.bonds.len());
-        for b in &sim.topo.bonds {
+        let mut bonded: HashSet<(i64, i64)> = HashSet::with_capacity(state.topo.bonds.len());
+        for b in &state.topo.bonds {
             bonded.insert((b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1])));
         }
         let mut partner = vec![0i64; n];
         let mut distsq = vec![f64::INFINITY; n];
-        for chunk in &sim.neighbor.list.chunks {
+        for chunk in &state.neighbor.list.chunks {
             for i in chunk.start..chunk.end {
                 if a.mask[i] & self.groupbit == 0 {
                     continue;
@@ -236,15 +236,15 @@ impl Fix for FixBondCreate {
         if created.is_empty() {
             return Ok(());
         }
-        let new_bonds: HashSet<(i64, i64)> = created.iter().map(|&(i, j)| (sim.atoms.tag[i], sim.atoms.tag[j])).collect();
+        let new_bonds: HashSet<(i64, i64)> = created.iter().map(|&(i, j)| (state.atoms.tag[i], state.atoms.tag[j])).collect();
         for &(i, j) in &created {
-            let (ti, tj) = (sim.atoms.tag[i], sim.atoms.tag[j]);
-            sim.topo.bonds.push(Bond { typ: self.btype, atoms: [ti, tj] });
+            let (ti, tj) = (state.atoms.tag[i], state.atoms.tag[j]);
+            state.topo.bonds.push(Bond { typ: self.btype, atoms: [ti, tj] });
             for m in [i, j] {
-                let c = &mut sim.atoms.extra[k].data[m];
+                let c = &mut state.atoms.extra[k].data[m];
                 *c += 1.0;
                 let c = *c as usize;
-                let t = &mut sim.atoms.typ[m];
+                let t = &mut state.atoms.typ[m];
                 // LAMMPS: an itype atom converts at imaxbond, any other at jmaxbond
                 if *t == self.itype {
                     if c == self.imaxbond {
@@ -255,11 +255,11 @@ impl Fix for FixBondCreate {
                 }
             }
         }
-        if self.atype > 0 && sim.angle_style.is_some() {
+        if self.atype > 0 && ctx.angle_style.is_some() {
             // angles centred on an atom of a new bond, made of two of its bonds of which at
             // least one is new (each once, whatever the order of the outer atoms)
             let mut nbrs: HashMap<i64, Vec<i64>> = HashMap::new();
-            for b in &sim.topo.bonds {
+            for b in &state.topo.bonds {
                 nbrs.entry(b.atoms[0]).or_default().push(b.atoms[1]);
                 nbrs.entry(b.atoms[1]).or_default().push(b.atoms[0]);
             }
@@ -272,24 +272,24 @@ impl Fix for FixBondCreate {
                 for x in 0..list.len() {
                     for y in x + 1..list.len() {
                         if is_new(list[x], c) || is_new(c, list[y]) {
-                            sim.topo.angles.push(Angle { typ: self.atype, atoms: [list[x], c, list[y]] });
+                            state.topo.angles.push(Angle { typ: self.atype, atoms: [list[x], c, list[y]] });
                         }
                     }
                 }
             }
         }
-        sim.topology_changed();
+        state.topology_changed();
         Ok(())
     }
-    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
         match i {
             1 => Some(self.createcount as f64),
             2 => Some(self.createcounttotal as f64),
             _ => None,
         }
     }
-    fn cleanup(&mut self, sim: &mut Simulation) {
-        sim.atoms.remove_extra(&self.count_name());
+    fn cleanup(&mut self, state: &mut State) {
+        state.atoms.remove_extra(&self.count_name());
     }
 }
 

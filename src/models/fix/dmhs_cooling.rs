@@ -15,8 +15,8 @@
 //! energy removed so far, sum over steps of dt sum_i kT C_i (T_i - Tair) (trapezoid, as the
 //! integrators apply it).
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 use std::collections::HashMap;
 
@@ -35,9 +35,9 @@ pub struct FixDmhsCooling {
 }
 
 impl FixDmhsCooling {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        if !sim.atoms.features.sph {
+        if !state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, "fix dmhs/cooling needs an atom style with SPH attributes (atom_style sph or hybrid ... sph)", "atom style has no esph"));
         }
         let kt = a.non_negative_f64("kT (cooling rate, 1/time)")?;
@@ -60,11 +60,11 @@ impl FixDmhsCooling {
 
 impl FixDmhsCooling {
     /// Add the cooling rates to desph; returns the rate of energy loss sum_i kT C_i (T_i - Tair).
-    fn apply(&mut self, sim: &mut Simulation) -> f64 {
-        let coord = self.surface.map(|(d, _)| coordination(&sim.atoms, d));
-        let kt_field = sim.atoms.find_extra(crate::models::pair::dmhs_heatconduction::T_FIELD);
-        let kc_field = sim.atoms.find_extra(super::dmhs_phase::C_FIELD);
-        let a = &mut sim.atoms;
+    fn apply(&mut self, state: &mut State) -> f64 {
+        let coord = self.surface.map(|(d, _)| coordination(&state.atoms, d));
+        let kt_field = state.atoms.find_extra(crate::models::pair::dmhs_heatconduction::T_FIELD);
+        let kc_field = state.atoms.find_extra(super::dmhs_phase::C_FIELD);
+        let a = &mut state.atoms;
         let mut n = 0;
         let mut rate = 0.0;
         for i in 0..a.nlocal {
@@ -201,36 +201,40 @@ impl Fix for FixDmhsCooling {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
         if let Some((d, _)) = self.surface {
-            let periodic = (0..sim.dimension).any(|k| sim.domain.as_ref().map(|dm| dm.periodic(k)).unwrap_or(false));
-            let cut = sim.pair.as_ref().map(|p| (1..=sim.ntypes).flat_map(|i| (1..=sim.ntypes).map(move |j| (i, j))).map(|(i, j)| p.cutoff(i, j)).fold(0.0, f64::max)).unwrap_or(0.0) + sim.neigh_settings.skin;
+            let periodic = (0..state.dimension).any(|k| state.domain.as_ref().map(|dm| dm.periodic(k)).unwrap_or(false));
+            let cut = ctx.pair.map(|p| (1..=state.ntypes).flat_map(|i| (1..=state.ntypes).map(move |j| (i, j))).map(|(i, j)| p.cutoff(i, j)).fold(0.0, f64::max)).unwrap_or(0.0) + state.neigh_settings.skin;
             if periodic && d > cut {
                 return Err(format!("the coordination distance {d} is longer than the neighbour cutoff {cut}: periodic images would be missed"));
             }
         }
         Ok(())
     }
-    fn setup(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.last_rate = self.apply(sim);
+    fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.last_rate = self.apply(state);
         Ok(())
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         // the integrators apply each step's rate half before and half after it (trapezoid)
-        let rate = self.apply(sim);
-        self.removed += 0.5 * sim.dt * (self.last_rate + rate);
+        let rate = self.apply(state);
+        self.removed += 0.5 * state.dt * (self.last_rate + rate);
         self.last_rate = rate;
         Ok(())
     }
-    fn scalar(&self, _sim: &Simulation) -> Option<f64> {
+    fn scalar(&self, _state: &State) -> Option<f64> {
         Some(self.ncool as f64)
     }
-    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
         match i {
             1 => Some(self.ncool as f64),
             2 => Some(self.removed),
             _ => None,
         }
+    }
+    /// The heat removed is extensive; the count of cooling atoms is not (as LAMMPS' counts).
+    fn extensive(&self, index: Option<usize>) -> bool {
+        index == Some(2)
     }
     fn describe(&self) -> String {
         format!(

@@ -6,8 +6,8 @@
 //! Defining the fix creates the per-particle water field (0 until `set ... dmhs/conc`).
 //! Scalar `f_ID`: the total water mass sum w_i over the group.
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use crate::engine::water::{DWATER, WATER};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -19,24 +19,24 @@ pub struct FixDiffusion {
 }
 
 impl FixDiffusion {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
         Args::from_words(args, cmd.span, SYNTAX).finish()?;
-        if !sim.atoms.features.sph {
+        if !state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, "fix dmhs/diffusion needs an atom style with SPH attributes (c = w rho/m uses the SPH density)", "atom style has no rho"));
         }
-        if sim.atoms.find_extra(WATER).is_none() {
-            sim.lists_valid = false;
+        if state.atoms.find_extra(WATER).is_none() {
+            state.lists_valid = false;
         }
-        crate::engine::water::ensure_fields(&mut sim.atoms);
+        crate::engine::water::ensure_fields(&mut state.atoms);
         Ok(FixDiffusion { id, groupbit })
     }
 
-    fn half_step(&self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dth = 0.5 * sim.dt;
-        let a = &mut sim.atoms;
+    fn half_step(&self, state: &mut State) -> Result<(), RunError> {
+        let dth = 0.5 * state.dt;
+        let a = &mut state.atoms;
         let (kw, kd) = match (a.find_extra(WATER), a.find_extra(DWATER)) {
             (Some(kw), Some(kd)) => (kw, kd),
-            _ => return Err(RunError::new(sim.step, "fix dmhs/diffusion: the water field was removed")),
+            _ => return Err(RunError::new(state.step, "fix dmhs/diffusion: the water field was removed")),
         };
         let dw = std::mem::take(&mut a.extra[kd].data);
         let w = &mut a.extra[kw].data;
@@ -63,21 +63,24 @@ impl Fix for FixDiffusion {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
-        if sim.atoms.find_extra(WATER).is_none() {
+    fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
+        if state.atoms.find_extra(WATER).is_none() {
             return Err("the water field is missing (was the fix defined before read_restart?)".into());
         }
         Ok(())
     }
-    fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.half_step(sim)
+    fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.half_step(state)
     }
-    fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.half_step(sim)
+    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.half_step(state)
     }
-    fn scalar(&self, sim: &Simulation) -> Option<f64> {
-        let a = &sim.atoms;
+    fn scalar(&self, state: &State) -> Option<f64> {
+        let a = &state.atoms;
         let w = crate::engine::water::water(a)?;
         Some((0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| w[i]).sum())
+    }
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
     }
 }

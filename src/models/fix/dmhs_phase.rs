@@ -35,8 +35,8 @@
 //! melting events (since the fix was defined).
 //! Per-atom: `compute ID group dmhs/phase/atom` (T, label, melt fraction, phi).
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use crate::engine::topology::Bond;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -105,12 +105,12 @@ pub struct FixDmhsPhase {
 }
 
 impl FixDmhsPhase {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        if !sim.atoms.features.sph {
+        if !state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, "fix dmhs/phase needs an atom style with SPH attributes (atom_style sph or hybrid ... sph)", "atom style has no esph").with_help(format!("syntax: {SYNTAX}")));
         }
-        let nt = sim.ntypes.max(1) as i64;
+        let nt = state.ntypes.max(1) as i64;
         let (mut tstar, mut cvs, mut cvl, mut latent, mut liquid, mut solid) = (None, None, None, None, None, None);
         let (mut bond, mut cutoff, mut mix) = (None, None, None);
         let mut bond_word = None;
@@ -147,11 +147,11 @@ impl FixDmhsPhase {
         let bond = match (bond, cutoff) {
             (Some(b), Some(rc)) => {
                 let w = bond_word.unwrap();
-                if !sim.atoms.features.bonds {
+                if !state.atoms.features.bonds {
                     return Err(Diagnostic::at(w.span, "fix dmhs/phase bond needs an atom style with bonds (e.g. atom_style hybrid sph bond)", "atom style has no bonds"));
                 }
-                if b > sim.topo.nbondtypes {
-                    return Err(Diagnostic::at(w.span, format!("bond type {b} is larger than the number of bond types ({})", sim.topo.nbondtypes), "no such bond type"));
+                if b > state.topo.nbondtypes {
+                    return Err(Diagnostic::at(w.span, format!("bond type {b} is larger than the number of bond types ({})", state.topo.nbondtypes), "no such bond type"));
                 }
                 Some((b, rc))
             }
@@ -159,25 +159,25 @@ impl FixDmhsPhase {
             _ => return Err(Diagnostic::at(cmd.span, "fix dmhs/phase: `bond BT` and `cutoff RC` go together", "give both or neither").with_help(format!("syntax: {SYNTAX}"))),
         };
         // per-atom fields (registered with no ghosts present)
-        sim.atoms.clear_ghosts();
-        sim.lists_valid = false;
-        sim.atoms.extra_field(T_FIELD, 1, true);
-        sim.atoms.extra_array(LABEL_FIELD, 1);
-        sim.atoms.extra_array(C_FIELD, 1);
+        state.atoms.clear_ghosts();
+        state.lists_valid = false;
+        state.atoms.extra_field(T_FIELD, 1, true);
+        state.atoms.extra_array(LABEL_FIELD, 1);
+        state.atoms.extra_array(C_FIELD, 1);
         if mix.is_some() {
-            sim.atoms.extra_field(PHI_FIELD, 1, true);
+            state.atoms.extra_field(PHI_FIELD, 1, true);
         }
         Ok(FixDmhsPhase { id, groupbit, eos, liquid, solid, bond, mix, created: 0, deleted: 0, frozen: 0, melted: 0 })
     }
 
-    fn field(sim: &Simulation, name: &str) -> usize {
-        sim.atoms.find_extra(name).expect("dmhs/phase fields are registered at definition")
+    fn field(state: &State, name: &str) -> usize {
+        state.atoms.find_extra(name).expect("dmhs/phase fields are registered at definition")
     }
 
     /// Labels from the types (1 solid, 0 liquid).
-    fn label_from_types(&self, sim: &mut Simulation) {
-        let kl = Self::field(sim, LABEL_FIELD);
-        let a = &mut sim.atoms;
+    fn label_from_types(&self, state: &mut State) {
+        let kl = Self::field(state, LABEL_FIELD);
+        let a = &mut state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
                 a.extra[kl].data[i] = if a.typ[i] == self.solid { 1.0 } else { 0.0 };
@@ -186,13 +186,13 @@ impl FixDmhsPhase {
     }
 
     /// T, c (and phi) of owned atoms from their energies.
-    fn update_fields(&self, sim: &mut Simulation) {
-        let (kt, kc, kl) = (Self::field(sim, T_FIELD), Self::field(sim, C_FIELD), Self::field(sim, LABEL_FIELD));
-        let kp = sim.atoms.find_extra(PHI_FIELD);
-        let a = &mut sim.atoms;
+    fn update_fields(&self, state: &mut State) {
+        let (kt, kc, kl) = (Self::field(state, T_FIELD), Self::field(state, C_FIELD), Self::field(state, LABEL_FIELD));
+        let kp = state.atoms.find_extra(PHI_FIELD);
+        let a = &mut state.atoms;
         for i in 0..a.nlocal {
             let (t, c) = if a.mask[i] & self.groupbit != 0 {
-                let m = a.mass(i, &sim.type_mass);
+                let m = a.mass(i, &state.type_mass);
                 let e = a.esph[i] / m;
                 (self.eos.temperature(e), m * self.eos.capacity(e))
             } else {
@@ -213,8 +213,8 @@ impl FixDmhsPhase {
     }
 
     /// Copy the ghost-carried fields to the existing ghosts.
-    fn forward(sim: &mut Simulation) {
-        let a = &mut sim.atoms;
+    fn forward(state: &mut State) {
+        let a = &mut state.atoms;
         let n = a.nlocal;
         for name in [T_FIELD, PHI_FIELD] {
             if let Some(k) = a.find_extra(name) {
@@ -224,9 +224,9 @@ impl FixDmhsPhase {
     }
 
     /// Apply the solidification and melting rules; returns whether anything changed.
-    fn transitions(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let kl = Self::field(sim, LABEL_FIELD);
-        let a = &sim.atoms;
+    fn transitions(&mut self, state: &mut State) -> Result<(), RunError> {
+        let kl = Self::field(state, LABEL_FIELD);
+        let a = &state.atoms;
         let mut freeze = vec![];
         let mut melt = vec![];
         for i in 0..a.nlocal {
@@ -234,7 +234,7 @@ impl FixDmhsPhase {
                 continue;
             }
             let solid = a.extra[kl].data[i] != 0.0;
-            let e = a.esph[i] / a.mass(i, &sim.type_mass);
+            let e = a.esph[i] / a.mass(i, &state.type_mass);
             if !solid && e < self.eos.esol {
                 freeze.push(i);
             } else if solid && e > self.eos.eliq {
@@ -246,8 +246,8 @@ impl FixDmhsPhase {
         }
         let mut topo_changed = false;
         if !melt.is_empty() {
-            let gone: std::collections::HashSet<i64> = melt.iter().map(|&i| sim.atoms.tag[i]).collect();
-            let t = &mut sim.topo;
+            let gone: std::collections::HashSet<i64> = melt.iter().map(|&i| state.atoms.tag[i]).collect();
+            let t = &mut state.topo;
             let before = t.bonds.len() + t.angles.len() + t.dihedrals.len();
             let nb = t.bonds.len();
             t.remove_atoms(&gone);
@@ -255,21 +255,21 @@ impl FixDmhsPhase {
             topo_changed |= t.bonds.len() + t.angles.len() + t.dihedrals.len() != before;
             self.melted += melt.len() as u64;
             for &i in &melt {
-                sim.atoms.extra[kl].data[i] = 0.0;
-                sim.atoms.typ[i] = self.liquid;
+                state.atoms.extra[kl].data[i] = 0.0;
+                state.atoms.typ[i] = self.liquid;
             }
         }
         self.frozen += freeze.len() as u64;
         // newly solid atoms in ID order, each bonding to solid atoms within the cut-off
-        freeze.sort_by_key(|&i| sim.atoms.tag[i]);
+        freeze.sort_by_key(|&i| state.atoms.tag[i]);
         let mut bonded: std::collections::HashSet<(i64, i64)> = std::collections::HashSet::new();
         if self.bond.is_some() {
-            bonded = sim.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect();
+            bonded = state.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect();
         }
         for &i in &freeze {
             if let Some((btype, rc)) = self.bond {
-                let domain = sim.domain.as_ref().ok_or_else(|| RunError::new(sim.step, "no simulation box"))?;
-                let a = &sim.atoms;
+                let domain = state.domain.as_ref().ok_or_else(|| RunError::new(state.step, "no simulation box"))?;
+                let a = &state.atoms;
                 let xi = a.x[i];
                 let ti = a.tag[i];
                 for j in 0..a.nlocal {
@@ -283,32 +283,32 @@ impl FixDmhsPhase {
                     }
                     let tj = a.tag[j];
                     if bonded.insert((ti.min(tj), ti.max(tj))) {
-                        sim.topo.bonds.push(Bond { typ: btype, atoms: [ti, tj] });
+                        state.topo.bonds.push(Bond { typ: btype, atoms: [ti, tj] });
                         self.created += 1;
                         topo_changed = true;
                     }
                 }
             }
-            sim.atoms.extra[kl].data[i] = 1.0;
-            sim.atoms.typ[i] = self.solid;
+            state.atoms.extra[kl].data[i] = 1.0;
+            state.atoms.typ[i] = self.solid;
         }
         if topo_changed {
-            sim.topology_changed();
+            state.topology_changed();
         }
         // new types change cutoffs and ghost types: rebuild the lists on the next step
-        sim.rebuild_requested = true;
+        state.rebuild_requested = true;
         Ok(())
     }
 
     /// (group atoms, solid-labelled atoms, solid fraction by enthalpy summed, atoms on the
     /// plateau e_sol <= e <= e_liq).
-    fn counts(&self, sim: &Simulation) -> (f64, f64, f64, f64) {
-        let kl = Self::field(sim, LABEL_FIELD);
-        let a = &sim.atoms;
+    fn counts(&self, state: &State) -> (f64, f64, f64, f64) {
+        let kl = Self::field(state, LABEL_FIELD);
+        let a = &state.atoms;
         let (mut n, mut ns, mut fs, mut np) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
-                let e = a.esph[i] / a.mass(i, &sim.type_mass);
+                let e = a.esph[i] / a.mass(i, &state.type_mass);
                 n += 1.0;
                 ns += a.extra[kl].data[i];
                 fs += 1.0 - self.eos.melt_fraction(e);
@@ -334,43 +334,43 @@ impl Fix for FixDmhsPhase {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_integrate: true, end_of_step: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
-        let a = &sim.atoms;
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
+        let a = &state.atoms;
         for t in [self.liquid, self.solid] {
-            if t > sim.ntypes {
-                return Err(format!("atom type {t} does not exist ({} types)", sim.ntypes));
+            if t > state.ntypes {
+                return Err(format!("atom type {t} does not exist ({} types)", state.ntypes));
             }
         }
         if let Some(i) = (0..a.nlocal).find(|&i| a.mask[i] & self.groupbit != 0 && a.typ[i] != self.liquid && a.typ[i] != self.solid) {
             return Err(format!("atom {} of the group has type {}, neither the liquid type {} nor the solid type {}", a.tag[i], a.typ[i], self.liquid, self.solid));
         }
-        if self.bond.is_some() && sim.bond_style.is_none() {
+        if self.bond.is_some() && ctx.bond_style.is_none() {
             return Err("bond needs a bond_style (e.g. bond_style harmonic) with coefficients for the bond type".into());
         }
         Ok(())
     }
-    fn setup_pre_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.label_from_types(sim);
-        self.update_fields(sim);
-        Self::forward(sim);
+    fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.label_from_types(state);
+        self.update_fields(state);
+        Self::forward(state);
         Ok(())
     }
     /// After the first half step of e: the temperatures the forces of this step use.
-    fn post_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.update_fields(sim);
+    fn post_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.update_fields(state);
         Ok(())
     }
-    fn end_of_step(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.transitions(sim)?;
-        self.update_fields(sim);
+    fn end_of_step(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.transitions(state)?;
+        self.update_fields(state);
         Ok(())
     }
-    fn scalar(&self, sim: &Simulation) -> Option<f64> {
-        let (n, ns, _, _) = self.counts(sim);
+    fn scalar(&self, state: &State) -> Option<f64> {
+        let (n, ns, _, _) = self.counts(state);
         Some(if n > 0.0 { ns / n } else { 0.0 })
     }
-    fn vector(&self, sim: &Simulation, i: usize) -> Option<f64> {
-        let (n, ns, fs, np) = self.counts(sim);
+    fn vector(&self, state: &State, i: usize) -> Option<f64> {
+        let (n, ns, fs, np) = self.counts(state);
         match i {
             1 => Some(if n > 0.0 { ns / n } else { 0.0 }),
             2 => Some(ns),
@@ -386,11 +386,11 @@ impl Fix for FixDmhsPhase {
     fn phase_eos(&self) -> Option<PhaseEos> {
         Some(self.eos)
     }
-    fn cleanup(&mut self, sim: &mut Simulation) {
-        sim.atoms.clear_ghosts();
-        sim.lists_valid = false;
+    fn cleanup(&mut self, state: &mut State) {
+        state.atoms.clear_ghosts();
+        state.lists_valid = false;
         for f in [T_FIELD, LABEL_FIELD, C_FIELD, PHI_FIELD] {
-            sim.atoms.remove_extra(f);
+            state.atoms.remove_extra(f);
         }
     }
     fn describe(&self) -> String {

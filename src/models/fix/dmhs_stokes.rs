@@ -4,8 +4,8 @@
 //! this fix computes gamma = 6 pi mu r per particle. A particle falling under a body force F
 //! reaches the terminal velocity F / (6 pi mu r).
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "fix ID group dmhs/stokes mu  (mu: dynamic viscosity of the surrounding fluid)";
@@ -17,11 +17,11 @@ pub struct FixStokes {
 }
 
 impl FixStokes {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let mu = a.non_negative_f64("mu (dynamic viscosity)")?;
         a.finish()?;
-        if !sim.atoms.features.sphere {
+        if !state.atoms.features.sphere {
             return Err(Diagnostic::at(style.span, "fix dmhs/stokes needs an atom style with radii (sphere); use fix viscous with gamma = 6 pi mu r for point particles", "atom style has no radius"));
         }
         Ok(FixStokes { id, groupbit, mu })
@@ -41,9 +41,9 @@ impl Fix for FixStokes {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         let k = 6.0 * std::f64::consts::PI * self.mu;
-        let a = &mut sim.atoms;
+        let a = &mut state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
                 let gamma = k * a.radius[i];

@@ -14,8 +14,8 @@
 //! Granular cutoffs come from the radii at the start of each run: growth within one run must stay
 //! within the neighbour skin.
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use crate::engine::water::{radius_of_volume, volume_of_radius, GROWTH, WATER};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -30,38 +30,38 @@ pub struct FixSwell {
 }
 
 impl FixSwell {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let rhow = a.positive_f64("rhow (density of the absorbed water)")?;
         a.finish()?;
-        if !sim.atoms.features.sphere {
+        if !state.atoms.features.sphere {
             return Err(Diagnostic::at(style.span, "fix dmhs/swell needs an atom style with radii (sphere)", "atom style has no radius"));
         }
-        if !sim.atoms.features.sph {
+        if !state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, "fix dmhs/swell needs an atom style with SPH attributes (the water field)", "atom style has no rho"));
         }
         let store = format!("dmhs/swell:{id}");
-        let fresh = sim.atoms.find_extra(&store).is_none();
-        sim.atoms.clear_ghosts();
-        sim.lists_valid = false;
-        crate::engine::water::ensure_fields(&mut sim.atoms);
-        sim.atoms.extra_field(GROWTH, 1, true);
-        let k = sim.atoms.extra_array(&store, 1);
+        let fresh = state.atoms.find_extra(&store).is_none();
+        state.atoms.clear_ghosts();
+        state.lists_valid = false;
+        crate::engine::water::ensure_fields(&mut state.atoms);
+        state.atoms.extra_field(GROWTH, 1, true);
+        let k = state.atoms.extra_array(&store, 1);
         if fresh {
             // read_restart brings the stored dry volumes back; a new fix takes the current radii
-            let dim = sim.dimension;
-            for i in 0..sim.atoms.nlocal {
-                sim.atoms.extra[k].data[i] = volume_of_radius(sim.atoms.radius[i], dim);
+            let dim = state.dimension;
+            for i in 0..state.atoms.nlocal {
+                state.atoms.extra[k].data[i] = volume_of_radius(state.atoms.radius[i], dim);
             }
         }
         Ok(FixSwell { id, groupbit, rhow, store })
     }
 
-    fn apply(&self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dim = sim.dimension;
-        let a = &mut sim.atoms;
+    fn apply(&self, state: &mut State) -> Result<(), RunError> {
+        let dim = state.dimension;
+        let a = &mut state.atoms;
         let (Some(kv), Some(kw), Some(kg)) = (a.find_extra(&self.store), a.find_extra(WATER), a.find_extra(GROWTH)) else {
-            return Err(RunError::new(sim.step, "fix dmhs/swell: its per-atom arrays were removed"));
+            return Err(RunError::new(state.step, "fix dmhs/swell: its per-atom arrays were removed"));
         };
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
@@ -96,18 +96,18 @@ impl Fix for FixSwell {
     fn hooks(&self) -> FixHooks {
         FixHooks { end_of_step: true, ..FixHooks::default() }
     }
-    fn setup_pre_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.apply(sim)?;
+    fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.apply(state)?;
         // ghosts were made before this hook: give them the new sizes
-        if sim.atoms.nghost() > 0 {
-            sim.atoms.forward_state();
+        if state.atoms.nghost() > 0 {
+            state.atoms.forward_state();
         }
         Ok(())
     }
-    fn end_of_step(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.apply(sim)
+    fn end_of_step(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.apply(state)
     }
-    fn cleanup(&mut self, sim: &mut Simulation) {
-        sim.atoms.remove_extra(&self.store);
+    fn cleanup(&mut self, state: &mut State) {
+        state.atoms.remove_extra(&self.store);
     }
 }

@@ -1,8 +1,8 @@
 //! `fix ID group enforce2d`: zero the z components of velocity and force (and the x, y
 //! components of angular velocity and torque) so a 2D system stays in its plane.
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub struct FixEnforce2d {
@@ -30,14 +30,14 @@ impl Fix for FixEnforce2d {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
-        if sim.dimension == 3 {
+    fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
+        if state.dimension == 3 {
             return Err("fix enforce2d cannot be used in a 3d simulation".into());
         }
         Ok(())
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let a = &mut sim.atoms;
+    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let a = &mut state.atoms;
         let n = a.nlocal;
         let groupbit = self.groupbit;
         // plain slices: through `a`, every store made the compiler reload the arrays' addresses

@@ -2,9 +2,9 @@
 //! f += m * g (acceleration `magnitude` along the normalised direction, LAMMPS' arithmetic).
 
 use super::value::FixValue;
-use super::{Fix, FixHooks};
+use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::SharedMut;
-use crate::sim::{RunError, Simulation};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta";
@@ -19,12 +19,12 @@ pub struct FixGravity {
 }
 
 impl FixGravity {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let w = a.word("magnitude")?;
         let magnitude = FixValue::parse(w, "magnitude", false).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
         let deg = std::f64::consts::PI / 180.0;
-        let three_d = sim.dimension == 3;
+        let three_d = state.dimension == 3;
         let dir = match a.choice("direction style", &["vector", "chute", "spherical"])? {
             0 => {
                 let (x, y, z) = (a.f64("x")?, a.f64("y")?, a.f64("z")?);
@@ -75,14 +75,14 @@ impl Fix for FixGravity {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let g = self.magnitude.eval(sim)?.unwrap_or(0.0);
+    fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        let g = ctx.value(state, self, &self.magnitude)?.unwrap_or(0.0);
         let acc = [g * self.dir[0], g * self.dir[1], g * self.dir[2]];
         self.acc = acc;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let a = &mut sim.atoms;
+        let per_atom = state.atoms.features.per_atom_mass();
+        let a = &mut state.atoms;
         let n = a.nlocal;
-        let (mask, typ, rmass, type_mass, groupbit) = (&a.mask[..n], &a.typ[..n], &a.rmass, &sim.type_mass, self.groupbit);
+        let (mask, typ, rmass, type_mass, groupbit) = (&a.mask[..n], &a.typ[..n], &a.rmass, &state.type_mass, self.groupbit);
         let f = SharedMut::new(&mut a.f[..n]);
         // atoms are independent: ranges in parallel (the energy is summed in `scalar`)
         super::for_each_range(n, 4096, |r| {
@@ -103,18 +103,21 @@ impl Fix for FixGravity {
     /// step, summed here in atom order (what LAMMPS sums in post_force: positions, masses and
     /// the group do not change between the force step and the end of the step, when thermo and
     /// variables read it).
-    fn scalar(&self, sim: &Simulation) -> Option<f64> {
-        let a = &sim.atoms;
+    fn scalar(&self, state: &State) -> Option<f64> {
+        let a = &state.atoms;
         let per_atom = a.features.per_atom_mass();
         let [xacc, yacc, zacc] = self.acc;
         let mut egrav = 0.0;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
-                let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
+                let m = if per_atom { a.rmass[i] } else { state.type_mass[a.typ[i]] };
                 let x = a.x[i];
                 egrav -= m * (xacc * x[0] + yacc * x[1] + zacc * x[2]);
             }
         }
         Some(egrav)
+    }
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
     }
 }

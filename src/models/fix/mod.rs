@@ -21,7 +21,10 @@ pub mod viscous;
 pub mod wall_gran;
 pub mod wall_reflect;
 
-use crate::sim::{RunError, Simulation};
+pub use crate::engine::par::{any_index, for_each_range};
+use crate::engine::state::{RunError, State};
+use crate::models::bonded::{AngleStyle, BondStyle};
+use crate::models::pair::PairStyle;
 use dmhs_parser::{Command, DResult, Word};
 
 /// Where a fix acts in the step (LAMMPS' setmask bits), so the engine calls only what is used.
@@ -34,53 +37,86 @@ pub struct FixHooks {
     pub end_of_step: bool,
 }
 
-pub trait Fix: Send {
+/// Evaluates expressions for a fix while its hook runs, with every fix, compute and variable
+/// visible (implemented by the simulation, which owns them).
+pub trait Expressions {
+    /// The value of equal-style variable `name` now; `running` is the fix whose hook asks.
+    fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String>;
+}
+
+/// What a fix hook may use besides the state: the force-field models (read only) and
+/// expression evaluation.
+pub struct FixCtx<'a> {
+    pub pair: Option<&'a dyn PairStyle>,
+    pub bond_style: Option<&'a dyn BondStyle>,
+    pub angle_style: Option<&'a dyn AngleStyle>,
+    pub expressions: &'a mut dyn Expressions,
+}
+
+impl FixCtx<'_> {
+    /// The value of equal-style variable `name`; pass the calling fix as `running` (a variable
+    /// may read that fix's own values, as in LAMMPS).
+    pub fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String> {
+        self.expressions.equal(state, running, name)
+    }
+    /// The current value of a fix argument (None for NULL), evaluated as [`FixCtx::equal`].
+    pub fn value(&mut self, state: &State, running: &dyn Fix, v: &value::FixValue) -> Result<Option<f64>, RunError> {
+        v.eval(&mut |name| self.expressions.equal(state, running, name)).map_err(|e| RunError::new(state.step, e))
+    }
+}
+
+pub trait Fix: Send + Sync {
     fn id(&self) -> &str;
     fn style(&self) -> &str;
     /// Bitmask of the fix group.
     fn groupbit(&self) -> u32;
     fn hooks(&self) -> FixHooks;
     /// Checks before a run (e.g. enforce2d in 3D); errors stop the run before it starts.
-    fn init(&mut self, _sim: &Simulation) -> Result<(), String> {
+    fn init(&mut self, _state: &State, _ctx: &FixCtx) -> Result<(), String> {
         Ok(())
     }
     /// Called once per run before the forces of step 0 are computed (LAMMPS `setup_pre_force`).
-    fn setup_pre_force(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+    fn setup_pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
     /// Called once per run after the forces of step 0 (LAMMPS `setup`): by default
     /// fixes that modify forces apply `post_force`.
-    fn setup(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         if self.hooks().post_force {
-            self.post_force(sim)?;
+            self.post_force(state, ctx)?;
         }
         Ok(())
     }
-    fn initial_integrate(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+    fn initial_integrate(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
-    fn post_integrate(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+    fn post_integrate(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
-    fn post_force(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+    fn post_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
-    fn final_integrate(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+    fn final_integrate(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
-    fn end_of_step(&mut self, _sim: &mut Simulation) -> Result<(), RunError> {
+    fn end_of_step(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
     /// Global scalar (`f_ID`), if the fix has one.
-    fn scalar(&self, _sim: &Simulation) -> Option<f64> {
+    fn scalar(&self, _state: &State) -> Option<f64> {
         None
     }
     /// Global vector element `f_ID[i]` (1-based), if the fix has one.
-    fn vector(&self, _sim: &Simulation, _i: usize) -> Option<f64> {
+    fn vector(&self, _state: &State, _i: usize) -> Option<f64> {
         None
     }
+    /// Whether the global scalar (`index` None) or vector element `index` (1-based) is
+    /// extensive: thermo output divides it by the atom count under `thermo_modify norm yes`.
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        false
+    }
     /// Degrees of freedom this fix removes from atoms of a group (for temperature).
-    fn dof_removed(&self, _sim: &Simulation, _groupbit: u32) -> f64 {
+    fn dof_removed(&self, _state: &State, _groupbit: u32) -> f64 {
         0.0
     }
     /// The phase-change equation of state, for fix dmhs/phase (read by compute dmhs/phase/atom).
@@ -88,42 +124,15 @@ pub trait Fix: Send {
         None
     }
     /// Free per-atom storage when the fix is deleted.
-    fn cleanup(&mut self, _sim: &mut Simulation) {}
+    fn cleanup(&mut self, _state: &mut State) {}
     /// Wall planes drawn by `dump image ... fix ID`: (axis, coordinate) at the current step.
-    fn image_planes(&self, _sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
+    /// `equal` evaluates an equal-style variable by name.
+    fn image_planes(&self, _state: &State, _equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {
         Ok(vec![])
     }
     /// One-line description for `dmhs check`.
     fn describe(&self) -> String {
         format!("fix {} {}", self.id(), self.style())
-    }
-}
-
-/// Run `work` over index ranges covering `0..n` (`chunk` indices each), in parallel when the
-/// pool has several threads: for per-atom loops whose atoms are independent, so the results are
-/// the same either way. With one thread it is one plain loop, without the pool's overhead.
-pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usize>) + Sync + Send) {
-    use rayon::prelude::*;
-    if rayon::current_num_threads() == 1 || n <= chunk {
-        work(0..n);
-    } else {
-        (0..n.div_ceil(chunk)).into_par_iter().with_max_len(1).for_each(|c| work(c * chunk..((c + 1) * chunk).min(n)));
-    }
-}
-
-/// Indices per parallel work item of [`any_index`].
-const ANY_CHUNK: usize = 4096;
-
-/// Whether `bad(i)` holds for some i in `0..n`: chunks in parallel, each folded without
-/// branches (so it vectorizes). The answer is a boolean, the same for every thread count.
-pub fn any_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
-    use rayon::prelude::*;
-    let chunk_bad = |c: usize| (c * ANY_CHUNK..((c + 1) * ANY_CHUNK).min(n)).fold(false, |acc, i| acc | bad(i));
-    let chunks = n.div_ceil(ANY_CHUNK);
-    if rayon::current_num_threads() == 1 || chunks <= 1 {
-        (0..chunks).any(chunk_bad)
-    } else {
-        (0..chunks).into_par_iter().any(chunk_bad)
     }
 }
 
@@ -157,27 +166,27 @@ pub fn drift(x: &mut [f64; 3], dt: f64, v: &[f64; 3]) {
 pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break", "dmhs/phase", "dmhs/cooling", "dmhs/diffusion", "dmhs/swell", "dmhs/stokes"];
 
 /// Build a fix from `fix ID group style args...`.
-pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], sim: &mut Simulation) -> DResult<Box<dyn Fix>> {
+pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], state: &mut State) -> DResult<Box<dyn Fix>> {
     let id = id.text.clone();
     match style.text.as_str() {
         "nve" => Ok(Box::new(nve::FixNve::from_lammps(id, groupbit, args, cmd)?)),
-        "nve/sphere" => Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "gravity" => Ok(Box::new(gravity::FixGravity::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "addforce" => Ok(Box::new(addforce::FixAddForce::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "setforce" => Ok(Box::new(setforce::FixSetForce::from_lammps(id, groupbit, args, cmd, sim)?)),
+        "nve/sphere" => Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(id, groupbit, args, cmd, state)?)),
+        "gravity" => Ok(Box::new(gravity::FixGravity::from_lammps(id, groupbit, args, cmd, state)?)),
+        "addforce" => Ok(Box::new(addforce::FixAddForce::from_lammps(id, groupbit, args, cmd, state)?)),
+        "setforce" => Ok(Box::new(setforce::FixSetForce::from_lammps(id, groupbit, args, cmd, state)?)),
         "enforce2d" => Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(id, groupbit, args, cmd)?)),
-        "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, sim)?)),
-        "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "bond/break" | "dmhs/bond/break" => Ok(Box::new(bond_break::FixBondBreak::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "bond/create" => Ok(Box::new(bond_create::FixBondCreate::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "dmhs/phase" => Ok(Box::new(dmhs_phase::FixDmhsPhase::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "dmhs/cooling" => Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "dmhs/diffusion" => Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "dmhs/swell" => Ok(Box::new(dmhs_swell::FixSwell::from_lammps(id, groupbit, style, args, cmd, sim)?)),
-        "dmhs/stokes" => Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(id, groupbit, style, args, cmd, sim)?)),
+        "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, state)?)),
+        "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, state)?)),
+        "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, state)?)),
+        "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, state)?)),
+        "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "bond/break" | "dmhs/bond/break" => Ok(Box::new(bond_break::FixBondBreak::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "bond/create" => Ok(Box::new(bond_create::FixBondCreate::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "dmhs/phase" => Ok(Box::new(dmhs_phase::FixDmhsPhase::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "dmhs/cooling" => Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "dmhs/diffusion" => Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "dmhs/swell" => Ok(Box::new(dmhs_swell::FixSwell::from_lammps(id, groupbit, style, args, cmd, state)?)),
+        "dmhs/stokes" => Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(id, groupbit, style, args, cmd, state)?)),
         other => Err(crate::models::styles::unsupported_style("fix", style, other, SUPPORTED)),
     }
 }

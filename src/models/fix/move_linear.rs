@@ -2,8 +2,8 @@
 //! components (NULL components are integrated as by fix nve), positions set from the
 //! unwrapped position at the time the fix was defined, as LAMMPS does.
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::args::word_f64;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -19,7 +19,7 @@ pub struct FixMove {
 }
 
 impl FixMove {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let style = a.word("move style")?;
         if style.text != "linear" {
@@ -44,23 +44,23 @@ impl FixMove {
             }
         }
         if lattice_units && vel.iter().any(|v| v.is_some()) {
-            let scale = sim.lattice_scale().map_err(|e| a.error_at(style, e, "needs a lattice (or `units box`)"))?;
+            let scale = state.lattice_scale().map_err(|e| a.error_at(style, e, "needs a lattice (or `units box`)"))?;
             for d in 0..3 {
                 if let Some(v) = &mut vel[d] {
                     *v *= scale[d];
                 }
             }
         }
-        let domain = sim.domain.clone().ok_or_else(|| a.error_at(&cmd.name, "fix move needs a simulation box", "no box yet"))?;
+        let domain = state.domain.clone().ok_or_else(|| a.error_at(&cmd.name, "fix move needs a simulation box", "no box yet"))?;
         let store = format!("fix_move:{id}");
-        sim.atoms.clear_ghosts();
-        sim.lists_valid = false;
-        let k = sim.atoms.extra_array(&store, 3);
-        for i in 0..sim.atoms.nlocal {
-            let u = domain.unmap(sim.atoms.x[i], sim.atoms.image[i]);
-            sim.atoms.extra[k].data[3 * i..3 * i + 3].copy_from_slice(&u);
+        state.atoms.clear_ghosts();
+        state.lists_valid = false;
+        let k = state.atoms.extra_array(&store, 3);
+        for i in 0..state.atoms.nlocal {
+            let u = domain.unmap(state.atoms.x[i], state.atoms.image[i]);
+            state.atoms.extra[k].data[3 * i..3 * i + 3].copy_from_slice(&u);
         }
-        Ok(FixMove { id, groupbit, vel, time_origin: sim.step, store })
+        Ok(FixMove { id, groupbit, vel, time_origin: state.step, store })
     }
 }
 
@@ -77,20 +77,20 @@ impl Fix for FixMove {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
-    fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let delta = (sim.step - self.time_origin) as f64 * sim.dt;
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let domain = sim.domain.clone().ok_or_else(|| RunError::new(sim.step, "no box"))?;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let k = sim.atoms.extra.iter().position(|e| e.name == self.store).ok_or_else(|| RunError::new(sim.step, "fix move lost its stored positions"))?;
-        let a = &mut sim.atoms;
+    fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let delta = (state.step - self.time_origin) as f64 * state.dt;
+        let dtv = state.dt;
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let domain = state.domain.clone().ok_or_else(|| RunError::new(state.step, "no box"))?;
+        let per_atom = state.atoms.features.per_atom_mass();
+        let k = state.atoms.extra.iter().position(|e| e.name == self.store).ok_or_else(|| RunError::new(state.step, "fix move lost its stored positions"))?;
+        let a = &mut state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
                 continue;
             }
             let xold = a.x[i];
-            let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
+            let m = if per_atom { a.rmass[i] } else { state.type_mass[a.typ[i]] };
             let dtfm = dtf / m;
             for d in 0..3 {
                 match self.vel[d] {
@@ -108,15 +108,15 @@ impl Fix for FixMove {
         }
         Ok(())
     }
-    fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
-        let a = &mut sim.atoms;
+    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let per_atom = state.atoms.features.per_atom_mass();
+        let a = &mut state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
                 continue;
             }
-            let m = if per_atom { a.rmass[i] } else { sim.type_mass[a.typ[i]] };
+            let m = if per_atom { a.rmass[i] } else { state.type_mass[a.typ[i]] };
             let dtfm = dtf / m;
             for d in 0..3 {
                 if self.vel[d].is_none() {
@@ -126,7 +126,7 @@ impl Fix for FixMove {
         }
         Ok(())
     }
-    fn cleanup(&mut self, sim: &mut Simulation) {
-        sim.atoms.remove_extra(&self.store);
+    fn cleanup(&mut self, state: &mut State) {
+        state.atoms.remove_extra(&self.store);
     }
 }

@@ -1,9 +1,9 @@
 //! `fix ID group nve`: velocity-Verlet integration (LAMMPS' arithmetic:
 //! dtf = dt/2 * ftm2v; v += dtf/m * f; x += dt * v).
 
-use super::{Fix, FixHooks};
+use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::SharedMut;
-use crate::sim::{RunError, Simulation};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub struct FixNve {
@@ -19,13 +19,13 @@ impl FixNve {
 
     /// One half step: v += dtf/m f, and in the first half x += dt v. Atoms are independent, so
     /// chunks of atoms run in parallel (same bits).
-    fn half_step(&self, sim: &mut Simulation, first: bool) {
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
+    fn half_step(&self, state: &mut State, first: bool) {
+        let dtv = state.dt;
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let per_atom = state.atoms.features.per_atom_mass();
         let groupbit = self.groupbit;
-        let dtfm_of_type = super::dtfm_by_type(dtf, &sim.type_mass, per_atom);
-        let a = &mut sim.atoms;
+        let dtfm_of_type = super::dtfm_by_type(dtf, &state.type_mass, per_atom);
+        let a = &mut state.atoms;
         let n = a.nlocal;
         let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
         let (x, v) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]));
@@ -75,12 +75,12 @@ impl Fix for FixNve {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
-    fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.half_step(sim, true);
+    fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.half_step(state, true);
         Ok(())
     }
-    fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.half_step(sim, false);
+    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.half_step(state, false);
         Ok(())
     }
 }

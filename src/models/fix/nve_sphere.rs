@@ -3,9 +3,9 @@
 //! v += dtf/m f; x += dt v; omega += dtf/(I_f r^2 m) torque, with I_f = 0.4 (solid sphere) or
 //! 0.5 (`disc`, 2d only). Contact forces therefore see the half-step velocities.
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
-use crate::models::pair::lanes::{lanes, L, LANES};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
+use crate::engine::par::lanes::{lanes, L, LANES};
 use crate::models::pair::SharedMut;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -19,9 +19,9 @@ pub struct FixNveSphere {
 }
 
 impl FixNveSphere {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        if !sim.atoms.features.sphere {
+        if !state.atoms.features.sphere {
             return Err(a.error_at(&cmd.name, "fix nve/sphere requires atom style sphere", "no radius, rmass, omega").with_help("use atom_style sphere (or hybrid sphere ...)"));
         }
         let mut inertia = 0.4;
@@ -29,7 +29,7 @@ impl FixNveSphere {
             a.skip(1);
             match w.text.as_str() {
                 "disc" => {
-                    if sim.dimension != 2 {
+                    if state.dimension != 2 {
                         return Err(a.error_at(w, "fix nve/sphere disc requires a 2d simulation", "3d"));
                     }
                     inertia = 0.5;
@@ -45,12 +45,12 @@ impl FixNveSphere {
 impl FixNveSphere {
     /// One half step: v += dtf/m f and omega += dtf/(I_f r^2 m) torque, and in the first half
     /// x += dt v. Atoms are independent, so chunks of atoms run in parallel (same bits).
-    fn integrate(&self, sim: &mut Simulation, first: bool) {
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
+    fn integrate(&self, state: &mut State, first: bool) {
+        let dtv = state.dt;
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
         let dtfrotate = dtf / self.inertia;
         let groupbit = self.groupbit;
-        let a = &mut sim.atoms;
+        let a = &mut state.atoms;
         let n = a.nlocal;
         let (f, torque, rmass, radius, mask) = (&a.f[..n], &a.torque[..n], &a.rmass[..n], &a.radius[..n], &a.mask[..n]);
         let (x, v, omega) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.omega[..n]));
@@ -127,8 +127,8 @@ impl Fix for FixNveSphere {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
-    fn init(&mut self, sim: &Simulation) -> Result<(), String> {
-        let a = &sim.atoms;
+    fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
+        let a = &state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 && a.radius[i] == 0.0 {
                 return Err(format!("fix nve/sphere requires extended particles (atom {} has radius 0)", a.tag[i]));
@@ -136,12 +136,12 @@ impl Fix for FixNveSphere {
         }
         Ok(())
     }
-    fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.integrate(sim, true);
+    fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.integrate(state, true);
         Ok(())
     }
-    fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.integrate(sim, false);
+    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.integrate(state, false);
         Ok(())
     }
 }

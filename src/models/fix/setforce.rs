@@ -2,8 +2,8 @@
 //! alone); f_ID[1..3] is the force before it was set.
 
 use super::value::FixValue;
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group setforce fx|NULL fy|NULL fz|NULL [region region-ID]";
@@ -17,16 +17,16 @@ pub struct FixSetForce {
 }
 
 /// `region ID` keyword of a fix: the region's index.
-pub fn find_region(a: &mut Args, sim: &Simulation) -> DResult<usize> {
+pub fn find_region(a: &mut Args, state: &State) -> DResult<usize> {
     let w = a.word("region ID")?;
-    sim.regions
+    state.regions
         .iter()
         .position(|r| r.id == w.text)
         .ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))
 }
 
 impl FixSetForce {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let mut value = [FixValue::Null, FixValue::Null, FixValue::Null];
         for (k, what) in ["fx", "fy", "fz"].iter().enumerate() {
@@ -37,7 +37,7 @@ impl FixSetForce {
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
-                "region" => region = Some(find_region(&mut a, sim)?),
+                "region" => region = Some(find_region(&mut a, state)?),
                 _ => return Err(a.unknown_keyword(w, &["region"])),
             }
         }
@@ -58,13 +58,13 @@ impl Fix for FixSetForce {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         let mut fv = [None; 3];
         for k in 0..3 {
-            fv[k] = self.value[k].eval(sim)?;
+            fv[k] = ctx.value(state, self, &self.value[k])?;
         }
-        let region = self.region.map(|k| &sim.regions[k]);
-        let a = &mut sim.atoms;
+        let region = self.region.map(|k| &state.regions[k]);
+        let a = &mut state.atoms;
         self.foriginal = [0.0; 3];
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
@@ -85,7 +85,10 @@ impl Fix for FixSetForce {
         }
         Ok(())
     }
-    fn vector(&self, _sim: &Simulation, i: usize) -> Option<f64> {
+    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
         (1..=3).contains(&i).then(|| self.foriginal[i - 1])
+    }
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
     }
 }

@@ -9,9 +9,9 @@
 //! such particles look at rest to the SPH styles even if v != 0, as in LAMMPS).
 //! m is the per-atom mass if the atom style has one, else the per-type mass.
 
-use super::{Fix, FixHooks};
+use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::SharedMut;
-use crate::sim::{RunError, Simulation};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub struct FixSph {
@@ -21,10 +21,10 @@ pub struct FixSph {
 }
 
 impl FixSph {
-    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &Word, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let stationary = style.text == "sph/stationary";
         Args::from_words(args, cmd.span, if stationary { "fix ID group sph/stationary" } else { "fix ID group sph" }).finish()?;
-        if !sim.atoms.features.sph {
+        if !state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, format!("fix {} needs an atom style with SPH attributes (atom_style sph or hybrid ... sph)", style.text), "atom style has no rho/esph/vest"));
         }
         Ok(FixSph { id, groupbit, stationary })
@@ -34,13 +34,13 @@ impl FixSph {
     /// by dtf times their rates; for moving particles the velocity estimate
     /// vest = v + 2 dtfm f, then v += dtfm f and x += dt v. Second half: v += dtfm f, then esph
     /// and rho. Atoms are independent, so chunks run in parallel (same bits).
-    fn half_step(&self, sim: &mut Simulation, first: bool) {
-        let dtv = sim.dt;
-        let dtf = 0.5 * sim.dt * sim.units.ftm2v;
-        let per_atom = sim.atoms.features.per_atom_mass();
+    fn half_step(&self, state: &mut State, first: bool) {
+        let dtv = state.dt;
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let per_atom = state.atoms.features.per_atom_mass();
         let groupbit = self.groupbit;
-        let dtfm_of_type = super::dtfm_by_type(dtf, &sim.type_mass, per_atom);
-        let a = &mut sim.atoms;
+        let dtfm_of_type = super::dtfm_by_type(dtf, &state.type_mass, per_atom);
+        let a = &mut state.atoms;
         let n = a.nlocal;
         let (f, drho, desph, mask, typ) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n]);
         let rmass = if per_atom { &a.rmass[..n] } else { &[][..] };
@@ -124,9 +124,9 @@ impl Fix for FixSph {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
-    fn setup_pre_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         if !self.stationary {
-            let a = &mut sim.atoms;
+            let a = &mut state.atoms;
             for i in 0..a.nlocal {
                 if a.mask[i] & self.groupbit != 0 {
                     a.vest[i] = a.v[i];
@@ -135,12 +135,12 @@ impl Fix for FixSph {
         }
         Ok(())
     }
-    fn initial_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.half_step(sim, true);
+    fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.half_step(state, true);
         Ok(())
     }
-    fn final_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.half_step(sim, false);
+    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.half_step(state, false);
         Ok(())
     }
 }

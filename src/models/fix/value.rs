@@ -1,6 +1,5 @@
 //! A fix argument that is a constant, an equal-style variable (`v_name`), or NULL.
 
-use crate::sim::{RunError, Simulation};
 use dmhs_parser::args::word_f64;
 use dmhs_parser::{DResult, Word};
 
@@ -22,14 +21,12 @@ impl FixValue {
         }
         Ok(FixValue::Const(word_f64(w, what)?))
     }
-    /// Current value (None for NULL).
-    pub fn eval(&self, sim: &mut Simulation) -> Result<Option<f64>, RunError> {
+    /// Current value (None for NULL); `equal` evaluates an equal-style variable by name.
+    pub fn eval(&self, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Option<f64>, String> {
         match self {
             FixValue::Const(x) => Ok(Some(*x)),
             FixValue::Null => Ok(None),
-            FixValue::Variable(name) => dmhs_parser::variables::compute_equal(sim, name)
-                .map(Some)
-                .map_err(|e| RunError::new(sim.step, format!("variable `{name}`: {e}"))),
+            FixValue::Variable(name) => equal(name).map(Some).map_err(|e| format!("variable `{name}`: {e}")),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! `fix ID group viscous gamma [scale type ratio ...]`: drag f -= gamma_type * v
 //! (Stokes drag with gamma = 6 pi mu r).
 
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group viscous gamma [scale type ratio ...]";
@@ -15,15 +15,15 @@ pub struct FixViscous {
 }
 
 impl FixViscous {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let g = a.f64("gamma")?;
-        let mut gamma = vec![g; sim.ntypes + 1];
+        let mut gamma = vec![g; state.ntypes + 1];
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
                 "scale" => {
-                    let t = a.i64_in("atom type", 1, sim.ntypes as i64)? as usize;
+                    let t = a.i64_in("atom type", 1, state.ntypes as i64)? as usize;
                     let ratio = a.f64("ratio")?;
                     gamma[t] = g * ratio;
                 }
@@ -47,8 +47,8 @@ impl Fix for FixViscous {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        let a = &mut sim.atoms;
+    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let a = &mut state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
                 let drag = self.gamma[a.typ[i]];

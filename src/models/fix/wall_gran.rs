@@ -12,9 +12,9 @@
 //! tangential spring creeps (a sphere resting on a 0.2 slope with mu 0.3 moves 57 times the
 //! elastic m g sin(theta)/k_t), while the `granular` form gives the elastic value.
 
-use super::{Fix, FixHooks};
+use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::granular::{granular_contact, GranGeom, GranModel};
-use crate::sim::{RunError, Simulation};
+use crate::engine::state::{RunError, State};
 use crate::models::pair::SharedMut;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -43,9 +43,9 @@ pub struct FixWallGran {
 }
 
 impl FixWallGran {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &mut Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        if !sim.atoms.features.sphere {
+        if !state.atoms.features.sphere {
             return Err(a.error_at(&cmd.name, "fix wall/gran requires atom attributes radius and omega (atom_style sphere)", "no sphere attributes"));
         }
         let first = a.word("`granular` (the contact model form)")?;
@@ -100,22 +100,22 @@ impl FixWallGran {
                 _ => return Err(a.unknown_keyword(k, &["wiggle", "shear"])),
             }
         }
-        let domain = sim.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/gran needs a simulation box", "no box yet"))?;
+        let domain = state.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/gran needs a simulation box", "no box yet"))?;
         if domain.periodic(dim) {
             return Err(a.error_at(w, "cannot use a wall in a periodic dimension", "periodic dimension"));
         }
         let array = format!("wall/gran:{id}");
-        sim.atoms.extra_array(&array, 3);
-        Ok(FixWallGran { id, groupbit, model, dim, lo, hi, motion, time_origin: sim.step, array })
+        state.atoms.extra_array(&array, 3);
+        Ok(FixWallGran { id, groupbit, model, dim, lo, hi, motion, time_origin: state.step, array })
     }
 
     /// The planes' positions and the wall velocity at the current step.
-    fn wall_now(&self, sim: &Simulation) -> (f64, f64, [f64; 3]) {
+    fn wall_now(&self, state: &State) -> (f64, f64, [f64; 3]) {
         let (mut wlo, mut whi) = (self.lo, self.hi);
         let mut vwall = [0.0f64; 3];
         match self.motion {
             Motion::Wiggle { axis, amplitude, omega } => {
-                let arg = omega * (sim.step - self.time_origin) as f64 * sim.dt;
+                let arg = omega * (state.step - self.time_origin) as f64 * state.dt;
                 if axis == self.dim {
                     wlo = self.lo + amplitude - amplitude * arg.cos();
                     whi = self.hi + amplitude - amplitude * arg.cos();
@@ -128,12 +128,12 @@ impl FixWallGran {
         (wlo, whi, vwall)
     }
 
-    fn apply(&mut self, sim: &mut Simulation, update: bool) -> Result<(), RunError> {
-        let dt = sim.dt;
-        let (wlo, whi, vwall) = self.wall_now(sim);
+    fn apply(&mut self, state: &mut State, update: bool) -> Result<(), RunError> {
+        let dt = state.dt;
+        let (wlo, whi, vwall) = self.wall_now(state);
         let w0 = [0.0f64; 3];
-        let k = sim.atoms.extra_array(&self.array, 3);
-        let a = &mut sim.atoms;
+        let k = state.atoms.extra_array(&self.array, 3);
+        let a = &mut state.atoms;
         let n = a.nlocal;
         let mut hist = std::mem::take(&mut a.extra[k].data);
         let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
@@ -199,17 +199,17 @@ impl Fix for FixWallGran {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
     /// Forces of the current state; the spring is not advanced during setup.
-    fn setup(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.apply(sim, false)
+    fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.apply(state, false)
     }
-    fn post_force(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.apply(sim, true)
+    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.apply(state, true)
     }
-    fn cleanup(&mut self, sim: &mut Simulation) {
-        sim.atoms.remove_extra(&self.array);
+    fn cleanup(&mut self, state: &mut State) {
+        state.atoms.remove_extra(&self.array);
     }
-    fn image_planes(&self, sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
-        let (wlo, whi, _) = self.wall_now(sim);
+    fn image_planes(&self, state: &State, _equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {
+        let (wlo, whi, _) = self.wall_now(state);
         Ok([wlo, whi].into_iter().filter(|x| x.abs() < 0.5 * BIG).map(|x| (self.dim, x)).collect())
     }
     fn describe(&self) -> String {

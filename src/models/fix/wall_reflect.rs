@@ -2,8 +2,8 @@
 //! plane are mirrored back and their normal velocity flips (after the position update).
 
 use super::value::FixValue;
-use super::{Fix, FixHooks};
-use crate::sim::{RunError, Simulation};
+use super::{Fix, FixCtx, FixHooks};
+use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group wall/reflect face coord [face coord ...] [units box|lattice]  (face: xlo xhi ylo yhi zlo zhi; coord: EDGE, number, v_name)";
@@ -21,9 +21,9 @@ pub struct FixWallReflect {
 }
 
 impl FixWallReflect {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, sim: &Simulation) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        let domain = sim.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/reflect needs a simulation box", "no box yet"))?;
+        let domain = state.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/reflect needs a simulation box", "no box yet"))?;
         let faces = ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"];
         let mut walls: Vec<(Wall, Option<&Word>)> = Vec::new();
         let mut lattice_units = true;
@@ -37,7 +37,7 @@ impl FixWallReflect {
                 if domain.periodic(dim) {
                     return Err(a.error_at(w, format!("cannot use fix wall/reflect {} in a periodic dimension", w.text), "periodic dimension"));
                 }
-                if dim == 2 && sim.dimension == 2 {
+                if dim == 2 && state.dimension == 2 {
                     return Err(a.error_at(w, "cannot use fix wall/reflect zlo/zhi in a 2d simulation", "2d"));
                 }
                 let cw = a.word("wall coordinate")?;
@@ -60,7 +60,7 @@ impl FixWallReflect {
         }
         // constant coordinates are in lattice units by default
         if lattice_units && walls.iter().any(|(_, c)| c.is_some()) {
-            let scale = sim.lattice_scale().map_err(|e| a.error_at(walls.iter().find_map(|(_, c)| *c).unwrap(), e, "needs a lattice (or `units box`)"))?;
+            let scale = state.lattice_scale().map_err(|e| a.error_at(walls.iter().find_map(|(_, c)| *c).unwrap(), e, "needs a lattice (or `units box`)"))?;
             for (wall, c) in &mut walls {
                 if c.is_some() {
                     if let FixValue::Const(x) = &mut wall.coord {
@@ -86,19 +86,19 @@ impl Fix for FixWallReflect {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_integrate: true, ..FixHooks::default() }
     }
-    fn image_planes(&self, sim: &mut Simulation) -> Result<Vec<(usize, f64)>, String> {
+    fn image_planes(&self, _state: &State, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {
         let mut planes = vec![];
         for w in &self.walls {
-            if let Some(c) = w.coord.eval(sim).map_err(|e| e.message)? {
+            if let Some(c) = w.coord.eval(equal)? {
                 planes.push((w.dim, c));
             }
         }
         Ok(planes)
     }
-    fn post_integrate(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+    fn post_integrate(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         for w in &self.walls {
-            let coord = w.coord.eval(sim)?.unwrap_or(0.0);
-            let a = &mut sim.atoms;
+            let coord = ctx.value(state, self, &w.coord)?.unwrap_or(0.0);
+            let a = &mut state.atoms;
             let d = w.dim;
             for i in 0..a.nlocal {
                 if a.mask[i] & self.groupbit == 0 {

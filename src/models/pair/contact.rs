@@ -273,7 +273,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     t.virial[5] += w * del[1] * f[2];
                 }
             };
-            super::lanes::for_each_lane(b.n, apply);
+            crate::engine::par::lanes::for_each_lane(b.n, apply);
         };
         // lanes filled so far (a local, so it stays in a register)
         let mut n = 0usize;

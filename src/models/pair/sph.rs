@@ -6,7 +6,7 @@
 //! `wfd = (1/r) dW/dr` (the missing factor r comes back through `x_ij` in forces and
 //! `v_ij . x_ij` in rates).
 
-pub use super::lanes::{lanes, L, LANES};
+pub use crate::engine::par::lanes::{lanes, L, LANES};
 pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
 use super::PairInput;
 use std::ops::{Div, Mul, Sub};

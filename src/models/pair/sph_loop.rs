@@ -12,7 +12,7 @@
 //! Rates and forces of a particle are kept as one row of four (2D: fx fy drho desph; 3D: fx fy
 //! fz drho, with desph beside), added with one vector operation per pair and partner.
 
-use super::lanes::{for_each_lane, lanes, transpose4, L, LANES};
+use crate::engine::par::lanes::{for_each_lane, lanes, transpose4, L, LANES};
 use super::sph::{Packed, SphKernel};
 use super::{at, for_each_chunk_then, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
 use crate::engine::neighbor::NEIGH_MASK;

@@ -4,7 +4,7 @@
 //! ("extent") that `create_atoms` uses to narrow its lattice loop.
 
 use crate::engine::domain::Domain;
-use crate::deck::lattice::Lattice;
+use crate::engine::lattice::Lattice;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 const SYNTAX: &str = "region ID style args keyword value ... \
@@ -448,7 +448,7 @@ impl Region {
 mod tests {
     use super::*;
     use crate::engine::domain::BoundaryKind;
-    use crate::deck::lattice::tests::cmd;
+    use crate::engine::lattice::tests::cmd;
     use crate::engine::units::{UnitStyle, Units};
 
     fn boxed(lo: [f64; 3], hi: [f64; 3]) -> Domain {

@@ -1,0 +1,238 @@
+//! The state the stages borrow: atoms, box, topology, units, groups, regions, the neighbour and
+//! bonded lists derived from them, and the clock. Models read and change it through the
+//! arguments of their hooks; nothing in it refers to a model.
+
+use crate::engine::atoms::{AtomFeatures, Atoms};
+use crate::engine::bonded_lists::BondedLists;
+use crate::engine::domain::{BoundaryKind, Domain};
+use crate::engine::groups::Groups;
+use crate::engine::lattice::Lattice;
+use crate::engine::neighbor::{Neighbor, NeighborSettings, SpecialTable};
+use crate::engine::region::Region;
+use crate::engine::special::SpecialBonds;
+use crate::engine::tally::Tally;
+use crate::engine::topology::Topology;
+use crate::engine::units::{UnitStyle, Units};
+
+/// An error during a run: the step, and what went wrong. Results already written stay.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunError {
+    pub step: i64,
+    pub message: String,
+}
+
+impl RunError {
+    pub fn new(step: i64, message: impl Into<String>) -> RunError {
+        RunError { step, message: message.into() }
+    }
+}
+
+impl std::fmt::Display for RunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "step {}: {}", self.step, self.message)
+    }
+}
+
+/// Energies and virial of the last force evaluation that tallied them.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Energies {
+    pub pair: Tally,
+    pub ebond: f64,
+    pub eangle: f64,
+    pub edihed: f64,
+    /// Total virial (pair + bonded + fixes), xx yy zz xy xz yz.
+    pub virial: [f64; 6],
+    /// Step at which these were computed (-1: never).
+    pub step: i64,
+}
+
+pub struct State {
+    pub units: Units,
+    pub dimension: usize,
+    pub boundary: [[BoundaryKind; 2]; 3],
+    pub atom_style: Vec<String>,
+    pub newton_pair: bool,
+    pub newton_bond: bool,
+    pub domain: Option<Domain>,
+    /// The box as created (shrink-wrap margins and `m` bounds come from it).
+    pub box_initial: Option<Domain>,
+    pub atoms: Atoms,
+    pub ntypes: usize,
+    /// Per-type mass (index 0 unused) and whether it was set.
+    pub type_mass: Vec<f64>,
+    pub mass_set: Vec<bool>,
+    pub topo: Topology,
+    pub special_bonds: SpecialBonds,
+    pub special_table: SpecialTable,
+    /// Bonded interactions with local indices and periodic shifts, valid after a rebuild.
+    pub bonded_lists: BondedLists,
+    pub neigh_settings: NeighborSettings,
+    pub neighbor: Neighbor,
+    pub comm_vel: bool,
+    pub groups: Groups,
+    pub lattice: Option<Lattice>,
+    pub regions: Vec<Region>,
+    pub dt: f64,
+    pub dt_set: bool,
+    pub step: i64,
+    /// Simulation time at `atimestep` (time = atime + (step - atimestep) * dt, as LAMMPS).
+    pub atime: f64,
+    pub atimestep: i64,
+    /// First and last step of the current run.
+    pub run_window: Option<(i64, i64)>,
+    pub energies: Energies,
+    /// Lists and ghosts are valid for the current atoms.
+    pub lists_valid: bool,
+    /// Number of atoms at the start of the run (lost-atom check).
+    pub natoms_expected: usize,
+    /// A fix asked for neighbour lists to be rebuilt on this step (LAMMPS `next_reneighbor`).
+    pub rebuild_requested: bool,
+    /// The topology changed since the special lists were built.
+    pub special_dirty: bool,
+}
+
+impl Default for State {
+    fn default() -> Self {
+        State::new()
+    }
+}
+
+impl State {
+    pub fn new() -> State {
+        let units = Units::new(UnitStyle::Lj);
+        State {
+            units,
+            dimension: 3,
+            boundary: [[BoundaryKind::Periodic; 2]; 3],
+            atom_style: vec!["atomic".to_string()],
+            newton_pair: true,
+            newton_bond: true,
+            domain: None,
+            box_initial: None,
+            atoms: Atoms::new(AtomFeatures::default()),
+            ntypes: 0,
+            type_mass: vec![0.0],
+            mass_set: vec![false],
+            topo: Topology::default(),
+            special_bonds: SpecialBonds::default(),
+            special_table: SpecialTable::default(),
+            bonded_lists: Default::default(),
+            neigh_settings: NeighborSettings::new(units.skin),
+            neighbor: Neighbor::default(),
+            comm_vel: false,
+            groups: Groups::default(),
+            lattice: None,
+            regions: Vec::new(),
+            dt: units.dt,
+            dt_set: false,
+            step: 0,
+            atime: 0.0,
+            atimestep: 0,
+            run_window: None,
+            energies: Energies { step: -1, ..Energies::default() },
+            lists_valid: false,
+            natoms_expected: 0,
+            rebuild_requested: false,
+            special_dirty: false,
+        }
+    }
+
+    /// Number of owned atoms.
+    pub fn natoms(&self) -> usize {
+        self.atoms.nlocal
+    }
+    pub fn time(&self) -> f64 {
+        self.atime + (self.step - self.atimestep) as f64 * self.dt
+    }
+    pub fn domain(&self) -> Result<&Domain, String> {
+        self.domain.as_ref().ok_or_else(|| "the simulation box is not defined yet (create_box or read_data)".to_string())
+    }
+    /// Mass of owned atom `i`.
+    #[inline]
+    pub fn mass(&self, i: usize) -> f64 {
+        self.atoms.mass(i, &self.type_mass)
+    }
+    pub fn group_bit(&self, name: &str) -> Result<u32, String> {
+        self.groups.bit(name).ok_or_else(|| format!("group `{name}` does not exist"))
+    }
+    /// Owned atoms in a group.
+    pub fn group_count(&self, bit: u32) -> usize {
+        self.atoms.mask[..self.atoms.nlocal].iter().filter(|&&m| m & bit != 0).count()
+    }
+    /// Kinetic energy of a group, 0.5 * mvv2e * sum m v^2.
+    pub fn kinetic_energy(&self, bit: u32) -> f64 {
+        let a = &self.atoms;
+        let mut t = 0.0;
+        for i in 0..a.nlocal {
+            if a.mask[i] & bit != 0 {
+                let v = a.v[i];
+                t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * self.mass(i);
+            }
+        }
+        0.5 * self.units.mvv2e * t
+    }
+
+    /// Total potential energy of the last tallied evaluation.
+    pub fn potential_energy(&self) -> f64 {
+        let e = &self.energies;
+        e.pair.evdwl + e.pair.ecoul + e.ebond + e.eangle + e.edihed
+    }
+
+    /// Center of mass (unwrapped) and total mass of a group.
+    pub fn group_xcm(&self, bit: u32) -> ([f64; 3], f64) {
+        let a = &self.atoms;
+        let mut c = [0.0; 3];
+        let mut m = 0.0;
+        let Some(d) = self.domain.as_ref() else { return (c, 0.0) };
+        for i in 0..a.nlocal {
+            if a.mask[i] & bit != 0 {
+                let mi = self.mass(i);
+                let u = d.unmap(a.x[i], a.image[i]);
+                for k in 0..3 {
+                    c[k] += u[k] * mi;
+                }
+                m += mi;
+            }
+        }
+        if m > 0.0 {
+            for v in &mut c {
+                *v /= m;
+            }
+        }
+        (c, m)
+    }
+
+    pub fn group_vcm(&self, bit: u32) -> [f64; 3] {
+        let a = &self.atoms;
+        let mut p = [0.0; 3];
+        let mut m = 0.0;
+        for i in 0..a.nlocal {
+            if a.mask[i] & bit != 0 {
+                let mi = self.mass(i);
+                for k in 0..3 {
+                    p[k] += a.v[i][k] * mi;
+                }
+                m += mi;
+            }
+        }
+        if m > 0.0 {
+            for v in &mut p {
+                *v /= m;
+            }
+        }
+        p
+    }
+
+    /// Lattice spacings for `units lattice` arguments.
+    pub fn lattice_scale(&self) -> Result<[f64; 3], String> {
+        // LAMMPS starts with `lattice none 1.0`
+        Ok(self.lattice.as_ref().map(|l| l.spacing()).unwrap_or([1.0; 3]))
+    }
+
+    /// Bonds, angles or dihedrals changed: special lists and neighbour lists are rebuilt before
+    /// the next force evaluation.
+    pub fn topology_changed(&mut self) {
+        self.special_dirty = true;
+        self.rebuild_requested = true;
+    }
+}

@@ -1,0 +1,50 @@
+//! The read-only view that computes, fix values and expressions evaluate against: the state,
+//! every compute and every fix. While a fix's hook runs, that fix is borrowed mutably; it
+//! passes itself (`running`) when it evaluates an expression, so the view still shows every fix
+//! in definition order, as LAMMPS does.
+
+use crate::engine::state::State;
+use crate::models::compute::Compute;
+use crate::models::fix::Fix;
+
+/// Every fix, in definition order: those before the running one, the running one (if its
+/// hook is evaluating an expression), and those after it.
+#[derive(Clone, Copy)]
+pub struct FixesView<'a> {
+    pub before: &'a [Box<dyn Fix>],
+    pub running: Option<&'a dyn Fix>,
+    pub after: &'a [Box<dyn Fix>],
+}
+
+impl<'a> FixesView<'a> {
+    /// All fixes (no hook running).
+    pub fn all(fixes: &'a [Box<dyn Fix>]) -> FixesView<'a> {
+        FixesView { before: fixes, running: None, after: &[] }
+    }
+    pub fn iter(&self) -> impl Iterator<Item = &'a dyn Fix> + '_ {
+        self.before.iter().map(|f| f.as_ref()).chain(self.running).chain(self.after.iter().map(|f| f.as_ref()))
+    }
+    pub fn find(&self, id: &str) -> Option<&'a dyn Fix> {
+        self.iter().find(|f| f.id() == id)
+    }
+}
+
+#[derive(Clone, Copy)]
+pub struct World<'a> {
+    pub state: &'a State,
+    pub computes: &'a [Box<dyn Compute>],
+    pub fixes: FixesView<'a>,
+}
+
+impl<'a> World<'a> {
+    pub fn compute(&self, id: &str) -> Option<&'a dyn Compute> {
+        self.computes.iter().find(|c| c.id() == id).map(|c| c.as_ref())
+    }
+    pub fn fix(&self, id: &str) -> Option<&'a dyn Fix> {
+        self.fixes.find(id)
+    }
+    /// Degrees of freedom that fixes remove from atoms of a group (for temperatures).
+    pub fn fix_dof(&self, bit: u32) -> f64 {
+        self.fixes.iter().map(|f| f.dof_removed(self.state, bit)).sum()
+    }
+}

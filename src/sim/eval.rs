@@ -1,0 +1,76 @@
+//! Expressions see the whole simulation: [`Eval`] is the evaluation context of variables,
+//! thermo columns and dumps (the state, every compute and fix, the thermo settings and the
+//! variables), and [`HookExpressions`] gives a fix's hook the same view while that fix is
+//! borrowed (it passes itself; see [`crate::models::world::FixesView`]).
+
+use crate::engine::state::State;
+use crate::models::compute::Compute;
+use crate::models::fix::{Expressions, Fix};
+use crate::models::world::{FixesView, World};
+use crate::output::thermo::Thermo;
+use dmhs_parser::variables::Variables;
+use dmhs_parser::EvalContext;
+
+/// The evaluation context of expressions.
+pub struct Eval<'a> {
+    pub world: World<'a>,
+    pub thermo: &'a Thermo,
+    pub variables: &'a mut Variables,
+    /// Seconds of the last run's loop (the `cpu` thermo keyword).
+    pub cpu: f64,
+}
+
+impl EvalContext for Eval<'_> {
+    fn variables(&mut self) -> &mut Variables {
+        self.variables
+    }
+    fn thermo_keyword(&mut self, name: &str) -> Option<Result<f64, String>> {
+        crate::output::thermo::keyword_value(&self.world, self.thermo, self.cpu, name)
+    }
+    fn compute_value(&mut self, id: &str, index: Option<usize>) -> Result<f64, String> {
+        let c = self.world.compute(id).ok_or_else(|| format!("compute `{id}` does not exist"))?;
+        match index {
+            None => c.scalar(&self.world),
+            Some(i) => {
+                let v = c.vector(&self.world)?;
+                v.get(i.wrapping_sub(1)).copied().ok_or_else(|| format!("compute `{id}` vector has {} values, index {i} is out of range", v.len()))
+            }
+        }
+    }
+    fn fix_value(&mut self, id: &str, index: Option<usize>) -> Result<f64, String> {
+        let f = self.world.fix(id).ok_or_else(|| format!("fix `{id}` does not exist"))?;
+        let state = self.world.state;
+        match index {
+            None => f.scalar(state).ok_or_else(|| format!("fix `{id}` ({}) has no global scalar", f.style())),
+            Some(i) => f.vector(state, i).ok_or_else(|| format!("fix `{id}` ({}) has no global vector element {i}", f.style())),
+        }
+    }
+    fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
+        crate::models::compute::group_function(self.world.state, name, args)
+    }
+    fn atom_value(&mut self, keyword: &str, id: i64) -> Option<Result<f64, String>> {
+        crate::models::compute::atom_value(self.world.state, keyword, id)
+    }
+    fn run_window(&mut self) -> Option<(i64, i64)> {
+        self.world.state.run_window
+    }
+}
+
+/// What a fix hook evaluates expressions with: everything but the state (which the hook holds
+/// mutably and lends back for each evaluation) and the running fix (which passes itself).
+pub struct HookExpressions<'a> {
+    pub computes: &'a [Box<dyn Compute>],
+    pub before: &'a [Box<dyn Fix>],
+    pub after: &'a [Box<dyn Fix>],
+    pub thermo: &'a Thermo,
+    pub variables: &'a mut Variables,
+    pub cpu: f64,
+}
+
+impl Expressions for HookExpressions<'_> {
+    fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String> {
+        let fixes = FixesView { before: self.before, running: Some(running), after: self.after };
+        let mut ev = Eval { world: World { state, computes: self.computes, fixes }, thermo: self.thermo, variables: self.variables, cpu: self.cpu };
+        dmhs_parser::variables::compute_equal(&mut ev, name)
+    }
+}

@@ -29,11 +29,12 @@ use crate::context::EvalContext;
 
 mod boolean;
 mod eval;
+mod lex;
 mod parser;
 
 pub use boolean::evaluate_boolean;
 pub use eval::eval;
-pub use parser::{atof, strtod_prefix};
+pub use lex::{atof, strtod_prefix};
 
 /// An error in a formula: the LAMMPS message and the byte range of the offending text.
 #[derive(Clone, Debug, PartialEq)]
@@ -256,14 +257,14 @@ impl Expr {
 /// Evaluate a whole formula: parse, evaluate, and flush a result below the smallest normal
 /// double to zero, as LAMMPS does for the value of a variable or `$(...)`.
 pub fn evaluate(text: &str, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
-    let v = parser::Parser::new(text).whole(&mut eval::Evaluator { ctx })?;
+    let v = parser::read(text, &mut eval::Evaluator { ctx })?;
     Ok(flush_tiny(v))
 }
 
 /// Parse a formula into a tree (every function argument included, also the branch of
 /// `ternary()` that [`evaluate`] would not read).
 pub fn parse(text: &str) -> Result<Expr, ExprError> {
-    parser::Parser::new(text).whole(&mut parser::TreeBuilder)
+    parser::read(text, &mut parser::TreeBuilder)
 }
 
 /// LAMMPS returns exactly 0 for a formula whose magnitude is below `DBL_MIN` (this also turns
@@ -276,5 +277,7 @@ pub fn flush_tiny(v: f64) -> f64 {
     }
 }
 
+#[cfg(test)]
+mod grammar_tests;
 #[cfg(test)]
 mod tests;

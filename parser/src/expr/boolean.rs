@@ -1,10 +1,18 @@
 //! The condition of the `if` command (LAMMPS `Variable::evaluate_boolean()`): numbers and
-//! bare words, comparisons and logic, no arithmetic. It is computed with LAMMPS' own scheme,
-//! an operand stack and an operator stack reduced as operators arrive, so that errors come
-//! in the same order as in LAMMPS.
+//! bare words, comparisons and logic, no arithmetic. Its tokens are read with nom; they are
+//! computed with LAMMPS' own scheme, an operand stack and an operator stack reduced as
+//! operators arrive, not with a precedence grammar: on a malformed condition such as
+//! `1 == 2 ! 3` that scheme pairs values with operators in its own way, and which error
+//! LAMMPS reports depends on it.
+
+use nom::branch::alt;
+use nom::bytes::complete::tag;
+use nom::character::complete::char;
+use nom::combinator::{consumed, eof, map, value};
+use nom::{Finish, Offset};
 
 use super::eval::{binary, bool_value};
-use super::parser::{is_space, is_word_char, matching_paren, number_end, strtod_prefix};
+use super::lex::{self, parenthesized, space, strtod_prefix, Fail, PResult};
 use super::{BinOp, ExprError};
 use crate::context::EvalContext;
 
@@ -14,7 +22,11 @@ const BOOL_SYNTAX: &str = "Invalid Boolean syntax in if command";
 /// words compared with `==`/`!=`, parentheses, `! == != < <= > >= && || |^`. True when the
 /// value is not 0. The context is not consulted (the text was substituted before).
 pub fn evaluate_boolean(text: &str, _ctx: &mut dyn EvalContext) -> Result<bool, ExprError> {
-    Ok(Stacks::new(text).run(0, text.len())? != 0.0)
+    match (Condition { text }).run(text).finish() {
+        Ok((_, v)) => Ok(v != 0.0),
+        Err(Fail::Located(e)) => Err(*e),
+        Err(Fail::NoMatch(at)) => Err(syntax(text.offset(at), 0)),
+    }
 }
 
 /// An operand: a number or a bare word, with the byte range of its text.
@@ -46,45 +58,44 @@ fn syntax(at: usize, len: usize) -> ExprError {
     ExprError::new(BOOL_SYNTAX, at, len)
 }
 
-struct Stacks<'a> {
-    text: &'a str,
-    b: &'a [u8],
+/// Reads a condition; knows the whole text, to give byte offsets.
+#[derive(Clone, Copy)]
+struct Condition<'t> {
+    text: &'t str,
 }
 
-impl<'a> Stacks<'a> {
-    fn new(text: &'a str) -> Stacks<'a> {
-        Stacks { text, b: text.as_bytes() }
+impl<'t> Condition<'t> {
+    fn at(self, i: &str) -> usize {
+        self.text.offset(i)
     }
 
-    /// Evaluate `text[lo..hi]` (parentheses are evaluated on their own).
-    fn run(&self, lo: usize, hi: usize) -> Result<f64, ExprError> {
+    /// The value of `whole` (the condition, or the inside of parentheses).
+    fn run(self, whole: &'t str) -> PResult<'t, f64> {
         let mut args: Vec<Operand> = vec![];
         let mut ops: Vec<(Op, usize)> = vec![];
         let mut expect_operand = true;
-        let mut i = lo;
+        let mut i = whole;
         loop {
-            while i < hi && is_space(self.b[i]) {
-                i += 1;
-            }
-            if i < hi && self.starts_operand(self.b[i]) {
+            (i, _) = space(i)?;
+            if i.starts_with(|c: char| c == '(' || c == '-' || c == '.' || c.is_ascii_alphanumeric()) {
                 if !expect_operand {
-                    return Err(syntax(i, 1));
+                    return Err(syntax(self.at(i), 1).into());
                 }
                 expect_operand = false;
-                let (operand, next) = self.operand(i, hi)?;
+                let (rest, operand) = self.operand(i)?;
                 args.push(operand);
-                i = next;
+                i = rest;
                 continue;
             }
-            let (op, n) = self.operator(i, hi)?;
-            let at = i;
-            i += n;
+            let (rest, op) = self.operator(i)?;
+            let (at, n) = (self.at(i), i.len() - rest.len());
+            i = rest;
             if op == Some(Op::Not) && expect_operand {
                 ops.push((Op::Not, at));
                 continue;
             }
             if expect_operand {
-                return Err(syntax(at, n));
+                return Err(syntax(at, n).into());
             }
             expect_operand = true;
             // finish the operations that bind at least as tightly as this one
@@ -101,78 +112,82 @@ impl<'a> Stacks<'a> {
                 Some(o) => ops.push((o, at)),
             }
         }
+        let (lo, len) = (self.at(whole), whole.len());
         if !ops.is_empty() || args.len() != 1 {
-            return Err(syntax(lo, hi - lo));
+            return Err(syntax(lo, len).into());
         }
         match args.pop() {
-            Some((Value::Num(v), _, _)) => Ok(v),
+            Some((Value::Num(v), _, _)) => Ok((i, v)),
             Some((Value::Word(w), at, len)) => Err(ExprError::new("If command boolean cannot be single string", at, len)
-                .with_help(format!("compare the word with == or !=, e.g. \"{w} == ...\""))),
-            None => Err(syntax(lo, hi - lo)),
+                .with_help(format!("compare the word with == or !=, e.g. \"{w} == ...\""))
+                .into()),
+            None => Err(syntax(lo, len).into()),
         }
     }
 
-    fn starts_operand(&self, c: u8) -> bool {
-        c == b'(' || c.is_ascii_digit() || c == b'.' || c == b'-' || c.is_ascii_alphabetic()
+    /// The operand at the start of `i` (which starts with `(`, `-`, `.`, a digit or a letter),
+    /// with its byte range.
+    fn operand(self, i: &'t str) -> PResult<'t, Operand> {
+        let (rest, (text, v)) = consumed(alt((
+            |i| self.group(i),
+            map(lex::word, |w: &str| Value::Word(w.to_string())),
+            |i| self.number(i),
+        )))(i)?;
+        Ok((rest, (v, self.at(text), text.len())))
     }
 
-    /// The operand at `i` and the byte after it.
-    fn operand(&self, i: usize, hi: usize) -> Result<(Operand, usize), ExprError> {
-        let c = self.b[i];
-        if c == b'(' {
-            let close = matching_paren(self.b, i, hi).ok_or_else(|| syntax(i, 1).with_help("this `(` is never closed"))?;
-            let v = self.run(i + 1, close)?;
-            return Ok(((Value::Num(v), i, close + 1 - i), close + 1));
-        }
-        if c.is_ascii_alphabetic() {
-            let mut j = i;
-            while j < hi && is_word_char(self.b[j]) {
-                j += 1;
-            }
-            return Ok(((Value::Word(self.text[i..j].to_string()), i, j - i), j));
-        }
-        // a number; its first character (a digit, a point or a minus sign) is always taken
-        let j = number_end(self.b, i + 1, hi);
-        let token = &self.text[i..j];
+    /// Parentheses: the value of the condition inside.
+    fn group(self, i: &'t str) -> PResult<'t, Value> {
+        let (rest, inside) = parenthesized(i, || syntax(self.at(i), 1).with_help("this `(` is never closed"))?;
+        let (_, v) = self.run(inside)?;
+        Ok((rest, Value::Num(v)))
+    }
+
+    /// A number; a leading `-` belongs to it.
+    fn number(self, i: &'t str) -> PResult<'t, Value> {
+        let (rest, token) = alt((lex::number, lex::negative_number))(i)?;
         let (neg, digits) = match token.strip_prefix('-') {
-            Some(rest) => (true, rest),
+            Some(digits) => (true, digits),
             None => (false, token),
         };
         let v = strtod_prefix(digits)
-            .map_err(|m| ExprError::new(m.replace("in variable formula", "in if command"), i, j - i))?;
-        Ok(((Value::Num(if neg { -v } else { v }), i, j - i), j))
+            .map_err(|m| ExprError::new(m.replace("in variable formula", "in if command"), self.at(i), token.len()))?;
+        Ok((rest, Value::Num(if neg { -v } else { v })))
     }
 
-    /// The operator at `i` (`None` at the end) and its length.
-    fn operator(&self, i: usize, hi: usize) -> Result<(Option<Op>, usize), ExprError> {
-        if i >= hi {
-            return Ok((None, 0));
-        }
-        let next = (i + 1 < hi).then(|| self.b[i + 1]);
-        let bin = |op| Ok((Some(Op::Bin(op)), 2));
-        match (self.b[i], next) {
-            (b'=', Some(b'=')) => bin(BinOp::Eq),
-            (b'!', Some(b'=')) => bin(BinOp::Ne),
-            (b'!', _) => Ok((Some(Op::Not), 1)),
-            (b'<', Some(b'=')) => bin(BinOp::Le),
-            (b'<', _) => Ok((Some(Op::Bin(BinOp::Lt)), 1)),
-            (b'>', Some(b'=')) => bin(BinOp::Ge),
-            (b'>', _) => Ok((Some(Op::Bin(BinOp::Gt)), 1)),
-            (b'&', Some(b'&')) => bin(BinOp::And),
-            (b'|', Some(b'|')) => bin(BinOp::Or),
-            (b'|', Some(b'^')) => bin(BinOp::Xor),
-            (b'=', _) => Err(syntax(i, 1).with_help("use `==` to compare")),
-            (b'&', _) => Err(syntax(i, 1).with_help("use `&&` for a logical and")),
-            (b'|', _) => Err(syntax(i, 1).with_help("use `||` or `|^`")),
-            (b'+' | b'*' | b'/' | b'^' | b'%', _) => {
-                Err(syntax(i, 1).with_help("an `if` condition has no arithmetic; compute it with $(...)"))
+    /// The operator at the start of `i`, `None` at the end.
+    fn operator(self, i: &'t str) -> PResult<'t, Option<Op>> {
+        alt((value(None, eof), map(condition_op, Some), |i| Err(self.bad_operator(i).into())))(i)
+    }
+
+    fn bad_operator(self, i: &str) -> ExprError {
+        let at = self.at(i);
+        match i.as_bytes()[0] {
+            b'=' => syntax(at, 1).with_help("use `==` to compare"),
+            b'&' => syntax(at, 1).with_help("use `&&` for a logical and"),
+            b'|' => syntax(at, 1).with_help("use `||` or `|^`"),
+            b'+' | b'*' | b'/' | b'^' | b'%' => {
+                syntax(at, 1).with_help("an `if` condition has no arithmetic; compute it with $(...)")
             }
-            _ => {
-                let len = self.text[i..].chars().next().map(|c| c.len_utf8()).unwrap_or(1);
-                Err(syntax(i, len))
-            }
+            _ => syntax(at, i.chars().next().map_or(1, char::len_utf8)),
         }
     }
+}
+
+/// The operators of a condition (`<` and `>` after `<=` and `>=`).
+fn condition_op(i: &str) -> PResult<'_, Op> {
+    alt((
+        value(Op::Bin(BinOp::Eq), tag("==")),
+        value(Op::Bin(BinOp::Ne), tag("!=")),
+        value(Op::Not, char('!')),
+        value(Op::Bin(BinOp::Le), tag("<=")),
+        value(Op::Bin(BinOp::Lt), char('<')),
+        value(Op::Bin(BinOp::Ge), tag(">=")),
+        value(Op::Bin(BinOp::Gt), char('>')),
+        value(Op::Bin(BinOp::And), tag("&&")),
+        value(Op::Bin(BinOp::Or), tag("||")),
+        value(Op::Bin(BinOp::Xor), tag("|^")),
+    ))(i)
 }
 
 /// Apply the operator on top of the stack to its operands.

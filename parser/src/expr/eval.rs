@@ -2,7 +2,8 @@
 //! [`super::evaluate`]), the walk over a parsed tree ([`eval`]), and every operation and
 //! function exactly as LAMMPS computes it.
 
-use super::parser::{atof, Build, Parser};
+use super::lex::atof;
+use super::parser::{Args, Build};
 use super::{BinOp, Expr, ExprError, Index, MathFn, Node, UnOp, ATOM_VECTORS, CONSTANTS, GROUP_FUNCTIONS, MATH_FUNCTIONS, UNSUPPORTED_FUNCTIONS};
 use crate::context::EvalContext;
 use crate::variables;
@@ -23,16 +24,16 @@ impl Build for Evaluator<'_> {
     fn binary(&mut self, op: BinOp, a: f64, b: f64, offset: usize, len: usize) -> Result<f64, ExprError> {
         binary(op, a, b).map_err(|m| ExprError::new(m, offset, len))
     }
-    fn math(&mut self, p: &Parser, f: MathFn, args: &[(usize, usize)], offset: usize, len: usize) -> Result<f64, ExprError> {
+    fn math(&mut self, f: MathFn, args: &Args<'_>, offset: usize, len: usize) -> Result<f64, ExprError> {
         // ternary() with three arguments reads only the branch it returns
         if f == MathFn::Ternary && args.len() == 3 {
-            let c = p.arg(self, args[0])?;
-            return p.arg(self, if c != 0.0 { args[1] } else { args[2] });
+            let c = args.read(self, 0)?;
+            return args.read(self, if c != 0.0 { 1 } else { 2 });
         }
         // LAMMPS computes every argument before it checks their number
         let mut v = Vec::with_capacity(args.len());
-        for &r in args {
-            v.push(p.arg(self, r)?);
+        for k in 0..args.len() {
+            v.push(args.read(self, k)?);
         }
         math(self.ctx, f, &v, offset, len)
     }

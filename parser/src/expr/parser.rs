@@ -1,11 +1,24 @@
-//! The formula grammar, written once and used two ways through [`Build`]: to make a tree
-//! ([`TreeBuilder`]) and to compute a value while reading ([`super::eval::Evaluator`]).
+//! The formula grammar, written once with nom and used two ways through [`Build`]: to make a
+//! tree ([`TreeBuilder`]) and to compute a value while reading ([`super::eval::Evaluator`]).
 //!
 //! LAMMPS computes while it parses, so the first error it meets (a syntax error, a division
 //! by zero, an unknown keyword) is the one it reports, and the unused branch of `ternary()`
 //! is never read. Computing through the parser reproduces that order exactly; the tree keeps
 //! the same structure for later walks.
+//!
+//! Two layers: [`Lexer`] reads operands and operators (it needs only the whole text, for byte
+//! offsets), and [`Grammar`] applies LAMMPS' precedence and hands every piece to the builder
+//! as soon as it is read.
 
+use nom::branch::alt;
+use nom::bytes::complete::{tag, take_till1, take_while};
+use nom::character::complete::{anychar, char};
+use nom::combinator::{consumed, eof, map, map_opt, not, opt, recognize, value};
+use nom::multi::{many0_count, many_m_n, separated_list1};
+use nom::sequence::terminated;
+use nom::{Finish, Offset};
+
+use super::lex::{self, is_word_char, nested, parenthesized, space, strtod_prefix, Fail, PResult};
 use super::{BinOp, Expr, ExprError, Index, MathFn, Node, UnOp, ATOM_VECTORS, CONSTANTS, MATH_FUNCTIONS};
 
 const SYNTAX: &str = "Invalid syntax in variable formula";
@@ -21,9 +34,9 @@ pub(crate) trait Build {
     fn leaf(&mut self, e: Expr) -> Result<Self::Out, ExprError>;
     fn unary(&mut self, op: UnOp, arg: Self::Out, offset: usize, len: usize) -> Result<Self::Out, ExprError>;
     fn binary(&mut self, op: BinOp, a: Self::Out, b: Self::Out, offset: usize, len: usize) -> Result<Self::Out, ExprError>;
-    /// A math function; `args` are the byte ranges of its arguments, read with
-    /// [`Parser::arg`] in the order (and as far) the builder wants.
-    fn math(&mut self, p: &Parser, f: MathFn, args: &[(usize, usize)], offset: usize, len: usize) -> Result<Self::Out, ExprError>
+    /// A math function; its arguments are read with [`Args::read`] in the order (and as far)
+    /// the builder wants.
+    fn math(&mut self, f: MathFn, args: &Args<'_>, offset: usize, len: usize) -> Result<Self::Out, ExprError>
     where
         Self: Sized;
 }
@@ -42,408 +55,351 @@ impl Build for TreeBuilder {
     fn binary(&mut self, op: BinOp, a: Expr, b: Expr, offset: usize, len: usize) -> Result<Expr, ExprError> {
         Ok(Expr { node: Node::Binary(op, Box::new(a), Box::new(b)), offset, len })
     }
-    fn math(&mut self, p: &Parser, f: MathFn, args: &[(usize, usize)], offset: usize, len: usize) -> Result<Expr, ExprError> {
-        let mut parsed = Vec::with_capacity(args.len());
-        for &r in args {
-            parsed.push(p.arg(self, r)?);
-        }
+    fn math(&mut self, f: MathFn, args: &Args<'_>, offset: usize, len: usize) -> Result<Expr, ExprError> {
+        let parsed = (0..args.len()).map(|k| args.read(self, k)).collect::<Result<_, _>>()?;
         Ok(Expr { node: Node::Math(f, parsed), offset, len })
+    }
+}
+
+/// Read `text` as one formula.
+pub(crate) fn read<B: Build>(text: &str, bld: &mut B) -> Result<B::Out, ExprError> {
+    Grammar { lex: Lexer { text }, bld }.whole(text)
+}
+
+/// The arguments of a math function: the text of each, read as a formula of its own (as
+/// LAMMPS does) when the builder asks.
+pub(crate) struct Args<'t> {
+    lex: Lexer<'t>,
+    items: Vec<&'t str>,
+}
+
+impl Args<'_> {
+    pub(crate) fn len(&self) -> usize {
+        self.items.len()
+    }
+    /// Read argument `k`.
+    pub(crate) fn read<B: Build>(&self, bld: &mut B, k: usize) -> Result<B::Out, ExprError> {
+        Grammar { lex: self.lex, bld }.whole(self.items[k])
     }
 }
 
 /// A value with the byte range of its text.
 type Spanned<T> = (T, usize, usize);
 
-pub(crate) struct Parser<'a> {
-    text: &'a str,
-    b: &'a [u8],
-    pos: usize,
-    /// End of the part being read (the inside of parentheses and each function argument is
-    /// read on its own, as in LAMMPS).
-    end: usize,
+/// The binary operator after an operand and the text after that operator.
+type Lookahead<'t> = Option<(BinOp, &'t str)>;
+
+/// Precedence and the builder.
+struct Grammar<'t, 'b, B> {
+    lex: Lexer<'t>,
+    bld: &'b mut B,
 }
 
-pub(crate) fn is_space(c: u8) -> bool {
-    matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0b | 0x0c)
-}
-pub(crate) fn is_word_char(c: u8) -> bool {
-    c.is_ascii_alphanumeric() || c == b'_'
-}
-
-impl<'a> Parser<'a> {
-    pub(crate) fn new(text: &'a str) -> Parser<'a> {
-        Parser { text, b: text.as_bytes(), pos: 0, end: text.len() }
-    }
-
-    /// Read the whole text as one formula.
-    pub(crate) fn whole<B: Build>(&mut self, bld: &mut B) -> Result<B::Out, ExprError> {
-        let (v, _, _) = self.binary(bld, 1)?;
-        self.skip_space();
-        if self.pos < self.end {
-            return Err(self.operator_error());
-        }
+impl<'t, B: Build> Grammar<'t, '_, B> {
+    /// `i` as one formula: the whole text, the inside of parentheses or one function argument.
+    fn whole(&mut self, i: &'t str) -> Result<B::Out, ExprError> {
+        let lex = self.lex;
+        // at precedence 1 every operator is taken, so the formula is read to its end
+        let (_, ((v, _, _), next)) = self.binary(i, 1).finish().map_err(|e| lex.report(e))?;
+        debug_assert!(next.is_none(), "formula left unread");
         Ok(v)
     }
 
-    /// Read one function argument (a byte range of the text) as a formula.
-    pub(crate) fn arg<B: Build>(&self, bld: &mut B, (lo, hi): (usize, usize)) -> Result<B::Out, ExprError> {
-        let mut p = Parser { text: self.text, b: self.b, pos: lo, end: hi };
-        p.whole(bld)
+    /// Operations of precedence `min` and above, each grouped left to right (precedence
+    /// climbing), and the operator after them, read once and handed to the caller (`None` at
+    /// the end). A loop rather than nom's `fold_many0`: each operation is built as soon as its
+    /// right operand is read, and building may fail (a division by zero stops LAMMPS there).
+    fn binary(&mut self, i: &'t str, min: u8) -> PResult<'t, (Spanned<B::Out>, Lookahead<'t>)> {
+        let (i, (mut lhs, lo, mut hi)) = self.unary(i)?;
+        let (mut i, mut next) = self.lex.lookahead(i)?;
+        while let Some((op, after)) = next {
+            if op.precedence() < min {
+                break;
+            }
+            let (rest, ((rhs, _, rhi), after_rhs)) = self.binary(after, op.precedence() + 1)?;
+            hi = rhi;
+            lhs = self.bld.binary(op, lhs, rhs, lo, hi - lo)?;
+            (i, next) = (rest, after_rhs);
+        }
+        Ok((i, ((lhs, lo, hi), next)))
     }
 
-    fn peek(&self) -> Option<u8> {
-        (self.pos < self.end).then(|| self.b[self.pos])
+    /// Unary `-` and `!` apply to the operand right after them (they bind tighter than `^`).
+    fn unary(&mut self, i: &'t str) -> PResult<'t, Spanned<B::Out>> {
+        let (i, _) = space(i)?;
+        let (rest, op) = opt(unary_op)(i)?;
+        let Some(op) = op else { return self.primary(i) };
+        let (rest, (arg, _, hi)) = self.unary(rest)?;
+        let lo = self.lex.at(i);
+        Ok((rest, (self.bld.unary(op, arg, lo, hi - lo)?, lo, hi)))
     }
-    fn peek_at(&self, k: usize) -> Option<u8> {
-        (self.pos + k < self.end).then(|| self.b[self.pos + k])
+
+    /// An operand, handed to the builder (the inside of parentheses is a formula of its own).
+    fn primary(&mut self, i: &'t str) -> PResult<'t, Spanned<B::Out>> {
+        let (rest, operand) = self.lex.operand(i)?;
+        let (lo, hi) = (self.lex.at(i), self.lex.at(rest));
+        let out = match operand {
+            Operand::Group(inside) => self.whole(inside)?,
+            Operand::Leaf(node) => self.bld.leaf(Expr { node, offset: lo, len: hi - lo })?,
+            Operand::Math(f, items) => self.bld.math(f, &Args { lex: self.lex, items }, lo, hi - lo)?,
+        };
+        Ok((rest, (out, lo, hi)))
     }
-    fn skip_space(&mut self) {
-        while matches!(self.peek(), Some(c) if is_space(c)) {
-            self.pos += 1;
+}
+
+/// An operand as read, before the builder sees it. `repr(u8)` keeps the node at an aligned
+/// offset: with the default layout the tag shares the node's first byte, and moving an operand
+/// copied the node from an odd offset, which stalled the CPU (evaluation was ~10% slower).
+#[repr(u8)]
+enum Operand<'t> {
+    /// `( ... )`: the text inside.
+    Group(&'t str),
+    /// Anything the builder takes whole: a number, `v_name`, `c_ID[i]`, a thermo keyword, a
+    /// group or other non-math function, ...
+    Leaf(Node),
+    /// A math function and the text of its arguments.
+    Math(MathFn, Vec<&'t str>),
+}
+
+/// Reads the tokens of a formula; knows the whole text, to give byte offsets.
+#[derive(Clone, Copy)]
+struct Lexer<'t> {
+    text: &'t str,
+}
+
+impl<'t> Lexer<'t> {
+    /// Byte offset of `i` (a slice of the text).
+    fn at(self, i: &str) -> usize {
+        self.text.offset(i)
+    }
+
+    /// The error to report for a failed read.
+    fn report(self, e: Fail<'_>) -> ExprError {
+        match e {
+            Fail::Located(e) => *e,
+            Fail::NoMatch(at) => self.syntax_here(at),
         }
     }
-    fn syntax_at(&self, offset: usize, len: usize) -> ExprError {
-        ExprError::new(SYNTAX, offset, len)
-    }
-    /// A syntax error at the current character (or at the end).
-    fn syntax_here(&self) -> ExprError {
-        let Some(c) = self.peek() else {
-            return self.syntax_at(self.end, 0).with_help("the formula ends where an operand is expected");
+
+    /// A syntax error at the first character of `i` (or at the end).
+    fn syntax_here(self, i: &str) -> ExprError {
+        let at = self.at(i);
+        let Some(c) = i.chars().next() else {
+            return ExprError::new(SYNTAX, at, 0).with_help("the formula ends where an operand is expected");
         };
-        let len = self.text[self.pos..].chars().next().map(|ch| ch.len_utf8()).unwrap_or(1);
-        let e = self.syntax_at(self.pos, len);
+        let e = ExprError::new(SYNTAX, at, c.len_utf8());
         match c {
-            b'+' => e.with_help("LAMMPS formulas have no unary `+`"),
-            b',' => e.with_help("a comma separates the arguments of a function only"),
-            b')' => e.with_help("this `)` has no matching `(`"),
-            b'"' | b'\'' => e.with_help("quotes are not part of a formula"),
+            '+' => e.with_help("LAMMPS formulas have no unary `+`"),
+            ',' => e.with_help("a comma separates the arguments of a function only"),
+            ')' => e.with_help("this `)` has no matching `(`"),
+            '"' | '\'' => e.with_help("quotes are not part of a formula"),
             _ => e,
         }
     }
-    /// Where an operator was expected but something else was found.
-    fn operator_error(&self) -> ExprError {
-        let e = self.syntax_here();
-        match self.peek() {
-            Some(c) if c.is_ascii_alphanumeric() || c == b'.' || c == b'(' => {
+
+    /// Where an operator was expected but `i` starts with something else.
+    fn operator_error(self, i: &str) -> ExprError {
+        let e = self.syntax_here(i);
+        match i.chars().next() {
+            Some(c) if c.is_ascii_alphanumeric() || c == '.' || c == '(' => {
                 e.with_help("an operator is missing between two operands")
             }
             _ => e,
         }
     }
 
-    /// Left-associative binary operators of precedence >= `min`.
-    fn binary<B: Build>(&mut self, bld: &mut B, min: u8) -> Result<Spanned<B::Out>, ExprError> {
-        let (mut lhs, lo, mut hi) = self.unary(bld)?;
-        loop {
-            self.skip_space();
-            if self.pos >= self.end {
-                break;
-            }
-            // LAMMPS reports a bad operator as soon as it reads it, before finishing the
-            // operations to its left
-            let (op, n) = self.binary_op()?;
-            if op.precedence() < min {
-                break;
-            }
-            self.pos += n;
-            let (rhs, _, rhi) = self.binary(bld, op.precedence() + 1)?;
-            hi = rhi;
-            lhs = bld.binary(op, lhs, rhs, lo, hi - lo)?;
-        }
-        Ok((lhs, lo, hi))
+    /// The operator after an operand (blanks skipped), with the text after it. LAMMPS reports
+    /// a bad operator as soon as it reads it, before the operations on its left.
+    fn lookahead(self, i: &'t str) -> PResult<'t, Lookahead<'t>> {
+        let (i, _) = space(i)?;
+        let (after, op) = self.operator(i)?;
+        Ok((i, op.map(|op| (op, after))))
     }
 
-    /// The binary operator at `pos` and its length, without consuming it.
-    fn binary_op(&self) -> Result<(BinOp, usize), ExprError> {
-        let c = self.peek().unwrap_or(0);
-        let next = self.peek_at(1);
-        Ok(match c {
-            b'+' => (BinOp::Add, 1),
-            b'-' => (BinOp::Sub, 1),
-            b'*' => (BinOp::Mul, 1),
-            b'/' => (BinOp::Div, 1),
-            b'%' => (BinOp::Mod, 1),
-            b'^' => (BinOp::Pow, 1),
-            b'=' if next == Some(b'=') => (BinOp::Eq, 2),
-            b'!' if next == Some(b'=') => (BinOp::Ne, 2),
-            b'<' if next == Some(b'=') => (BinOp::Le, 2),
-            b'<' => (BinOp::Lt, 1),
-            b'>' if next == Some(b'=') => (BinOp::Ge, 2),
-            b'>' => (BinOp::Gt, 1),
-            b'&' if next == Some(b'&') => (BinOp::And, 2),
-            b'|' if next == Some(b'|') => (BinOp::Or, 2),
-            b'|' if next == Some(b'^') => (BinOp::Xor, 2),
-            b'=' => return Err(self.syntax_at(self.pos, 1).with_help("use `==` to compare two values")),
-            b'!' => return Err(self.syntax_at(self.pos, 1).with_help("`!` negates the operand that follows it")),
-            b'&' => return Err(self.syntax_at(self.pos, 1).with_help("use `&&` for a logical and")),
-            b'|' => return Err(self.syntax_at(self.pos, 1).with_help("use `||` for a logical or, `|^` for exclusive or")),
-            _ => return Err(self.operator_error()),
-        })
+    /// The binary operator at the start of `i`, `None` at the end of the text; anything else
+    /// is an error.
+    fn operator(self, i: &'t str) -> PResult<'t, Option<BinOp>> {
+        alt((value(None, eof), map(binary_op, Some), |i| Err(self.bad_operator(i).into())))(i)
     }
 
-    /// Unary `-` and `!` apply to the operand right after them (they bind tighter than `^`).
-    fn unary<B: Build>(&mut self, bld: &mut B) -> Result<Spanned<B::Out>, ExprError> {
-        self.skip_space();
-        let start = self.pos;
-        let op = match (self.peek(), self.peek_at(1)) {
-            (Some(b'-'), _) => UnOp::Neg,
-            (Some(b'!'), n) if n != Some(b'=') => UnOp::Not,
-            _ => return self.primary(bld),
-        };
-        self.pos += 1;
-        let (arg, _, hi) = self.unary(bld)?;
-        Ok((bld.unary(op, arg, start, hi - start)?, start, hi))
-    }
-
-    fn primary<B: Build>(&mut self, bld: &mut B) -> Result<Spanned<B::Out>, ExprError> {
-        let start = self.pos;
-        match self.peek() {
-            Some(b'(') => {
-                let close = self.matching_paren(start)?;
-                let inner = self.arg(bld, (start + 1, close))?;
-                self.pos = close + 1;
-                Ok((inner, start, close + 1))
-            }
-            Some(c) if c.is_ascii_digit() || c == b'.' => {
-                let e = self.number()?;
-                let hi = e.offset + e.len;
-                Ok((bld.leaf(e)?, start, hi))
-            }
-            Some(c) if c.is_ascii_alphabetic() => self.word(bld),
-            _ => Err(self.syntax_here()),
+    fn bad_operator(self, i: &str) -> ExprError {
+        let e = ExprError::new(SYNTAX, self.at(i), 1);
+        match i.as_bytes()[0] {
+            b'=' => e.with_help("use `==` to compare two values"),
+            b'!' => e.with_help("`!` negates the operand that follows it"),
+            b'&' => e.with_help("use `&&` for a logical and"),
+            b'|' => e.with_help("use `||` for a logical or, `|^` for exclusive or"),
+            _ => self.operator_error(i),
         }
     }
 
-    /// The `)` matching the `(` at `open`.
-    fn matching_paren(&self, open: usize) -> Result<usize, ExprError> {
-        matching_paren(self.b, open, self.end)
-            .ok_or_else(|| self.syntax_at(open, 1).with_help("this `(` is never closed"))
+    /// A number, a word with what follows it, or parentheses.
+    fn operand(self, i: &'t str) -> PResult<'t, Operand<'t>> {
+        alt((
+            map(|i| self.number(i), Operand::Leaf),
+            |i| self.word(i),
+            map(|i| self.group(i), Operand::Group),
+            |i| Err(self.syntax_here(i).into()),
+        ))(i)
     }
 
-    /// A number: digits and points, then an optional exponent; the value is what `strtod`
-    /// reads from the start of that text (LAMMPS ignores the rest, so `1.2.3` is 1.2).
-    fn number(&mut self) -> Result<Expr, ExprError> {
-        let start = self.pos;
-        self.pos = number_end(self.b, start, self.end);
-        let token = &self.text[start..self.pos];
-        let value = strtod_prefix(token).map_err(|m| ExprError::new(m, start, token.len()))?;
-        Ok(Expr { node: Node::Number(value), offset: start, len: self.pos - start })
+    /// `( ... )`: the text inside.
+    fn group(self, i: &'t str) -> PResult<'t, &'t str> {
+        parenthesized(i, || self.unclosed(i))
+    }
+
+    /// `i` starts with a `(` that has no matching `)`.
+    fn unclosed(self, i: &str) -> ExprError {
+        ExprError::new(SYNTAX, self.at(i), 1).with_help("this `(` is never closed")
+    }
+
+    /// A number, converted as `strtod` converts it.
+    fn number(self, i: &'t str) -> PResult<'t, Node> {
+        let (rest, token) = lex::number(i)?;
+        let value = strtod_prefix(token).map_err(|m| ExprError::new(m, self.at(i), token.len()))?;
+        Ok((rest, Node::Number(value)))
     }
 
     /// A word and what follows it: `c_ID[..]`, `f_ID[..]`, `v_name[..]`, `func(...)`, `x[ID]`,
     /// an atom vector, a constant or a thermo keyword.
-    fn word<B: Build>(&mut self, bld: &mut B) -> Result<Spanned<B::Out>, ExprError> {
-        let start = self.pos;
-        while matches!(self.peek(), Some(c) if is_word_char(c)) {
-            self.pos += 1;
-        }
-        let word = &self.text[start..self.pos];
-        let node = if let Some(id) = word.strip_prefix("c_") {
-            Node::Compute { id: id.to_string(), indices: self.brackets(2)? }
+    fn word(self, i: &'t str) -> PResult<'t, Operand<'t>> {
+        let (rest, word) = lex::word(i)?;
+        let (rest, node) = if let Some(id) = word.strip_prefix("c_") {
+            let (rest, indices) = self.brackets(rest, 2)?;
+            (rest, Node::Compute { id: id.to_string(), indices })
         } else if let Some(id) = word.strip_prefix("f_") {
-            Node::Fix { id: id.to_string(), indices: self.brackets(2)? }
+            let (rest, indices) = self.brackets(rest, 2)?;
+            (rest, Node::Fix { id: id.to_string(), indices })
         } else if word.starts_with("C_") || word.starts_with("F_") {
-            self.brackets(2)?;
-            Node::UpperCase(word.to_string())
+            let (rest, _) = self.brackets(rest, 2)?;
+            (rest, Node::UpperCase(word.to_string()))
         } else if let Some(name) = word.strip_prefix("v_") {
-            let mut idx = self.brackets(1)?;
-            Node::Variable { name: name.to_string(), index: idx.pop() }
-        } else if self.peek() == Some(b'(') {
-            return self.call(bld, start, word);
-        } else if self.peek() == Some(b'[') {
-            let id = self.bracket()?;
-            Node::AtomValue { keyword: word.to_string(), id }
-        } else if ATOM_VECTORS.contains(&word) {
-            Node::AtomVector(word.to_string())
-        } else if let Some(&(_, v)) = CONSTANTS.iter().find(|(n, _)| *n == word) {
-            Node::Number(v)
+            let (rest, index) = opt(|i| self.bracket(i))(rest)?;
+            (rest, Node::Variable { name: name.to_string(), index })
+        } else if rest.starts_with('(') {
+            return self.call(word, rest);
+        } else if let (rest, Some(id)) = opt(|i| self.bracket(i))(rest)? {
+            (rest, Node::AtomValue { keyword: word.to_string(), id })
         } else {
-            Node::Thermo(word.to_string())
+            (rest, bare_word(word))
         };
-        let e = Expr { node, offset: start, len: self.pos - start };
-        Ok((bld.leaf(e)?, start, self.pos))
+        Ok((rest, Operand::Leaf(node)))
     }
 
-    /// Up to `max` bracket pairs right after a word.
-    fn brackets(&mut self, max: usize) -> Result<Vec<Index>, ExprError> {
-        let mut out = vec![];
-        while out.len() < max && self.peek() == Some(b'[') {
-            out.push(self.bracket()?);
+    /// `name(args)` (`rest` starts at the `(`): a math function (its arguments are formulas)
+    /// or any other function (its arguments are kept as trimmed text).
+    fn call(self, name: &str, rest: &'t str) -> PResult<'t, Operand<'t>> {
+        let (rest, items) = self.args(rest)?;
+        if let Some(&(_, f, _)) = MATH_FUNCTIONS.iter().find(|(n, _, _)| *n == name) {
+            return Ok((rest, Operand::Math(f, items)));
         }
-        Ok(out)
+        let args = items.iter().map(|a| a.trim().to_string()).collect();
+        Ok((rest, Operand::Leaf(Node::Function { name: name.to_string(), args })))
     }
 
-    /// `[digits]` or `[v_name]` at `pos` (LAMMPS `int_between_brackets`). LAMMPS reports these
-    /// errors without the variable's name.
-    fn bracket(&mut self) -> Result<Index, ExprError> {
-        let open = self.pos;
-        let start = open + 1;
-        let is_var = self.text[start..self.end].starts_with("v_");
-        let mut i = start;
-        while i < self.end && self.b[i] != b']' {
-            let c = self.b[i];
-            let ok = if is_var { is_word_char(c) } else { c.is_ascii_digit() };
-            if !ok {
-                let msg = if is_var {
-                    "Variable name between brackets must be alphanumeric or underscore characters"
-                } else {
-                    "Non digit character between brackets in variable"
-                };
-                return Err(ExprError::new(msg, i, 1).bare().with_help("the index is a positive integer or v_name"));
-            }
-            i += 1;
+    /// `(` and the comma-separated arguments up to its matching `)` (commas inside nested
+    /// parentheses do not split), in one pass.
+    fn args(self, i: &'t str) -> PResult<'t, Vec<&'t str>> {
+        let arg = recognize(many0_count(alt((take_till1(|c| matches!(c, '(' | ')' | ',')), nested))));
+        let (inside, _) = char('(')(i)?;
+        let mut list = terminated(consumed(separated_list1(char(','), arg)), char(')'));
+        let Ok((rest, (inside, items))) = list(inside) else { return Err(self.unclosed(i).into()) };
+        if items.len() > MAX_FUNC_ARGS {
+            let e = ExprError::new("Too many args in variable function", self.at(inside), inside.len());
+            return Err(e.bare().with_help(format!("a function takes at most {MAX_FUNC_ARGS} arguments")).into());
         }
-        if i >= self.end {
-            return Err(ExprError::new("Mismatched brackets in variable", open, i - open).bare().with_help("`]` is missing"));
+        Ok((rest, items))
+    }
+
+    /// Up to `max` bracket pairs.
+    fn brackets(self, i: &'t str, max: usize) -> PResult<'t, Vec<Index>> {
+        many_m_n(0, max, |i| self.bracket(i))(i)
+    }
+
+    /// `[digits]` or `[v_name]` (LAMMPS `int_between_brackets`); not a match without `[`.
+    /// LAMMPS reports these errors without the variable's name.
+    fn bracket(self, i: &'t str) -> PResult<'t, Index> {
+        let (start, _) = char('[')(i)?;
+        let open = self.at(i);
+        let is_var = start.starts_with("v_");
+        let allowed: fn(char) -> bool = if is_var { is_word_char } else { |c| c.is_ascii_digit() };
+        let (rest, inside) = take_while(allowed)(start)?;
+        let Ok((rest, _)) = char::<_, Fail>(']')(rest) else {
+            return Err(self.unclosed_bracket(open, rest, is_var).into());
+        };
+        if inside.is_empty() {
+            return Err(ExprError::new("Empty brackets in variable", open, 2).bare().into());
         }
-        if i == start {
-            return Err(ExprError::new("Empty brackets in variable", open, 2).bare());
-        }
-        self.pos = i + 1;
-        let inside = &self.text[start..i];
         if is_var {
-            return Ok(Index::Variable(inside[2..].to_string()));
+            return Ok((rest, Index::Variable(inside[2..].to_string())));
         }
         match inside.parse::<i64>() {
-            Ok(0) => Err(ExprError::new("Index between variable brackets must be positive", open, i + 1 - open).bare()),
-            Ok(n) => Ok(Index::Number(n)),
-            Err(_) => Err(ExprError::new(format!("Index {inside} between brackets is too large"), start, i - start).bare()),
-        }
-    }
-
-    /// `name(args)`: a math function (arguments are formulas) or any other function
-    /// (arguments are kept as trimmed text).
-    fn call<B: Build>(&mut self, bld: &mut B, start: usize, name: &str) -> Result<Spanned<B::Out>, ExprError> {
-        let open = self.pos;
-        let close = self.matching_paren(open)?;
-        self.pos = close + 1;
-        let args = self.split_args(open + 1, close)?;
-        let (offset, len) = (start, close + 1 - start);
-        let out = if let Some(&(_, f, _)) = MATH_FUNCTIONS.iter().find(|(n, _, _)| *n == name) {
-            bld.math(self, f, &args, offset, len)?
-        } else {
-            let args = args.iter().map(|&(lo, hi)| self.text[lo..hi].trim().to_string()).collect();
-            bld.leaf(Expr { node: Node::Function { name: name.to_string(), args }, offset, len })?
-        };
-        Ok((out, offset, close + 1))
-    }
-
-    /// Byte ranges of the comma-separated arguments in `lo..hi` (commas inside nested
-    /// parentheses do not split).
-    fn split_args(&self, lo: usize, hi: usize) -> Result<Vec<(usize, usize)>, ExprError> {
-        let mut out = vec![];
-        let mut level = 0i32;
-        let mut from = lo;
-        for i in lo..hi {
-            match self.b[i] {
-                b'(' => level += 1,
-                b')' => level -= 1,
-                b',' if level == 0 => {
-                    out.push((from, i));
-                    from = i + 1;
-                }
-                _ => {}
+            Ok(0) => {
+                let e = ExprError::new("Index between variable brackets must be positive", open, self.at(rest) - open);
+                Err(e.bare().into())
+            }
+            Ok(n) => Ok((rest, Index::Number(n))),
+            Err(_) => {
+                let msg = format!("Index {inside} between brackets is too large");
+                Err(ExprError::new(msg, self.at(start), inside.len()).bare().into())
             }
         }
-        out.push((from, hi));
-        if out.len() > MAX_FUNC_ARGS {
-            return Err(ExprError::new("Too many args in variable function", lo, hi - lo)
-                .bare()
-                .with_help(format!("a function takes at most {MAX_FUNC_ARGS} arguments")));
+    }
+
+    /// The index that opens at `open` stops at `rest`, which is not `]`.
+    fn unclosed_bracket(self, open: usize, rest: &str, is_var: bool) -> ExprError {
+        let at = self.at(rest);
+        if rest.is_empty() {
+            let e = ExprError::new("Mismatched brackets in variable", open, at - open);
+            return e.bare().with_help("`]` is missing");
         }
-        Ok(out)
+        let msg = if is_var {
+            "Variable name between brackets must be alphanumeric or underscore characters"
+        } else {
+            "Non digit character between brackets in variable"
+        };
+        ExprError::new(msg, at, 1).bare().with_help("the index is a positive integer or v_name")
     }
 }
 
-/// The `)` matching the `(` at `open`, before `end` (LAMMPS counts parentheses only).
-pub(crate) fn matching_paren(b: &[u8], open: usize, end: usize) -> Option<usize> {
-    let mut level = 0;
-    for (i, &c) in b.iter().enumerate().take(end).skip(open + 1) {
-        match c {
-            b'(' => level += 1,
-            b')' if level > 0 => level -= 1,
-            b')' => return Some(i),
-            _ => {}
-        }
-    }
-    None
-}
-
-/// End of the number text that starts at `i`: digits and points, then `e` or `E`, a sign
-/// and digits (LAMMPS' scan; the value is read from it by [`strtod_prefix`]).
-pub(crate) fn number_end(b: &[u8], mut i: usize, end: usize) -> usize {
-    while i < end && (b[i].is_ascii_digit() || b[i] == b'.') {
-        i += 1;
-    }
-    if i < end && (b[i] == b'e' || b[i] == b'E') {
-        i += 1;
-        if i < end && (b[i] == b'+' || b[i] == b'-') {
-            i += 1;
-        }
-        while i < end && b[i].is_ascii_digit() {
-            i += 1;
-        }
-    }
-    i
-}
-
-/// The value `strtod` reads from the start of `token` (digits, points, exponent), with the
-/// checks of C++ `std::stod` that LAMMPS uses: no number at all, overflow and underflow
-/// (a result that is not a normal double) are errors (LAMMPS aborts on them).
-pub fn strtod_prefix(token: &str) -> Result<f64, String> {
-    let b = token.as_bytes();
-    let mut i = 0;
-    let mut digits = 0;
-    let mut nonzero = false;
-    let mut scan_digits = |i: &mut usize| {
-        while *i < b.len() && b[*i].is_ascii_digit() {
-            nonzero |= b[*i] != b'0';
-            *i += 1;
-            digits += 1;
-        }
-    };
-    scan_digits(&mut i);
-    if i < b.len() && b[i] == b'.' {
-        i += 1;
-        scan_digits(&mut i);
-    }
-    if digits == 0 {
-        return Err(format!("Invalid number `{token}` in variable formula"));
-    }
-    let mut end = i;
-    if i < b.len() && (b[i] == b'e' || b[i] == b'E') {
-        let mut j = i + 1;
-        if j < b.len() && (b[j] == b'+' || b[j] == b'-') {
-            j += 1;
-        }
-        let e = j;
-        while j < b.len() && b[j].is_ascii_digit() {
-            j += 1;
-        }
-        if j > e {
-            end = j;
-        }
-    }
-    let text = &token[..end];
-    let v: f64 = text.parse().map_err(|_| format!("Invalid number `{token}` in variable formula"))?;
-    if v.is_infinite() || (nonzero && !v.is_normal()) {
-        return Err(format!("Number `{text}` in variable formula is out of the range of a double"));
-    }
-    Ok(v)
-}
-
-/// C `atof`: the number at the start of `s` after blanks and an optional sign, 0 if none.
-pub fn atof(s: &str) -> f64 {
-    let t = s.trim_start_matches(|c: char| c.is_ascii_whitespace());
-    let (neg, t) = match t.as_bytes().first() {
-        Some(b'-') => (true, &t[1..]),
-        Some(b'+') => (false, &t[1..]),
-        _ => (false, t),
-    };
-    let v = strtod_prefix(t).unwrap_or(0.0);
-    if neg {
-        -v
+/// A word with nothing after it: an atom vector, a constant or a thermo keyword.
+fn bare_word(word: &str) -> Node {
+    if ATOM_VECTORS.contains(&word) {
+        Node::AtomVector(word.to_string())
+    } else if let Some(&(_, v)) = CONSTANTS.iter().find(|(n, _)| *n == word) {
+        Node::Number(v)
     } else {
-        v
+        Node::Thermo(word.to_string())
     }
+}
+
+/// LAMMPS' binary operators. The arithmetic ones are single characters that start no other
+/// operator, so one look at the character settles them (the commonest case, read first).
+fn binary_op(i: &str) -> PResult<'_, BinOp> {
+    let arithmetic = |c| match c {
+        '+' => Some(BinOp::Add),
+        '-' => Some(BinOp::Sub),
+        '*' => Some(BinOp::Mul),
+        '/' => Some(BinOp::Div),
+        '%' => Some(BinOp::Mod),
+        '^' => Some(BinOp::Pow),
+        _ => None,
+    };
+    alt((
+        map_opt(anychar, arithmetic),
+        value(BinOp::Eq, tag("==")),
+        value(BinOp::Ne, tag("!=")),
+        value(BinOp::Le, tag("<=")),
+        value(BinOp::Lt, char('<')),
+        value(BinOp::Ge, tag(">=")),
+        value(BinOp::Gt, char('>')),
+        value(BinOp::And, tag("&&")),
+        value(BinOp::Or, tag("||")),
+        value(BinOp::Xor, tag("|^")),
+    ))(i)
+}
+
+/// Unary minus, and a `!` that does not start `!=`.
+fn unary_op(i: &str) -> PResult<'_, UnOp> {
+    alt((value(UnOp::Neg, char('-')), value(UnOp::Not, terminated(char('!'), not(char('='))))))(i)
 }

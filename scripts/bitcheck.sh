@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Bit-identity check between two dmhs builds: every deck below is captured (`dmhs capture`: step-0
-# forces and final state, %.17g-exact) by both binaries at 1 and 2 threads, and the files must be
-# byte-identical. Used before and after a change that must not change results.
+# forces and final state, %.17g-exact, and the thermo rows of the log) by both binaries at 1 and 2
+# threads, and the files must be byte-identical. Used before and after a change that must not change results.
 #   scripts/bitcheck.sh OLD_BINARY NEW_BINARY [OUTDIR]
 # Prints one line per deck and thread count; exits 1 if any capture differs or fails in one build only.
 set -uo pipefail
@@ -46,6 +46,8 @@ for entry in "${decks[@]}"; do
       # shellcheck disable=SC2086
       (cd "$dir/deck" && timeout 600 "$bin" capture "$(basename "$deck")" --out "$dir/capture" -threads $t $vars >/dev/null 2>"$dir/stderr")
       rc+=($?)
+      # thermo rows of the log (energies and virial too); timings differ from run to run
+      grep -E '^ *-?[0-9]' "$dir/deck/log.dmhs" 2>/dev/null | grep -v '%' > "$dir/capture/thermo.txt"
       rm -f "$dir/deck/log.dmhs"
     done
     if [ "${rc[0]}" -ne 0 ] || [ "${rc[1]}" -ne 0 ]; then

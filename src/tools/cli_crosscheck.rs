@@ -13,7 +13,12 @@ pub const DEFAULT_VEL_TOL: f64 = 1e-8;
 
 /// dmhs' step-0 forces and final state for a deck (relative paths resolve in the deck's folder).
 pub fn dmhs_capture(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<(AtomTable, AtomTable, f64), String> {
-    let opts = DeckOptions { vars: vars.to_vec(), screen: false, log: None, base_dir: Some(deck_dir(deck)), capture: true, ..Default::default() };
+    dmhs_capture_logged(deck, vars, None)
+}
+
+/// [`dmhs_capture`], writing the log to `log`.
+pub fn dmhs_capture_logged(deck: &Path, vars: &[(String, Vec<String>)], log: Option<std::path::PathBuf>) -> Result<(AtomTable, AtomTable, f64), String> {
+    let opts = DeckOptions { vars: vars.to_vec(), screen: false, log, base_dir: Some(deck_dir(deck)), capture: true, ..Default::default() };
     let run = run_file(deck, &opts).map_err(|f| f.rendered)?;
     let sim = run.sim;
     let f0 = sim.capture_setup.clone().ok_or("the deck has no run command: nothing to compare")?;
@@ -32,7 +37,7 @@ pub fn capture_cmd(decks: &[std::path::PathBuf], opts: &DeckOptions, out: Option
         return 2;
     };
     let deck_abs = std::fs::canonicalize(deck).unwrap_or(deck.clone());
-    let (forces0, fin, _) = match dmhs_capture(&deck_abs, &opts.vars) {
+    let (forces0, fin, _) = match dmhs_capture_logged(&deck_abs, &opts.vars, opts.log.clone()) {
         Ok(x) => x,
         Err(e) => {
             eprint!("{e}");

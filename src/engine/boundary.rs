@@ -2,7 +2,6 @@
 
 use crate::engine::atoms::Atoms;
 use crate::engine::domain::{BoundaryKind, Domain};
-use crate::sim::{RunError, Simulation};
 
 /// LAMMPS' margin for shrink-wrapped faces, as a fraction of the initial box length.
 const SMALL: f64 = 1.0e-4;
@@ -40,45 +39,4 @@ pub fn reset_shrink_wrap(domain: &mut Domain, initial: &Domain, atoms: &Atoms) {
             _ => {}
         }
     }
-}
-
-/// Atoms outside a fixed face are lost, as in LAMMPS: an error naming the first one
-/// (or, with `thermo_modify lost ignore`, they are removed).
-pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
-    let Some(domain) = sim.state.domain.as_ref() else { return Ok(()) };
-    let a = &sim.state.atoms;
-    let mut gone = vec![false; a.nlocal];
-    let mut first: Option<(usize, usize)> = None;
-    for i in 0..a.nlocal {
-        for d in 0..3 {
-            let [blo, bhi] = domain.boundary[d];
-            let x = a.x[i][d];
-            let out = (blo == BoundaryKind::Fixed && x < domain.lo[d]) || (bhi == BoundaryKind::Fixed && x >= domain.hi[d]) || !x.is_finite();
-            if out {
-                gone[i] = true;
-                first.get_or_insert((i, d));
-            }
-        }
-    }
-    let Some((i, d)) = first else { return Ok(()) };
-    if sim.thermo.lost_ignore {
-        let tags: std::collections::HashSet<i64> = (0..a.nlocal).filter(|&k| gone[k]).map(|k| a.tag[k]).collect();
-        sim.state.atoms.retain(&gone);
-        sim.state.topo.remove_atoms(&tags);
-        return Ok(());
-    }
-    let n_lost = gone.iter().filter(|&&g| g).count();
-    Err(RunError::new(
-        sim.state.step,
-        format!(
-            "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {} = {}, box {}..{}){}",
-            a.nlocal,
-            a.tag[i],
-            ["x", "y", "z"][d],
-            a.x[i][d],
-            domain.lo[d],
-            domain.hi[d],
-            crate::sim::stability::dt_hint(sim)
-        ),
-    ))
 }

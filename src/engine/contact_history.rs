@@ -21,7 +21,6 @@
 
 use crate::engine::atoms::Atoms;
 use crate::engine::neighbor::{ChunkList, NeighList, NEIGH_MASK};
-use crate::models::pair::SharedMut;
 use rayon::prelude::*;
 
 /// Touch flags and values aligned with one chunk of the neighbour list.
@@ -191,10 +190,10 @@ impl ContactHistory {
         self.list.clone_from(&list.chunks);
     }
 
-    /// Shared mutable access to the chunks for the slab schedule: chunk `c` of the store is
-    /// touched only by the work item of list chunk `c`.
-    pub fn shared(&mut self) -> SharedMut<HistoryChunk> {
-        SharedMut::new(&mut self.chunks)
+    /// The chunks as a window for the slab schedule (chunk `c` of the store goes with chunk `c`
+    /// of the list).
+    pub fn chunks_mut(&mut self) -> crate::engine::par::ChunksMut<'_, HistoryChunk> {
+        crate::engine::par::ChunksMut::new(&mut self.chunks)
     }
 }
 

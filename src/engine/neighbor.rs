@@ -192,6 +192,17 @@ pub struct NeighList {
 }
 
 impl NeighList {
+    /// Chunk boundaries for the slab schedule: chunk c holds atoms `bounds[c]..bounds[c + 1]`.
+    pub fn bounds(&self) -> Vec<usize> {
+        let mut b: Vec<usize> = self.chunks.iter().map(|c| c.start).collect();
+        b.push(self.chunks.last().map(|c| c.end).unwrap_or(0));
+        b
+    }
+    /// The slab schedule's invariant (see [`crate::engine::par`]): every owned partner of an
+    /// atom of chunk c lies in chunk c or c + 1.
+    pub fn check_slab_invariant(&self) -> Result<(), String> {
+        crate::engine::par::check_slab_invariant(&self.bounds(), |c| &self.chunks[c].neigh, |j| (j & NEIGH_MASK) as usize)
+    }
     pub fn npairs(&self) -> usize {
         self.chunks.iter().map(|c| c.neigh.len()).sum()
     }
@@ -263,7 +274,7 @@ impl Neighbor {
             let triggersq = trigger * trigger;
             let m = atoms.nlocal.min(self.xhold.len());
             let (x, hold) = (&atoms.x[..m], &self.xhold[..m]);
-            let moved = crate::models::fix::any_index(x.len(), |i| {
+            let moved = crate::engine::par::any_index(x.len(), |i| {
                 let dx = x[i][0] - hold[i][0];
                 let dy = x[i][1] - hold[i][1];
                 let dz = x[i][2] - hold[i][2];
@@ -500,23 +511,25 @@ impl Neighbor {
                         if j1 <= j0 {
                             return;
                         }
-                        neigh.reserve(j1 - j0);
+                        // room for every candidate, written in place and kept by advancing len
                         let mut len = neigh.len();
-                        let base = neigh.as_mut_ptr();
+                        neigh.resize(len + (j1 - j0), 0);
+                        let slots = &mut neigh[len..];
                         // slices taken before the loop: read through `a`, their addresses
-                        // were reloaded after every store through `base`
+                        // were reloaded after every store
                         let (xs, ts) = (&a.x[j0..j1], &a.typ[j0..j1]);
+                        let mut kept = 0usize;
                         for (k, (xj, &tj)) in xs.iter().zip(ts).enumerate() {
                             let dx = xi[0] - xj[0];
                             let dy = xi[1] - xj[1];
                             let dz = xi[2] - xj[2];
                             let rsq = dx * dx + dy * dy + dz * dz;
-                            // SAFETY: capacity reserved for every candidate of this range
-                            unsafe { *base.add(len) = (j0 + k) as u32 };
-                            len += (rsq <= row[tj]) as usize;
+                            // kept <= k: the write lands in `slots`
+                            slots[kept.min(k)] = (j0 + k) as u32;
+                            kept += (rsq <= row[tj]) as usize;
                         }
-                        // SAFETY: the first `len` entries are initialised
-                        unsafe { neigh.set_len(len) };
+                        len += kept;
+                        neigh.truncate(len);
                     };
                     // owned partners: later atoms of the own row, then the forward rows
                     range(i + 1, local_start[(bi + own_row_end) as usize + 1] as usize, &mut neigh);
@@ -545,6 +558,7 @@ impl Neighbor {
         static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         let generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         self.list = NeighList { chunks, cutneighsq, ntypes, has_special, generation };
+        debug_assert_eq!(self.list.check_slab_invariant(), Ok(()));
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);
         self.ago = 0;
@@ -639,5 +653,34 @@ impl Grid {
             }
         }
         rows
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::atoms::{AtomFeatures, NewAtom};
+    use crate::engine::domain::BoundaryKind;
+
+    /// Lists of random periodic boxes, thin and wide, keep the slab invariant (in debug builds
+    /// the builder asserts it too).
+    #[test]
+    fn every_owned_partner_lies_in_the_same_or_the_next_chunk() {
+        let mut seed = 12345u64;
+        let mut rand = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for (len, n) in [([6.0, 6.0, 6.0], 300), ([40.0, 5.0, 5.0], 2000), ([3.1, 3.1, 30.0], 500)] {
+            let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
+            let mut atoms = Atoms::new(AtomFeatures::default());
+            for k in 0..n {
+                atoms.push(&NewAtom::at(k as i64 + 1, 1, [rand() * len[0], rand() * len[1], rand() * len[2]]));
+            }
+            let mut neighbor = Neighbor::default();
+            neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 1.2, &SpecialTable::default()).unwrap();
+            assert!(neighbor.list.chunks.len() >= 2, "{len:?}: {} chunks", neighbor.list.chunks.len());
+            assert_eq!(neighbor.list.check_slab_invariant(), Ok(()));
+        }
     }
 }

@@ -9,7 +9,7 @@ use crate::engine::groups::Groups;
 use crate::engine::lattice::Lattice;
 use crate::engine::neighbor::{Neighbor, NeighborSettings, SpecialTable};
 use crate::engine::region::Region;
-use crate::engine::special::SpecialBonds;
+use crate::engine::special::{build_special, SpecialBonds, Topology as SpecialTopology};
 use crate::engine::tally::Tally;
 use crate::engine::topology::Topology;
 use crate::engine::units::{UnitStyle, Units};
@@ -234,5 +234,22 @@ impl State {
     pub fn topology_changed(&mut self) {
         self.special_dirty = true;
         self.rebuild_requested = true;
+    }
+    /// The special partners (1-2, 1-3, 1-4) by atom ID from the current topology.
+    pub fn rebuild_special(&mut self) -> Result<(), String> {
+        let flags = self.special_bonds.flags(false);
+        if self.topo.bonds.is_empty() {
+            self.special_table = SpecialTable { flags, ..SpecialTable::default() };
+        } else {
+            let bonds: Vec<[i64; 2]> = self.topo.bonds.iter().map(|b| b.atoms).collect();
+            let angles: Vec<[i64; 3]> = self.topo.angles.iter().map(|a| a.atoms).collect();
+            let dihedrals: Vec<[i64; 4]> = self.topo.dihedrals.iter().map(|d| d.atoms).collect();
+            let ids = &self.atoms.tag[..self.atoms.nlocal];
+            let (lists, _stats) = build_special(&self.special_bonds, ids, SpecialTopology { bonds: &bonds, angles: &angles, dihedrals: &dihedrals })?;
+            let symmetric = !self.special_bonds.angle && !self.special_bonds.dihedral;
+            self.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
+        }
+        self.special_dirty = false;
+        Ok(())
     }
 }

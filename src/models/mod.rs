@@ -7,3 +7,11 @@ pub mod fix;
 pub mod pair;
 pub mod styles;
 pub mod world;
+
+/// One time-step limit of a model (shown by `dmhs check` and warned about at the start of a run).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Limit {
+    pub model: String,
+    pub rule: String,
+    pub dt_max: f64,
+}

@@ -1,5 +1,6 @@
 //! What a run writes: the log and screen, thermo lines, dumps (text, VTU, pictures) and charts.
 
+pub mod atom_table;
 pub mod colors;
 pub mod dump;
 pub mod dump_image;

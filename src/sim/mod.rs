@@ -47,7 +47,7 @@ pub struct Simulation {
     /// Directory for relative file names in commands (None: the working directory).
     pub base_dir: Option<std::path::PathBuf>,
     /// Per-atom forces captured after the setup of the first run (for crosscheck).
-    pub capture_setup: Option<crate::tools::crosscheck::AtomTable>,
+    pub capture_setup: Option<crate::output::atom_table::AtomTable>,
     pub want_capture: bool,
     /// `dmhs check`: commands are built but `run` does not run.
     pub check_only: bool,

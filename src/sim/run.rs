@@ -2,6 +2,7 @@
 //! initial integrate -> (rebuild | refresh ghosts) -> forces -> post-force -> final integrate
 //! -> output. Each stage is timed.
 
+use crate::models::bonded::pass::BondedStyles;
 use crate::models::fix::{Fix, FixCtx, FixHooks};
 use crate::models::world::{FixesView, World};
 use crate::sim::eval::{Eval, HookExpressions};
@@ -76,7 +77,10 @@ impl Simulation {
             self.pair = Some(p);
             r?;
         }
-        self.init_bonded()?;
+        let warnings = crate::models::bonded::pass::init_bonded(&mut self.state, self.bond_style.as_mut(), self.angle_style.as_mut(), self.dihedral_style.as_mut())?;
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
+        }
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
@@ -88,7 +92,7 @@ impl Simulation {
     pub fn rebuild(&mut self) -> Result<(), RunError> {
         let step = self.state.step;
         if self.state.special_dirty {
-            self.rebuild_special().map_err(|e| RunError::new(step, e))?;
+            self.state.rebuild_special().map_err(|e| RunError::new(step, e))?;
         }
         let Some(domain) = self.state.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
         self.state.atoms.clear_ghosts();
@@ -99,7 +103,7 @@ impl Simulation {
         if let Some(initial) = self.state.box_initial.as_ref() {
             crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
         }
-        crate::engine::boundary::check_lost(self)?;
+        crate::sim::stability::check_lost(self)?;
         let domain = self.state.domain.as_ref().unwrap();
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
@@ -116,7 +120,7 @@ impl Simulation {
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }
-        self.build_bonded_lists()?;
+        crate::models::bonded::pass::build_bonded_lists(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style))?;
         self.state.lists_valid = true;
         Ok(())
     }
@@ -191,7 +195,7 @@ impl Simulation {
             pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
         }
         self.timers.charge(Stage::Pair);
-        let bonded = self.compute_bonded(eflag)?;
+        let bonded = crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?;
         self.timers.charge(Stage::Bond);
         if eflag {
             let mut virial = pair_tally.virial;
@@ -335,7 +339,7 @@ impl Simulation {
             // crosscheck: the forces of a separate setup before the first run, exactly as
             // lammps_driver.py issues `run 0 post no` before the deck's first run in LAMMPS
             self.setup(opts.pre)?;
-            self.capture_setup = Some(crate::tools::crosscheck::capture_forces(self));
+            self.capture_setup = Some(crate::output::atom_table::forces_table(&self.state));
         }
         self.setup(opts.pre)?;
         let (_, warnings) = crate::sim::stability::report(self, &crate::sim::stability::limits(self, true));

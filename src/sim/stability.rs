@@ -14,16 +14,11 @@
 //! stability_sound_viscosity.rs, examples/scenes/cubes/README.md): noise decays at 1x, grows from
 //! about 1.3x (the same in LAMMPS).
 
-use crate::models::fix::any_index;
+use crate::engine::domain::BoundaryKind;
+use crate::engine::par::any_index;
 use crate::sim::{RunError, Simulation};
 
-/// One time-step limit.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Limit {
-    pub model: String,
-    pub rule: String,
-    pub dt_max: f64,
-}
+pub use crate::models::Limit;
 
 /// Settings of the guards (`dmhs/stability` extension command).
 #[derive(Clone, Debug, PartialEq)]
@@ -204,7 +199,7 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
             .collect();
         let (rho, esph, typ) = (&a.rho[..n], &a.esph[..n], &a.typ[..n]);
         !any_index(n, |i| {
-            let (lo, hi) = crate::models::pair::at(&bounds, typ[i]);
+            let (lo, hi) = bounds[typ[i]];
             let r = rho[i];
             bad_motion(i) | !(r > lo && r <= hi) | (esph[i] * 0.0 != 0.0)
         })
@@ -240,6 +235,47 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
         }
     }
     Ok(())
+}
+
+/// Atoms outside a fixed face are lost, as in LAMMPS: an error naming the first one
+/// (or, with `thermo_modify lost ignore`, they are removed).
+pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
+    let Some(domain) = sim.state.domain.as_ref() else { return Ok(()) };
+    let a = &sim.state.atoms;
+    let mut gone = vec![false; a.nlocal];
+    let mut first: Option<(usize, usize)> = None;
+    for i in 0..a.nlocal {
+        for d in 0..3 {
+            let [blo, bhi] = domain.boundary[d];
+            let x = a.x[i][d];
+            let out = (blo == BoundaryKind::Fixed && x < domain.lo[d]) || (bhi == BoundaryKind::Fixed && x >= domain.hi[d]) || !x.is_finite();
+            if out {
+                gone[i] = true;
+                first.get_or_insert((i, d));
+            }
+        }
+    }
+    let Some((i, d)) = first else { return Ok(()) };
+    if sim.thermo.lost_ignore {
+        let tags: std::collections::HashSet<i64> = (0..a.nlocal).filter(|&k| gone[k]).map(|k| a.tag[k]).collect();
+        sim.state.atoms.retain(&gone);
+        sim.state.topo.remove_atoms(&tags);
+        return Ok(());
+    }
+    let n_lost = gone.iter().filter(|&&g| g).count();
+    Err(RunError::new(
+        sim.state.step,
+        format!(
+            "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {} = {}, box {}..{}){}",
+            a.nlocal,
+            a.tag[i],
+            ["x", "y", "z"][d],
+            a.x[i][d],
+            domain.lo[d],
+            domain.hi[d],
+            dt_hint(sim)
+        ),
+    ))
 }
 
 #[cfg(test)]

@@ -1,120 +1,18 @@
 //! Per-atom comparison with LAMMPS: tables of per-atom values keyed by atom ID (the format of
 //! lammps-refs/), dmhs' own captures, and the max absolute/relative differences per quantity.
 
+pub use crate::output::atom_table::AtomTable;
+use crate::output::atom_table::{forces_table, state_table};
 use crate::sim::Simulation;
-use std::collections::BTreeMap;
-use std::path::Path;
 
-/// Per-atom values by atom ID; `columns` names the values (after `id type`).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct AtomTable {
-    pub columns: Vec<String>,
-    pub rows: BTreeMap<i64, (usize, Vec<f64>)>,
-}
-
-impl AtomTable {
-    /// Read the `# id type c1 c2 ...` text format of lammps-refs.
-    pub fn read(path: &Path) -> Result<AtomTable, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        Self::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
-    }
-    pub fn parse(text: &str) -> Result<AtomTable, String> {
-        let mut lines = text.lines();
-        let header = lines.next().ok_or("empty table")?;
-        let names: Vec<&str> = header.trim_start_matches('#').split_whitespace().collect();
-        if names.len() < 2 || names[0] != "id" || names[1] != "type" {
-            return Err(format!("header must start with `# id type`, found `{header}`"));
-        }
-        let mut t = AtomTable { columns: names[2..].iter().map(|s| s.to_string()).collect(), rows: BTreeMap::new() };
-        for (k, line) in lines.enumerate() {
-            let w: Vec<&str> = line.split_whitespace().collect();
-            if w.is_empty() {
-                continue;
-            }
-            if w.len() != names.len() {
-                return Err(format!("line {}: {} values, expected {}", k + 2, w.len(), names.len()));
-            }
-            let id: i64 = w[0].parse().map_err(|_| format!("line {}: bad id", k + 2))?;
-            let typ: usize = w[1].parse().map_err(|_| format!("line {}: bad type", k + 2))?;
-            let vals: Result<Vec<f64>, _> = w[2..].iter().map(|s| s.parse::<f64>()).collect();
-            t.rows.insert(id, (typ, vals.map_err(|_| format!("line {}: bad number", k + 2))?));
-        }
-        Ok(t)
-    }
-    /// The text format (`%.17g`-exact numbers).
-    pub fn to_text(&self) -> String {
-        let mut s = format!("# id type {}\n", self.columns.join(" "));
-        for (id, (typ, vals)) in &self.rows {
-            s += &format!("{id} {typ}");
-            for v in vals {
-                s += &format!(" {v:?}");
-            }
-            s.push('\n');
-        }
-        s
-    }
-    pub fn column(&self, name: &str) -> Option<usize> {
-        self.columns.iter().position(|c| c == name)
-    }
-}
-
-fn table(sim: &Simulation, columns: &[&str], value: impl Fn(usize, &str) -> f64) -> AtomTable {
-    let a = &sim.state.atoms;
-    let mut t = AtomTable { columns: columns.iter().map(|s| s.to_string()).collect(), rows: BTreeMap::new() };
-    for i in 0..a.nlocal {
-        t.rows.insert(a.tag[i], (a.typ[i], columns.iter().map(|c| value(i, c)).collect()));
-    }
-    t
-}
-
-/// Forces (and SPH rates, torques) of the current state, as lammps_driver.py writes forces0.txt.
+/// Forces (and SPH rates, torques) of the simulation now, as lammps_driver.py writes forces0.txt.
 pub fn capture_forces(sim: &Simulation) -> AtomTable {
-    let ft = sim.state.atoms.features;
-    let mut cols = vec!["fx", "fy", "fz"];
-    if ft.sph {
-        cols.extend(["drho", "desph"]);
-    }
-    if ft.sphere {
-        cols.extend(["tqx", "tqy", "tqz"]);
-    }
-    let a = &sim.state.atoms;
-    table(sim, &cols, |i, c| match c {
-        "fx" => a.f[i][0],
-        "fy" => a.f[i][1],
-        "fz" => a.f[i][2],
-        "drho" => a.drho[i],
-        "desph" => a.desph[i],
-        "tqx" => a.torque[i][0],
-        "tqy" => a.torque[i][1],
-        _ => a.torque[i][2],
-    })
+    forces_table(&sim.state)
 }
 
-/// Unwrapped positions and velocities (and SPH/sphere state), as final.txt.
+/// Unwrapped positions and velocities (and SPH/sphere state) now, as final.txt.
 pub fn capture_state(sim: &Simulation) -> AtomTable {
-    let ft = sim.state.atoms.features;
-    let mut cols = vec!["xu", "yu", "zu", "vx", "vy", "vz"];
-    if ft.sph {
-        cols.extend(["rho", "esph"]);
-    }
-    if ft.sphere {
-        cols.extend(["omegax", "omegay", "omegaz"]);
-    }
-    let a = &sim.state.atoms;
-    let prd = sim.state.domain.as_ref().map(|d| d.prd()).unwrap_or([0.0; 3]);
-    table(sim, &cols, |i, c| match c {
-        "xu" => a.x[i][0] + a.image[i][0] as f64 * prd[0],
-        "yu" => a.x[i][1] + a.image[i][1] as f64 * prd[1],
-        "zu" => a.x[i][2] + a.image[i][2] as f64 * prd[2],
-        "vx" => a.v[i][0],
-        "vy" => a.v[i][1],
-        "vz" => a.v[i][2],
-        "rho" => a.rho[i],
-        "esph" => a.esph[i],
-        "omegax" => a.omega[i][0],
-        "omegay" => a.omega[i][1],
-        _ => a.omega[i][2],
-    })
+    state_table(&sim.state)
 }
 
 /// The difference of one quantity (a group of columns) between two tables.

@@ -1,138 +1,234 @@
-//! Every threading primitive of dmhs: the slab schedule of the pair and bonded passes (chunks
-//! of the neighbour list run even/odd so that concurrent tasks never write to the same atom),
-//! parallel ranges over atoms, and the lanes of the batched kernels ([`lanes`]).
+//! Every threading primitive of dmhs and every `unsafe` block of the engine crate (the other is
+//! in [`lanes`], the vector type of the batched kernels).
+//!
+//! - The slab schedule ([`slab_phase`]): the pair and bonded passes split the owned atoms into chunks
+//!   along one axis (the neighbour list's chunks); task `c` writes only to the atoms of chunks
+//!   `c` and `c + 1`, so all even tasks run at once, then all odd ones. Each task receives its
+//!   own window of every array it writes ([`AtomsMut`], indexed by atom index), split off with
+//!   safe slice splitting: no two tasks can touch the same atom, and a write outside the
+//!   window panics instead of racing. Every atom receives its contributions in the same order
+//!   whatever the thread count, so results do not depend on it.
+//! - Parallel ranges over independent atoms ([`ranges`]) for the integrators and other per-atom
+//!   loops, and a parallel "any" ([`any_index`]).
+//!
+//! The invariant the slab schedule rests on (a listed owned partner of an atom in chunk `c` lies
+//! in chunk `c` or `c + 1`) is established by the neighbour-list builder and checked there with
+//! [`check_slab_invariant`] in debug builds.
 
 pub mod lanes;
 
-use crate::engine::neighbor::{ChunkList, NeighList};
 use rayon::prelude::*;
-
-/// `s[i]` without a bounds check, for the hot loops. Callers index per-atom arrays with
-/// neighbour-list entries (always < the number of owned + ghost atoms, which every per-atom
-/// array holds) and per-type tables with atom types (validated to 1..=ntypes when atoms are
-/// created or retyped, and tables hold ntypes + 1 entries). Checked in debug builds.
-#[inline(always)]
-pub fn at<T: Copy>(s: &[T], i: usize) -> T {
-    debug_assert!(i < s.len(), "index {i} out of {}", s.len());
-    // SAFETY: see above
-    unsafe { *s.get_unchecked(i) }
-}
-
-/// A raw pointer that chunks of the slab decomposition share; see [`for_each_chunk`]. Copy, so
-/// that a task can hold its own copy: through a captured reference the compiler reloaded the
-/// pointer after every store made through it.
-pub struct SharedMut<T>(*mut T, usize);
-impl<T> Clone for SharedMut<T> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-impl<T> Copy for SharedMut<T> {}
-unsafe impl<T> Sync for SharedMut<T> {}
-unsafe impl<T> Send for SharedMut<T> {}
-impl<T> SharedMut<T> {
-    pub fn new(data: &mut [T]) -> SharedMut<T> {
-        SharedMut(data.as_mut_ptr(), data.len())
-    }
-    /// # Safety
-    /// Callers must ensure no two threads touch the same index at once.
-    #[inline]
-    #[allow(clippy::mut_from_ref)]
-    pub unsafe fn get(&self, i: usize) -> &mut T {
-        debug_assert!(i < self.1);
-        &mut *self.0.add(i)
-    }
-    /// The elements of `range` as a slice (a plain slice lets the compiler keep other data in
-    /// registers across writes, which it cannot do for writes through [`SharedMut::get`]).
-    /// # Safety
-    /// Callers must ensure no other thread touches the range while the slice lives.
-    #[inline]
-    #[allow(clippy::mut_from_ref)]
-    pub unsafe fn slice(&self, range: std::ops::Range<usize>) -> &mut [T] {
-        assert!(range.start <= range.end && range.end <= self.1);
-        std::slice::from_raw_parts_mut(self.0.add(range.start), range.end - range.start)
-    }
-}
-
-/// Run `work` on every chunk of the list: first all even-numbered chunks in parallel, then all
-/// odd-numbered ones. Chunk `c` may write to its own atoms and to those of chunk `c + 1` only
-/// (guaranteed by the list builder), so concurrent chunks never touch the same atom, and every
-/// atom receives its contributions in the same order whatever the thread count.
-/// Returns the per-chunk results in chunk order.
-pub fn for_each_chunk<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync) -> Vec<R> {
-    for_each_chunk_then(list, work, |_| ())
-}
-
-/// [`for_each_chunk`], and `done(chunk)` for every chunk as soon as no task writes to its atoms
-/// any more, inside the task that wrote last (while its data are in that core's cache, and
-/// without another parallel pass).
-pub fn for_each_chunk_then<R: Send + Default + Clone>(list: &NeighList, work: impl Fn(&ChunkList) -> R + Sync, done: impl Fn(&ChunkList) + Sync) -> Vec<R> {
-    let atoms = list.chunks.last().map(|c| c.end).unwrap_or(0);
-    for_each_slab_then(list.chunks.len(), atoms, |c| work(&list.chunks[c]), |c| done(&list.chunks[c]))
-}
+use std::ops::{Index, IndexMut, Range};
 
 /// Below this many owned atoms the slab schedule runs on the calling thread: waking a second
 /// thread twice per loop costs more than it saves (the 564-particle Plinko scene ran slower with
 /// 2 threads than with 1).
 pub const PARALLEL_MIN_ATOMS: usize = 2000;
 
-/// The even/odd schedule of [`for_each_chunk`] over `n` chunks given by index, for a system of
-/// `atoms` owned atoms.
-pub fn for_each_slab<R: Send + Default + Clone>(n: usize, atoms: usize, work: impl Fn(usize) -> R + Sync) -> Vec<R> {
-    for_each_slab_then(n, atoms, work, |_| ())
+/// A mutable window on per-atom values, indexed by atom index: the atoms `start..start + len`.
+/// An array a model does not have (empty) stays empty in every window.
+pub struct AtomsMut<'a, T> {
+    start: usize,
+    data: &'a mut [T],
 }
 
-/// [`for_each_slab`] with [`for_each_chunk_then`]'s `done`. Chunk c receives from tasks c - 1
-/// and c: an odd c is complete after its own task (in the odd phase), an even c after task
-/// c - 1 (chunk 0 after the even phase), so odd task c finishes c and c + 1, and task 1 also 0.
-pub fn for_each_slab_then<R: Send + Default + Clone>(n: usize, atoms: usize, work: impl Fn(usize) -> R + Sync, done: impl Fn(usize) + Sync) -> Vec<R> {
-    let mut out = vec![R::default(); n];
-    let task = |c: usize| {
-        let r = work(c);
-        if c % 2 == 1 {
-            if c == 1 {
-                done(0);
-            }
-            done(c);
-            if c + 1 < n {
-                done(c + 1);
-            }
-        }
-        r
-    };
-    if rayon::current_num_threads() == 1 || n < 2 || atoms < PARALLEL_MIN_ATOMS {
-        // same order of contributions as the parallel schedule
-        for parity in 0..2 {
-            for c in (parity..n).step_by(2) {
-                out[c] = task(c);
-            }
-        }
-        if n == 1 {
-            done(0);
-        }
-        return out;
+impl<'a, T> AtomsMut<'a, T> {
+    /// The whole array, atom 0 first.
+    pub fn new(data: &'a mut [T]) -> AtomsMut<'a, T> {
+        AtomsMut { start: 0, data }
     }
-    for parity in 0..2 {
+    /// The atoms of the window.
+    pub fn range(&self) -> Range<usize> {
+        self.start..self.start + self.data.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.data.is_empty()
+    }
+    /// The values of atoms `r` as a plain slice (its first element is atom `r.start`).
+    pub fn slice(&mut self, r: Range<usize>) -> &mut [T] {
+        &mut self.data[r.start - self.start..r.end - self.start]
+    }
+}
+
+impl<T> Index<usize> for AtomsMut<'_, T> {
+    type Output = T;
+    #[inline(always)]
+    fn index(&self, i: usize) -> &T {
+        &self.data[i.wrapping_sub(self.start)]
+    }
+}
+
+impl<T> IndexMut<usize> for AtomsMut<'_, T> {
+    #[inline(always)]
+    fn index_mut(&mut self, i: usize) -> &mut T {
+        &mut self.data[i.wrapping_sub(self.start)]
+    }
+}
+
+/// A mutable window on per-chunk items (e.g. the contact histories of a list's chunks), indexed
+/// by chunk index.
+pub struct ChunksMut<'a, T> {
+    start: usize,
+    data: &'a mut [T],
+}
+
+impl<'a, T> ChunksMut<'a, T> {
+    pub fn new(data: &'a mut [T]) -> ChunksMut<'a, T> {
+        ChunksMut { start: 0, data }
+    }
+}
+
+impl<T> Index<usize> for ChunksMut<'_, T> {
+    type Output = T;
+    fn index(&self, c: usize) -> &T {
+        &self.data[c.wrapping_sub(self.start)]
+    }
+}
+
+impl<T> IndexMut<usize> for ChunksMut<'_, T> {
+    fn index_mut(&mut self, c: usize) -> &mut T {
+        &mut self.data[c.wrapping_sub(self.start)]
+    }
+}
+
+/// Data a schedule splits among its tasks.
+pub trait Split: Sized + Send {
+    /// The part before atom `atom` (which starts chunk `chunk`) and the rest.
+    fn split(self, atom: usize, chunk: usize) -> (Self, Self);
+}
+
+impl<T: Send> Split for AtomsMut<'_, T> {
+    fn split(self, atom: usize, _chunk: usize) -> (Self, Self) {
+        let at = (atom - self.start).min(self.data.len());
+        let (a, b) = self.data.split_at_mut(at);
+        (AtomsMut { start: self.start, data: a }, AtomsMut { start: self.start + at, data: b })
+    }
+}
+
+impl<T: Send> Split for ChunksMut<'_, T> {
+    fn split(self, _atom: usize, chunk: usize) -> (Self, Self) {
+        let at = (chunk - self.start).min(self.data.len());
+        let (a, b) = self.data.split_at_mut(at);
+        (ChunksMut { start: self.start, data: a }, ChunksMut { start: self.start + at, data: b })
+    }
+}
+
+macro_rules! tuples {
+    ($($name:ident)+) => {
+        impl<$($name: Split),+> Split for ($($name,)+) {
+            #[allow(non_snake_case)]
+            fn split(self, atom: usize, chunk: usize) -> (Self, Self) {
+                let ($($name,)+) = self;
+                $(let $name = $name.split(atom, chunk);)+
+                (($($name.0,)+), ($($name.1,)+))
+            }
+        }
+    };
+}
+tuples!(A);
+tuples!(A B);
+tuples!(A B C);
+tuples!(A B C D);
+tuples!(A B C D E);
+tuples!(A B C D E F);
+
+/// Whether a schedule over `atoms` owned atoms should use the pool.
+fn parallel(atoms: usize) -> bool {
+    rayon::current_num_threads() > 1 && atoms >= PARALLEL_MIN_ATOMS
+}
+
+/// One phase of the slab schedule: chunk `c` holds atoms `bounds[c]..bounds[c + 1]`; every task
+/// `c` of the phase (`c % 2 == parity`) runs `work(c, window)` with the window of `data` on
+/// chunks `c` and `c + 1`, and its result goes to `out[c]`. Run the even phase (0), then the odd
+/// one (1), each with a fresh borrow of the arrays:
+///
+/// ```ignore
+/// let mut parts = vec![Tally::default(); nchunks];
+/// for parity in 0..2 {
+///     slab_phase(&bounds, parity, AtomsMut::new(&mut f), &mut parts, |c, mut f| { ... });
+/// }
+/// ```
+///
+/// Tasks run in parallel when the pool has several threads and there are enough atoms, in
+/// chunk order otherwise; every atom receives its contributions in the same order either way.
+pub fn slab_phase<S: Split, R: Send>(bounds: &[usize], parity: usize, data: S, out: &mut [R], work: impl Fn(usize, S) -> R + Sync) {
+    let n = bounds.len().saturating_sub(1);
+    if parity >= n {
+        return;
+    }
+    let mut tasks = Vec::with_capacity(n / 2 + 1);
+    let mut rest = data.split(bounds[parity], parity).1;
+    for c in (parity..n).step_by(2) {
+        let end = (c + 2).min(n);
+        let (window, tail) = rest.split(bounds[end], end);
+        tasks.push((c, window));
+        rest = tail;
+    }
+    if n >= 2 && parallel(bounds[n]) {
         // one task per chunk (with_max_len(1)): work is often concentrated in a few slabs (a
-        // water column in a wide tank), and rayon's default splitting would leave them on one thread
-        let results: Vec<(usize, R)> = (parity..n).step_by(2).collect::<Vec<_>>().into_par_iter().with_max_len(1).map(|c| (c, task(c))).collect();
+        // water column in a wide tank), and rayon's default splitting would leave them on one
+        // thread
+        let results: Vec<(usize, R)> = tasks.into_par_iter().with_max_len(1).map(|(c, w)| (c, work(c, w))).collect();
         for (c, r) in results {
             out[c] = r;
         }
+    } else {
+        for (c, w) in tasks {
+            out[c] = work(c, w);
+        }
     }
-    out
 }
 
-/// Run `work` over index ranges covering `0..n` (`chunk` indices each), in parallel when the
-/// pool has several threads: for per-atom loops whose atoms are independent, so the results are
-/// the same either way. With one thread it is one plain loop, without the pool's overhead.
-pub fn for_each_range(n: usize, chunk: usize, work: impl Fn(std::ops::Range<usize>) + Sync + Send) {
-    use rayon::prelude::*;
-    if rayon::current_num_threads() == 1 || n <= chunk {
-        work(0..n);
+/// The chunks no task of the slab schedule writes to any more once task `c` (of `n`) is done:
+/// chunk `c` receives from tasks `c - 1` and `c`, so chunk 0 is complete after task 0, an odd
+/// chunk after its own task and an even one after the odd task before it. Both lie in task
+/// `c`'s window.
+pub fn completed_after(c: usize, n: usize) -> Range<usize> {
+    if c == 0 {
+        0..1.min(n)
+    } else if c % 2 == 1 {
+        c..(c + 2).min(n)
     } else {
-        (0..n.div_ceil(chunk)).into_par_iter().with_max_len(1).for_each(|c| work(c * chunk..((c + 1) * chunk).min(n)));
+        0..0
     }
+}
+
+/// Check the slab invariant for the chunks `bounds` of a list whose chunk `c` holds, for each of
+/// its atoms, the partner indices `partners(c)`: every owned partner (index < the owned count
+/// `bounds[n]`) of an atom of chunk `c` lies in chunks `c` or `c + 1`.
+pub fn check_slab_invariant<'a>(bounds: &[usize], partners: impl Fn(usize) -> &'a [u32], index: impl Fn(u32) -> usize) -> Result<(), String> {
+    let n = bounds.len().saturating_sub(1);
+    let nlocal = bounds.last().copied().unwrap_or(0);
+    for c in 0..n {
+        let hi = bounds[(c + 2).min(n)];
+        for &raw in partners(c) {
+            let j = index(raw);
+            if j < nlocal && !(bounds[c] <= j && j < hi) {
+                return Err(format!("chunk {c} lists owned atom {j}, outside its chunks {}..{hi}", bounds[c]));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Run `work(range, window)` over ranges of `chunk` atoms covering `0..n`, with the window of
+/// `data` on that range, in parallel when the pool has several threads: for per-atom loops
+/// whose atoms are independent, so the results are the same either way. With one thread it is
+/// one plain loop, without the pool's overhead.
+pub fn ranges<S: Split>(n: usize, chunk: usize, data: S, work: impl Fn(Range<usize>, S) + Sync) {
+    if rayon::current_num_threads() == 1 || n <= chunk {
+        work(0..n, data);
+        return;
+    }
+    let mut tasks = Vec::with_capacity(n.div_ceil(chunk));
+    let mut rest = data;
+    for k in 0..n.div_ceil(chunk) {
+        let end = ((k + 1) * chunk).min(n);
+        let (window, tail) = rest.split(end, k + 1);
+        tasks.push((k * chunk..end, window));
+        rest = tail;
+    }
+    tasks.into_par_iter().with_max_len(1).for_each(|(r, w)| work(r, w));
 }
 
 /// Indices per parallel work item of [`any_index`].
@@ -141,7 +237,6 @@ const ANY_CHUNK: usize = 4096;
 /// Whether `bad(i)` holds for some i in `0..n`: chunks in parallel, each folded without
 /// branches (so it vectorizes). The answer is a boolean, the same for every thread count.
 pub fn any_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
-    use rayon::prelude::*;
     let chunk_bad = |c: usize| (c * ANY_CHUNK..((c + 1) * ANY_CHUNK).min(n)).fold(false, |acc, i| acc | bad(i));
     let chunks = n.div_ceil(ANY_CHUNK);
     if rayon::current_num_threads() == 1 || chunks <= 1 {
@@ -151,40 +246,79 @@ pub fn any_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::sync::atomic::{AtomicUsize, Ordering};
 
-    /// `done(c)` comes once per chunk, after both tasks that write to the chunk (c - 1 and c),
-    /// for any number of chunks and threads.
+    /// Every task writes its own and the next chunk's atoms through its window; chunks are
+    /// complete exactly when `completed_after` says, and the sums do not depend on the thread
+    /// count.
     #[test]
-    fn slab_schedule_finishes_every_chunk_once_after_its_writers() {
+    fn slab_windows_cover_two_chunks_and_complete_in_order() {
         for threads in [1, 2, 3] {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            for n in 0..9 {
-                let writes: Vec<AtomicUsize> = (0..n + 1).map(|_| AtomicUsize::new(0)).collect();
-                let done: Vec<AtomicUsize> = (0..n).map(|_| AtomicUsize::new(0)).collect();
-                let out = pool.install(|| {
-                    for_each_slab_then(
-                        n,
-                        PARALLEL_MIN_ATOMS,
-                        |c| {
-                            writes[c].fetch_add(1, Ordering::SeqCst);
-                            writes[c + 1].fetch_add(1, Ordering::SeqCst);
+            for n in 0..9usize {
+                // chunks of 3000 atoms, so the pool is used
+                let bounds: Vec<usize> = (0..=n).map(|c| c * 3000).collect();
+                let natoms = n * 3000;
+                let mut writes = vec![0u32; natoms + 5];
+                let mut done = vec![0u32; n];
+                let mut out = vec![usize::MAX; n];
+                pool.install(|| {
+                    for parity in 0..2 {
+                        slab_phase(&bounds, parity, (AtomsMut::new(&mut writes), ChunksMut::new(&mut done)), &mut out, |c, (mut w, mut d)| {
+                            for i in bounds[c]..bounds[(c + 2).min(n)] {
+                                w[i] += 1;
+                            }
+                            for k in completed_after(c, n) {
+                                let writers = if k == 0 || n == 1 { 1 } else { 2 };
+                                assert!((bounds[k]..bounds[k + 1]).all(|i| w[i] == writers), "chunk {k} of {n} complete too early");
+                                d[k] += 1;
+                            }
                             c
-                        },
-                        |c| {
-                            let writers = if c == 0 { 1 } else { 2 };
-                            assert_eq!(writes[c].load(Ordering::SeqCst), writers, "chunk {c} of {n} finished early");
-                            done[c].fetch_add(1, Ordering::SeqCst);
-                        },
-                    )
+                        });
+                    }
                 });
                 assert_eq!(out, (0..n).collect::<Vec<_>>());
-                assert!(done.iter().all(|d| d.load(Ordering::SeqCst) == 1), "{threads} threads, {n} chunks");
+                assert!(done.iter().all(|&d| d == 1), "{threads} threads, {n} chunks: {done:?}");
+                assert!(writes[natoms..].iter().all(|&w| w == 0), "no task writes beyond the owned atoms");
             }
         }
+    }
+
+    #[test]
+    #[should_panic]
+    fn a_write_outside_the_window_panics() {
+        let bounds = [0, 10, 20, 30];
+        let mut f = vec![0.0; 30];
+        slab_phase(&bounds, 0, AtomsMut::new(&mut f), &mut [(), (), ()], |c, mut w| {
+            if c == 0 {
+                w[25] = 1.0;
+            }
+        });
+    }
+
+    #[test]
+    fn the_invariant_check_names_a_partner_two_chunks_away() {
+        let bounds = [0, 2, 4, 6];
+        let ok: [&[u32]; 3] = [&[1, 3], &[5, 7], &[4, 9]];
+        assert!(check_slab_invariant(&bounds, |c| ok[c], |j| j as usize).is_ok());
+        let bad: [&[u32]; 3] = [&[5], &[], &[]];
+        let e = check_slab_invariant(&bounds, |c| bad[c], |j| j as usize).unwrap_err();
+        assert!(e.contains("chunk 0 lists owned atom 5"), "{e}");
+    }
+
+    #[test]
+    fn ranges_give_each_task_its_own_atoms() {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        let mut x = vec![0usize; 10_000];
+        pool.install(|| {
+            ranges(x.len(), 1024, AtomsMut::new(&mut x), |r, mut w| {
+                for i in r {
+                    w[i] = i;
+                }
+            })
+        });
+        assert!(x.iter().enumerate().all(|(i, &v)| v == i));
     }
 }

@@ -23,7 +23,7 @@ pub mod pass;
 
 use crate::engine::bonded_lists::Entry;
 use crate::models::bonded::pass::{BondedTally, Kernels};
-use crate::models::pair::SharedMut;
+use crate::engine::par::AtomsMut;
 use dmhs_parser::{Args, DResult};
 
 pub type Vec3 = [f64; 3];
@@ -60,7 +60,7 @@ pub trait BondStyle: Send + Sync {
     /// Returns `(fbond, energy)`: the force on atom 1 is `del * fbond`, on atom 2 its negative.
     fn compute(&self, btype: usize, del: Vec3, rsq: f64) -> (f64, f64);
     /// Apply a batch of bonds (monomorphised per style, so `compute` inlines).
-    fn apply(&self, entries: &[Entry<2>], k: &Kernels, f: &SharedMut<Vec3>, t: &mut BondedTally) {
+    fn apply(&self, entries: &[Entry<2>], k: &Kernels, f: &mut AtomsMut<Vec3>, t: &mut BondedTally) {
         crate::models::bonded::pass::apply_bonds(self, entries, k, f, t)
     }
     /// The rest length (LAMMPS `equilibrium_distance`, used e.g. by the neighbour-list check).
@@ -102,7 +102,7 @@ pub trait AngleStyle: Send + Sync {
     /// One angle 1-2-3 (2 is the vertex): `del1 = x1 - x2`, `del2 = x3 - x2`.
     fn compute(&self, atype: usize, del1: Vec3, del2: Vec3) -> AngleForces;
     /// Apply a batch of angles (monomorphised per style, so `compute` inlines).
-    fn apply(&self, entries: &[Entry<3>], k: &Kernels, f: &SharedMut<Vec3>, t: &mut BondedTally) {
+    fn apply(&self, entries: &[Entry<3>], k: &Kernels, f: &mut AtomsMut<Vec3>, t: &mut BondedTally) {
         crate::models::bonded::pass::apply_angles(self, entries, k, f, t)
     }
     /// The rest angle in radians (LAMMPS `equilibrium_angle`).
@@ -137,7 +137,7 @@ pub trait DihedralStyle: Send + Sync {
     /// One dihedral 1-2-3-4: `vb1 = x1 - x2`, `vb2 = x3 - x2`, `vb3 = x4 - x3`.
     fn compute(&self, dtype: usize, vb1: Vec3, vb2: Vec3, vb3: Vec3) -> DihedralForces;
     /// Apply a batch of dihedrals (monomorphised per style, so `compute` inlines).
-    fn apply(&self, entries: &[Entry<4>], k: &Kernels, f: &SharedMut<Vec3>, t: &mut BondedTally) {
+    fn apply(&self, entries: &[Entry<4>], k: &Kernels, f: &mut AtomsMut<Vec3>, t: &mut BondedTally) {
         crate::models::bonded::pass::apply_dihedrals(self, entries, k, f, t)
     }
     fn coeff_words(&self, dtype: usize) -> String;

@@ -4,11 +4,9 @@
 //! copy is (`x + shift * L`), so displacements match LAMMPS bit for bit.
 
 use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
-use crate::models::pair::{for_each_slab, SharedMut};
-use crate::sim::{RunError, Simulation};
+use crate::engine::par::{slab_phase, AtomsMut};
+use crate::engine::state::{RunError, State};
 use crate::engine::bonded_lists::{chunk, slab, BondedLists, Entry};
-use crate::engine::neighbor::SpecialTable;
-use crate::engine::special::{build_special, Topology as SpecialTopology};
 
 /// Energies and virial of the bonded pass.
 #[derive(Clone, Copy, Debug, Default)]
@@ -19,23 +17,38 @@ pub struct BondedTally {
     pub virial: [f64; 6],
 }
 
-impl Simulation {
-    /// Checks before a run: every used type has coefficients; the special lists.
-    pub fn init_bonded(&mut self) -> Result<(), String> {
-        let t = &self.state.topo;
-        if let Some(s) = self.bond_style.as_mut() {
+/// The bonded styles of a simulation, as the pass reads them.
+#[derive(Clone, Copy)]
+pub struct BondedStyles<'a> {
+    pub bond: Option<&'a dyn BondStyle>,
+    pub angle: Option<&'a dyn AngleStyle>,
+    pub dihedral: Option<&'a dyn DihedralStyle>,
+}
+
+impl<'a> BondedStyles<'a> {
+    pub fn of(bond: &'a Option<Box<dyn BondStyle>>, angle: &'a Option<Box<dyn AngleStyle>>, dihedral: &'a Option<Box<dyn DihedralStyle>>) -> Self {
+        BondedStyles { bond: bond.as_deref(), angle: angle.as_deref(), dihedral: dihedral.as_deref() }
+    }
+}
+
+/// Checks before a run: every used type has coefficients; the special lists. Returns warnings
+/// (interactions without a style).
+pub fn init_bonded(state: &mut State, bond: Option<&mut Box<dyn BondStyle>>, angle: Option<&mut Box<dyn AngleStyle>>, dihedral: Option<&mut Box<dyn DihedralStyle>>) -> Result<Vec<String>, String> {
+        let t = &state.topo;
+        let (has_bond, has_angle, has_dihedral) = (bond.is_some(), angle.is_some(), dihedral.is_some());
+        if let Some(s) = bond {
             s.set_types(t.nbondtypes);
             if t.nbondtypes > 0 {
                 s.check_all_set()?;
             }
         }
-        if let Some(s) = self.angle_style.as_mut() {
+        if let Some(s) = angle {
             s.set_types(t.nangletypes);
             if t.nangletypes > 0 {
                 s.check_all_set()?;
             }
         }
-        if let Some(s) = self.dihedral_style.as_mut() {
+        if let Some(s) = dihedral {
             s.set_types(t.ndihedraltypes);
             if t.ndihedraltypes > 0 {
                 s.check_all_set()?;
@@ -44,50 +57,31 @@ impl Simulation {
         let missing = |n: usize, style: bool, what: &str| -> Option<String> {
             (n > 0 && !style).then(|| format!("{n} {what}s are defined but no {what}_style is set"))
         };
-        for w in [
-            missing(t.bonds.len(), self.bond_style.is_some(), "bond"),
-            missing(t.angles.len(), self.angle_style.is_some(), "angle"),
-            missing(t.dihedrals.len(), self.dihedral_style.is_some(), "dihedral"),
+        let warnings = [
+            missing(t.bonds.len(), has_bond, "bond"),
+            missing(t.angles.len(), has_angle, "angle"),
+            missing(t.dihedrals.len(), has_dihedral, "dihedral"),
         ]
         .into_iter()
         .flatten()
-        {
-            self.out.print(&format!("WARNING: {w}"));
-        }
-        self.rebuild_special()
-    }
+        .collect();
+        state.rebuild_special()?;
+        Ok(warnings)
+}
 
-    /// The special partners (1-2, 1-3, 1-4) by atom ID from the current topology.
-    pub fn rebuild_special(&mut self) -> Result<(), String> {
-        let flags = self.state.special_bonds.flags(false);
-        if self.state.topo.bonds.is_empty() {
-            self.state.special_table = SpecialTable { flags, ..SpecialTable::default() };
-        } else {
-            let bonds: Vec<[i64; 2]> = self.state.topo.bonds.iter().map(|b| b.atoms).collect();
-            let angles: Vec<[i64; 3]> = self.state.topo.angles.iter().map(|a| a.atoms).collect();
-            let dihedrals: Vec<[i64; 4]> = self.state.topo.dihedrals.iter().map(|d| d.atoms).collect();
-            let ids = &self.state.atoms.tag[..self.state.atoms.nlocal];
-            let (lists, _stats) = build_special(&self.state.special_bonds, ids, SpecialTopology { bonds: &bonds, angles: &angles, dihedrals: &dihedrals })?;
-            let symmetric = !self.state.special_bonds.angle && !self.state.special_bonds.dihedral;
-            self.state.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
-        }
-        self.state.special_dirty = false;
-        Ok(())
-    }
-
-
-    /// Map every interaction to local indices and closest-image shifts (after a rebuild).
-    pub fn build_bonded_lists(&mut self) -> Result<(), RunError> {
-        let t = &self.state.topo;
+/// Map every interaction to local indices and closest-image shifts (after a rebuild); only
+/// the kinds that have a style.
+pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(), RunError> {
+        let t = &state.topo;
         if t.is_empty() {
-            self.state.bonded_lists = BondedLists::default();
+            state.bonded_lists = BondedLists::default();
             return Ok(());
         }
-        let map = self.state.atoms.tag_map();
-        let domain = self.state.domain.as_ref().unwrap();
+        let map = state.atoms.tag_map();
+        let domain = state.domain.as_ref().unwrap();
         let prd = domain.prd();
-        let x = &self.state.atoms.x;
-        let step = self.state.step;
+        let x = &state.atoms.x;
+        let step = state.step;
         let find = |tag: i64, what: &str| -> Result<u32, RunError> {
             map.get(tag).map(|i| i as u32).ok_or_else(|| RunError::new(step, format!("{what} atom {tag} is missing")))
         };
@@ -107,20 +101,20 @@ impl Simulation {
             s
         };
         let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
-        if self.bond_style.is_some() {
+        if styles.bond.is_some() {
             for b in &t.bonds {
                 let i = [find(b.atoms[0], "bond")?, find(b.atoms[1], "bond")?];
                 bonds.push(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ });
             }
         }
-        if self.angle_style.is_some() {
+        if styles.angle.is_some() {
             for a in &t.angles {
                 let i = [find(a.atoms[0], "angle")?, find(a.atoms[1], "angle")?, find(a.atoms[2], "angle")?];
                 let r = i[1] as usize;
                 angles.push(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ });
             }
         }
-        if self.dihedral_style.is_some() {
+        if styles.dihedral.is_some() {
             for d in &t.dihedrals {
                 let i = [find(d.atoms[0], "dihedral")?, find(d.atoms[1], "dihedral")?, find(d.atoms[2], "dihedral")?, find(d.atoms[3], "dihedral")?];
                 let r = i[1] as usize;
@@ -128,13 +122,13 @@ impl Simulation {
                 dihedrals.push(Entry { atoms: i, shift, typ: d.typ });
             }
         }
-        let chunks = &self.state.neighbor.list.chunks;
-        let mut chunk_of = vec![0u32; self.state.atoms.nlocal];
+        let chunks = &state.neighbor.list.chunks;
+        let mut chunk_of = vec![0u32; state.atoms.nlocal];
         for (c, ch) in chunks.iter().enumerate() {
             chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
         }
         let n = chunks.len();
-        self.state.bonded_lists = BondedLists {
+        state.bonded_lists = BondedLists {
             bonds: slab(&bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
             angles: slab(&angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
             dihedrals: slab(&dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
@@ -142,42 +136,37 @@ impl Simulation {
         Ok(())
     }
 
-    /// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd
-    /// schedule, then the leftovers, so results do not depend on the thread count.
-    pub fn compute_bonded(&mut self, eflag: bool) -> Result<BondedTally, RunError> {
-        let lists = &self.state.bonded_lists;
+/// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd
+/// schedule, then the leftovers, so results do not depend on the thread count.
+pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> Result<BondedTally, RunError> {
+        let lists = &state.bonded_lists;
         if lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty() {
             return Ok(BondedTally::default());
         }
-        let prd = self.state.domain.as_ref().unwrap().prd();
-        let ctx = Kernels {
-            x: &self.state.atoms.x,
-            prd,
-            shifts: false,
-            eflag,
-            bond: self.bond_style.as_deref(),
-            angle: self.angle_style.as_deref(),
-            dihedral: self.dihedral_style.as_deref(),
-        };
-        let mut f = std::mem::take(&mut self.state.atoms.f);
+        let prd = state.domain.as_ref().unwrap().prd();
+        let mut f = std::mem::take(&mut state.atoms.f);
+        let ctx = Kernels { x: &state.atoms.x, prd, shifts: false, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+        // the bonded lists are grouped by the chunks of the neighbour list (each chunk's
+        // interactions touch only atoms of that chunk and the next)
+        let bounds = state.neighbor.list.bounds();
         let nchunks = lists.bonds.nchunks().max(lists.angles.nchunks()).max(lists.dihedrals.nchunks());
-        let shared = SharedMut::new(&mut f);
-        let parts = for_each_slab(nchunks, self.state.atoms.nlocal, |c| {
-            // SAFETY: a chunk's interactions touch only atoms of this chunk and the next
-            let mut t = BondedTally::default();
-            ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &shared, &mut t);
-            t
-        });
+        assert!(nchunks + 1 <= bounds.len(), "bonded lists built on another neighbour list");
+        let mut parts = vec![BondedTally::default(); bounds.len() - 1];
+        for parity in 0..2 {
+            slab_phase(&bounds, parity, AtomsMut::new(&mut f), &mut parts, |c, mut f| {
+                let mut t = BondedTally::default();
+                ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &mut f, &mut t);
+                t
+            });
+        }
         let mut tally = BondedTally::default();
         for p in &parts {
             tally.add(p);
         }
         let ctx = Kernels { shifts: true, ..ctx };
-        ctx.run(&lists.bonds.leftover, &lists.angles.leftover, &lists.dihedrals.leftover, &shared, &mut tally);
-        // `shared` points into f: not used after this
-        self.state.atoms.f = f;
+        ctx.run(&lists.bonds.leftover, &lists.angles.leftover, &lists.dihedrals.leftover, &mut AtomsMut::new(&mut f), &mut tally);
+        state.atoms.f = f;
         Ok(tally)
-    }
 }
 
 impl BondedTally {
@@ -229,7 +218,7 @@ impl Kernels<'_> {
         p
     }
 
-    fn run(&self, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+    fn run(&self, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
         if let Some(style) = self.bond {
             style.apply(bonds, self, f, tally);
         }
@@ -242,24 +231,23 @@ impl Kernels<'_> {
     }
 }
 
-/// Add `fk` to atom `i` (the caller has exclusive access to the atoms of its entries).
+/// Add `fk` to atom `i`.
 #[inline(always)]
-fn add_force(f: &SharedMut<[f64; 3]>, i: u32, fk: [f64; 3]) {
-    // SAFETY: see `compute_bonded`: entries of concurrent chunks touch disjoint atoms
-    let fa = unsafe { f.get(i as usize) };
+fn add_force(f: &mut AtomsMut<[f64; 3]>, i: u32, fk: [f64; 3]) {
+    let fa = &mut f[i as usize];
     for d in 0..3 {
         fa[d] += fk[d];
     }
 }
 
-pub fn apply_bonds<S: BondStyle + ?Sized>(style: &S, entries: &[Entry<2>], k: &Kernels, f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+pub fn apply_bonds<S: BondStyle + ?Sized>(style: &S, entries: &[Entry<2>], k: &Kernels, f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
     for e in entries {
         let del = sub(k.pos(e.atoms[0], e.shift[0]), k.pos(e.atoms[1], e.shift[1]));
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
         let (fbond, energy) = style.compute(e.typ, del, rsq);
         add_force(f, e.atoms[0], [del[0] * fbond, del[1] * fbond, del[2] * fbond]);
         // LAMMPS subtracts del*fbond (not adds its negative): identical bits
-        let fa = unsafe { f.get(e.atoms[1] as usize) };
+        let fa = &mut f[e.atoms[1] as usize];
         for d in 0..3 {
             fa[d] -= del[d] * fbond;
         }
@@ -270,7 +258,7 @@ pub fn apply_bonds<S: BondStyle + ?Sized>(style: &S, entries: &[Entry<2>], k: &K
     }
 }
 
-pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: &Kernels, f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: &Kernels, f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
     for e in entries {
         let x2 = k.pos(e.atoms[1], e.shift[1]);
         let del1 = sub(k.pos(e.atoms[0], e.shift[0]), x2);
@@ -286,7 +274,7 @@ pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: 
     }
 }
 
-pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>], k: &Kernels, f: &SharedMut<[f64; 3]>, tally: &mut BondedTally) {
+pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>], k: &Kernels, f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
     for e in entries {
         let p: [[f64; 3]; 4] = std::array::from_fn(|m| k.pos(e.atoms[m], e.shift[m]));
         let (vb1, vb2, vb3) = (sub(p[0], p[1]), sub(p[2], p[1]), sub(p[3], p[2]));

@@ -65,24 +65,43 @@ pub trait Compute: Send + Sync {
     }
 }
 
-/// Compute styles this build implements.
-pub const SUPPORTED: &[&str] = &["temp", "ke", "pe", "pressure", "com", "property/atom", "reduce", "sph/rho/atom", "sph/e/atom", "sph/t/atom", "dmhs/phase/atom"];
+/// What `compute ID group style args...` gives a compute's constructor.
+pub struct ComputeDef<'a> {
+    pub cmd: &'a Command,
+    pub id: String,
+    pub groupbit: u32,
+    pub style: &'a Word,
+    pub args: &'a [Word],
+}
+
+type ComputeCtor = fn(ComputeDef, &World) -> DResult<Box<dyn Compute>>;
+
+/// Every compute style this build implements.
+const STYLES: &[(&str, ComputeCtor)] = &[
+    ("temp", |d, _| Ok(Box::new(temp::ComputeTemp::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("reduce", |d, w| Ok(Box::new(reduce::ComputeReduce::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("sph/rho/atom", |d, w| Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
+    ("sph/e/atom", |d, w| Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
+    ("sph/t/atom", |d, w| Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
+    ("dmhs/phase/atom", |d, w| Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
+];
 
 /// Build a compute from `compute ID group style args...`.
 pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], w: &World) -> DResult<Box<dyn Compute>> {
-    let id = id.text.clone();
-    match style.text.as_str() {
-        "temp" => Ok(Box::new(temp::ComputeTemp::from_lammps(id, groupbit, args, cmd)?)),
-        "ke" => Ok(Box::new(ke::ComputeKe::from_lammps(id, groupbit, args, cmd)?)),
-        "pe" => Ok(Box::new(pe::ComputePe::from_lammps(id, groupbit, args, cmd)?)),
-        "pressure" => Ok(Box::new(pressure::ComputePressure::from_lammps(id, groupbit, args, cmd, w)?)),
-        "com" => Ok(Box::new(com::ComputeCom::from_lammps(id, groupbit, args, cmd)?)),
-        "property/atom" => Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(id, groupbit, args, cmd, w)?)),
-        "reduce" => Ok(Box::new(reduce::ComputeReduce::from_lammps(id, groupbit, args, cmd, w)?)),
-        "sph/rho/atom" | "sph/e/atom" | "sph/t/atom" => Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(id, groupbit, style, args, cmd, w)?)),
-        "dmhs/phase/atom" => Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(id, groupbit, style, args, cmd, w)?)),
-        other => Err(crate::models::styles::unsupported_style("compute", style, other, SUPPORTED)),
+    match STYLES.iter().find(|(n, _)| *n == style.text) {
+        Some((_, ctor)) => ctor(ComputeDef { cmd, id: id.text.clone(), groupbit, style, args }, w),
+        None => Err(crate::models::styles::unsupported_style("compute", style, &style.text, &supported())),
     }
+}
+
+/// Names of the compute styles this build implements.
+pub fn supported() -> Vec<&'static str> {
+    STYLES.iter().map(|(n, _)| *n).collect()
 }
 
 /// The computes LAMMPS creates for thermo output: thermo_temp, thermo_press, thermo_pe.

@@ -3,7 +3,7 @@
 
 use super::value::FixValue;
 use super::{Fix, FixCtx, FixHooks};
-use crate::models::pair::SharedMut;
+use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -83,11 +83,9 @@ impl Fix for FixGravity {
         let a = &mut state.atoms;
         let n = a.nlocal;
         let (mask, typ, rmass, type_mass, groupbit) = (&a.mask[..n], &a.typ[..n], &a.rmass, &state.type_mass, self.groupbit);
-        let f = SharedMut::new(&mut a.f[..n]);
         // atoms are independent: ranges in parallel (the energy is summed in `scalar`)
-        super::for_each_range(n, 4096, |r| {
-            // SAFETY: each range belongs to one task only
-            let f = unsafe { f.slice(r.clone()) };
+        ranges(n, 4096, AtomsMut::new(&mut a.f[..n]), |r, mut f| {
+            let f = f.slice(r.clone());
             for (k, i) in r.enumerate() {
                 if mask[i] & groupbit != 0 {
                     let m = if per_atom { rmass[i] } else { type_mass[typ[i]] };

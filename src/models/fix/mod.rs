@@ -21,7 +21,6 @@ pub mod viscous;
 pub mod wall_gran;
 pub mod wall_reflect;
 
-pub use crate::engine::par::{any_index, for_each_range};
 use crate::engine::state::{RunError, State};
 use crate::models::bonded::{AngleStyle, BondStyle};
 use crate::models::pair::PairStyle;
@@ -162,31 +161,50 @@ pub fn drift(x: &mut [f64; 3], dt: f64, v: &[f64; 3]) {
     x[2] += dt * v[2];
 }
 
-/// Fix styles this build implements.
-pub const SUPPORTED: &[&str] = &["nve", "nve/sphere", "gravity", "addforce", "setforce", "enforce2d", "viscous", "wall/reflect", "wall/gran", "move", "sph", "sph/stationary", "bond/break", "bond/create", "dmhs/bond/break", "dmhs/phase", "dmhs/cooling", "dmhs/diffusion", "dmhs/swell", "dmhs/stokes"];
+/// What `fix ID group style args...` gives a fix's constructor.
+pub struct FixDef<'a> {
+    pub cmd: &'a Command,
+    pub id: String,
+    pub groupbit: u32,
+    pub style: &'a Word,
+    pub args: &'a [Word],
+}
+
+type FixCtor = fn(FixDef, &mut State) -> DResult<Box<dyn Fix>>;
+
+/// Every fix style this build implements.
+const STYLES: &[(&str, FixCtor)] = &[
+    ("nve", |d, _| Ok(Box::new(nve::FixNve::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("nve/sphere", |d, state| Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("gravity", |d, state| Ok(Box::new(gravity::FixGravity::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("addforce", |d, state| Ok(Box::new(addforce::FixAddForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("wall/reflect", |d, state| Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("move", |d, state| Ok(Box::new(move_linear::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("sph", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("sph/stationary", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("bond/break", |d, state| Ok(Box::new(bond_break::FixBondBreak::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("dmhs/bond/break", |d, state| Ok(Box::new(bond_break::FixBondBreak::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("bond/create", |d, state| Ok(Box::new(bond_create::FixBondCreate::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("dmhs/phase", |d, state| Ok(Box::new(dmhs_phase::FixDmhsPhase::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("dmhs/cooling", |d, state| Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("dmhs/diffusion", |d, state| Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("dmhs/swell", |d, state| Ok(Box::new(dmhs_swell::FixSwell::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], state: &mut State) -> DResult<Box<dyn Fix>> {
-    let id = id.text.clone();
-    match style.text.as_str() {
-        "nve" => Ok(Box::new(nve::FixNve::from_lammps(id, groupbit, args, cmd)?)),
-        "nve/sphere" => Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(id, groupbit, args, cmd, state)?)),
-        "gravity" => Ok(Box::new(gravity::FixGravity::from_lammps(id, groupbit, args, cmd, state)?)),
-        "addforce" => Ok(Box::new(addforce::FixAddForce::from_lammps(id, groupbit, args, cmd, state)?)),
-        "setforce" => Ok(Box::new(setforce::FixSetForce::from_lammps(id, groupbit, args, cmd, state)?)),
-        "enforce2d" => Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(id, groupbit, args, cmd)?)),
-        "viscous" => Ok(Box::new(viscous::FixViscous::from_lammps(id, groupbit, args, cmd, state)?)),
-        "wall/reflect" => Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(id, groupbit, args, cmd, state)?)),
-        "wall/gran" => Ok(Box::new(wall_gran::FixWallGran::from_lammps(id, groupbit, args, cmd, state)?)),
-        "move" => Ok(Box::new(move_linear::FixMove::from_lammps(id, groupbit, args, cmd, state)?)),
-        "sph" | "sph/stationary" => Ok(Box::new(sph::FixSph::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "bond/break" | "dmhs/bond/break" => Ok(Box::new(bond_break::FixBondBreak::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "bond/create" => Ok(Box::new(bond_create::FixBondCreate::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "dmhs/phase" => Ok(Box::new(dmhs_phase::FixDmhsPhase::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "dmhs/cooling" => Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "dmhs/diffusion" => Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "dmhs/swell" => Ok(Box::new(dmhs_swell::FixSwell::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        "dmhs/stokes" => Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(id, groupbit, style, args, cmd, state)?)),
-        other => Err(crate::models::styles::unsupported_style("fix", style, other, SUPPORTED)),
+    match STYLES.iter().find(|(n, _)| *n == style.text) {
+        Some((_, ctor)) => ctor(FixDef { cmd, id: id.text.clone(), groupbit, style, args }, state),
+        None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),
     }
+}
+
+/// Names of the fix styles this build implements.
+pub fn supported() -> Vec<&'static str> {
+    STYLES.iter().map(|(n, _)| *n).collect()
 }

@@ -2,7 +2,7 @@
 //! dtf = dt/2 * ftm2v; v += dtf/m * f; x += dt * v).
 
 use super::{Fix, FixCtx, FixHooks};
-use crate::models::pair::SharedMut;
+use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -28,12 +28,8 @@ impl FixNve {
         let a = &mut state.atoms;
         let n = a.nlocal;
         let (f, mask, typ, rmass) = (&a.f[..n], &a.mask[..n], &a.typ[..n], &a.rmass[..]);
-        let (x, v) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]));
-        super::for_each_range(n, 1024, |r| {
-            // SAFETY: each range belongs to one task only. Plain slices, not writes through
-            // SharedMut::get, so that the compiler need not reload the other arrays after each
-            // store (as in fix sph)
-            let (x, v) = unsafe { (x.slice(r.clone()), v.slice(r.clone())) };
+        ranges(n, 1024, (AtomsMut::new(&mut a.x[..n]), AtomsMut::new(&mut a.v[..n])), |r, (mut x, mut v)| {
+            let (x, v) = (x.slice(r.clone()), v.slice(r.clone()));
             let (f, mask, typ) = (&f[r.clone()], &mask[r.clone()], &typ[r.clone()]);
             let rmass = if per_atom { &rmass[r.clone()] } else { &[][..] };
             if first {

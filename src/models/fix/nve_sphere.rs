@@ -6,7 +6,7 @@
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::state::{RunError, State};
 use crate::engine::par::lanes::{lanes, L, LANES};
-use crate::models::pair::SharedMut;
+use crate::engine::par::{ranges, AtomsMut};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group nve/sphere [disc]";
@@ -53,10 +53,9 @@ impl FixNveSphere {
         let a = &mut state.atoms;
         let n = a.nlocal;
         let (f, torque, rmass, radius, mask) = (&a.f[..n], &a.torque[..n], &a.rmass[..n], &a.radius[..n], &a.mask[..n]);
-        let (x, v, omega) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.omega[..n]));
-        super::for_each_range(n, 1024, |r| {
-            // SAFETY: each range belongs to one task only
-            let s = unsafe { HalfStep { x: x.slice(r.clone()), v: v.slice(r.clone()), omega: omega.slice(r.clone()) } };
+        let windows = (AtomsMut::new(&mut a.x[..n]), AtomsMut::new(&mut a.v[..n]), AtomsMut::new(&mut a.omega[..n]));
+        ranges(n, 1024, windows, |r, (mut x, mut v, mut omega)| {
+            let s = HalfStep { x: x.slice(r.clone()), v: v.slice(r.clone()), omega: omega.slice(r.clone()) };
             let input = (&f[r.clone()], &torque[r.clone()], &rmass[r.clone()], &radius[r.clone()], &mask[r.clone()]);
             if first {
                 s.run::<true>(input, groupbit, dtf, dtfrotate, dtv);
@@ -67,8 +66,7 @@ impl FixNveSphere {
     }
 }
 
-/// The per-atom arrays one task of a half step writes (one range of atoms). Plain slices: written
-/// through the shared pointers, every captured array was loaded again after each store.
+/// The per-atom arrays one task of a half step writes (one range of atoms), as plain slices.
 struct HalfStep<'a> {
     x: &'a mut [[f64; 3]],
     v: &'a mut [[f64; 3]],

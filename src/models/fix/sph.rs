@@ -10,7 +10,7 @@
 //! m is the per-atom mass if the atom style has one, else the per-type mass.
 
 use super::{Fix, FixCtx, FixHooks};
-use crate::models::pair::SharedMut;
+use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -44,11 +44,9 @@ impl FixSph {
         let n = a.nlocal;
         let (f, drho, desph, mask, typ) = (&a.f[..n], &a.drho[..n], &a.desph[..n], &a.mask[..n], &a.typ[..n]);
         let rmass = if per_atom { &a.rmass[..n] } else { &[][..] };
-        let (x, v, vest) = (SharedMut::new(&mut a.x[..n]), SharedMut::new(&mut a.v[..n]), SharedMut::new(&mut a.vest[..n]));
-        let (rho, esph) = (SharedMut::new(&mut a.rho[..n]), SharedMut::new(&mut a.esph[..n]));
-        super::for_each_range(n, 1024, |r| {
-            // SAFETY: each range belongs to one task only
-            let s = unsafe { HalfStep { x: x.slice(r.clone()), v: v.slice(r.clone()), vest: vest.slice(r.clone()), rho: rho.slice(r.clone()), esph: esph.slice(r.clone()) } };
+        let windows = (AtomsMut::new(&mut a.x[..n]), AtomsMut::new(&mut a.v[..n]), AtomsMut::new(&mut a.vest[..n]), AtomsMut::new(&mut a.rho[..n]), AtomsMut::new(&mut a.esph[..n]));
+        ranges(n, 1024, windows, |r, (mut x, mut v, mut vest, mut rho, mut esph)| {
+            let s = HalfStep { x: x.slice(r.clone()), v: v.slice(r.clone()), vest: vest.slice(r.clone()), rho: rho.slice(r.clone()), esph: esph.slice(r.clone()) };
             let (f, drho, desph, mask) = (&f[r.clone()], &drho[r.clone()], &desph[r.clone()], &mask[r.clone()]);
             // dtf/m of the range's k-th atom
             let dtfm_r = |k: usize| {

@@ -15,7 +15,7 @@
 use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::granular::{granular_contact, GranGeom, GranModel};
 use crate::engine::state::{RunError, State};
-use crate::models::pair::SharedMut;
+use crate::engine::par::{ranges, AtomsMut};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group wall/gran granular hooke Kn eta_n0 [damping velocity|mass_velocity|viscoelastic|tsuji] [tangential linear_history Kt x_gt mu | linear_nohistory x_gt mu] [limit_damping] xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]";
@@ -137,10 +137,11 @@ impl FixWallGran {
         let n = a.nlocal;
         let mut hist = std::mem::take(&mut a.extra[k].data);
         let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
-        let (f, torque, h3) = (SharedMut::new(&mut a.f[..n]), SharedMut::new(&mut a.torque[..n]), SharedMut::new(&mut hist[..3 * n]));
+        let (h3, _) = hist[..3 * n].as_chunks_mut::<3>();
+        let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3));
         let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
         // atoms are independent: ranges of them may run in parallel (same bits)
-        super::for_each_range(n, 1024, |range| {
+        ranges(n, 1024, windows, |range, (mut f, mut torque, mut h3)| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;
@@ -153,30 +154,25 @@ impl FixWallGran {
                 let dist = if del1 < del2 { del1 } else { -del2 };
                 let rsq = dist * dist;
                 let radi = radius[i];
-                // SAFETY: each atom (and its 3 history values) belongs to one range only
-                let (h0, h1, h2) = unsafe { (h3.get(3 * i), h3.get(3 * i + 1), h3.get(3 * i + 2)) };
+                let h = &mut h3[i];
                 if rsq >= radi * radi {
                     // no contact: history zero (written only if it is not, so the many atoms
                     // away from the wall do not dirty their history's cache lines)
-                    if (h0.to_bits() | h1.to_bits() | h2.to_bits()) != 0 {
-                        (*h0, *h1, *h2) = (0.0, 0.0, 0.0);
+                    if (h[0].to_bits() | h[1].to_bits() | h[2].to_bits()) != 0 {
+                        *h = [0.0; 3];
                     }
                     continue;
                 }
-                let mut hv = [*h0, *h1, *h2];
+                let mut hv = *h;
                 let mut dx = [0.0f64; 3];
                 dx[dim] = dist;
                 let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
                 let g = GranGeom { dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, meff: rmass[i], wall: true };
                 let r = granular_contact(model, &g, &mut hv, update, dt);
-                (*h0, *h1, *h2) = (hv[0], hv[1], hv[2]);
-                // SAFETY: as above
-                unsafe {
-                    let (fi, ti) = (f.get(i), torque.get(i));
-                    for d in 0..3 {
-                        fi[d] += r.f[d];
-                        ti[d] += r.ti[d];
-                    }
+                *h = hv;
+                for d in 0..3 {
+                    f[i][d] += r.f[d];
+                    torque[i][d] += r.ti[d];
                 }
             }
         });

@@ -9,7 +9,8 @@
 //! model can evaluate them lane by lane in vector registers (the same IEEE operations per lane as
 //! one pair at a time, so the same bits); the results are applied in list order.
 
-use super::{for_each_slab, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use super::{sum_tallies, PairInput, PairOutput, Tally};
+use crate::engine::par::{slab_phase, AtomsMut, ChunksMut};
 use crate::engine::contact_history::{ContactHistory, HistoryChunk};
 use crate::engine::neighbor::{special_level, NEIGH_MASK};
 
@@ -106,8 +107,7 @@ impl LaneSrc<'_> {
     #[inline(always)]
     pub fn del(&self) -> [L; 3] {
         let [i, j] = &self.ij;
-        // SAFETY: the loop stores only list entries (< nall, the arrays' length)
-        unsafe { std::array::from_fn(|d| lanes(|l| self.x.get_unchecked(i[l])[d] - self.x.get_unchecked(j[l])[d])) }
+        std::array::from_fn(|d| lanes(|l| self.x[i[l]][d] - self.x[j[l]][d]))
     }
     #[inline(always)]
     pub fn rsq(&self) -> L {
@@ -118,22 +118,19 @@ impl LaneSrc<'_> {
     #[inline(always)]
     pub fn v3(&self, a: &[[f64; 3]], which: usize) -> [L; 3] {
         let idx = &self.ij[which];
-        // SAFETY: as in `del`
-        unsafe { std::array::from_fn(|d| lanes(|l| a.get_unchecked(idx[l])[d])) }
+        std::array::from_fn(|d| lanes(|l| a[idx[l]][d]))
     }
     /// A scalar per-atom array of atom i (`which` 0) or j (1).
     #[inline(always)]
     pub fn scalar(&self, a: &[f64], which: usize) -> L {
         let idx = &self.ij[which];
-        // SAFETY: as in `del`
-        unsafe { lanes(|l| *a.get_unchecked(idx[l])) }
+        lanes(|l| a[idx[l]])
     }
     /// The history values (zeros beyond `hsize`).
     #[inline(always)]
     pub fn hist(&self) -> [L; 3] {
         let (e, h) = (&self.e, self.hsize);
-        // SAFETY: e indexes the chunk's entries, `values` has hsize values per entry
-        unsafe { std::array::from_fn(|d| lanes(|l| if d < h { *self.values.get_unchecked(e[l] * h + d) } else { 0.0 })) }
+        std::array::from_fn(|d| lanes(|l| if d < h { self.values[e[l] * h + d] } else { 0.0 }))
     }
     /// Atom types of lane `l`.
     pub fn types(&self, l: usize) -> (usize, usize) {
@@ -183,37 +180,35 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     assert!(out.f.len() >= nlocal && out.torque.len() >= nlocal);
     let hsize = M::HISTORY;
     assert!(hsize <= 3);
-    let hist_shared: Option<SharedMut<HistoryChunk>> = match history {
+    let mut no_history: Vec<HistoryChunk> = vec![];
+    let hist: &mut Vec<HistoryChunk> = match history {
         Some(h) if hsize > 0 => {
             assert!(h.size() == hsize && h.chunks.len() == input.list.chunks.len(), "contact history not aligned with the neighbour list");
-            Some(h.shared())
+            &mut h.chunks
         }
         _ => {
             assert!(hsize == 0, "a contact model with history needs its history store");
-            None
+            &mut no_history
         }
     };
     let stride = input.ntypes + 1;
-    let fsh = SharedMut::new(out.f);
-    let tsh = SharedMut::new(out.torque);
     let (x, v, omega, radius, rmass, typ) = (&a.x[..], &a.v[..], &a.omega[..], &a.radius[..], &a.rmass[..], &a.typ[..]);
     let update = input.advance;
     let dt = input.dt;
-    let parts = for_each_slab(input.list.chunks.len(), nlocal, |c| {
-        // the task's own copies: read through the closure's captures, they were loaded again
-        // after every store to the forces
-        let (fsh, tsh, nlocal) = (fsh, tsh, nlocal);
-        let chunk = &input.list.chunks[c];
+    let list = input.list;
+    let bounds = list.bounds();
+    let mut parts = vec![Tally::default(); list.chunks.len()];
+    for parity in 0..2 {
+        let windows = (AtomsMut::new(&mut *out.f), AtomsMut::new(&mut *out.torque), ChunksMut::new(hist));
+        slab_phase(&bounds, parity, windows, &mut parts, |c, (mut fo, mut to, mut hist)| {
+        let chunk = &list.chunks[c];
         let mut t = Tally::default();
-        // SAFETY: chunk c of the store is used only by the work item of list chunk c
-        let hist: Option<&mut HistoryChunk> = hist_shared.as_ref().map(|h| unsafe { h.get(c) });
-        let (touch, values): (&mut [u8], &mut [f64]) = match hist {
-            Some(h) => (&mut h.touch[..], &mut h.values[..]),
-            None => (&mut [], &mut []),
-        };
+        let mut empty = HistoryChunk::default();
+        let h = if hsize > 0 { &mut hist[c] } else { &mut empty };
+        let (touch, values): (&mut [u8], &mut [f64]) = (&mut h.touch[..], &mut h.values[..]);
         let mut b = Batch::default();
         // evaluate the batch and apply its results in list order
-        let flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally| {
+        let mut flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally| {
             if n == 0 {
                 return;
             }
@@ -240,37 +235,22 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     }
                 }
                 let (i, j) = (b.i[l], b.j[l]);
-                // SAFETY: i is an atom of this chunk; j an owned atom of this chunk or the next
-                // (see for_each_chunk), or a ghost (not written)
-                unsafe {
-                    let (fi, ti) = (fsh.get(i), tsh.get(i));
-                    for d in 0..3 {
-                        fi[d] += r.f[d][l];
-                        ti[d] += r.ti[d][l];
-                    }
+                for d in 0..3 {
+                    fo[i][d] += r.f[d][l];
+                    to[i][d] += r.ti[d][l];
                 }
                 let w = if j < nlocal {
-                    unsafe {
-                        let (fj, tj) = (fsh.get(j), tsh.get(j));
-                        for d in 0..3 {
-                            fj[d] -= r.f[d][l];
-                            tj[d] += r.tj[d][l];
-                        }
+                    for d in 0..3 {
+                        fo[j][d] -= r.f[d][l];
+                        to[j][d] += r.tj[d][l];
                     }
                     1.0
                 } else {
                     0.5
                 };
                 if EFLAG {
-                    let (i, j) = (b.i[l], b.j[l]);
                     let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
-                    let f = [r.f[0][l], r.f[1][l], r.f[2][l]];
-                    t.virial[0] += w * del[0] * f[0];
-                    t.virial[1] += w * del[1] * f[1];
-                    t.virial[2] += w * del[2] * f[2];
-                    t.virial[3] += w * del[0] * f[1];
-                    t.virial[4] += w * del[0] * f[2];
-                    t.virial[5] += w * del[1] * f[2];
+                    t.xyz(w, del, [r.f[0][l], r.f[1][l], r.f[2][l]]);
                 }
             };
             crate::engine::par::lanes::for_each_lane(b.n, apply);
@@ -284,9 +264,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
             let k0 = chunk.offsets[i - chunk.start] as usize;
             for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
                 let j = (jraw & NEIGH_MASK) as usize;
-                // SAFETY: the list builder stores only indices < nall, the length of every
-                // per-atom array checked above
-                let (xj, radj) = unsafe { (*x.get_unchecked(j), *radius.get_unchecked(j)) };
+                let (xj, radj) = (x[j], radius[j]);
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let radsum = radi + radj;
@@ -346,6 +324,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         }
         flush(&mut b, n, values, &mut t);
         t
-    });
+        });
+    }
     sum_tallies(&parts)
 }

@@ -12,16 +12,15 @@
 //! contact when r < R_i + R_j; per-atom rmass and radius), torques weighted by 1 - w_ij.
 //! Needs atom_style hybrid sph sphere. Pairs are evaluated one at a time (no lanes): this style
 //! is for the blended particles; pure-SPH and pure-DEM pairs run faster with their own styles
-//! under hybrid/overlay.
+//! under hybrid/overlay. No special-bond weights apply.
 
 use super::contact::{Contact, ContactModel};
 use super::gran_hooke::NoHistory;
 use super::gran_hooke_history::Classic;
 use super::sph::{Batch, SphKernel, L};
 use super::sph_taitwater_morris::SphTaitwaterMorris;
-use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
+use super::{compute_pairs, PairInput, PairKernel, PairModify, PairOutput, PairResult, PairSetup, PairStyle, Tally};
 use crate::models::fix::dmhs_phase::PHI_FIELD;
-use crate::engine::neighbor::NEIGH_MASK;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [kernel K] [pmin P]";
@@ -41,6 +40,59 @@ impl DmhsBlend {
         let dem = NoHistory(Classic::from_lammps(&args[..k], cmd, SYNTAX)?);
         let sph = SphTaitwaterMorris::from_lammps(&args[k..], cmd)?;
         Ok(DmhsBlend { sph, dem, maxrad: vec![], n: 0 })
+    }
+}
+
+/// The blended pair kernel of one force evaluation: the style and the liquid weights.
+struct Blended<'a> {
+    style: &'a DmhsBlend,
+    phi: Option<&'a [f64]>,
+}
+
+impl PairKernel for Blended<'_> {
+    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64) -> Option<PairResult> {
+        let (sph, dem) = (&self.style.sph, &self.style.dem);
+        let a = input.atoms;
+        let (ti, tj) = (a.typ[i], a.typ[j]);
+        let weight = |k: usize| self.phi.map(|p| p[k]).unwrap_or(1.0);
+        let w = 0.5 * (weight(i) + weight(j));
+        let fluid = w > 0.0 && rsq < sph.cutsq_row(ti)[tj];
+        let (ri, rj) = (a.radius[i], a.radius[j]);
+        let solid = w < 1.0 && rsq < (ri + rj) * (ri + rj);
+        if !fluid && !solid {
+            return None;
+        }
+        let mut r = PairResult::default();
+        if fluid {
+            let (pi, pj) = (sph.pack(input, i), sph.pack(input, j));
+            let b: Batch<3> = Batch {
+                tj: [tj; 4],
+                m: L::splat(input.type_mass[tj]),
+                del: [L::splat(del[0]), L::splat(del[1]), L::splat(del[2])],
+                rsq: L::splat(rsq),
+                r: L::splat(rsq.sqrt()),
+                v: [L::splat(pj.v[0]), L::splat(pj.v[1]), L::splat(pj.v[2])],
+                a: L::splat(pj.a),
+                b: L::splat(pj.b),
+            };
+            let c = sph.pair_lanes(input, &pi, ti, &b);
+            for k in 0..3 {
+                r.f[k] += w * c.f[k][0];
+            }
+            r.rate_i = [w * c.drho_i[0], w * c.de_i[0]];
+            r.rate_j = [w * c.drho_j[0], w * c.de_j[0]];
+        }
+        if solid {
+            let c = Contact { del, rsq, radi: ri, radj: rj, vi: &a.v[i], vj: &a.v[j], omegai: &a.omega[i], omegaj: &a.omega[j], mi: a.rmass[i], mj: a.rmass[j] };
+            let cf = NoHistory::contact(&dem.0, &c, &mut [], input.advance, input.dt);
+            let u = 1.0 - w;
+            for k in 0..3 {
+                r.f[k] += u * cf.f[k];
+                r.ti[k] = u * cf.ti[k];
+                r.tj[k] = u * cf.tj[k];
+            }
+        }
+        Some(r)
     }
 }
 
@@ -75,99 +127,8 @@ impl PairStyle for DmhsBlend {
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.sph.set_dim3(input.dimension == 3);
         let a = input.atoms;
-        let nlocal = a.nlocal;
-        let stride = input.ntypes + 1;
         let phi = a.find_extra(PHI_FIELD).map(|k| &a.extra[k].data[..]);
-        let weight = |i: usize| phi.map(|p| p[i]).unwrap_or(1.0);
-        let has_rates = !out.drho.is_empty();
-        let mut t = Tally::default();
-        for chunk in &input.list.chunks {
-            for i in chunk.start..chunk.end {
-                let ti = a.typ[i];
-                let pi = self.sph.pack(input, i);
-                let sph_cut = self.sph.cutsq_row(ti);
-                for &jraw in chunk.neighbors(i) {
-                    let j = (jraw & NEIGH_MASK) as usize;
-                    let tj = a.typ[j];
-                    if let Some(fl) = input.type_filter {
-                        if !fl[ti * stride + tj] {
-                            continue;
-                        }
-                    }
-                    let del = [a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1], a.x[i][2] - a.x[j][2]];
-                    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                    let w = 0.5 * (weight(i) + weight(j));
-                    let owned = j < nlocal;
-                    let mut fsum = [0.0; 3];
-                    if w > 0.0 && rsq < sph_cut[tj] {
-                        let pj = self.sph.pack(input, j);
-                        let b: Batch<3> = Batch {
-                            tj: [tj; 4],
-                            m: L::splat(input.type_mass[tj]),
-                            del: [L::splat(del[0]), L::splat(del[1]), L::splat(del[2])],
-                            rsq: L::splat(rsq),
-                            r: L::splat(rsq.sqrt()),
-                            v: [L::splat(pj.v[0]), L::splat(pj.v[1]), L::splat(pj.v[2])],
-                            a: L::splat(pj.a),
-                            b: L::splat(pj.b),
-                        };
-                        let c = self.sph.pair_lanes(input, &pi, ti, &b);
-                        for k in 0..3 {
-                            fsum[k] += w * c.f[k][0];
-                        }
-                        if has_rates {
-                            out.drho[i] += w * c.drho_i[0];
-                            out.desph[i] += w * c.de_i[0];
-                            if owned {
-                                out.drho[j] += w * c.drho_j[0];
-                                out.desph[j] += w * c.de_j[0];
-                            }
-                        }
-                    }
-                    let (ri, rj) = (a.radius[i], a.radius[j]);
-                    if w < 1.0 && rsq < (ri + rj) * (ri + rj) {
-                        let c = Contact {
-                            del,
-                            rsq,
-                            radi: ri,
-                            radj: rj,
-                            vi: &a.v[i],
-                            vj: &a.v[j],
-                            omegai: &a.omega[i],
-                            omegaj: &a.omega[j],
-                            mi: a.rmass[i],
-                            mj: a.rmass[j],
-                        };
-                        let cf = NoHistory::contact(&self.dem.0, &c, &mut [], input.advance, input.dt);
-                        let u = 1.0 - w;
-                        for k in 0..3 {
-                            fsum[k] += u * cf.f[k];
-                            out.torque[i][k] += u * cf.ti[k];
-                            if owned {
-                                out.torque[j][k] += u * cf.tj[k];
-                            }
-                        }
-                    }
-                    for k in 0..3 {
-                        out.f[i][k] += fsum[k];
-                        if owned {
-                            out.f[j][k] -= fsum[k];
-                        }
-                    }
-                    if input.eflag {
-                        // virial of the full pair force (SPH central part + contact force)
-                        let wv = if owned { 1.0 } else { 0.5 };
-                        t.virial[0] += wv * del[0] * fsum[0];
-                        t.virial[1] += wv * del[1] * fsum[1];
-                        t.virial[2] += wv * del[2] * fsum[2];
-                        t.virial[3] += wv * del[0] * fsum[1];
-                        t.virial[4] += wv * del[0] * fsum[2];
-                        t.virial[5] += wv * del[1] * fsum[2];
-                    }
-                }
-            }
-        }
-        t
+        compute_pairs(&Blended { style: self, phi }, input, out)
     }
     fn needs_type_mass(&self) -> bool {
         true

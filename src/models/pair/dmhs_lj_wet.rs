@@ -21,8 +21,7 @@
 //! Unset I,J pairs mix epsilon, sigma and Rc as lj/cut does (`pair_modify mix`), and cth as the
 //! arithmetic mean.
 
-use super::{for_each_chunk, sum_tallies, PairInput, PairModify, PairOutput, PairStyle, SharedMut, Tally, TypeTable};
-use crate::engine::neighbor::{special_level, NEIGH_MASK};
+use super::{compute_central, CentralKernel, PairInput, PairModify, PairOutput, PairStyle, Tally, TypeTable};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style dmhs/lj/wet Rc [conc max|mean] [scale adhesion|all] [swell dmax]";
@@ -39,7 +38,7 @@ struct Coeff {
 
 /// What the kernel needs per type pair.
 #[derive(Clone, Copy, Debug, Default)]
-struct Derived {
+pub struct Derived {
     on: bool,
     epsilon: f64,
     sigma: f64,
@@ -49,6 +48,16 @@ struct Derived {
     rminsq: f64,
     /// LJ(Rc) with pair_modify shift, else 0
     offset: f64,
+    /// The style's `conc max` and `scale all` settings.
+    conc_max: bool,
+    scale_all: bool,
+}
+
+/// What the kernel reads of each atom: its water concentration and its (capped) radius growth.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Wet {
+    conc: f64,
+    growth: f64,
 }
 
 pub struct LjWet {
@@ -110,6 +119,44 @@ fn eval(p: &Derived, r: f64, s: f64, lambda: f64, scale_all: bool) -> (f64, f64)
     (f / r, e)
 }
 
+impl CentralKernel for LjWet {
+    type Params = Derived;
+    type Site = Wet;
+    /// Concentrations and capped growths of owned atoms and ghosts.
+    fn sites(&self, input: &PairInput) -> Vec<Wet> {
+        let a = input.atoms;
+        let nall = a.nall();
+        let conc = |i: usize| match crate::engine::water::water(a) {
+            Some(w) if a.features.sph => crate::engine::water::conc_of(w[i], a.rho[i], input.type_mass[a.typ[i]]),
+            _ => 0.0,
+        };
+        let growth = match (self.dmax, a.find_extra(crate::engine::water::GROWTH)) {
+            (Some(dmax), Some(k)) => Some((dmax, &a.extra[k].data[..nall])),
+            _ => None,
+        };
+        (0..nall).map(|i| Wet { conc: conc(i), growth: growth.map(|(dmax, g)| g[i].clamp(0.0, dmax)).unwrap_or(0.0) }).collect()
+    }
+    #[inline(always)]
+    fn row(&self, ti: usize) -> &[Derived] {
+        self.derived.row(ti)
+    }
+    /// The cutoff follows the swollen surfaces: Rc + g_i + g_j.
+    #[inline(always)]
+    fn cutsq(p: &Derived, si: &Wet, sj: &Wet) -> f64 {
+        let rc = p.cut + (si.growth + sj.growth);
+        if p.on { rc * rc } else { 0.0 }
+    }
+    #[inline(always)]
+    fn eval<const EFLAG: bool>(p: &Derived, rsq: f64, factor: f64, si: &Wet, sj: &Wet) -> (f64, f64) {
+        let r = rsq.sqrt();
+        let delta = si.growth + sj.growth;
+        let cij = if p.conc_max { si.conc.max(sj.conc) } else { 0.5 * (si.conc + sj.conc) };
+        let lambda = (1.0 - cij * p.inv_cth).max(0.0);
+        let (fpair, e) = eval(p, r, r - delta, lambda, p.scale_all);
+        (factor * fpair, factor * e)
+    }
+}
+
 impl PairStyle for LjWet {
     fn style(&self) -> &str {
         "dmhs/lj/wet"
@@ -162,6 +209,8 @@ impl PairStyle for LjWet {
                     cut: c.cut,
                     rminsq: 2f64.powf(1.0 / 3.0) * c.sigma * c.sigma,
                     offset,
+                    conc_max: self.conc_max,
+                    scale_all: self.scale_all,
                 };
                 derived.set(i, j, d);
             }
@@ -174,84 +223,7 @@ impl PairStyle for LjWet {
         if d.on { d.cut + 2.0 * self.dmax.unwrap_or(0.0) } else { 0.0 }
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        let a = input.atoms;
-        let nall = a.nall();
-        let nlocal = a.nlocal;
-        // per-atom concentrations and (capped) growths, owned and ghosts
-        let conc: Vec<f64> = match crate::engine::water::water(a) {
-            Some(w) if a.features.sph => (0..nall).map(|i| crate::engine::water::conc_of(w[i], a.rho[i], input.type_mass[a.typ[i]])).collect(),
-            _ => vec![0.0; nall],
-        };
-        let growth: Vec<f64> = match (self.dmax, a.find_extra(crate::engine::water::GROWTH)) {
-            (Some(dmax), Some(k)) => a.extra[k].data[..nall].iter().map(|&g| g.clamp(0.0, dmax)).collect(),
-            _ => vec![0.0; nall],
-        };
-        let stride = input.ntypes + 1;
-        let shared = SharedMut::new(&mut *out.f);
-        let (conc_max, scale_all, eflag) = (self.conc_max, self.scale_all, input.eflag);
-        let derived = &self.derived;
-        let parts = for_each_chunk(input.list, |chunk| {
-            let mut t = Tally::default();
-            for i in chunk.start..chunk.end {
-                let (xi, ti) = (a.x[i], a.typ[i]);
-                let mut fi = [0.0f64; 3];
-                for &jraw in chunk.neighbors(i) {
-                    let j = (jraw & NEIGH_MASK) as usize;
-                    let tj = a.typ[j];
-                    if let Some(fl) = input.type_filter {
-                        if !fl[ti * stride + tj] {
-                            continue;
-                        }
-                    }
-                    let p = derived.get(ti, tj);
-                    if !p.on {
-                        continue;
-                    }
-                    let del = [xi[0] - a.x[j][0], xi[1] - a.x[j][1], xi[2] - a.x[j][2]];
-                    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                    let delta = growth[i] + growth[j];
-                    let rc = p.cut + delta;
-                    if rsq >= rc * rc {
-                        continue;
-                    }
-                    let r = rsq.sqrt();
-                    let cij = if conc_max { conc[i].max(conc[j]) } else { 0.5 * (conc[i] + conc[j]) };
-                    let lambda = (1.0 - cij * p.inv_cth).max(0.0);
-                    let factor = input.special_lj[special_level(jraw)];
-                    let (fpair, e) = eval(p, r, r - delta, lambda, scale_all);
-                    let (fpair, e) = (factor * fpair, factor * e);
-                    for d in 0..3 {
-                        fi[d] += del[d] * fpair;
-                    }
-                    let w = if j < nlocal {
-                        // SAFETY: an owned j is in this chunk or the next (slab schedule)
-                        let fj = unsafe { shared.get(j) };
-                        for d in 0..3 {
-                            fj[d] -= del[d] * fpair;
-                        }
-                        1.0
-                    } else {
-                        0.5
-                    };
-                    if eflag {
-                        t.evdwl += w * e;
-                        t.virial[0] += w * del[0] * del[0] * fpair;
-                        t.virial[1] += w * del[1] * del[1] * fpair;
-                        t.virial[2] += w * del[2] * del[2] * fpair;
-                        t.virial[3] += w * del[0] * del[1] * fpair;
-                        t.virial[4] += w * del[0] * del[2] * fpair;
-                        t.virial[5] += w * del[1] * del[2] * fpair;
-                    }
-                }
-                // SAFETY: i belongs to this chunk
-                let fo = unsafe { shared.get(i) };
-                for d in 0..3 {
-                    fo[d] += fi[d];
-                }
-            }
-            t
-        });
-        sum_tallies(&parts)
+        compute_central(self, input, out.f)
     }
     fn needs_type_mass(&self) -> bool {
         // c = w rho / m uses the per-type mass, as the diffusion does
@@ -272,7 +244,7 @@ mod tests {
     use super::*;
 
     fn pair(eps: f64, sigma: f64, cut: f64) -> Derived {
-        Derived { on: true, epsilon: eps, sigma, inv_cth: 2.0, cut, rminsq: 2f64.powf(1.0 / 3.0) * sigma * sigma, offset: 0.0 }
+        Derived { on: true, epsilon: eps, sigma, inv_cth: 2.0, cut, rminsq: 2f64.powf(1.0 / 3.0) * sigma * sigma, offset: 0.0, conc_max: true, scale_all: false }
     }
 
     #[test]

@@ -10,7 +10,7 @@
 //! `fix dmhs/diffusion` integrates them.
 
 use super::sph::{compute_sph, lanes, parse_kernel, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, LANES};
-use super::{at, PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
+use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style dmhs/sph/diffusion [kernel lucy|cubic|wendland2]";
@@ -40,7 +40,7 @@ impl SphKernel for SphDiffusion {
     #[inline(always)]
     fn pack(&self, input: &PairInput, i: usize) -> Packed {
         let a = input.atoms;
-        let vol = at(input.type_mass, a.typ[i]) / a.rho[i];
+        let vol = input.type_mass[a.typ[i]] / a.rho[i];
         Packed { x: a.x[i], v: [0.0; 3], a: vol, b: a.extra[self.kw].data[i] / vol }
     }
     #[inline(always)]
@@ -115,7 +115,7 @@ impl PairStyle for SphDiffusion {
     }
     /// Explicit diffusion: the Fick deck (Lucy, h = 2.6 dx) is stable at D dt/h^2 = 0.104 and
     /// unstable at 0.118; the limit keeps a factor 2: dt <= 0.05 h^2/D, the smallest over pairs.
-    fn dt_limits(&self) -> Vec<crate::sim::stability::Limit> {
+    fn dt_limits(&self) -> Vec<crate::models::Limit> {
         let mut worst: Option<(f64, f64, f64)> = None;
         for i in 1..=self.pairs.n {
             for j in i..=self.pairs.n {
@@ -129,7 +129,7 @@ impl PairStyle for SphDiffusion {
             }
         }
         worst
-            .map(|(dt, h, d)| vec![crate::sim::stability::Limit { model: "water diffusion".into(), rule: format!("explicit 0.05 h^2/D (h = {h}, D = {d})"), dt_max: dt }])
+            .map(|(dt, h, d)| vec![crate::models::Limit { model: "water diffusion".into(), rule: format!("explicit 0.05 h^2/D (h = {h}, D = {d})"), dt_max: dt }])
             .unwrap_or_default()
     }
 }

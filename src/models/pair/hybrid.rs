@@ -2,7 +2,7 @@
 //! by `pair_coeff I J STYLE [k] args...`. With `hybrid` each type pair has at most one style
 //! (a later assignment replaces an earlier one); with `hybrid/overlay` the styles add up.
 
-use super::{new_pair_style, PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, SUPPORTED};
+use super::{new_pair_style, PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 use crate::engine::neighbor::NeighList;
 use std::time::Instant;
@@ -36,8 +36,9 @@ impl Hybrid {
             return Err(Diagnostic::at(cmd.span, "pair_style hybrid needs at least one sub-style", "no sub-style").with_help(format!("syntax: {SYNTAX}")));
         }
         // a word starts a new sub-style if it names a pair style (as LAMMPS decides)
+        let supported = super::supported();
         let is_style = |w: &Word| {
-            SUPPORTED.contains(&w.text.as_str()) || dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Pair, &w.text)
+            supported.contains(&w.text.as_str()) || dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Pair, &w.text)
         };
         if !is_style(&args[0]) {
             return Err(Diagnostic::at(args[0].span, format!("`{}` is not a pair style", args[0].text), "expected a pair style name").with_help(format!("syntax: {SYNTAX}")));
@@ -280,7 +281,7 @@ impl PairStyle for Hybrid {
         any
     }
 
-    fn dt_limits(&self) -> Vec<crate::sim::stability::Limit> {
+    fn dt_limits(&self) -> Vec<crate::models::Limit> {
         self.styles.iter().flat_map(|s| s.dt_limits()).collect()
     }
     fn sph_info(&self) -> Option<super::SphInfo> {

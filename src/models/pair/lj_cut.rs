@@ -44,16 +44,20 @@ impl LjCut {
 
 impl CentralKernel for LjCut {
     type Params = Derived;
+    type Site = ();
+    fn sites(&self, input: &PairInput) -> Vec<()> {
+        vec![(); input.atoms.nall()]
+    }
     #[inline(always)]
     fn row(&self, ti: usize) -> &[Derived] {
         self.derived.row(ti)
     }
     #[inline(always)]
-    fn cutsq(p: &Derived) -> f64 {
+    fn cutsq(p: &Derived, _: &(), _: &()) -> f64 {
         p.cutsq
     }
     #[inline(always)]
-    fn eval<const EFLAG: bool>(p: &Derived, rsq: f64, factor: f64) -> (f64, f64) {
+    fn eval<const EFLAG: bool>(p: &Derived, rsq: f64, factor: f64, _: &(), _: &()) -> (f64, f64) {
         let r2inv = 1.0 / rsq;
         let r6inv = r2inv * r2inv * r2inv;
         let forcelj = r6inv * (p.lj1 * r6inv - p.lj2);
@@ -193,12 +197,12 @@ mod tests {
         lj.coeff.set(1, 1, Coeff { set: true, epsilon: 1.0, sigma: 1.0, cut: 2.5 });
         lj.init(1, &PairModify { mix: MixRule::Geometric, shift: true }, None).unwrap();
         let r: f64 = 1.1;
-        let (fpair, e) = LjCut::eval::<true>(lj.derived.get(1, 1), r * r, 1.0);
+        let (fpair, e) = LjCut::eval::<true>(lj.derived.get(1, 1), r * r, 1.0, &(), &());
         let f_exact = 24.0 * (2.0 * r.powi(-13) - r.powi(-7));
         assert!((fpair * r - f_exact).abs() < 1e-12);
         let e_cut = 4.0 * (2.5f64.powi(-12) - 2.5f64.powi(-6));
         assert!((e - (4.0 * (r.powi(-12) - r.powi(-6)) - e_cut)).abs() < 1e-12);
-        assert!(2.5 * 2.5 >= LjCut::cutsq(lj.derived.get(1, 1)));
+        assert!(2.5 * 2.5 >= LjCut::cutsq(lj.derived.get(1, 1), &(), &()));
     }
 
     #[test]

@@ -24,7 +24,7 @@ pub mod zero;
 
 use crate::engine::atoms::Atoms;
 use crate::engine::neighbor::{special_level, NeighList, NEIGH_MASK};
-pub use crate::engine::par::{at, for_each_chunk, for_each_chunk_then, for_each_slab, SharedMut, PARALLEL_MIN_ATOMS};
+use crate::engine::par::{slab_phase, AtomsMut};
 pub use crate::engine::tally::{sum_tallies, Tally};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -174,7 +174,7 @@ pub trait PairStyle: Send + Sync {
     fn reset_model_seconds(&mut self) {}
     /// Other time-step limits of the style (e.g. explicit diffusion), for `dmhs check` and the
     /// warnings at the start of a run.
-    fn dt_limits(&self) -> Vec<crate::sim::stability::Limit> {
+    fn dt_limits(&self) -> Vec<crate::models::Limit> {
         vec![]
     }
 }
@@ -237,42 +237,57 @@ pub fn sph_cutsq<T: Clone + Default>(pairs: &sph::PairTable<T>, n: usize, active
     c
 }
 
+type PairCtor = fn(&Word, &[Word], &Command) -> DResult<Box<dyn PairStyle>>;
+
+/// Every pair style this build implements: `pair_style NAME args...` builds it.
+const STYLES: &[(&str, PairCtor)] = &[
+    ("lj/cut", |_, args, cmd| Ok(Box::new(lj_cut::LjCut::from_lammps(args, cmd)?))),
+    ("sph/taitwater", |_, args, cmd| Ok(Box::new(sph_taitwater::SphTaitwater::from_lammps(args, cmd)?))),
+    ("sph/taitwater/morris", |_, args, cmd| Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?))),
+    ("sph/heatconduction", |_, args, cmd| Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?))),
+    ("sph/rhosum", |_, args, cmd| Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?))),
+    ("dmhs/blend", |_, args, cmd| Ok(Box::new(dmhs_blend::DmhsBlend::from_lammps(args, cmd)?))),
+    ("dmhs/heatconduction", |_, args, cmd| Ok(Box::new(dmhs_heatconduction::DmhsHeatConduction::from_lammps(args, cmd)?))),
+    ("dmhs/sph/diffusion", |_, args, cmd| Ok(Box::new(dmhs_sph_diffusion::SphDiffusion::from_lammps(args, cmd)?))),
+    ("dmhs/lj/wet", |_, args, cmd| Ok(Box::new(dmhs_lj_wet::LjWet::from_lammps(args, cmd)?))),
+    ("gran/hooke", |_, args, cmd| Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?))),
+    ("gran/hooke/history", |_, args, cmd| Ok(Box::new(gran_hooke_history::GranHookeHistory::from_lammps(args, cmd)?))),
+    ("granular", |_, args, cmd| Ok(Box::new(granular::Granular::from_lammps(args, cmd)?))),
+    ("zero", |_, args, cmd| Ok(Box::new(zero::PairZero::from_lammps(args, cmd)?))),
+    ("hybrid", |name, args, cmd| Ok(Box::new(hybrid::Hybrid::from_lammps(name, args, cmd)?))),
+    ("hybrid/overlay", |name, args, cmd| Ok(Box::new(hybrid::Hybrid::from_lammps(name, args, cmd)?))),
+];
+
 /// Build a pair style from `pair_style NAME args...`.
 pub fn new_pair_style(name: &Word, args: &[Word], cmd: &Command) -> DResult<Box<dyn PairStyle>> {
-    match name.text.as_str() {
-        "lj/cut" => Ok(Box::new(lj_cut::LjCut::from_lammps(args, cmd)?)),
-        "sph/taitwater" => Ok(Box::new(sph_taitwater::SphTaitwater::from_lammps(args, cmd)?)),
-        "sph/taitwater/morris" => Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?)),
-        "sph/heatconduction" => Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?)),
-        "sph/rhosum" => Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?)),
-        "dmhs/blend" => Ok(Box::new(dmhs_blend::DmhsBlend::from_lammps(args, cmd)?)),
-        "dmhs/heatconduction" => Ok(Box::new(dmhs_heatconduction::DmhsHeatConduction::from_lammps(args, cmd)?)),
-        "dmhs/sph/diffusion" => Ok(Box::new(dmhs_sph_diffusion::SphDiffusion::from_lammps(args, cmd)?)),
-        "dmhs/lj/wet" => Ok(Box::new(dmhs_lj_wet::LjWet::from_lammps(args, cmd)?)),
-        "gran/hooke" => Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?)),
-        "gran/hooke/history" => Ok(Box::new(gran_hooke_history::GranHookeHistory::from_lammps(args, cmd)?)),
-        "granular" => Ok(Box::new(granular::Granular::from_lammps(args, cmd)?)),
-        "zero" => Ok(Box::new(zero::PairZero::from_lammps(args, cmd)?)),
-        "hybrid" | "hybrid/overlay" => Ok(Box::new(hybrid::Hybrid::from_lammps(name, args, cmd)?)),
-        other => Err(crate::models::styles::unsupported_style("pair", name, other, SUPPORTED)),
+    match STYLES.iter().find(|(n, _)| *n == name.text) {
+        Some((_, ctor)) => ctor(name, args, cmd),
+        None => Err(crate::models::styles::unsupported_style("pair", name, &name.text, &supported())),
     }
 }
 
-/// Pair styles this build implements.
-pub const SUPPORTED: &[&str] = &["lj/cut", "gran/hooke", "gran/hooke/history", "granular", "zero", "sph/taitwater", "sph/taitwater/morris", "sph/heatconduction", "sph/rhosum", "dmhs/sph/diffusion", "dmhs/lj/wet", "hybrid", "hybrid/overlay", "dmhs/heatconduction", "dmhs/blend"];
+/// Names of the pair styles this build implements.
+pub fn supported() -> Vec<&'static str> {
+    STYLES.iter().map(|(n, _)| *n).collect()
+}
 
 /// A kernel for a central pair force between two point particles. Parameters are looked up
 /// once per atom i as a row over j's type, then evaluated per pair.
 pub trait CentralKernel: Sync {
     type Params: Sync;
+    /// Per-atom values the kernel reads of both atoms besides positions and types (`()` for
+    /// most styles; dmhs/lj/wet: water concentration and swelling).
+    type Site: Copy + Send + Sync;
+    /// The sites of all atoms (owned, then ghosts).
+    fn sites(&self, input: &PairInput) -> Vec<Self::Site>;
     /// Parameters of type pairs (ti, 0..=ntypes), indexed by j's type.
     fn row(&self, ti: usize) -> &[Self::Params];
-    /// Squared cutoff of a type pair.
-    fn cutsq(p: &Self::Params) -> f64;
+    /// Squared cutoff of a pair.
+    fn cutsq(p: &Self::Params, si: &Self::Site, sj: &Self::Site) -> f64;
     /// `(fpair, energy)` for `rsq` inside the cutoff, where the force on i is
     /// `fpair * (x_i - x_j)`; `factor` is the special-bond weight. The energy is only used
     /// when `EFLAG`.
-    fn eval<const EFLAG: bool>(p: &Self::Params, rsq: f64, factor: f64) -> (f64, f64);
+    fn eval<const EFLAG: bool>(p: &Self::Params, rsq: f64, factor: f64, si: &Self::Site, sj: &Self::Site) -> (f64, f64);
 }
 
 /// The loop for central forces: every listed pair, Newton's third law for owned partners,
@@ -299,72 +314,185 @@ fn central_loop<K: CentralKernel, const EFLAG: bool, const SPECIAL: bool, const 
     input: &PairInput,
     f: &mut [[f64; 3]],
 ) -> Tally {
-    let a = input.atoms;
-    let nlocal = a.nlocal;
-    let stride = input.ntypes + 1;
-    let x = &a.x[..];
-    let typ = &a.typ[..];
-    assert!(x.len() == typ.len() && f.len() >= nlocal);
-    let shared = SharedMut::new(f);
-    let parts = for_each_chunk(input.list, |chunk| {
+    let list = input.list;
+    let sites = kernel.sites(input);
+    let bounds = list.bounds();
+    let mut parts = vec![Tally::default(); list.chunks.len()];
+    for parity in 0..2 {
+        slab_phase(&bounds, parity, AtomsMut::new(f), &mut parts, |c, mut f| central_chunk::<K, EFLAG, SPECIAL, FILTER>(kernel, input, &sites, c, &mut f));
+    }
+    sum_tallies(&parts)
+}
+
+/// The pairs of chunk `c` of [`central_loop`], with the forces of its window.
+fn central_chunk<K: CentralKernel, const EFLAG: bool, const SPECIAL: bool, const FILTER: bool>(kernel: &K, input: &PairInput, sites: &[K::Site], c: usize, f: &mut AtomsMut<[f64; 3]>) -> Tally {
+        let a = input.atoms;
+        let nlocal = a.nlocal;
+        let stride = input.ntypes + 1;
+        let (x, typ) = (&a.x[..], &a.typ[..]);
+        let chunk = &input.list.chunks[c];
         let mut t = Tally::default();
         for i in chunk.start..chunk.end {
             let xi = x[i];
             let ti = typ[i];
+            let si = &sites[i];
             let row = kernel.row(ti);
             let filter = if FILTER { &input.type_filter.unwrap()[ti * stride..(ti + 1) * stride] } else { &[][..] };
             let mut fi = [0.0f64; 3];
             for &jraw in chunk.neighbors(i) {
                 let j = (jraw & NEIGH_MASK) as usize;
-                // SAFETY: the list builder stores only indices < nall = x.len() = typ.len()
-                let (xj, tj) = unsafe { (*x.get_unchecked(j), *typ.get_unchecked(j)) };
+                let (xj, tj) = (x[j], typ[j]);
                 if FILTER && !filter[tj] {
                     continue;
                 }
-                let dx = xi[0] - xj[0];
-                let dy = xi[1] - xj[1];
-                let dz = xi[2] - xj[2];
-                let rsq = dx * dx + dy * dy + dz * dz;
+                let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let p = &row[tj];
+                let sj = &sites[j];
                 // branch-free cutoff: about a quarter of the listed pairs (those in the skin)
                 // are outside, which a branch predicts badly; their force is masked to +0
-                let keep = if rsq < K::cutsq(p) { u64::MAX } else { 0 };
+                let keep = if rsq < K::cutsq(p, si, sj) { u64::MAX } else { 0 };
                 let factor = if SPECIAL { input.special_lj[special_level(jraw)] } else { 1.0 };
-                let (fpair, e) = K::eval::<EFLAG>(p, rsq, factor);
+                let (fpair, e) = K::eval::<EFLAG>(p, rsq, factor, si, sj);
                 let fpair = f64::from_bits(fpair.to_bits() & keep);
                 let e = f64::from_bits(e.to_bits() & keep);
-                fi[0] += dx * fpair;
-                fi[1] += dy * fpair;
-                fi[2] += dz * fpair;
+                fi[0] += del[0] * fpair;
+                fi[1] += del[1] * fpair;
+                fi[2] += del[2] * fpair;
                 let w = if j < nlocal {
-                    // SAFETY: j is an owned atom of this chunk or the next (see for_each_chunk)
-                    let fj = unsafe { shared.get(j) };
-                    fj[0] -= dx * fpair;
-                    fj[1] -= dy * fpair;
-                    fj[2] -= dz * fpair;
+                    let fj = &mut f[j];
+                    fj[0] -= del[0] * fpair;
+                    fj[1] -= del[1] * fpair;
+                    fj[2] -= del[2] * fpair;
                     1.0
                 } else {
                     0.5
                 };
                 if EFLAG {
-                    t.evdwl += w * e;
-                    t.virial[0] += w * dx * dx * fpair;
-                    t.virial[1] += w * dy * dy * fpair;
-                    t.virial[2] += w * dz * dz * fpair;
-                    t.virial[3] += w * dx * dy * fpair;
-                    t.virial[4] += w * dx * dz * fpair;
-                    t.virial[5] += w * dy * dz * fpair;
+                    t.central(w, e, del, fpair);
                 }
             }
-            // SAFETY: i belongs to this chunk
-            let fo = unsafe { shared.get(i) };
+            let fo = &mut f[i];
             fo[0] += fi[0];
             fo[1] += fi[1];
             fo[2] += fi[2];
         }
         t
-    });
-    sum_tallies(&parts)
+}
+
+/// A kernel that adds a scalar per pair to both atoms (sph/rhosum's density sum).
+pub trait ScalarKernel: Sync {
+    /// Squared cutoffs of type pairs (row-major over `0..=ntypes`).
+    fn cutsq(&self) -> &[f64];
+    /// What atoms i and j receive from a pair at squared distance `rsq` inside the cutoff.
+    fn eval(&self, input: &PairInput, ti: usize, tj: usize, rsq: f64) -> (f64, f64);
+}
+
+/// Add every listed pair's [`ScalarKernel`] values to `out` of owned atoms (i's value, then
+/// j's, pair by pair in list order).
+pub fn compute_scalar<K: ScalarKernel>(kernel: &K, input: &PairInput, out: &mut [f64]) {
+    let a = input.atoms;
+    let (nlocal, stride) = (a.nlocal, input.ntypes + 1);
+    let cutsq = kernel.cutsq();
+    let list = input.list;
+    let bounds = list.bounds();
+    let mut parts = vec![(); list.chunks.len()];
+    for parity in 0..2 {
+        slab_phase(&bounds, parity, AtomsMut::new(&mut *out), &mut parts, |c, mut out| {
+            let chunk = &list.chunks[c];
+            for i in chunk.start..chunk.end {
+                let (ti, xi) = (a.typ[i], a.x[i]);
+                for &jraw in chunk.neighbors(i) {
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    let tj = a.typ[j];
+                    if input.type_filter.is_some_and(|fl| !fl[ti * stride + tj]) {
+                        continue;
+                    }
+                    let xj = a.x[j];
+                    let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
+                    let rsq = dx * dx + dy * dy + dz * dz;
+                    if !(rsq < cutsq[ti * stride + tj]) {
+                        continue;
+                    }
+                    let (vi, vj) = kernel.eval(input, ti, tj, rsq);
+                    out[i] += vi;
+                    if j < nlocal {
+                        out[j] += vj;
+                    }
+                }
+            }
+        });
+    }
+}
+
+/// What a [`PairKernel`] gives one pair: the force on i (j gets its negative), torques on i
+/// and j, and the rates (drho, desph) of i and j.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PairResult {
+    pub f: [f64; 3],
+    pub ti: [f64; 3],
+    pub tj: [f64; 3],
+    pub rate_i: [f64; 2],
+    pub rate_j: [f64; 2],
+}
+
+/// A kernel for any pair interaction, one pair at a time.
+pub trait PairKernel: Sync {
+    /// The pair (i, j) with `del` = x_i - x_j, or None if it does not interact.
+    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64) -> Option<PairResult>;
+}
+
+/// Every listed pair through a [`PairKernel`], on one thread in list order (the order
+/// dmhs/blend's scenes were validated with; its pairs are few): results are added to i and, if
+/// owned, to j, pair by pair; the virial as LAMMPS' `ev_tally_xyz`.
+pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
+    let a = input.atoms;
+    let (nlocal, stride) = (a.nlocal, input.ntypes + 1);
+    let has_rates = !out.drho.is_empty();
+    let (f, torque, drho, desph) = (&mut *out.f, &mut *out.torque, &mut *out.drho, &mut *out.desph);
+    let mut t = Tally::default();
+    for chunk in &input.list.chunks {
+        for i in chunk.start..chunk.end {
+            let (ti, xi) = (a.typ[i], a.x[i]);
+            for &jraw in chunk.neighbors(i) {
+                let j = (jraw & NEIGH_MASK) as usize;
+                if input.type_filter.is_some_and(|fl| !fl[ti * stride + a.typ[j]]) {
+                    continue;
+                }
+                let xj = a.x[j];
+                let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+                let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                let Some(r) = kernel.pair(input, i, j, del, rsq) else { continue };
+                let owned = j < nlocal;
+                if has_rates {
+                    drho[i] += r.rate_i[0];
+                    desph[i] += r.rate_i[1];
+                    if owned {
+                        drho[j] += r.rate_j[0];
+                        desph[j] += r.rate_j[1];
+                    }
+                }
+                if !torque.is_empty() {
+                    for k in 0..3 {
+                        torque[i][k] += r.ti[k];
+                        if owned {
+                            torque[j][k] += r.tj[k];
+                        }
+                    }
+                }
+                for k in 0..3 {
+                    f[i][k] += r.f[k];
+                    if owned {
+                        f[j][k] -= r.f[k];
+                    }
+                }
+                if input.eflag {
+                    t.xyz(if owned { 1.0 } else { 0.5 }, del, r.f);
+                }
+            }
+        }
+    }
+    t
 }
 
 /// Per-type-pair table (row-major over `0..=ntypes`), symmetric by construction.

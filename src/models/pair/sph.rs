@@ -191,12 +191,12 @@ impl<T: Copy + PartialEq> PerTypePair<T> {
     }
     #[inline(always)]
     pub fn get(&self, i: usize, j: usize) -> T {
-        super::at(&self.val, i * self.stride + j)
+        self.val[i * self.stride + j]
     }
     /// The values for type `ti` against the types `tj` of a batch.
     #[inline(always)]
     pub fn batch(&self, ti: usize, tj: &[usize; LANES]) -> [T; LANES] {
-        if super::at(&self.uniform, ti) {
+        if self.uniform[ti] {
             [self.get(ti, 1); LANES]
         } else {
             std::array::from_fn(|l| self.get(ti, tj[l]))

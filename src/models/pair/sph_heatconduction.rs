@@ -4,7 +4,7 @@
 //! (esph is extensive; temperatures come from compute sph/t/atom as esph/cv).
 
 use super::sph::{compute_sph, lanes, parse_kernel, Batch, Kernel, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, LANES};
-use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/heatconduction [kernel lucy|cubic|wendland2]";
@@ -44,7 +44,7 @@ impl SphKernel for SphHeatConduction {
         // LAMMPS computes 1/h per pair: Support::new does the same arithmetic
         let sup = SupportLanes::gather(|l| Support::new(dh[l].1));
         let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
-        let imass = at(input.type_mass, ti);
+        let imass = input.type_mass[ti];
         let jmass = b.m;
         let de = lanes(|l| 2.0 * imass * jmass[l] / (imass + jmass[l]));
         let de = lanes(|l| de[l] * ((pi.a + b.a[l]) / (pi.a * b.a[l])));

@@ -12,10 +12,11 @@
 //! Rates and forces of a particle are kept as one row of four (2D: fx fy drho desph; 3D: fx fy
 //! fz drho, with desph beside), added with one vector operation per pair and partner.
 
-use crate::engine::par::lanes::{for_each_lane, lanes, transpose4, L, LANES};
 use super::sph::{Packed, SphKernel};
-use super::{at, for_each_chunk_then, sum_tallies, PairInput, PairOutput, SharedMut, Tally};
+use super::{sum_tallies, PairInput, PairOutput, Tally};
 use crate::engine::neighbor::NEIGH_MASK;
+use crate::engine::par::lanes::{for_each_lane, lanes, transpose4, L, LANES};
+use crate::engine::par::{completed_after, ranges, slab_phase, AtomsMut};
 
 /// Up to [`LANES`] neighbours j of one particle i, field by field (unused lanes repeat lane 0;
 /// their results are ignored). `D` is the dimension of the vectors.
@@ -95,11 +96,12 @@ impl Record {
 /// Write the neighbours j with `keep(j, rsq)` to `out` without branches; returns their count.
 /// `out` must have room for all of `neigh`.
 #[inline(always)]
-fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: *mut u32, keep: impl Fn(usize, f64) -> bool) -> usize {
+fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: &mut [u32], keep: impl Fn(usize, f64) -> bool) -> usize {
+    let out = &mut out[..neigh.len()];
     let mut n_in = 0usize;
-    for &jraw in neigh {
+    for (&jraw, slot) in neigh.iter().zip(0..) {
         let j = (jraw & NEIGH_MASK) as usize;
-        let xj = at(recs, j).0[0];
+        let xj = recs[j].0[0];
         let (dx, dy) = (xi[0] - xj[0], xi[1] - xj[1]);
         let rsq = if D == 2 {
             dx * dx + dy * dy
@@ -108,8 +110,8 @@ fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], o
             dx * dx + dy * dy + dz * dz
         };
         let ok = keep(j, rsq);
-        // SAFETY: the caller reserved room for every neighbour
-        unsafe { *out.add(n_in) = j as u32 };
+        // n_in <= slot: every write lands inside `out`
+        out[n_in.min(slot)] = j as u32;
         n_in += ok as usize;
     }
     n_in
@@ -120,26 +122,26 @@ fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], o
 /// rsq, so the same neighbours in the same order. (In 3D this measured slower than the scalar
 /// gather, although it ran 10% fewer instructions.)
 #[inline(always)]
-fn gather_inside_uniform_2d(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: *mut u32, cutsq: f64) -> usize {
+fn gather_inside_uniform_2d(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: &mut [u32], cutsq: f64) -> usize {
     let quads = neigh.chunks_exact(LANES);
     let rest = quads.remainder();
+    let out = &mut out[..neigh.len()];
     let c = L::splat(cutsq);
     let mut n_in = 0usize;
-    for q in quads {
+    for (q, slot) in quads.zip((0..).step_by(LANES)) {
         let j: [u32; LANES] = std::array::from_fn(|l| q[l] & NEIGH_MASK);
-        // SAFETY: neighbour indices are below nall = recs.len()
-        let r: [&Record; LANES] = j.map(|j| unsafe { recs.get_unchecked(j as usize) });
+        let r: [&Record; LANES] = j.map(|j| &recs[j as usize]);
         let t = transpose4([&r[0].0[0], &r[1].0[0], &r[2].0[0], &r[3].0[0]]);
         let (dx, dy) = (xi[0] - t[0], xi[1] - t[1]);
         let inside = (dx * dx + dy * dy).lt_bits(&c);
         for (l, &jl) in j.iter().enumerate() {
-            // SAFETY: the caller reserved room for every neighbour
-            unsafe { *out.add(n_in) = jl };
+            // n_in <= slot + l: every write lands inside `out`
+            out[n_in.min(slot + l)] = jl;
             n_in += ((inside >> l) & 1) as usize;
         }
     }
-    // SAFETY: room for the rest follows the n_in written
-    n_in + gather_inside::<2>(rest, recs, xi, unsafe { out.add(n_in) }, |_, rsq| rsq < cutsq)
+    let done = neigh.len() - rest.len();
+    n_in + gather_inside::<2>(rest, recs, xi, &mut out[n_in.min(done)..], |_, rsq| rsq < cutsq)
 }
 
 /// The SPH pair loop on the slab schedule (see [`super::for_each_chunk`]): Newton's third law
@@ -152,58 +154,52 @@ fn gather_inside_uniform_2d(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: *
 pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
     let a = input.atoms;
     let nall = a.nall();
-    let parallel = rayon::current_num_threads() > 1 && nall >= super::PARALLEL_MIN_ATOMS;
     // per-atom preparation in parallel (each record depends on its own atom only)
     if input.dimension == 2 {
         // a 2D record needs every particle in the plane of the first, at rest across it
         let z0 = a.x.first().map(|x| x[2]).unwrap_or(0.0);
-        let rec = |p: &Packed, i: usize| (Record::new::<2>(p, at(input.type_mass, a.typ[i])), p.x[2] != z0 || p.v[2] != 0.0);
-        let (recs, off_plane) = records(nall, parallel, kernel, input, rec);
+        let rec = |p: &Packed, i: usize| (Record::new::<2>(p, input.type_mass[a.typ[i]]), p.x[2] != z0 || p.v[2] != 0.0);
+        let (recs, off_plane) = records(nall, kernel, input, rec);
         if !off_plane {
             return sph_loop::<K, 2>(kernel, input, out, &recs);
         }
     }
-    let (recs, _) = records(nall, parallel, kernel, input, |p, _| (Record::new::<3>(p, 0.0), false));
+    let (recs, _) = records(nall, kernel, input, |p, _| (Record::new::<3>(p, 0.0), false));
     sph_loop::<K, 3>(kernel, input, out, &recs)
 }
 
-/// The records of atoms `0..n`, `rec(packed, i)` of the kernel's records (in parallel when
-/// `parallel`), and whether `rec` flagged any atom. The kernel packs [`LANES`] atoms at a time.
-/// Written in place: returned one by one and collected, a record went through the stack in
-/// scalar pieces and was read back whole, a store-forwarding stall.
-fn records<K: SphKernel>(n: usize, parallel: bool, kernel: &K, input: &PairInput, rec: impl Fn(&Packed, usize) -> (Record, bool) + Sync) -> (Vec<Record>, bool) {
+/// The records of atoms `0..n`, `rec(packed, i)` of the kernel's records (in parallel ranges),
+/// and whether `rec` flagged any atom. The kernel packs [`LANES`] atoms at a time. Written in
+/// place: returned one by one and collected, a record went through the stack in scalar pieces
+/// and was read back whole, a store-forwarding stall.
+fn records<K: SphKernel>(n: usize, kernel: &K, input: &PairInput, rec: impl Fn(&Packed, usize) -> (Record, bool) + Sync) -> (Vec<Record>, bool) {
     const CHUNK: usize = 1024; // a multiple of LANES
-    let mut v: Vec<Record> = Vec::with_capacity(n);
-    let fill = |c: usize, slots: &mut [std::mem::MaybeUninit<Record>]| {
-        let mut flagged = false;
+    let mut v = vec![Record::default(); n];
+    let flagged = std::sync::atomic::AtomicBool::new(false);
+    ranges(n, CHUNK, AtomsMut::new(&mut v), |r, mut slots| {
+        let slots = slots.slice(r.clone());
+        let mut any = false;
         let mut quads = slots.chunks_exact_mut(LANES);
-        let mut i = c * CHUNK;
+        let mut i = r.start;
         for quad in &mut quads {
             kernel.pack_lanes(input, i, |l, p| {
-                let (r, f) = rec(p, i + l);
-                quad[l].write(r);
-                flagged |= f;
+                let (rc, f) = rec(p, i + l);
+                quad[l] = rc;
+                any |= f;
             });
             i += LANES;
         }
         for slot in quads.into_remainder() {
-            let (r, f) = rec(&kernel.pack(input, i), i);
-            slot.write(r);
-            flagged |= f;
+            let (rc, f) = rec(&kernel.pack(input, i), i);
+            *slot = rc;
+            any |= f;
             i += 1;
         }
-        flagged
-    };
-    let spare = &mut v.spare_capacity_mut()[..n];
-    let flagged = if parallel {
-        use rayon::prelude::*;
-        spare.par_chunks_mut(CHUNK).enumerate().map(|(c, s)| fill(c, s)).reduce(|| false, |x, y| x | y)
-    } else {
-        spare.chunks_mut(CHUNK).enumerate().fold(false, |acc, (c, s)| acc | fill(c, s))
-    };
-    // SAFETY: every one of the n slots was written above
-    unsafe { v.set_len(n) };
-    (v, flagged)
+        if any {
+            flagged.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+    });
+    (v, flagged.into_inner())
 }
 
 fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &mut PairOutput, recs: &[Record]) -> Tally {
@@ -214,7 +210,6 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     // per owned atom: 2D [fx fy drho desph]; 3D [fx fy fz drho] and desph
     let mut acc = vec![L::default(); nlocal];
     let mut acc_e = vec![0.0f64; if D == 3 { nlocal } else { 0 }];
-    let (shared, shared_e) = (SharedMut::new(&mut acc), SharedMut::new(&mut acc_e));
     let eflag = input.eflag;
     // types i whose cutoff is the same for every partner type, with no type filter (the common
     // case): their cutoff test needs no partner types
@@ -229,134 +224,115 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     // (hybrid/overlay) put there already
     let has_rates = !out.drho.is_empty();
     let water = kernel.rate_is_water() && !out.dwater.is_empty();
-    let (f, drho, desph, dwater) = (SharedMut::new(out.f), SharedMut::new(out.drho), SharedMut::new(out.desph), SharedMut::new(out.dwater));
-    let flush = |chunk: &crate::engine::neighbor::ChunkList| {
+    let list = input.list;
+    let nchunks = list.chunks.len();
+    let bounds = list.bounds();
+    let mut parts = vec![Tally::default(); nchunks];
+    for parity in 0..2 {
+        let windows = (AtomsMut::new(&mut acc), AtomsMut::new(&mut acc_e), AtomsMut::new(&mut *out.f), AtomsMut::new(&mut *out.drho), AtomsMut::new(&mut *out.desph), AtomsMut::new(&mut *out.dwater));
+        slab_phase(&bounds, parity, windows, &mut parts, |c, (mut acc, mut acc_e, mut f, mut drho, mut desph, mut dwater)| {
+        let chunk = &list.chunks[c];
+        let mut t = Tally::default();
+        let mut inside: Vec<u32> = Vec::new();
         for i in chunk.start..chunk.end {
-            // SAFETY: a complete chunk's atoms are touched by this task only (for_each_chunk_then);
-            // the rate arrays are used only when they exist (has_rates, water)
-            unsafe {
-                let r = *shared.get(i);
+            let pi = recs[i].packed::<D>();
+            let xi = pi.x;
+            let ti = typ[i] as usize;
+            let cutsq = kernel.cutsq_row(ti);
+            let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
+            // gather the neighbours inside the cutoff (and the type filter), branch-free; room
+            // for every neighbour and the padding of the last batch
+            let neigh = chunk.neighbors(i);
+            if inside.len() < neigh.len() + LANES {
+                inside.resize(neigh.len() + LANES, 0);
+            }
+            let n_in = match uniform_cut[ti] {
+                Some(c) if D == 2 => gather_inside_uniform_2d(neigh, recs, xi, &mut inside, c),
+                Some(c) => gather_inside::<D>(neigh, recs, xi, &mut inside, |_, rsq| rsq < c),
+                None => gather_inside::<D>(neigh, recs, xi, &mut inside, |j, rsq| {
+                    let tj = typ[j] as usize;
+                    rsq < cutsq[tj] && filter.map(|fl| fl[tj]).unwrap_or(true)
+                }),
+            };
+            let mut own = L::default();
+            let mut own_e = 0.0;
+            // pad to whole batches with copies of the first neighbour (their results are ignored)
+            let padded = n_in.next_multiple_of(LANES);
+            for k in n_in..padded {
+                inside[k] = inside[0];
+            }
+            for (start, batch) in (0..n_in).step_by(LANES).zip(inside[..padded].chunks_exact(LANES)) {
+                let n = (n_in - start).min(LANES);
+                let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
+                let rj: [&Record; LANES] = js.map(|j| &recs[j]);
+                let c0 = transpose4([&rj[0].0[0], &rj[1].0[0], &rj[2].0[0], &rj[3].0[0]]);
+                let c1 = transpose4([&rj[0].0[1], &rj[1].0[1], &rj[2].0[1], &rj[3].0[1]]);
+                let tj = js.map(|j| typ[j] as usize);
+                let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
+                    (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
+                } else {
+                    let v3 = [c0[3], c1[0], c1[1]];
+                    (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| v3[k]), c1[2], c1[3], lanes(|l| input.type_mass[tj[l]]))
+                };
+                let del: [L; D] = std::array::from_fn(|k| xi[k] - xj[k]);
+                let rsq = dot_lanes(&del, &del);
+                let b = Batch { tj, del, rsq, r: rsq.sqrt(), v: vj, a: aj, b: bj, m: mj };
+                let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
+                // rows per lane: what i gets and what j gets (minus the force)
+                let nf: [L; D] = c.f.map(|f| -f);
+                let (ri, rj) = if D == 2 {
+                    (transpose4([&c.f[0].0, &c.f[1].0, &c.drho_i.0, &c.de_i.0]), transpose4([&nf[0].0, &nf[1].0, &c.drho_j.0, &c.de_j.0]))
+                } else {
+                    (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
+                };
+                // apply in list order (the sums of a one-pair-at-a-time loop)
+                let apply = |l: usize| {
+                    let j = js[l];
+                    own += ri[l];
+                    if D == 3 {
+                        own_e += c.de_i[l];
+                    }
+                    if j < nlocal {
+                        acc[j] += rj[l];
+                        if D == 3 {
+                            acc_e[j] += c.de_j[l];
+                        }
+                    }
+                };
+                for_each_lane(n, apply);
+                if eflag {
+                    for l in 0..n {
+                        let w = if js[l] < nlocal { 1.0 } else { 0.5 };
+                        let d: [f64; 3] = std::array::from_fn(|k| if k < D { b.del[k][l] } else { 0.0 });
+                        t.central(w, 0.0, d, c.fpair[l]);
+                    }
+                }
+            }
+            acc[i] += own;
+            if D == 3 {
+                acc_e[i] += own_e;
+            }
+        }
+        // chunks no task adds to any more: their sums to the outputs, while in this core's cache
+        for done in completed_after(c, nchunks) {
+            for i in list.chunks[done].start..list.chunks[done].end {
+                let r = acc[i];
                 // 2D: fx fy drho desph; 3D: fx fy fz drho, desph beside
-                let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], *shared_e.get(i)) };
-                let fi = f.get(i);
+                let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], acc_e[i]) };
+                let fi = &mut f[i];
                 fi[0] += r[0];
                 fi[1] += r[1];
                 fi[2] += fz;
                 if water {
-                    *dwater.get(i) += e_rate;
+                    dwater[i] += e_rate;
                 } else if has_rates {
-                    *drho.get(i) += rho_rate;
-                    *desph.get(i) += e_rate;
+                    drho[i] += rho_rate;
+                    desph[i] += e_rate;
                 }
             }
         }
-    };
-    let parts = for_each_chunk_then(
-        input.list,
-        |chunk| {
-            // the task's own copies: values read through the closure's captures were loaded
-            // again after every store to the accumulators
-            let (shared, shared_e, nlocal) = (shared, shared_e, nlocal);
-            let mut t = Tally::default();
-            let mut inside: Vec<u32> = Vec::with_capacity(128);
-            for i in chunk.start..chunk.end {
-                let pi = recs[i].packed::<D>();
-                let xi = pi.x;
-                let ti = typ[i] as usize;
-                let cutsq = kernel.cutsq_row(ti);
-                let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
-                // gather the neighbours inside the cutoff (and the type filter), branch-free
-                let neigh = chunk.neighbors(i);
-                inside.clear();
-                inside.reserve(neigh.len() + LANES);
-                let n_in = match uniform_cut[ti] {
-                    Some(c) if D == 2 => gather_inside_uniform_2d(neigh, recs, xi, inside.as_mut_ptr(), c),
-                    Some(c) => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |_, rsq| rsq < c),
-                    None => gather_inside::<D>(neigh, recs, xi, inside.as_mut_ptr(), |j, rsq| {
-                        let tj = at(&typ, j) as usize;
-                        rsq < at(cutsq, tj) && filter.map(|fl| at(fl, tj)).unwrap_or(true)
-                    }),
-                };
-                // SAFETY: the first n_in entries were written
-                unsafe { inside.set_len(n_in) };
-                let mut own = L::default();
-                let mut own_e = 0.0;
-                // pad to whole batches with copies of the first neighbour (their results are ignored)
-                if n_in > 0 {
-                    while inside.len() % LANES != 0 {
-                        inside.push(inside[0]);
-                    }
-                }
-                for (start, batch) in (0..n_in).step_by(LANES).zip(inside.chunks_exact(LANES)) {
-                    let n = (n_in - start).min(LANES);
-                    let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
-                    // SAFETY: neighbour indices are below nall = recs.len()
-                    let rj: [&Record; LANES] = js.map(|j| unsafe { recs.get_unchecked(j) });
-                    let c0 = transpose4([&rj[0].0[0], &rj[1].0[0], &rj[2].0[0], &rj[3].0[0]]);
-                    let c1 = transpose4([&rj[0].0[1], &rj[1].0[1], &rj[2].0[1], &rj[3].0[1]]);
-                    let tj = js.map(|j| at(&typ, j) as usize);
-                    let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
-                        (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
-                    } else {
-                        let v3 = [c0[3], c1[0], c1[1]];
-                        (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| v3[k]), c1[2], c1[3], lanes(|l| at(input.type_mass, tj[l])))
-                    };
-                    let del: [L; D] = std::array::from_fn(|k| xi[k] - xj[k]);
-                    let rsq = dot_lanes(&del, &del);
-                    let b = Batch { tj, del, rsq, r: rsq.sqrt(), v: vj, a: aj, b: bj, m: mj };
-                    let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
-                    // rows per lane: what i gets and what j gets (minus the force)
-                    let nf: [L; D] = c.f.map(|f| -f);
-                    let (ri, rj) = if D == 2 {
-                        (transpose4([&c.f[0].0, &c.f[1].0, &c.drho_i.0, &c.de_i.0]), transpose4([&nf[0].0, &nf[1].0, &c.drho_j.0, &c.de_j.0]))
-                    } else {
-                        (transpose4([&c.f[0].0, &c.f[1].0, &c.f[D - 1].0, &c.drho_i.0]), transpose4([&nf[0].0, &nf[1].0, &nf[D - 1].0, &c.drho_j.0]))
-                    };
-                    // apply in list order (the sums of a one-pair-at-a-time loop)
-                    let apply = |l: usize| {
-                        let j = js[l];
-                        own += ri[l];
-                        if D == 3 {
-                            own_e += c.de_i[l];
-                        }
-                        if j < nlocal {
-                            // SAFETY: an owned j is in this chunk or the next (slab schedule)
-                            unsafe {
-                                *shared.get(j) += rj[l];
-                                if D == 3 {
-                                    *shared_e.get(j) += c.de_j[l];
-                                }
-                            }
-                        }
-                    };
-                    for_each_lane(n, apply);
-                    if eflag {
-                        for l in 0..n {
-                            let w = if js[l] < nlocal { 1.0 } else { 0.5 };
-                            let fp = c.fpair[l];
-                            let d: [f64; D] = std::array::from_fn(|k| b.del[k][l]);
-                            t.virial[0] += w * d[0] * d[0] * fp;
-                            t.virial[1] += w * d[1] * d[1] * fp;
-                            t.virial[3] += w * d[0] * d[1] * fp;
-                            if D == 3 {
-                                t.virial[2] += w * d[D - 1] * d[D - 1] * fp;
-                                t.virial[4] += w * d[0] * d[D - 1] * fp;
-                                t.virial[5] += w * d[1] * d[D - 1] * fp;
-                            }
-                        }
-                    }
-                }
-                // SAFETY: i belongs to this chunk
-                unsafe {
-                    *shared.get(i) += own;
-                    if D == 3 {
-                        *shared_e.get(i) += own_e;
-                    }
-                }
-            }
-            t
-        },
-        flush,
-    );
+        t
+        });
+    }
     sum_tallies(&parts)
 }

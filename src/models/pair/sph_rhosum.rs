@@ -5,8 +5,7 @@
 //! only atoms of types with rhosum coefficients are summed, over neighbours of those types.
 
 use super::sph::PairTable;
-use super::{for_each_chunk, PairInput, PairModify, PairOutput, PairStyle, SharedMut, Tally};
-use crate::engine::neighbor::NEIGH_MASK;
+use super::{compute_scalar, PairInput, PairModify, PairOutput, PairStyle, ScalarKernel, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/rhosum N";
@@ -26,6 +25,23 @@ impl SphRhoSum {
         let every = a.i64_in("N (steps between density summations)", 0, i64::MAX)?;
         a.finish()?;
         Ok(SphRhoSum { every, pairs: PairTable::new(0), cutsq: vec![], n: 0 })
+    }
+}
+
+/// The pair term m_j W_ij of i's sum (and m_i W_ij of j's), in LAMMPS' arithmetic.
+impl ScalarKernel for SphRhoSum {
+    fn cutsq(&self) -> &[f64] {
+        &self.cutsq
+    }
+    fn eval(&self, input: &PairInput, ti: usize, tj: usize, rsq: f64) -> (f64, f64) {
+        let h = *self.pairs.get(ti, tj);
+        let ih = 1.0 / h;
+        let ihsq = ih * ih;
+        let mut wf = 1.0 - rsq * ihsq;
+        wf = wf * wf;
+        wf = wf * wf;
+        wf = if input.dimension == 3 { 2.1541870227086614782 * wf * ihsq * ih } else { 1.5915494309189533576 * wf * ihsq };
+        (input.type_mass[tj] * wf, input.type_mass[ti] * wf)
     }
 }
 
@@ -77,42 +93,7 @@ impl PairStyle for SphRhoSum {
                 rho[i] = input.type_mass[t] * wf;
             }
         }
-        let shared = SharedMut::new(rho);
-        for_each_chunk(input.list, |chunk| {
-            for i in chunk.start..chunk.end {
-                let ti = a.typ[i];
-                let xi = a.x[i];
-                for &jraw in chunk.neighbors(i) {
-                    let j = (jraw & NEIGH_MASK) as usize;
-                    let tj = a.typ[j];
-                    if let Some(fl) = input.type_filter {
-                        if !fl[ti * stride + tj] {
-                            continue;
-                        }
-                    }
-                    let xj = a.x[j];
-                    let (dx, dy, dz) = (xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]);
-                    let rsq = dx * dx + dy * dy + dz * dz;
-                    if !(rsq < self.cutsq[ti * stride + tj]) {
-                        continue;
-                    }
-                    let h = *self.pairs.get(ti, tj);
-                    let ih = 1.0 / h;
-                    let ihsq = ih * ih;
-                    let mut wf = 1.0 - rsq * ihsq;
-                    wf = wf * wf;
-                    wf = wf * wf;
-                    wf = if dim3 { 2.1541870227086614782 * wf * ihsq * ih } else { 1.5915494309189533576 * wf * ihsq };
-                    // SAFETY: slab schedule (i in this chunk, owned j in this or the next)
-                    unsafe {
-                        *shared.get(i) += input.type_mass[tj] * wf;
-                        if j < a.nlocal {
-                            *shared.get(j) += input.type_mass[ti] * wf;
-                        }
-                    }
-                }
-            }
-        });
+        compute_scalar(self, input, rho);
         true
     }
 }

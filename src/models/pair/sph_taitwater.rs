@@ -6,7 +6,7 @@
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
 use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_pack, tait_pack_lanes, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
-use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/taitwater [kernel lucy|cubic|wendland2] [pmin P]";
@@ -57,7 +57,7 @@ impl SphKernel for SphTaitwater {
         let (eps, visc_c) = (lanes(|l| d[l].1), lanes(|l| d[l].2));
         let (del, rsq) = (&b.del, &b.rsq);
         let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
-        let imass = at(input.type_mass, ti);
+        let imass = input.type_mass[ti];
         let jmass = b.m;
         let vi = pi.v;
         // Monaghan viscosity for approaching pairs only: computed for all and selected. The same

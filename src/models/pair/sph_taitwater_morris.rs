@@ -5,7 +5,7 @@
 //! de_i = de_j = -(fpair v.x + fvisc |v_ij|^2)/2 (velocities are the estimates `vest`).
 
 use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_pack, tait_pack_lanes, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
-use super::{at, PairInput, PairModify, PairOutput, PairStyle, Tally};
+use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/taitwater/morris [kernel lucy|cubic|wendland2] [pmin P]";
@@ -58,7 +58,7 @@ impl SphKernel for SphTaitwaterMorris {
         let mu = lanes(|l| d[l].0);
         let del = &b.del;
         let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
-        let imass = at(input.type_mass, ti);
+        let imass = input.type_mass[ti];
         let jmass = b.m;
         let vi = pi.v;
         let vel: [L; D] = std::array::from_fn(|k| vi[k] - b.v[k]);

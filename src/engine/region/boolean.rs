@@ -12,6 +12,8 @@ pub const INTERSECT: Style = Style { syntax: "intersect N id1 id2 ...", nargs: c
 struct Boolean {
     /// Intersect (all) or union (any).
     all: bool,
+    /// Copies of the sub-regions as defined (LAMMPS refers to them; a moving sub-region will
+    /// need that too).
     subs: Vec<Region>,
 }
 

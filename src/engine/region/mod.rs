@@ -3,9 +3,9 @@
 //! ("extent") that `create_atoms` uses to narrow its lattice loop.
 //!
 //! This file holds what every style shares (ID, keywords, INF/EDGE bounds, `match`) and the
-//! registry [`STYLES`]; each style is one file with its parsing, its `inside` test, its extent
+//! registry `STYLES`; each style is one file with its parsing, its `inside` test, its extent
 //! and its tests. To add a style: write `name.rs` with a `pub const STYLE: Style` and a type
-//! that implements [`Shape`], then add `mod name;` and one line to [`STYLES`] (its syntax then
+//! that implements [`Shape`], then add `mod name;` and one line to `STYLES` (its syntax then
 //! shows in the help line and its name in "did you mean").
 //!
 //! A style sees points in its own frame only: LAMMPS' `move`/`rotate` keywords map a point back
@@ -47,10 +47,10 @@ pub trait Shape: Debug + Send + Sync {
 /// parser. The count comes first because the keywords after the shape words set its scale.
 #[derive(Clone, Copy)]
 pub struct Style {
-    pub syntax: &'static str,
+    syntax: &'static str,
     /// May read a count word first (`union N ...`); the style name is given for messages.
-    pub nargs: fn(&mut Args, &str) -> DResult<usize>,
-    pub parse: fn(&ShapeArgs) -> DResult<Box<dyn Shape>>,
+    nargs: fn(&mut Args, &str) -> DResult<usize>,
+    parse: fn(&ShapeArgs) -> DResult<Box<dyn Shape>>,
 }
 
 /// `nargs` of a style with a fixed number of shape words.
@@ -69,7 +69,8 @@ const STYLES: &[(&str, Style)] = &[
     ("intersect", boolean::INTERSECT),
 ];
 
-/// LAMMPS region styles (and `region ID delete`) that dmhs lacks: named as unsupported.
+/// LAMMPS region styles (and `region ID delete`) that dmhs lacks: named as unsupported
+/// (checked after `STYLES`).
 const LAMMPS_ONLY: &[&str] = &["cone", "ellipsoid", "delete"];
 
 /// Names of the supported styles.
@@ -89,14 +90,14 @@ fn syntax() -> String {
 /// and the regions defined so far; errors point at the words through `args`.
 pub struct ShapeArgs<'a> {
     args: &'a Args<'a>,
-    pub style: &'a str,
-    pub words: &'a [Word],
+    style: &'a str,
+    words: &'a [Word],
     /// Lattice spacings under `units lattice`, ones under `units box`.
-    pub scale: Vec3,
+    scale: Vec3,
     domain: Option<&'a Domain>,
     /// Faces given with `open` (1-based) and the word that named each.
-    pub open: &'a [(&'a Word, usize)],
-    pub existing: &'a [Region],
+    open: &'a [(&'a Word, usize)],
+    existing: &'a [Region],
 }
 
 impl ShapeArgs<'_> {

@@ -6,8 +6,9 @@
 use crate::engine::domain::{BoundaryKind, Domain};
 use crate::engine::lattice::Lattice;
 use crate::engine::random_park::RanPark;
-use crate::engine::region::{Region, Shape};
+use crate::engine::region::Region;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span};
+use nalgebra::Vector3;
 
 const BOX_SYNTAX: &str = "create_box N region-ID keyword value ... \
 (keywords: bond/types, angle/types, dihedral/types, improper/types, extra/bond/per/atom, \
@@ -61,7 +62,7 @@ pub fn create_box(
     let Some(region) = regions.iter().find(|r| r.id == rw.text) else {
         return Err(a.error_at(rw, format!("create_box region `{}` does not exist", rw.text), "unknown region ID"));
     };
-    if matches!(region.shape, Shape::Prism { .. }) {
+    if region.style == "prism" {
         return Err(a.error_at(rw, "create_box from a prism region (triclinic box) is not supported", "prism region"));
     }
     let Some((lo, hi)) = region.extent() else {
@@ -475,11 +476,11 @@ impl CreateAtoms {
         let mut lmin = [BIG; 3];
         let mut lmax = [-BIG; 3];
         for corner in 0..8 {
-            let p = [
+            let p = Vector3::new(
                 if corner & 1 == 0 { blo[0] } else { bhi[0] },
                 if corner & 2 == 0 { blo[1] } else { bhi[1] },
                 if corner & 4 == 0 { blo[2] } else { bhi[2] },
-            ];
+            );
             let q = lattice.box2lattice(p);
             for d in 0..3 {
                 lmin[d] = if q[d] < lmin[d] { q[d] } else { lmin[d] };
@@ -513,7 +514,7 @@ impl CreateAtoms {
             for j in lo[1]..=hi[1] {
                 for i in lo[0]..=hi[0] {
                     for (m, b) in lattice.basis.iter().enumerate() {
-                        let x = lattice.lattice2box([i as f64 + b[0], j as f64 + b[1], k as f64 + b[2]]);
+                        let x: [f64; 3] = lattice.lattice2box(Vector3::new(i as f64, j as f64, k as f64) + b).into();
                         if let Some(r) = region {
                             if !r.matches(x) {
                                 continue;

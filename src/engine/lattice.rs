@@ -3,11 +3,11 @@
 //! exactly as LAMMPS' `Lattice` class does (same formulas, same floating-point order), so
 //! that `create_atoms` and `units lattice` give LAMMPS' coordinates to the last bit.
 
-// Index loops mirror LAMMPS' formulas term by term (same evaluation order).
-#![allow(clippy::needless_range_loop)]
-
 use crate::engine::units::{UnitStyle, Units};
 use dmhs_parser::{Args, Command, DResult};
+use nalgebra::{Matrix3, RowVector3, Vector3};
+
+type Vec3 = Vector3<f64>;
 
 const SYNTAX: &str = "lattice style scale keyword values ... \
 (style = none|sc|bcc|fcc|hcp|diamond|sq|sq2|hex|custom; keywords: origin x y z, \
@@ -70,31 +70,24 @@ pub struct Lattice {
     pub ylattice: f64,
     pub zlattice: f64,
     /// Basis atoms in fractional unit-cell coordinates (empty for style `none`).
-    pub basis: Vec<[f64; 3]>,
-    pub origin: [f64; 3],
+    pub basis: Vec<Vec3>,
+    pub origin: Vec3,
     /// Orientation vectors of the box x, y, z axes in lattice coordinates.
     pub orient: [[i32; 3]; 3],
-    pub a1: [f64; 3],
-    pub a2: [f64; 3],
-    pub a3: [f64; 3],
-    primitive: [[f64; 3]; 3],
-    priminv: [[f64; 3]; 3],
-    rotaterow: [[f64; 3]; 3],
-    rotatecol: [[f64; 3]; 3],
-}
-
-fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    pub a1: Vec3,
+    pub a2: Vec3,
+    pub a3: Vec3,
+    /// Columns a1 a2 a3: unit-cell coordinates -> unscaled lattice vectors.
+    primitive: Matrix3<f64>,
+    priminv: Matrix3<f64>,
+    /// Rows: the unit orient vectors (LAMMPS `rotaterow`; its transpose is `rotatecol`).
+    rotate: Matrix3<f64>,
 }
 
 impl Lattice {
     /// `lattice none spacing`: no basis, only spacings (LAMMPS starts with `none 1.0`).
     pub fn none(spacing: f64) -> Lattice {
-        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let id = Matrix3::identity();
         Lattice {
             style: LatticeStyle::None,
             scale: 1.0,
@@ -102,15 +95,14 @@ impl Lattice {
             ylattice: spacing,
             zlattice: spacing,
             basis: vec![],
-            origin: [0.0; 3],
+            origin: Vec3::zeros(),
             orient: [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
-            a1: id[0],
-            a2: id[1],
-            a3: id[2],
+            a1: Vec3::x(),
+            a2: Vec3::y(),
+            a3: Vec3::z(),
             primitive: id,
             priminv: id,
-            rotaterow: id,
-            rotatecol: id,
+            rotate: id,
         }
     }
 
@@ -156,7 +148,7 @@ impl Lattice {
         }
         let mut scale = a.positive_f64("lattice scale")?;
 
-        let mut basis: Vec<[f64; 3]> = match style {
+        let basis: Vec<[f64; 3]> = match style {
             LatticeStyle::Sc | LatticeStyle::Sq => vec![[0.0, 0.0, 0.0]],
             LatticeStyle::Bcc => vec![[0.0, 0.0, 0.0], [0.5, 0.5, 0.5]],
             LatticeStyle::Fcc => vec![[0.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
@@ -174,13 +166,14 @@ impl Lattice {
             ],
             LatticeStyle::Custom | LatticeStyle::None => vec![],
         };
+        let mut basis: Vec<Vec3> = basis.into_iter().map(Vec3::from).collect();
 
-        let mut origin = [0.0; 3];
+        let mut origin = Vec3::zeros();
         let mut orient = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
         let mut spacing: Option<[f64; 3]> = None;
-        let mut a1 = [1.0, 0.0, 0.0];
-        let mut a2 = [0.0, 1.0, 0.0];
-        let mut a3 = [0.0, 0.0, 1.0];
+        let mut a1 = Vec3::x();
+        let mut a2 = Vec3::y();
+        let mut a3 = Vec3::z();
         if style == LatticeStyle::Hex {
             a2[1] = 3.0f64.sqrt();
         }
@@ -205,8 +198,8 @@ impl Lattice {
                 }
                 "orient" => {
                     let dim = a.choice("orient axis", &["x", "y", "z"])?;
-                    for k in 0..3 {
-                        orient[dim][k] = a.i64_in("orient component", i32::MIN as i64, i32::MAX as i64)? as i32;
+                    for c in &mut orient[dim] {
+                        *c = a.i64_in("orient component", i32::MIN as i64, i32::MAX as i64)? as i32;
                     }
                     orient_word = Some(kw);
                 }
@@ -225,7 +218,7 @@ impl Lattice {
                             "needs style custom",
                         ));
                     }
-                    let mut v = [0.0; 3];
+                    let mut v = Vec3::zeros();
                     if kw.text == "basis" {
                         for (d, what) in ["basis x", "basis y", "basis z"].iter().enumerate() {
                             v[d] = a.f64_where(what, "in [0, 1)", |x| (0.0..1.0).contains(&x))?;
@@ -255,31 +248,23 @@ impl Lattice {
         if basis.is_empty() {
             return Err(a.error_at(style_word, "no basis atoms in lattice", "custom lattice without `basis`"));
         }
-        let o = orient;
-        let odot = |p: [i32; 3], q: [i32; 3]| {
-            p[0] as i64 * q[0] as i64 + p[1] as i64 * q[1] as i64 + p[2] as i64 * q[2] as i64
-        };
+        // integer algebra, as LAMMPS
+        let o = orient.map(|r| Vector3::from(r.map(i64::from)));
         let at_orient = |msg: &str| match orient_word {
             Some(w) => a.error_at(w, msg.to_string(), "orient vectors"),
             None => a.error_at(style_word, msg.to_string(), "orient vectors"),
         };
-        if odot(o[0], o[1]) != 0 || odot(o[1], o[2]) != 0 || odot(o[0], o[2]) != 0 {
+        if o[0].dot(&o[1]) != 0 || o[1].dot(&o[2]) != 0 || o[0].dot(&o[2]) != 0 {
             return Err(at_orient("lattice orient vectors are not orthogonal"));
         }
-        let xy = [
-            o[0][1] as i64 * o[1][2] as i64 - o[0][2] as i64 * o[1][1] as i64,
-            o[0][2] as i64 * o[1][0] as i64 - o[0][0] as i64 * o[1][2] as i64,
-            o[0][0] as i64 * o[1][1] as i64 - o[0][1] as i64 * o[1][0] as i64,
-        ];
-        if xy[0] * o[2][0] as i64 + xy[1] * o[2][1] as i64 + xy[2] * o[2][2] as i64 <= 0 {
+        if o[0].cross(&o[1]).dot(&o[2]) <= 0 {
             return Err(at_orient("lattice orient vectors are not right-handed"));
         }
         let at_a = |msg: &str| match a_word {
             Some(w) => a.error_at(w, msg.to_string(), "primitive vectors"),
             None => a.error_at(style_word, msg.to_string(), "primitive vectors"),
         };
-        let len3 = |v: [f64; 3]| dot3(v, v).sqrt();
-        if len3(cross3(a1, a2)) == 0.0 || len3(cross3(a2, a3)) == 0.0 || len3(cross3(a1, a3)) == 0.0 {
+        if a1.cross(&a2).norm() == 0.0 || a2.cross(&a3).norm() == 0.0 || a1.cross(&a3).norm() == 0.0 {
             return Err(at_a("lattice primitive vectors are collinear"));
         }
         if dimension == 2 {
@@ -290,7 +275,7 @@ impl Lattice {
             if a1[2] != 0.0 || a2[2] != 0.0 || a3[0] != 0.0 || a3[1] != 0.0 {
                 return Err(at_a("lattice a1/a2/a3 vectors are not compatible with a 2d simulation"));
             }
-            if o[0][2] != 0 || o[1][2] != 0 || o[2][0] != 0 || o[2][1] != 0 {
+            if orient[0][2] != 0 || orient[1][2] != 0 || orient[2][0] != 0 || orient[2][1] != 0 {
                 return Err(at_orient("lattice orient vectors are not compatible with a 2d simulation"));
             }
             if let Some(k) = basis.iter().position(|b| b[2] != 0.0) {
@@ -306,7 +291,7 @@ impl Lattice {
         // lj units: the scale argument is a reduced density rho*;
         // scale = (nbasis / (Vprimitive * rho*))^(1/dim).
         if units.style == UnitStyle::Lj {
-            let volume = dot3(a1, cross3(a2, a3)).abs();
+            let volume = a1.dot(&a2.cross(&a3)).abs();
             scale = (basis.len() as f64 / volume / scale).powf(1.0 / dimension as f64);
         }
 
@@ -322,10 +307,9 @@ impl Lattice {
             a1,
             a2,
             a3,
-            primitive: [[0.0; 3]; 3],
-            priminv: [[0.0; 3]; 3],
-            rotaterow: [[0.0; 3]; 3],
-            rotatecol: [[0.0; 3]; 3],
+            primitive: Matrix3::zeros(),
+            priminv: Matrix3::zeros(),
+            rotate: Matrix3::zeros(),
         };
         if !lat.setup_transform() {
             return Err(at_a("degenerate lattice primitive vectors"));
@@ -335,15 +319,14 @@ impl Lattice {
             None => {
                 // Spacings = extent of the unit cell's 8 corners in box space (with the
                 // spacings still 0 so the origin shift does not enter).
-                let mut lo = [BIG; 3];
-                let mut hi = [-BIG; 3];
+                let mut lo = Vec3::repeat(BIG);
+                let mut hi = Vec3::repeat(-BIG);
                 for corner in 0..8 {
-                    let p = [(corner & 1) as f64, ((corner >> 1) & 1) as f64, ((corner >> 2) & 1) as f64];
+                    let p = Vec3::new((corner & 1) as f64, ((corner >> 1) & 1) as f64, ((corner >> 2) & 1) as f64);
                     let q = lat.lattice2box(p);
-                    for d in 0..3 {
-                        lo[d] = if q[d] < lo[d] { q[d] } else { lo[d] };
-                        hi[d] = if q[d] > hi[d] { q[d] } else { hi[d] };
-                    }
+                    // LAMMPS' MIN/MAX (ties keep the old value)
+                    lo = lo.zip_map(&q, |l, q| if q < l { q } else { l });
+                    hi = hi.zip_map(&q, |h, q| if q > h { q } else { h });
                 }
                 lat.xlattice = hi[0] - lo[0];
                 lat.ylattice = hi[1] - lo[1];
@@ -361,83 +344,55 @@ impl Lattice {
     /// Build the primitive matrix (columns a1 a2 a3), its inverse and the orientation
     /// rotation, as LAMMPS `setup_transform`. False if the primitive vectors are degenerate.
     fn setup_transform(&mut self) -> bool {
-        let p = [
-            [self.a1[0], self.a2[0], self.a3[0]],
-            [self.a1[1], self.a2[1], self.a3[1]],
-            [self.a1[2], self.a2[2], self.a3[2]],
-        ];
-        self.primitive = p;
-        let det = p[0][0] * p[1][1] * p[2][2] + p[0][1] * p[1][2] * p[2][0] + p[0][2] * p[1][0] * p[2][1]
-            - p[0][0] * p[1][2] * p[2][1]
-            - p[0][1] * p[1][0] * p[2][2]
-            - p[0][2] * p[1][1] * p[2][0];
+        let prim = Matrix3::from_columns(&[self.a1, self.a2, self.a3]);
+        let p = |i: usize, j: usize| prim[(i, j)];
+        // LAMMPS' determinant and cofactor inverse term by term: nalgebra's `determinant` and
+        // `try_inverse` group the products differently and round differently.
+        let det = p(0, 0) * p(1, 1) * p(2, 2) + p(0, 1) * p(1, 2) * p(2, 0) + p(0, 2) * p(1, 0) * p(2, 1)
+            - p(0, 0) * p(1, 2) * p(2, 1)
+            - p(0, 1) * p(1, 0) * p(2, 2)
+            - p(0, 2) * p(1, 1) * p(2, 0);
         if det == 0.0 {
             return false;
         }
-        let mut q = [[0.0; 3]; 3];
-        q[0][0] = (p[1][1] * p[2][2] - p[1][2] * p[2][1]) / det;
-        q[1][0] = (p[1][2] * p[2][0] - p[1][0] * p[2][2]) / det;
-        q[2][0] = (p[1][0] * p[2][1] - p[1][1] * p[2][0]) / det;
-        q[0][1] = (p[0][2] * p[2][1] - p[0][1] * p[2][2]) / det;
-        q[1][1] = (p[0][0] * p[2][2] - p[0][2] * p[2][0]) / det;
-        q[2][1] = (p[0][1] * p[2][0] - p[0][0] * p[2][1]) / det;
-        q[0][2] = (p[0][1] * p[1][2] - p[0][2] * p[1][1]) / det;
-        q[1][2] = (p[0][2] * p[1][0] - p[0][0] * p[1][2]) / det;
-        q[2][2] = (p[0][0] * p[1][1] - p[0][1] * p[1][0]) / det;
-        self.priminv = q;
-        for r in 0..3 {
-            let o = self.orient[r];
+        self.primitive = prim;
+        self.priminv = Matrix3::new(
+            (p(1, 1) * p(2, 2) - p(1, 2) * p(2, 1)) / det,
+            (p(0, 2) * p(2, 1) - p(0, 1) * p(2, 2)) / det,
+            (p(0, 1) * p(1, 2) - p(0, 2) * p(1, 1)) / det,
+            (p(1, 2) * p(2, 0) - p(1, 0) * p(2, 2)) / det,
+            (p(0, 0) * p(2, 2) - p(0, 2) * p(2, 0)) / det,
+            (p(0, 2) * p(1, 0) - p(0, 0) * p(1, 2)) / det,
+            (p(1, 0) * p(2, 1) - p(1, 1) * p(2, 0)) / det,
+            (p(0, 1) * p(2, 0) - p(0, 0) * p(2, 1)) / det,
+            (p(0, 0) * p(1, 1) - p(0, 1) * p(1, 0)) / det,
+        );
+        let mut rows = [RowVector3::zeros(); 3];
+        for (row, o) in rows.iter_mut().zip(self.orient) {
+            // the squared length in int arithmetic, as LAMMPS
             let lensq = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
             let length = (lensq as f64).sqrt();
             if length == 0.0 {
                 return false;
             }
-            for c in 0..3 {
-                self.rotaterow[r][c] = o[c] as f64 / length;
-                self.rotatecol[c][r] = self.rotaterow[r][c];
-            }
+            *row = RowVector3::new(o[0] as f64, o[1] as f64, o[2] as f64) / length;
         }
+        self.rotate = Matrix3::from_rows(&rows);
         true
     }
 
-    /// Lattice coordinates -> box coordinates: `R * scale * P * x + spacing * origin`.
-    pub fn lattice2box(&self, x: [f64; 3]) -> [f64; 3] {
-        let p = &self.primitive;
-        let r = &self.rotaterow;
-        let mut x1 = p[0][0] * x[0] + p[0][1] * x[1] + p[0][2] * x[2];
-        let mut y1 = p[1][0] * x[0] + p[1][1] * x[1] + p[1][2] * x[2];
-        let mut z1 = p[2][0] * x[0] + p[2][1] * x[1] + p[2][2] * x[2];
-        x1 *= self.scale;
-        y1 *= self.scale;
-        z1 *= self.scale;
-        let xnew = r[0][0] * x1 + r[0][1] * y1 + r[0][2] * z1;
-        let ynew = r[1][0] * x1 + r[1][1] * y1 + r[1][2] * z1;
-        let znew = r[2][0] * x1 + r[2][1] * y1 + r[2][2] * z1;
-        [
-            xnew + self.xlattice * self.origin[0],
-            ynew + self.ylattice * self.origin[1],
-            znew + self.zlattice * self.origin[2],
-        ]
+    // nalgebra's 3x3 matrix-vector product sums each row x, y, z in order, as LAMMPS' loops.
+
+    /// Lattice coordinates -> box coordinates: `R (scale P x) + spacing * origin`.
+    pub fn lattice2box(&self, x: Vec3) -> Vec3 {
+        let v = self.rotate * (self.primitive * x * self.scale);
+        v + Vec3::from(self.spacing()).component_mul(&self.origin)
     }
 
     /// Box coordinates -> lattice coordinates (inverse of [`Lattice::lattice2box`]).
-    pub fn box2lattice(&self, x: [f64; 3]) -> [f64; 3] {
-        let x0 = x[0] - self.xlattice * self.origin[0];
-        let y0 = x[1] - self.ylattice * self.origin[1];
-        let z0 = x[2] - self.zlattice * self.origin[2];
-        let c = &self.rotatecol;
-        let q = &self.priminv;
-        let mut x1 = c[0][0] * x0 + c[0][1] * y0 + c[0][2] * z0;
-        let mut y1 = c[1][0] * x0 + c[1][1] * y0 + c[1][2] * z0;
-        let mut z1 = c[2][0] * x0 + c[2][1] * y0 + c[2][2] * z0;
-        x1 /= self.scale;
-        y1 /= self.scale;
-        z1 /= self.scale;
-        [
-            q[0][0] * x1 + q[0][1] * y1 + q[0][2] * z1,
-            q[1][0] * x1 + q[1][1] * y1 + q[1][2] * z1,
-            q[2][0] * x1 + q[2][1] * y1 + q[2][2] * z1,
-        ]
+    pub fn box2lattice(&self, x: Vec3) -> Vec3 {
+        let v = x - Vec3::from(self.spacing()).component_mul(&self.origin);
+        self.priminv * (self.rotate.transpose() * v / self.scale)
     }
 }
 
@@ -476,7 +431,7 @@ pub(crate) mod tests {
         // LAMMPS: lattice fcc 0.8442 -> spacing 1.6795962 (atom 2 at 0.8397980956912536).
         let l = lat("lattice fcc 0.8442", UnitStyle::Lj, 3).unwrap();
         assert_eq!(l.xlattice, 1.6795961913825073);
-        assert_eq!(l.lattice2box([0.5, 0.5, 0.0]), [0.8397980956912536, 0.8397980956912536, 0.0]);
+        assert_eq!(l.lattice2box(Vec3::new(0.5, 0.5, 0.0)), Vec3::new(0.8397980956912536, 0.8397980956912536, 0.0));
     }
 
     #[test]

@@ -10,7 +10,7 @@
 use crate::output::colors::NAMED;
 use crate::output::dump::{column_values, parse_column, Column};
 use crate::output::log::write_atomic;
-use crate::output::render::{Camera, Canvas, Rgb};
+use crate::output::render::{Camera, Canvas, Rgb, Vec3};
 use crate::models::world::World;
 use dmhs_parser::{Args, DResult, Word};
 use std::path::{Path, PathBuf};
@@ -609,12 +609,12 @@ impl ImageDump {
         if !(zoom > 0.0) {
             return Err(format!("dump image zoom must be > 0, got {zoom}"));
         }
-        let up = [self.up[0].value(equal)?, self.up[1].value(equal)?, self.up[2].value(equal)?];
+        let up = Vec3::new(self.up[0].value(equal)?, self.up[1].value(equal)?, self.up[2].value(equal)?);
         let (lo, hi) = if self.center_dynamic { (dom.lo, dom.hi) } else { self.static_box };
-        let mut center = [0.0; 3];
-        for k in 0..3 {
-            center[k] = lo[k] + self.center[k].value(equal)? * (hi[k] - lo[k]);
-        }
+        let (lo, hi) = (Vec3::from(lo), Vec3::from(hi));
+        // `center` is given in fractions of the box
+        let frac = Vec3::new(self.center[0].value(equal)?, self.center[1].value(equal)?, self.center[2].value(equal)?);
+        let center = lo + frac.component_mul(&(hi - lo));
         let mut planes = vec![];
         for (fid, color, diam) in &self.fixes {
             let f = world.fix(fid).ok_or_else(|| format!("fix `{fid}` (drawn by this dump) does not exist"))?;
@@ -647,7 +647,7 @@ impl ImageDump {
         if self.atoms {
             for (k, &i) in idx.iter().enumerate() {
                 if diams[k] > 0.0 {
-                    cv.sphere(&cam, a.x[i], 0.5 * diams[k], colors[k]);
+                    cv.sphere(&cam, Vec3::from(a.x[i]), 0.5 * diams[k], colors[k]);
                 }
             }
         }
@@ -658,7 +658,7 @@ impl ImageDump {
         let shortest = if two_d { prd[0].min(prd[1]) } else { prd[0].min(prd[1]).min(prd[2]) };
         if self.box_on || self.subbox {
             let (lo, hi) = (dom.lo, dom.hi);
-            let corner = |m: usize| [if m & 1 == 0 { lo[0] } else { hi[0] }, if m & 2 == 0 { lo[1] } else { hi[1] }, if m & 4 == 0 { lo[2] } else { hi[2] }];
+            let corner = |m: usize| Vec3::new(if m & 1 == 0 { lo[0] } else { hi[0] }, if m & 2 == 0 { lo[1] } else { hi[1] }, if m & 4 == 0 { lo[2] } else { hi[2] });
             let diam = self.box_diam * shortest;
             for m in 0..8usize {
                 for bit in [1usize, 2, 4] {
@@ -673,7 +673,7 @@ impl ImageDump {
             let (lo, hi) = (dom.lo, dom.hi);
             let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
             let point = |a: f64, b: f64| {
-                let mut p = [0.0; 3];
+                let mut p = Vec3::zeros();
                 p[axis] = c;
                 p[u] = a;
                 p[v] = b;
@@ -687,8 +687,8 @@ impl ImageDump {
         }
         if self.axes != Axes::No {
             let o = match self.axes {
-                Axes::Center => [0, 1, 2].map(|k| 0.5 * (dom.lo[k] + dom.hi[k])),
-                _ => dom.lo,
+                Axes::Center => (Vec3::from(dom.lo) + Vec3::from(dom.hi)) * 0.5,
+                _ => Vec3::from(dom.lo),
             };
             let rgb = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
             for k in 0..3 {
@@ -715,8 +715,8 @@ impl ImageDump {
                 continue;
             }
             let (Some(&ka), Some(&kb)) = (slot.get(&b.atoms[0]), slot.get(&b.atoms[1])) else { continue };
-            let (xa, xb) = (a.x[idx[ka]], a.x[idx[kb]]);
-            let mut d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
+            let (xa, xb) = (Vec3::from(a.x[idx[ka]]), Vec3::from(a.x[idx[kb]]));
+            let mut d = xb - xa;
             for k in 0..3 {
                 if dom.periodic(k) && prd[k] > 0.0 {
                     d[k] -= prd[k] * (d[k] / prd[k]).round();
@@ -739,8 +739,7 @@ impl ImageDump {
                 }
                 _ => (colors[ka], colors[kb]),
             };
-            let ma = [xa[0] + 0.5 * d[0], xa[1] + 0.5 * d[1], xa[2] + 0.5 * d[2]];
-            let mb = [xb[0] - 0.5 * d[0], xb[1] - 0.5 * d[1], xb[2] - 0.5 * d[2]];
+            let (ma, mb) = (xa + d * 0.5, xb - d * 0.5);
             cv.cylinder(cam, xa, ma, width, ca);
             cv.cylinder(cam, xb, mb, width, cb);
         }

@@ -2,54 +2,49 @@
 //! spheres and cylinders, and PNG/PPM encoding. Pixels are written directly (no drawing crate):
 //! particles are discs shaded as spheres, bonds and box edges are capped cylinders.
 
+use nalgebra::Vector3;
+
 /// An RGB colour with components in 0..=1.
 pub type Rgb = [f64; 3];
+pub type Vec3 = Vector3<f64>;
 
 /// Orthographic camera: screen axes `right` and `up`, `toward` points from the scene to the viewer.
 #[derive(Clone, Debug)]
 pub struct Camera {
-    pub right: [f64; 3],
-    pub up: [f64; 3],
-    pub toward: [f64; 3],
+    pub right: Vec3,
+    pub up: Vec3,
+    pub toward: Vec3,
     /// World point at the image centre.
-    pub center: [f64; 3],
+    pub center: Vec3,
     /// World length of one pixel.
     pub pixel: f64,
     pub width: usize,
     pub height: usize,
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn normalized(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = dot(a, a).sqrt();
-    if n > 0.0 && n.is_finite() { Some([a[0] / n, a[1] / n, a[2] / n]) } else { None }
+fn normalized(a: Vec3) -> Option<Vec3> {
+    let n = a.norm();
+    if n > 0.0 && n.is_finite() { Some(a / n) } else { None }
 }
 
 impl Camera {
     /// LAMMPS' view: `theta` from +z and azimuth `phi` (radians) give the direction toward the
     /// viewer; `up` is projected into the image plane. Errors if `up` is parallel to the view.
-    pub fn looking(theta: f64, phi: f64, up: [f64; 3], center: [f64; 3], pixel: f64, width: usize, height: usize) -> Result<Camera, String> {
-        let toward = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()];
-        let right = normalized(cross(up, toward)).ok_or("the image up vector is parallel to the view direction")?;
-        let up = normalized(cross(toward, right)).ok_or("the image up vector is parallel to the view direction")?;
+    pub fn looking(theta: f64, phi: f64, up: Vec3, center: Vec3, pixel: f64, width: usize, height: usize) -> Result<Camera, String> {
+        let toward = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+        let right = normalized(up.cross(&toward)).ok_or("the image up vector is parallel to the view direction")?;
+        let up = normalized(toward.cross(&right)).ok_or("the image up vector is parallel to the view direction")?;
         Ok(Camera { right, up, toward, center, pixel, width, height })
     }
 
     /// Screen position (pixels from the left, pixels from the top) and depth (larger = farther).
-    pub fn project(&self, x: [f64; 3]) -> (f64, f64, f64) {
-        let d = [x[0] - self.center[0], x[1] - self.center[1], x[2] - self.center[2]];
+    pub fn project(&self, x: Vec3) -> (f64, f64, f64) {
+        let d = x - self.center;
         // LAMMPS' pixel grid: the centre point falls on the centre of pixel (W/2, H/2 - 1)
         // counted from the top-left, so positions match its images pixel for pixel
-        let sx = 0.5 * self.width as f64 + 0.5 + dot(self.right, d) / self.pixel;
-        let sy = 0.5 * self.height as f64 - 0.5 - dot(self.up, d) / self.pixel;
-        (sx, sy, -dot(self.toward, d))
+        let sx = 0.5 * self.width as f64 + 0.5 + self.right.dot(&d) / self.pixel;
+        let sy = 0.5 * self.height as f64 - 0.5 - self.up.dot(&d) / self.pixel;
+        (sx, sy, -self.toward.dot(&d))
     }
 }
 
@@ -64,14 +59,14 @@ pub struct Canvas {
 }
 
 /// Half vector between the viewer and a key light at the upper left, in screen axes.
-const HALF: [f64; 3] = [-0.2142, 0.2142, 0.9530];
+const HALF: Vec3 = Vec3::new(-0.2142, 0.2142, 0.9530);
 
 /// Colour of a surface with unit normal `n` (screen axes: right, up, toward the viewer): the
 /// colour itself facing the viewer, darker toward the silhouette, plus a white highlight of
 /// strength `shiny` (0: none).
-fn shade(c: Rgb, n: [f64; 3], shiny: f64) -> Rgb {
-    let k = 0.45 + 0.55 * n[2].clamp(0.0, 1.0);
-    let s = if shiny > 0.0 { shiny * dot(n, HALF).max(0.0).powf(16.0 * shiny + 1.0) } else { 0.0 };
+fn shade(c: Rgb, n: Vec3, shiny: f64) -> Rgb {
+    let k = 0.45 + 0.55 * n.z.clamp(0.0, 1.0);
+    let s = if shiny > 0.0 { shiny * n.dot(&HALF).max(0.0).powf(16.0 * shiny + 1.0) } else { 0.0 };
     [c[0] * k + s, c[1] * k + s, c[2] * k + s]
 }
 
@@ -100,7 +95,7 @@ impl Canvas {
 
     /// A sphere of world radius `radius` at `x`. Spheres smaller than a pixel still cover
     /// the pixel under their centre.
-    pub fn sphere(&mut self, cam: &Camera, x: [f64; 3], radius: f64, c: Rgb) {
+    pub fn sphere(&mut self, cam: &Camera, x: Vec3, radius: f64, c: Rgb) {
         let (sx, sy, z) = cam.project(x);
         let thin = radius / cam.pixel < 1.0;
         let r = (radius / cam.pixel).max(0.5);
@@ -115,7 +110,7 @@ impl Canvas {
                 if q <= 1.0 {
                     let nz = (1.0 - q).sqrt();
                     // below a pixel wide there is nothing to shade: the plain colour
-                    let n = if thin { [0.0, 0.0, 1.0] } else { [dx / r, -dy / r, nz] };
+                    let n = if thin { Vec3::z() } else { Vec3::new(dx / r, -dy / r, nz) };
                     self.put(ix, iy, z - nz * radius, shade(c, n, self.shiny));
                 }
             }
@@ -123,7 +118,7 @@ impl Canvas {
     }
 
     /// A cylinder of world diameter `diam` from `a` to `b` with round caps.
-    pub fn cylinder(&mut self, cam: &Camera, a: [f64; 3], b: [f64; 3], diam: f64, c: Rgb) {
+    pub fn cylinder(&mut self, cam: &Camera, a: Vec3, b: Vec3, diam: f64, c: Rgb) {
         let (ax, ay, az) = cam.project(a);
         let (bx, by, bz) = cam.project(b);
         if !(ax.is_finite() && ay.is_finite() && bx.is_finite() && by.is_finite()) {
@@ -145,7 +140,7 @@ impl Canvas {
                 let q = (dx * dx + dy * dy) / (r * r);
                 if q <= 1.0 {
                     let nz = (1.0 - q).sqrt();
-                    let n = if thin { [0.0, 0.0, 1.0] } else { [dx / r, -dy / r, nz] };
+                    let n = if thin { Vec3::z() } else { Vec3::new(dx / r, -dy / r, nz) };
                     self.put(ix, iy, az + t * (bz - az) - nz * radius, shade(c, n, self.shiny));
                 }
             }
@@ -227,25 +222,25 @@ mod tests {
     use super::*;
 
     fn cam(w: usize, h: usize, pixel: f64) -> Camera {
-        Camera::looking(0.0, 0.0, [0.0, 1.0, 0.0], [0.0; 3], pixel, w, h).unwrap()
+        Camera::looking(0.0, 0.0, Vec3::y(), Vec3::zeros(), pixel, w, h).unwrap()
     }
 
     #[test]
     fn camera_axes_for_the_2d_view() {
         let c = cam(100, 50, 0.1);
         // +x to the right, +y up, viewer on +z
-        let (sx, sy, z) = c.project([1.0, 0.5, 2.0]);
+        let (sx, sy, z) = c.project(Vec3::new(1.0, 0.5, 2.0));
         assert!((sx - 60.5).abs() < 1e-12 && (sy - 19.5).abs() < 1e-12 && (z + 2.0).abs() < 1e-12);
-        assert!(Camera::looking(0.0, 0.0, [0.0, 0.0, 1.0], [0.0; 3], 1.0, 10, 10).is_err());
+        assert!(Camera::looking(0.0, 0.0, Vec3::z(), Vec3::zeros(), 1.0, 10, 10).is_err());
     }
 
     #[test]
     fn sphere_covers_its_disc_and_depth_hides_the_far_one() {
         let c = cam(40, 40, 0.1);
         let mut cv = Canvas::new(40, 40, [0.0; 3]);
-        cv.sphere(&c, [0.0, 0.0, 0.0], 1.0, [1.0, 0.0, 0.0]);
+        cv.sphere(&c, Vec3::zeros(), 1.0, [1.0, 0.0, 0.0]);
         // behind (z = -5) and drawn later: hidden
-        cv.sphere(&c, [0.0, 0.0, -5.0], 1.0, [0.0, 0.0, 1.0]);
+        cv.sphere(&c, Vec3::new(0.0, 0.0, -5.0), 1.0, [0.0, 0.0, 1.0]);
         let covered: usize = (0..40).flat_map(|y| (0..40).map(move |x| (x, y))).filter(|&(x, y)| cv.pixel(x, y) != [0, 0, 0]).count();
         // a disc of radius 10 pixels: pi r^2 = 314
         assert!((covered as f64 - 314.16).abs() < 12.0, "{covered}");
@@ -259,7 +254,7 @@ mod tests {
     fn cylinder_and_png_roundtrip() {
         let c = cam(30, 20, 0.1);
         let mut cv = Canvas::new(30, 20, [1.0, 1.0, 1.0]);
-        cv.cylinder(&c, [-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 0.2, [0.0, 1.0, 0.0]);
+        cv.cylinder(&c, Vec3::new(-1.0, 0.0, 0.0), Vec3::x(), 0.2, [0.0, 1.0, 0.0]);
         assert!(cv.pixel(15, 9)[1] == 255 && cv.pixel(15, 9)[0] == 0);
         assert_eq!(cv.pixel(15, 2), [255, 255, 255]);
         let png = cv.png().unwrap();

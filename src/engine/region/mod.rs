@@ -1,0 +1,323 @@
+//! The `region` command: geometric regions with LAMMPS' exact point tests (surface points are
+//! inside), `side in|out`, `units lattice|box` scaling, `open` faces and the bounding box
+//! ("extent") that `create_atoms` uses to narrow its lattice loop.
+//!
+//! This file holds what every style shares (ID, keywords, INF/EDGE bounds, `match`) and the
+//! registry `STYLES`; each style is one file with its parsing, its `inside` test, its extent
+//! and its tests. To add a style: write `name.rs` with a `pub const STYLE: Style` and a type
+//! that implements [`Shape`], then add `mod name;` and one line to `STYLES` (its syntax then
+//! shows in the help line and its name in "did you mean").
+//!
+//! A style sees points in its own frame only: LAMMPS' `move`/`rotate` keywords map a point back
+//! through the inverse displacement and rotation before the style's test (`Region::match`), so
+//! they belong in [`Region::matches`], not in the styles.
+
+mod block;
+mod boolean;
+mod cylinder;
+mod plane;
+mod prism;
+mod sphere;
+
+use crate::engine::domain::Domain;
+use crate::engine::lattice::Lattice;
+use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+use nalgebra::Vector3;
+use std::fmt::Debug;
+use std::sync::Arc;
+
+pub type Vec3 = Vector3<f64>;
+
+/// What LAMMPS substitutes for `INF` bounds.
+const BIG: f64 = 1.0e20;
+
+/// The geometry of one region style, in box units.
+pub trait Shape: Debug + Send + Sync {
+    /// LAMMPS `inside()`: the bare shape test, surface points included.
+    fn inside(&self, x: &Vec3) -> bool;
+    /// Bounding box `(lo, hi)` of the interior (LAMMPS `bboxflag`, `extent_*`), if finite.
+    fn extent(&self) -> Option<(Vec3, Vec3)>;
+    /// Whether `open` applies: union and intersect have no faces of their own.
+    fn has_faces(&self) -> bool {
+        true
+    }
+}
+
+/// A registered style: its syntax (for the help line), how many shape words it takes, and its
+/// parser. The count comes first because the keywords after the shape words set its scale.
+#[derive(Clone, Copy)]
+pub struct Style {
+    syntax: &'static str,
+    /// May read a count word first (`union N ...`); the style name is given for messages.
+    nargs: fn(&mut Args, &str) -> DResult<usize>,
+    parse: fn(&ShapeArgs) -> DResult<Box<dyn Shape>>,
+}
+
+/// `nargs` of a style with a fixed number of shape words.
+fn fixed<const N: usize>(_: &mut Args, _: &str) -> DResult<usize> {
+    Ok(N)
+}
+
+/// The region styles dmhs implements, in the order the help line lists them.
+const STYLES: &[(&str, Style)] = &[
+    ("block", block::STYLE),
+    ("sphere", sphere::STYLE),
+    ("cylinder", cylinder::STYLE),
+    ("prism", prism::STYLE),
+    ("plane", plane::STYLE),
+    ("union", boolean::UNION),
+    ("intersect", boolean::INTERSECT),
+];
+
+/// LAMMPS region styles (and `region ID delete`) that dmhs lacks: named as unsupported
+/// (checked after `STYLES`).
+const LAMMPS_ONLY: &[&str] = &["cone", "ellipsoid", "delete"];
+
+/// Names of the supported styles.
+pub fn style_names() -> impl Iterator<Item = &'static str> {
+    STYLES.iter().map(|(n, _)| *n)
+}
+
+fn syntax() -> String {
+    let styles: Vec<&str> = STYLES.iter().map(|(_, s)| s.syntax).collect();
+    format!(
+        "region ID style args keyword value ... (styles: {}; keywords: side in|out, units lattice|box, open face)",
+        styles.join(" | ")
+    )
+}
+
+/// What a style's parser gets: its shape words, the scale of `units`, the box (for INF/EDGE)
+/// and the regions defined so far; errors point at the words through `args`.
+pub struct ShapeArgs<'a> {
+    args: &'a Args<'a>,
+    style: &'a str,
+    words: &'a [Word],
+    /// Lattice spacings under `units lattice`, ones under `units box`.
+    scale: Vec3,
+    domain: Option<&'a Domain>,
+    /// Faces given with `open` (1-based) and the word that named each.
+    open: &'a [(&'a Word, usize)],
+    existing: &'a [Region],
+}
+
+impl ShapeArgs<'_> {
+    pub fn error(&self, w: &Word, message: impl Into<String>, label: impl Into<String>) -> Diagnostic {
+        self.args.error_at(w, message, label)
+    }
+
+    /// Shape word `k` as a number (in the units of the command, not scaled).
+    pub fn num(&self, k: usize, what: &str) -> DResult<f64> {
+        let w = &self.words[k];
+        if w.text.starts_with("v_") {
+            return Err(self.error(w, "variable region parameters (v_name) are not supported", "variable not supported"));
+        }
+        dmhs_parser::args::word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {}", self.args.syntax)))
+    }
+
+    /// Shape word `k` times the scale of dimension `dim`.
+    pub fn scaled(&self, k: usize, dim: usize, what: &str) -> DResult<f64> {
+        Ok(self.scale[dim] * self.num(k, what)?)
+    }
+
+    /// Shape words `k..k + 3` as a scaled point or vector.
+    pub fn point(&self, k: usize, what: [&str; 3]) -> DResult<Vec3> {
+        Ok(Vec3::new(self.scaled(k, 0, what[0])?, self.scaled(k + 1, 1, what[1])?, self.scaled(k + 2, 2, what[2])?))
+    }
+
+    /// Shape word `k` as a bound along `dim`: INF (+-1e20), EDGE (the box face) or a scaled number.
+    pub fn bound(&self, k: usize, dim: usize, upper: bool, what: &str) -> DResult<f64> {
+        let w = &self.words[k];
+        if w.text == "INF" || w.text == "EDGE" {
+            let Some(d) = self.domain else {
+                return Err(self.error(w, format!("cannot use region {} when the box does not exist", w.text), "no box yet"));
+            };
+            return Ok(match (w.text.as_str(), upper) {
+                ("INF", false) => -BIG,
+                ("INF", true) => BIG,
+                (_, false) => d.lo[dim],
+                (_, true) => d.hi[dim],
+            });
+        }
+        self.scaled(k, dim, what)
+    }
+
+    /// The first six shape words as `xlo xhi ylo yhi zlo zhi` (block and prism).
+    pub fn box_bounds(&self) -> DResult<(Vec3, Vec3)> {
+        let mut lo = Vec3::zeros();
+        let mut hi = Vec3::zeros();
+        for d in 0..3 {
+            lo[d] = self.bound(2 * d, d, false, ["xlo", "ylo", "zlo"][d])?;
+            hi[d] = self.bound(2 * d + 1, d, true, ["xhi", "yhi", "zhi"][d])?;
+        }
+        Ok((lo, hi))
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Region {
+    pub id: String,
+    pub style: &'static str,
+    shape: Arc<dyn Shape>,
+    /// `side in` (true, the default) or `side out`.
+    pub interior: bool,
+    /// Faces listed with the `open` keyword (1-based in the command, 0-based here).
+    pub open_faces: [bool; 6],
+}
+
+impl Region {
+    /// LAMMPS `Region::match`: is `x` in the region, honouring `side`. A region with any `open`
+    /// face matches every point (as in LAMMPS, where open faces only matter for wall contacts).
+    pub fn matches(&self, x: [f64; 3]) -> bool {
+        if self.open_faces.contains(&true) && self.shape.has_faces() {
+            return true;
+        }
+        self.shape.inside(&Vec3::from(x)) == self.interior
+    }
+
+    /// The bounding box LAMMPS uses (`bboxflag` and `extent_*`): interior regions of finite shapes.
+    pub fn extent(&self) -> Option<([f64; 3], [f64; 3])> {
+        if !self.interior {
+            return None;
+        }
+        self.shape.extent().map(|(lo, hi)| (lo.into(), hi.into()))
+    }
+
+    /// Parse a `region` command. `domain` is needed for `EDGE`/`INF` bounds; `lattice` gives
+    /// the spacings for `units lattice` (the default; without a lattice command LAMMPS uses
+    /// its initial `lattice none 1.0`); `existing` holds the regions defined so far (for
+    /// union/intersect and ID reuse).
+    pub fn from_lammps(
+        cmd: &Command,
+        domain: Option<&Domain>,
+        lattice: Option<&Lattice>,
+        existing: &[Region],
+    ) -> DResult<Region> {
+        let syntax = syntax();
+        let mut a = Args::new(cmd, &syntax);
+        let id_word = a.word("region ID")?;
+        let id = id_word.text.clone();
+        if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            return Err(a.error_at(
+                id_word,
+                format!("region ID `{id}` must use only letters, digits and underscores"),
+                "invalid ID",
+            ));
+        }
+        if existing.iter().any(|r| r.id == id) {
+            return Err(a.error_at(id_word, format!("reuse of region ID `{id}`"), "already defined"));
+        }
+        let style_word = a.word("region style")?;
+        let Some(&(name, style)) = STYLES.iter().find(|(n, _)| *n == style_word.text) else {
+            if LAMMPS_ONLY.contains(&style_word.text.as_str()) {
+                return Err(a.error_at(
+                    style_word,
+                    format!("region style `{}` is not supported", style_word.text),
+                    "not supported",
+                ));
+            }
+            return Err(a.unknown_keyword(style_word, &style_names().collect::<Vec<_>>()));
+        };
+        let nshape = (style.nargs)(&mut a, name)?;
+        if a.len_remaining() < nshape {
+            a.skip(a.len_remaining());
+            return Err(a.missing(&format!("{nshape} arguments of region {name}")));
+        }
+        let words = &a.remaining()[..nshape];
+        a.skip(nshape);
+
+        // Keywords come first in LAMMPS (they set the scale the shape arguments use).
+        let mut interior = true;
+        let mut lattice_units = true;
+        let mut open_faces = [false; 6];
+        const KEYWORDS: [&str; 5] = ["side", "units", "open", "move", "rotate"];
+        let mut open: Vec<(&Word, usize)> = vec![];
+        while let Some(kw) = a.peek() {
+            a.skip(1);
+            match kw.text.as_str() {
+                "side" => interior = a.choice("side", &["in", "out"])? == 0,
+                "units" => lattice_units = a.choice("units", &["lattice", "box"])? == 0,
+                "open" => {
+                    let face = a.i64_in("open face", 1, 6)? as usize;
+                    open_faces[face - 1] = true;
+                    open.push((a.last().unwrap(), face));
+                }
+                "move" | "rotate" => {
+                    return Err(a.error_at(
+                        kw,
+                        format!("region keyword `{}` (dynamic regions) is not supported", kw.text),
+                        "not supported",
+                    ));
+                }
+                _ => return Err(a.unknown_keyword(kw, &KEYWORDS)),
+            }
+        }
+        let spacing = lattice.map_or(Lattice::default().spacing(), Lattice::spacing);
+        let scale = if lattice_units { Vec3::from(spacing) } else { Vec3::repeat(1.0) };
+        let shape = (style.parse)(&ShapeArgs { args: &a, style: name, words, scale, domain, open: &open, existing })?;
+        Ok(Region { id, style: name, shape: shape.into(), interior, open_faces })
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::engine::domain::BoundaryKind;
+    use crate::engine::lattice::tests::cmd;
+
+    pub(crate) fn boxed(lo: [f64; 3], hi: [f64; 3]) -> Domain {
+        Domain { dimension: 3, lo, hi, boundary: [[BoundaryKind::Periodic; 2]; 3] }
+    }
+
+    pub(crate) fn reg(line: &str, d: Option<&Domain>, l: Option<&Lattice>, ex: &[Region]) -> DResult<Region> {
+        Region::from_lammps(&cmd(line), d, l, ex)
+    }
+
+    #[test]
+    fn edge_and_inf_need_a_box() {
+        let e = reg("region w block 0 1 0 1 EDGE EDGE units box", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("box does not exist"));
+        let d = boxed([-0.035, -0.035, -0.005], [3.255, 1.8, 0.005]);
+        let r = reg("region w block 0 1 0 1 EDGE INF units box", Some(&d), None, &[]).unwrap();
+        assert_eq!(r.extent(), Some(([0.0, 0.0, -0.005], [1.0, 1.0, 1e20])));
+        assert!(reg("region w block -INF 1 0 1 0 1 units box", Some(&d), None, &[]).is_err());
+    }
+
+    #[test]
+    fn side_out_flips_the_test_and_has_no_extent() {
+        let r = reg("region b block 0 1 0 1 0 1 units box side out", None, None, &[]).unwrap();
+        assert!(!r.matches([1.0, 1.0, 1.0]) && r.matches([1.5, 0.5, 0.5]) && r.extent().is_none());
+    }
+
+    #[test]
+    fn open_face_matches_everything() {
+        // LAMMPS: a region with an open face matches all points, even with side out.
+        let r = reg("region r block 0 2 0 2 0 2 units box open 1 side out", None, None, &[]).unwrap();
+        assert!(r.matches([10.0, 10.0, 10.0]) && r.matches([1.0, 1.0, 1.0]));
+    }
+
+    #[test]
+    fn help_line_lists_every_style() {
+        assert_eq!(
+            syntax(),
+            "region ID style args keyword value ... (styles: block xlo xhi ylo yhi zlo zhi | sphere x y z r | \
+cylinder dim c1 c2 r lo hi | prism xlo xhi ylo yhi zlo zhi xy xz yz | plane px py pz nx ny nz | \
+union N id1 id2 ... | intersect N id1 id2 ...; keywords: side in|out, units lattice|box, open face)"
+        );
+    }
+
+    #[test]
+    fn dynamic_and_unknown_are_rejected() {
+        let e = reg("region r block 0 1 0 1 0 1 move v_x NULL NULL", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("not supported"));
+        let e = reg("region r blok 0 1 0 1 0 1", None, None, &[]).unwrap_err();
+        assert!(e.help[0].contains("block"), "{:?}", e.help);
+        let e = reg("region r cone z 0 0 1 2 0 1", None, None, &[]).unwrap_err();
+        assert_eq!(e.message, "region style `cone` is not supported");
+        let e = reg("region r sphere 0 0 0", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("missing"));
+        let e = reg("region r sphere 0 0 v_z 1", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("(v_name)"));
+        let e = reg("region 1-a sphere 0 0 0 1", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("letters, digits"));
+    }
+}

@@ -390,7 +390,7 @@ fn pair_rate_is_eq_26() {
          set atom 1 dmhs/conc 0.8\nset atom 2 dmhs/conc 0.1\n";
     let sim = start(deck);
     let (i, j) = (index_of(&sim, 1), index_of(&sim, 2));
-    let dw = sim.state.atoms.extra[sim.state.atoms.find_extra(dmhs::engine::water::DWATER).unwrap()].data.clone();
+    let dw = sim.state.atoms.extra[sim.state.atoms.field(dmhs::engine::fields::WATER_RATE).unwrap()].data.clone();
     let wfd = dmhs::models::pair::sph::Kernel::Lucy.wfd(0.05 * 0.05, 0.1, true);
     let expected = (2.0 / 1000.0) * (3.0 / 1500.0) * 2.0 * 0.7 * (0.8 - 0.1) * wfd;
     assert!(expected < 0.0);

@@ -5,6 +5,7 @@ pub mod bonded_lists;
 pub mod boundary;
 pub mod contact_history;
 pub mod domain;
+pub mod fields;
 pub mod groups;
 pub mod lattice;
 pub mod neighbor;

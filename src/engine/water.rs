@@ -10,20 +10,14 @@
 //! zeroed before every force pass like `desph`.
 
 use crate::engine::atoms::Atoms;
-
-/// Extra array holding w_i (ghosts carry it).
-pub const WATER: &str = "dmhs/water";
-/// Extra array holding dw_i/dt from the pair pass (owned atoms only).
-pub const DWATER: &str = "dmhs/dwater";
-/// Extra array holding the swelling growth of the radius, r_i - r0_i (ghosts carry it).
-pub const GROWTH: &str = "dmhs/growth";
+use crate::engine::fields::{Field, WATER, WATER_RATE};
 
 /// Register the water arrays (no-op if present). Removes ghosts if it has to add an array.
 pub fn ensure_fields(atoms: &mut Atoms) {
-    if atoms.find_extra(WATER).is_none() || atoms.find_extra(DWATER).is_none() {
+    if atoms.field(WATER).is_none() || atoms.field(WATER_RATE).is_none() {
         atoms.clear_ghosts();
-        atoms.extra_field(WATER, 1, true);
-        atoms.extra_array(DWATER, 1);
+        atoms.add_field(WATER);
+        atoms.add_field(WATER_RATE);
     }
 }
 
@@ -35,7 +29,7 @@ pub fn conc_of(w: f64, rho: f64, m: f64) -> f64 {
 
 /// The water masses of all atoms (owned, then ghosts), if the field exists.
 pub fn water(atoms: &Atoms) -> Option<&[f64]> {
-    atoms.find_extra(WATER).map(|k| &atoms.extra[k].data[..])
+    atoms.field_values(WATER)
 }
 
 /// Concentration of owned atom `i` (0 without a water field or a density).
@@ -49,9 +43,9 @@ pub fn conc(atoms: &Atoms, type_mass: &[f64], i: usize) -> f64 {
     }
 }
 
-/// Value of an extra array for owned atom `i` (0 if the array does not exist).
-pub fn extra_value(atoms: &Atoms, name: &str, i: usize) -> f64 {
-    atoms.find_extra(name).map(|k| atoms.extra[k].data[i]).unwrap_or(0.0)
+/// Value of a field for owned atom `i` (0 if no model registered it).
+pub fn field_value(atoms: &Atoms, f: Field, i: usize) -> f64 {
+    atoms.field_values(f).map(|v| v[i]).unwrap_or(0.0)
 }
 
 /// `set ... dmhs/conc c` (w = c m / rho, with the current density and type mass) or
@@ -61,7 +55,7 @@ pub fn set(atoms: &mut Atoms, type_mass: &[f64], mass_set: &[bool], selected: &[
         return Err(format!("set {keyword} needs an atom style with SPH attributes (the concentration closure c = w rho/m uses the SPH density)"));
     }
     ensure_fields(atoms);
-    let k = atoms.find_extra(WATER).unwrap();
+    let k = atoms.add_field(WATER);
     for (i, _) in selected.iter().enumerate().take(atoms.nlocal).filter(|(_, &s)| s) {
         let w = if keyword == "dmhs/conc" {
             let t = atoms.typ[i];

@@ -9,6 +9,7 @@ use crate::sim::eval::{Eval, HookExpressions};
 use crate::engine::neighbor::NeighError;
 use crate::models::pair::{PairInput, PairOutput, Tally};
 use crate::sim::{Energies, RunError, Simulation, State};
+use crate::engine::fields::Field;
 use crate::engine::timing::Stage;
 use std::time::Instant;
 
@@ -135,8 +136,8 @@ impl Simulation {
             std::mem::take(&mut self.state.atoms.drho),
             std::mem::take(&mut self.state.atoms.desph),
         );
-        let kw = self.state.atoms.find_extra(crate::engine::water::DWATER);
-        let mut dwater = kw.map(|k| std::mem::take(&mut self.state.atoms.extra[k].data)).unwrap_or_default();
+        let rate_fields: Vec<(usize, Field)> = crate::engine::fields::RATES.iter().filter_map(|&fl| self.state.atoms.field(fl).map(|k| (k, fl))).collect();
+        let mut rates: Vec<Vec<f64>> = rate_fields.iter().map(|&(k, _)| std::mem::take(&mut self.state.atoms.extra[k].data)).collect();
         let input = PairInput {
             atoms: &self.state.atoms,
             list: &self.state.neighbor.list,
@@ -151,14 +152,15 @@ impl Simulation {
             advance,
             dimension: self.state.dimension,
         };
-        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, dwater: &mut dwater };
+        let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
+        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields };
         let r = work(pair.as_mut(), &input, &mut out);
         self.state.atoms.f = f;
         self.state.atoms.torque = torque;
         self.state.atoms.drho = drho;
         self.state.atoms.desph = desph;
-        if let Some(k) = kw {
-            self.state.atoms.extra[k].data = dwater;
+        for ((k, _), v) in rate_fields.into_iter().zip(rates) {
+            self.state.atoms.extra[k].data = v;
         }
         self.pair = Some(pair);
         r
@@ -176,8 +178,10 @@ impl Simulation {
             clear(&mut a.drho, 0.0);
             clear(&mut a.desph, 0.0);
         }
-        if let Some(k) = a.find_extra(crate::engine::water::DWATER) {
-            a.extra[k].data.iter_mut().for_each(|x| *x = 0.0);
+        for &fl in crate::engine::fields::RATES {
+            if let Some(k) = a.field(fl) {
+                clear(&mut a.extra[k].data, 0.0);
+            }
         }
         self.timers.stamp();
         let mut pair_tally = Tally::default();

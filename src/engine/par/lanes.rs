@@ -79,6 +79,31 @@ mod imp {
         // SAFETY: AVX is enabled at compile time
         unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(load(a), load(b))) as u32 }
     }
+    /// All-ones lanes where a < b (ordered: NaN is not less).
+    #[inline(always)]
+    pub fn lt_mask(a: &L, b: &L) -> L {
+        // SAFETY: AVX is enabled at compile time
+        store(unsafe { _mm256_cmp_pd::<_CMP_LT_OQ>(load(a), load(b)) })
+    }
+    /// All-ones lanes where a != b (unordered: NaN is unequal, as the scalar `!=`).
+    #[inline(always)]
+    pub fn ne_mask(a: &L, b: &L) -> L {
+        // SAFETY: AVX is enabled at compile time
+        store(unsafe { _mm256_cmp_pd::<_CMP_NEQ_UQ>(load(a), load(b)) })
+    }
+    binary!(and_bits, _mm256_and_pd);
+    /// Per lane: `yes` where the mask lane is all ones, else `no`.
+    #[inline(always)]
+    pub fn blend(m: &L, yes: &L, no: &L) -> L {
+        // SAFETY: AVX is enabled at compile time
+        store(unsafe { _mm256_blendv_pd(load(no), load(yes), load(m)) })
+    }
+    #[inline(always)]
+    pub fn abs(a: &L) -> L {
+        // clearing the sign bit is what f64::abs does
+        // SAFETY: AVX is enabled at compile time
+        store(unsafe { _mm256_andnot_pd(_mm256_set1_pd(-0.0), load(a)) })
+    }
     /// Rows to columns of a 4x4 block: `out[k][l] = m[l][k]`.
     #[inline(always)]
     pub fn transpose(m: [&[f64; 4]; 4]) -> [L; 4] {
@@ -139,6 +164,29 @@ mod imp {
     pub fn lt_bits(a: &L, b: &L) -> u32 {
         (0..4).map(|l| ((a.0[l] < b.0[l]) as u32) << l).sum()
     }
+    fn bits(b: bool) -> f64 {
+        f64::from_bits(if b { u64::MAX } else { 0 })
+    }
+    #[inline(always)]
+    pub fn lt_mask(a: &L, b: &L) -> L {
+        lanes(|l| bits(a.0[l] < b.0[l]))
+    }
+    #[inline(always)]
+    pub fn ne_mask(a: &L, b: &L) -> L {
+        lanes(|l| bits(a.0[l] != b.0[l]))
+    }
+    #[inline(always)]
+    pub fn and_bits(a: &L, b: &L) -> L {
+        lanes(|l| f64::from_bits(a.0[l].to_bits() & b.0[l].to_bits()))
+    }
+    #[inline(always)]
+    pub fn blend(m: &L, yes: &L, no: &L) -> L {
+        lanes(|l| if m.0[l].to_bits() >> 63 != 0 { yes.0[l] } else { no.0[l] })
+    }
+    #[inline(always)]
+    pub fn abs(a: &L) -> L {
+        lanes(|l| a.0[l].abs())
+    }
     #[inline(always)]
     pub fn transpose(m: [&[f64; 4]; 4]) -> [L; 4] {
         std::array::from_fn(|k| lanes(|l| m[l][k]))
@@ -164,6 +212,96 @@ impl L {
     #[inline(always)]
     pub fn lt_bits(&self, other: &L) -> u32 {
         imp::lt_bits(self, other)
+    }
+}
+
+/// A number the physics is written over once: `f64` for one pair, [`L`] for a batch. Every
+/// operation is the IEEE operation per lane, and a branch of the scalar code is a [`Real::select`]
+/// (both sides computed, one kept), so a formula gives the same bits either way. Constants enter
+/// with [`Real::splat`] (`T::splat(2.0) * x` is what `2.0 * x` is for a lane type).
+pub trait Real: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> + Neg<Output = Self> + AddAssign {
+    /// The truth of a comparison, per lane.
+    type Mask: Copy + std::ops::BitAnd<Output = Self::Mask>;
+    fn splat(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    fn abs(self) -> Self;
+    /// `self < other` (false for NaN).
+    fn lt(self, other: Self) -> Self::Mask;
+    /// `self != other` (true for NaN).
+    fn ne(self, other: Self) -> Self::Mask;
+    /// `if m { yes } else { no }`, per lane.
+    fn select(m: Self::Mask, yes: Self, no: Self) -> Self;
+}
+
+impl Real for f64 {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> f64 {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn lt(self, other: f64) -> bool {
+        self < other
+    }
+    #[inline(always)]
+    fn ne(self, other: f64) -> bool {
+        self != other
+    }
+    #[inline(always)]
+    fn select(m: bool, yes: f64, no: f64) -> f64 {
+        if m {
+            yes
+        } else {
+            no
+        }
+    }
+}
+
+/// A per-lane truth value of [`L`]: all bits set where true.
+#[derive(Clone, Copy, Debug)]
+pub struct Mask(L);
+
+impl std::ops::BitAnd for Mask {
+    type Output = Mask;
+    #[inline(always)]
+    fn bitand(self, o: Mask) -> Mask {
+        Mask(imp::and_bits(&self.0, &o.0))
+    }
+}
+
+impl Real for L {
+    type Mask = Mask;
+    #[inline(always)]
+    fn splat(x: f64) -> L {
+        imp::splat(x)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> L {
+        imp::sqrt(&self)
+    }
+    #[inline(always)]
+    fn abs(self) -> L {
+        imp::abs(&self)
+    }
+    #[inline(always)]
+    fn lt(self, other: L) -> Mask {
+        Mask(imp::lt_mask(&self, &other))
+    }
+    #[inline(always)]
+    fn ne(self, other: L) -> Mask {
+        Mask(imp::ne_mask(&self, &other))
+    }
+    #[inline(always)]
+    fn select(m: Mask, yes: L, no: L) -> L {
+        imp::blend(&m.0, &yes, &no)
     }
 }
 
@@ -271,6 +409,25 @@ mod tests {
         same(a.sqrt(), &|x, _| x.sqrt());
         same(b.lt_or_zero(&L::splat(0.0), &a), &|x, y| if y < 0.0 { x } else { 0.0 });
         assert_eq!(L([1.0, f64::NAN, -2.0, 5.0]).lt_bits(&L::splat(2.0)), 0b0101);
+    }
+
+    /// The comparisons and selects of [`Real`] on lanes are the scalar ones, NaN included.
+    #[test]
+    fn real_masks_are_the_scalar_comparisons() {
+        let a = L([1.5, -0.0, f64::NAN, 3.0]);
+        let b = L([0.1, 0.0, 2.0, 3.0]);
+        let yes = L([10.0, 20.0, 30.0, 40.0]);
+        let no = L([-1.0, -2.0, -3.0, -4.0]);
+        let lt = <L as Real>::select(a.lt(b), yes, no);
+        let ne = <L as Real>::select(a.ne(b), yes, no);
+        let both = <L as Real>::select(a.lt(b) & a.ne(b), yes, no);
+        for l in 0..LANES {
+            assert_eq!(lt[l], f64::select(a[l].lt(b[l]), yes[l], no[l]), "lt lane {l}");
+            assert_eq!(ne[l], f64::select(Real::ne(a[l], b[l]), yes[l], no[l]), "ne lane {l}");
+            assert_eq!(both[l], f64::select(a[l] < b[l] && a[l] != b[l], yes[l], no[l]), "and lane {l}");
+            let (x, y) = (Real::abs(a)[l], a[l].abs());
+            assert!(x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()));
+        }
     }
 
     #[test]

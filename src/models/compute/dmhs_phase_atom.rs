@@ -7,8 +7,8 @@
 //! Atoms outside the compute's group get 0 in every column.
 
 use super::{expect_no_args, Compute, PerAtom};
-use crate::models::fix::dmhs_phase::{LABEL_FIELD, PHI_FIELD};
-use crate::models::pair::dmhs_heatconduction::{temperature, T_FIELD};
+use crate::engine::fields::{LIQUID_WEIGHT, PHASE, TEMPERATURE};
+use crate::models::pair::dmhs_heatconduction::temperature;
 use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Diagnostic, Word};
 
@@ -42,7 +42,7 @@ impl Compute for ComputeDmhsPhaseAtom {
     }
     fn peratom(&self, w: &World) -> Result<PerAtom, String> {
         let a = &w.state.atoms;
-        let (kt, kl, kp) = (a.find_extra(T_FIELD), a.find_extra(LABEL_FIELD), a.find_extra(PHI_FIELD));
+        let (kt, kl, kp) = (a.field(TEMPERATURE), a.field(PHASE), a.field(LIQUID_WEIGHT));
         // the EOS of the phase fix, for the melt fraction
         let eos = w.fixes.iter().find_map(|f| f.phase_eos().map(|e| (e, f.groupbit())));
         let mut data = Vec::with_capacity(4 * a.nlocal);

@@ -80,7 +80,7 @@ impl Field {
             Field::Q => (ft.charge, "charges"),
             Field::Radius | Field::Diameter | Field::Omega(_) | Field::Torque(_) => (ft.sphere, "sphere attributes (atom_style sphere)"),
             Field::Rho | Field::Drho | Field::Esph | Field::Desph | Field::Cv | Field::Vest(_) => (ft.sph, "SPH attributes (atom_style sph)"),
-            Field::Conc | Field::Water | Field::DWater => (state.atoms.find_extra(crate::engine::water::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
+            Field::Conc | Field::Water | Field::DWater => (state.atoms.field(crate::engine::fields::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
             _ => (true, ""),
         };
         if ok { Ok(()) } else { Err(format!("this atom style has no {what}")) }
@@ -125,8 +125,8 @@ impl Field {
             Field::Cv => a.cv[i],
             Field::Vest(d) => a.vest[i][d],
             Field::Conc => crate::engine::water::conc(a, &state.type_mass, i),
-            Field::Water => crate::engine::water::extra_value(a, crate::engine::water::WATER, i),
-            Field::DWater => crate::engine::water::extra_value(a, crate::engine::water::DWATER, i),
+            Field::Water => crate::engine::water::field_value(a, crate::engine::fields::WATER, i),
+            Field::DWater => crate::engine::water::field_value(a, crate::engine::fields::WATER_RATE, i),
         }
     }
 }

@@ -62,8 +62,8 @@ impl FixDmhsCooling {
     /// Add the cooling rates to desph; returns the rate of energy loss sum_i kT C_i (T_i - Tair).
     fn apply(&mut self, state: &mut State) -> f64 {
         let coord = self.surface.map(|(d, _)| coordination(&state.atoms, d));
-        let kt_field = state.atoms.find_extra(crate::models::pair::dmhs_heatconduction::T_FIELD);
-        let kc_field = state.atoms.find_extra(super::dmhs_phase::C_FIELD);
+        let kt_field = state.atoms.field(crate::engine::fields::TEMPERATURE);
+        let kc_field = state.atoms.field(crate::engine::fields::HEAT_CAPACITY);
         let a = &mut state.atoms;
         let mut n = 0;
         let mut rate = 0.0;

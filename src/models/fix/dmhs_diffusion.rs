@@ -8,7 +8,7 @@
 
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::state::{RunError, State};
-use crate::engine::water::{DWATER, WATER};
+use crate::engine::fields::{WATER, WATER_RATE};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "fix ID group dmhs/diffusion";
@@ -24,7 +24,7 @@ impl FixDiffusion {
         if !state.atoms.features.sph {
             return Err(Diagnostic::at(style.span, "fix dmhs/diffusion needs an atom style with SPH attributes (c = w rho/m uses the SPH density)", "atom style has no rho"));
         }
-        if state.atoms.find_extra(WATER).is_none() {
+        if state.atoms.field(WATER).is_none() {
             state.lists_valid = false;
         }
         crate::engine::water::ensure_fields(&mut state.atoms);
@@ -34,7 +34,7 @@ impl FixDiffusion {
     fn half_step(&self, state: &mut State) -> Result<(), RunError> {
         let dth = 0.5 * state.dt;
         let a = &mut state.atoms;
-        let (kw, kd) = match (a.find_extra(WATER), a.find_extra(DWATER)) {
+        let (kw, kd) = match (a.field(WATER), a.field(WATER_RATE)) {
             (Some(kw), Some(kd)) => (kw, kd),
             _ => return Err(RunError::new(state.step, "fix dmhs/diffusion: the water field was removed")),
         };
@@ -64,7 +64,7 @@ impl Fix for FixDiffusion {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
-        if state.atoms.find_extra(WATER).is_none() {
+        if state.atoms.field(WATER).is_none() {
             return Err("the water field is missing (was the fix defined before read_restart?)".into());
         }
         Ok(())

@@ -36,16 +36,13 @@
 //! Per-atom: `compute ID group dmhs/phase/atom` (T, label, melt fraction, phi).
 
 use super::{Fix, FixCtx, FixHooks};
+use crate::engine::fields::{Field, HEAT_CAPACITY, LIQUID_WEIGHT, PHASE, TEMPERATURE};
 use crate::engine::state::{RunError, State};
 use crate::engine::topology::Bond;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "fix ID group dmhs/phase Tstar T cvs Cs cvl Cl latent L liquid LT solid ST [bond BT cutoff RC] [mix Tlow Thigh]";
 
-pub const LABEL_FIELD: &str = "dmhs/phase";
-pub const C_FIELD: &str = "dmhs/c";
-pub const PHI_FIELD: &str = "dmhs/phi";
-pub use crate::models::pair::dmhs_heatconduction::T_FIELD;
 
 /// The phase-change equation of state (Eq 24).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -161,22 +158,22 @@ impl FixDmhsPhase {
         // per-atom fields (registered with no ghosts present)
         state.atoms.clear_ghosts();
         state.lists_valid = false;
-        state.atoms.extra_field(T_FIELD, 1, true);
-        state.atoms.extra_array(LABEL_FIELD, 1);
-        state.atoms.extra_array(C_FIELD, 1);
+        for f in [TEMPERATURE, PHASE, HEAT_CAPACITY] {
+            state.atoms.add_field(f);
+        }
         if mix.is_some() {
-            state.atoms.extra_field(PHI_FIELD, 1, true);
+            state.atoms.add_field(LIQUID_WEIGHT);
         }
         Ok(FixDmhsPhase { id, groupbit, eos, liquid, solid, bond, mix, created: 0, deleted: 0, frozen: 0, melted: 0 })
     }
 
-    fn field(state: &State, name: &str) -> usize {
-        state.atoms.find_extra(name).expect("dmhs/phase fields are registered at definition")
+    fn field(state: &State, f: Field) -> usize {
+        state.atoms.field(f).expect("dmhs/phase fields are registered at definition")
     }
 
     /// Labels from the types (1 solid, 0 liquid).
     fn label_from_types(&self, state: &mut State) {
-        let kl = Self::field(state, LABEL_FIELD);
+        let kl = Self::field(state, PHASE);
         let a = &mut state.atoms;
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit != 0 {
@@ -187,8 +184,8 @@ impl FixDmhsPhase {
 
     /// T, c (and phi) of owned atoms from their energies.
     fn update_fields(&self, state: &mut State) {
-        let (kt, kc, kl) = (Self::field(state, T_FIELD), Self::field(state, C_FIELD), Self::field(state, LABEL_FIELD));
-        let kp = state.atoms.find_extra(PHI_FIELD);
+        let (kt, kc, kl) = (Self::field(state, TEMPERATURE), Self::field(state, HEAT_CAPACITY), Self::field(state, PHASE));
+        let kp = state.atoms.field(LIQUID_WEIGHT);
         let a = &mut state.atoms;
         for i in 0..a.nlocal {
             let (t, c) = if a.mask[i] & self.groupbit != 0 {
@@ -216,8 +213,8 @@ impl FixDmhsPhase {
     fn forward(state: &mut State) {
         let a = &mut state.atoms;
         let n = a.nlocal;
-        for name in [T_FIELD, PHI_FIELD] {
-            if let Some(k) = a.find_extra(name) {
+        for f in [TEMPERATURE, LIQUID_WEIGHT] {
+            if let Some(k) = a.field(f) {
                 crate::engine::atoms::Atoms::forward_field(&mut a.extra[k].data, n, &a.ghost_owner);
             }
         }
@@ -225,7 +222,7 @@ impl FixDmhsPhase {
 
     /// Apply the solidification and melting rules; returns whether anything changed.
     fn transitions(&mut self, state: &mut State) -> Result<(), RunError> {
-        let kl = Self::field(state, LABEL_FIELD);
+        let kl = Self::field(state, PHASE);
         let a = &state.atoms;
         let mut freeze = vec![];
         let mut melt = vec![];
@@ -303,7 +300,7 @@ impl FixDmhsPhase {
     /// (group atoms, solid-labelled atoms, solid fraction by enthalpy summed, atoms on the
     /// plateau e_sol <= e <= e_liq).
     fn counts(&self, state: &State) -> (f64, f64, f64, f64) {
-        let kl = Self::field(state, LABEL_FIELD);
+        let kl = Self::field(state, PHASE);
         let a = &state.atoms;
         let (mut n, mut ns, mut fs, mut np) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..a.nlocal {
@@ -389,8 +386,8 @@ impl Fix for FixDmhsPhase {
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.clear_ghosts();
         state.lists_valid = false;
-        for f in [T_FIELD, LABEL_FIELD, C_FIELD, PHI_FIELD] {
-            state.atoms.remove_extra(f);
+        for f in [TEMPERATURE, PHASE, HEAT_CAPACITY, LIQUID_WEIGHT] {
+            state.atoms.remove_extra(f.name);
         }
     }
     fn describe(&self) -> String {

@@ -16,7 +16,8 @@
 
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::state::{RunError, State};
-use crate::engine::water::{radius_of_volume, volume_of_radius, GROWTH, WATER};
+use crate::engine::fields::{GROWTH, WATER};
+use crate::engine::water::{radius_of_volume, volume_of_radius};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "fix ID group dmhs/swell rhow";
@@ -45,7 +46,7 @@ impl FixSwell {
         state.atoms.clear_ghosts();
         state.lists_valid = false;
         crate::engine::water::ensure_fields(&mut state.atoms);
-        state.atoms.extra_field(GROWTH, 1, true);
+        state.atoms.add_field(GROWTH);
         let k = state.atoms.extra_array(&store, 1);
         if fresh {
             // read_restart brings the stored dry volumes back; a new fix takes the current radii
@@ -60,7 +61,7 @@ impl FixSwell {
     fn apply(&self, state: &mut State) -> Result<(), RunError> {
         let dim = state.dimension;
         let a = &mut state.atoms;
-        let (Some(kv), Some(kw), Some(kg)) = (a.find_extra(&self.store), a.find_extra(WATER), a.find_extra(GROWTH)) else {
+        let (Some(kv), Some(kw), Some(kg)) = (a.find_extra(&self.store), a.field(WATER), a.field(GROWTH)) else {
             return Err(RunError::new(state.step, "fix dmhs/swell: its per-atom arrays were removed"));
         };
         for i in 0..a.nlocal {

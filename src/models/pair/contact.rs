@@ -10,30 +10,33 @@
 //! one pair at a time, so the same bits); the results are applied in list order.
 
 use super::{sum_tallies, PairInput, PairOutput, Tally};
+use crate::engine::par::lanes::{lanes, L, LANES};
 use crate::engine::par::{slab_phase, AtomsMut, ChunksMut};
 use crate::engine::contact_history::{ContactHistory, HistoryChunk};
 use crate::engine::neighbor::{special_level, NEIGH_MASK};
 
-/// What a contact model sees of one overlapping pair (i is the atom that lists the pair).
-pub struct Contact<'a> {
+/// What a contact model sees of one overlapping pair (i is the atom that lists the pair), or of
+/// a batch of pairs with `T` = [`L`].
+pub struct Contact<'a, T = f64> {
     /// x_i - x_j
-    pub del: [f64; 3],
-    pub rsq: f64,
-    pub radi: f64,
-    pub radj: f64,
-    pub vi: &'a [f64; 3],
-    pub vj: &'a [f64; 3],
-    pub omegai: &'a [f64; 3],
-    pub omegaj: &'a [f64; 3],
-    pub mi: f64,
-    pub mj: f64,
+    pub del: [T; 3],
+    pub rsq: T,
+    pub radi: T,
+    pub radj: T,
+    pub vi: &'a [T; 3],
+    pub vj: &'a [T; 3],
+    pub omegai: &'a [T; 3],
+    pub omegaj: &'a [T; 3],
+    pub mi: T,
+    pub mj: T,
 }
 
 /// A contact's result: the force on i (j gets its negative) and the torques on i and j.
-pub struct ContactForce {
-    pub f: [f64; 3],
-    pub ti: [f64; 3],
-    pub tj: [f64; 3],
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ContactForce<T = f64> {
+    pub f: [T; 3],
+    pub ti: [T; 3],
+    pub tj: [T; 3],
 }
 
 /// A granular contact law.
@@ -49,30 +52,26 @@ pub trait ContactModel: Sync {
     /// ignored). The default evaluates them one at a time with [`ContactModel::contact`].
     fn contact_lanes(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
         let mut o = LanesOut::default();
-        let (del, rsq, hist) = (b.del(), b.rsq(), b.hist());
         let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
-        let (radi, radj, mi, mj) = (b.scalar(b.radius, 0), b.scalar(b.radius, 1), b.scalar(b.rmass, 0), b.scalar(b.rmass, 1));
+        let c = b.contact(&vi, &vj, &wi, &wj);
+        let hist = b.hist();
         for l in 0..b.n {
             let pick = |a: &[L; 3]| [a[0][l], a[1][l], a[2][l]];
             let (vil, vjl, wil, wjl) = (pick(&vi), pick(&vj), pick(&wi), pick(&wj));
-            let c = Contact { del: pick(&del), rsq: rsq[l], radi: radi[l], radj: radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: mi[l], mj: mj[l] };
+            let one = Contact { del: pick(&c.del), rsq: c.rsq[l], radi: c.radi[l], radj: c.radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: c.mi[l], mj: c.mj[l] };
             let mut h = pick(&hist);
             let (ti, tj) = b.types(l);
-            let r = Self::contact(self.params(ti, tj), &c, &mut h[..Self::HISTORY], update, dt);
+            let r = Self::contact(self.params(ti, tj), &one, &mut h[..Self::HISTORY], update, dt);
             for (d, hd) in h.iter().enumerate() {
                 o.hist[d][l] = *hd;
-                o.f[d][l] = r.f[d];
-                o.ti[d][l] = r.ti[d];
-                o.tj[d][l] = r.tj[d];
+                o.force.f[d][l] = r.f[d];
+                o.force.ti[d][l] = r.ti[d];
+                o.force.tj[d][l] = r.tj[d];
             }
         }
         o
     }
 }
-
-/// Pairs evaluated together.
-pub const LANES: usize = 4;
-pub type L = [f64; LANES];
 
 /// The loop's record of a batch: atoms, history entry and special weight of each lane.
 #[derive(Clone, Default)]
@@ -109,11 +108,6 @@ impl LaneSrc<'_> {
         let [i, j] = &self.ij;
         std::array::from_fn(|d| lanes(|l| self.x[i[l]][d] - self.x[j[l]][d]))
     }
-    #[inline(always)]
-    pub fn rsq(&self) -> L {
-        let del = self.del();
-        lanes(|l| del[0][l] * del[0][l] + del[1][l] * del[1][l] + del[2][l] * del[2][l])
-    }
     /// A 3-vector per-atom array of atom i (`which` 0) or j (1).
     #[inline(always)]
     pub fn v3(&self, a: &[[f64; 3]], which: usize) -> [L; 3] {
@@ -132,6 +126,25 @@ impl LaneSrc<'_> {
         let (e, h) = (&self.e, self.hsize);
         std::array::from_fn(|d| lanes(|l| if d < h { self.values[e[l] * h + d] } else { 0.0 }))
     }
+    /// The batch as a [`Contact`] of lanes, with the velocities of i and j (`v3(v, 0|1)`) and
+    /// angular velocities (`v3(omega, 0|1)`) the caller gathered.
+    #[inline(always)]
+    pub fn contact<'v>(&self, vi: &'v [L; 3], vj: &'v [L; 3], omegai: &'v [L; 3], omegaj: &'v [L; 3]) -> Contact<'v, L> {
+        let del = self.del();
+        let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+        Contact {
+            del,
+            rsq,
+            radi: self.scalar(self.radius, 0),
+            radj: self.scalar(self.radius, 1),
+            vi,
+            vj,
+            omegai,
+            omegaj,
+            mi: self.scalar(self.rmass, 0),
+            mj: self.scalar(self.rmass, 1),
+        }
+    }
     /// Atom types of lane `l`.
     pub fn types(&self, l: usize) -> (usize, usize) {
         (self.typ[self.ij[0][l]], self.typ[self.ij[1][l]])
@@ -141,17 +154,9 @@ impl LaneSrc<'_> {
 /// Results of a batch: force on i, torques on i and j, per lane.
 #[derive(Clone, Default)]
 pub struct LanesOut {
-    pub f: [L; 3],
-    pub ti: [L; 3],
-    pub tj: [L; 3],
+    pub force: ContactForce<L>,
     /// the history values after the evaluation
     pub hist: [L; 3],
-}
-
-/// `[f(0), f(1), ..]`: one value per lane (written so the compiler can vectorize it).
-#[inline(always)]
-pub fn lanes(f: impl Fn(usize) -> f64) -> L {
-    std::array::from_fn(f)
 }
 
 /// Compute all contacts of the list. `history` must be given when `M::HISTORY > 0` (and
@@ -226,6 +231,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 for d in 0..hsize {
                     values[e * hsize + d] = r.hist[d][l];
                 }
+                let r = &mut r.force;
                 if EXTRA && b.factor[l] != 1.0 {
                     let fac = b.factor[l];
                     for d in 0..3 {

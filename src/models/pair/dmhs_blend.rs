@@ -16,11 +16,10 @@
 
 use super::contact::{Contact, ContactModel};
 use super::gran_hooke::NoHistory;
-use super::gran_hooke_history::Classic;
+use super::classic::Classic;
 use super::sph::{Batch, SphKernel, L};
 use super::sph_taitwater_morris::SphTaitwaterMorris;
 use super::{compute_pairs, PairInput, PairKernel, PairModify, PairOutput, PairResult, PairSetup, PairStyle, Tally};
-use crate::models::fix::dmhs_phase::PHI_FIELD;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [kernel K] [pmin P]";
@@ -127,7 +126,7 @@ impl PairStyle for DmhsBlend {
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.sph.set_dim3(input.dimension == 3);
         let a = input.atoms;
-        let phi = a.find_extra(PHI_FIELD).map(|k| &a.extra[k].data[..]);
+        let phi = a.field(crate::engine::fields::LIQUID_WEIGHT).map(|k| &a.extra[k].data[..]);
         compute_pairs(&Blended { style: self, phi }, input, out)
     }
     fn needs_type_mass(&self) -> bool {

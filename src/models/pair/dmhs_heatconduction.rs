@@ -30,9 +30,6 @@ use dmhs_parser::{Args, Command, DResult, Word};
 pub const SYNTAX: &str = "pair_style dmhs/heatconduction [kernel lucy|cubic|wendland2]";
 pub const COEFF_SYNTAX: &str = "pair_coeff I J kappa h   (kappa: conductivity, mean of the pair; h: kernel support)";
 
-/// Name of the per-atom temperature field published by `fix dmhs/phase`.
-pub const T_FIELD: &str = "dmhs/T";
-
 pub struct DmhsHeatConduction {
     kernel: Kernel,
     /// (kappa, h) per pair as given
@@ -69,7 +66,7 @@ impl SphKernel for DmhsHeatConduction {
     #[inline(always)]
     fn pack(&self, input: &PairInput, i: usize) -> Packed {
         let a = input.atoms;
-        let field = a.find_extra(T_FIELD);
+        let field = a.field(crate::engine::fields::TEMPERATURE);
         Packed { x: a.x[i], v: [a.mass(i, input.type_mass), 0.0, 0.0], a: a.rho[i], b: temperature(a, field, i) }
     }
     #[inline(always)]
@@ -185,7 +182,7 @@ mod tests {
             advance: true,
             dimension: 3,
         };
-        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, dwater: &mut [] };
+        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![] };
         hc.compute(&input, &mut out);
         // T1 = 150, T2 = 50; wfd for Lucy 3D at r = 0.3, h = 0.8
         let wfd = Kernel::Lucy.wfd(0.09, 0.8, true);

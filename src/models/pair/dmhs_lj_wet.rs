@@ -130,7 +130,7 @@ impl CentralKernel for LjWet {
             Some(w) if a.features.sph => crate::engine::water::conc_of(w[i], a.rho[i], input.type_mass[a.typ[i]]),
             _ => 0.0,
         };
-        let growth = match (self.dmax, a.find_extra(crate::engine::water::GROWTH)) {
+        let growth = match (self.dmax, a.field(crate::engine::fields::GROWTH)) {
             (Some(dmax), Some(k)) => Some((dmax, &a.extra[k].data[..nall])),
             _ => None,
         };

@@ -55,8 +55,9 @@ impl SphKernel for SphDiffusion {
         let dw = lanes(|l| pi.a * b.a[l] * dh[l].0 * (pi.b - b.b[l]) * wfd[l]);
         SphContribution { de_i: dw, de_j: lanes(|l| -dw[l]), ..SphContribution::default() }
     }
-    fn rate_is_water(&self) -> bool {
-        true
+    /// The second rate is the water-mass rate dw/dt.
+    fn rates(&self) -> [Option<super::Rate>; 2] {
+        [None, Some(super::Rate::Field(crate::engine::fields::WATER_RATE))]
     }
 }
 
@@ -102,7 +103,7 @@ impl PairStyle for SphDiffusion {
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.dim3 = input.dimension == 3;
         // init_sim checked that the field exists
-        let Some(kw) = input.atoms.find_extra(crate::engine::water::WATER) else { return Tally::default() };
+        let Some(kw) = input.atoms.field(crate::engine::fields::WATER) else { return Tally::default() };
         self.kw = kw;
         compute_sph(self, input, out);
         Tally::default()

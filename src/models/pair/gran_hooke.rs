@@ -4,8 +4,9 @@
 //! the tangential force is pure damping, -m_eff gamma_t v_tr, limited to xmu |F_n|. Kt is
 //! accepted and unused, as in LAMMPS.
 
-use super::contact::{compute_contacts, Contact, ContactForce, ContactModel};
-use super::gran_hooke_history::{check_setup, classic_force, Classic, GranTypes};
+use super::classic::Classic;
+use super::contact::{compute_contacts, Contact, ContactForce, ContactModel, LaneSrc, LanesOut};
+use super::gran_hooke_history::{check_setup, GranTypes};
 use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -34,43 +35,12 @@ impl ContactModel for NoHistory {
     }
     #[inline(always)]
     fn contact(p: &Classic, c: &Contact, _hist: &mut [f64], _update: bool, _dt: f64) -> ContactForce {
-        let [delx, dely, delz] = c.del;
-        let rsq = c.rsq;
-        let (radi, radj) = (c.radi, c.radj);
-        let radsum = radi + radj;
-        let r = rsq.sqrt();
-        let rinv = 1.0 / r;
-        let rsqinv = 1.0 / rsq;
-
-        let vr1 = c.vi[0] - c.vj[0];
-        let vr2 = c.vi[1] - c.vj[1];
-        let vr3 = c.vi[2] - c.vj[2];
-        let vnnr = vr1 * delx + vr2 * dely + vr3 * delz;
-        let vt1 = vr1 - delx * vnnr * rsqinv;
-        let vt2 = vr2 - dely * vnnr * rsqinv;
-        let vt3 = vr3 - delz * vnnr * rsqinv;
-
-        let wr1 = (radi * c.omegai[0] + radj * c.omegaj[0]) * rinv;
-        let wr2 = (radi * c.omegai[1] + radj * c.omegaj[1]) * rinv;
-        let wr3 = (radi * c.omegai[2] + radj * c.omegaj[2]) * rinv;
-
-        let meff = c.mi * c.mj / (c.mi + c.mj);
-        let damp = meff * p.gamman * vnnr * rsqinv;
-        let mut ccel = p.kn * (radsum - r) * rinv - damp;
-        if p.limit_damping && ccel < 0.0 {
-            ccel = 0.0;
-        }
-
-        let vtr1 = vt1 - (delz * wr2 - dely * wr3);
-        let vtr2 = vt2 - (delx * wr3 - delz * wr1);
-        let vtr3 = vt3 - (dely * wr1 - delx * wr2);
-        let vrel = (vtr1 * vtr1 + vtr2 * vtr2 + vtr3 * vtr3).sqrt();
-
-        // tangential damping, limited by friction
-        let fn_ = p.xmu * (ccel * r).abs();
-        let fs = meff * p.gammat * vrel;
-        let ft = if vrel != 0.0 { (if fn_ < fs { fn_ } else { fs }) / vrel } else { 0.0 };
-        classic_force(c, ccel, rinv, [-ft * vtr1, -ft * vtr2, -ft * vtr3])
+        p.without_history(c)
+    }
+    #[inline(always)]
+    fn contact_lanes(&self, b: &LaneSrc, _update: bool, _dt: f64) -> LanesOut {
+        let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
+        LanesOut { force: self.0.without_history(&b.contact(&vi, &vj, &wi, &wj)), hist: Default::default() }
     }
 }
 

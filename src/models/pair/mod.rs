@@ -4,6 +4,7 @@
 //! the loop over the neighbour list, Newton's third law, threading and energy/virial tallies
 //! live here. Adding a style touches one list: [`new_pair_style`].
 
+pub mod classic;
 pub mod contact;
 pub mod dmhs_blend;
 pub mod dmhs_heatconduction;
@@ -23,6 +24,7 @@ pub mod sph_taitwater_morris;
 pub mod zero;
 
 use crate::engine::atoms::Atoms;
+use crate::engine::fields::Field;
 use crate::engine::neighbor::{special_level, NeighList, NEIGH_MASK};
 use crate::engine::par::{slab_phase, AtomsMut};
 pub use crate::engine::tally::{sum_tallies, Tally};
@@ -76,8 +78,42 @@ pub struct PairOutput<'a> {
     pub torque: &'a mut [[f64; 3]],
     pub drho: &'a mut [f64],
     pub desph: &'a mut [f64],
-    /// Water-mass rates (`dmhs/dwater`; empty without a water field).
-    pub dwater: &'a mut [f64],
+    /// The rate fields ([`crate::engine::fields::RATES`]) some model registered.
+    pub fields: Vec<(Field, &'a mut [f64])>,
+}
+
+/// A per-particle rate a pair style adds to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rate {
+    /// drho/dt (`drho`)
+    Density,
+    /// d(esph)/dt (`desph`)
+    Energy,
+    /// a rate field such as [`crate::engine::fields::WATER_RATE`]
+    Field(Field),
+}
+
+impl<'a> PairOutput<'a> {
+    /// The forces and the slices two different rates add to; a rate that is `None`, that the
+    /// atoms lack, or that is asked for twice gives an empty slice.
+    pub fn forces_and_rates(&mut self, first: Option<Rate>, second: Option<Rate>) -> (&mut [[f64; 3]], &mut [f64], &mut [f64]) {
+        let mut drho = Some(&mut *self.drho);
+        let mut desph = Some(&mut *self.desph);
+        let mut fields: Vec<Option<(Field, &mut [f64])>> = self.fields.iter_mut().map(|(f, s)| Some((*f, &mut **s))).collect();
+        let a = take_rate(first, &mut drho, &mut desph, &mut fields);
+        let b = take_rate(second, &mut drho, &mut desph, &mut fields);
+        (&mut *self.f, a, b)
+    }
+}
+
+fn take_rate<'s>(r: Option<Rate>, drho: &mut Option<&'s mut [f64]>, desph: &mut Option<&'s mut [f64]>, fields: &mut [Option<(Field, &'s mut [f64])>]) -> &'s mut [f64] {
+    let slice = match r {
+        None => None,
+        Some(Rate::Density) => drho.take(),
+        Some(Rate::Energy) => desph.take(),
+        Some(Rate::Field(want)) => fields.iter_mut().find(|e| matches!(e, Some((f, _)) if *f == want)).and_then(|e| e.take()).map(|(_, s)| s),
+    };
+    slice.unwrap_or_default()
 }
 
 /// What a pair computation may read.

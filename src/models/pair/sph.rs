@@ -8,7 +8,7 @@
 
 pub use crate::engine::par::lanes::{lanes, L, LANES};
 pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
-use super::PairInput;
+use super::{PairInput, Rate};
 use std::ops::{Div, Mul, Sub};
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
 
@@ -444,10 +444,10 @@ pub trait SphKernel: Sync {
     /// The contributions of a batch of pairs (i, j) inside the cutoff, written lane by lane with
     /// [`lanes`] so that the compiler evaluates the lanes together.
     fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D>;
-    /// The scalar rate (`de_i`, `de_j`) is the water-mass rate dw/dt (`dmhs/sph/diffusion`)
-    /// rather than desph: the loop adds it to `out.dwater`.
-    fn rate_is_water(&self) -> bool {
-        false
+    /// What the contribution's two scalar rates (`drho_*`, `de_*`) add to: drho/dt and
+    /// d(esph)/dt unless the style says otherwise (None: the rate is not kept).
+    fn rates(&self) -> [Option<Rate>; 2] {
+        [Some(Rate::Density), Some(Rate::Energy)]
     }
 }
 

@@ -222,15 +222,16 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
         .collect();
     // the sums go to the outputs chunk by chunk as chunks complete, added to what other styles
     // (hybrid/overlay) put there already
-    let has_rates = !out.drho.is_empty();
-    let water = kernel.rate_is_water() && !out.dwater.is_empty();
+    let [first, second] = kernel.rates();
+    let (forces, first, second) = out.forces_and_rates(first, second);
+    let (has_first, has_second) = (!first.is_empty(), !second.is_empty());
     let list = input.list;
     let nchunks = list.chunks.len();
     let bounds = list.bounds();
     let mut parts = vec![Tally::default(); nchunks];
     for parity in 0..2 {
-        let windows = (AtomsMut::new(&mut acc), AtomsMut::new(&mut acc_e), AtomsMut::new(&mut *out.f), AtomsMut::new(&mut *out.drho), AtomsMut::new(&mut *out.desph), AtomsMut::new(&mut *out.dwater));
-        slab_phase(&bounds, parity, windows, &mut parts, |c, (mut acc, mut acc_e, mut f, mut drho, mut desph, mut dwater)| {
+        let windows = (AtomsMut::new(&mut acc), AtomsMut::new(&mut acc_e), AtomsMut::new(forces), AtomsMut::new(&mut *first), AtomsMut::new(&mut *second));
+        slab_phase(&bounds, parity, windows, &mut parts, |c, (mut acc, mut acc_e, mut f, mut first, mut second)| {
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
         let mut inside: Vec<u32> = Vec::new();
@@ -323,11 +324,11 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 fi[0] += r[0];
                 fi[1] += r[1];
                 fi[2] += fz;
-                if water {
-                    dwater[i] += e_rate;
-                } else if has_rates {
-                    drho[i] += rho_rate;
-                    desph[i] += e_rate;
+                if has_first {
+                    first[i] += rho_rate;
+                }
+                if has_second {
+                    second[i] += e_rate;
                 }
             }
         }

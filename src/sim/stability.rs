@@ -173,6 +173,9 @@ fn not_finite3(v: &[f64; 3]) -> bool {
     v[0] * 0.0 + v[1] * 0.0 + v[2] * 0.0 != 0.0
 }
 
+/// Atom types up to which [`check_state`] uses a fixed-size bounds table.
+const SMALL: usize = 16;
+
 /// Stop the run if the state went bad: non-finite positions, velocities or SPH fields, or an
 /// SPH density outside the sane range. The message names step, particle, quantity and bound.
 pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
@@ -198,11 +201,19 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
             })
             .collect();
         let (rho, esph, typ) = (&a.rho[..n], &a.esph[..n], &a.typ[..n]);
-        !any_index(n, |i| {
-            let (lo, hi) = bounds[typ[i]];
+        let bad = |i: usize, (lo, hi): (f64, f64)| {
             let r = rho[i];
             bad_motion(i) | !(r > lo && r <= hi) | (esph[i] * 0.0 != 0.0)
-        })
+        };
+        if bounds.len() <= SMALL {
+            // a fixed table indexed by `typ & (SMALL - 1)` needs no bounds check, so the pass
+            // vectorizes (types are <= ntypes < SMALL, so the mask changes nothing)
+            let mut small = [(f64::NEG_INFINITY, f64::MAX); SMALL];
+            small[..bounds.len()].copy_from_slice(&bounds);
+            !any_index(n, |i| bad(i, small[typ[i] & (SMALL - 1)]))
+        } else {
+            !any_index(n, |i| bad(i, bounds[typ[i]]))
+        }
     } else {
         !any_index(n, bad_motion)
     };

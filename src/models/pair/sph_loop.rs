@@ -161,11 +161,27 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
         let rec = |p: &Packed, i: usize| (Record::new::<2>(p, input.type_mass[a.typ[i]]), p.x[2] != z0 || p.v[2] != 0.0);
         let (recs, off_plane) = records(nall, kernel, input, rec);
         if !off_plane {
-            return sph_loop::<K, 2>(kernel, input, out, &recs);
+            let t = sph_loop::<K, 2>(kernel, input, out, &recs);
+            keep_records(recs);
+            return t;
         }
+        keep_records(recs);
     }
     let (recs, _) = records(nall, kernel, input, |p, _| (Record::new::<3>(p, 0.0), false));
-    sph_loop::<K, 3>(kernel, input, out, &recs)
+    let t = sph_loop::<K, 3>(kernel, input, out, &recs);
+    keep_records(recs);
+    t
+}
+
+thread_local! {
+    /// The records' storage, kept from one pass to the next: every record is rewritten each
+    /// pass, so the buffer needs no clearing (a fresh zeroed one cost a memset of 64 bytes per
+    /// particle per pass).
+    static RECORDS: std::cell::RefCell<Vec<Record>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+fn keep_records(v: Vec<Record>) {
+    RECORDS.with(|r| *r.borrow_mut() = v);
 }
 
 /// The records of atoms `0..n`, `rec(packed, i)` of the kernel's records (in parallel ranges),
@@ -174,7 +190,9 @@ pub fn compute_sph<K: SphKernel>(kernel: &K, input: &PairInput, out: &mut PairOu
 /// and was read back whole, a store-forwarding stall.
 fn records<K: SphKernel>(n: usize, kernel: &K, input: &PairInput, rec: impl Fn(&Packed, usize) -> (Record, bool) + Sync) -> (Vec<Record>, bool) {
     const CHUNK: usize = 1024; // a multiple of LANES
-    let mut v = vec![Record::default(); n];
+    let mut v = RECORDS.with(|r| std::mem::take(&mut *r.borrow_mut()));
+    // only new slots are initialised; the rest are overwritten below
+    v.resize(n, Record::default());
     let flagged = std::sync::atomic::AtomicBool::new(false);
     ranges(n, CHUNK, AtomsMut::new(&mut v), |r, mut slots| {
         let slots = slots.slice(r.clone());

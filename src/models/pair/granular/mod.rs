@@ -96,6 +96,8 @@ impl Flags {
 pub struct Ctx {
     /// against fix wall/gran's wall (LAMMPS contact_type WALL)
     pub wall: bool,
+    /// the coefficients were mixed from two types' (an unset I,J pair)
+    pub mixed: bool,
     /// the normal model's name and eta_n0 (empty, 0 while the normal model itself is built)
     pub normal: &'static str,
     pub normal_damp: f64,
@@ -223,6 +225,7 @@ fn coeff_syntax() -> &'static str {
 /// One type pair's (or a wall's) models as given.
 #[derive(Clone, Copy)]
 pub struct GranSpec {
+    /// given by pair_coeff or a wall (false: mixed from two types, or unset)
     pub set: bool,
     pub normal: Given<Normal>,
     pub damping: Given<Damping>,
@@ -373,8 +376,9 @@ pub struct GranModel {
 impl GranModel {
     /// Build the sub-models (LAMMPS coeffs_to_local, then init: damping reads the normal model).
     pub fn build(s: &GranSpec, wall: bool) -> GranModel {
-        let normal = s.normal.build(&Ctx { wall, normal: "", normal_damp: 0.0 });
-        let ctx = Ctx { wall, normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::DAMP_COEFF] };
+        let mixed = !s.set;
+        let normal = s.normal.build(&Ctx { wall, mixed, normal: "", normal_damp: 0.0 });
+        let ctx = Ctx { wall, mixed, normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::DAMP_COEFF] };
         let sizes = [
             s.normal.style.history,
             s.damping.style.history,
@@ -448,7 +452,7 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
 
     // tangential force
     let ht = &mut history[m.history_index[TANGENTIAL]..m.history_index[ROLLING]];
-    let fs = m.tangential.force(&TangentialIn { nx: &nx, vtr: &vtr, fncrit, damp_prefactor, update, dt }, ht);
+    let fs = m.tangential.force(&TangentialIn { nx: &nx, vtr: &vtr, fncrit, damp_prefactor, a, update, dt }, ht);
 
     let f = [fntot * nx[0] + fs[0], fntot * nx[1] + fs[1], fntot * nx[2] + fs[2]];
     // torque direction -(n x F_t), scaled by the lever
@@ -714,6 +718,8 @@ mod tests {
         assert_eq!(m.normal.coeffs[0], normal::mix_stiffness_e(1e6, 4e6, 0.3, 0.2));
         assert_eq!(m.normal.coeffs[1], (0.4f64 * 0.9).sqrt());
         assert_eq!(&m.tangential.coeffs[..3], &[200.0, 0.5, 0.2]);
+        // Kn = 4/3 E_eff of the two materials (LAMMPS 2025; measured)
+        assert_eq!(GranModel::build(&m, false).normal, Normal::Hertz { k: 4.0 / 3.0 * normal::mix_stiffness_e(1e6, 4e6, 0.3, 0.2) });
         let c = parse("hertz 1e6 0.4 tangential linear_history 100 0.5 0.1", false).unwrap();
         assert!(GranSpec::mix(&a, &c).is_none());
     }

@@ -9,8 +9,8 @@
 //!   F_n,crit = |F_n + 2 F_pulloff|. Cohesive: no `limit_damping`, no tsuji/coeff_restitution.
 //!
 //! eta_n0 is the damping model's coefficient (a restitution coefficient for coeff_restitution).
-//! Mixing (unset I,J pairs): geometric means, except E, which LAMMPS mixes as E_eff(E_i, E_j,
-//! nu_i, nu_j) and then (when building Kn) mixes again with itself: reproduced.
+//! Mixing (unset I,J pairs): geometric means, except E: Kn = 4/3 E_eff(E_i, nu_i, E_j, nu_j)
+//! (measured in LAMMPS 2025).
 
 use super::{geometric, nn, Coeff, Coeffs, Ctx, Flags, Style};
 use std::f64::consts::PI;
@@ -82,12 +82,18 @@ pub fn mix_stiffness_e_wall(e: f64, nu: f64) -> f64 {
     e / factor
 }
 
-/// Kn = 4/3 E_eff of `E eta nu ...` (a wall uses its own rule, as LAMMPS' contact_type WALL).
+/// Kn = 4/3 E_eff of `E eta nu ...` (a wall uses its own rule, as LAMMPS' contact_type WALL);
+/// mixed coefficients already hold E_eff.
 fn material_k(c: &[f64], ctx: &Ctx) -> f64 {
     let (e, nu) = (c[0], c[2]);
-    FOURTHIRDS * if ctx.wall { mix_stiffness_e_wall(e, nu) } else { mix_stiffness_e(e, e, nu, nu) }
+    if ctx.mixed {
+        FOURTHIRDS * e
+    } else {
+        FOURTHIRDS * if ctx.wall { mix_stiffness_e_wall(e, nu) } else { mix_stiffness_e(e, e, nu, nu) }
+    }
 }
 
+/// E becomes E_eff of the two materials (LAMMPS keeps it in the first coefficient).
 fn mix_material(a: &[f64], b: &[f64]) -> Coeffs {
     let mut m = geometric(a, b);
     m[0] = mix_stiffness_e(a[0], b[0], a[2], b[2]);

@@ -8,7 +8,10 @@
 //!   |s.n| Kt > 1e-10 mu F_n,crit); s += v_tr dt; F_t = -Kt s - x_gt eta_n v_tr, limited to
 //!   mu F_n,crit with s set back to match.
 //! * `linear_history_classic Kt x_gt mu`: the spring of pair gran/hooke/history: s += v_tr dt
-//!   first, |s| taken, then s projected onto the tangent plane without rescaling.
+//!   first, |s| taken, then s projected onto the tangent plane without rescaling. LAMMPS 2025
+//!   scales its stiffness by the contact radius (F_t = -Kt a s - x_gt eta_n v_tr) but sets s
+//!   back at the Coulomb limit as if it did not (s = -(F_t + x_gt eta_n v_tr)/Kt): reproduced,
+//!   measured against LAMMPS 2025.7.
 //!
 //! The spring is advanced only when `update` (not during run setup, LAMMPS' history_update).
 
@@ -49,7 +52,7 @@ pub static STYLES: &[Style<Tangential>] = &[
         name: "linear_history_classic",
         coeffs: HISTORY,
         history: 3,
-        flags: Flags::NONE,
+        flags: Flags { contact_radius: true, ..Flags::NONE },
         build: |c, _| Tangential::LinearHistoryClassic { k: c[0], xt: c[1], mu: c[2] },
         mix: geometric,
     },
@@ -62,6 +65,8 @@ pub struct TangentialIn<'a> {
     pub fncrit: f64,
     /// eta_n, the normal damping prefactor
     pub damp_prefactor: f64,
+    /// contact radius (0 unless a sub-model asked for it)
+    pub a: f64,
     pub update: bool,
     pub dt: f64,
 }
@@ -112,7 +117,8 @@ impl Tangential {
                     h[1] -= rsht * nx[1];
                     h[2] -= rsht * nx[2];
                 }
-                let fs = [-k * h[0] - damp * vtr[0], -k * h[1] - damp * vtr[1], -k * h[2] - damp * vtr[2]];
+                let ka = -k * t.a;
+                let fs = [ka * h[0] - damp * vtr[0], ka * h[1] - damp * vtr[1], ka * h[2] - damp * vtr[2]];
                 coulomb(fs, Some(shrmag), fscrit, k, damp, vtr, h)
             }
             Tangential::LinearNoHistory { xt, mu } => {

@@ -73,8 +73,8 @@ fn tsuji(e: f64) -> f64 {
 
 /// The damping ratio that gives restitution `e` for a linear (hooke) or Hertzian spring.
 fn from_restitution(e: f64, hooke: bool) -> f64 {
-    const ROOTTHREEBYTWO: f64 = 1.22474487139158894067; // sqrt(3/2)
-    const TWOROOTFIVEBYSIX: f64 = 1.82574185835055380345; // 2 sqrt(5/6)
+    const ROOTTHREEBYTWO: f64 = 1.224744871391589; // sqrt(3/2), LAMMPS' literal
+    const TWOROOTFIVEBYSIX: f64 = 1.8257418583505538; // 2 sqrt(5/6), LAMMPS' literal
     let l = e.ln();
     if hooke {
         -2.0 * l / (PI * PI + l * l).sqrt()

@@ -209,7 +209,7 @@ pub fn model_syntax() -> &'static str {
     static S: OnceLock<String> = OnceLock::new();
     S.get_or_init(|| {
         format!(
-            "{} [damping {}] [tangential {}] [limit_damping]",
+            "({}) [damping {}] tangential ({}) [limit_damping]",
             table_syntax(normal::STYLES),
             names(damping::STYLES).join("|"),
             table_syntax(tangential::STYLES)
@@ -496,10 +496,10 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
 /// A torque added to i and subtracted from j (a wall has no j).
 #[inline(always)]
 fn add_opposite(out: &mut ContactForce, t: [f64; 3], wall: bool) {
-    for d in 0..3 {
-        out.ti[d] += t[d];
+    for (d, td) in t.iter().enumerate() {
+        out.ti[d] += td;
         if !wall {
-            out.tj[d] -= t[d];
+            out.tj[d] -= td;
         }
     }
 }

@@ -1,7 +1,9 @@
-//! `fix ID group wall/gran granular hooke Kn eta_n0 [damping ...] [tangential ...] [limit_damping]
+//! `fix ID group wall/gran granular NORMAL coeffs [damping ...] [tangential ...] [limit_damping]
 //! xplane|yplane|zplane lo hi [wiggle dim A period | shear dim v]`: a flat frictional wall
-//! pair of planes at lo and hi (NULL: none) acting on spheres with the contact law of
+//! pair of planes at lo and hi (NULL: none) acting on spheres with the sub-models of
 //! `pair_style granular` (see [`crate::models::pair::granular`]), as LAMMPS 2025's fix wall/gran.
+//! Material models (hertz/material, dmt) use the wall rule E_eff = E/(2 (1-nu^2)): the sphere's
+//! material against a rigid wall (LAMMPS' contact_type WALL).
 //!
 //! Each sphere interacts with the nearer of the two planes; its tangential spring (3 values per
 //! atom) lives in the atoms' extra arrays, so it follows the atom through sorting and is saved
@@ -13,12 +15,16 @@
 //! elastic m g sin(theta)/k_t), while the `granular` form gives the elastic value.
 
 use super::{Fix, FixCtx, FixHooks};
-use crate::models::pair::granular::{granular_contact, GranGeom, GranModel};
+use crate::models::pair::contact::Contact;
+use crate::models::pair::granular::{granular_contact, model_syntax, GranModel, GranSpec};
 use crate::engine::state::{RunError, State};
 use crate::engine::par::{ranges, AtomsMut};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "fix ID group wall/gran granular hooke Kn eta_n0 [damping velocity|mass_velocity|viscoelastic|tsuji] [tangential linear_history Kt x_gt mu | linear_nohistory x_gt mu] [limit_damping] xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]";
+fn syntax() -> &'static str {
+    static S: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    S.get_or_init(|| format!("fix ID group wall/gran granular {} xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]", model_syntax()))
+}
 
 const BIG: f64 = 1.0e20;
 
@@ -31,6 +37,7 @@ enum Motion {
 pub struct FixWallGran {
     id: String,
     groupbit: u32,
+    spec: GranSpec,
     model: GranModel,
     dim: usize,
     lo: f64,
@@ -44,7 +51,7 @@ pub struct FixWallGran {
 
 impl FixWallGran {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
-        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let mut a = Args::from_words(args, cmd.span, syntax());
         if !state.atoms.features.sphere {
             return Err(a.error_at(&cmd.name, "fix wall/gran requires atom attributes radius and omega (atom_style sphere)", "no sphere attributes"));
         }
@@ -59,7 +66,8 @@ impl FixWallGran {
                 "LAMMPS 2025's classic wall/gran hooke/history lets a resting sphere creep; write e.g. `fix w all wall/gran granular hooke Kn eta_n0 tangential linear_history Kt x_gt mu damping mass_velocity zplane 0 NULL`",
             ));
         }
-        let model = GranModel::parse(&mut a, true)?;
+        let spec = GranSpec::parse(&mut a, true)?;
+        let model = GranModel::build(&spec, true);
         let w = a.word("wall style (xplane, yplane or zplane)")?;
         let dim = match w.text.as_str() {
             "xplane" => 0,
@@ -106,7 +114,7 @@ impl FixWallGran {
         }
         let array = format!("wall/gran:{id}");
         state.atoms.extra_array(&array, 3);
-        Ok(FixWallGran { id, groupbit, model, dim, lo, hi, motion, time_origin: state.step, array })
+        Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array })
     }
 
     /// The planes' positions and the wall velocity at the current step.
@@ -167,8 +175,8 @@ impl FixWallGran {
                 let mut dx = [0.0f64; 3];
                 dx[dim] = dist;
                 let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-                let g = GranGeom { dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, meff: rmass[i], wall: true };
-                let r = granular_contact(model, &g, &mut hv, update, dt);
+                let c = Contact { del: dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, mi: rmass[i], mj: 0.0 };
+                let r = granular_contact(model, &c, true, &mut hv, update, dt);
                 *h = hv;
                 for d in 0..3 {
                     f[i][d] += r.f[d];
@@ -209,12 +217,6 @@ impl Fix for FixWallGran {
         Ok([wlo, whi].into_iter().filter(|x| x.abs() < 0.5 * BIG).map(|x| (self.dim, x)).collect())
     }
     fn describe(&self) -> String {
-        format!("fix {} wall/gran granular {} {}plane {} {}", self.id, self.model_describe(), ["x", "y", "z"][self.dim], self.lo, self.hi)
-    }
-}
-
-impl FixWallGran {
-    fn model_describe(&self) -> String {
-        format!("hooke {} {} (mu {})", self.model.kn, self.model.damp_coeff, self.model.mu)
+        format!("fix {} wall/gran granular {} {}plane {} {}", self.id, self.spec.describe(), ["x", "y", "z"][self.dim], self.lo, self.hi)
     }
 }

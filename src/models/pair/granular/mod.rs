@@ -1,0 +1,726 @@
+//! `pair_style granular [cutoff]`: per-type-pair contact models composed of one sub-model per
+//! kind, as LAMMPS 2025's GranularModel composes them:
+//!
+//! ```text
+//! pair_coeff I J NORMAL coeffs... [damping NAME] [tangential NAME coeffs...]
+//!            [rolling NAME coeffs...] [twisting NAME coeffs...] [heat NAME coeffs...]
+//!            [limit_damping] [cutoff value]
+//! ```
+//!
+//! Each kind has its file with a `STYLES` table ([`normal`], [`damping`], [`tangential`],
+//! [`rolling`], [`twisting`], [`heat`]): name, coefficients, history values, flags and the
+//! constructor of the enum the contact evaluates. The parser, its errors, the syntax line, the
+//! history layout and mixing all read the tables. A tangential model is required; damping
+//! defaults to viscoelastic (LAMMPS).
+//!
+//! [`granular_contact`] follows LAMMPS' order of operations: geometry, the contact radius
+//! a = sqrt(delta R_eff) (only when a sub-model needs it), F_n from the normal model, the damping
+//! prefactor eta_n and F_damp = -eta_n v_n, F_n,tot = F_n + F_damp (`limit_damping` clamps it at
+//! 0), F_n,crit from the normal model, F_t from the tangential model, torques -(R - delta/2)
+//! (n x F_t) on each sphere (a wall: -R (n x F_t)), then rolling and twisting torques.
+//!
+//! Unset I,J pairs mix from I,I and J,J: the same sub-models, coefficients mixed by each
+//! style's rule (geometric means unless the table says otherwise).
+//! The same models serve `fix wall/gran ... granular` ([`GranSpec::parse`] with `wall`).
+
+pub mod damping;
+pub mod heat;
+pub mod normal;
+pub mod rolling;
+pub mod tangential;
+pub mod twisting;
+
+use super::contact::{compute_contacts, Contact, ContactForce, ContactModel};
+use super::gran_hooke_history::{check_setup, rebuild_history, GranTypes};
+use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, TypeTable};
+use crate::engine::contact_history::ContactHistory;
+use damping::Damping;
+use dmhs_parser::suggest::did_you_mean_help;
+use dmhs_parser::{Args, Command, DResult, Word};
+use heat::Heat;
+use normal::Normal;
+use rolling::{Rolling, RollingIn};
+use std::sync::OnceLock;
+use tangential::{Tangential, TangentialIn};
+use twisting::{Twisting, TwistingIn};
+
+pub const SYNTAX: &str = "pair_style granular [cutoff]";
+
+/// Most coefficients of a sub-model.
+pub const MAX_COEFFS: usize = 4;
+pub type Coeffs = [f64; MAX_COEFFS];
+
+/// History values per contact the contact loop and fix wall/gran carry.
+pub const MAX_HISTORY: usize = 3;
+
+/// A coefficient of a sub-model, for the parser and its messages.
+pub struct Coeff {
+    pub name: &'static str,
+    /// what it is, in error messages (may be empty)
+    pub about: &'static str,
+    pub non_negative: bool,
+}
+
+impl Coeff {
+    pub const fn any(name: &'static str, about: &'static str) -> Coeff {
+        Coeff { name, about, non_negative: false }
+    }
+    fn what(&self) -> String {
+        if self.about.is_empty() { self.name.to_string() } else { format!("{} ({})", self.name, self.about) }
+    }
+}
+
+/// A coefficient that must be >= 0 (LAMMPS' "Illegal ... model" checks).
+pub const fn nn(name: &'static str, about: &'static str) -> Coeff {
+    Coeff { name, about, non_negative: true }
+}
+
+/// What LAMMPS checks of a sub-model when it assembles a contact model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flags {
+    /// needs the contact radius a = sqrt(delta R_eff) (LAMMPS contact_radius_flag)
+    pub contact_radius: bool,
+    /// a normal model whose force pulls (LAMMPS cohesive_flag): no limit_damping
+    pub cohesive: bool,
+    /// refuses a cohesive normal model (LAMMPS allow_cohesion = 0)
+    pub no_cohesion: bool,
+    /// interacts beyond touching (LAMMPS beyond_contact): not supported by the contact loop
+    pub beyond_contact: bool,
+}
+
+impl Flags {
+    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false };
+}
+
+/// What constructors see besides their coefficients.
+pub struct Ctx {
+    /// against fix wall/gran's wall (LAMMPS contact_type WALL)
+    pub wall: bool,
+    /// the coefficients were mixed from two types' (an unset I,J pair)
+    pub mixed: bool,
+    /// the normal model's name and eta_n0 (empty, 0 while the normal model itself is built)
+    pub normal: &'static str,
+    pub normal_damp: f64,
+}
+
+/// One row of a kind's table: a sub-model style.
+pub struct Style<M: 'static> {
+    pub name: &'static str,
+    pub coeffs: &'static [Coeff],
+    /// history values per contact (LAMMPS size_history)
+    pub history: usize,
+    pub flags: Flags,
+    /// coefficients -> the model the contact evaluates (LAMMPS coeffs_to_local and init)
+    pub build: fn(&[f64], &Ctx) -> M,
+    /// coefficients of an unset I,J pair from I,I and J,J (LAMMPS mix_coeffs)
+    pub mix: fn(&[f64], &[f64]) -> Coeffs,
+}
+
+/// LAMMPS' default mixing: geometric means.
+pub fn geometric(a: &[f64], b: &[f64]) -> Coeffs {
+    std::array::from_fn(|k| (a[k] * b[k]).sqrt())
+}
+
+/// A sub-model as given: its table row and coefficients.
+pub struct Given<M: 'static> {
+    pub style: &'static Style<M>,
+    pub coeffs: Coeffs,
+}
+
+// (derived Clone/Copy would require M: Copy)
+impl<M> Clone for Given<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for Given<M> {}
+
+impl<M> Given<M> {
+    fn build(&self, ctx: &Ctx) -> M {
+        (self.style.build)(&self.coeffs[..self.style.coeffs.len()], ctx)
+    }
+    /// Same style: mixed coefficients; else None.
+    fn mix(&self, other: &Given<M>) -> Option<Given<M>> {
+        std::ptr::eq(self.style, other.style).then(|| Given { style: self.style, coeffs: (self.style.mix)(&self.coeffs, &other.coeffs) })
+    }
+    fn describe(&self) -> String {
+        let mut s = self.style.name.to_string();
+        for c in &self.coeffs[..self.style.coeffs.len()] {
+            s += &format!(" {c}");
+        }
+        s
+    }
+}
+
+fn mix_opt<M>(a: &Option<Given<M>>, b: &Option<Given<M>>) -> Option<Option<Given<M>>> {
+    match (a, b) {
+        (None, None) => Some(None),
+        (Some(a), Some(b)) => a.mix(b).map(Some),
+        _ => None,
+    }
+}
+
+/// The names of a table, for messages.
+fn names<M>(table: &[Style<M>]) -> Vec<&'static str> {
+    table.iter().map(|s| s.name).collect()
+}
+
+/// A sub-model as named in the command: the word, and what the checks of
+/// [`GranSpec::parse`] need of its style.
+#[derive(Clone, Copy)]
+struct Named<'a> {
+    word: &'a Word,
+    name: &'static str,
+    history: usize,
+    flags: Flags,
+}
+
+/// `NAME coeffs...` of one kind, looked up in its table; `set` stores it.
+fn parse_sub<'a, M>(a: &mut Args<'a>, table: &'static [Style<M>], kind: &str, set: impl FnOnce(Given<M>)) -> DResult<Named<'a>> {
+    let w = a.word(&format!("{kind} model"))?;
+    let Some(style) = table.iter().find(|s| s.name == w.text) else {
+        let known = names(table);
+        let label = if known.is_empty() { format!("dmhs has no {kind} models yet") } else { format!("supported: {}", known.join(", ")) };
+        let mut d = a.error_at(w, format!("granular {kind} model `{}` is not supported by dmhs", w.text), label);
+        if let Some(h) = did_you_mean_help(&w.text, known.iter().copied()) {
+            d.help.insert(0, h);
+        }
+        return Err(d);
+    };
+    let mut coeffs = [0.0; MAX_COEFFS];
+    for (k, c) in style.coeffs.iter().enumerate() {
+        coeffs[k] = if c.non_negative { a.non_negative_f64(&c.what())? } else { a.f64(&c.what())? };
+    }
+    set(Given { style, coeffs });
+    Ok(Named { word: w, name: style.name, history: style.history, flags: style.flags })
+}
+
+/// The kinds after the normal model, by keyword.
+const KINDS: [&str; 5] = ["damping", "tangential", "rolling", "twisting", "heat"];
+
+/// `NAME c1 c2 | NAME c1 ...` of a table, for syntax lines.
+fn table_syntax<M>(table: &[Style<M>]) -> String {
+    let alt: Vec<String> = table.iter().map(|s| std::iter::once(s.name).chain(s.coeffs.iter().map(|c| c.name)).collect::<Vec<_>>().join(" ")).collect();
+    alt.join(" | ")
+}
+
+/// The model words of the syntax line, from the tables.
+pub fn model_syntax() -> &'static str {
+    static S: OnceLock<String> = OnceLock::new();
+    S.get_or_init(|| {
+        format!(
+            "({}) [damping {}] tangential ({}) [limit_damping]",
+            table_syntax(normal::STYLES),
+            names(damping::STYLES).join("|"),
+            table_syntax(tangential::STYLES)
+        )
+    })
+}
+
+fn coeff_syntax() -> &'static str {
+    static S: OnceLock<String> = OnceLock::new();
+    S.get_or_init(|| format!("pair_coeff I J {} [cutoff value]", model_syntax()))
+}
+
+/// One type pair's (or a wall's) models as given.
+#[derive(Clone, Copy)]
+pub struct GranSpec {
+    /// given by pair_coeff or a wall (false: mixed from two types, or unset)
+    pub set: bool,
+    pub normal: Given<Normal>,
+    pub damping: Given<Damping>,
+    pub tangential: Given<Tangential>,
+    pub rolling: Option<Given<Rolling>>,
+    pub twisting: Option<Given<Twisting>>,
+    pub heat: Option<Given<Heat>>,
+    pub limit_damping: bool,
+    /// `cutoff` keyword (negative: from the radii)
+    pub cutoff: f64,
+}
+
+impl Default for GranSpec {
+    fn default() -> Self {
+        let zero = [0.0; MAX_COEFFS];
+        GranSpec {
+            set: false,
+            normal: Given { style: &normal::STYLES[0], coeffs: zero },
+            damping: Given { style: damping::default_style(), coeffs: zero },
+            tangential: Given { style: &tangential::STYLES[0], coeffs: zero },
+            rolling: None,
+            twisting: None,
+            heat: None,
+            limit_damping: false,
+            cutoff: -1.0,
+        }
+    }
+}
+
+impl GranSpec {
+    /// Parse `NORMAL coeffs [keywords]` (the words after the type ranges; for a wall, up to the
+    /// wall style).
+    pub fn parse(a: &mut Args, wall: bool) -> DResult<GranSpec> {
+        let mut m = GranSpec { set: true, ..GranSpec::default() };
+        // the sub-models as named, by kind (for the checks below); a kind given twice: the
+        // last one counts (LAMMPS)
+        let mut named: [Option<Named>; 6] = [None; 6];
+        named[NORMAL] = Some(parse_sub(a, normal::STYLES, "normal", |g| m.normal = g)?);
+        let mut limit_word = None;
+        let stops: &[&str] = if wall { &["xplane", "yplane", "zplane", "zcylinder", "region"] } else { &[] };
+        while let Some(w) = a.peek() {
+            if stops.contains(&w.text.as_str()) {
+                break;
+            }
+            a.skip(1);
+            let kind = w.text.as_str();
+            match kind {
+                "damping" => named[DAMPING] = Some(parse_sub(a, damping::STYLES, kind, |g| m.damping = g)?),
+                "tangential" => named[TANGENTIAL] = Some(parse_sub(a, tangential::STYLES, kind, |g| m.tangential = g)?),
+                "rolling" => named[ROLLING] = Some(parse_sub(a, rolling::STYLES, kind, |g| m.rolling = Some(g))?),
+                "twisting" => named[TWISTING] = Some(parse_sub(a, twisting::STYLES, kind, |g| m.twisting = Some(g))?),
+                "heat" => named[HEAT] = Some(parse_sub(a, heat::STYLES, kind, |g| m.heat = Some(g))?),
+                "limit_damping" => (m.limit_damping, limit_word) = (true, Some(w)),
+                "cutoff" if !wall => m.cutoff = a.f64("cutoff")?,
+                "synchronized" => return Err(a.error_at(w, "granular `synchronized` is not supported by dmhs", "not supported")),
+                _ => {
+                    let mut known = KINDS.to_vec();
+                    known.push("limit_damping");
+                    if !wall {
+                        known.push("cutoff");
+                    }
+                    return Err(a.unknown_keyword(w, &known));
+                }
+            }
+        }
+        if named[TANGENTIAL].is_none() {
+            return Err(a.missing(&format!("a tangential model (`tangential {}`): LAMMPS requires one", table_syntax(tangential::STYLES))));
+        }
+        // LAMMPS GranularModel::init's checks, located at the words that named the models
+        let normal = m.normal.style;
+        if normal.flags.cohesive {
+            if let Some(w) = limit_word {
+                return Err(a.error_at(w, format!("cannot limit damping with a cohesive normal model, {}", normal.name), "cohesive normal model"));
+            }
+        }
+        let mut total = 0;
+        for n in named.iter().flatten() {
+            if n.flags.no_cohesion && normal.flags.cohesive {
+                return Err(a.error_at(n.word, format!("cannot use {} model with a cohesive normal model, {}", n.name, normal.name), "cohesive normal model"));
+            }
+            if n.flags.beyond_contact {
+                return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs", n.name), "not supported"));
+            }
+            total += n.history;
+            if total > MAX_HISTORY {
+                return Err(a.error_at(n.word, format!("these granular models keep {total} history values per contact; dmhs keeps at most {MAX_HISTORY}"), "too much history"));
+            }
+        }
+        Ok(m)
+    }
+
+    /// LAMMPS' default mixing: same sub-models, each mixing its coefficients.
+    fn mix(a: &GranSpec, b: &GranSpec) -> Option<GranSpec> {
+        Some(GranSpec {
+            set: false,
+            normal: a.normal.mix(&b.normal)?,
+            damping: a.damping.mix(&b.damping)?,
+            tangential: a.tangential.mix(&b.tangential)?,
+            rolling: mix_opt(&a.rolling, &b.rolling)?,
+            twisting: mix_opt(&a.twisting, &b.twisting)?,
+            heat: mix_opt(&a.heat, &b.heat)?,
+            limit_damping: a.limit_damping || b.limit_damping,
+            cutoff: if a.cutoff >= 0.0 || b.cutoff >= 0.0 { a.cutoff.max(b.cutoff) } else { -1.0 },
+        })
+    }
+
+    pub fn describe(&self) -> String {
+        let mut s = format!("{} damping {} tangential {}", self.normal.describe(), self.damping.describe(), self.tangential.describe());
+        for (kind, g) in [("rolling", self.rolling.map(|g| g.describe())), ("twisting", self.twisting.map(|g| g.describe())), ("heat", self.heat.map(|g| g.describe()))] {
+            if let Some(g) = g {
+                s += &format!(" {kind} {g}");
+            }
+        }
+        if self.limit_damping {
+            s += " limit_damping";
+        }
+        s
+    }
+}
+
+/// The kinds, in LAMMPS' order (also the order of their values in the contact history).
+const NORMAL: usize = 0;
+const DAMPING: usize = 1;
+const TANGENTIAL: usize = 2;
+const ROLLING: usize = 3;
+const TWISTING: usize = 4;
+const HEAT: usize = 5;
+
+/// One type pair's (or a wall's) contact model as the contact evaluates it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GranModel {
+    pub normal: Normal,
+    pub damping: Damping,
+    pub tangential: Tangential,
+    pub rolling: Option<Rolling>,
+    pub twisting: Option<Twisting>,
+    pub heat: Option<Heat>,
+    pub limit_damping: bool,
+    /// some sub-model needs the contact radius a
+    pub contact_radius: bool,
+    /// offsets of each kind's values in the history (normal, damping, tangential, rolling,
+    /// twisting, heat: LAMMPS' order)
+    pub history_index: [usize; 6],
+    /// `cutoff` keyword (negative: from the radii)
+    pub cutoff: f64,
+}
+
+impl GranModel {
+    /// Build the sub-models (LAMMPS coeffs_to_local, then init: damping reads the normal model).
+    pub fn build(s: &GranSpec, wall: bool) -> GranModel {
+        let mixed = !s.set;
+        let normal = s.normal.build(&Ctx { wall, mixed, normal: "", normal_damp: 0.0 });
+        let ctx = Ctx { wall, mixed, normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::DAMP_COEFF] };
+        let sizes = [
+            s.normal.style.history,
+            s.damping.style.history,
+            s.tangential.style.history,
+            s.rolling.map_or(0, |g| g.style.history),
+            s.twisting.map_or(0, |g| g.style.history),
+            s.heat.map_or(0, |g| g.style.history),
+        ];
+        let mut history_index = [0; 6];
+        for k in 1..6 {
+            history_index[k] = history_index[k - 1] + sizes[k - 1];
+        }
+        let flags = [Some(s.normal.style.flags), Some(s.damping.style.flags), Some(s.tangential.style.flags), s.rolling.map(|g| g.style.flags), s.twisting.map(|g| g.style.flags), s.heat.map(|g| g.style.flags)];
+        GranModel {
+            normal,
+            damping: s.damping.build(&ctx),
+            tangential: s.tangential.build(&ctx),
+            rolling: s.rolling.map(|g| g.build(&ctx)),
+            twisting: s.twisting.map(|g| g.build(&ctx)),
+            heat: s.heat.map(|g| g.build(&ctx)),
+            limit_damping: s.limit_damping,
+            contact_radius: flags.iter().flatten().any(|f| f.contact_radius),
+            history_index,
+            cutoff: s.cutoff,
+        }
+    }
+}
+
+/// LAMMPS GranularModel::calculate_forces. Returns the force on i, and the torques on i and j.
+/// Against a `wall` (fix wall/gran): `del` points from the wall to the sphere, `radj` is 0 for a
+/// plane, m_eff is the sphere's mass and the torque lever is its full radius.
+#[inline(always)]
+pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64) -> ContactForce {
+    let (radi, radj) = (g.radi, g.radj);
+    let meff = if wall { g.mi } else { g.mi * g.mj / (g.mi + g.mj) };
+    let (radsum, reff) = if wall {
+        (radi, if radj == 0.0 { radi } else { radi * radj / (radi + radj) })
+    } else {
+        let s = radi + radj;
+        (s, radi * radj / s)
+    };
+    let r = g.rsq.sqrt();
+    let rinv = 1.0 / r;
+    let delta = radsum - r;
+    let nx = [rinv * g.del[0], rinv * g.del[1], rinv * g.del[2]];
+
+    // relative velocity: normal and tangential parts
+    let vr = [g.vi[0] - g.vj[0], g.vi[1] - g.vj[1], g.vi[2] - g.vj[2]];
+    let vnnr = vr[0] * nx[0] + vr[1] * nx[1] + vr[2] * nx[2];
+    let vn = [vnnr * nx[0], vnnr * nx[1], vnnr * nx[2]];
+    let vt = [vr[0] - vn[0], vr[1] - vn[1], vr[2] - vn[2]];
+    // relative rotational velocity (full radii) and the tangential velocity at the contact
+    let wr = [
+        radi * g.omegai[0] + radj * g.omegaj[0],
+        radi * g.omegai[1] + radj * g.omegaj[1],
+        radi * g.omegai[2] + radj * g.omegaj[2],
+    ];
+    let cr = [wr[1] * nx[2] - wr[2] * nx[1], wr[2] * nx[0] - wr[0] * nx[2], wr[0] * nx[1] - wr[1] * nx[0]];
+    let vtr = [vt[0] - cr[0], vt[1] - cr[1], vt[2] - cr[2]];
+
+    // normal force, damping, F_n,crit
+    let a = if m.contact_radius { (delta * reff).sqrt() } else { 0.0 };
+    let fnormal = m.normal.force(delta, reff, a);
+    let damp_prefactor = m.damping.prefactor(meff, a, fnormal, delta);
+    let fdamp = -damp_prefactor * vnnr;
+    let mut fntot = fnormal + fdamp;
+    if m.limit_damping && fntot < 0.0 {
+        fntot = 0.0;
+    }
+    let fncrit = m.normal.fncrit(fntot, fnormal, reff);
+
+    // tangential force
+    let ht = &mut history[m.history_index[TANGENTIAL]..m.history_index[ROLLING]];
+    let fs = m.tangential.force(&TangentialIn { nx: &nx, vtr: &vtr, fncrit, damp_prefactor, a, update, dt }, ht);
+
+    let f = [fntot * nx[0] + fs[0], fntot * nx[1] + fs[1], fntot * nx[2] + fs[2]];
+    // torque direction -(n x F_t), scaled by the lever
+    let t = [
+        -(nx[1] * fs[2] - nx[2] * fs[1]),
+        -(nx[2] * fs[0] - nx[0] * fs[2]),
+        -(nx[0] * fs[1] - nx[1] * fs[0]),
+    ];
+    let mut out = if wall {
+        ContactForce { f, ti: [radi * t[0], radi * t[1], radi * t[2]], tj: [0.0; 3] }
+    } else {
+        let li = radi - 0.5 * delta;
+        let lj = radj - 0.5 * delta;
+        ContactForce { f, ti: [li * t[0], li * t[1], li * t[2]], tj: [lj * t[0], lj * t[1], lj * t[2]] }
+    };
+
+    // rolling and twisting torques (on i; the opposite on j)
+    if m.rolling.is_some() || m.twisting.is_some() {
+        let relrot = [g.omegai[0] - g.omegaj[0], g.omegai[1] - g.omegaj[1], g.omegai[2] - g.omegaj[2]];
+        if let Some(rolling) = &m.rolling {
+            let vrl = [
+                reff * (relrot[1] * nx[2] - relrot[2] * nx[1]),
+                reff * (relrot[2] * nx[0] - relrot[0] * nx[2]),
+                reff * (relrot[0] * nx[1] - relrot[1] * nx[0]),
+            ];
+            let h = &mut history[m.history_index[ROLLING]..m.history_index[TWISTING]];
+            let fr = rolling.force(&RollingIn { vrl: &vrl, nx: &nx, fncrit, update, dt }, h);
+            let tr = [reff * (nx[1] * fr[2] - nx[2] * fr[1]), reff * (nx[2] * fr[0] - nx[0] * fr[2]), reff * (nx[0] * fr[1] - nx[1] * fr[0])];
+            add_opposite(&mut out, tr, wall);
+        }
+        if let Some(twisting) = &m.twisting {
+            let magtwist = relrot[0] * nx[0] + relrot[1] * nx[1] + relrot[2] * nx[2];
+            let h = &mut history[m.history_index[TWISTING]..m.history_index[HEAT]];
+            let mt = twisting.torque(&TwistingIn { magtwist, fncrit, a, update, dt }, h);
+            add_opposite(&mut out, [mt * nx[0], mt * nx[1], mt * nx[2]], wall);
+        }
+    }
+    out
+}
+
+/// A torque added to i and subtracted from j (a wall has no j).
+#[inline(always)]
+fn add_opposite(out: &mut ContactForce, t: [f64; 3], wall: bool) {
+    for (d, td) in t.iter().enumerate() {
+        out.ti[d] += td;
+        if !wall {
+            out.tj[d] -= td;
+        }
+    }
+}
+
+/// The per-type-pair models as a [`ContactModel`].
+pub struct GranularModels(pub TypeTable<GranModel>);
+
+impl ContactModel for GranularModels {
+    type Params = GranModel;
+    const HISTORY: usize = MAX_HISTORY;
+    #[inline(always)]
+    fn params(&self, ti: usize, tj: usize) -> &GranModel {
+        self.0.get(ti, tj)
+    }
+    #[inline(always)]
+    fn contact(m: &GranModel, c: &Contact, hist: &mut [f64], update: bool, dt: f64) -> ContactForce {
+        granular_contact(m, c, false, hist, update, dt)
+    }
+}
+
+pub struct Granular {
+    cut_global: f64,
+    coeff: TypeTable<GranSpec>,
+    models: GranularModels,
+    types: GranTypes,
+    history: ContactHistory,
+}
+
+impl Granular {
+    pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Granular> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let cut_global = if a.is_empty() { -1.0 } else { a.f64("cutoff")? };
+        a.finish()?;
+        Ok(Granular {
+            cut_global,
+            coeff: TypeTable::new(0),
+            models: GranularModels(TypeTable::new(0)),
+            types: GranTypes::default(),
+            history: ContactHistory::new(MAX_HISTORY),
+        })
+    }
+
+    fn grow(&mut self, n: usize) {
+        if self.coeff.n >= n {
+            return;
+        }
+        let mut t = TypeTable::new(n);
+        for i in 1..=self.coeff.n {
+            for j in 1..=self.coeff.n {
+                t.set(i, j, *self.coeff.get(i, j));
+            }
+        }
+        self.coeff = t;
+    }
+}
+
+impl PairStyle for Granular {
+    fn style(&self) -> &str {
+        "granular"
+    }
+    fn contact_stiffness(&self) -> Option<f64> {
+        self.coeff.data.iter().filter_map(|s| GranModel::build(s, false).normal.linear_stiffness()).reduce(f64::max)
+    }
+    fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        args.syntax = coeff_syntax();
+        let m = GranSpec::parse(args, false)?;
+        args.finish()?;
+        self.grow(ihi.max(jhi));
+        for i in ilo..=ihi {
+            for j in jlo.max(i)..=jhi {
+                self.coeff.set(i, j, m);
+            }
+        }
+        self.types.set_range(ilo, ihi, jlo, jhi);
+        Ok(())
+    }
+    fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
+        check_setup(setup, self.style())?;
+        self.types.init_radii(setup);
+        Ok(())
+    }
+    fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
+        self.grow(ntypes);
+        self.types.check(ntypes, active, "granular")?;
+        let mut models = TypeTable::new(ntypes);
+        for i in 1..=ntypes {
+            for j in i..=ntypes {
+                if let Some(a) = active {
+                    if !a[i * (ntypes + 1) + j] {
+                        continue;
+                    }
+                }
+                let c = *self.coeff.get(i, j);
+                let s = if c.set {
+                    c
+                } else {
+                    GranSpec::mix(self.coeff.get(i, i), self.coeff.get(j, j))
+                        .ok_or_else(|| format!("pair granular: types {i} and {j} use different models, so the {i} {j} pair cannot be mixed: set it with pair_coeff"))?
+                };
+                models.set(i, j, GranModel::build(&s, false));
+            }
+        }
+        self.models = GranularModels(models);
+        Ok(())
+    }
+    fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        let m = self.models.0.get(it, jt);
+        if m.cutoff >= 0.0 {
+            m.cutoff
+        } else if self.cut_global >= 0.0 {
+            self.cut_global
+        } else {
+            self.types.cutoff(it, jt)
+        }
+    }
+    fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
+        compute_contacts(&self.models, input, out, Some(&mut self.history))
+    }
+    fn rebuilt(&mut self, input: &PairInput, _order: &[usize]) {
+        rebuild_history(&mut self.history, input);
+    }
+    fn histories(&mut self) -> Vec<&mut ContactHistory> {
+        vec![&mut self.history]
+    }
+    fn describe(&self) -> String {
+        let mut s = String::from("granular");
+        if self.cut_global >= 0.0 {
+            s += &format!(" {}", self.cut_global);
+        }
+        for i in 1..=self.coeff.n {
+            for j in i..=self.coeff.n {
+                let c = self.coeff.get(i, j);
+                if c.set {
+                    s += &format!("\n    {i} {j}: {}", c.describe());
+                }
+            }
+        }
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::bonded::test_util::words;
+    use dmhs_parser::Span;
+
+    fn parse(line: &str, wall: bool) -> DResult<GranSpec> {
+        let w = words(line);
+        let mut a = Args::from_words(&w, Span::new(Default::default(), 0, line.len()), "");
+        let s = GranSpec::parse(&mut a, wall)?;
+        a.finish()?;
+        Ok(s)
+    }
+
+    fn err(line: &str) -> String {
+        match parse(line, false) {
+            Ok(_) => panic!("`{line}` was accepted"),
+            Err(d) => format!("{} [{}] {}", d.message, d.labels[0].message, d.help.join(" ")),
+        }
+    }
+
+    #[test]
+    fn models_are_read_from_the_tables() {
+        let s = parse("hertz/material 1e6 0.5 0.3 damping coeff_restitution tangential linear_history_classic 1000 0.5 0.2 limit_damping cutoff 1.5", false).unwrap();
+        assert_eq!(s.describe(), "hertz/material 1000000 0.5 0.3 damping coeff_restitution tangential linear_history_classic 1000 0.5 0.2 limit_damping");
+        assert_eq!(s.cutoff, 1.5);
+        let m = GranModel::build(&s, false);
+        assert!(m.contact_radius && m.limit_damping);
+        assert_eq!(m.history_index, [0, 0, 0, 3, 3, 3]);
+        // E_eff of two equal spheres is E/(2 (1-nu^2)); against a wall E/(2 (1-nu^2)) as well
+        let k = 4.0 / 3.0 * 1e6 / (2.0 * (1.0 - 0.09));
+        let (Normal::Hertz { k: kp }, Normal::Hertz { k: kw }) = (m.normal, GranModel::build(&s, true).normal) else { panic!() };
+        assert!((kp - k).abs() < 1e-9 * k && (kw - k).abs() < 1e-9 * k);
+        // the default damping is viscoelastic; linear_nohistory keeps no history
+        let m = GranModel::build(&parse("hooke 10 1 tangential linear_nohistory 0.5 0.1", false).unwrap(), false);
+        assert_eq!(m.damping, Damping::Viscoelastic { damp: 1.0 });
+        assert_eq!(m.history_index, [0; 6]);
+    }
+
+    #[test]
+    fn errors_name_what_the_tables_support() {
+        let e = err("jkr 1 2 3 4 tangential linear_history 1 1 1");
+        assert!(e.contains("normal model `jkr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt"), "{e}");
+        let e = err("hooke 1 1 damping tsuij tangential linear_history 1 1 1");
+        assert!(e.contains("`tsuij`") && e.contains("coeff_restitution") && e.contains("did you mean `tsuji`"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sds 1 1 1");
+        assert!(e.contains("rolling model `sds` is not supported") && e.contains("no rolling models yet"), "{e}");
+        let e = err("hertz/material 1e6 0.5 tangential linear_history 1 1 1");
+        assert!(e.contains("nu (Poisson's ratio)"), "{e}");
+        let e = err("hooke 1 -1 tangential linear_history 1 1 1");
+        assert!(e.contains("eta_n0 (normal damping) must be >= 0"), "{e}");
+        let e = err("hooke 1 1 damping velocity");
+        assert!(e.contains("missing a tangential model") && e.contains("linear_history_classic Kt x_gt mu"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 wiggle");
+        assert!(e.contains("unknown keyword `wiggle`") && e.contains("cutoff"), "{e}");
+        // LAMMPS' checks of cohesive normal models
+        let e = err("dmt 1e6 0.5 0.3 1 tangential linear_history 1 1 1 limit_damping");
+        assert!(e.contains("cannot limit damping with a cohesive normal model, dmt"), "{e}");
+        let e = err("dmt 1e6 0.5 0.3 1 damping tsuji tangential linear_history 1 1 1");
+        assert!(e.contains("cannot use tsuji model with a cohesive normal model, dmt"), "{e}");
+        // the last damping given counts
+        assert!(parse("dmt 1e6 0.5 0.3 1 damping tsuji damping velocity tangential linear_history 1 1 1", false).is_ok());
+        // a wall stops at its wall style and has no cutoff
+        let w = words("hooke 1 1 tangential linear_history 1 1 1 zplane 0 NULL");
+        let mut a = Args::from_words(&w, Span::new(Default::default(), 0, 1), "");
+        GranSpec::parse(&mut a, true).unwrap();
+        assert_eq!(a.peek().unwrap().text, "zplane");
+    }
+
+    #[test]
+    fn mixing_follows_each_style() {
+        let a = parse("hertz/material 1e6 0.4 0.3 tangential linear_history 100 0.5 0.1", false).unwrap();
+        let b = parse("hertz/material 4e6 0.9 0.2 tangential linear_history 400 0.5 0.4", false).unwrap();
+        let m = GranSpec::mix(&a, &b).unwrap();
+        assert_eq!(m.normal.coeffs[0], normal::mix_stiffness_e(1e6, 4e6, 0.3, 0.2));
+        assert_eq!(m.normal.coeffs[1], (0.4f64 * 0.9).sqrt());
+        assert_eq!(&m.tangential.coeffs[..3], &[200.0, 0.5, 0.2]);
+        // Kn = 4/3 E_eff of the two materials (LAMMPS 2025; measured)
+        assert_eq!(GranModel::build(&m, false).normal, Normal::Hertz { k: 4.0 / 3.0 * normal::mix_stiffness_e(1e6, 4e6, 0.3, 0.2) });
+        let c = parse("hertz 1e6 0.4 tangential linear_history 100 0.5 0.1", false).unwrap();
+        assert!(GranSpec::mix(&a, &c).is_none());
+    }
+}

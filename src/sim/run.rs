@@ -8,7 +8,7 @@ use crate::models::world::{FixesView, World};
 use crate::sim::eval::{Eval, HookExpressions};
 use crate::engine::neighbor::NeighError;
 use crate::models::pair::{PairInput, PairOutput, Tally};
-use crate::sim::{Energies, RunError, Simulation, State};
+use crate::sim::{Energies, RunError, SetupError, Simulation, State};
 use crate::engine::timing::Stage;
 use std::time::Instant;
 
@@ -59,14 +59,14 @@ impl Simulation {
     }
 
     /// Checks before a run; errors name what is missing.
-    pub fn init_run(&mut self) -> Result<(), String> {
+    pub fn init_run(&mut self) -> Result<(), SetupError> {
         let domain = self.state.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
         let _ = domain;
         let type_mass_needed = !self.state.atoms.features.per_atom_mass() || self.pair.as_ref().map(|p| p.needs_type_mass()).unwrap_or(false);
         if type_mass_needed {
             for t in 1..=self.state.ntypes {
                 if !self.state.mass_set[t] {
-                    return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)"));
+                    return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)").into());
                 }
             }
         }
@@ -75,7 +75,7 @@ impl Simulation {
             let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel };
             let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
             self.pair = Some(p);
-            r?;
+            r.map_err(|message| SetupError { message, at: self.pair_span })?;
         }
         let warnings = crate::models::bonded::pass::init_bonded(&mut self.state, self.bond_style.as_mut(), self.angle_style.as_mut(), self.dihedral_style.as_mut())?;
         for w in warnings {
@@ -327,7 +327,7 @@ impl Simulation {
             return Err(RunError::new(self.state.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
         }
         self.state.run_window = Some((start, stop));
-        self.init_run().map_err(|e| RunError::new(self.state.step, e))?;
+        self.init_run().map_err(|e| RunError::setup(self.state.step, e))?;
 
         self.out.print(&format!(
             "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",

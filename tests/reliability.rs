@@ -1,0 +1,60 @@
+//! Regression tests for issue 15 (reliability): decks that made dmhs panic, abort or hang are
+//! refused with a located error (file:line:col) and the deck-error exit code 2, or run. Each
+//! deck lives in tests/decks/reliability/. Set DMHS_BIN to run them against another build.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> PathBuf {
+    std::env::var_os("DMHS_BIN").map(PathBuf::from).unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_dmhs")))
+}
+
+fn dmhs(args: &[&str], dir: &Path) -> Output {
+    Command::new(bin()).args(args).current_dir(dir).output().unwrap()
+}
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+fn deck(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/decks/reliability").join(name).to_string_lossy().into_owned()
+}
+
+/// Runs `args` (under `run`, or `check` when `check` is set) in a fresh folder; asserts the exit
+/// code, that nothing panicked, and that every `expect` text appears. Returns the output.
+fn expect(sub: &str, args: &[&str], code: i32, expect: &[&str]) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut all = vec![sub];
+    all.extend_from_slice(args);
+    let o = dmhs(&all, tmp.path());
+    let t = text(&o);
+    assert!(!t.contains("panicked") && !t.contains("RUST_BACKTRACE"), "panic for {all:?}:\n{t}");
+    assert_eq!(o.status.code(), Some(code), "exit code for {all:?}:\n{t}");
+    for e in expect {
+        assert!(t.contains(e), "`{e}` missing for {all:?}:\n{t}");
+    }
+    t
+}
+
+/// Item 1: every SPH pair style needs the SPH atom attributes; with the default atom style the
+/// run (and `dmhs check`) stops at set-up, pointing at the pair_style line.
+#[test]
+fn sph_pair_styles_refuse_a_non_sph_atom_style() {
+    let d = deck("in.sph_atomic");
+    for (style, coeffs) in [
+        ("sph/taitwater", "1000 10 1 1.5"),
+        ("sph/taitwater/morris", "1000 10 1 1.5"),
+        ("sph/heatconduction", "1 1.5"),
+        ("sph/rhosum 1", "1.5"),
+        ("dmhs/heatconduction", "1 1.5"),
+        ("dmhs/sph/diffusion", "1 1.5"),
+    ] {
+        let name = style.split(' ').next().unwrap();
+        let msg = format!("pair {name} requires atom attributes rho, drho, esph, desph, cv (atom_style sph, or hybrid with sph)");
+        for sub in ["run", "check"] {
+            let t = expect(sub, &[&d, "-var", "style", style, "-var", "coeffs", coeffs, "-log", "none"], 2, &[&msg, "in.sph_atomic:12:1", "defined here"]);
+            assert!(t.contains("in.sph_atomic:14:1") && t.contains("checked before this run"), "{t}");
+        }
+    }
+}

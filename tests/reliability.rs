@@ -58,3 +58,19 @@ fn sph_pair_styles_refuse_a_non_sph_atom_style() {
         }
     }
 }
+
+/// Item 2: widths and precisions of C formats are limited to 4096 wherever a deck gives one.
+#[test]
+fn huge_printf_precisions_are_located_errors() {
+    let too_large = "is too large: dmhs formats numbers with a precision of at most 4096";
+    expect("run", &[&deck("in.format_immediate"), "-log", "none"], 2, &["precision 70000 in format `%.70000f`", too_large, "in.format_immediate:2:18"]);
+    expect("run", &[&deck("in.format_variable"), "-log", "none"], 2, &["precision 70000 in format `%.70000g`", too_large, "in.format_variable:3:21"]);
+    expect("run", &[&deck("in.format_dump"), "-log", "none"], 2, &["precision 70000 in format `%.70000e`", too_large, "in.format_dump:8:28"]);
+    for fmt in ["%.70000f", "%.65536g", "%.99999999999999999999e"] {
+        expect("run", &[&deck("in.format_thermo"), "-var", "fmt", fmt, "-log", "none"], 2, &[&format!("precision {} in format `{fmt}`", &fmt[2..fmt.len() - 1]), too_large, "in.format_thermo:8:28"]);
+    }
+    expect("run", &[&deck("in.format_thermo"), "-var", "fmt", "%99999999999.2f", "-log", "none"], 2, &["width 99999999999 in format", "a width of at most 4096"]);
+    // at the limit the number is printed
+    let t = expect("run", &[&deck("in.format_thermo"), "-var", "fmt", "%.4096f", "-log", "none"], 0, &[]);
+    assert!(t.contains(&format!("0.{}", "0".repeat(4096))), "{t}");
+}

@@ -9,8 +9,17 @@ fn bin() -> PathBuf {
     std::env::var_os("DMHS_BIN").map(PathBuf::from).unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_dmhs")))
 }
 
+/// Runs dmhs on one thread under a limit of 2 GB of address space and 60 s, so that an
+/// allocation per possible atom ID or an endless loop fails the test instead of the machine.
 fn dmhs(args: &[&str], dir: &Path) -> Output {
-    Command::new(bin()).args(args).current_dir(dir).output().unwrap()
+    Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 2000000; exec timeout 60 \"$0\" \"$@\" -threads 1")
+        .arg(bin())
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
 }
 
 fn text(o: &Output) -> String {
@@ -21,8 +30,8 @@ fn deck(name: &str) -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/decks/reliability").join(name).to_string_lossy().into_owned()
 }
 
-/// Runs `args` (under `run`, or `check` when `check` is set) in a fresh folder; asserts the exit
-/// code, that nothing panicked, and that every `expect` text appears. Returns the output.
+/// Runs `dmhs sub args` in a fresh folder; asserts the exit code (124: it hung), that nothing
+/// panicked, and that every `expect` text appears. Returns the output.
 fn expect(sub: &str, args: &[&str], code: i32, expect: &[&str]) -> String {
     let tmp = tempfile::tempdir().unwrap();
     let mut all = vec![sub];
@@ -73,4 +82,20 @@ fn huge_printf_precisions_are_located_errors() {
     // at the limit the number is printed
     let t = expect("run", &[&deck("in.format_thermo"), "-var", "fmt", "%.4096f", "-log", "none"], 0, &[]);
     assert!(t.contains(&format!("0.{}", "0".repeat(4096))), "{t}");
+}
+
+/// Item 3: atom IDs up to 2^31 - 1 need no table with an entry per possible ID (atom map,
+/// special lists, contact history); larger IDs are refused at the data file's line.
+#[test]
+fn huge_atom_ids_use_a_hash_map_or_are_refused() {
+    // data files are read from the working directory, as in LAMMPS: give their full paths
+    let t = expect("run", &[&deck("in.huge_ids"), "-var", "data", &deck("ids_sparse.data"), "-log", "none"], 0, &["Loop time of", "for 20 steps with 3 atoms"]);
+    assert!(t.contains("vx of 2147483647: "), "{t}");
+    expect("run", &[&deck("in.huge_ids_gran"), "-var", "data", &deck("ids_sparse_gran.data"), "-log", "none"], 0, &["for 20 steps with 2 atoms", "omega z of 7: -0.198049"]);
+    for (data, id) in [("ids_2pow31.data", "2147483648"), ("ids_1e11.data", "100000000000"), ("ids_2pow63.data", "9223372036854775807")] {
+        let msg = format!("invalid atom ID {id}: atom IDs must be at most 2147483647");
+        for sub in ["run", "check"] {
+            expect(sub, &[&deck("in.huge_ids"), "-var", "data", &deck(data), "-log", "none"], 2, &[&msg, &format!("{data}:20:1")]);
+        }
+    }
 }

@@ -11,7 +11,7 @@
 //!   parallel without locks, and every atom receives its contributions in the same order
 //!   whatever the number of threads: results are bit-identical across thread counts.
 
-use crate::engine::atoms::Atoms;
+use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::domain::Domain;
 use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
 use rayon::prelude::*;
@@ -26,10 +26,12 @@ pub fn special_level(j: u32) -> usize {
     (j >> SPECIAL_SHIFT) as usize
 }
 
-/// Special partner lists by atom ID (flattened: `partners[offsets[t]..offsets[t+1]]` are atom
-/// t's partners with their level) and what the list does with each level.
+/// Special partner lists by atom ID (flattened: `partners[offsets[k]..offsets[k+1]]` are the
+/// partners, with their level, of the atom whose ID has key `k` in `keys`: the ID itself for
+/// dense IDs, see [`IdKeys`]) and what the list does with each level.
 #[derive(Clone, Debug)]
 pub struct SpecialTable {
+    pub keys: IdKeys,
     pub offsets: Vec<u32>,
     pub partners: Vec<(i64, u8)>,
     pub flags: [SpecialFlag; 4],
@@ -40,22 +42,24 @@ pub struct SpecialTable {
 
 impl Default for SpecialTable {
     fn default() -> Self {
-        SpecialTable { offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
+        SpecialTable { keys: IdKeys::default(), offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
     }
 }
 
 impl SpecialTable {
     /// Flatten per-atom lists (`lists[k]` belongs to atom ID `ids[k]`).
     pub fn from_lists(ids: &[i64], lists: Vec<SpecialList>, flags: [SpecialFlag; 4], symmetric: bool) -> SpecialTable {
-        let maxtag = ids.iter().copied().max().unwrap_or(0).max(0) as usize;
-        let mut by_tag: Vec<Option<SpecialList>> = vec![None; maxtag + 1];
+        let keys = IdKeys::new(ids);
+        let mut by_key: Vec<Option<SpecialList>> = vec![None; keys.len()];
         for (k, l) in lists.into_iter().enumerate() {
-            by_tag[ids[k] as usize] = Some(l);
+            if let Some(key) = keys.key(ids[k]) {
+                by_key[key] = Some(l);
+            }
         }
-        let mut offsets = Vec::with_capacity(maxtag + 2);
+        let mut offsets = Vec::with_capacity(keys.len() + 1);
         let mut partners = Vec::new();
         offsets.push(0u32);
-        for l in &by_tag {
+        for l in &by_key {
             if let Some(l) = l {
                 for &t in &l.ids {
                     partners.push((t, l.level(t).unwrap_or(0)));
@@ -63,14 +67,14 @@ impl SpecialTable {
             }
             offsets.push(partners.len() as u32);
         }
-        SpecialTable { offsets, partners, flags, symmetric }
+        SpecialTable { keys, offsets, partners, flags, symmetric }
     }
     pub fn is_empty(&self) -> bool {
         self.partners.is_empty()
     }
     #[inline]
     fn level(&self, itag: i64, jtag: i64) -> u8 {
-        let t = itag as usize;
+        let Some(t) = self.keys.key(itag) else { return 0 };
         if t + 1 >= self.offsets.len() {
             return 0;
         }

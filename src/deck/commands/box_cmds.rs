@@ -57,6 +57,13 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         sim.out.print(&format!("WARNING: {}", w.message));
     }
     let mut tag = sim.state.atoms.max_tag();
+    if made.atoms.len() as i64 > crate::engine::atoms::MAX_ATOM_ID - tag {
+        return Err(Diagnostic::at(
+            cmd.span,
+            format!("new atom IDs exceed the largest atom ID {}: {} atoms after ID {tag}", crate::engine::atoms::MAX_ATOM_ID, made.atoms.len()),
+            "too many atoms",
+        ));
+    }
     for (x, typ) in &made.atoms {
         tag += 1;
         sim.state.atoms.push(&NewAtom::at(tag, *typ, *x));

@@ -99,3 +99,24 @@ fn huge_atom_ids_use_a_hash_map_or_are_refused() {
         }
     }
 }
+
+/// Item 4: periodic boxes of 1e30..1e308 with an atom near a face run; an extent that
+/// overflows a double is an error that names the region and the cutoff.
+#[test]
+fn huge_boxes_bin_without_overflow() {
+    for l in ["1e30", "1e100", "1e308"] {
+        expect("run", &[&deck("in.big_box"), "-var", "L", l, "-log", "none"], 0, &["for 10 steps with 3 atoms", "pe -0.2553180274"]);
+    }
+    expect(
+        "run",
+        &[&deck("in.huge_extent"), "-log", "none"],
+        1,
+        &["the region to bin for neighbours, the box and its atoms widened by the cutoff 2.8 (pair cutoff + skin), (-1e+308, -1.8, -1.8) to (1e+308, 3.8, 3.8), is too large", "in.huge_extent:16:1"],
+    );
+    // a box whose length overflows is refused where it is made
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("in.box"), "region b block -1e308 1e308 0 1 0 1\ncreate_box 1 b\n").unwrap();
+    let o = dmhs(&["run", "in.box", "-log", "none"], tmp.path());
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("the box length 1e+308 - (-1e+308) overflows a double in x") && text(&o).contains("in.box:2:14"), "{}", text(&o));
+}

@@ -86,6 +86,13 @@ pub fn create_box(
             "empty box",
         ));
     }
+    if let Some(d) = (0..3).find(|&d| !(hi[d] - lo[d]).is_finite()) {
+        return Err(a.error_at(
+            rw,
+            format!("create_box region `{}`: the box length {} - ({}) overflows a double in {}", rw.text, crate::output::format::g(hi[d]), crate::output::format::g(lo[d]), ["x", "y", "z"][d]),
+            "box too large",
+        ));
+    }
     // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
     // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
     let (mut lo, mut hi) = (lo, hi);

@@ -116,6 +116,16 @@ impl Simulation {
                     format!("the neighbour cutoff {cut} (pair cutoff + skin) is longer than the periodic box ({length}) in dimension {}", ["x", "y", "z"][dim]),
                 ),
                 NeighError::BadPosition { index } => RunError::new(step, format!("atom {} has a non-finite position", self.state.atoms.tag[index])),
+                NeighError::TooLarge { lo, hi, cut } => {
+                    let g = crate::output::format::g;
+                    RunError::new(
+                        step,
+                        format!(
+                            "the region to bin for neighbours, the box and its atoms widened by the cutoff {} (pair cutoff + skin), ({}, {}, {}) to ({}, {}, {}), is too large: its extent overflows a double",
+                            g(cut), g(lo[0]), g(lo[1]), g(lo[2]), g(hi[0]), g(hi[1]), g(hi[2])
+                        ),
+                    )
+                }
             })?;
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);

@@ -555,6 +555,13 @@ impl<'a> Reader<'a> {
                     );
                     self.err(Diagnostic::at(span, msg, "lo >= hi"));
                 }
+                Some(span) if !(h.boxhi[d] - h.boxlo[d]).is_finite() => {
+                    let msg = format!(
+                        "box bounds are invalid: the length {axis}hi - {axis}lo = {} - ({}) overflows a double",
+                        h.boxhi[d], h.boxlo[d]
+                    );
+                    self.err(Diagnostic::at(span, msg, "box too large"));
+                }
                 Some(_) => {}
             }
         }

@@ -120,3 +120,28 @@ fn huge_boxes_bin_without_overflow() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("the box length 1e+308 - (-1e+308) overflows a double in x") && text(&o).contains("in.box:2:14"), "{}", text(&o));
 }
+
+/// Item 5: a restart file's bad field is refused at its place in the file (file:line:col),
+/// with the read_restart command as the second place; the atom types of the issue.
+#[test]
+fn restart_file_errors_point_into_the_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let write = "units lj\nregion b block 0 4 0 4 0 4\ncreate_box 2 b\ncreate_atoms 1 single 1 1 1\ncreate_atoms 2 single 2 1 1\nmass * 1\nwrite_restart r.json\n";
+    std::fs::write(tmp.path().join("in.write"), write).unwrap();
+    assert_eq!(dmhs(&["run", "in.write", "-log", "none"], tmp.path()).status.code(), Some(0));
+    let good = std::fs::read_to_string(tmp.path().join("r.json")).unwrap();
+    let line = good.lines().position(|l| l.contains("\"type\": [1,2]")).unwrap() + 1;
+    std::fs::write(tmp.path().join("in.read"), "read_restart bad.json\nrun 0\n").unwrap();
+    for t in ["0", "-1", "3", "4294967296"] {
+        std::fs::write(tmp.path().join("bad.json"), good.replace("\"type\": [1,2]", &format!("\"type\": [1,{t}]"))).unwrap();
+        let o = dmhs(&["run", "in.read", "-log", "none"], tmp.path());
+        let t2 = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{t2}");
+        assert!(t2.contains(&format!("atoms.type[1] (atom 2) is {t}, outside 1..=2")), "{t2}");
+        assert!(t2.contains(&format!("bad.json:{line}:16")) && t2.contains("in.read:1:14"), "{t2}");
+    }
+    // a value of the wrong kind: where the JSON parser stopped
+    std::fs::write(tmp.path().join("bad.json"), good.replace("\"type\": [1,2]", "\"type\": [1,2.5]")).unwrap();
+    let t2 = text(&dmhs(&["run", "in.read", "-log", "none"], tmp.path()));
+    assert!(t2.contains("invalid type: floating point `2.5`") && t2.contains(&format!("bad.json:{line}:18")), "{t2}");
+}

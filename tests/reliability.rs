@@ -145,3 +145,21 @@ fn restart_file_errors_point_into_the_file() {
     let t2 = text(&dmhs(&["run", "in.read", "-log", "none"], tmp.path()));
     assert!(t2.contains("invalid type: floating point `2.5`") && t2.contains(&format!("bad.json:{line}:18")), "{t2}");
 }
+
+/// Item 6: atoms far outside a periodic box (x = 1e100, a box 1e-300 thick; from a data file,
+/// create_atoms single ... remap yes, displace_atoms) are wrapped at once (the steps of one box
+/// length never ended); a non-finite position is a located error.
+#[test]
+fn far_atoms_are_wrapped_in_constant_time() {
+    expect(
+        "run",
+        &[&deck("in.far_atoms"), "-var", "data", &deck("far.data"), "-log", "none"],
+        0,
+        &["atom 1: 4 5 5 image 2147483647", "atom 2: 5 6 5 image -2147483648 2", "atom 3: 6 4 3", "for 0 steps with 3 atoms"],
+    );
+    let t = expect("run", &[&deck("in.thin_box"), "-log", "none"], 0, &["z = "]);
+    let z: f64 = t.lines().find_map(|l| l.strip_prefix("z = ")).unwrap().trim().parse().unwrap();
+    assert!((0.0..1e-300).contains(&z), "{t}");
+    expect("run", &[&deck("in.nonfinite_create"), "-log", "none"], 2, &["create_atoms single: the point [inf, ", "is not finite", "in.nonfinite_create:6:31"]);
+    expect("run", &[&deck("in.nonfinite_displace"), "-log", "none"], 2, &["displace_atoms moves atom 1 to a non-finite position [1.0, 1.0, inf]", "in.nonfinite_displace:9:1"]);
+}

@@ -235,22 +235,11 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
             for k in 0..3 {
                 at.x[i][k] += delta[k];
             }
-            // LAMMPS remaps moved atoms back into a periodic box, updating image flags
-            let (x, img) = (&mut at.x[i], &mut at.image[i]);
-            for k in 0..3 {
-                if d.periodic(k) {
-                    let p = d.hi[k] - d.lo[k];
-                    while x[k] < d.lo[k] {
-                        x[k] += p;
-                        img[k] -= 1;
-                    }
-                    while x[k] >= d.hi[k] {
-                        x[k] -= p;
-                        img[k] += 1;
-                    }
-                    x[k] = x[k].max(d.lo[k]);
-                }
+            if !at.x[i].iter().all(|c| c.is_finite()) {
+                return Err(Diagnostic::at(cmd.span, format!("displace_atoms moves atom {} to a non-finite position {:?}", at.tag[i], at.x[i]), "non-finite position"));
             }
+            // LAMMPS remaps moved atoms back into a periodic box, updating image flags
+            d.remap(&mut at.x[i], &mut at.image[i]);
         }
     }
     sim.state.lists_valid = false;

@@ -163,3 +163,14 @@ fn far_atoms_are_wrapped_in_constant_time() {
     expect("run", &[&deck("in.nonfinite_create"), "-log", "none"], 2, &["create_atoms single: the point [inf, ", "is not finite", "in.nonfinite_create:6:31"]);
     expect("run", &[&deck("in.nonfinite_displace"), "-log", "none"], 2, &["displace_atoms moves atom 1 to a non-finite position [1.0, 1.0, inf]", "in.nonfinite_displace:9:1"]);
 }
+
+/// Item 7: `-v NAME VALUE` is LAMMPS' short form of `-var` (it printed the version and exited
+/// without running); `-h` is the help and `-version` the version.
+#[test]
+fn dash_v_defines_a_variable() {
+    let small = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/decks/in.small_lj").to_string_lossy().into_owned();
+    let t = expect("-in", &[&small, "-v", "nsteps", "3", "-log", "none"], 0, &["for 3 steps with 256 atoms"]);
+    assert!(!t.contains("for 50 steps"), "{t}");
+    expect("-h", &[], 0, &["usage:", "-var NAME VALUE...", "short form -v"]);
+    expect("-version", &[], 0, &[&format!("dmhs {}", env!("CARGO_PKG_VERSION"))]);
+}

@@ -174,3 +174,21 @@ fn dash_v_defines_a_variable() {
     expect("-h", &[], 0, &["usage:", "-var NAME VALUE...", "short form -v"]);
     expect("-version", &[], 0, &[&format!("dmhs {}", env!("CARGO_PKG_VERSION"))]);
 }
+
+/// Item 8: the log of a failed deck ends with the error text the screen (stderr) showed, as
+/// LAMMPS' log ends with its ERROR line: a run that fails, a deck error, a set-up error.
+#[test]
+fn the_log_ends_with_the_error() {
+    let decks = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/decks");
+    for (d, code) in [(decks.join("in.lost_atoms"), 1), (decks.join("in.errors"), 2), (decks.join("reliability/in.missing_mass"), 2)] {
+        let tmp = tempfile::tempdir().unwrap();
+        let o = dmhs(&["run", d.to_str().unwrap(), "-log", "out.log"], tmp.path());
+        assert_eq!(o.status.code(), Some(code), "{}", text(&o));
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(err.starts_with("error: "), "{err}");
+        let log = std::fs::read_to_string(tmp.path().join("out.log")).unwrap();
+        assert!(log.trim_end().ends_with(err.trim_end()), "log of {}:\n{log}\n--- stderr:\n{err}", d.display());
+        // and the screen text before it is in the log too
+        assert!(log.starts_with("dmhs "), "{log}");
+    }
+}

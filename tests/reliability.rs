@@ -192,3 +192,14 @@ fn the_log_ends_with_the_error() {
         assert!(log.starts_with("dmhs "), "{log}");
     }
 }
+
+/// Item 9: a deck mistake found by the checks before a run is a deck error (exit 2) under
+/// `run` as under `check`, with the same message.
+#[test]
+fn a_setup_error_is_exit_2_under_run_and_check() {
+    let msg = "mass of atom type 2 is not set (use the mass command or a Masses section)";
+    for sub in ["run", "check"] {
+        let t = expect(sub, &[&deck("in.missing_mass"), "-log", "none"], 2, &[msg, "in.missing_mass:11:1"]);
+        assert!(!t.contains("run stopped at step"), "{t}");
+    }
+}

@@ -96,9 +96,15 @@ impl Domain {
     pub const REMAP_STEPS: f64 = 1e6;
 
     /// Minimum-image displacement in periodic dimensions (LAMMPS `Domain::minimum_image`).
+    /// LAMMPS steps one box length at a time; a displacement of more than
+    /// [`Domain::REMAP_STEPS`] box lengths (an atom put far outside the box by `set`) is first
+    /// reduced to its exact remainder, so that the steps end.
     pub fn minimum_image(&self, dx: &mut [f64; 3]) {
         let p = self.prd();
         for d in 0..3 {
+            if self.periodic(d) && dx[d].abs() > Self::REMAP_STEPS * p[d] {
+                dx[d] %= p[d];
+            }
             if self.periodic(d) && dx[d].abs() > 0.5 * p[d] {
                 if dx[d] < 0.0 {
                     while dx[d] < 0.0 {
@@ -168,6 +174,10 @@ impl Domain {
                 continue;
             }
             let half = 0.5 * period[d];
+            // far apart (see minimum_image): the exact remainder first, so the steps end
+            if (xnew[d] - xold[d]).abs() > Self::REMAP_STEPS * period[d] {
+                xnew[d] = xold[d] + (xnew[d] % period[d] - xold[d] % period[d]);
+            }
             if xnew[d] - xold[d] > period[d] {
                 let n = ((xnew[d] - xold[d]) / period[d]) as i64;
                 xnew[d] -= n as f64 * period[d];
@@ -231,5 +241,13 @@ mod tests {
         let (mut y, mut img) = ([f64::NAN, f64::INFINITY, f64::NEG_INFINITY], [0; 3]);
         d.remap(&mut y, &mut img);
         assert_eq!(y, [0.0; 3]);
+        // minimum images and nearest images of points 1e100 apart end too
+        let d = periodic(0.0, 10.0);
+        let mut dx = [1e100, -1e100, 13.0];
+        d.minimum_image(&mut dx);
+        assert_eq!(dx, [4.0, -4.0, 3.0]);
+        let mut x = [1e100, 2.0, 29.0];
+        d.remap_near(&mut x, &[1.0, 1.0, 1.0]);
+        assert_eq!(x, [4.0, 2.0, -1.0]);
     }
 }

@@ -1,7 +1,7 @@
 //! The restart file (format "dmhs restart" version 2): read_restart refuses every bad field
 //! with a message naming the file, the field and, for per-atom values, the atom ID, at the
-//! read_restart command; truncated, binary, LAMMPS and old dmhs files are refused with a
-//! clear message, never a panic. (Continuations from restart files: tests/dem_restart.rs; exact
+//! field's place in the file and at the read_restart command; truncated, binary, LAMMPS and
+//! old dmhs files are refused with a clear message, never a panic. (Continuations from restart files: tests/dem_restart.rs; exact
 //! doubles and the write-side checks: the unit tests of src/deck/restart.)
 
 use dmhs::deck::{run_text, DeckOptions};
@@ -154,6 +154,17 @@ fn number_too_large_for_a_double() {
 #[test]
 fn box_lo_not_below_hi() {
     says(&edited(|v| v["box"]["current"]["hi"][1] = json!(-4.5)), "box.current: lo[1] = -4.5 is not below hi[1] = -4.5");
+}
+
+#[test]
+fn box_length_overflows() {
+    says(
+        &edited(|v| {
+            v["box"]["current"]["lo"][0] = json!(-1e308);
+            v["box"]["current"]["hi"][0] = json!(1e308);
+        }),
+        "box.current: the length hi[0] - lo[0] = 1e308 - (-1e308) overflows a double",
+    );
 }
 
 #[test]

@@ -183,6 +183,22 @@ impl<'a> Args<'a> {
     pub fn str(&mut self, what: &str) -> DResult<&'a str> {
         Ok(self.word(what)?.text.as_str())
     }
+    /// A C format of one number (`thermo_modify format float %.6g`), checked as it will be used
+    /// (one conversion, widths and precisions within [`crate::numfmt::MAX_FIELD`]).
+    pub fn printf_format(&mut self, what: &str) -> DResult<&'a str> {
+        let w = self.word(what)?;
+        crate::numfmt::format_printf(&w.text, 0.0).map_err(|m| self.error_at(w, m, "bad format"))?;
+        Ok(w.text.as_str())
+    }
+    /// A line of C formats, one number each (`format line "%d %.3f"`), each checked.
+    pub fn printf_line(&mut self, what: &str) -> DResult<Vec<String>> {
+        let w = self.word(what)?;
+        let pieces: Vec<String> = w.text.split_whitespace().map(String::from).collect();
+        for p in &pieces {
+            crate::numfmt::format_printf(p, 0.0).map_err(|m| self.error_at(w, m, "bad format"))?;
+        }
+        Ok(pieces)
+    }
     pub fn f64(&mut self, what: &str) -> DResult<f64> {
         let w = self.word(what)?;
         word_f64(w, what).map_err(|d| self.help(d))

@@ -31,6 +31,10 @@ use crate::span::Span;
 
 use Column as C;
 
+/// The largest atom ID LAMMPS accepts: `MAXTAGINT` of its default build (`LAMMPS_SMALLBIG`:
+/// `tagint` is a 32-bit int), 2^31 - 1.
+pub const MAX_ATOM_ID: i64 = i32::MAX as i64;
+
 /// The five kinds of types (atom, bond, angle, dihedral, improper).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TypeKind {

@@ -7,6 +7,12 @@
 //! reproduces the layout rules of C (`%g` style choice, trailing zeros, exponent with at least
 //! two digits, flags, width, `inf`/`nan` with their sign).
 
+/// The largest width and precision of a conversion dmhs formats: 4096. Larger ones are refused
+/// with an error (C's `printf` takes up to INT_MAX, but LAMMPS formats into buffers of 64 to a
+/// few hundred characters and Rust's formatting stops at a precision of 65535). 4096 leaves room
+/// for every digit of any double (`%.1074f` prints the smallest subnormal exactly).
+pub const MAX_FIELD: usize = 4096;
+
 /// One parsed C conversion: `%[flags][width][.precision]conv`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Conversion {
@@ -76,17 +82,23 @@ pub fn parse_conversion(fmt: &str, start: usize) -> Result<(Conversion, usize), 
         }
         i += 1;
     }
-    let digits = |i: &mut usize| {
+    // a width or precision: digits, at most MAX_FIELD
+    let digits = |i: &mut usize, what: &str| {
         let s = *i;
         while *i < b.len() && b[*i].is_ascii_digit() {
             *i += 1;
         }
-        fmt[s..*i].parse::<usize>().unwrap_or(0)
+        let text = &fmt[s..*i];
+        match text.parse::<usize>() {
+            Ok(n) if n <= MAX_FIELD => Ok(n),
+            _ if text.is_empty() => Ok(0),
+            _ => Err(format!("{what} {text} in format `{fmt}` is too large: dmhs formats numbers with a {what} of at most {MAX_FIELD}")),
+        }
     };
-    c.width = digits(&mut i);
+    c.width = digits(&mut i, "width")?;
     if i < b.len() && b[i] == b'.' {
         i += 1;
-        c.precision = Some(digits(&mut i));
+        c.precision = Some(digits(&mut i, "precision")?);
     }
     // length modifiers do not change how a double is printed
     while i < b.len() && matches!(b[i], b'l' | b'L' | b'h') {
@@ -131,7 +143,8 @@ pub fn format_one(x: f64, c: &Conversion) -> String {
         return pad(sign, body, c.width, c.left, false);
     }
     let a = x.abs();
-    let p = c.precision.unwrap_or(6);
+    // parse_conversion refuses larger precisions; Rust's formatting panics above 65535
+    let p = c.precision.unwrap_or(6).min(MAX_FIELD);
     let body = match c.conv.to_ascii_lowercase() {
         'f' => fixed(a, p, c.alt),
         'e' => exponential(a, p, c.alt, upper),
@@ -157,7 +170,7 @@ fn format_int(x: f64, c: &Conversion) -> String {
         if p == 0 && v == 0 {
             digits.clear();
         }
-        while digits.len() < p {
+        while digits.len() < p.min(MAX_FIELD) {
             digits.insert(0, '0');
         }
     }
@@ -166,6 +179,7 @@ fn format_int(x: f64, c: &Conversion) -> String {
 }
 
 fn pad(sign: &str, body: &str, width: usize, left: bool, zero: bool) -> String {
+    let width = width.min(MAX_FIELD);
     let len = sign.len() + body.len();
     if len >= width {
         return format!("{sign}{body}");
@@ -370,6 +384,23 @@ mod tests {
         assert!(format_printf("%.3f %.2f", pi).is_err());
         assert!(format_printf("%s", pi).is_err());
         assert!(format_printf("%", pi).is_err());
+    }
+
+    #[test]
+    fn widths_and_precisions_above_the_limit_are_refused() {
+        assert_eq!(format_printf("%.4096f", 0.5).unwrap().len(), 4098);
+        assert_eq!(format_printf("%4096.1f", 0.5).unwrap().len(), 4096);
+        for f in ["%.4097f", "%.70000f", "%.70000g", "%.70000e", "%.70000d", "%.99999999999999999999999f"] {
+            let e = format_printf(f, 1.5).unwrap_err();
+            assert!(e.contains("precision") && e.contains("at most 4096"), "{f}: {e}");
+        }
+        for f in ["%4097f", "%99999999999.2f", "%99999999999999999999999g"] {
+            let e = format_printf(f, 1.5).unwrap_err();
+            assert!(e.contains("width") && e.contains("at most 4096"), "{f}: {e}");
+        }
+        // a hand-made conversion past the limit is clamped, never a panic
+        let c = Conversion { precision: Some(70000), width: 1 << 40, conv: 'g', ..Conversion::default() };
+        assert!(format_one(1.5, &c).len() <= MAX_FIELD + 8);
     }
 
     #[test]

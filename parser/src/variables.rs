@@ -351,6 +351,9 @@ impl Variables {
             return Err(Diagnostic::at(fmt.span, "Incorrect conversion in format string", "not a single %e, %f or %g")
                 .with_help("the format is one conversion such as %.3f, %10.4e, %-12g (flags: space, -)"));
         }
+        if let Err(m) = numfmt::format_printf(&fmt.text, 0.0) {
+            return Err(Diagnostic::at(fmt.span, m, "bad format"));
+        }
         Ok(Style::Format { var: var.text.clone(), fmt: fmt.text.clone() })
     }
 

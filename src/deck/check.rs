@@ -1,11 +1,11 @@
 //! `dmhs check`: what a deck sets up, without running it.
 
 use crate::sim::run::RunOptions;
-use crate::sim::Simulation;
+use crate::sim::{SetupError, Simulation};
 
 impl Simulation {
     /// In check mode, `run` validates that the run could start, and records it.
-    pub fn check_run(&mut self, opts: &RunOptions) -> Result<(), String> {
+    pub fn check_run(&mut self, opts: &RunOptions) -> Result<(), SetupError> {
         self.init_run()?;
         let n = if opts.upto { opts.nsteps - self.state.step } else { opts.nsteps };
         self.out.print(&format!("check: run {} steps from step {} (not run)", n, self.state.step));

@@ -86,6 +86,13 @@ pub fn create_box(
             "empty box",
         ));
     }
+    if let Some(d) = (0..3).find(|&d| !(hi[d] - lo[d]).is_finite()) {
+        return Err(a.error_at(
+            rw,
+            format!("create_box region `{}`: the box length {} - ({}) overflows a double in {}", rw.text, crate::output::format::g(hi[d]), crate::output::format::g(lo[d]), ["x", "y", "z"][d]),
+            "box too large",
+        ));
+    }
     // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
     // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
     let (mut lo, mut hi) = (lo, hi);
@@ -302,6 +309,9 @@ impl CreateAtoms {
                     x[1] *= lattice.ylattice;
                     x[2] *= lattice.zlattice;
                 }
+                if !x.iter().all(|c| c.is_finite()) {
+                    return Err(a.error_at(single_words.unwrap(), format!("create_atoms single: the point {x:?} in box units is not finite"), "overflows"));
+                }
             }
             CreateStyle::Random { .. } => {
                 if lattice_units {
@@ -345,7 +355,10 @@ impl CreateAtoms {
 
         match &self.style {
             CreateStyle::Single(x) => {
-                let x = if self.remap { remap(domain, *x) } else { *x };
+                let mut x = *x;
+                if self.remap {
+                    domain.remap(&mut x, &mut [0; 3]);
+                }
                 if in_sub(x) {
                     out.atoms.push((x, self.atom_type));
                 }
@@ -538,24 +551,6 @@ fn logical(a: &mut Args, what: &str) -> DResult<bool> {
     Ok(k % 2 == 0)
 }
 
-/// Wrap a point into the periodic box as LAMMPS `Domain::remap` does (any number of box
-/// lengths; the result is clamped to be >= the lower bound).
-pub fn remap(domain: &Domain, mut x: [f64; 3]) -> [f64; 3] {
-    let prd = domain.prd();
-    for d in 0..3 {
-        if !domain.periodic(d) {
-            continue;
-        }
-        while x[d] < domain.lo[d] {
-            x[d] += prd[d];
-        }
-        while x[d] >= domain.hi[d] {
-            x[d] -= prd[d];
-        }
-        x[d] = if x[d] > domain.lo[d] { x[d] } else { domain.lo[d] };
-    }
-    x
-}
 
 /// Parse and run a `create_atoms` command in one call.
 pub fn create_atoms(

@@ -109,7 +109,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
                 image[d] = 0;
             }
         }
-        remap(&domain, &mut x, &mut image);
+        domain.remap(&mut x, &mut image);
         if !(0..3).all(|d| domain.periodic(d) || (x[d] >= domain.lo[d] && x[d] < domain.hi[d]) || matches!(domain.boundary[d][0], crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin)) {
             return Err(Diagnostic::at(al.span, format!("atom {} at ({}, {}, {}) is outside the non-periodic box", al.id, x[0], x[1], x[2]), "outside the box"));
         }
@@ -174,24 +174,6 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
     Ok(())
 }
 
-/// Wrap into a periodic box, any number of periods, updating image flags (LAMMPS `remap`).
-fn remap(d: &Domain, x: &mut [f64; 3], image: &mut [i32; 3]) {
-    let prd = d.prd();
-    for k in 0..3 {
-        if !d.periodic(k) {
-            continue;
-        }
-        while x[k] < d.lo[k] {
-            x[k] += prd[k];
-            image[k] -= 1;
-        }
-        while x[k] >= d.hi[k] {
-            x[k] -= prd[k];
-            image[k] += 1;
-        }
-        x[k] = x[k].max(d.lo[k]);
-    }
-}
 
 /// `write_data file [nocoeff]`: a data file LAMMPS' read_data accepts, written atomically.
 pub fn write_data(sim: &Simulation, cmd: &Command) -> Result<(), String> {
@@ -259,7 +241,7 @@ pub fn to_data_file(sim: &Simulation, coeffs: bool) -> DataFile {
     let mut vels = Vec::with_capacity(a.nlocal);
     for &i in &order {
         let (mut x, mut img) = (a.x[i], a.image[i]);
-        remap(d, &mut x, &mut img);
+        d.remap(&mut x, &mut img);
         let mut al = AtomLine::new(a.tag[i], a.typ[i], x);
         al.image = img;
         if a.features.molecule {

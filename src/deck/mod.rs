@@ -116,6 +116,9 @@ fn finish(
         }
         Err(diags) => {
             let rendered: String = diags.iter().map(|d| d.render(interp.sources())).collect::<Vec<_>>().join("\n");
+            // the log ends with the error the screen shows
+            sim.out.log_only(&rendered);
+            sim.out.flush();
             Err(DeckFailure { diagnostics: diags, rendered, runtime: sim.runtime_failed })
         }
     }

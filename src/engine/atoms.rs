@@ -385,29 +385,97 @@ impl Atoms {
         self.tag[..self.nlocal].iter().copied().max().unwrap_or(0)
     }
 
-    /// Map from atom ID to local index (IDs must be unique and positive).
+    /// Map from atom ID to local index of the owned atoms (IDs must be unique and positive).
     pub fn tag_map(&self) -> TagMap {
-        let mut m = TagMap { index: vec![u32::MAX; self.max_tag() as usize + 1] };
-        for i in 0..self.nlocal {
-            m.index[self.tag[i] as usize] = i as u32;
-        }
-        m
+        TagMap::new(&self.tag[..self.nlocal])
     }
 }
 
-/// Dense atom-ID -> local-index map (LAMMPS `atom_modify map array`).
+/// The largest atom ID: LAMMPS' `MAXTAGINT` in its default build (`LAMMPS_SMALLBIG`, where the
+/// ID type `tagint` is a 32-bit int), 2^31 - 1. Data and restart files with larger IDs are refused.
+pub const MAX_ATOM_ID: i64 = dmhs_parser::data_file::MAX_ATOM_ID;
+
+/// Dense keys for atom IDs, for tables indexed by ID. When the IDs are dense the key is the ID
+/// itself and a table has an entry per possible ID (LAMMPS' `atom_modify map array`); when
+/// the largest ID is far above the number of IDs a hash map numbers the IDs instead (LAMMPS'
+/// `map hash`), so that a few atoms with IDs near 2^31 do not need gigabytes. Dense: the largest
+/// ID is at most [`IdKeys::DENSE_MIN`] (LAMMPS' switch to a hash is at 1,000,000) or at most
+/// twice the number of IDs (dmhs keeps arrays for large dense systems, whose lookups are in
+/// the neighbour build).
+#[derive(Clone, Debug)]
+pub enum IdKeys {
+    /// key = ID, for IDs 0..=max
+    Dense { max: usize },
+    /// key = the number of the ID in the hash
+    Sparse(std::collections::HashMap<i64, u32>),
+}
+
+impl Default for IdKeys {
+    fn default() -> Self {
+        IdKeys::Dense { max: 0 }
+    }
+}
+
+impl IdKeys {
+    /// A largest ID up to this gives an array whatever the number of atoms.
+    pub const DENSE_MIN: i64 = 1_000_000;
+
+    /// Keys for `ids` (positive; repeats get one key).
+    pub fn new(ids: &[i64]) -> IdKeys {
+        let max = ids.iter().copied().max().unwrap_or(0).max(0);
+        if max <= Self::DENSE_MIN.max(2 * ids.len() as i64) {
+            return IdKeys::Dense { max: max as usize };
+        }
+        let mut m = std::collections::HashMap::with_capacity(ids.len());
+        for &id in ids {
+            let next = m.len() as u32;
+            m.entry(id).or_insert(next);
+        }
+        IdKeys::Sparse(m)
+    }
+    /// Number of keys (the length of a table indexed by key).
+    pub fn len(&self) -> usize {
+        match self {
+            IdKeys::Dense { max } => max + 1,
+            IdKeys::Sparse(m) => m.len(),
+        }
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// The key of `id`, if it is one of the IDs (dense: any ID in 0..=max).
+    #[inline]
+    pub fn key(&self, id: i64) -> Option<usize> {
+        match self {
+            IdKeys::Dense { max } => (id >= 0 && id as usize <= *max).then_some(id as usize),
+            IdKeys::Sparse(m) => m.get(&id).map(|&k| k as usize),
+        }
+    }
+}
+
+/// Atom-ID -> local-index map (LAMMPS' `atom_modify map array`, or `map hash` for sparse IDs:
+/// see [`IdKeys`]).
 #[derive(Clone, Debug, Default)]
 pub struct TagMap {
+    keys: IdKeys,
     index: Vec<u32>,
 }
 
 impl TagMap {
+    /// Map from `tags[i]` to `i`.
+    pub fn new(tags: &[i64]) -> TagMap {
+        let keys = IdKeys::new(tags);
+        let mut index = vec![u32::MAX; keys.len()];
+        for (i, &t) in tags.iter().enumerate() {
+            if let Some(k) = keys.key(t) {
+                index[k] = i as u32;
+            }
+        }
+        TagMap { keys, index }
+    }
     #[inline]
     pub fn get(&self, tag: i64) -> Option<usize> {
-        if tag < 0 {
-            return None;
-        }
-        match self.index.get(tag as usize) {
+        match self.index.get(self.keys.key(tag)?) {
             Some(&i) if i != u32::MAX => Some(i as usize),
             _ => None,
         }
@@ -417,6 +485,23 @@ impl TagMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn id_maps_are_arrays_for_dense_ids_and_hashes_for_sparse_ones() {
+        let dense = TagMap::new(&[3, 1, 2]);
+        assert!(matches!(dense.keys, IdKeys::Dense { max: 3 }));
+        assert_eq!((dense.get(1), dense.get(2), dense.get(3), dense.get(0), dense.get(4), dense.get(-1)), (Some(1), Some(2), Some(0), None, None, None));
+        // a few atoms with IDs near LAMMPS' largest: no entry per possible ID
+        let sparse = TagMap::new(&[1, MAX_ATOM_ID, 1_000_000_000]);
+        assert!(matches!(sparse.keys, IdKeys::Sparse(_)));
+        assert_eq!(sparse.index.len(), 3);
+        assert_eq!((sparse.get(MAX_ATOM_ID), sparse.get(1_000_000_000), sparse.get(1), sparse.get(2)), (Some(1), Some(2), Some(0), None));
+        // LAMMPS' threshold (an array up to ID 1,000,000), and dmhs keeps arrays for dense large systems
+        assert!(matches!(IdKeys::new(&[1_000_000]), IdKeys::Dense { .. }));
+        assert!(matches!(IdKeys::new(&[1_000_001]), IdKeys::Sparse(_)));
+        let big: Vec<i64> = (1..=600_000).chain([1_200_000]).collect();
+        assert!(matches!(IdKeys::new(&big), IdKeys::Dense { max: 1_200_000 }));
+    }
 
     #[test]
     fn ghosts_copy_owner_and_shift_position() {

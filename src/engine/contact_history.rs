@@ -19,7 +19,7 @@
 //! * [`ContactHistory::records`] lists the contacts by key (for write_restart);
 //!   [`ContactHistory::restore`] takes them back and applies them at the next rebuild.
 
-use crate::engine::atoms::Atoms;
+use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::neighbor::{ChunkList, NeighList, NEIGH_MASK};
 use rayon::prelude::*;
 
@@ -111,30 +111,29 @@ impl ContactHistory {
             Some(r) => r,
             None => self.records(),
         };
-        // records grouped by owner ID: dense offsets over IDs
-        let maxtag = records.iter().map(|r| r.owner).chain(atoms.tag.iter().copied()).max().unwrap_or(0).max(0) as usize;
-        let mut start = vec![0u32; maxtag + 2];
+        // records grouped by owner ID: offsets over the keys of the atoms' IDs (the ID itself
+        // for dense IDs); records of owners that are not atoms now are never looked up
+        let keys = IdKeys::new(&atoms.tag);
+        let nkeys = keys.len();
+        let mut start = vec![0u32; nkeys + 1];
         for r in &records {
-            if r.owner >= 0 {
-                start[r.owner as usize + 1] += 1;
+            if let Some(k) = keys.key(r.owner) {
+                start[k + 1] += 1;
             }
         }
-        for t in 0..=maxtag {
+        for t in 0..nkeys {
             start[t + 1] += start[t];
         }
         let mut fill = start.clone();
         let mut by_owner: Vec<u32> = vec![0; records.len()];
         for (k, r) in records.iter().enumerate() {
-            if r.owner >= 0 {
-                by_owner[fill[r.owner as usize] as usize] = k as u32;
-                fill[r.owner as usize] += 1;
+            if let Some(key) = keys.key(r.owner) {
+                by_owner[fill[key] as usize] = k as u32;
+                fill[key] += 1;
             }
         }
         let find = |owner: i64, partner: i64, image: [i32; 3]| -> Option<&ContactRecord> {
-            if owner < 0 || owner as usize > maxtag {
-                return None;
-            }
-            let t = owner as usize;
+            let t = keys.key(owner)?;
             by_owner[start[t] as usize..start[t + 1] as usize]
                 .iter()
                 .map(|&k| &records[k as usize])

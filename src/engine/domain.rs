@@ -75,10 +75,36 @@ impl Domain {
             }
         }
     }
+    /// Wrap a position into a periodic box however far outside it is, updating its image
+    /// flags (LAMMPS `Domain::remap`). LAMMPS adds or subtracts one box length per step; so
+    /// does this, bit for bit, for a point up to [`Domain::REMAP_STEPS`] box lengths away. A
+    /// point farther away (where the steps would take ages, or never end when a box length is
+    /// below the spacing of doubles at the point, such as x = 1e100 in a box of 10) is first
+    /// moved by a whole number of box lengths at once, with the exact remainder (`%`), so
+    /// the time is O(1); its image flags saturate at the limits of i32. A non-finite
+    /// coordinate ends at the lower bound (callers refuse non-finite positions first).
+    pub fn remap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) {
+        let p = self.prd();
+        for d in 0..3 {
+            if self.periodic(d) {
+                remap_coord(&mut x[d], &mut image[d], self.lo[d], self.hi[d], p[d]);
+            }
+        }
+    }
+
+    /// How many box lengths [`Domain::remap`] steps, as LAMMPS, before it jumps.
+    pub const REMAP_STEPS: f64 = 1e6;
+
     /// Minimum-image displacement in periodic dimensions (LAMMPS `Domain::minimum_image`).
+    /// LAMMPS steps one box length at a time; a displacement of more than
+    /// [`Domain::REMAP_STEPS`] box lengths (an atom put far outside the box by `set`) is first
+    /// reduced to its exact remainder, so that the steps end.
     pub fn minimum_image(&self, dx: &mut [f64; 3]) {
         let p = self.prd();
         for d in 0..3 {
+            if self.periodic(d) && dx[d].abs() > Self::REMAP_STEPS * p[d] {
+                dx[d] %= p[d];
+            }
             if self.periodic(d) && dx[d].abs() > 0.5 * p[d] {
                 if dx[d] < 0.0 {
                     while dx[d] < 0.0 {
@@ -100,6 +126,44 @@ impl Domain {
     }
 }
 
+/// One coordinate of [`Domain::remap`] in a dimension `lo..hi` of length `p`.
+fn remap_coord(x: &mut f64, image: &mut i32, lo: f64, hi: f64, p: f64) {
+    // LAMMPS' steps, when there are few; a point this near cannot make a step that does not
+    // move it unless the box is about one spacing of doubles long, hence the budget
+    let mut budget = Domain::REMAP_STEPS as usize + 2;
+    if ((*x - lo) / p).abs() < Domain::REMAP_STEPS {
+        while *x < lo && budget > 0 {
+            *x += p;
+            *image = image.saturating_sub(1);
+            budget -= 1;
+        }
+        while *x >= hi && budget > 0 {
+            *x -= p;
+            *image = image.saturating_add(1);
+            budget -= 1;
+        }
+        if budget > 0 {
+            // LAMMPS' MAX(x, lo)
+            *x = if *x > lo { *x } else { lo };
+            return;
+        }
+    }
+    // far away: lo + the exact remainder of x - lo, and the whole box lengths in the image
+    let periods = ((*x - lo) / p).floor();
+    let mut r = (*x - lo) % p;
+    if r < 0.0 {
+        r += p;
+    }
+    *x = lo + r;
+    *image = (*image as f64 + periods).clamp(i32::MIN as f64, i32::MAX as f64) as i32;
+    // rounding of lo + r can reach hi; a non-finite x stays below
+    if *x >= hi {
+        *x -= p;
+        *image = image.saturating_add(1);
+    }
+    *x = if *x < hi && *x > lo { *x } else { lo };
+}
+
 impl Domain {
     /// Move `xnew` by whole periods so it is the image closest to `xold`
     /// (LAMMPS `Domain::remap_near`, same arithmetic).
@@ -110,6 +174,10 @@ impl Domain {
                 continue;
             }
             let half = 0.5 * period[d];
+            // far apart (see minimum_image): the exact remainder first, so the steps end
+            if (xnew[d] - xold[d]).abs() > Self::REMAP_STEPS * period[d] {
+                xnew[d] = xold[d] + (xnew[d] % period[d] - xold[d] % period[d]);
+            }
             if xnew[d] - xold[d] > period[d] {
                 let n = ((xnew[d] - xold[d]) / period[d]) as i64;
                 xnew[d] -= n as f64 * period[d];
@@ -125,5 +193,61 @@ impl Domain {
                 xnew[d] += period[d];
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn periodic(lo: f64, hi: f64) -> Domain {
+        Domain { dimension: 3, lo: [lo; 3], hi: [hi; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] }
+    }
+
+    /// LAMMPS' Domain::remap: one box length per step, then MAX(x, lo).
+    fn lammps_steps(x: f64, lo: f64, hi: f64) -> (f64, i32) {
+        let (mut x, mut img, p) = (x, 0, hi - lo);
+        while x < lo {
+            x += p;
+            img -= 1;
+        }
+        while x >= hi {
+            x -= p;
+            img += 1;
+        }
+        (if x > lo { x } else { lo }, img)
+    }
+
+    #[test]
+    fn remap_steps_as_lammps_nearby_and_jumps_far_away() {
+        let d = periodic(-1.3, 2.9);
+        for x in [0.1, -1.3, 2.9, 3.0, -1.30000001, 17.77, -123.456, 4.2e5, -4.19e6, 0.1 + 0.2] {
+            let (mut y, mut img) = ([x, 0.0, 0.0], [0; 3]);
+            d.remap(&mut y, &mut img);
+            let (lx, limg) = lammps_steps(x, -1.3, 2.9);
+            assert_eq!((y[0].to_bits(), img[0]), (lx.to_bits(), limg), "x = {x}");
+        }
+        // far away: O(1), the exact remainder, image flags saturated
+        let d = periodic(0.0, 10.0);
+        let (mut y, mut img) = ([1e100, -1e100, 25.0], [0; 3]);
+        d.remap(&mut y, &mut img);
+        assert_eq!((y, img), ([4.0, 6.0, 5.0], [i32::MAX, i32::MIN, 2]));
+        // a box 1e-300 thick
+        let d = Domain { hi: [1.0, 1.0, 1e-300], ..periodic(0.0, 1.0) };
+        let (mut y, mut img) = ([0.5, 0.5, 1.0], [0; 3]);
+        d.remap(&mut y, &mut img);
+        assert!(y[2] >= 0.0 && y[2] < 1e-300, "{y:?}");
+        // non-finite coordinates end at the lower bound instead of looping
+        let (mut y, mut img) = ([f64::NAN, f64::INFINITY, f64::NEG_INFINITY], [0; 3]);
+        d.remap(&mut y, &mut img);
+        assert_eq!(y, [0.0; 3]);
+        // minimum images and nearest images of points 1e100 apart end too
+        let d = periodic(0.0, 10.0);
+        let mut dx = [1e100, -1e100, 13.0];
+        d.minimum_image(&mut dx);
+        assert_eq!(dx, [4.0, -4.0, 3.0]);
+        let mut x = [1e100, 2.0, 29.0];
+        d.remap_near(&mut x, &[1.0, 1.0, 1.0]);
+        assert_eq!(x, [4.0, 2.0, -1.0]);
     }
 }

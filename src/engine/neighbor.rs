@@ -11,7 +11,7 @@
 //!   parallel without locks, and every atom receives its contributions in the same order
 //!   whatever the number of threads: results are bit-identical across thread counts.
 
-use crate::engine::atoms::Atoms;
+use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::domain::Domain;
 use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
 use rayon::prelude::*;
@@ -26,10 +26,12 @@ pub fn special_level(j: u32) -> usize {
     (j >> SPECIAL_SHIFT) as usize
 }
 
-/// Special partner lists by atom ID (flattened: `partners[offsets[t]..offsets[t+1]]` are atom
-/// t's partners with their level) and what the list does with each level.
+/// Special partner lists by atom ID (flattened: `partners[offsets[k]..offsets[k+1]]` are the
+/// partners, with their level, of the atom whose ID has key `k` in `keys`: the ID itself for
+/// dense IDs, see [`IdKeys`]) and what the list does with each level.
 #[derive(Clone, Debug)]
 pub struct SpecialTable {
+    pub keys: IdKeys,
     pub offsets: Vec<u32>,
     pub partners: Vec<(i64, u8)>,
     pub flags: [SpecialFlag; 4],
@@ -40,22 +42,24 @@ pub struct SpecialTable {
 
 impl Default for SpecialTable {
     fn default() -> Self {
-        SpecialTable { offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
+        SpecialTable { keys: IdKeys::default(), offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
     }
 }
 
 impl SpecialTable {
     /// Flatten per-atom lists (`lists[k]` belongs to atom ID `ids[k]`).
     pub fn from_lists(ids: &[i64], lists: Vec<SpecialList>, flags: [SpecialFlag; 4], symmetric: bool) -> SpecialTable {
-        let maxtag = ids.iter().copied().max().unwrap_or(0).max(0) as usize;
-        let mut by_tag: Vec<Option<SpecialList>> = vec![None; maxtag + 1];
+        let keys = IdKeys::new(ids);
+        let mut by_key: Vec<Option<SpecialList>> = vec![None; keys.len()];
         for (k, l) in lists.into_iter().enumerate() {
-            by_tag[ids[k] as usize] = Some(l);
+            if let Some(key) = keys.key(ids[k]) {
+                by_key[key] = Some(l);
+            }
         }
-        let mut offsets = Vec::with_capacity(maxtag + 2);
+        let mut offsets = Vec::with_capacity(keys.len() + 1);
         let mut partners = Vec::new();
         offsets.push(0u32);
-        for l in &by_tag {
+        for l in &by_key {
             if let Some(l) = l {
                 for &t in &l.ids {
                     partners.push((t, l.level(t).unwrap_or(0)));
@@ -63,14 +67,14 @@ impl SpecialTable {
             }
             offsets.push(partners.len() as u32);
         }
-        SpecialTable { offsets, partners, flags, symmetric }
+        SpecialTable { keys, offsets, partners, flags, symmetric }
     }
     pub fn is_empty(&self) -> bool {
         self.partners.is_empty()
     }
     #[inline]
     fn level(&self, itag: i64, jtag: i64) -> u8 {
-        let t = itag as usize;
+        let Some(t) = self.keys.key(itag) else { return 0 };
         if t + 1 >= self.offsets.len() {
             return 0;
         }
@@ -257,6 +261,9 @@ pub enum NeighError {
     BoxTooSmall { dim: usize, cut: f64, length: f64 },
     /// Non-finite coordinates.
     BadPosition { index: usize },
+    /// The region to bin (the box, or the atoms' extent, widened by the cutoff) is too large
+    /// for bins of any size dmhs can count (its extent overflows).
+    TooLarge { lo: [f64; 3], hi: [f64; 3], cut: f64 },
 }
 
 impl Neighbor {
@@ -354,7 +361,7 @@ impl Neighbor {
             hi[d] += cutmax;
         }
         let binsize = if settings.binsize > 0.0 { settings.binsize } else if cutmax > 0.0 { cutmax / 3.0 } else { 1.0 };
-        let grid = Grid::new(lo, hi, binsize, dim, cutmax);
+        let grid = Grid::new(lo, hi, binsize, dim, cutmax).ok_or(NeighError::TooLarge { lo, hi, cut: cutmax })?;
 
         // sort owned atoms by bin: bins are numbered slab axis first, so this is slab order
         let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
@@ -583,19 +590,33 @@ struct Grid {
 }
 
 impl Grid {
-    fn new(lo: [f64; 3], hi: [f64; 3], binsize: f64, dim: usize, cut: f64) -> Grid {
+    /// The largest number of bins (before the margins); larger grids get larger bins.
+    const MAX_BINS: f64 = (1u64 << 24) as f64;
+
+    /// None if the extent `hi - lo` is not finite (a box of 1e308 widened by the cutoff, or
+    /// from -1e308 to 1e308), so no bin size covers it with a countable number of bins.
+    fn new(lo: [f64; 3], hi: [f64; 3], binsize: f64, dim: usize, cut: f64) -> Option<Grid> {
         let mut nb = [1usize; 3];
         let mut size = [1.0; 3];
         let mut ext = [0.0; 3];
         let mut binsize = binsize;
-        // keep the bin count bounded for very sparse systems
+        if !(0..dim).all(|d| (hi[d] - lo[d]).is_finite()) || !(binsize > 0.0 && cut.is_finite()) {
+            return None;
+        }
+        // keep the bin count bounded for very sparse systems: counted in floating point, so
+        // that a huge box cannot overflow the count (each count is then at most MAX_BINS);
+        // doubling from any positive size reaches a finite extent within about 2100 steps
         loop {
+            let mut count = [1.0f64; 3];
             for d in 0..dim {
                 ext[d] = (hi[d] - lo[d]).max(binsize);
-                nb[d] = ((ext[d] / binsize) as usize).max(1);
-                size[d] = ext[d] / nb[d] as f64;
+                count[d] = (ext[d] / binsize).floor().max(1.0);
             }
-            if nb[0] * nb[1] * nb[2] <= 1 << 24 {
+            if count[0] * count[1] * count[2] <= Self::MAX_BINS {
+                for d in 0..dim {
+                    nb[d] = count[d] as usize;
+                    size[d] = ext[d] / nb[d] as f64;
+                }
                 break;
             }
             binsize *= 2.0;
@@ -616,12 +637,17 @@ impl Grid {
         if dim == 2 {
             rest.sort_by_key(|&d| if d == 2 { 0 } else { 1 });
         }
-        Grid { lo: glo, size, inv, nb, reach, total: nb[0] * nb[1] * nb[2], axis, order: [axis, rest[0], rest[1]] }
+        Some(Grid { lo: glo, size, inv, nb, reach, total: nb[0] * nb[1] * nb[2], axis, order: [axis, rest[0], rest[1]] })
     }
+    /// Bin coordinate of `x` along `d`, inside the margins: every point binned lies in
+    /// `lo..hi`, whose bins are `reach..nb - reach`, but with bins far larger than the cutoff
+    /// (a box of 1e30) rounding can put a point near `lo` one bin lower, and its stencil would
+    /// then reach below bin 0. Clamped in floating point, so no value overflows the cast.
     #[inline]
     fn coord(&self, x: f64, d: usize) -> usize {
-        let c = ((x - self.lo[d]) * self.inv[d]).floor();
-        if c <= 0.0 { 0 } else { (c as usize).min(self.nb[d] - 1) }
+        let (first, last) = (self.reach[d] as usize, self.nb[d] - 1 - self.reach[d] as usize);
+        let c = ((x - self.lo[d]) * self.inv[d]).floor().max(first as f64);
+        (c as usize).min(last)
     }
     #[inline]
     fn bin(&self, x: &[f64; 3]) -> usize {
@@ -682,5 +708,29 @@ mod tests {
             assert!(neighbor.list.chunks.len() >= 2, "{len:?}: {} chunks", neighbor.list.chunks.len());
             assert_eq!(neighbor.list.check_slab_invariant(), Ok(()));
         }
+    }
+
+    /// Boxes of 1e30..1e308 with a close pair near a face: bin counts and indices stay in range
+    /// (the bins are far larger than the cutoff and rounding must not put an atom in a margin
+    /// bin), and the pair is listed; an extent that overflows a double is an error.
+    #[test]
+    fn huge_boxes_bin_without_overflow() {
+        for l in [1e30, 1e100, 1e308] {
+            let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [l; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] };
+            let mut atoms = Atoms::new(AtomFeatures::default());
+            for (k, x) in [[1.0, 1.0, 1.0], [2.0, 1.0, 1.0], [1.0, 1.0, l * 0.9999999]].into_iter().enumerate() {
+                atoms.push(&NewAtom::at(k as i64 + 1, 1, x));
+            }
+            let mut neighbor = Neighbor::default();
+            neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, &SpecialTable::default()).unwrap();
+            let pairs: usize = neighbor.list.chunks.iter().map(|c| c.neigh.len()).sum();
+            assert_eq!(pairs, 1, "box {l}");
+        }
+        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [4.0; 3], boundary: [[BoundaryKind::Shrink; 2]; 3] };
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        atoms.push(&NewAtom::at(1, 1, [-1e308, 1.0, 1.0]));
+        atoms.push(&NewAtom::at(2, 1, [1e308, 1.0, 1.0]));
+        let e = Neighbor::default().build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, &SpecialTable::default());
+        assert!(matches!(e, Err(NeighError::TooLarge { cut, .. }) if cut == 2.8), "{e:?}");
     }
 }

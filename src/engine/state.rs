@@ -19,11 +19,45 @@ use crate::engine::units::{UnitStyle, Units};
 pub struct RunError {
     pub step: i64,
     pub message: String,
+    /// The checks before the run refused the deck (a deck error: exit 2, as `dmhs check`
+    /// reports it), rather than the run failing on its way.
+    pub setup: Option<SetupError>,
 }
 
 impl RunError {
     pub fn new(step: i64, message: impl Into<String>) -> RunError {
-        RunError { step, message: message.into() }
+        RunError { step, message: message.into(), setup: None }
+    }
+    /// The checks before a run at `step` refused the deck.
+    pub fn setup(step: i64, e: SetupError) -> RunError {
+        RunError { step, message: e.message.clone(), setup: Some(e) }
+    }
+}
+
+/// A check before a run failed: the deck cannot run as written. `at` is the command that set up
+/// what is wrong (the `pair_style` line for a pair style that does not fit the atom style), when
+/// one is known; otherwise the error is shown at the `run` command.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetupError {
+    pub message: String,
+    pub at: Option<dmhs_parser::Span>,
+}
+
+impl SetupError {
+    pub fn new(message: impl Into<String>) -> SetupError {
+        SetupError { message: message.into(), at: None }
+    }
+}
+
+impl From<String> for SetupError {
+    fn from(message: String) -> SetupError {
+        SetupError::new(message)
+    }
+}
+
+impl From<&str> for SetupError {
+    fn from(message: &str) -> SetupError {
+        SetupError::new(message)
     }
 }
 

@@ -156,12 +156,12 @@ impl Dump {
                             self.format_float = None;
                             self.format_column.clear();
                         }
-                        "line" => self.format_line = Some(a.str("format string")?.split_whitespace().map(String::from).collect()),
-                        "int" => self.format_int = Some(a.str("format string")?.to_string()),
-                        "float" => self.format_float = Some(a.str("format string")?.to_string()),
+                        "line" => self.format_line = Some(a.printf_line("format string")?),
+                        "int" => self.format_int = Some(a.printf_format("format string")?.to_string()),
+                        "float" => self.format_float = Some(a.printf_format("format string")?.to_string()),
                         n => match n.parse::<usize>() {
                             Ok(k) if k >= 1 && k <= self.columns.len() => {
-                                let f = a.str("format string")?.to_string();
+                                let f = a.printf_format("format string")?.to_string();
                                 self.format_column.retain(|(c, _)| *c != k);
                                 self.format_column.push((k, f));
                             }

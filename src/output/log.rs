@@ -44,17 +44,23 @@ impl Output {
             }
         }
         if log {
-            if let Some((_, w)) = &mut self.log {
-                let _ = w.write_all(text.as_bytes());
-                if !text.ends_with('\n') {
-                    let _ = w.write_all(b"\n");
-                }
-            }
+            self.log_only(text);
         }
         if let Some(c) = &mut self.captured {
             c.push_str(text);
             if !text.ends_with('\n') {
                 c.push('\n');
+            }
+        }
+    }
+    /// Text to the log file only (not the screen, not the captured text): the error that
+    /// stopped a deck, which the command line writes to stderr, so that the log ends with it
+    /// as LAMMPS' log.lammps ends with its ERROR line.
+    pub fn log_only(&mut self, text: &str) {
+        if let Some((_, w)) = &mut self.log {
+            let _ = w.write_all(text.as_bytes());
+            if !text.ends_with('\n') {
+                let _ = w.write_all(b"\n");
             }
         }
     }

@@ -5,7 +5,7 @@ pub mod memory;
 pub mod run;
 pub mod stability;
 
-pub use crate::engine::state::{Energies, RunError, State};
+pub use crate::engine::state::{Energies, RunError, SetupError, State};
 use crate::models::bonded::{AngleStyle, BondStyle, DihedralStyle};
 use crate::models::compute::Compute;
 use crate::output::dump::Dump;
@@ -22,6 +22,8 @@ use eval::Eval;
 pub struct Simulation {
     pub state: State,
     pub pair: Option<Box<dyn PairStyle>>,
+    /// The `pair_style` command that defined `pair` (where set-up errors of the style point).
+    pub pair_span: Option<dmhs_parser::Span>,
     pub pair_modify: PairModify,
     pub bond_style: Option<Box<dyn BondStyle>>,
     pub angle_style: Option<Box<dyn AngleStyle>>,
@@ -66,6 +68,7 @@ impl Simulation {
         Simulation {
             state: State::new(),
             pair: None,
+            pair_span: None,
             pair_modify: PairModify::default(),
             bond_style: None,
             angle_style: None,

@@ -8,7 +8,7 @@ use crate::models::world::{FixesView, World};
 use crate::sim::eval::{Eval, HookExpressions};
 use crate::engine::neighbor::NeighError;
 use crate::models::pair::{PairInput, PairOutput, Tally};
-use crate::sim::{Energies, RunError, Simulation, State};
+use crate::sim::{Energies, RunError, SetupError, Simulation, State};
 use crate::engine::fields::Field;
 use crate::engine::timing::Stage;
 use std::time::Instant;
@@ -60,14 +60,14 @@ impl Simulation {
     }
 
     /// Checks before a run; errors name what is missing.
-    pub fn init_run(&mut self) -> Result<(), String> {
+    pub fn init_run(&mut self) -> Result<(), SetupError> {
         let domain = self.state.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
         let _ = domain;
         let type_mass_needed = !self.state.atoms.features.per_atom_mass() || self.pair.as_ref().map(|p| p.needs_type_mass()).unwrap_or(false);
         if type_mass_needed {
             for t in 1..=self.state.ntypes {
                 if !self.state.mass_set[t] {
-                    return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)"));
+                    return Err(format!("mass of atom type {t} is not set (use the mass command or a Masses section)").into());
                 }
             }
         }
@@ -76,7 +76,7 @@ impl Simulation {
             let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel };
             let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
             self.pair = Some(p);
-            r?;
+            r.map_err(|message| SetupError { message, at: self.pair_span })?;
         }
         let warnings = crate::models::bonded::pass::init_bonded(&mut self.state, self.bond_style.as_mut(), self.angle_style.as_mut(), self.dihedral_style.as_mut())?;
         for w in warnings {
@@ -117,6 +117,16 @@ impl Simulation {
                     format!("the neighbour cutoff {cut} (pair cutoff + skin) is longer than the periodic box ({length}) in dimension {}", ["x", "y", "z"][dim]),
                 ),
                 NeighError::BadPosition { index } => RunError::new(step, format!("atom {} has a non-finite position", self.state.atoms.tag[index])),
+                NeighError::TooLarge { lo, hi, cut } => {
+                    let g = crate::output::format::g;
+                    RunError::new(
+                        step,
+                        format!(
+                            "the region to bin for neighbours, the box and its atoms widened by the cutoff {} (pair cutoff + skin), ({}, {}, {}) to ({}, {}, {}), is too large: its extent overflows a double",
+                            g(cut), g(lo[0]), g(lo[1]), g(lo[2]), g(hi[0]), g(hi[1]), g(hi[2])
+                        ),
+                    )
+                }
             })?;
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
@@ -331,7 +341,7 @@ impl Simulation {
             return Err(RunError::new(self.state.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
         }
         self.state.run_window = Some((start, stop));
-        self.init_run().map_err(|e| RunError::new(self.state.step, e))?;
+        self.init_run().map_err(|e| RunError::setup(self.state.step, e))?;
 
         self.out.print(&format!(
             "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",

@@ -33,11 +33,12 @@ usage:
                                     ave/time file or a column file with a header line
 
 options:
-  -var NAME VALUE...   define an index variable (as lmp -var)
+  -var NAME VALUE...   define an index variable (as lmp -var; short form -v)
   -log FILE|none       log file (default log.dmhs)
   -screen none         no screen output
   -echo screen|log|both|none
   -threads N           worker threads (default: all cores; results do not depend on it)
+  -h, -help            this help;  -version: the version of dmhs
   crosscheck: --force-tol X (default 1e-12, relative to the largest force)
               --pos-tol X   (default 1e-9, relative to the box length)
               --vel-tol X   (default 1e-8, relative to the largest speed)
@@ -85,7 +86,7 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 c.sub = "help".into();
                 i += 1;
             }
-            "-v" | "-version" | "--version" => {
+            "-version" | "--version" => {
                 c.sub = "version".into();
                 i += 1;
             }
@@ -96,7 +97,7 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 }
                 i += 2;
             }
-            "-var" | "-v " => {
+            "-var" | "-v" => {
                 let name = value(i, a)?.clone();
                 let mut vals = vec![];
                 let mut k = i + 2;

@@ -195,6 +195,11 @@ fn parse_i64(w: &Word) -> Option<i64> {
     w.text.parse::<i64>().ok()
 }
 
+/// An integer too large for i64 (as i64::MAX, to be refused as too large by the caller).
+fn too_large_integer(w: &Word) -> Option<i64> {
+    (is_lammps_integer(&w.text) && !w.text.starts_with('-')).then_some(i64::MAX)
+}
+
 /// Reads a data file for an atom style.
 ///
 /// `Err` holds located diagnostics with help lines, in file order: every error the file
@@ -549,6 +554,13 @@ impl<'a> Reader<'a> {
                         h.boxlo[d], h.boxhi[d]
                     );
                     self.err(Diagnostic::at(span, msg, "lo >= hi"));
+                }
+                Some(span) if !(h.boxhi[d] - h.boxlo[d]).is_finite() => {
+                    let msg = format!(
+                        "box bounds are invalid: the length {axis}hi - {axis}lo = {} - ({}) overflows a double",
+                        h.boxhi[d], h.boxlo[d]
+                    );
+                    self.err(Diagnostic::at(span, msg, "box too large"));
                 }
                 Some(_) => {}
             }
@@ -990,7 +1002,15 @@ impl<'a> Reader<'a> {
         let mut errs: Vec<Diagnostic> = vec![];
         for (c, w) in layout.atoms.iter().zip(&words) {
             match c {
-                C::Id => match parse_i64(w) {
+                C::Id => match parse_i64(w).or_else(|| too_large_integer(w)) {
+                    Some(id) if id > super::MAX_ATOM_ID => errs.push(
+                        Diagnostic::at(
+                            w.span,
+                            format!("invalid atom ID {}: atom IDs must be at most {} (LAMMPS' largest ID, a 32-bit tagint)", w.text, super::MAX_ATOM_ID),
+                            "too large",
+                        )
+                        .with_help(help.clone()),
+                    ),
                     Some(id) if id > 0 => atom.id = id,
                     Some(_) => errs.push(
                         Diagnostic::at(

@@ -57,6 +57,13 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         sim.out.print(&format!("WARNING: {}", w.message));
     }
     let mut tag = sim.state.atoms.max_tag();
+    if made.atoms.len() as i64 > crate::engine::atoms::MAX_ATOM_ID - tag {
+        return Err(Diagnostic::at(
+            cmd.span,
+            format!("new atom IDs exceed the largest atom ID {}: {} atoms after ID {tag}", crate::engine::atoms::MAX_ATOM_ID, made.atoms.len()),
+            "too many atoms",
+        ));
+    }
     for (x, typ) in &made.atoms {
         tag += 1;
         sim.state.atoms.push(&NewAtom::at(tag, *typ, *x));
@@ -228,22 +235,11 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
             for k in 0..3 {
                 at.x[i][k] += delta[k];
             }
-            // LAMMPS remaps moved atoms back into a periodic box, updating image flags
-            let (x, img) = (&mut at.x[i], &mut at.image[i]);
-            for k in 0..3 {
-                if d.periodic(k) {
-                    let p = d.hi[k] - d.lo[k];
-                    while x[k] < d.lo[k] {
-                        x[k] += p;
-                        img[k] -= 1;
-                    }
-                    while x[k] >= d.hi[k] {
-                        x[k] -= p;
-                        img[k] += 1;
-                    }
-                    x[k] = x[k].max(d.lo[k]);
-                }
+            if !at.x[i].iter().all(|c| c.is_finite()) {
+                return Err(Diagnostic::at(cmd.span, format!("displace_atoms moves atom {} to a non-finite position {:?}", at.tag[i], at.x[i]), "non-finite position"));
             }
+            // LAMMPS remaps moved atoms back into a periodic box, updating image flags
+            d.remap(&mut at.x[i], &mut at.image[i]);
         }
     }
     sim.state.lists_valid = false;

@@ -11,9 +11,11 @@ pub fn pair_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     let Some(name) = cmd.args.first() else { return Err(a.missing("a pair style")) };
     if name.text == "none" {
         sim.pair = None;
+        sim.pair_span = None;
         return Ok(());
     }
     sim.pair = Some(new_pair_style(name, &cmd.args[1..], cmd)?);
+    sim.pair_span = Some(cmd.span);
     sim.state.lists_valid = false;
     Ok(())
 }

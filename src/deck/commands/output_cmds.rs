@@ -82,12 +82,12 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
                         sim.thermo.format_float = None;
                         sim.thermo.format_column.clear();
                     }
-                    "line" => sim.thermo.format_line = Some(a.str("format string")?.split_whitespace().map(String::from).collect()),
-                    "int" => sim.thermo.format_int = Some(a.str("format string")?.to_string()),
-                    "float" => sim.thermo.format_float = Some(a.str("format string")?.to_string()),
+                    "line" => sim.thermo.format_line = Some(a.printf_line("format string")?),
+                    "int" => sim.thermo.format_int = Some(a.printf_format("format string")?.to_string()),
+                    "float" => sim.thermo.format_float = Some(a.printf_format("format string")?.to_string()),
                     n => match n.parse::<usize>() {
                         Ok(k) if k >= 1 && k <= sim.thermo.columns.len() => {
-                            let f = a.str("format string")?.to_string();
+                            let f = a.printf_format("format string")?.to_string();
                             sim.thermo.format_column.retain(|(c, _)| *c != k);
                             sim.thermo.format_column.push((k, f));
                         }

@@ -2,7 +2,7 @@
 
 use super::need_box;
 use crate::sim::run::RunOptions;
-use crate::sim::Simulation;
+use crate::sim::{SetupError, Simulation};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap};
 
 pub const RUN_SYNTAX: &str = "run N [upto] [start N1] [stop N2] [pre yes|no] [post yes|no]";
@@ -34,12 +34,25 @@ pub fn run(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     need_box(sim, cmd)?;
     let opts = parse_run(cmd)?;
     if sim.check_only {
-        return sim.check_run(&opts).map_err(|e| Diagnostic::at(cmd.span, e, "this run"));
+        return sim.check_run(&opts).map_err(|e| setup_error(&e, cmd));
     }
-    sim.run(&opts).map_err(|e| {
-        sim.runtime_failed = true;
-        Diagnostic::at(cmd.span, format!("run stopped at step {}: {}", e.step, e.message), "this run").with_note("results written before the failure (log, dumps) are kept")
+    sim.run(&opts).map_err(|e| match &e.setup {
+        // refused before the first step: a deck error, as `dmhs check` reports it
+        Some(setup) => setup_error(setup, cmd),
+        None => {
+            sim.runtime_failed = true;
+            Diagnostic::at(cmd.span, format!("run stopped at step {}: {}", e.step, e.message), "this run").with_note("results written before the failure (log, dumps) are kept")
+        }
     })
+}
+
+/// A check before the run refused the deck: shown at the command that set up what is wrong
+/// (when known) and at the run.
+fn setup_error(e: &SetupError, run: &Command) -> Diagnostic {
+    match e.at {
+        Some(at) => Diagnostic::at(at, e.message.clone(), "defined here").with_label(run.span, "checked before this run"),
+        None => Diagnostic::at(run.span, e.message.clone(), "this run"),
+    }
 }
 
 pub fn reset_timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {

@@ -46,6 +46,7 @@
 //! `pre yes` (the default), like the `run` that would have followed `write_restart`.
 
 mod layout;
+mod locate;
 pub mod schema;
 
 use crate::engine::atoms::{Atoms, ExtraArray};
@@ -195,8 +196,19 @@ pub fn read_restart(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap
     let path = sim.path(&w.text);
     let bytes = std::fs::read(&path).map_err(|e| a.error_at(w, format!("cannot read restart file `{}`: {e}", path.display()), "cannot read"))?;
     let fail = |e: String| Diagnostic::at(w.span, format!("restart file {}: {e}", path.display()), "this restart file");
-    let restart = parse(&bytes).map_err(fail)?;
-    let checked = restart.check().map_err(fail)?;
+    // errors of the file's contents point into the file (added to the sources for that)
+    let in_file = |sources: &mut SourceMap, e: String, at: Option<(usize, usize)>| match (at, std::str::from_utf8(&bytes)) {
+        (Some((lo, hi)), Ok(text)) => {
+            let id = sources.add(path.display().to_string(), text.to_string());
+            Diagnostic::at(Span::new(id, lo, hi.max(lo + 1)), format!("restart file {}: {e}", path.display()), "here").with_label(w.span, "read by this command")
+        }
+        _ => fail(e),
+    };
+    let restart = parse(&bytes).map_err(|(e, at)| in_file(sources, e, at))?;
+    let checked = restart.check().map_err(|e| {
+        let at = std::str::from_utf8(&bytes).ok().and_then(|text| locate::locate(text, locate::leading_path(&e)));
+        in_file(sources, e, at)
+    })?;
     let (commands, histories) = restore(sim, restart, checked).map_err(fail)?;
     for words in commands {
         let line = words.join(" ");
@@ -226,29 +238,48 @@ pub fn read_restart(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap
     Ok(())
 }
 
-/// The file as a restart, or why it is none.
-fn parse(bytes: &[u8]) -> Result<Restart, String> {
+/// The file as a restart, or why it is none (and where in the file, when the JSON does not
+/// parse as a restart).
+fn parse(bytes: &[u8]) -> Result<Restart, (String, Option<(usize, usize)>)> {
+    parse_whole(bytes).map_err(|e| match e {
+        ParseError::Whole(m) => (m, None),
+        ParseError::At(m, line, column) => {
+            let at = std::str::from_utf8(bytes).ok().map(|text| locate::offset_of(text, line, column));
+            (m, at.map(|lo| (lo, lo + 1)))
+        }
+    })
+}
+
+enum ParseError {
+    /// About the file as a whole.
+    Whole(String),
+    /// At a line and column of the JSON text.
+    At(String, usize, usize),
+}
+
+fn parse_whole(bytes: &[u8]) -> Result<Restart, ParseError> {
+    use ParseError::Whole;
     if bytes.starts_with(OLD_MAGIC) {
-        return Err("this file is in the text format of dmhs before restart version 2 (`DMHS restart 1`), which is no longer read: write it again by running the deck that wrote it with this dmhs".into());
+        return Err(Whole("this file is in the text format of dmhs before restart version 2 (`DMHS restart 1`), which is no longer read: write it again by running the deck that wrote it with this dmhs".into()));
     }
     if bytes[..bytes.len().min(64)].windows(LAMMPS_MAGIC.len()).any(|w| w == LAMMPS_MAGIC) {
-        return Err(LAMMPS_BINARY.into());
+        return Err(Whole(LAMMPS_BINARY.into()));
     }
     match bytes.iter().find(|b| !b.is_ascii_whitespace()) {
-        None => return Err("the file is empty".into()),
+        None => return Err(Whole("the file is empty".into())),
         Some(b'{') => {}
-        Some(_) if std::str::from_utf8(bytes).is_err() => return Err(format!("a binary file, not a dmhs restart file (if it is a LAMMPS restart: {LAMMPS_BINARY})")),
-        Some(_) => return Err("not a dmhs restart file (write_restart writes a JSON object)".into()),
+        Some(_) if std::str::from_utf8(bytes).is_err() => return Err(Whole(format!("a binary file, not a dmhs restart file (if it is a LAMMPS restart: {LAMMPS_BINARY})"))),
+        Some(_) => return Err(Whole("not a dmhs restart file (write_restart writes a JSON object)".into())),
     }
     serde_json::from_slice::<Restart>(bytes).map_err(|e| {
         if let Ok(h) = serde_json::from_slice::<Header>(bytes) {
             if let Err(m) = identify(&h.format, h.version) {
-                return m;
+                return Whole(m);
             }
         }
         match e.classify() {
-            serde_json::error::Category::Eof => format!("the file ends early, at line {} column {} (truncated?)", e.line(), e.column()),
-            _ => e.to_string(),
+            serde_json::error::Category::Eof => Whole(format!("the file ends early, at line {} column {} (truncated?)", e.line(), e.column())),
+            _ => ParseError::At(e.to_string(), e.line(), e.column()),
         }
     })
 }

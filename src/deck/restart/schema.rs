@@ -262,9 +262,9 @@ impl Restart {
             return Err(format!("settings.time_origin.step is {}: must be in 0..={} (settings.step)", s.time_origin.step, s.step));
         }
         finite(&[s.time_origin.time]).map_err(|e| format!("settings.time_origin.time {e}"))?;
-        check_bounds("box.current", &self.bounds.current)?;
+        check_bounds("box.current", &self.bounds.current, s.dimension)?;
         if let Some(b) = &self.bounds.initial {
-            check_bounds("box.initial", b)?;
+            check_bounds("box.initial", b, s.dimension)?;
         }
         self.check_types()?;
         let group_bits = self.check_groups()?;
@@ -439,13 +439,21 @@ impl Restart {
     }
 }
 
-fn check_bounds(name: &str, b: &Bounds) -> Result<(), String> {
+/// As read_data checks a box: finite, lo below hi, a length that is finite, and in 2d a z
+/// range around 0.
+fn check_bounds(name: &str, b: &Bounds, dimension: u32) -> Result<(), String> {
     finite(&b.lo).map_err(|e| format!("{name}.lo {e}"))?;
     finite(&b.hi).map_err(|e| format!("{name}.hi {e}"))?;
-    match (0..3).find(|&d| b.lo[d] >= b.hi[d]) {
-        Some(d) => Err(format!("{name}: lo[{d}] = {} is not below hi[{d}] = {}", b.lo[d], b.hi[d])),
-        None => Ok(()),
+    if let Some(d) = (0..3).find(|&d| b.lo[d] >= b.hi[d]) {
+        return Err(format!("{name}: lo[{d}] = {} is not below hi[{d}] = {}", b.lo[d], b.hi[d]));
     }
+    if let Some(d) = (0..3).find(|&d| !(b.hi[d] - b.lo[d]).is_finite()) {
+        return Err(format!("{name}: the length hi[{d}] - lo[{d}] = {:?} - ({:?}) overflows a double", b.hi[d], b.lo[d]));
+    }
+    if dimension == 2 && !(b.lo[2] < 0.0 && b.hi[2] > 0.0) {
+        return Err(format!("{name}: a 2d box must have lo[2] < 0 < hi[2], not {} .. {}", b.lo[2], b.hi[2]));
+    }
+    Ok(())
 }
 
 /// The features of an atom style given as the words of the command.

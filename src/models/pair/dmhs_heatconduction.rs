@@ -120,10 +120,7 @@ impl PairStyle for DmhsHeatConduction {
         Ok(())
     }
     fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
-        if !setup.atoms.features.sph {
-            return Err("pair dmhs/heatconduction needs an atom style with SPH attributes (rho, esph, cv): atom_style sph or hybrid ... sph".into());
-        }
-        Ok(())
+        super::sph::check_setup(setup, self.style())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)

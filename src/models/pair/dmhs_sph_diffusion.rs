@@ -75,9 +75,7 @@ impl PairStyle for SphDiffusion {
     }
     fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
         let a = setup.atoms;
-        if !a.features.sph {
-            return Err("pair dmhs/sph/diffusion needs an atom style with SPH attributes (V = m/rho uses the SPH density)".into());
-        }
+        super::sph::check_setup(setup, self.style())?;
         if crate::engine::water::water(a).is_none() {
             return Err("pair dmhs/sph/diffusion: no particle carries water (define fix dmhs/diffusion, or set ... dmhs/conc)".into());
         }

@@ -8,7 +8,7 @@
 
 pub use crate::engine::par::lanes::{lanes, L, LANES};
 pub use super::sph_loop::{compute_sph, dot_lanes, Batch, SphContribution};
-use super::{PairInput, Rate};
+use super::{PairInput, PairSetup, Rate};
 use std::ops::{Div, Mul, Sub};
 use dmhs_parser::{Args, DResult, Diagnostic, Word};
 
@@ -213,6 +213,15 @@ fn kernel_choice(a: &mut Args) -> DResult<Kernel> {
 }
 
 /// Parse the optional `kernel NAME` extension keyword of an SPH pair style.
+/// The check every SPH pair style makes before a run (LAMMPS refuses an SPH pair style without
+/// the SPH atom attributes at set-up): the style reads and writes the SPH per-atom arrays.
+pub fn check_setup(setup: &PairSetup, style: &str) -> Result<(), String> {
+    if !setup.atoms.features.sph {
+        return Err(format!("pair {style} requires atom attributes rho, drho, esph, desph, cv (atom_style sph, or hybrid with sph)"));
+    }
+    Ok(())
+}
+
 pub fn parse_kernel(a: &mut Args) -> DResult<Kernel> {
     let mut kernel = Kernel::Lucy;
     while let Some(w) = a.peek() {

@@ -65,6 +65,9 @@ impl PairStyle for SphHeatConduction {
         self.pairs.put_range(ilo, ihi, jlo, jhi, (d, h));
         Ok(())
     }
+    fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
+        super::sph::check_setup(setup, self.style())
+    }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/heatconduction")?;
         self.pairs.grow(ntypes);

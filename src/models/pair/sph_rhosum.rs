@@ -56,6 +56,9 @@ impl PairStyle for SphRhoSum {
         self.pairs.put_range(ilo, ihi, jlo, jhi, h);
         Ok(())
     }
+    fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
+        super::sph::check_setup(setup, self.style())
+    }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/rhosum")?;
         self.pairs.grow(ntypes);

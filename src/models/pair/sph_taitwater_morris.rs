@@ -87,6 +87,9 @@ impl PairStyle for SphTaitwaterMorris {
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         tait_coeff(ilo, ihi, jlo, jhi, args, COEFF_SYNTAX, "mu (dynamic viscosity)", &mut self.types, &mut self.pairs)
     }
+    fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
+        super::sph::check_setup(setup, self.style())
+    }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/taitwater/morris")?;
         self.pairs.grow(ntypes);

@@ -178,3 +178,22 @@ fn bench_rejects_a_bad_repeat_count() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("--repeat: `0` is not a count of 1 or more"), "{}", text(&o));
 }
+
+/// The stage breakdown covers the loop only (LAMMPS starts its timers after setup), so its
+/// shares add up to at most 100%: a one-step run spends as long in setup as in its loop.
+#[test]
+fn timing_breakdown_adds_up_to_the_loop() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.small_lj");
+    let o = dmhs(&["-in", deck.to_str().unwrap(), "-var", "nsteps", "1", "-log", "none"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let table = t.split("MPI task timing breakdown:").nth(1).expect("a breakdown");
+    let mut sum = 0.0;
+    for name in ["Pair", "Bond", "Neigh", "Comm", "Output", "Modify", "Other"] {
+        let line = table.lines().find(|l| l.starts_with(name)).unwrap_or_else(|| panic!("no {name} row:\n{table}"));
+        sum += line.rsplit('|').next().unwrap().trim().parse::<f64>().unwrap();
+    }
+    // each share is printed to 0.01
+    assert!(sum <= 100.1, "stage shares add up to {sum}%:\n{table}");
+}

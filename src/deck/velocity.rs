@@ -15,6 +15,10 @@ pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) 
     // degrees of freedom of the temperature compute (`temp ID` or a default compute temp)
     let dof = match &vel.opts.temp {
         Some(id) => {
+            // LAMMPS' velocity counts the compute's degrees of freedom afresh
+            if let Some(k) = sim.find_compute(id) {
+                sim.setup_computes(Some(k));
+            }
             let world = sim.world();
             let c = world.compute(id).ok_or_else(|| Diagnostic::at(cmd.span, format!("compute `{id}` does not exist"), "unknown compute"))?;
             c.dof(&world).ok_or_else(|| Diagnostic::at(cmd.span, format!("compute `{id}` is not a temperature compute"), "not a temperature"))?

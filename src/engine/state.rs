@@ -123,6 +123,9 @@ pub struct State {
     pub rebuild_requested: bool,
     /// The topology changed since the special lists were built.
     pub special_dirty: bool,
+    /// Lines for the screen and the log from models (e.g. a fix's warnings during a run),
+    /// printed and cleared by the command or step that produced them.
+    pub messages: Vec<String>,
 }
 
 impl Default for State {
@@ -168,6 +171,7 @@ impl State {
             natoms_expected: 0,
             rebuild_requested: false,
             special_dirty: false,
+            messages: Vec::new(),
         }
     }
 

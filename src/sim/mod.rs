@@ -106,6 +106,19 @@ impl Simulation {
         self.computes.iter().position(|c| c.id() == id)
     }
 
+    /// The once-per-run setup of computes `which` (all: None), e.g. a temperature's count of
+    /// degrees of freedom (LAMMPS' compute setup; a compute's setup reads no other compute).
+    pub fn setup_computes(&mut self, which: Option<usize>) {
+        let mut computes = std::mem::take(&mut self.computes);
+        let world = World { state: &self.state, computes: &[], fixes: FixesView::all(&self.fixes) };
+        for (k, c) in computes.iter_mut().enumerate() {
+            if which.map_or(true, |w| w == k) {
+                c.setup(&world);
+            }
+        }
+        self.computes = computes;
+    }
+
     /// The read-only view of the whole simulation.
     pub fn world(&self) -> World<'_> {
         World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) }

@@ -40,8 +40,9 @@ impl Simulation {
     fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
         let (before, rest) = self.fixes.split_at_mut(k);
         let (fix, after) = rest.split_first_mut().expect("fix index in range");
+        let (before, after): (&[Box<dyn Fix>], &[Box<dyn Fix>]) = (before, after);
         let mut expressions = HookExpressions { computes: &self.computes, before, after, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
-        let mut ctx = FixCtx { pair: self.pair.as_deref(), bond_style: self.bond_style.as_deref(), angle_style: self.angle_style.as_deref(), expressions: &mut expressions };
+        let mut ctx = FixCtx { others: [before, after], pair: self.pair.as_deref(), bond_style: self.bond_style.as_deref(), angle_style: self.angle_style.as_deref(), expressions: &mut expressions };
         work(fix.as_mut(), &mut self.state, &mut ctx)
     }
 
@@ -73,7 +74,8 @@ impl Simulation {
         }
         let ntypes = self.state.ntypes;
         if let Some(mut p) = self.pair.take() {
-            let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel };
+            let insert_radius = (0..=ntypes).map(|t| self.fixes.iter().map(|f| f.insert_radius(t)).fold(0.0, f64::max)).collect();
+            let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel, insert_radius };
             let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
             self.pair = Some(p);
             r.map_err(|message| SetupError { message, at: self.pair_span })?;
@@ -85,6 +87,7 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
+        self.setup_computes(None);
         Ok(())
     }
 
@@ -264,8 +267,13 @@ impl Simulation {
 
         // a fix that changed the topology or must see fresh lists asks for a rebuild
         // (LAMMPS' Neighbor::decide checks fixes' next_reneighbor before counting steps)
-        let requested = std::mem::take(&mut self.state.rebuild_requested);
+        let step = self.state.step;
+        let requested = std::mem::take(&mut self.state.rebuild_requested) || self.fixes.iter().any(|f| f.next_reneighbor() == Some(step));
         if requested || self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms) {
+            self.timers.stamp();
+            self.fix_hook(|h| h.pre_exchange, |f, s, c| f.pre_exchange(s, c))?;
+            self.timers.charge(Stage::Modify);
+            self.flush_messages();
             self.rebuild()?;
             self.timers.charge(Stage::Neigh);
         } else {
@@ -285,6 +293,13 @@ impl Simulation {
         self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
         self.timers.charge(Stage::Modify);
         Ok(())
+    }
+
+    /// Print the lines models left for the screen and the log.
+    pub fn flush_messages(&mut self) {
+        for m in std::mem::take(&mut self.state.messages) {
+            self.out.print(&m);
+        }
     }
 
     /// Each active model with its seconds in this run: pair styles (hybrid: per sub-style and

@@ -58,6 +58,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("unfix", modify_cmds::unfix),
     ("compute", modify_cmds::compute),
     ("uncompute", modify_cmds::uncompute),
+    ("compute_modify", modify_cmds::compute_modify),
     ("thermo", output_cmds::thermo),
     ("thermo_style", output_cmds::thermo_style),
     ("thermo_modify", output_cmds::thermo_modify),

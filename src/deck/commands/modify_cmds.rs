@@ -25,7 +25,7 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             return Err(a.error_at(id, format!("fix `{}` already exists with style {}; replacing it needs the same style", id.text, sim.fixes[k].style()), "ID in use"));
         }
     }
-    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, &mut sim.state)?;
+    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, &sim.fixes, &mut sim.state)?;
     match existing {
         Some(k) => {
             let mut old = std::mem::replace(&mut sim.fixes[k], f);
@@ -33,6 +33,7 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         }
         None => sim.fixes.push(f),
     }
+    sim.flush_messages();
     Ok(())
 }
 
@@ -70,5 +71,27 @@ pub fn uncompute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     a.finish()?;
     let k = sim.find_compute(&id.text).ok_or_else(|| a.error_at(id, format!("compute `{}` does not exist", id.text), "unknown compute"))?;
     sim.computes.remove(k);
+    Ok(())
+}
+
+/// `compute_modify ID extra/dof N | dynamic/dof yes|no ...` (`extra` and `dynamic` are LAMMPS'
+/// older spellings).
+pub fn compute_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "compute_modify ID keyword value ... (extra/dof N, dynamic/dof yes|no)");
+    let id = a.word("compute ID")?;
+    let k = sim.find_compute(&id.text).ok_or_else(|| a.error_at(id, format!("compute `{}` does not exist", id.text), "unknown compute"))?;
+    if a.is_empty() {
+        return Err(a.missing("a keyword (extra/dof or dynamic/dof)"));
+    }
+    let (mut extra, mut dynamic) = (None, None);
+    while let Some(kw) = a.peek() {
+        a.skip(1);
+        match kw.text.as_str() {
+            "extra/dof" | "extra" => extra = Some(a.f64("extra degrees of freedom")?),
+            "dynamic/dof" | "dynamic" => dynamic = Some(a.yes_no("dynamic/dof")?),
+            _ => return Err(a.unknown_keyword(kw, &["extra/dof", "dynamic/dof"])),
+        }
+    }
+    sim.computes[k].modify_dof(extra, dynamic);
     Ok(())
 }

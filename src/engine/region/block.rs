@@ -34,6 +34,10 @@ impl Shape for Block {
     fn extent(&self) -> Option<(Vec3, Vec3)> {
         Some((self.lo, self.hi))
     }
+
+    fn simple(&self) -> Option<super::Simple> {
+        Some(super::Simple::Block { lo: self.lo.into(), hi: self.hi.into() })
+    }
 }
 
 #[cfg(test)]

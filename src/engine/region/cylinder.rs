@@ -64,6 +64,10 @@ impl Shape for Cylinder {
         hi[self.axis] = self.hi;
         Some((lo, hi))
     }
+
+    fn simple(&self) -> Option<super::Simple> {
+        Some(super::Simple::Cylinder { axis: self.axis, center: self.center.into(), radius: self.radius, lo: self.lo, hi: self.hi })
+    }
 }
 
 #[cfg(test)]

@@ -41,6 +41,18 @@ pub trait Shape: Debug + Send + Sync {
     fn has_faces(&self) -> bool {
         true
     }
+    /// The parameters of a block or cylinder, for commands that accept only those (fix pour).
+    fn simple(&self) -> Option<Simple> {
+        None
+    }
+}
+
+/// A block or a cylinder by its parameters, in box units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Simple {
+    Block { lo: [f64; 3], hi: [f64; 3] },
+    /// `center` is a point on the axis (its axial component is 0); `lo..hi` along the axis.
+    Cylinder { axis: usize, center: [f64; 3], radius: f64, lo: f64, hi: f64 },
 }
 
 /// A registered style: its syntax (for the help line), how many shape words it takes, and its
@@ -172,6 +184,14 @@ impl Region {
             return true;
         }
         self.shape.inside(&Vec3::from(x)) == self.interior
+    }
+
+    /// The block or cylinder this region is, if it is one (`side in`, no open faces).
+    pub fn simple(&self) -> Option<Simple> {
+        if !self.interior || self.open_faces.contains(&true) {
+            return None;
+        }
+        self.shape.simple()
     }
 
     /// The bounding box LAMMPS uses (`bboxflag` and `extent_*`): interior regions of finite shapes.

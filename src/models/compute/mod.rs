@@ -4,6 +4,7 @@
 
 pub mod com;
 pub mod dmhs_phase_atom;
+pub mod erotate_sphere;
 pub mod ke;
 pub mod pe;
 pub mod pressure;
@@ -60,6 +61,12 @@ pub trait Compute: Send + Sync {
     fn dof(&self, _w: &World) -> Option<f64> {
         None
     }
+    /// Recompute what LAMMPS computes once per run (a temperature's degrees of freedom); called
+    /// before each run and by `velocity`.
+    fn setup(&mut self, _w: &World) {}
+    /// `compute_modify extra/dof` and `dynamic/dof` (only temperatures use them; LAMMPS accepts
+    /// them for every compute).
+    fn modify_dof(&mut self, _extra: Option<f64>, _dynamic: Option<bool>) {}
     fn describe(&self) -> String {
         format!("compute {} {}", self.id(), self.style())
     }
@@ -80,6 +87,7 @@ type ComputeCtor = fn(ComputeDef, &World) -> DResult<Box<dyn Compute>>;
 const STYLES: &[(&str, ComputeCtor)] = &[
     ("temp", |d, _| Ok(Box::new(temp::ComputeTemp::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -9,6 +9,14 @@ use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta";
 
+/// What a fix gravity applies: the acceleration magnitude (None when a variable gives it) along
+/// the unit direction `dir`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gravity {
+    pub magnitude: Option<f64>,
+    pub dir: [f64; 3],
+}
+
 pub struct FixGravity {
     id: String,
     groupbit: u32,
@@ -117,5 +125,12 @@ impl Fix for FixGravity {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn gravity(&self) -> Option<Gravity> {
+        let magnitude = match self.magnitude {
+            FixValue::Const(g) => Some(g),
+            _ => None,
+        };
+        Some(Gravity { magnitude, dir: self.dir })
     }
 }

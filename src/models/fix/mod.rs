@@ -15,6 +15,7 @@ pub mod gravity;
 pub mod move_linear;
 pub mod nve;
 pub mod nve_sphere;
+pub mod pour;
 pub mod setforce;
 pub mod sph;
 pub mod viscous;
@@ -30,6 +31,9 @@ use dmhs_parser::{Command, DResult, Word};
 #[derive(Clone, Copy, Debug, Default)]
 pub struct FixHooks {
     pub initial_integrate: bool,
+    /// Before atoms are wrapped, sorted and given ghosts, on steps that rebuild the lists
+    /// (where insertions happen).
+    pub pre_exchange: bool,
     pub post_integrate: bool,
     pub post_force: bool,
     pub final_integrate: bool,
@@ -46,6 +50,8 @@ pub trait Expressions {
 /// What a fix hook may use besides the state: the force-field models (read only) and
 /// expression evaluation.
 pub struct FixCtx<'a> {
+    /// The other fixes: those defined before and after the running one.
+    pub others: [&'a [Box<dyn Fix>]; 2],
     pub pair: Option<&'a dyn PairStyle>,
     pub bond_style: Option<&'a dyn BondStyle>,
     pub angle_style: Option<&'a dyn AngleStyle>,
@@ -53,6 +59,10 @@ pub struct FixCtx<'a> {
 }
 
 impl FixCtx<'_> {
+    /// The other fixes in definition order.
+    pub fn other_fixes(&self) -> impl Iterator<Item = &dyn Fix> {
+        self.others.into_iter().flatten().map(|f| f.as_ref())
+    }
     /// The value of equal-style variable `name`; pass the calling fix as `running` (a variable
     /// may read that fix's own values, as in LAMMPS).
     pub fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String> {
@@ -91,6 +101,23 @@ pub trait Fix: Send + Sync {
     }
     fn post_integrate(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
+    }
+    fn pre_exchange(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        Ok(())
+    }
+    /// The step on which this fix needs the lists rebuilt (LAMMPS `next_reneighbor` of a fix
+    /// with `force_reneighbor`), if any.
+    fn next_reneighbor(&self) -> Option<i64> {
+        None
+    }
+    /// Gravity this fix applies (fix gravity), for fixes that insert falling particles.
+    fn gravity(&self) -> Option<gravity::Gravity> {
+        None
+    }
+    /// Largest radius of the particles of type `itype` this fix will insert (LAMMPS
+    /// `extract("radius")`), so that granular cutoffs cover atoms that do not exist yet.
+    fn insert_radius(&self, _itype: usize) -> f64 {
+        0.0
     }
     fn post_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
@@ -164,6 +191,8 @@ pub fn drift(x: &mut [f64; 3], dt: f64, v: &[f64; 3]) {
 /// What `fix ID group style args...` gives a fix's constructor.
 pub struct FixDef<'a> {
     pub cmd: &'a Command,
+    /// The fixes defined so far.
+    pub fixes: &'a [Box<dyn Fix>],
     pub id: String,
     pub groupbit: u32,
     pub style: &'a Word,
@@ -183,6 +212,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/reflect", |d, state| Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
     ("move", |d, state| Ok(Box::new(move_linear::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("sph", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("sph/stationary", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
@@ -197,9 +227,9 @@ const STYLES: &[(&str, FixCtor)] = &[
 ];
 
 /// Build a fix from `fix ID group style args...`.
-pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], state: &mut State) -> DResult<Box<dyn Fix>> {
+pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], fixes: &[Box<dyn Fix>], state: &mut State) -> DResult<Box<dyn Fix>> {
     match STYLES.iter().find(|(n, _)| *n == style.text) {
-        Some((_, ctor)) => ctor(FixDef { cmd, id: id.text.clone(), groupbit, style, args }, state),
+        Some((_, ctor)) => ctor(FixDef { cmd, fixes, id: id.text.clone(), groupbit, style, args }, state),
         None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),
     }
 }

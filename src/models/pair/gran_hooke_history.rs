@@ -80,7 +80,7 @@ impl GranTypes {
     pub fn init_radii(&mut self, setup: &PairSetup) {
         let a = setup.atoms;
         let n = self.ntypes.max(setup.ntypes);
-        self.maxrad = vec![0.0; n + 1];
+        self.maxrad = (0..=n).map(|t| setup.insert_radius.get(t).copied().unwrap_or(0.0)).collect();
         for i in 0..a.nlocal {
             let t = a.typ[i];
             if t <= n {

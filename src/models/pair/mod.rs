@@ -145,6 +145,9 @@ pub struct PairSetup<'a> {
     pub ntypes: usize,
     /// `comm_modify vel yes`
     pub comm_vel: bool,
+    /// Per type, the largest radius of particles fixes will insert during the run (granular
+    /// cutoffs must cover them before they exist).
+    pub insert_radius: Vec<f64>,
 }
 
 /// A pair style as the engine drives it.

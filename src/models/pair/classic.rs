@@ -1,8 +1,12 @@
-//! The Hookean spring-dashpot contact of LAMMPS' classic granular styles (`gran/hooke`,
-//! `gran/hooke/history`; also the solid part of `dmhs/blend`), written once for one pair (`f64`)
-//! and for a batch of pairs ([`L`]): the same operations per lane, so the same bits.
+//! The spring-dashpot contact of LAMMPS' classic granular styles (`gran/hooke`,
+//! `gran/hooke/history`, `gran/hertz/history`; also the solid part of `dmhs/blend`), written
+//! once for one pair (`f64`) and for a batch of pairs ([`L`]): the same operations per lane, so
+//! the same bits.
 //!
 //! * F_n = (Kn delta - m_eff gamma_n v_n) n (clamped at 0 with `limit_damping`);
+//! * Hertz (`gran/hertz/history`): F_n and F_t are scaled by sqrt(delta R_i R_j/(R_i + R_j));
+//!   Kn and Kt are in pressure units, which need no conversion (LAMMPS' nktv2p is 1 in every
+//!   unit style dmhs has);
 //! * with history: shear s += v_tr dt, |s| taken before it is projected onto the tangent plane
 //!   (no rescale); F_t = -(Kt s + m_eff gamma_t v_tr), limited to xmu |F_n| with s set back;
 //! * without history: F_t = -min(xmu |F_n|, m_eff gamma_t |v_tr|) v_tr/|v_tr|;
@@ -25,11 +29,13 @@ pub struct Classic {
     pub xmu: f64,
     pub dampflag: bool,
     pub limit_damping: bool,
+    /// Hertzian scaling of both forces by the contact radius (gran/hertz/history).
+    pub hertz: bool,
 }
 
 impl Classic {
     /// Parse the settings as LAMMPS does (NULL defaults, dampflag 0|1, limit_damping).
-    pub fn from_lammps(args: &[Word], cmd: &Command, syntax: &'static str) -> DResult<Classic> {
+    pub fn from_lammps(args: &[Word], cmd: &Command, syntax: &'static str, hertz: bool) -> DResult<Classic> {
         let mut a = Args::from_words(args, cmd.span, syntax);
         let kn = a.non_negative_f64("Kn")?;
         let kt = if a.peek().map(|w| w.text == "NULL").unwrap_or(false) {
@@ -59,7 +65,7 @@ impl Classic {
             limit_damping = true;
         }
         a.finish()?;
-        Ok(Classic { kn, kt, gamman, gammat, xmu, dampflag, limit_damping })
+        Ok(Classic { kn, kt, gamman, gammat, xmu, dampflag, limit_damping, hertz })
     }
 
     pub fn describe(&self, style: &str) -> String {
@@ -98,7 +104,10 @@ impl Classic {
 
         // tangential force = shear spring + tangential velocity damping
         let mg = k.meff * s(self.gammat);
-        let fs = [0, 1, 2].map(|d| -(s(self.kt) * shear[d] + mg * vtr[d]));
+        let fs = match k.polyhertz {
+            Some(p) => [0, 1, 2].map(|d| -p * (s(self.kt) * shear[d] + mg * vtr[d])),
+            None => [0, 1, 2].map(|d| -(s(self.kt) * shear[d] + mg * vtr[d])),
+        };
 
         // Coulomb limit: where |F_t| > xmu |F_n|, rescale the force and the shear that produces
         // it (or zero the force where the shear is zero)
@@ -135,8 +144,10 @@ struct Normal<T> {
     rinv: T,
     rsqinv: T,
     meff: T,
-    /// normal force / r (Hookean spring + normal damping)
+    /// normal force / r (spring + normal damping)
     ccel: T,
+    /// sqrt(delta R_i R_j / (R_i + R_j)) for Hertz
+    polyhertz: Option<T>,
     /// relative tangential velocity at the contact point
     vtr: [T; 3],
 }
@@ -162,6 +173,10 @@ impl<T: Real> Normal<T> {
         let meff = c.mi * c.mj / (c.mi + c.mj);
         let damp = meff * s(p.gamman) * vnnr * rsqinv;
         let mut ccel = s(p.kn) * (radsum - r) * rinv - damp;
+        let polyhertz = p.hertz.then(|| ((radsum - r) * radi * radj / radsum).sqrt());
+        if let Some(poly) = polyhertz {
+            ccel = ccel * poly;
+        }
         if p.limit_damping {
             ccel = T::select(ccel.lt(s(0.0)), s(0.0), ccel);
         }
@@ -170,7 +185,7 @@ impl<T: Real> Normal<T> {
             vt[1] - (delx * wr[2] - delz * wr[0]),
             vt[2] - (dely * wr[0] - delx * wr[1]),
         ];
-        Normal { r, rinv, rsqinv, meff, ccel, vtr }
+        Normal { r, rinv, rsqinv, meff, ccel, polyhertz, vtr }
     }
 }
 

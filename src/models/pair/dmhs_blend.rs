@@ -36,7 +36,7 @@ impl DmhsBlend {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         // `kernel K` and `pmin P` (dmhs extensions of the SPH part) may follow the DEM values
         let k = args.iter().position(|w| w.text == "kernel" || w.text == "pmin").unwrap_or(args.len());
-        let dem = NoHistory(Classic::from_lammps(&args[..k], cmd, SYNTAX)?);
+        let dem = NoHistory(Classic::from_lammps(&args[..k], cmd, SYNTAX, false)?);
         let sph = SphTaitwaterMorris::from_lammps(&args[k..], cmd)?;
         Ok(DmhsBlend { sph, dem, maxrad: vec![], n: 0 })
     }

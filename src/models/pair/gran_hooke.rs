@@ -22,7 +22,7 @@ pub struct GranHooke {
 
 impl GranHooke {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<GranHooke> {
-        Ok(GranHooke { model: NoHistory(Classic::from_lammps(args, cmd, SYNTAX)?), types: GranTypes::default() })
+        Ok(GranHooke { model: NoHistory(Classic::from_lammps(args, cmd, SYNTAX, false)?), types: GranTypes::default() })
     }
 }
 

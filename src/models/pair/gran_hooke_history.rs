@@ -1,6 +1,7 @@
 //! `pair_style gran/hooke/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]`: the
 //! Hookean spring-dashpot contact with a tangential spring (shear history) and Coulomb friction,
-//! as LAMMPS 2025 computes it (the formula: [`super::classic`]).
+//! as LAMMPS 2025 computes it (the formula: [`super::classic`]); `gran/hertz/history` (same
+//! arguments) scales both forces by the Hertzian contact radius.
 //!
 //! Kt NULL = 2/7 Kn, gamma_t NULL = gamma_n/2, dampflag 0 = no tangential damping.
 //! Special-bond weights scale the force and torques (LAMMPS 2025).
@@ -12,6 +13,7 @@ use crate::engine::contact_history::ContactHistory;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style gran/hooke/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  (Kt, gamma_t may be NULL)";
+pub const HERTZ_SYNTAX: &str = "pair_style gran/hertz/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  (Kt, gamma_t may be NULL)";
 pub const COEFF_SYNTAX: &str = "pair_coeff * *  (granular styles take no coefficients)";
 
 /// Type-pair bookkeeping shared by the granular styles: which diagonal pairs `pair_coeff` set,
@@ -108,15 +110,19 @@ pub fn check_setup(setup: &PairSetup, style: &str) -> Result<(), String> {
 }
 
 pub struct GranHookeHistory {
+    /// gran/hooke/history or gran/hertz/history
+    style: &'static str,
     pub settings: Classic,
     types: GranTypes,
     history: ContactHistory,
 }
 
 impl GranHookeHistory {
-    pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<GranHookeHistory> {
-        let settings = Classic::from_lammps(args, cmd, SYNTAX)?;
-        Ok(GranHookeHistory { settings, types: GranTypes::default(), history: ContactHistory::new(3) })
+    /// gran/hooke/history, or gran/hertz/history with `hertz`.
+    pub fn from_lammps(args: &[Word], cmd: &Command, hertz: bool) -> DResult<GranHookeHistory> {
+        let (style, syntax) = if hertz { ("gran/hertz/history", HERTZ_SYNTAX) } else { ("gran/hooke/history", SYNTAX) };
+        let settings = Classic::from_lammps(args, cmd, syntax, hertz)?;
+        Ok(GranHookeHistory { style, settings, types: GranTypes::default(), history: ContactHistory::new(3) })
     }
 }
 
@@ -145,10 +151,11 @@ impl ContactModel for Classic {
 
 impl PairStyle for GranHookeHistory {
     fn style(&self) -> &str {
-        "gran/hooke/history"
+        self.style
     }
+    /// A Hookean stiffness (the Hertzian one grows with the overlap: no single value).
     fn contact_stiffness(&self) -> Option<f64> {
-        Some(self.settings.kn)
+        (!self.settings.hertz).then_some(self.settings.kn)
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         self.types.coeff(ilo, ihi, jlo, jhi, args)
@@ -159,7 +166,7 @@ impl PairStyle for GranHookeHistory {
         Ok(())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.types.check(ntypes, active, "gran/hooke/history")
+        self.types.check(ntypes, active, self.style)
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.types.cutoff(it, jt)
@@ -174,7 +181,7 @@ impl PairStyle for GranHookeHistory {
         vec![&mut self.history]
     }
     fn describe(&self) -> String {
-        self.settings.describe("gran/hooke/history")
+        self.settings.describe(self.style)
     }
 }
 
@@ -214,7 +221,7 @@ mod tests {
         let mut rng = Lcg(12345);
         // xmu 0.01: every contact slides; 1000: every contact sticks; 0.3: both
         for (limit_damping, xmu) in [(false, 0.01), (false, 0.3), (false, 1000.0), (true, 0.3)] {
-            let p = Classic { kn: 2.0e5, kt: 5.0e4, gamman: 300.0, gammat: 150.0, xmu, dampflag: true, limit_damping };
+            let p = Classic { kn: 2.0e5, kt: 5.0e4, gamman: 300.0, gammat: 150.0, xmu, dampflag: true, limit_damping, hertz: false };
             for trial in 0..100 {
                 // 8 atoms: pairs (0,1), (2,3), (4,5), (6,7)
                 let n = 2 * LANES;

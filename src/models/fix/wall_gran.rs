@@ -10,11 +10,14 @@
 //! by write_restart. The wall has radius 0 and the sphere's full mass; the torque lever is the
 //! full radius.
 //!
-//! LAMMPS' classic forms (`wall/gran hooke/history ...`) are refused: in LAMMPS 2025 their
-//! tangential spring creeps (a sphere resting on a 0.2 slope with mu 0.3 moves 57 times the
-//! elastic m g sin(theta)/k_t), while the `granular` form gives the elastic value.
+//! LAMMPS' classic forms `hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag`
+//! are LAMMPS 2025's: sub-models of the granular form chosen as its GranularModel chooses them
+//! ([`classic_spec`]). So `hooke/history` uses linear_history_classic, whose spring creeps (a
+//! sphere resting on a 0.2 slope with mu 0.3 moves 57 times the elastic m g sin(theta)/k_t, as
+//! in LAMMPS); `dmhs check` warns, and the `granular` form with linear_history avoids it.
 
 use super::{Fix, FixCtx, FixHooks};
+use crate::models::pair::classic::Classic;
 use crate::models::pair::contact::Contact;
 use crate::models::pair::granular::{granular_contact, model_syntax, GranModel, GranSpec};
 use crate::engine::state::{RunError, State};
@@ -23,7 +26,43 @@ use dmhs_parser::{Args, Command, DResult, Word};
 
 fn syntax() -> &'static str {
     static S: std::sync::OnceLock<String> = std::sync::OnceLock::new();
-    S.get_or_init(|| format!("fix ID group wall/gran granular {} xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]", model_syntax()))
+    S.get_or_init(|| {
+        format!(
+            "fix ID group wall/gran granular {} | hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]",
+            model_syntax()
+        )
+    })
+}
+
+/// The granular sub-models LAMMPS 2025 builds for a classic wall form (its
+/// `GranularModel::define_classic_model`): `hooke` = hooke + linear_nohistory + mass_velocity,
+/// `hooke/history` = hooke + linear_history_classic + mass_velocity, `hertz/history` = hertz +
+/// mindlin_classic + viscoelastic; normal coefficients [Kn, gamma_n] and tangential [Kt,
+/// gamma_t/gamma_n, xmu] ([gamma_t/gamma_n, xmu] for linear_nohistory, which has no spring;
+/// measured against LAMMPS 22 Jul 2025: lammps-refs deck gran_wall_classic).
+fn classic_spec(form: &str, c: &Classic, limit_damping: bool) -> Result<GranSpec, String> {
+    use crate::models::pair::granular::{damping, normal, tangential, Given, MAX_COEFFS};
+    let (n, t, d) = match form {
+        "hooke" => ("hooke", "linear_nohistory", "mass_velocity"),
+        "hooke/history" => ("hooke", "linear_history_classic", "mass_velocity"),
+        _ => ("hertz", "mindlin_classic", "viscoelastic"),
+    };
+    fn named<M>(table: &'static [crate::models::pair::granular::Style<M>], name: &str, form: &str) -> Result<&'static crate::models::pair::granular::Style<M>, String> {
+        table.iter().find(|s| s.name == name).ok_or_else(|| format!("fix wall/gran {form} needs the granular model {name}, which dmhs does not have yet"))
+    }
+    let coeffs = |v: &[f64]| {
+        let mut k = [0.0; MAX_COEFFS];
+        k[..v.len()].copy_from_slice(v);
+        k
+    };
+    Ok(GranSpec {
+        set: true,
+        normal: Given { style: named(normal::STYLES, n, form)?, coeffs: coeffs(&[c.kn, c.gamman]) },
+        damping: Given { style: named(damping::STYLES, d, form)?, coeffs: coeffs(&[]) },
+        tangential: Given { style: named(tangential::STYLES, t, form)?, coeffs: if t == "linear_nohistory" { coeffs(&[c.gammat / c.gamman, c.xmu]) } else { coeffs(&[c.kt, c.gammat / c.gamman, c.xmu]) } },
+        limit_damping,
+        ..GranSpec::default()
+    })
 }
 
 const BIG: f64 = 1.0e20;
@@ -55,18 +94,27 @@ impl FixWallGran {
         if !state.atoms.features.sphere {
             return Err(a.error_at(&cmd.name, "fix wall/gran requires atom attributes radius and omega (atom_style sphere)", "no sphere attributes"));
         }
-        let first = a.word("`granular` (the contact model form)")?;
-        if first.text != "granular" {
-            let msg = if ["hooke", "hooke/history", "hertz/history"].contains(&first.text.as_str()) {
-                format!("fix wall/gran {} (the classic form) is not supported: use the `granular` form", first.text)
-            } else {
-                format!("unknown fix wall/gran model form `{}`", first.text)
-            };
-            return Err(a.error_at(first, msg, "expected `granular`").with_help(
-                "LAMMPS 2025's classic wall/gran hooke/history lets a resting sphere creep; write e.g. `fix w all wall/gran granular hooke Kn eta_n0 tangential linear_history Kt x_gt mu damping mass_velocity zplane 0 NULL`",
-            ));
-        }
-        let spec = GranSpec::parse(&mut a, true)?;
+        let first = a.word("the contact model form (granular, hooke, hooke/history or hertz/history)")?;
+        let spec = match first.text.as_str() {
+            "granular" => GranSpec::parse(&mut a, true)?,
+            "hooke" | "hooke/history" | "hertz/history" => {
+                let n = a.len_remaining().min(6);
+                let c = Classic::from_lammps_words(&a.remaining()[..n], cmd, syntax())?;
+                a.skip(n);
+                let limit_damping = a.peek().map(|w| w.text == "limit_damping").unwrap_or(false);
+                if limit_damping {
+                    a.skip(1);
+                }
+                if first.text == "hooke/history" {
+                    state.messages.push(
+                        "WARNING: fix wall/gran hooke/history is LAMMPS 2025's linear_history_classic wall, whose tangential spring lets a sphere resting on a slope creep (as in LAMMPS); `wall/gran granular hooke Kn eta_n0 tangential linear_history Kt x_gt mu damping mass_velocity` holds it elastically"
+                            .into(),
+                    );
+                }
+                classic_spec(&first.text, &c, limit_damping).map_err(|m| a.error_at(first, m, "not supported"))?
+            }
+            _ => return Err(a.unknown_keyword(first, &["granular", "hooke", "hooke/history", "hertz/history"])),
+        };
         let model = GranModel::build(&spec, true);
         let w = a.word("wall style (xplane, yplane or zplane)")?;
         let dim = match w.text.as_str() {

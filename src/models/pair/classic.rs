@@ -36,6 +36,14 @@ pub struct Classic {
 impl Classic {
     /// Parse the settings as LAMMPS does (NULL defaults, dampflag 0|1, limit_damping).
     pub fn from_lammps(args: &[Word], cmd: &Command, syntax: &'static str, hertz: bool) -> DResult<Classic> {
+        let mut c = Self::from_lammps_words(args, cmd, syntax)?;
+        c.hertz = hertz;
+        Ok(c)
+    }
+
+    /// The six numbers `Kn Kt gamma_n gamma_t xmu dampflag` and an optional `limit_damping`
+    /// (all of `args`), as LAMMPS parses them for the pair styles and the classic wall forms.
+    pub fn from_lammps_words(args: &[Word], cmd: &Command, syntax: &str) -> DResult<Classic> {
         let mut a = Args::from_words(args, cmd.span, syntax);
         let kn = a.non_negative_f64("Kn")?;
         let kt = if a.peek().map(|w| w.text == "NULL").unwrap_or(false) {
@@ -65,7 +73,7 @@ impl Classic {
             limit_damping = true;
         }
         a.finish()?;
-        Ok(Classic { kn, kt, gamman, gammat, xmu, dampflag, limit_damping, hertz })
+        Ok(Classic { kn, kt, gamman, gammat, xmu, dampflag, limit_damping, hertz: false })
     }
 
     pub fn describe(&self, style: &str) -> String {

@@ -13,6 +13,7 @@ pub mod property_atom;
 pub mod reduce;
 pub mod sph_atom;
 pub mod temp;
+pub mod temp_sphere;
 
 use crate::engine::state::State;
 use crate::models::world::World;
@@ -86,6 +87,7 @@ type ComputeCtor = fn(ComputeDef, &World) -> DResult<Box<dyn Compute>>;
 /// Every compute style this build implements.
 const STYLES: &[(&str, ComputeCtor)] = &[
     ("temp", |d, _| Ok(Box::new(temp::ComputeTemp::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("temp/sphere", |d, w| Ok(Box::new(temp_sphere::ComputeTempSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

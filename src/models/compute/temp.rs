@@ -6,22 +6,61 @@ use super::{expect_no_args, Compute};
 use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Word};
 
+/// The degrees-of-freedom bookkeeping every temperature compute shares (LAMMPS' Compute
+/// `extra_dof`, `dynamic_user`, `dof_compute` at setup).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Dof {
+    /// Degrees of freedom removed besides those of fixes (`compute_modify extra/dof`; None: the
+    /// style's default, the dimension for the centre-of-mass motion).
+    pub extra: Option<f64>,
+    /// Count at every evaluation (`compute_modify dynamic/dof yes`) instead of once per run,
+    /// when atoms are inserted or lost during it.
+    pub dynamic: bool,
+    /// The count made at the start of the run.
+    pub at_setup: Option<f64>,
+}
+
+impl Dof {
+    /// `count` (the group's own degrees of freedom) less extra (default `default_extra`) and
+    /// those fixes remove.
+    pub fn total(&self, w: &World, groupbit: u32, count: f64, default_extra: f64) -> f64 {
+        count - (self.extra.unwrap_or(default_extra) + w.fix_dof(groupbit))
+    }
+    /// The count now: the one made at setup unless dynamic (or not set up yet).
+    pub fn current(&self, counted: impl FnOnce() -> f64) -> f64 {
+        match self.at_setup {
+            Some(d) if !self.dynamic => d,
+            _ => counted(),
+        }
+    }
+    pub fn modify(&mut self, extra: Option<f64>, dynamic: Option<bool>) {
+        if extra.is_some() {
+            self.extra = extra;
+        }
+        if let Some(d) = dynamic {
+            self.dynamic = d;
+        }
+    }
+}
+
+/// mvv2e/(dof kB), 0 without degrees of freedom (LAMMPS' tfactor).
+pub fn tfactor(w: &World, dof: f64) -> f64 {
+    if dof > 0.0 {
+        w.state.units.mvv2e / (dof * w.state.units.boltz)
+    } else {
+        0.0
+    }
+}
+
 pub struct ComputeTemp {
     id: String,
     groupbit: u32,
-    /// Degrees of freedom removed besides those of fixes (`compute_modify extra/dof`; LAMMPS'
-    /// default is the dimension: the centre-of-mass motion).
-    extra_dof: Option<f64>,
-    /// Count the degrees of freedom at every evaluation (`compute_modify dynamic/dof yes`)
-    /// instead of once per run, when atoms are inserted or lost during it.
-    dynamic: bool,
-    /// The count made at the start of the run.
-    dof_at_setup: Option<f64>,
+    dof: Dof,
 }
 
 impl ComputeTemp {
     pub fn new(id: String, groupbit: u32) -> Self {
-        ComputeTemp { id, groupbit, extra_dof: None, dynamic: false, dof_at_setup: None }
+        ComputeTemp { id, groupbit, dof: Dof::default() }
     }
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command) -> DResult<Self> {
         expect_no_args(args, cmd, "compute ID group temp")?;
@@ -30,13 +69,10 @@ impl ComputeTemp {
     /// LAMMPS `dof_compute`: dim N - extra - fix dof.
     fn count_dof(&self, w: &World) -> f64 {
         let dim = w.state.dimension as f64;
-        dim * w.state.group_count(self.groupbit) as f64 - (self.extra_dof.unwrap_or(dim) + w.fix_dof(self.groupbit))
+        self.dof.total(w, self.groupbit, dim * w.state.group_count(self.groupbit) as f64, dim)
     }
     fn current_dof(&self, w: &World) -> f64 {
-        match self.dof_at_setup {
-            Some(d) if !self.dynamic => d,
-            _ => self.count_dof(w),
-        }
+        self.dof.current(|| self.count_dof(w))
     }
 }
 
@@ -50,8 +86,7 @@ pub fn temperature_with(w: &World, groupbit: u32, dof: f64) -> f64 {
             t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * w.state.mass(i);
         }
     }
-    let tfactor = if dof > 0.0 { w.state.units.mvv2e / (dof * w.state.units.boltz) } else { 0.0 };
-    t * tfactor
+    t * tfactor(w, dof)
 }
 
 /// Kinetic energy tensor mvv2e * sum m v_a v_b (xx yy zz xy xz yz).
@@ -100,14 +135,9 @@ impl Compute for ComputeTemp {
         Some(self.current_dof(w))
     }
     fn setup(&mut self, w: &World) {
-        self.dof_at_setup = Some(self.count_dof(w));
+        self.dof.at_setup = Some(self.count_dof(w));
     }
     fn modify_dof(&mut self, extra: Option<f64>, dynamic: Option<bool>) {
-        if extra.is_some() {
-            self.extra_dof = extra;
-        }
-        if let Some(d) = dynamic {
-            self.dynamic = d;
-        }
+        self.dof.modify(extra, dynamic);
     }
 }

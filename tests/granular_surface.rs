@@ -1,6 +1,7 @@
-//! LAMMPS' classic `fix wall/gran` forms. Their numbers are compared with LAMMPS in
-//! tests/lammps_parity.rs (lammps-refs deck gran_wall_classic); here: the creep warning that
-//! `dmhs check` gives for `hooke/history`, and the forms' argument errors.
+//! Granular commands beside the contact models. LAMMPS' classic `fix wall/gran` forms (their
+//! numbers are compared with LAMMPS in tests/lammps_parity.rs, lammps-refs deck
+//! gran_wall_classic): the creep warning `dmhs check` gives for `hooke/history`, and argument
+//! errors. compute temp/sphere against the values LAMMPS prints for the same deck.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -41,5 +42,24 @@ fn classic_wall_argument_errors_are_located() {
         let (code, out) = check(&deck(wall));
         assert_eq!(code, 2, "{wall}: {out}");
         assert!(out.contains(want) && out.contains("in.wall:"), "{wall}: expected `{want}`:\n{out}");
+    }
+}
+
+/// Step-0 thermo of tests/decks/granular/in.temp_sphere: c_ts c_tr c_te c_ts[1] c_ts[4] c_tr[3]
+/// as LAMMPS 22 Jul 2025 prints them (`thermo_modify format float %.15g`), in 2D and 3D.
+#[test]
+fn temp_sphere_matches_lammps() {
+    let deck = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/decks/granular/in.temp_sphere");
+    let lammps = [
+        ("2", "0.5", "0  0.995961596540736 0.0298879899104784 0.981933968420444 1.69237744939981 0.438741599786922 0.0269884087997604"),
+        ("3", "5.5", "0  0.742353896594996 0.00996266330349282 0.734059439649801 1.53250982760794 0.153891814731438 0.0269884087997604"),
+    ];
+    for (dim, zhi, want) in lammps {
+        let tmp = tempfile::tempdir().unwrap();
+        let o = Command::new(env!("CARGO_BIN_EXE_dmhs")).arg("-in").arg(&deck).args(["-log", "none", "-var", "dim", dim, "-var", "zhi", zhi]).current_dir(tmp.path()).output().unwrap();
+        let out = String::from_utf8_lossy(&o.stdout).to_string();
+        let row = out.lines().skip_while(|l| !l.trim_start().starts_with("Step")).nth(1).unwrap_or_default().to_string();
+        let words = |s: &str| s.split_whitespace().map(str::to_string).collect::<Vec<_>>();
+        assert_eq!(words(&row), words(want), "dimension {dim}:\n{out}");
     }
 }

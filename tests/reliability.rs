@@ -203,3 +203,22 @@ fn a_setup_error_is_exit_2_under_run_and_check() {
         assert!(!t.contains("run stopped at step"), "{t}");
     }
 }
+
+/// Item 9: a command that would allocate more than the machine has is refused before it
+/// allocates, in well under a second, saying how much it needs and how much there is.
+#[cfg(target_os = "linux")]
+#[test]
+fn commands_that_need_more_memory_than_the_machine_are_refused_at_once() {
+    let t0 = std::time::Instant::now();
+    expect("run", &[&deck("in.huge_types")], 2, &["in.huge_types:4:1", "create_box 2000000000 atom types: this would need about 2.91e7 TiB", "(2000000000 atom types: a table of (N+1)^2", "this machine has available (MemAvailable in /proc/meminfo)"]);
+    assert!(t0.elapsed().as_secs_f64() < 2.0, "{:?}", t0.elapsed());
+    // the most atoms create_atoms makes (2^31 sites or random atoms) need 259-272 GiB: refused on
+    // a machine with less (and the test's ulimit of 2 GB would fail an attempt)
+    let avail: f64 = std::fs::read_to_string("/proc/meminfo").unwrap().lines().find(|l| l.starts_with("MemAvailable:")).and_then(|l| l.split_whitespace().nth(1)?.parse().ok()).unwrap();
+    if avail * 1024.0 < 2.5e11 {
+        let t0 = std::time::Instant::now();
+        expect("run", &[&deck("in.huge_create"), "-log", "none"], 2, &["in.huge_create:9:", "create_atoms would make about 2.147e9 atoms: this would need about 272.0 GiB of memory (2.147e9 atoms x 136 bytes)"]);
+        expect("run", &[&deck("in.huge_create"), "-var", "style", "box", "-log", "none"], 2, &["create_atoms would make about 2.048e9 atoms: this would need about 2", "GiB of memory (2.048e9 atoms x 136 bytes)"]);
+        assert!(t0.elapsed().as_secs_f64() < 2.0, "{:?}", t0.elapsed());
+    }
+}

@@ -51,6 +51,7 @@ pub fn create_box(
 ) -> DResult<CreateBox> {
     let mut a = Args::new(cmd, BOX_SYNTAX);
     let ntypes = a.i64_in("number of atom types", 1, i32::MAX as i64)? as usize;
+    crate::sim::memory::check_types(ntypes).map_err(|e| Diagnostic::at(cmd.span, format!("create_box {ntypes} atom types: {e}"), "too many atom types"))?;
     let rw = a.word("region ID")?;
     if rw.text == "NULL" {
         return Err(a.error_at(
@@ -418,6 +419,7 @@ impl CreateAtoms {
                 "region outside the box",
             ));
         }
+        self.fits(n as f64)?;
         let odistsq = self.overlap.map(|d| d * d);
         let mut ninsert = 0;
         for _ in 0..n {
@@ -462,6 +464,13 @@ impl CreateAtoms {
             );
         }
         Ok(())
+    }
+
+    /// Refuse to make `n` atoms that would not fit in memory: each is held while made (32
+    /// bytes) and then stored (at least the arrays of the plainest atom style).
+    fn fits(&self, n: f64) -> DResult<()> {
+        crate::sim::memory::check_atoms(n, crate::engine::atoms::AtomFeatures::default(), 0, std::mem::size_of::<([f64; 3], usize)>())
+            .map_err(|e| Diagnostic::at(self.span, format!("create_atoms would make about {n:.3e} atoms: {e}"), "too many atoms for this machine"))
     }
 
     fn add_lattice(
@@ -522,6 +531,15 @@ impl CreateAtoms {
                 "create_atoms lattice size overflow (too many lattice sites to scan)",
                 "lattice too fine for this box",
             ));
+        }
+        // the sites in the bounding box: its volume (area in 2d) over the unit cell's, times
+        // the basis (a region inside it makes fewer)
+        let origin = lattice.lattice2box(Vector3::zeros());
+        let [a1, a2, a3] = [Vector3::x(), Vector3::y(), Vector3::z()].map(|e| lattice.lattice2box(e) - origin);
+        let ext = |d: usize| (bhi[d] - blo[d]).max(0.0);
+        let (cell, volume) = if domain.dimension == 2 { (a1.cross(&a2).z.abs(), ext(0) * ext(1)) } else { (a1.dot(&a2.cross(&a3)).abs(), ext(0) * ext(1) * ext(2)) };
+        if cell > 0.0 {
+            self.fits(volume / cell * lattice.nbasis() as f64)?;
         }
         for k in lo[2]..=hi[2] {
             for j in lo[1]..=hi[1] {

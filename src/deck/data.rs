@@ -39,6 +39,10 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
         return Err(a.error_at(&cmd.name, "read_data after the box is defined (read_data ... add) is not supported yet", "box already defined"));
     }
     let path = sim.path(&fw.text);
+    // the file is held whole while read: refuse one larger than the memory (a read would abort)
+    if let Ok(meta) = std::fs::metadata(&path) {
+        crate::sim::memory::check_fits(meta.len() as f64, &format!("the data file `{}` of {} bytes, read whole", path.display(), meta.len())).map_err(|e| a.error_at(fw, format!("read_data: {e}"), "this file"))?;
+    }
     let bytes = std::fs::read(&path).map_err(|e| a.error_at(fw, format!("cannot open data file `{}`: {e}", path.display()), "this file"))?;
     let text = String::from_utf8_lossy(&bytes).into_owned();
     let file = sources.add(path.display().to_string(), text);
@@ -62,6 +66,8 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
     let domain = Domain { dimension: sim.state.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.state.boundary };
     sim.state.box_initial = Some(domain.clone());
     sim.state.domain = Some(domain.clone());
+    crate::sim::memory::check_types(h.atom_types).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {} atom types: {e}", h.atom_types), "too many atom types"))?;
+    crate::sim::memory::check_atoms(h.atoms as f64, sim.state.atoms.features, 0, 0).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {} atoms: {e}", h.atoms), "too many atoms for this machine"))?;
     sim.state.ntypes = h.atom_types;
     sim.state.type_mass = vec![0.0; h.atom_types + 1];
     sim.state.mass_set = vec![false; h.atom_types + 1];

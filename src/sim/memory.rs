@@ -1,25 +1,33 @@
-//! Memory estimate reported before a run ("Per MPI rank memory allocation").
+//! Memory: the estimate reported before a run ("Per MPI rank memory allocation"), and the check
+//! that refuses a command whose allocation could not fit (a billion atoms from `create_atoms`),
+//! before it allocates, instead of an abort on a failed allocation.
 
+use crate::engine::atoms::AtomFeatures;
 use crate::sim::Simulation;
+
+/// Bytes of the per-atom arrays of one atom with these features and `nextra` extra fields.
+pub fn bytes_per_atom(ft: AtomFeatures, nextra: usize) -> usize {
+    let mut b = 8 + 8 + 4 + 3 * 8 * 3 + 12;
+    if ft.molecule {
+        b += 8;
+    }
+    if ft.charge {
+        b += 8;
+    }
+    if ft.sphere {
+        b += 8 + 8 + 24 + 24;
+    }
+    if ft.sph {
+        b += 5 * 8 + 24;
+    }
+    b + 8 * nextra
+}
 
 /// Bytes held by per-atom arrays and neighbour lists.
 pub fn bytes_per_rank(sim: &Simulation) -> usize {
     let a = &sim.state.atoms;
     let n = a.x.capacity();
-    let mut b = n * (8 + 8 + 4 + 3 * 8 * 3 + 12);
-    let ft = a.features;
-    if ft.molecule {
-        b += n * 8;
-    }
-    if ft.charge {
-        b += n * 8;
-    }
-    if ft.sphere {
-        b += n * (8 + 8 + 24 + 24);
-    }
-    if ft.sph {
-        b += n * (5 * 8 + 24);
-    }
+    let mut b = n * bytes_per_atom(a.features, 0);
     b += a.extra.iter().map(|e| e.data.capacity() * 8).sum::<usize>();
     b += sim.state.neighbor.list.chunks.iter().map(|c| c.neigh.capacity() * 4 + c.offsets.capacity() * 4).sum::<usize>();
     b
@@ -29,4 +37,68 @@ pub fn bytes_per_rank(sim: &Simulation) -> usize {
 pub fn bytes_per_particle(sim: &Simulation) -> f64 {
     let n = sim.state.atoms.nlocal.max(1);
     bytes_per_rank(sim) as f64 / n as f64
+}
+
+/// Memory the machine can still give (MemAvailable of /proc/meminfo); None where unknown.
+pub fn available() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024.0)
+}
+
+/// Bytes as text: "3.2 GiB", "1.8e3 TiB".
+pub fn human(bytes: f64) -> String {
+    let units = ["bytes", "KiB", "MiB", "GiB", "TiB"];
+    let mut v = bytes;
+    let mut k = 0;
+    while v >= 1024.0 && k + 1 < units.len() {
+        v /= 1024.0;
+        k += 1;
+    }
+    if v >= 1e4 { format!("{v:.2e} {}", units[k]) } else { format!("{v:.1} {}", units[k]) }
+}
+
+/// Refuse an allocation of `need` bytes (for `what`, e.g. "4.0e9 atoms x 140 bytes") that is
+/// larger than the memory available; no check where that is unknown.
+pub fn check_fits(need: f64, what: &str) -> Result<(), String> {
+    check_fits_in(need, what, available())
+}
+
+fn check_fits_in(need: f64, what: &str, avail: Option<f64>) -> Result<(), String> {
+    match avail {
+        Some(avail) if !(need <= avail) => Err(format!(
+            "this would need about {} of memory ({what}), more than the {} this machine has available (MemAvailable in /proc/meminfo)",
+            human(need),
+            human(avail)
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// `N atom types`: every run's neighbour cutoff table (and a pair style's coefficient tables)
+/// holds a double per type pair, (N+1)^2.
+pub fn check_types(ntypes: usize) -> Result<(), String> {
+    let n = ntypes as f64 + 1.0;
+    check_fits(n * n * 8.0, &format!("{ntypes} atom types: a table of (N+1)^2 = {:.3e} type pairs x 8 bytes", n * n))
+}
+
+/// `n` new atoms with these features; `transient` bytes per atom held while they are made.
+pub fn check_atoms(n: f64, ft: AtomFeatures, nextra: usize, transient: usize) -> Result<(), String> {
+    let per = (bytes_per_atom(ft, nextra) + transient) as f64;
+    check_fits(n * per, &format!("{n:.3e} atoms x {per} bytes"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn too_large_is_refused_with_both_sizes() {
+        assert_eq!(check_fits_in(1e12, "x", None), Ok(()));
+        assert_eq!(check_fits_in(1e9, "x", Some(2e9)), Ok(()));
+        let e = check_fits_in(4.0 * 1024f64.powi(4), "4 TiB of atoms", Some(16.0 * 1024f64.powi(3))).unwrap_err();
+        assert!(e.contains("about 4.0 TiB") && e.contains("(4 TiB of atoms)") && e.contains("the 16.0 GiB this machine has available"), "{e}");
+        assert!(check_fits_in(f64::NAN, "x", Some(1.0)).is_err());
+    }
 }

@@ -12,7 +12,22 @@
 //! the pressure of a sound wave lags it by dt/2: an anti-damping of energy rate k^2 c^2 dt/2 against
 //! the viscous k^2 nu, for every wavelength. Measured in a periodic water box (tests/
 //! stability_sound_viscosity.rs, examples/scenes/cubes/README.md): noise decays at 1x, grows from
-//! about 1.3x (the same in LAMMPS).
+//! about 1.3x (the same in LAMMPS). Pair potentials with a well (LJ): T/20 of the oscillation of
+//! the two lightest atoms in the well, k = V''(r_min), as for harmonic bonds.
+//!
+//! Guards, checked after every step (every N with `dmhs/stability every N`) in one branch-free
+//! pass over the atoms; only when it finds something is the particle searched for:
+//! - non-finite positions or velocities (every model);
+//! - SPH densities outside (lo, hi] x rho0 and non-finite SPH fields;
+//! - motion: |v| dt > the neighbour skin (with skin 0: > the list cutoff), where v is the
+//!   velocity at the end of the step. An atom that moves farther than the full skin in one step
+//!   may have come within the cutoff of partners the lists do not hold (the lists keep pairs
+//!   within cutoff + skin and LAMMPS rebuilds when an atom has moved skin/2), so the forces are
+//!   wrong from then on. It bounds runaway velocities and kinetic energies of every model. Only
+//!   runs with neighbour lists (a pair style) are checked; an instant jump between runs
+//!   (`displace_atoms`, `velocity set`, `set`) is no step and is not seen. Measured on every deck of
+//!   the project (docs/validation.md, "Instability guard"): correct decks stay below 0.21 of the
+//!   bound, unstable LJ and granular runs exceed it 9x to 1e14x within 1 to 6 steps.
 
 use crate::engine::domain::BoundaryKind;
 use crate::engine::par::any_index;
@@ -90,21 +105,36 @@ pub fn limits(sim: &Simulation, forces_known: bool) -> Vec<Limit> {
     }
     if let Some(p) = sim.pair.as_ref() {
         out.extend(p.dt_limits());
+        // the well of a pair potential is a spring of k = V''(r_min): T/20 of the oscillation
+        // of the two lightest atoms in it, as for harmonic bonds below. For LJ (k = 57.15
+        // eps/sigma^2, m = 1) dt <= 0.0294 tau: LAMMPS' melt example (0.005) is at 0.17x; velocity
+        // Verlet turns unstable at omega dt = 2, that is T/pi (6.4x this limit)
+        if let (Some(k), Some(m)) = (p.well_stiffness().filter(|&k| k > 0.0), lightest(sim)) {
+            out.push(Limit { model: format!("pair {}", p.style()), rule: format!("T/20 of the well, T = 2 pi sqrt(m/(2k)) (k = V''(r_min) = {k:.6}, m = {m})"), dt_max: pair_period(m, k) / 20.0 });
+        }
     }
     if let Some(bond) = sim.bond_style.as_ref() {
         if bond.name() == "harmonic" && sim.state.topo.nbondtypes > 0 {
-            let m_min = (0..sim.state.atoms.nlocal).map(|i| sim.state.mass(i)).fold(f64::INFINITY, f64::min);
-            if m_min.is_finite() {
+            if let Some(m_min) = lightest(sim) {
                 let k_max = (1..=sim.state.topo.nbondtypes).map(|t| bond.stiffness(t)).fold(0.0, f64::max);
                 if k_max > 0.0 {
-                    // reduced mass of two lightest atoms; E = K (r - r0)^2 is a spring of 2K
-                    let period = 2.0 * std::f64::consts::PI * (0.5 * m_min / (2.0 * k_max)).sqrt();
-                    out.push(Limit { model: "bond harmonic".into(), rule: format!("T/20, T = 2 pi sqrt(m/(2K)) (K = {k_max}, m = {m_min})"), dt_max: period / 20.0 });
+                    // E = K (r - r0)^2 is a spring of 2K
+                    out.push(Limit { model: "bond harmonic".into(), rule: format!("T/20, T = 2 pi sqrt(m/(2K)) (K = {k_max}, m = {m_min})"), dt_max: pair_period(m_min, 2.0 * k_max) / 20.0 });
                 }
             }
         }
     }
     out
+}
+
+/// The mass of the lightest owned atom (None without atoms).
+fn lightest(sim: &Simulation) -> Option<f64> {
+    Some((0..sim.state.atoms.nlocal).map(|i| sim.state.mass(i)).fold(f64::INFINITY, f64::min)).filter(|m| m.is_finite())
+}
+
+/// Period of two atoms of mass m joined by a spring k (reduced mass m/2).
+fn pair_period(m: f64, k: f64) -> f64 {
+    2.0 * std::f64::consts::PI * (0.5 * m / k).sqrt()
 }
 
 /// The sound-viscosity limit 2 nu/c^2 of the tightest fluid type of a Morris style. Types whose
@@ -154,16 +184,31 @@ pub fn report(sim: &Simulation, limits: &[Limit]) -> (String, Vec<String>) {
     (s, warnings)
 }
 
-/// "; the time step is N x the ... limit" when the time step exceeds the tightest limit.
+/// The stable time-step estimate for an error message: "; the time step is N x the ... limit"
+/// when the time step exceeds the tightest limit, else the tightest limit itself.
 pub fn dt_hint(sim: &Simulation) -> String {
     let l = limits(sim, false);
-    let worst = l.iter().max_by(|x, y| (sim.state.dt / x.dt_max).total_cmp(&(sim.state.dt / y.dt_max)));
+    let dt = sim.state.dt;
+    let worst = l.iter().max_by(|x, y| (dt / x.dt_max).total_cmp(&(dt / y.dt_max)));
     match worst {
-        Some(w) if sim.state.dt > w.dt_max => {
-            format!("; the time step {:.4e} is {:.2}x the {} limit {:.4e}", sim.state.dt, sim.state.dt / w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.dt_max)
-        }
-        _ => String::new(),
+        Some(w) if dt > w.dt_max => format!("; the time step {:.4e} is {:.2}x the {} limit {:.4e}", dt, dt / w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.dt_max),
+        Some(w) => format!("; the stable time step estimate is {:.4e} ({} limit of {}), the time step {:.4e} is {:.2}x it", w.dt_max, w.rule.split(" (").next().unwrap_or(""), w.model, dt, dt / w.dt_max),
+        None => "; no stable time step estimate for the active models".into(),
     }
+}
+
+/// How far an atom may move in one step: the neighbour skin, as an atom that moves farther
+/// than the skin in one step may have passed partners the lists do not hold (LAMMPS rebuilds
+/// at skin/2, so a correct deck stays far below); with skin 0 (the lists are rebuilt on every
+/// step), the list cutoff, as an atom that moves farther passed through its partners. None
+/// without lists (no pair style).
+fn step_bound(sim: &Simulation) -> Option<(f64, String)> {
+    let skin = sim.state.neigh_settings.skin;
+    let cut = sim.state.neighbor.cutneighmax;
+    if !(cut > 0.0) {
+        return None;
+    }
+    Some(if skin > 0.0 { (skin, format!("the neighbour skin {skin}")) } else { (cut, format!("the neighbour list cutoff {cut} (skin 0)")) })
 }
 
 /// Whether some component is not finite: `v * 0` is 0 for finite v and NaN otherwise (a test
@@ -192,7 +237,13 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     // particle searched for. A density is good inside (lo, hi] of its type: for a type without
     // rho0, (-inf, MAX], which only a non-finite density leaves (a NaN compares false).
     let (x, v) = (&a.x[..n], &a.v[..n]);
-    let bad_motion = |i: usize| not_finite3(&x[i]) | not_finite3(&v[i]);
+    // the step's motion |v| dt within the bound: |v|^2 <= (bound/dt)^2 (false for NaN)
+    let bound = step_bound(sim);
+    let vmax2 = bound.as_ref().map(|(b, _)| (b / sim.state.dt.abs()).powi(2)).unwrap_or(f64::INFINITY);
+    let bad_motion = |i: usize| {
+        let w = &v[i];
+        not_finite3(&x[i]) | not_finite3(w) | !(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= vmax2)
+    };
     let all_good = if a.features.sph {
         let bounds: Vec<(f64, f64)> = (0..=sim.state.ntypes)
             .map(|t| match rho0.get(t).copied().unwrap_or(0.0) {
@@ -244,6 +295,18 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
                 ));
             }
         }
+    }
+    // the fastest atom over the bound (squared speeds compare as the pass did)
+    let speed2 = |i: usize| a.v[i][0] * a.v[i][0] + a.v[i][1] * a.v[i][1] + a.v[i][2] * a.v[i][2];
+    if let (Some(i), Some((_, what))) = ((0..n).filter(|&i| !(speed2(i) <= vmax2)).max_by(|&i, &j| speed2(i).total_cmp(&speed2(j))), bound) {
+        let (speed, dt) = (speed2(i).sqrt(), sim.state.dt);
+        return Err(RunError::new(
+            step,
+            format!(
+                "particle {} moved {:.4e} in one step (speed {:.4e} x time step {:.4e}), more than {what}: pairs that came within the cutoff may be missing from the neighbour lists, the run is unstable{}",
+                a.tag[i], speed * dt.abs(), speed, dt, hint()
+            ),
+        ));
     }
     Ok(())
 }

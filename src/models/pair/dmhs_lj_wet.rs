@@ -218,6 +218,10 @@ impl PairStyle for LjWet {
         self.derived = derived;
         Ok(())
     }
+    fn well_stiffness(&self) -> Option<f64> {
+        let n = self.derived.n;
+        (1..=n).flat_map(|i| (i..=n).map(move |j| (i, j))).map(|(i, j)| self.derived.get(i, j)).filter(|d| d.on).map(|d| super::lj_cut::well_stiffness(d.epsilon, d.sigma, d.cut)).filter(|k| *k > 0.0).reduce(f64::max)
+    }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         let d = self.derived.get(it, jt);
         if d.on { d.cut + 2.0 * self.dmax.unwrap_or(0.0) } else { 0.0 }

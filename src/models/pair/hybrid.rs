@@ -319,6 +319,10 @@ impl PairStyle for Hybrid {
         self.styles.iter().filter_map(|s| s.contact_stiffness()).reduce(f64::max)
     }
 
+    fn well_stiffness(&self) -> Option<f64> {
+        self.styles.iter().filter_map(|s| s.well_stiffness()).reduce(f64::max)
+    }
+
     fn reset_model_seconds(&mut self) {
         self.seconds.iter_mut().for_each(|t| *t = 0.0);
     }

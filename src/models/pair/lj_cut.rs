@@ -164,6 +164,11 @@ impl PairStyle for LjCut {
         compute_central(self, input, out.f)
     }
 
+    fn well_stiffness(&self) -> Option<f64> {
+        let n = self.coeff.n;
+        (1..=n).flat_map(|i| (i..=n).map(move |j| (i, j))).map(|(i, j)| self.coeff.get(i, j)).map(|c| well_stiffness(c.epsilon, c.sigma, c.cut)).filter(|k| *k > 0.0).reduce(f64::max)
+    }
+
     fn data_coeffs(&self, it: usize) -> Option<String> {
         let c = self.coeff.get(it, it);
         Some(format!("{} {}", fmt17(c.epsilon), fmt17(c.sigma)))
@@ -179,6 +184,15 @@ impl PairStyle for LjCut {
         }
         s
     }
+}
+
+/// V''(r_min) of 4 eps [(sigma/r)^12 - (sigma/r)^6] at r_min = 2^(1/6) sigma: 72 eps/(2^(1/3) sigma^2)
+/// = 57.15 eps/sigma^2, the spring of the well; 0 when the cutoff leaves no well (a purely
+/// repulsive WCA wall, cut at r_min, has no oscillation) or the result is zero or not finite.
+pub fn well_stiffness(epsilon: f64, sigma: f64, cut: f64) -> f64 {
+    let k = 72.0 * epsilon / (2f64.cbrt() * sigma * sigma);
+    let has_well = cut > 2f64.powf(1.0 / 6.0) * sigma.abs() * (1.0 + 1e-9);
+    if has_well && k.is_finite() { k.max(0.0) } else { 0.0 }
 }
 
 /// Shortest text that reads back to the same double.

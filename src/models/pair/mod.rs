@@ -209,6 +209,11 @@ pub trait PairStyle: Send + Sync {
     fn contact_stiffness(&self) -> Option<f64> {
         None
     }
+    /// The largest curvature V''(r_min) of a pair potential's well (force per length), for the
+    /// time-step estimate of potentials without another (Lennard-Jones).
+    fn well_stiffness(&self) -> Option<f64> {
+        None
+    }
     /// Start the per-part clocks of [`PairStyle::model_seconds`] again (at run setup).
     fn reset_model_seconds(&mut self) {}
     /// Other time-step limits of the style (e.g. explicit diffusion), for `dmhs check` and the

@@ -147,10 +147,6 @@ impl Curve {
     pub fn allowed(&self, selfdiff: f64) -> f64 {
         self.tol.max(CHAOS_MARGIN * selfdiff)
     }
-    /// Whether LAMMPS' own divergence ever leaves round-off (the tolerance / margin).
-    pub fn chaotic(&self) -> bool {
-        self.rows.iter().any(|r| r.2 > self.tol / CHAOS_MARGIN)
-    }
     /// Points where dmhs differs by more than allowed.
     pub fn failures(&self) -> Vec<String> {
         self.rows
@@ -257,5 +253,39 @@ fn short(q: &str) -> &str {
         "position" => "pos",
         "velocity" => "vel",
         _ => q,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn curve(rows: &[(f64, f64)]) -> Curve {
+        let rows = rows.iter().enumerate().map(|(k, &(d, e))| (format!("step {}", 1 << k), d, e, 7)).collect();
+        Curve { quantity: "velocity", tol: 1e-8, scale: 1.0, scale_why: String::new(), rows }
+    }
+
+    #[test]
+    fn round_off_then_no_faster_than_lammps_passes() {
+        let c = curve(&[(0.0, 0.0), (1e-12, 3e-12), (2e-6, 1e-6), (0.5, 0.4)]);
+        assert!(c.failures().is_empty());
+        assert_eq!(c.agrees_up_to(), Some("step 2"));
+    }
+
+    #[test]
+    fn an_early_difference_fails_even_where_lammps_diverges_later() {
+        // 1e-6 at step 2 while LAMMPS reproduces itself to 1e-15 there
+        let c = curve(&[(0.0, 0.0), (1e-6, 1e-15), (0.5, 0.4)]);
+        let f = c.failures();
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert!(f[0].contains("at step 2"), "{f:?}");
+    }
+
+    #[test]
+    fn growing_faster_than_the_margin_fails() {
+        let c = curve(&[(1e-9, 1e-12), (1e-3, 1e-6)]);
+        assert_eq!(c.failures().len(), 1);
+        // a deck that stays at round-off keeps the strict tolerance
+        assert!(!curve(&[(2e-8, 1e-16)]).failures().is_empty());
     }
 }

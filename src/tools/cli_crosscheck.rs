@@ -66,7 +66,7 @@ pub fn lammps_pair(deck: &Path, vars: &[(String, Vec<String>)], steps: &[i64]) -
     Ok((read_capture(a.path(), steps)?, read_capture(b.path(), steps)?))
 }
 
-/// Print the verdict of the curves; returns whether it passes.
+/// The verdict of the curves: whether they pass, and one line per quantity.
 pub fn verdict(curves: &[Curve]) -> (bool, String) {
     let mut s = String::new();
     let mut pass = true;

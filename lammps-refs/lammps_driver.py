@@ -2,21 +2,28 @@
 """Run a LAMMPS deck unchanged and capture reference data for dmhs.
 
     python lammps_driver.py DECK --out DIR [--var NAME VALUE ...] [--pre CMD ...] [--engine lammps]
+                            [--checkpoints S1,S2,...] [--perturb ulp]
 
 Writes DIR/log.lammps, DIR/forces0.txt (per-atom forces after the setup of the first `run`),
 DIR/final.txt (per-atom state at the end of the deck) and DIR/meta.json. Formats: README.md.
+With --checkpoints, also DIR/checkpoint.STEP.txt: state and forces at the end of each listed step,
+taken from one run by a dump whose `every` is a variable naming the next listed step (a dump does
+not change the trajectory). With --perturb ulp, every coordinate of every atom is moved by one unit
+in the last place towards the box centre before the first run: LAMMPS' own round-off sensitivity.
 
 How the step-0 forces are taken without editing the deck: the deck text is split at its first
 top-level `run` command (LAMMPS' own line rules: `&` continuation, triple quotes, `#` comments).
-LAMMPS reads the part before it as a file, the driver then issues `run 0 post no` and reads the
-forces, and LAMMPS reads the part from the `run` on as a second file. `run 0` sets the system up
-exactly as the deck's own run will (the atom sort and the neighbour build are idempotent), so the
-trajectory is the one the unchanged deck produces.
+LAMMPS reads the part before it as a file, the driver then defines a dump (`first yes`, every at
+a variable: the listed checkpoints) and LAMMPS reads the part from the `run` on as a second file.
+The dump writes the forces after the setup of the deck's own first run: a dump does not change
+the trajectory, while a separate `run 0` would add a setup the deck does not do (not inert for
+SPH: the ghosts' velocity estimates are stale in a first setup only).
 
 Limits (each is refused with a message, exit 1): a `jump` or `label` before the first run (a loop
 could hold it), an `if` before it whose text mentions `run`, an `include` before it of a file that
 holds a `run`. Variable-named commands (`${cmd} ...`) are not expanded when searching for the run.
-A deck with no top-level run is read whole and `run 0 post no` is issued at its end.
+A deck with no top-level run is read whole and `run 0 post no` is issued at its end (meta.json's
+thermo0 is only filled in then).
 
 Exit codes: 0 ok, 2 LAMMPS rejected the deck (its message is printed), 1 anything else.
 """
@@ -252,6 +259,85 @@ def write_forces(lmp, path):
                 [f[:, 0], f[:, 1], f[:, 2]] + [a for _, a in force])
 
 
+CHECKPOINT_DUMP = "dmhs_refdriver_ckpt"
+CHECKPOINT_PROPS = "dmhs_refdriver_props"
+
+
+def checkpoint_dump(lmp, steps, path):
+    """A dump at the setup of the next run (`first yes`) and at the end of each step in `steps`,
+    with the columns of final.txt and forces0.txt."""
+    get = atom_getter(lmp)
+    cols = ["xu", "yu", "zu", "vx", "vy", "vz", "fx", "fy", "fz"]
+    names = list(cols)
+    if get("drho") is not None and get("esph") is not None:
+        lammps_call(lmp.command, f"compute {CHECKPOINT_PROPS} all property/atom rho esph drho desph")
+        cols += [f"c_{CHECKPOINT_PROPS}[{k}]" for k in range(1, 5)]
+        names += ["rho", "esph", "drho", "desph"]
+    if get("omega") is not None and get("torque") is not None:
+        cols += ["omegax", "omegay", "omegaz", "tqx", "tqy", "tqz"]
+        names += ["omegax", "omegay", "omegaz", "tqx", "tqy", "tqz"]
+    # the next listed step after `step`, as nested ternaries (exact integers in doubles)
+    nxt = "1e15"
+    for s in sorted(set(steps), reverse=True):
+        nxt = f"ternary(step<{s},{s},{nxt})"
+    lammps_call(lmp.command, f'variable {CHECKPOINT_DUMP} equal "{nxt}"')
+    lammps_call(lmp.command, f"dump {CHECKPOINT_DUMP} all custom 1 {path} id type " + " ".join(cols))
+    lammps_call(lmp.command, f"dump_modify {CHECKPOINT_DUMP} every v_{CHECKPOINT_DUMP} "
+                             "first yes format float %.17g sort id")
+    return names
+
+
+FORCE_COLUMNS = ("fx", "fy", "fz", "drho", "desph", "tqx", "tqy", "tqz")
+
+
+def split_checkpoints(dump_path, names, out, steps):
+    """The dump's first snapshot (the setup of the first run) as forces0.txt, the snapshots at
+    `steps` as checkpoint.STEP.txt (state and forces); returns the first snapshot's step."""
+    if not os.path.exists(dump_path):
+        raise DriverError("the deck's first run wrote no step-0 snapshot")
+    with open(dump_path) as f:
+        lines = f.read().splitlines()
+    forces = [k for k, name in enumerate(names) if name in FORCE_COLUMNS]
+    step0 = None
+    i = 0
+    while i < len(lines):
+        if lines[i] != "ITEM: TIMESTEP":
+            raise DriverError(f"{dump_path}:{i + 1}: expected ITEM: TIMESTEP")
+        step = int(lines[i + 1])
+        n = int(lines[i + 3])
+        while not lines[i].startswith("ITEM: ATOMS"):
+            i += 1
+        rows = lines[i + 1:i + 1 + n]
+        i += 1 + n
+        if step0 is None:
+            step0 = step
+            with open(os.path.join(out, "forces0.txt"), "w") as f:
+                f.write("# " + " ".join(["id", "type"] + [names[k] for k in forces]) + "\n")
+                for row in rows:
+                    w = row.split()
+                    f.write(" ".join(w[:2] + [w[2 + k] for k in forces]) + "\n")
+        if step in steps:
+            with open(os.path.join(out, f"checkpoint.{step}.txt"), "w") as f:
+                f.write("# " + " ".join(["id", "type"] + names) + "\n")
+                for row in rows:
+                    f.write(row.strip() + "\n")
+    os.remove(dump_path)
+    return step0
+
+
+def perturb_positions(lmp):
+    """Move every coordinate one ulp towards the box centre (a round-off-sized change)."""
+    import numpy as np
+
+    get = atom_getter(lmp)
+    x = get("x")
+    lo, hi, *_ = lmp.extract_box()
+    dim = lmp.extract_setting("dimension")
+    for k in range(dim):
+        centre = 0.5 * (lo[k] + hi[k])
+        x[:, k] = np.nextafter(x[:, k], centre)
+
+
 def write_final(lmp, path):
     get = atom_getter(lmp)
     xu = unwrap(lmp, get("x"), get("image"))
@@ -338,13 +424,29 @@ def drive(args):
                 if not lmp.extract_setting("box_exist"):
                     raise DriverError("the deck defines no simulation box before its first run")
                 lammps_call(lmp.command, f"compute {KE_COMPUTE} all ke")
-                lammps_call(lmp.command, "run 0 post no")
-                write_forces(lmp, os.path.join(out, "forces0.txt"))
-                thermo0 = thermo_values(lmp)
+                if args.perturb == "ulp":
+                    perturb_positions(lmp)
                 box0 = box(lmp)
-                step0 = thermo0["step"]
+                thermo0 = None
                 if rest:
+                    # step 0 is the setup of the deck's own first run, written by a dump (`first
+                    # yes`); a separate `run 0` would be a second setup the deck does not do, and
+                    # is not inert (fix sph sets the velocity estimates of owned atoms after the
+                    # ghosts were made: ghosts see the old estimates in the first setup only)
+                    steps = [int(s) for s in (args.checkpoints or "").split(",") if s]
+                    dump_path = os.path.join(out, "checkpoints.dump")
+                    names = checkpoint_dump(lmp, steps, dump_path)
                     run_text(lmp, rest, tmp, "rest.in")
+                    try:
+                        lmp.command(f"undump {CHECKPOINT_DUMP}")
+                    except Exception:
+                        pass  # the deck cleared it (`clear`): what was written stays
+                    step0 = split_checkpoints(dump_path, names, out, set(steps))
+                else:
+                    lammps_call(lmp.command, "run 0 post no")
+                    write_forces(lmp, os.path.join(out, "forces0.txt"))
+                    thermo0 = thermo_values(lmp)
+                    step0 = thermo0["step"]
             write_final(lmp, os.path.join(out, "final.txt"))
             meta = {
                 "deck": display_path(deck),
@@ -383,6 +485,11 @@ def parse_args(argv):
     p.add_argument("--pre", action="append", default=[], metavar="CMD",
                    help="a LAMMPS command run before the deck (e.g. 'newton off')")
     p.add_argument("--engine", default="lammps")
+    p.add_argument("--checkpoints", metavar="S1,S2,...",
+                   help="also write checkpoint.STEP.txt (state and forces) at the end of these steps")
+    p.add_argument("--perturb", choices=["ulp"],
+                   help="ulp: move every coordinate one ulp towards the box centre before the "
+                        "first run (measures LAMMPS' own round-off sensitivity)")
     p.add_argument("--whole", action="store_true",
                    help="read the deck unsplit and write only final.txt and meta.json (no step-0 "
                         "capture): shows that the split does not change the trajectory")

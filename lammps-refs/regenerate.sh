@@ -45,7 +45,7 @@ for name in "${names[@]+"${names[@]}"}"; do
     "$py" "$here/lammps_driver.py" "$here/decks/in.$name" --out "$out"
     # bond/break and bond/create decks: the thermo table of the run (event counts per step)
     case "$name" in
-        bond*) awk '/^ +Step/{n++; if (n == 2) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
+        bond*) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
                    "$out/log.lammps" > "$out/thermo.txt" ;;
     esac
     if [ "$chaos" = 1 ]; then

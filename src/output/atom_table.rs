@@ -118,3 +118,17 @@ pub fn state_table(state: &State) -> AtomTable {
     })
 }
 
+
+/// State and forces in one table (the columns of final.txt, then those of forces0.txt), as
+/// lammps_driver.py writes checkpoint.STEP.txt.
+pub fn checkpoint_table(state: &State) -> AtomTable {
+    let (s, f) = (state_table(state), forces_table(state));
+    let mut t = AtomTable { columns: s.columns, rows: s.rows };
+    t.columns.extend(f.columns);
+    for (id, (_, vals)) in f.rows {
+        if let Some(row) = t.rows.get_mut(&id) {
+            row.1.extend(vals);
+        }
+    }
+    t
+}

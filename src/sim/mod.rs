@@ -51,6 +51,10 @@ pub struct Simulation {
     /// Per-atom forces captured after the setup of the first run (for crosscheck).
     pub capture_setup: Option<crate::output::atom_table::AtomTable>,
     pub want_capture: bool,
+    /// Crosscheck checkpoints: state and forces at the end of steps first + 1, 2, 4, 8, ...
+    /// (first: the step of the first run) and at the end of every run, in step order.
+    pub capture_checkpoints: Vec<(i64, crate::output::atom_table::AtomTable)>,
+    pub capture_first_step: Option<i64>,
     /// `dmhs check`: commands are built but `run` does not run.
     pub check_only: bool,
     pub checked_runs: usize,
@@ -88,6 +92,8 @@ impl Simulation {
             base_dir: None,
             capture_setup: None,
             want_capture: false,
+            capture_checkpoints: Vec::new(),
+            capture_first_step: None,
             check_only: false,
             checked_runs: 0,
             guard: Default::default(),

@@ -360,13 +360,13 @@ impl Simulation {
             self.state.step,
             crate::output::format::g(self.state.dt)
         ));
-        if self.want_capture && self.capture_setup.is_none() {
-            // crosscheck: the forces of a separate setup before the first run, exactly as
-            // lammps_driver.py issues `run 0 post no` before the deck's first run in LAMMPS
-            self.setup(opts.pre)?;
-            self.capture_setup = Some(crate::output::atom_table::forces_table(&self.state));
-        }
         self.setup(opts.pre)?;
+        if self.want_capture && self.capture_setup.is_none() {
+            // crosscheck: the forces after the setup of the first run, as lammps_driver.py's
+            // dump writes them (`first yes`)
+            self.capture_setup = Some(crate::output::atom_table::forces_table(&self.state));
+            self.capture_first_step = Some(self.state.step);
+        }
         let (_, warnings) = crate::sim::stability::report(self, &crate::sim::stability::limits(self, true));
         for w in warnings {
             self.out.print(&format!("WARNING: {w}"));
@@ -400,7 +400,16 @@ impl Simulation {
                 }
                 self.timers.charge(Stage::Output);
             }
+            if let Some(first) = self.capture_first_step {
+                let k = self.state.step - first;
+                if k > 0 && k & (k - 1) == 0 {
+                    self.capture_checkpoint();
+                }
+            }
             progress.tick();
+        }
+        if result.is_ok() && self.capture_first_step.is_some() {
+            self.capture_checkpoint();
         }
         progress.finish();
         let loop_time = t0.elapsed().as_secs_f64();
@@ -419,6 +428,14 @@ impl Simulation {
         self.out.flush();
         // thermo keywords and variables refer to the current run window until the next run
         result
+    }
+
+    /// A crosscheck checkpoint now (once per step number).
+    fn capture_checkpoint(&mut self) {
+        let step = self.state.step;
+        if self.capture_checkpoints.last().map(|c| c.0) != Some(step) {
+            self.capture_checkpoints.push((step, crate::output::atom_table::checkpoint_table(&self.state)));
+        }
     }
 
     /// Energies are needed on thermo steps, the last step and dump steps.

@@ -16,8 +16,10 @@ usage:
   dmhs run DECK [options]           run an input deck
   dmhs -in DECK [options]           the same, LAMMPS style
   dmhs check DECK [options]         parse and build the deck without running; print the set-up
-  dmhs crosscheck DECK [options]    run DECK in dmhs and in LAMMPS; compare per-atom forces at
-                                    step 0 and positions/velocities at the end
+  dmhs crosscheck DECK [options]    run DECK in dmhs and in LAMMPS (twice: as written and with
+                                    every coordinate nudged by one ulp); compare per-atom forces,
+                                    positions, velocities at step 0, at steps 1, 2, 4, 8, ...
+                                    and at the end, against LAMMPS' own round-off divergence
                                     (--against liggghts: in LIGGGHTS 3.8, for granular decks)
   dmhs capture DECK --out DIR       dmhs' step-0 forces and final state of DECK as the files
                                     lammps-refs/lammps_driver.py writes for LAMMPS
@@ -39,9 +41,10 @@ options:
   -echo screen|log|both|none
   -threads N           worker threads (default: all cores; results do not depend on it)
   -h, -help            this help;  -version: the version of dmhs
-  crosscheck: --force-tol X (default 1e-12, relative to the largest force)
+  crosscheck: --force-tol X (default 1e-12, relative to the largest force in the run)
               --pos-tol X   (default 1e-9, relative to the box length)
-              --vel-tol X   (default 1e-8, relative to the largest speed)
+              --vel-tol X   (default 1e-8, relative to the largest speed in the run)
+              --curve FILE  also write the divergence table to FILE
   bench: --threads-list 1,2 (dmhs thread counts to time; default 1,2)
          --repeat N    (N interleaved rounds of all engines; medians and the
                         range of the per-round ratios; default 1)
@@ -66,6 +69,7 @@ struct Cli {
     json: Option<PathBuf>,
     img: Option<PathBuf>,
     out: Option<PathBuf>,
+    curve: Option<PathBuf>,
 }
 
 fn parse(args: &[String]) -> Result<Cli, String> {
@@ -150,6 +154,10 @@ fn parse(args: &[String]) -> Result<Cli, String> {
             }
             "--pos-tol" => {
                 c.pos_tol = Some(float(value(i, a)?, a)?);
+                i += 2;
+            }
+            "--curve" => {
+                c.curve = Some(PathBuf::from(value(i, a)?));
                 i += 2;
             }
             "--vel-tol" => {
@@ -244,7 +252,7 @@ fn dispatch(cli: &Cli) -> i32 {
         }
         "" | "run" => run_cmd(cli),
         "check" => check_cmd(cli),
-        "crosscheck" => crate::tools::cli_crosscheck::crosscheck_cmd(&cli.decks, &cli.opts, &cli.against, [cli.force_tol, cli.pos_tol, cli.vel_tol]),
+        "crosscheck" => crate::tools::cli_crosscheck::crosscheck_cmd(&cli.decks, &cli.opts, &cli.against, [cli.force_tol, cli.pos_tol, cli.vel_tol], cli.curve.as_deref()),
         "capture" => crate::tools::cli_crosscheck::capture_cmd(&cli.decks, &cli.opts, cli.out.as_deref()),
         "validate" => crate::tools::validate::validate_cmd(&cli.decks, cli.quick, cli.engine.as_deref(), cli.json.as_deref(), cli.img.as_deref()),
         _ => unreachable!(),

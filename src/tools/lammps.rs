@@ -69,13 +69,18 @@ pub fn library_path(python: &Path) -> String {
     }
 }
 
-/// Run a deck through the driver; returns the output directory's path.
+/// Run a deck through the driver, writing into `out`.
 pub fn run_driver(deck: &Path, vars: &[(String, Vec<String>)], out: &Path) -> Result<(), String> {
+    run_driver_with(deck, vars, out, &[])
+}
+
+/// [`run_driver`] with more driver arguments (`--checkpoints`, `--perturb`).
+pub fn run_driver_with(deck: &Path, vars: &[(String, Vec<String>)], out: &Path, extra: &[String]) -> Result<(), String> {
     let python = find_python()?;
     let script = out.join("lammps_driver.py");
     std::fs::write(&script, DRIVER).map_err(|e| format!("cannot write driver: {e}"))?;
     let mut cmd = Command::new(&python);
-    cmd.arg(&script).arg(deck).arg("--out").arg(out).env("LD_LIBRARY_PATH", library_path(&python));
+    cmd.arg(&script).arg(deck).arg("--out").arg(out).args(extra).env("LD_LIBRARY_PATH", library_path(&python));
     for (name, values) in vars {
         if values.len() != 1 {
             return Err(format!("-var {name}: the LAMMPS driver takes one value per variable"));

@@ -39,11 +39,19 @@ pub struct ContactForce<T = f64> {
     pub tj: [T; 3],
 }
 
+/// The most history values per contact a model keeps (LAMMPS' size_history of pair granular:
+/// a mindlin_rescale spring and its contact radius, a rolling spring and a twisting spring).
+pub const MAX_HISTORY: usize = 10;
+
 /// A granular contact law.
 pub trait ContactModel: Sync {
     type Params: Sync;
-    /// History values per contact (0: the model keeps none).
+    /// The most history values per contact (0: the model keeps none; at most [`MAX_HISTORY`]).
     const HISTORY: usize;
+    /// History values per contact of this instance (those of its models, up to `HISTORY`).
+    fn history_size(&self) -> usize {
+        Self::HISTORY
+    }
     fn params(&self, ti: usize, tj: usize) -> &Self::Params;
     /// The contact of an overlapping pair; `hist` holds its history (empty without one), and
     /// `update` is false during run setup (LAMMPS' `shearupdate`).
@@ -54,16 +62,18 @@ pub trait ContactModel: Sync {
         let mut o = LanesOut::default();
         let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
         let c = b.contact(&vi, &vj, &wi, &wj);
-        let hist = b.hist();
+        let hist = b.hist::<MAX_HISTORY>();
         for l in 0..b.n {
             let pick = |a: &[L; 3]| [a[0][l], a[1][l], a[2][l]];
             let (vil, vjl, wil, wjl) = (pick(&vi), pick(&vj), pick(&wi), pick(&wj));
             let one = Contact { del: pick(&c.del), rsq: c.rsq[l], radi: c.radi[l], radj: c.radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: c.mi[l], mj: c.mj[l] };
-            let mut h = pick(&hist);
+            let mut h: [f64; MAX_HISTORY] = std::array::from_fn(|d| hist[d][l]);
             let (ti, tj) = b.types(l);
-            let r = Self::contact(self.params(ti, tj), &one, &mut h[..Self::HISTORY], update, dt);
-            for (d, hd) in h.iter().enumerate() {
+            let r = Self::contact(self.params(ti, tj), &one, &mut h[..b.hsize], update, dt);
+            for (d, hd) in h[..b.hsize].iter().enumerate() {
                 o.hist[d][l] = *hd;
+            }
+            for d in 0..3 {
                 o.force.f[d][l] = r.f[d];
                 o.force.ti[d][l] = r.ti[d];
                 o.force.tj[d][l] = r.tj[d];
@@ -120,9 +130,9 @@ impl LaneSrc<'_> {
         let idx = &self.ij[which];
         lanes(|l| a[idx[l]])
     }
-    /// The history values (zeros beyond `hsize`).
+    /// The first `N` history values (zeros beyond `hsize`).
     #[inline(always)]
-    pub fn hist(&self) -> [L; 3] {
+    pub fn hist<const N: usize>(&self) -> [L; N] {
         let (e, h) = (&self.e, self.hsize);
         std::array::from_fn(|d| lanes(|l| if d < h { self.values[e[l] * h + d] } else { 0.0 }))
     }
@@ -155,8 +165,16 @@ impl LaneSrc<'_> {
 #[derive(Clone, Default)]
 pub struct LanesOut {
     pub force: ContactForce<L>,
-    /// the history values after the evaluation
-    pub hist: [L; 3],
+    /// the history values after the evaluation (the first `hsize` are used)
+    pub hist: [L; MAX_HISTORY],
+}
+
+impl LanesOut {
+    /// The results of a model with `N` history values.
+    #[inline(always)]
+    pub fn new<const N: usize>(force: ContactForce<L>, h: [L; N]) -> LanesOut {
+        LanesOut { force, hist: std::array::from_fn(|d| if d < N { h[d] } else { L::default() }) }
+    }
 }
 
 /// Compute all contacts of the list. `history` must be given when `M::HISTORY > 0` (and
@@ -183,8 +201,8 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let nall = a.nall();
     assert!(a.radius.len() == nall && a.rmass.len() == nall && a.omega.len() == nall && a.v.len() == nall && a.typ.len() == nall);
     assert!(out.f.len() >= nlocal && out.torque.len() >= nlocal);
-    let hsize = M::HISTORY;
-    assert!(hsize <= 3);
+    let hsize = model.history_size();
+    assert!(hsize <= M::HISTORY && M::HISTORY <= MAX_HISTORY);
     let mut no_history: Vec<HistoryChunk> = vec![];
     let hist: &mut Vec<HistoryChunk> = match history {
         Some(h) if hsize > 0 => {

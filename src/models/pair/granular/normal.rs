@@ -12,7 +12,7 @@
 //! Mixing (unset I,J pairs): geometric means, except E: Kn = 4/3 E_eff(E_i, nu_i, E_j, nu_j)
 //! (measured in LAMMPS 2025).
 
-use super::{geometric, nn, Coeff, Coeffs, Ctx, Flags, Style};
+use super::{geometric, nn, poisson, Coeff, Coeffs, Ctx, Flags, Style};
 use std::f64::consts::PI;
 
 /// The normal force law of one type pair (coefficients as the contact uses them).
@@ -32,11 +32,11 @@ pub const DAMP_COEFF: usize = 1;
 const FOURTHIRDS: f64 = 4.0 / 3.0;
 
 const HOOKE: &[Coeff] = &[nn("Kn", ""), nn("eta_n0", "normal damping")];
-const MATERIAL: &[Coeff] = &[nn("E", "Young's modulus"), nn("eta_n0", "normal damping"), Coeff::any("nu", "Poisson's ratio")];
+const MATERIAL: &[Coeff] = &[nn("E", "Young's modulus"), nn("eta_n0", "normal damping"), poisson()];
 const DMT: &[Coeff] = &[
     nn("E", "Young's modulus"),
     nn("eta_n0", "normal damping"),
-    Coeff::any("nu", "Poisson's ratio"),
+    poisson(),
     Coeff::any("gamma", "surface energy"),
 ];
 
@@ -55,7 +55,7 @@ pub static STYLES: &[Style<Normal>] = &[
         name: "hertz/material",
         coeffs: MATERIAL,
         history: 0,
-        flags: Flags { contact_radius: true, ..Flags::NONE },
+        flags: Flags { contact_radius: true, material: true, ..Flags::NONE },
         build: |c, ctx| Normal::Hertz { k: material_k(c, ctx) },
         mix: mix_material,
     },
@@ -63,7 +63,7 @@ pub static STYLES: &[Style<Normal>] = &[
         name: "dmt",
         coeffs: DMT,
         history: 0,
-        flags: Flags { contact_radius: true, cohesive: true, ..Flags::NONE },
+        flags: Flags { contact_radius: true, cohesive: true, material: true, ..Flags::NONE },
         build: |c, ctx| Normal::Dmt { k: material_k(c, ctx), cohesion: c[3] },
         mix: mix_material,
     },

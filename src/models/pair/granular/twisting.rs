@@ -19,6 +19,8 @@ pub struct TwistingIn {
     pub fncrit: f64,
     /// contact radius
     pub a: f64,
+    /// the tangential damping x_gt eta_n
+    pub tangential_damp: f64,
     pub update: bool,
     pub dt: f64,
 }

@@ -251,10 +251,12 @@ pub fn model_syntax() -> &'static str {
     static S: OnceLock<String> = OnceLock::new();
     S.get_or_init(|| {
         format!(
-            "({}) [damping {}] tangential ({}) [limit_damping]",
+            "({}) [damping {}] tangential ({}) [rolling ({})] [twisting ({})] [limit_damping]",
             table_syntax(normal::STYLES),
             names(damping::STYLES).join("|"),
-            table_syntax(tangential::STYLES)
+            table_syntax(tangential::STYLES),
+            table_syntax(rolling::STYLES),
+            table_syntax(twisting::STYLES)
         )
     })
 }
@@ -755,8 +757,10 @@ mod tests {
         assert!(e.contains("normal model `jkr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt"), "{e}");
         let e = err("hooke 1 1 damping tsuij tangential linear_history 1 1 1");
         assert!(e.contains("`tsuij`") && e.contains("coeff_restitution") && e.contains("did you mean `tsuji`"), "{e}");
-        let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sds 1 1 1");
-        assert!(e.contains("rolling model `sds` is not supported") && e.contains("no rolling models yet"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sdss 1 1 1");
+        assert!(e.contains("rolling model `sdss` is not supported") && e.contains("supported: sds"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 heat area 1");
+        assert!(e.contains("heat model `area` is not supported") && e.contains("no heat models yet"), "{e}");
         // ranges: Poisson's ratio in (-1, 0.5]; Kt NULL only from material properties
         let e = err("hertz/material 1e6 0.5 0.6 tangential linear_history 1 1 1");
         assert!(e.contains("nu (Poisson's ratio) must be in (-1, 0.5], found 0.6"), "{e}");
@@ -766,7 +770,8 @@ mod tests {
         assert!(e.contains("mindlin with Kt NULL needs a normal model with material properties"), "{e}");
         let e = err("hertz 1e6 0.5 tangential mindlin_rescale -2 1 1");
         assert!(e.contains("Kt (NULL: from E and nu) must be >= 0 or NULL"), "{e}");
-
+        let e = err("hertz 1e6 0.5 tangential mindlin 1 1 1 rolling sds 1 1 -1");
+        assert!(e.contains("mu_roll (rolling friction coefficient) must be >= 0"), "{e}");
         let e = err("hertz/material 1e6 0.5 tangential linear_history 1 1 1");
         assert!(e.contains("nu (Poisson's ratio)"), "{e}");
         let e = err("hooke 1 -1 tangential linear_history 1 1 1");
@@ -791,19 +796,21 @@ mod tests {
 
     #[test]
     fn history_grows_with_the_models() {
-        // LAMMPS' order; rescale's 4th value keeps its sign from the other side
-        let s = parse("hertz/material 1e6 0.5 0.3 tangential mindlin_rescale NULL 0.5 0.2", false).unwrap();
+        // LAMMPS' order: tangential, rolling, twisting; rescale's 4th value, rolling and
+        // twisting keep their sign from the other side
+        let s = parse("hertz/material 1e6 0.5 0.3 tangential mindlin_rescale NULL 0.5 0.2 rolling sds 1 2 3 twisting marshall", false).unwrap();
         let m = GranModel::build(&s, false);
-        assert_eq!(m.history_index, [0, 0, 0, 4, 4, 4]);
-        assert_eq!(m.history_size, 4);
-        assert_eq!(m.history_keep, 0b1000);
+        assert_eq!(m.history_index, [0, 0, 0, 4, 7, 10]);
+        assert_eq!(m.history_size, 10);
+        assert_eq!(m.history_keep, 0b11_1111_1000);
         // Kt NULL: 8 G_eff (pair), 8 G_wall (wall)
         let g = tangential::mix_stiffness_g(1e6, 1e6, 0.3, 0.3);
         assert_eq!(m.tangential.k_mu(), (8.0 * g, 0.2));
         let w = GranModel::build(&s, true);
         assert_eq!(w.tangential.k_mu().0, 8.0 * tangential::mix_stiffness_g_wall(1e6, 0.3));
-        let m = GranModel::build(&parse("hooke 1 1 tangential mindlin_classic 1 1 1", false).unwrap(), false);
-        assert_eq!((m.history_size, m.history_keep), (3, 0));
+        assert_eq!(m.twisting, Some(Twisting::Marshall { k_tang: 8.0 * g, mu_tang: 0.2 }));
+        let m = GranModel::build(&parse("hooke 1 1 tangential mindlin_classic 1 1 1 twisting sds 1 1 1", false).unwrap(), false);
+        assert_eq!((m.history_size, m.history_keep), (6, 0b111_000));
         assert_eq!(m.tangential, Tangential::LinearHistoryClassic { k: 1.0, xt: 1.0, mu: 1.0 });
     }
 

@@ -53,6 +53,17 @@ pub trait ContactModel: Sync {
         Self::HISTORY
     }
     fn params(&self, ti: usize, tj: usize) -> &Self::Params;
+    /// Some pair interacts beyond touching (LAMMPS beyond_contact: a cohesive contact that
+    /// holds until the pull-off distance); then [`ContactModel::touch`] decides, and touch flags
+    /// are kept even without history values.
+    fn beyond_contact(&self) -> bool {
+        false
+    }
+    /// Whether a listed pair is in contact, given whether it was (only for `beyond_contact`).
+    fn touch(_p: &Self::Params, rsq: f64, radi: f64, radj: f64, _was: bool) -> bool {
+        let radsum = radi + radj;
+        rsq < radsum * radsum
+    }
     /// The contact of an overlapping pair; `hist` holds its history (empty without one), and
     /// `update` is false during run setup (LAMMPS' `shearupdate`).
     fn contact(p: &Self::Params, c: &Contact, hist: &mut [f64], update: bool, dt: f64) -> ContactForce;
@@ -181,7 +192,7 @@ impl LanesOut {
 /// aligned with the list by [`ContactHistory::rebuilt`]).
 pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut PairOutput, history: Option<&mut ContactHistory>) -> Tally {
     let special = input.list.has_special;
-    match (input.eflag, special || input.type_filter.is_some()) {
+    match (input.eflag, special || input.type_filter.is_some() || model.beyond_contact()) {
         (false, false) => contact_loop::<M, false, false>(model, input, out, history),
         (true, false) => contact_loop::<M, true, false>(model, input, out, history),
         (false, true) => contact_loop::<M, false, true>(model, input, out, history),
@@ -189,7 +200,7 @@ pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut
     }
 }
 
-/// `EXTRA`: special weights or a type filter (hybrid) apply.
+/// `EXTRA`: special weights, a type filter (hybrid) or a beyond-contact model apply.
 fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     model: &M,
     input: &PairInput,
@@ -201,16 +212,17 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let nall = a.nall();
     assert!(a.radius.len() == nall && a.rmass.len() == nall && a.omega.len() == nall && a.v.len() == nall && a.typ.len() == nall);
     assert!(out.f.len() >= nlocal && out.torque.len() >= nlocal);
+    let beyond = model.beyond_contact();
     let hsize = model.history_size();
     assert!(hsize <= M::HISTORY && M::HISTORY <= MAX_HISTORY);
     let mut no_history: Vec<HistoryChunk> = vec![];
     let hist: &mut Vec<HistoryChunk> = match history {
-        Some(h) if hsize > 0 => {
+        Some(h) if hsize > 0 || beyond => {
             assert!(h.size() == hsize && h.chunks.len() == input.list.chunks.len(), "contact history not aligned with the neighbour list");
             &mut h.chunks
         }
         _ => {
-            assert!(hsize == 0, "a contact model with history needs its history store");
+            assert!(hsize == 0 && !beyond, "a contact model with history needs its history store");
             &mut no_history
         }
     };
@@ -227,7 +239,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
         let mut empty = HistoryChunk::default();
-        let h = if hsize > 0 { &mut hist[c] } else { &mut empty };
+        let h = if hsize > 0 || beyond { &mut hist[c] } else { &mut empty };
         let (touch, values): (&mut [u8], &mut [f64]) = (&mut h.touch[..], &mut h.values[..]);
         let mut b = Batch::default();
         // evaluate the batch and apply its results in list order
@@ -293,7 +305,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let radsum = radi + radj;
                 let e = k0 + k;
-                let touching = rsq < radsum * radsum;
+                let touching = if beyond { M::touch(model.params(ti, typ[j]), rsq, radi, radj, touch[e] != 0) } else { rsq < radsum * radsum };
                 if !EXTRA {
                     // the common case without branches on the (unpredictable) overlap test:
                     // every entry is written to the next lane, which is kept only if touching
@@ -316,7 +328,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     continue;
                 }
                 if !touching {
-                    if hsize > 0 && touch[e] != 0 {
+                    if (hsize > 0 || beyond) && touch[e] != 0 {
                         touch[e] = 0;
                         values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
                     }
@@ -332,7 +344,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 if factor == 0.0 {
                     continue;
                 }
-                if hsize > 0 {
+                if hsize > 0 || beyond {
                     touch[e] = 1;
                 }
                 b.i[n] = i;

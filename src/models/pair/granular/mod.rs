@@ -116,7 +116,7 @@ pub struct Flags {
     pub cohesive: bool,
     /// refuses a cohesive normal model (LAMMPS allow_cohesion = 0)
     pub no_cohesion: bool,
-    /// interacts beyond touching (LAMMPS beyond_contact): not supported by the contact loop
+    /// interacts beyond touching (LAMMPS beyond_contact; not against fix wall/gran here)
     pub beyond_contact: bool,
     /// a normal model with E and nu (LAMMPS material_properties): mindlin's Kt may be NULL
     pub material: bool,
@@ -358,8 +358,8 @@ impl GranSpec {
             if n.flags.no_cohesion && normal.flags.cohesive {
                 return Err(a.error_at(n.word, format!("cannot use {} model with a cohesive normal model, {}", n.name, normal.name), "cohesive normal model"));
             }
-            if n.flags.beyond_contact {
-                return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs", n.name), "not supported"));
+            if n.flags.beyond_contact && wall {
+                return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs' fix wall/gran", n.name), "not supported on walls"));
             }
             total += n.history;
             if total > MAX_HISTORY {
@@ -502,7 +502,7 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
     let vtr = [vt[0] - cr[0], vt[1] - cr[1], vt[2] - cr[2]];
 
     // normal force, damping, F_n,crit
-    let a = if m.contact_radius { (delta * reff).sqrt() } else { 0.0 };
+    let a = if m.contact_radius { m.normal.contact_radius(delta * reff, reff) } else { 0.0 };
     let fnormal = m.normal.force(delta, reff, a);
     let damp_prefactor = m.damping.prefactor(meff, a, fnormal, delta);
     let fdamp = -damp_prefactor * vnnr;
@@ -567,15 +567,23 @@ fn add_opposite(out: &mut ContactForce, t: [f64; 3], wall: bool) {
     }
 }
 
-/// The per-type-pair models as a [`ContactModel`], and the history values per contact (the
-/// most any pair's models keep: LAMMPS' size_history).
-pub struct GranularModels(pub TypeTable<GranModel>, pub usize);
+/// The per-type-pair models as a [`ContactModel`], the history values per contact (the most
+/// any pair's models keep: LAMMPS' size_history), and whether some pair interacts beyond
+/// touching (JKR).
+pub struct GranularModels(pub TypeTable<GranModel>, pub usize, pub bool);
 
 impl ContactModel for GranularModels {
     type Params = GranModel;
     const HISTORY: usize = MAX_HISTORY;
     fn history_size(&self) -> usize {
         self.1
+    }
+    fn beyond_contact(&self) -> bool {
+        self.2
+    }
+    #[inline(always)]
+    fn touch(m: &GranModel, rsq: f64, radi: f64, radj: f64, was: bool) -> bool {
+        m.normal.touch(rsq, radi, radj, was)
     }
     #[inline(always)]
     fn params(&self, ti: usize, tj: usize) -> &GranModel {
@@ -603,7 +611,7 @@ impl Granular {
         Ok(Granular {
             cut_global,
             coeff: TypeTable::new(0),
-            models: GranularModels(TypeTable::new(0), 0),
+            models: GranularModels(TypeTable::new(0), 0, false),
             types: GranTypes::default(),
             history: ContactHistory::new(0),
         })
@@ -652,7 +660,7 @@ impl PairStyle for Granular {
         self.grow(ntypes);
         self.types.check(ntypes, active, "granular")?;
         let mut models = TypeTable::new(ntypes);
-        let (mut size, mut keep) = (0, 0u16);
+        let (mut size, mut keep, mut beyond) = (0, 0u16, false);
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if let Some(a) = active {
@@ -669,10 +677,11 @@ impl PairStyle for Granular {
                 };
                 let m = GranModel::build(&s, false);
                 (size, keep) = (size.max(m.history_size), keep | m.history_keep);
+                beyond |= s.normal.style.flags.beyond_contact;
                 models.set(i, j, m);
             }
         }
-        self.models = GranularModels(models, size);
+        self.models = GranularModels(models, size, beyond);
         self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect());
         Ok(())
     }
@@ -683,14 +692,26 @@ impl PairStyle for Granular {
         } else if self.cut_global >= 0.0 {
             self.cut_global
         } else {
-            self.types.cutoff(it, jt)
+            // a cohesive contact holds up to the pull-off distance (LAMMPS init_one)
+            let r = |t: usize| self.types.maxrad.get(t).copied().unwrap_or(0.0);
+            self.types.cutoff(it, jt) + m.normal.pulloff_distance(r(it), r(jt))
         }
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         compute_contacts(&self.models, input, out, Some(&mut self.history))
     }
     fn rebuilt(&mut self, input: &PairInput, _order: &[usize]) {
-        rebuild_history(&mut self.history, input);
+        if !self.models.2 {
+            return rebuild_history(&mut self.history, input);
+        }
+        // a contact kept over the rebuild was touching: JKR's test with its pull-off distance
+        let a = input.atoms;
+        let (x, radius, typ, models) = (&a.x, &a.radius, &a.typ, &self.models);
+        self.history.rebuilt(a, input.list, |i, j| {
+            let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            models.params(typ[i], typ[j]).normal.touch(rsq, radius[i], radius[j], true)
+        });
     }
     fn histories(&mut self) -> Vec<&mut ContactHistory> {
         vec![&mut self.history]
@@ -753,8 +774,15 @@ mod tests {
 
     #[test]
     fn errors_name_what_the_tables_support() {
-        let e = err("jkr 1 2 3 4 tangential linear_history 1 1 1");
-        assert!(e.contains("normal model `jkr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt"), "{e}");
+        let e = err("mdr 1 2 3 4 5 6 tangential linear_history 1 1 1");
+        assert!(e.contains("normal model `mdr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt, jkr"), "{e}");
+        // JKR: cohesive, and not on dmhs' walls
+        let e = err("jkr 1e6 0.5 0.3 1 damping coeff_restitution tangential linear_history 1 1 1");
+        assert!(e.contains("cannot use coeff_restitution model with a cohesive normal model, jkr"), "{e}");
+        let w = words("jkr 1e6 0.5 0.3 1 tangential linear_history 1 1 1 zplane 0 NULL");
+        let mut a = Args::from_words(&w, Span::new(Default::default(), 0, 1), "");
+        let e = GranSpec::parse(&mut a, true).err().unwrap();
+        assert!(e.message.contains("jkr interacts beyond contact"), "{}", e.message);
         let e = err("hooke 1 1 damping tsuij tangential linear_history 1 1 1");
         assert!(e.contains("`tsuij`") && e.contains("coeff_restitution") && e.contains("did you mean `tsuji`"), "{e}");
         let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sdss 1 1 1");

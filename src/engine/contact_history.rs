@@ -11,8 +11,9 @@
 //!   is wrapped. The store keeps the IDs and effective images of every atom index as they were at
 //!   the last rebuild, so it can name its contacts after the atoms have moved.
 //! * A contact is stored from the side of the atom that lists it. Listed from the other side, its
-//!   values are negated (all tangential histories flip sign with the pair, as LAMMPS' default
-//!   history transfer). A pair with a periodic image is listed by both owned atoms (each keeps its
+//!   values are negated (tangential springs flip sign with the pair, LAMMPS' default history
+//!   transfer), except those the model marks as kept (LAMMPS' transfer_history_factor +1: a
+//!   contact radius, a rolling or twisting spring, which do not depend on the order of the pair). A pair with a periodic image is listed by both owned atoms (each keeps its
 //!   own record); a pair of owned atoms is listed once.
 //! * Only contacts that touch after the rebuild are looked up: the pair loop zeroes the history of
 //!   every pair that does not touch, so carrying anything else would change nothing.
@@ -44,6 +45,8 @@ pub struct ContactRecord {
 #[derive(Clone, Debug, Default)]
 pub struct ContactHistory {
     size: usize,
+    /// per value: the same from the other side (not negated)
+    keep: Vec<bool>,
     pub chunks: Vec<HistoryChunk>,
     /// Atom ID and effective image of every atom index (owned, then ghosts) at the last rebuild.
     tags: Vec<i64>,
@@ -58,7 +61,19 @@ pub struct ContactHistory {
 impl ContactHistory {
     /// A store for `size` values per contact.
     pub fn new(size: usize) -> ContactHistory {
-        ContactHistory { size, ..ContactHistory::default() }
+        ContactHistory { size, keep: vec![false; size], ..ContactHistory::default() }
+    }
+
+    /// Change the values per contact and which of them keep their sign from the other side
+    /// (`keep.len()` values). A new size drops the stored contacts (they are aligned again at
+    /// the next rebuild); contacts pending from a restart file stay.
+    pub fn set_layout(&mut self, keep: Vec<bool>) {
+        if keep.len() != self.size {
+            self.size = keep.len();
+            self.chunks.clear();
+            self.list.clear();
+        }
+        self.keep = keep;
     }
 
     pub fn size(&self) -> usize {
@@ -153,6 +168,7 @@ impl ContactHistory {
 
         let tags = &self.tags;
         let eimg = &self.eimg;
+        let keep = &self.keep;
         self.chunks = list
             .chunks
             .par_iter()
@@ -176,8 +192,8 @@ impl ContactHistory {
                             dst.copy_from_slice(&r.values);
                             h.touch[e] = 1;
                         } else if let Some(r) = find(tags[j], tags[i], neg3i(image)) {
-                            for (d, s) in dst.iter_mut().zip(&r.values) {
-                                *d = -*s;
+                            for ((d, s), &keep) in dst.iter_mut().zip(&r.values).zip(keep) {
+                                *d = if keep { *s } else { -*s };
                             }
                             h.touch[e] = 1;
                         }

@@ -19,6 +19,7 @@
 use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::classic::Classic;
 use crate::models::pair::contact::Contact;
+use crate::models::pair::contact::MAX_HISTORY;
 use crate::models::pair::granular::{granular_contact, model_syntax, GranModel, GranSpec};
 use crate::engine::state::{RunError, State};
 use crate::engine::par::{ranges, AtomsMut};
@@ -161,7 +162,7 @@ impl FixWallGran {
             return Err(a.error_at(w, "cannot use a wall in a periodic dimension", "periodic dimension"));
         }
         let array = format!("wall/gran:{id}");
-        state.atoms.extra_array(&array, 3);
+        state.atoms.extra_array(&array, width(&model));
         Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array })
     }
 
@@ -185,15 +186,24 @@ impl FixWallGran {
     }
 
     fn apply(&mut self, state: &mut State, update: bool) -> Result<(), RunError> {
+        if width(&self.model) == 3 {
+            self.apply_w::<3>(state, update)
+        } else {
+            self.apply_w::<MAX_HISTORY>(state, update)
+        }
+    }
+
+    /// `W` history values per atom (the model's, padded with zeros).
+    fn apply_w<const W: usize>(&mut self, state: &mut State, update: bool) -> Result<(), RunError> {
         let dt = state.dt;
         let (wlo, whi, vwall) = self.wall_now(state);
         let w0 = [0.0f64; 3];
-        let k = state.atoms.extra_array(&self.array, 3);
+        let k = state.atoms.extra_array(&self.array, W);
         let a = &mut state.atoms;
         let n = a.nlocal;
         let mut hist = std::mem::take(&mut a.extra[k].data);
         let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
-        let (h3, _) = hist[..3 * n].as_chunks_mut::<3>();
+        let (h3, _) = hist[..W * n].as_chunks_mut::<W>();
         let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3));
         let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
         // atoms are independent: ranges of them may run in parallel (same bits)
@@ -214,8 +224,8 @@ impl FixWallGran {
                 if rsq >= radi * radi {
                     // no contact: history zero (written only if it is not, so the many atoms
                     // away from the wall do not dirty their history's cache lines)
-                    if (h[0].to_bits() | h[1].to_bits() | h[2].to_bits()) != 0 {
-                        *h = [0.0; 3];
+                    if h.iter().fold(0, |b, x| b | x.to_bits()) != 0 {
+                        *h = [0.0; W];
                     }
                     continue;
                 }
@@ -224,7 +234,7 @@ impl FixWallGran {
                 dx[dim] = dist;
                 let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
                 let c = Contact { del: dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, mi: rmass[i], mj: 0.0 };
-                let r = granular_contact(model, &c, true, &mut hv, update, dt);
+                let r = granular_contact(model, &c, true, &mut hv[..model.history_size], update, dt);
                 *h = hv;
                 for d in 0..3 {
                     f[i][d] += r.f[d];
@@ -235,6 +245,11 @@ impl FixWallGran {
         a.extra[k].data = hist;
         Ok(())
     }
+}
+
+/// History values per atom: 3 (as before the models that keep more), or the most any keeps.
+fn width(model: &GranModel) -> usize {
+    if model.history_size <= 3 { 3 } else { MAX_HISTORY }
 }
 
 impl Fix for FixWallGran {

@@ -39,12 +39,31 @@ pub struct ContactForce<T = f64> {
     pub tj: [T; 3],
 }
 
+/// The most history values per contact a model keeps (LAMMPS' size_history of pair granular:
+/// a mindlin_rescale spring and its contact radius, a rolling spring and a twisting spring).
+pub const MAX_HISTORY: usize = 10;
+
 /// A granular contact law.
 pub trait ContactModel: Sync {
     type Params: Sync;
-    /// History values per contact (0: the model keeps none).
+    /// The most history values per contact (0: the model keeps none; at most [`MAX_HISTORY`]).
     const HISTORY: usize;
+    /// History values per contact of this instance (those of its models, up to `HISTORY`).
+    fn history_size(&self) -> usize {
+        Self::HISTORY
+    }
     fn params(&self, ti: usize, tj: usize) -> &Self::Params;
+    /// Some pair interacts beyond touching (LAMMPS beyond_contact: a cohesive contact that
+    /// holds until the pull-off distance); then [`ContactModel::touch`] decides, and touch flags
+    /// are kept even without history values.
+    fn beyond_contact(&self) -> bool {
+        false
+    }
+    /// Whether a listed pair is in contact, given whether it was (only for `beyond_contact`).
+    fn touch(_p: &Self::Params, rsq: f64, radi: f64, radj: f64, _was: bool) -> bool {
+        let radsum = radi + radj;
+        rsq < radsum * radsum
+    }
     /// The contact of an overlapping pair; `hist` holds its history (empty without one), and
     /// `update` is false during run setup (LAMMPS' `shearupdate`).
     fn contact(p: &Self::Params, c: &Contact, hist: &mut [f64], update: bool, dt: f64) -> ContactForce;
@@ -54,16 +73,18 @@ pub trait ContactModel: Sync {
         let mut o = LanesOut::default();
         let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
         let c = b.contact(&vi, &vj, &wi, &wj);
-        let hist = b.hist();
+        let hist = b.hist::<MAX_HISTORY>();
         for l in 0..b.n {
             let pick = |a: &[L; 3]| [a[0][l], a[1][l], a[2][l]];
             let (vil, vjl, wil, wjl) = (pick(&vi), pick(&vj), pick(&wi), pick(&wj));
             let one = Contact { del: pick(&c.del), rsq: c.rsq[l], radi: c.radi[l], radj: c.radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: c.mi[l], mj: c.mj[l] };
-            let mut h = pick(&hist);
+            let mut h: [f64; MAX_HISTORY] = std::array::from_fn(|d| hist[d][l]);
             let (ti, tj) = b.types(l);
-            let r = Self::contact(self.params(ti, tj), &one, &mut h[..Self::HISTORY], update, dt);
-            for (d, hd) in h.iter().enumerate() {
+            let r = Self::contact(self.params(ti, tj), &one, &mut h[..b.hsize], update, dt);
+            for (d, hd) in h[..b.hsize].iter().enumerate() {
                 o.hist[d][l] = *hd;
+            }
+            for d in 0..3 {
                 o.force.f[d][l] = r.f[d];
                 o.force.ti[d][l] = r.ti[d];
                 o.force.tj[d][l] = r.tj[d];
@@ -120,9 +141,9 @@ impl LaneSrc<'_> {
         let idx = &self.ij[which];
         lanes(|l| a[idx[l]])
     }
-    /// The history values (zeros beyond `hsize`).
+    /// The first `N` history values (zeros beyond `hsize`).
     #[inline(always)]
-    pub fn hist(&self) -> [L; 3] {
+    pub fn hist<const N: usize>(&self) -> [L; N] {
         let (e, h) = (&self.e, self.hsize);
         std::array::from_fn(|d| lanes(|l| if d < h { self.values[e[l] * h + d] } else { 0.0 }))
     }
@@ -155,15 +176,23 @@ impl LaneSrc<'_> {
 #[derive(Clone, Default)]
 pub struct LanesOut {
     pub force: ContactForce<L>,
-    /// the history values after the evaluation
-    pub hist: [L; 3],
+    /// the history values after the evaluation (the first `hsize` are used)
+    pub hist: [L; MAX_HISTORY],
+}
+
+impl LanesOut {
+    /// The results of a model with `N` history values.
+    #[inline(always)]
+    pub fn new<const N: usize>(force: ContactForce<L>, h: [L; N]) -> LanesOut {
+        LanesOut { force, hist: std::array::from_fn(|d| if d < N { h[d] } else { L::default() }) }
+    }
 }
 
 /// Compute all contacts of the list. `history` must be given when `M::HISTORY > 0` (and
 /// aligned with the list by [`ContactHistory::rebuilt`]).
 pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut PairOutput, history: Option<&mut ContactHistory>) -> Tally {
     let special = input.list.has_special;
-    match (input.eflag, special || input.type_filter.is_some()) {
+    match (input.eflag, special || input.type_filter.is_some() || model.beyond_contact()) {
         (false, false) => contact_loop::<M, false, false>(model, input, out, history),
         (true, false) => contact_loop::<M, true, false>(model, input, out, history),
         (false, true) => contact_loop::<M, false, true>(model, input, out, history),
@@ -171,7 +200,7 @@ pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut
     }
 }
 
-/// `EXTRA`: special weights or a type filter (hybrid) apply.
+/// `EXTRA`: special weights, a type filter (hybrid) or a beyond-contact model apply.
 fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     model: &M,
     input: &PairInput,
@@ -183,16 +212,17 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let nall = a.nall();
     assert!(a.radius.len() == nall && a.rmass.len() == nall && a.omega.len() == nall && a.v.len() == nall && a.typ.len() == nall);
     assert!(out.f.len() >= nlocal && out.torque.len() >= nlocal);
-    let hsize = M::HISTORY;
-    assert!(hsize <= 3);
+    let beyond = model.beyond_contact();
+    let hsize = model.history_size();
+    assert!(hsize <= M::HISTORY && M::HISTORY <= MAX_HISTORY);
     let mut no_history: Vec<HistoryChunk> = vec![];
     let hist: &mut Vec<HistoryChunk> = match history {
-        Some(h) if hsize > 0 => {
+        Some(h) if hsize > 0 || beyond => {
             assert!(h.size() == hsize && h.chunks.len() == input.list.chunks.len(), "contact history not aligned with the neighbour list");
             &mut h.chunks
         }
         _ => {
-            assert!(hsize == 0, "a contact model with history needs its history store");
+            assert!(hsize == 0 && !beyond, "a contact model with history needs its history store");
             &mut no_history
         }
     };
@@ -209,7 +239,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
         let mut empty = HistoryChunk::default();
-        let h = if hsize > 0 { &mut hist[c] } else { &mut empty };
+        let h = if hsize > 0 || beyond { &mut hist[c] } else { &mut empty };
         let (touch, values): (&mut [u8], &mut [f64]) = (&mut h.touch[..], &mut h.values[..]);
         let mut b = Batch::default();
         // evaluate the batch and apply its results in list order
@@ -275,7 +305,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let radsum = radi + radj;
                 let e = k0 + k;
-                let touching = rsq < radsum * radsum;
+                let touching = if beyond { M::touch(model.params(ti, typ[j]), rsq, radi, radj, touch[e] != 0) } else { rsq < radsum * radsum };
                 if !EXTRA {
                     // the common case without branches on the (unpredictable) overlap test:
                     // every entry is written to the next lane, which is kept only if touching
@@ -298,7 +328,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     continue;
                 }
                 if !touching {
-                    if hsize > 0 && touch[e] != 0 {
+                    if (hsize > 0 || beyond) && touch[e] != 0 {
                         touch[e] = 0;
                         values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
                     }
@@ -314,7 +344,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 if factor == 0.0 {
                     continue;
                 }
-                if hsize > 0 {
+                if hsize > 0 || beyond {
                     touch[e] = 1;
                 }
                 b.i[n] = i;

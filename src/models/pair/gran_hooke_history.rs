@@ -143,9 +143,9 @@ impl ContactModel for Classic {
     #[inline(always)]
     fn contact_lanes(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
         let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
-        let mut hist = b.hist();
+        let mut hist = b.hist::<3>();
         let force = self.with_history(&b.contact(&vi, &vj, &wi, &wj), &mut hist, update, dt);
-        LanesOut { force, hist }
+        LanesOut::new(force, hist)
     }
 }
 

@@ -30,7 +30,7 @@ pub mod rolling;
 pub mod tangential;
 pub mod twisting;
 
-use super::contact::{compute_contacts, Contact, ContactForce, ContactModel};
+use super::contact::{compute_contacts, Contact, ContactForce, ContactModel, MAX_HISTORY};
 use super::gran_hooke_history::{check_setup, rebuild_history, GranTypes};
 use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, TypeTable};
 use crate::engine::contact_history::ContactHistory;
@@ -50,29 +50,61 @@ pub const SYNTAX: &str = "pair_style granular [cutoff]";
 pub const MAX_COEFFS: usize = 4;
 pub type Coeffs = [f64; MAX_COEFFS];
 
-/// History values per contact the contact loop and fix wall/gran carry.
-pub const MAX_HISTORY: usize = 3;
-
 /// A coefficient of a sub-model, for the parser and its messages.
 pub struct Coeff {
     pub name: &'static str,
     /// what it is, in error messages (may be empty)
     pub about: &'static str,
-    pub non_negative: bool,
+    pub range: Range,
 }
+
+/// The values a coefficient may take.
+#[derive(Clone, Copy, PartialEq)]
+pub enum Range {
+    Any,
+    /// >= 0 (LAMMPS' "Illegal ... model" checks)
+    NonNegative,
+    /// >= 0, or NULL (read as -1: the model derives it, as LAMMPS' mindlin Kt)
+    NonNegativeOrNull,
+    /// a Poisson's ratio, in (-1, 0.5]
+    Poisson,
+}
+
+/// What NULL reads as (LAMMPS).
+pub const NULL: f64 = -1.0;
 
 impl Coeff {
     pub const fn any(name: &'static str, about: &'static str) -> Coeff {
-        Coeff { name, about, non_negative: false }
+        Coeff { name, about, range: Range::Any }
     }
     fn what(&self) -> String {
         if self.about.is_empty() { self.name.to_string() } else { format!("{} ({})", self.name, self.about) }
+    }
+    fn parse(&self, a: &mut Args) -> DResult<f64> {
+        let what = self.what();
+        match self.range {
+            Range::Any => a.f64(&what),
+            Range::NonNegative => a.non_negative_f64(&what),
+            Range::NonNegativeOrNull => {
+                if a.peek().is_some_and(|w| w.text == "NULL") {
+                    a.skip(1);
+                    return Ok(NULL);
+                }
+                a.f64_where(&what, ">= 0 or NULL", |x| x >= 0.0)
+            }
+            Range::Poisson => a.f64_where(&what, "in (-1, 0.5]", |x| x > -1.0 && x <= 0.5),
+        }
     }
 }
 
 /// A coefficient that must be >= 0 (LAMMPS' "Illegal ... model" checks).
 pub const fn nn(name: &'static str, about: &'static str) -> Coeff {
-    Coeff { name, about, non_negative: true }
+    Coeff { name, about, range: Range::NonNegative }
+}
+
+/// A Poisson's ratio.
+pub const fn poisson() -> Coeff {
+    Coeff { name: "nu", about: "Poisson's ratio", range: Range::Poisson }
 }
 
 /// What LAMMPS checks of a sub-model when it assembles a contact model.
@@ -84,12 +116,17 @@ pub struct Flags {
     pub cohesive: bool,
     /// refuses a cohesive normal model (LAMMPS allow_cohesion = 0)
     pub no_cohesion: bool,
-    /// interacts beyond touching (LAMMPS beyond_contact): not supported by the contact loop
+    /// interacts beyond touching (LAMMPS beyond_contact; not against fix wall/gran here)
     pub beyond_contact: bool,
+    /// a normal model with E and nu (LAMMPS material_properties): mindlin's Kt may be NULL
+    pub material: bool,
+    /// history values (bits, from the model's first) that keep their sign when the pair is
+    /// seen from the other side (LAMMPS transfer_history_factor +1)
+    pub keep: u16,
 }
 
 impl Flags {
-    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false };
+    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false, material: false, keep: 0 };
 }
 
 /// What constructors see besides their coefficients.
@@ -101,6 +138,11 @@ pub struct Ctx {
     /// the normal model's name and eta_n0 (empty, 0 while the normal model itself is built)
     pub normal: &'static str,
     pub normal_damp: f64,
+    /// the normal model's E and nu (LAMMPS get_emod, get_poiss), if it has them
+    pub material: Option<(f64, f64)>,
+    /// the tangential model's stiffness and friction coefficient (LAMMPS get_k, get_mu; zero
+    /// while it is built)
+    pub tangential_k_mu: (f64, f64),
 }
 
 /// One row of a kind's table: a sub-model style.
@@ -189,7 +231,7 @@ fn parse_sub<'a, M>(a: &mut Args<'a>, table: &'static [Style<M>], kind: &str, se
     };
     let mut coeffs = [0.0; MAX_COEFFS];
     for (k, c) in style.coeffs.iter().enumerate() {
-        coeffs[k] = if c.non_negative { a.non_negative_f64(&c.what())? } else { a.f64(&c.what())? };
+        coeffs[k] = c.parse(a)?;
     }
     set(Given { style, coeffs });
     Ok(Named { word: w, name: style.name, history: style.history, flags: style.flags })
@@ -209,10 +251,12 @@ pub fn model_syntax() -> &'static str {
     static S: OnceLock<String> = OnceLock::new();
     S.get_or_init(|| {
         format!(
-            "({}) [damping {}] tangential ({}) [limit_damping]",
+            "({}) [damping {}] tangential ({}) [rolling ({})] [twisting ({})] [limit_damping]",
             table_syntax(normal::STYLES),
             names(damping::STYLES).join("|"),
-            table_syntax(tangential::STYLES)
+            table_syntax(tangential::STYLES),
+            table_syntax(rolling::STYLES),
+            table_syntax(twisting::STYLES)
         )
     })
 }
@@ -301,13 +345,21 @@ impl GranSpec {
                 return Err(a.error_at(w, format!("cannot limit damping with a cohesive normal model, {}", normal.name), "cohesive normal model"));
             }
         }
+        if m.tangential.style.coeffs.iter().zip(&m.tangential.coeffs).any(|(c, &v)| c.range == Range::NonNegativeOrNull && v == NULL) && !normal.flags.material {
+            let w = named[TANGENTIAL].unwrap().word;
+            return Err(a.error_at(
+                w,
+                format!("tangential {} with Kt NULL needs a normal model with material properties (hertz/material, dmt), not {}", w.text, normal.name),
+                "Kt NULL without E and nu",
+            ));
+        }
         let mut total = 0;
         for n in named.iter().flatten() {
             if n.flags.no_cohesion && normal.flags.cohesive {
                 return Err(a.error_at(n.word, format!("cannot use {} model with a cohesive normal model, {}", n.name, normal.name), "cohesive normal model"));
             }
-            if n.flags.beyond_contact {
-                return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs", n.name), "not supported"));
+            if n.flags.beyond_contact && wall {
+                return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs' fix wall/gran", n.name), "not supported on walls"));
             }
             total += n.history;
             if total > MAX_HISTORY {
@@ -367,8 +419,11 @@ pub struct GranModel {
     /// some sub-model needs the contact radius a
     pub contact_radius: bool,
     /// offsets of each kind's values in the history (normal, damping, tangential, rolling,
-    /// twisting, heat: LAMMPS' order)
+    /// twisting, heat: LAMMPS' order), and their total
     pub history_index: [usize; 6],
+    pub history_size: usize,
+    /// the history values that keep their sign from the other side (bits)
+    pub history_keep: u16,
     /// `cutoff` keyword (negative: from the radii)
     pub cutoff: f64,
 }
@@ -377,8 +432,12 @@ impl GranModel {
     /// Build the sub-models (LAMMPS coeffs_to_local, then init: damping reads the normal model).
     pub fn build(s: &GranSpec, wall: bool) -> GranModel {
         let mixed = !s.set;
-        let normal = s.normal.build(&Ctx { wall, mixed, normal: "", normal_damp: 0.0 });
-        let ctx = Ctx { wall, mixed, normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::DAMP_COEFF] };
+        let material = s.normal.style.flags.material.then(|| (s.normal.coeffs[0], s.normal.coeffs[2]));
+        let ctx = Ctx { wall, mixed, normal: "", normal_damp: 0.0, material, tangential_k_mu: (0.0, 0.0) };
+        let normal = s.normal.build(&ctx);
+        let mut ctx = Ctx { normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::DAMP_COEFF], ..ctx };
+        let tangential = s.tangential.build(&ctx);
+        ctx.tangential_k_mu = tangential.k_mu();
         let sizes = [
             s.normal.style.history,
             s.damping.style.history,
@@ -392,16 +451,19 @@ impl GranModel {
             history_index[k] = history_index[k - 1] + sizes[k - 1];
         }
         let flags = [Some(s.normal.style.flags), Some(s.damping.style.flags), Some(s.tangential.style.flags), s.rolling.map(|g| g.style.flags), s.twisting.map(|g| g.style.flags), s.heat.map(|g| g.style.flags)];
+        let history_keep = flags.iter().zip(history_index).fold(0, |m, (f, at)| m | f.map_or(0, |f| f.keep << at));
         GranModel {
             normal,
             damping: s.damping.build(&ctx),
-            tangential: s.tangential.build(&ctx),
+            tangential,
             rolling: s.rolling.map(|g| g.build(&ctx)),
             twisting: s.twisting.map(|g| g.build(&ctx)),
             heat: s.heat.map(|g| g.build(&ctx)),
             limit_damping: s.limit_damping,
             contact_radius: flags.iter().flatten().any(|f| f.contact_radius),
             history_index,
+            history_size: history_index[HEAT] + sizes[HEAT],
+            history_keep,
             cutoff: s.cutoff,
         }
     }
@@ -440,7 +502,7 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
     let vtr = [vt[0] - cr[0], vt[1] - cr[1], vt[2] - cr[2]];
 
     // normal force, damping, F_n,crit
-    let a = if m.contact_radius { (delta * reff).sqrt() } else { 0.0 };
+    let a = if m.contact_radius { m.normal.contact_radius(delta * reff, reff) } else { 0.0 };
     let fnormal = m.normal.force(delta, reff, a);
     let damp_prefactor = m.damping.prefactor(meff, a, fnormal, delta);
     let fdamp = -damp_prefactor * vnnr;
@@ -486,7 +548,8 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
         if let Some(twisting) = &m.twisting {
             let magtwist = relrot[0] * nx[0] + relrot[1] * nx[1] + relrot[2] * nx[2];
             let h = &mut history[m.history_index[TWISTING]..m.history_index[HEAT]];
-            let mt = twisting.torque(&TwistingIn { magtwist, fncrit, a, update, dt }, h);
+            let tangential_damp = m.tangential.xt() * damp_prefactor;
+            let mt = twisting.torque(&TwistingIn { magtwist, fncrit, a, tangential_damp, update, dt }, h);
             add_opposite(&mut out, [mt * nx[0], mt * nx[1], mt * nx[2]], wall);
         }
     }
@@ -504,12 +567,24 @@ fn add_opposite(out: &mut ContactForce, t: [f64; 3], wall: bool) {
     }
 }
 
-/// The per-type-pair models as a [`ContactModel`].
-pub struct GranularModels(pub TypeTable<GranModel>);
+/// The per-type-pair models as a [`ContactModel`], the history values per contact (the most
+/// any pair's models keep: LAMMPS' size_history), and whether some pair interacts beyond
+/// touching (JKR).
+pub struct GranularModels(pub TypeTable<GranModel>, pub usize, pub bool);
 
 impl ContactModel for GranularModels {
     type Params = GranModel;
     const HISTORY: usize = MAX_HISTORY;
+    fn history_size(&self) -> usize {
+        self.1
+    }
+    fn beyond_contact(&self) -> bool {
+        self.2
+    }
+    #[inline(always)]
+    fn touch(m: &GranModel, rsq: f64, radi: f64, radj: f64, was: bool) -> bool {
+        m.normal.touch(rsq, radi, radj, was)
+    }
     #[inline(always)]
     fn params(&self, ti: usize, tj: usize) -> &GranModel {
         self.0.get(ti, tj)
@@ -536,9 +611,9 @@ impl Granular {
         Ok(Granular {
             cut_global,
             coeff: TypeTable::new(0),
-            models: GranularModels(TypeTable::new(0)),
+            models: GranularModels(TypeTable::new(0), 0, false),
             types: GranTypes::default(),
-            history: ContactHistory::new(MAX_HISTORY),
+            history: ContactHistory::new(0),
         })
     }
 
@@ -585,6 +660,7 @@ impl PairStyle for Granular {
         self.grow(ntypes);
         self.types.check(ntypes, active, "granular")?;
         let mut models = TypeTable::new(ntypes);
+        let (mut size, mut keep, mut beyond) = (0, 0u16, false);
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if let Some(a) = active {
@@ -599,10 +675,14 @@ impl PairStyle for Granular {
                     GranSpec::mix(self.coeff.get(i, i), self.coeff.get(j, j))
                         .ok_or_else(|| format!("pair granular: types {i} and {j} use different models, so the {i} {j} pair cannot be mixed: set it with pair_coeff"))?
                 };
-                models.set(i, j, GranModel::build(&s, false));
+                let m = GranModel::build(&s, false);
+                (size, keep) = (size.max(m.history_size), keep | m.history_keep);
+                beyond |= s.normal.style.flags.beyond_contact;
+                models.set(i, j, m);
             }
         }
-        self.models = GranularModels(models);
+        self.models = GranularModels(models, size, beyond);
+        self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect());
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
@@ -612,14 +692,26 @@ impl PairStyle for Granular {
         } else if self.cut_global >= 0.0 {
             self.cut_global
         } else {
-            self.types.cutoff(it, jt)
+            // a cohesive contact holds up to the pull-off distance (LAMMPS init_one)
+            let r = |t: usize| self.types.maxrad.get(t).copied().unwrap_or(0.0);
+            self.types.cutoff(it, jt) + m.normal.pulloff_distance(r(it), r(jt))
         }
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         compute_contacts(&self.models, input, out, Some(&mut self.history))
     }
     fn rebuilt(&mut self, input: &PairInput, _order: &[usize]) {
-        rebuild_history(&mut self.history, input);
+        if !self.models.2 {
+            return rebuild_history(&mut self.history, input);
+        }
+        // a contact kept over the rebuild was touching: JKR's test with its pull-off distance
+        let a = input.atoms;
+        let (x, radius, typ, models) = (&a.x, &a.radius, &a.typ, &self.models);
+        self.history.rebuilt(a, input.list, |i, j| {
+            let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            models.params(typ[i], typ[j]).normal.touch(rsq, radius[i], radius[j], true)
+        });
     }
     fn histories(&mut self) -> Vec<&mut ContactHistory> {
         vec![&mut self.history]
@@ -682,12 +774,32 @@ mod tests {
 
     #[test]
     fn errors_name_what_the_tables_support() {
-        let e = err("jkr 1 2 3 4 tangential linear_history 1 1 1");
-        assert!(e.contains("normal model `jkr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt"), "{e}");
+        let e = err("mdr 1 2 3 4 5 6 tangential linear_history 1 1 1");
+        assert!(e.contains("normal model `mdr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt, jkr"), "{e}");
+        // JKR: cohesive, and not on dmhs' walls
+        let e = err("jkr 1e6 0.5 0.3 1 damping coeff_restitution tangential linear_history 1 1 1");
+        assert!(e.contains("cannot use coeff_restitution model with a cohesive normal model, jkr"), "{e}");
+        let w = words("jkr 1e6 0.5 0.3 1 tangential linear_history 1 1 1 zplane 0 NULL");
+        let mut a = Args::from_words(&w, Span::new(Default::default(), 0, 1), "");
+        let e = GranSpec::parse(&mut a, true).err().unwrap();
+        assert!(e.message.contains("jkr interacts beyond contact"), "{}", e.message);
         let e = err("hooke 1 1 damping tsuij tangential linear_history 1 1 1");
         assert!(e.contains("`tsuij`") && e.contains("coeff_restitution") && e.contains("did you mean `tsuji`"), "{e}");
-        let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sds 1 1 1");
-        assert!(e.contains("rolling model `sds` is not supported") && e.contains("no rolling models yet"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sdss 1 1 1");
+        assert!(e.contains("rolling model `sdss` is not supported") && e.contains("supported: sds"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 heat area 1");
+        assert!(e.contains("heat model `area` is not supported") && e.contains("no heat models yet"), "{e}");
+        // ranges: Poisson's ratio in (-1, 0.5]; Kt NULL only from material properties
+        let e = err("hertz/material 1e6 0.5 0.6 tangential linear_history 1 1 1");
+        assert!(e.contains("nu (Poisson's ratio) must be in (-1, 0.5], found 0.6"), "{e}");
+        let e = err("hertz/material -1e6 0.5 0.3 tangential linear_history 1 1 1");
+        assert!(e.contains("E (Young's modulus) must be >= 0"), "{e}");
+        let e = err("hertz 1e6 0.5 tangential mindlin NULL 1 1");
+        assert!(e.contains("mindlin with Kt NULL needs a normal model with material properties"), "{e}");
+        let e = err("hertz 1e6 0.5 tangential mindlin_rescale -2 1 1");
+        assert!(e.contains("Kt (NULL: from E and nu) must be >= 0 or NULL"), "{e}");
+        let e = err("hertz 1e6 0.5 tangential mindlin 1 1 1 rolling sds 1 1 -1");
+        assert!(e.contains("mu_roll (rolling friction coefficient) must be >= 0"), "{e}");
         let e = err("hertz/material 1e6 0.5 tangential linear_history 1 1 1");
         assert!(e.contains("nu (Poisson's ratio)"), "{e}");
         let e = err("hooke 1 -1 tangential linear_history 1 1 1");
@@ -708,6 +820,26 @@ mod tests {
         let mut a = Args::from_words(&w, Span::new(Default::default(), 0, 1), "");
         GranSpec::parse(&mut a, true).unwrap();
         assert_eq!(a.peek().unwrap().text, "zplane");
+    }
+
+    #[test]
+    fn history_grows_with_the_models() {
+        // LAMMPS' order: tangential, rolling, twisting; rescale's 4th value, rolling and
+        // twisting keep their sign from the other side
+        let s = parse("hertz/material 1e6 0.5 0.3 tangential mindlin_rescale NULL 0.5 0.2 rolling sds 1 2 3 twisting marshall", false).unwrap();
+        let m = GranModel::build(&s, false);
+        assert_eq!(m.history_index, [0, 0, 0, 4, 7, 10]);
+        assert_eq!(m.history_size, 10);
+        assert_eq!(m.history_keep, 0b11_1111_1000);
+        // Kt NULL: 8 G_eff (pair), 8 G_wall (wall)
+        let g = tangential::mix_stiffness_g(1e6, 1e6, 0.3, 0.3);
+        assert_eq!(m.tangential.k_mu(), (8.0 * g, 0.2));
+        let w = GranModel::build(&s, true);
+        assert_eq!(w.tangential.k_mu().0, 8.0 * tangential::mix_stiffness_g_wall(1e6, 0.3));
+        assert_eq!(m.twisting, Some(Twisting::Marshall { k_tang: 8.0 * g, mu_tang: 0.2 }));
+        let m = GranModel::build(&parse("hooke 1 1 tangential mindlin_classic 1 1 1 twisting sds 1 1 1", false).unwrap(), false);
+        assert_eq!((m.history_size, m.history_keep), (6, 0b111_000));
+        assert_eq!(m.tangential, Tangential::LinearHistoryClassic { k: 1.0, xt: 1.0, mu: 1.0 });
     }
 
     #[test]

@@ -8,11 +8,18 @@
 //! * `dmt E eta_n0 nu gamma`: hertz/material minus the pull-off 4 pi gamma R_eff;
 //!   F_n,crit = |F_n + 2 F_pulloff|. Cohesive: no `limit_damping`, no tsuji/coeff_restitution.
 //!
+//! * `jkr E eta_n0 nu gamma`: Johnson-Kendall-Roberts. The contact radius a solves the JKR
+//!   relation between the overlap and a (LAMMPS' closed form); F_n = 4/3 E_eff a^3/R_eff -
+//!   2 pi a^2 sqrt(4 gamma E_eff/(pi a)); F_n,crit = |F_n + 2 F_pulloff|, F_pulloff =
+//!   3 pi gamma R_eff. Cohesive, and beyond contact: a contact made by touching holds until the
+//!   centres are R_i + R_j + delta_pulloff apart, delta_pulloff = (3 pi^2/16)^(1/3)
+//!   (R_eff gamma^2/E_eff^2)^(1/3) (the neighbour cutoff includes it).
+//!
 //! eta_n0 is the damping model's coefficient (a restitution coefficient for coeff_restitution).
 //! Mixing (unset I,J pairs): geometric means, except E: Kn = 4/3 E_eff(E_i, nu_i, E_j, nu_j)
 //! (measured in LAMMPS 2025).
 
-use super::{geometric, nn, Coeff, Coeffs, Ctx, Flags, Style};
+use super::{geometric, nn, poisson, Coeff, Coeffs, Ctx, Flags, Style};
 use std::f64::consts::PI;
 
 /// The normal force law of one type pair (coefficients as the contact uses them).
@@ -24,6 +31,8 @@ pub enum Normal {
     /// hertz and hertz/material (k from E and nu)
     Hertz { k: f64 },
     Dmt { k: f64, cohesion: f64 },
+    /// k = 4/3 E_eff
+    Jkr { k: f64, emix: f64, cohesion: f64 },
 }
 
 /// Every normal model's second coefficient is eta_n0, the damping model's (LAMMPS `damp`).
@@ -32,11 +41,11 @@ pub const DAMP_COEFF: usize = 1;
 const FOURTHIRDS: f64 = 4.0 / 3.0;
 
 const HOOKE: &[Coeff] = &[nn("Kn", ""), nn("eta_n0", "normal damping")];
-const MATERIAL: &[Coeff] = &[nn("E", "Young's modulus"), nn("eta_n0", "normal damping"), Coeff::any("nu", "Poisson's ratio")];
+const MATERIAL: &[Coeff] = &[nn("E", "Young's modulus"), nn("eta_n0", "normal damping"), poisson()];
 const DMT: &[Coeff] = &[
     nn("E", "Young's modulus"),
     nn("eta_n0", "normal damping"),
-    Coeff::any("nu", "Poisson's ratio"),
+    poisson(),
     Coeff::any("gamma", "surface energy"),
 ];
 
@@ -55,7 +64,7 @@ pub static STYLES: &[Style<Normal>] = &[
         name: "hertz/material",
         coeffs: MATERIAL,
         history: 0,
-        flags: Flags { contact_radius: true, ..Flags::NONE },
+        flags: Flags { contact_radius: true, material: true, ..Flags::NONE },
         build: |c, ctx| Normal::Hertz { k: material_k(c, ctx) },
         mix: mix_material,
     },
@@ -63,11 +72,29 @@ pub static STYLES: &[Style<Normal>] = &[
         name: "dmt",
         coeffs: DMT,
         history: 0,
-        flags: Flags { contact_radius: true, cohesive: true, ..Flags::NONE },
+        flags: Flags { contact_radius: true, cohesive: true, material: true, ..Flags::NONE },
         build: |c, ctx| Normal::Dmt { k: material_k(c, ctx), cohesion: c[3] },
         mix: mix_material,
     },
+    Style {
+        name: "jkr",
+        coeffs: DMT,
+        history: 0,
+        flags: Flags { contact_radius: true, cohesive: true, beyond_contact: true, material: true, ..Flags::NONE },
+        build: |c, ctx| {
+            let emix = material_e(c, ctx);
+            Normal::Jkr { k: FOURTHIRDS * emix, emix, cohesion: c[3] }
+        },
+        mix: mix_material,
+    },
 ];
+
+/// LAMMPS' constants of the JKR closed forms.
+const PI27SQ: f64 = 266.47931882941264802866; // 27 pi^2
+const THREEROOT3: f64 = 5.19615242270663202362; // 3 sqrt(3)
+const SIXROOT6: f64 = 14.69693845669906728801; // 6 sqrt(6)
+const INVROOT6: f64 = 0.40824829046386307274; // 1/sqrt(6)
+const JKRPREFIX: f64 = 1.2277228507842888; // (3 pi^2/16)^(1/3)
 
 /// LAMMPS mix_stiffnessE: the effective modulus of two materials.
 pub fn mix_stiffness_e(e1: f64, e2: f64, nu1: f64, nu2: f64) -> f64 {
@@ -82,14 +109,21 @@ pub fn mix_stiffness_e_wall(e: f64, nu: f64) -> f64 {
     e / factor
 }
 
-/// Kn = 4/3 E_eff of `E eta nu ...` (a wall uses its own rule, as LAMMPS' contact_type WALL);
-/// mixed coefficients already hold E_eff.
+/// Kn = 4/3 E_eff of `E eta nu ...`.
 fn material_k(c: &[f64], ctx: &Ctx) -> f64 {
+    FOURTHIRDS * material_e(c, ctx)
+}
+
+/// E_eff of `E eta nu ...` (a wall uses its own rule, as LAMMPS' contact_type WALL); mixed
+/// coefficients already hold E_eff.
+fn material_e(c: &[f64], ctx: &Ctx) -> f64 {
     let (e, nu) = (c[0], c[2]);
     if ctx.mixed {
-        FOURTHIRDS * e
+        e
+    } else if ctx.wall {
+        mix_stiffness_e_wall(e, nu)
     } else {
-        FOURTHIRDS * if ctx.wall { mix_stiffness_e_wall(e, nu) } else { mix_stiffness_e(e, e, nu, nu) }
+        mix_stiffness_e(e, e, nu, nu)
     }
 }
 
@@ -101,6 +135,56 @@ fn mix_material(a: &[f64], b: &[f64]) -> Coeffs {
 }
 
 impl Normal {
+    /// The contact radius a from dR = delta R_eff (LAMMPS calculate_contact_radius).
+    #[inline(always)]
+    pub fn contact_radius(&self, dr: f64, reff: f64) -> f64 {
+        match *self {
+            Normal::Jkr { emix, cohesion, .. } => {
+                let r2 = reff * reff;
+                let dr2 = dr * dr;
+                let t0 = cohesion * cohesion * r2 * r2 * emix;
+                let t1 = PI27SQ * t0;
+                let t2 = 8.0 * dr * dr2 * emix * emix * emix;
+                let t3 = 4.0 * dr2 * emix;
+                // the roots' arguments clamped at 0 against round-off, as LAMMPS
+                let sqrt1 = f64::max(0.0, t0 * (t1 + 2.0 * t2));
+                let t4 = (t1 + t2 + THREEROOT3 * PI * sqrt1.sqrt()).cbrt();
+                let t5 = t3 / t4 + t4 / emix;
+                let sqrt2 = f64::max(0.0, 2.0 * dr + t5);
+                let t6 = sqrt2.sqrt();
+                let sqrt3 = f64::max(0.0, 4.0 * dr - t5 + SIXROOT6 * cohesion * PI * r2 / (emix * t6));
+                INVROOT6 * (t6 + sqrt3.sqrt())
+            }
+            _ => dr.sqrt(),
+        }
+    }
+
+    /// Whether a pair is in contact: overlapping, or for JKR a contact that was, up to the
+    /// pull-off distance (LAMMPS `touch`).
+    #[inline(always)]
+    pub fn touch(&self, rsq: f64, radi: f64, radj: f64, was: bool) -> bool {
+        let radsum = radi + radj;
+        match *self {
+            Normal::Jkr { emix, cohesion, .. } if was => {
+                let reff = radi * radj / radsum;
+                let dist_pulloff = radsum + jkr_pulloff(reff, cohesion, emix);
+                rsq < dist_pulloff * dist_pulloff
+            }
+            _ => rsq < radsum * radsum,
+        }
+    }
+
+    /// How far beyond touching a contact holds (LAMMPS pulloff_distance): 0 but for JKR.
+    pub fn pulloff_distance(&self, radi: f64, radj: f64) -> f64 {
+        match *self {
+            Normal::Jkr { emix, cohesion, .. } => {
+                let reff = radi * radj / (radi + radj);
+                if reff <= 0.0 { 0.0 } else { jkr_pulloff(reff, cohesion, emix) }
+            }
+            _ => 0.0,
+        }
+    }
+
     /// F_n (LAMMPS `Fnormal`); `a` is the contact radius (0 when no sub-model asked for it).
     #[inline(always)]
     pub fn force(&self, delta: f64, reff: f64, a: f64) -> f64 {
@@ -111,6 +195,10 @@ impl Normal {
                 let fne = k * a * delta;
                 fne - pulloff(cohesion, reff)
             }
+            Normal::Jkr { k, emix, cohesion } => {
+                let a2 = a * a;
+                k * a * a2 / reff - 2.0 * PI * a2 * (4.0 * cohesion * emix / (PI * a)).sqrt()
+            }
             Normal::None => 0.0,
         }
     }
@@ -120,6 +208,7 @@ impl Normal {
     pub fn fncrit(&self, fntot: f64, fnormal: f64, reff: f64) -> f64 {
         match *self {
             Normal::Dmt { cohesion, .. } => (fnormal + 2.0 * pulloff(cohesion, reff)).abs(),
+            Normal::Jkr { cohesion, .. } => (fnormal + 2.0 * (3.0 * PI * cohesion * reff)).abs(),
             _ => fntot.abs(),
         }
     }
@@ -132,6 +221,12 @@ impl Normal {
             _ => None,
         }
     }
+}
+
+/// The JKR pull-off distance (beyond touching).
+#[inline(always)]
+fn jkr_pulloff(reff: f64, cohesion: f64, emix: f64) -> f64 {
+    JKRPREFIX * (reff * cohesion * cohesion / (emix * emix)).cbrt()
 }
 
 /// DMT pull-off force 4 pi gamma R_eff.

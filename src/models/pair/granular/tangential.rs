@@ -12,10 +12,20 @@
 //!   scales its stiffness by the contact radius (F_t = -Kt a s - x_gt eta_n v_tr) but sets s
 //!   back at the Coulomb limit as if it did not (s = -(F_t + x_gt eta_n v_tr)/Kt): reproduced,
 //!   measured against LAMMPS 2025.7.
+//! * `mindlin_classic Kt x_gt mu`: the tangential model of pair gran/hertz/history; in LAMMPS
+//!   2025 the same arithmetic as linear_history_classic (both scale Kt by a).
+//! * `mindlin Kt x_gt mu`: linear_history with the stiffness Kt a (a the contact radius). Kt
+//!   NULL: 8 G_eff from the normal model's E and nu (G_eff = 1/(2 (2-nu)(1+nu)/E) per sphere;
+//!   a wall: E/(4 (2-nu)(1+nu))).
+//! * `mindlin/force Kt x_gt mu`: the history holds the elastic force itself, advanced by
+//!   -Kt a v_tr dt (so a changing a does not rescale what is stored).
+//! * `mindlin_rescale`, `mindlin_rescale/force`: as mindlin, mindlin/force, and a 4th value keeps
+//!   the contact radius of the last update: when a has shrunk since (unloading) the spring is
+//!   scaled by a/a_old first. The 4th value keeps its sign from the other side of the pair.
 //!
 //! The spring is advanced only when `update` (not during run setup, LAMMPS' history_update).
 
-use super::{geometric, nn, Coeff, Flags, Style};
+use super::{geometric, nn, Coeff, Coeffs, Ctx, Flags, Range, Style, NULL};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Tangential {
@@ -24,10 +34,46 @@ pub enum Tangential {
     LinearNoHistory { xt: f64, mu: f64 },
     LinearHistory { k: f64, xt: f64, mu: f64 },
     LinearHistoryClassic { k: f64, xt: f64, mu: f64 },
+    /// the mindlin family: `force`: the history is the force; `rescale`: a 4th value holds a
+    Mindlin { k: f64, xt: f64, mu: f64, force: bool, rescale: bool },
 }
 
 const NOHISTORY: &[Coeff] = &[nn("x_gt", "tangential damping ratio"), nn("mu", "friction coefficient")];
 const HISTORY: &[Coeff] = &[nn("Kt", ""), nn("x_gt", "tangential damping ratio"), nn("mu", "friction coefficient")];
+const MINDLIN: &[Coeff] = &[
+    Coeff { name: "Kt", about: "NULL: from E and nu", range: Range::NonNegativeOrNull },
+    nn("x_gt", "tangential damping ratio"),
+    nn("mu", "friction coefficient"),
+];
+
+/// linear_history_classic, and mindlin_classic: the same arithmetic in LAMMPS 2025.
+const fn classic(name: &'static str) -> Style<Tangential> {
+    Style {
+        name,
+        coeffs: HISTORY,
+        history: 3,
+        flags: Flags { contact_radius: true, ..Flags::NONE },
+        build: |c, _| Tangential::LinearHistoryClassic { k: c[0], xt: c[1], mu: c[2] },
+        mix: geometric,
+    }
+}
+
+/// A row of the mindlin family.
+const fn mindlin(name: &'static str, force: bool, rescale: bool) -> Style<Tangential> {
+    Style {
+        name,
+        coeffs: MINDLIN,
+        history: if rescale { 4 } else { 3 },
+        flags: Flags { contact_radius: true, keep: if rescale { 1 << 3 } else { 0 }, ..Flags::NONE },
+        build: match (force, rescale) {
+            (false, false) => |c, ctx| Tangential::Mindlin { k: mindlin_k(c, ctx), xt: c[1], mu: c[2], force: false, rescale: false },
+            (true, false) => |c, ctx| Tangential::Mindlin { k: mindlin_k(c, ctx), xt: c[1], mu: c[2], force: true, rescale: false },
+            (false, true) => |c, ctx| Tangential::Mindlin { k: mindlin_k(c, ctx), xt: c[1], mu: c[2], force: false, rescale: true },
+            (true, true) => |c, ctx| Tangential::Mindlin { k: mindlin_k(c, ctx), xt: c[1], mu: c[2], force: true, rescale: true },
+        },
+        mix: mix_mindlin,
+    }
+}
 
 /// The tangential models dmhs supports; the parser, the error messages and the docs read this
 /// table.
@@ -48,15 +94,46 @@ pub static STYLES: &[Style<Tangential>] = &[
         build: |c, _| Tangential::LinearHistory { k: c[0], xt: c[1], mu: c[2] },
         mix: geometric,
     },
-    Style {
-        name: "linear_history_classic",
-        coeffs: HISTORY,
-        history: 3,
-        flags: Flags { contact_radius: true, ..Flags::NONE },
-        build: |c, _| Tangential::LinearHistoryClassic { k: c[0], xt: c[1], mu: c[2] },
-        mix: geometric,
-    },
+    classic("linear_history_classic"),
+    classic("mindlin_classic"),
+    mindlin("mindlin", false, false),
+    mindlin("mindlin/force", true, false),
+    mindlin("mindlin_rescale", false, true),
+    mindlin("mindlin_rescale/force", true, true),
 ];
+
+/// LAMMPS mix_stiffnessG: the effective shear modulus of two materials.
+pub fn mix_stiffness_g(e1: f64, e2: f64, nu1: f64, nu2: f64) -> f64 {
+    let f1 = 2.0 * (2.0 - nu1) * (1.0 + nu1) / e1;
+    let f2 = 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2;
+    1.0 / (f1 + f2)
+}
+
+/// LAMMPS mix_stiffnessG_wall: a material against a rigid wall.
+pub fn mix_stiffness_g_wall(e: f64, nu: f64) -> f64 {
+    let factor = 4.0 * (2.0 - nu) * (1.0 + nu);
+    e / factor
+}
+
+/// Kt, or for NULL 8 G_eff from the normal model's E and nu (of the mixed coefficients for an
+/// unset pair, as LAMMPS).
+fn mindlin_k(c: &[f64], ctx: &Ctx) -> f64 {
+    if c[0] != NULL {
+        return c[0];
+    }
+    // the parser refuses NULL without material properties
+    let (e, nu) = ctx.material.unwrap_or((0.0, 0.0));
+    8.0 * if ctx.wall { mix_stiffness_g_wall(e, nu) } else { mix_stiffness_g(e, e, nu, nu) }
+}
+
+/// Geometric means; Kt stays NULL if either is.
+fn mix_mindlin(a: &[f64], b: &[f64]) -> Coeffs {
+    let mut m = geometric(a, b);
+    if a[0] == NULL || b[0] == NULL {
+        m[0] = NULL;
+    }
+    m
+}
 
 /// What a tangential model reads of the contact.
 pub struct TangentialIn<'a> {
@@ -72,6 +149,23 @@ pub struct TangentialIn<'a> {
 }
 
 impl Tangential {
+    /// The stiffness and friction coefficient (LAMMPS get_k, get_mu; marshall twisting reads them).
+    pub fn k_mu(&self) -> (f64, f64) {
+        match *self {
+            Tangential::LinearNoHistory { mu, .. } => (0.0, mu),
+            Tangential::LinearHistory { k, mu, .. } | Tangential::LinearHistoryClassic { k, mu, .. } | Tangential::Mindlin { k, mu, .. } => (k, mu),
+            Tangential::None => (0.0, 0.0),
+        }
+    }
+
+    /// x_gt, the tangential damping ratio (LAMMPS' tangential damp is x_gt eta_n).
+    pub fn xt(&self) -> f64 {
+        match *self {
+            Tangential::LinearNoHistory { xt, .. } | Tangential::LinearHistory { xt, .. } | Tangential::LinearHistoryClassic { xt, .. } | Tangential::Mindlin { xt, .. } => xt,
+            Tangential::None => 0.0,
+        }
+    }
+
     /// F_t; `h` is this model's history (its `history` values).
     #[inline(always)]
     pub fn force(&self, t: &TangentialIn, h: &mut [f64]) -> [f64; 3] {
@@ -83,23 +177,48 @@ impl Tangential {
                 if t.update {
                     // rotate into the tangent plane, keeping the length, when the normal part matters
                     let rsht = h[0] * nx[0] + h[1] * nx[1] + h[2] * nx[2];
-                    if rsht.abs() * k > 1e-10 * fscrit {
-                        let shrmag = len3(h[0], h[1], h[2]);
-                        h[0] -= rsht * nx[0];
-                        h[1] -= rsht * nx[1];
-                        h[2] -= rsht * nx[2];
-                        let prjmag = len3(h[0], h[1], h[2]);
-                        let scale = if prjmag > 0.0 { shrmag / prjmag } else { 0.0 };
-                        h[0] *= scale;
-                        h[1] *= scale;
-                        h[2] *= scale;
+                    if rsht.abs() * k > FRAME_EPS * fscrit {
+                        rotate_rescale(h, nx, rsht);
                     }
                     h[0] += t.dt * vtr[0];
                     h[1] += t.dt * vtr[1];
                     h[2] += t.dt * vtr[2];
                 }
                 let fs = [-k * h[0] - damp * vtr[0], -k * h[1] - damp * vtr[1], -k * h[2] - damp * vtr[2]];
-                coulomb(fs, None, fscrit, k, damp, vtr, h)
+                coulomb(fs, None, fscrit, Some(-1.0 / k), damp, vtr, h)
+            }
+            Tangential::Mindlin { k, xt, mu, force, rescale } => {
+                let damp = xt * t.damp_prefactor;
+                let fscrit = t.fncrit * mu;
+                let k_scaled = k * t.a;
+                // unloading since the last update: the spring shrinks with the contact radius
+                if rescale && t.a < h[3] {
+                    let s = t.a / h[3];
+                    h[0] *= s;
+                    h[1] *= s;
+                    h[2] *= s;
+                }
+                if t.update {
+                    let rsht = h[0] * nx[0] + h[1] * nx[1] + h[2] * nx[2];
+                    // a stored force is compared as it is, a displacement as its force
+                    let normal_part = if force { rsht.abs() } else { rsht.abs() * k_scaled };
+                    if normal_part > FRAME_EPS * fscrit {
+                        rotate_rescale(h, nx, rsht);
+                    }
+                    let step = if force { -k_scaled * t.dt } else { t.dt };
+                    h[0] += step * vtr[0];
+                    h[1] += step * vtr[1];
+                    h[2] += step * vtr[2];
+                    if rescale {
+                        h[3] = t.a;
+                    }
+                }
+                let fs = if force {
+                    [h[0] - damp * vtr[0], h[1] - damp * vtr[1], h[2] - damp * vtr[2]]
+                } else {
+                    [-k_scaled * h[0] - damp * vtr[0], -k_scaled * h[1] - damp * vtr[1], -k_scaled * h[2] - damp * vtr[2]]
+                };
+                coulomb(fs, None, fscrit, (!force).then(|| -1.0 / k_scaled), damp, vtr, h)
             }
             Tangential::LinearHistoryClassic { k, xt, mu } => {
                 let damp = xt * t.damp_prefactor;
@@ -119,7 +238,7 @@ impl Tangential {
                 }
                 let ka = -k * t.a;
                 let fs = [ka * h[0] - damp * vtr[0], ka * h[1] - damp * vtr[1], ka * h[2] - damp * vtr[2]];
-                coulomb(fs, Some(shrmag), fscrit, k, damp, vtr, h)
+                coulomb(fs, Some(shrmag), fscrit, Some(-1.0 / k), damp, vtr, h)
             }
             Tangential::LinearNoHistory { xt, mu } => {
                 let damp = xt * t.damp_prefactor;
@@ -134,20 +253,40 @@ impl Tangential {
     }
 }
 
+/// LAMMPS' threshold for turning the spring into the tangent plane (relative to F_s,crit).
+pub const FRAME_EPS: f64 = 1e-10;
+
+/// Project the spring `h` (its first 3 values) onto the plane normal to `nx` and rescale it to
+/// its old length (LAMMPS rotate_rescale_vec); `rsht` = h.n.
+#[inline(always)]
+pub fn rotate_rescale(h: &mut [f64], nx: &[f64; 3], rsht: f64) {
+    let shrmag = len3(h[0], h[1], h[2]);
+    h[0] -= rsht * nx[0];
+    h[1] -= rsht * nx[1];
+    h[2] -= rsht * nx[2];
+    let prjmag = len3(h[0], h[1], h[2]);
+    let scale = if prjmag > 0.0 { shrmag / prjmag } else { 0.0 };
+    h[0] *= scale;
+    h[1] *= scale;
+    h[2] *= scale;
+}
+
 /// Coulomb's limit on a spring-dashpot force: above mu F_n,crit the force is scaled down and
 /// the spring set back to match; a spring of zero length gives no force at all (LAMMPS).
-/// `shrmag`: the spring length that decides this (None: its length now, taken only if needed).
+/// `shrmag`: the spring length that decides this (None: its length now, taken only if needed);
+/// `kinv`: -1/stiffness, the spring from its force (None: the history is the force).
 #[inline(always)]
-fn coulomb(mut fs: [f64; 3], shrmag: Option<f64>, fscrit: f64, k: f64, damp: f64, vtr: &[f64; 3], h: &mut [f64]) -> [f64; 3] {
+fn coulomb(mut fs: [f64; 3], shrmag: Option<f64>, fscrit: f64, kinv: Option<f64>, damp: f64, vtr: &[f64; 3], h: &mut [f64]) -> [f64; 3] {
     let magfs = len3(fs[0], fs[1], fs[2]);
     if magfs > fscrit {
         if shrmag.unwrap_or_else(|| len3(h[0], h[1], h[2])) != 0.0 {
             let s = fscrit * (1.0 / magfs);
-            let kinv = -1.0 / k;
             for d in 0..3 {
                 h[d] = s * fs[d];
                 h[d] += damp * vtr[d];
-                h[d] *= kinv;
+                if let Some(kinv) = kinv {
+                    h[d] *= kinv;
+                }
                 fs[d] *= s;
             }
         } else {

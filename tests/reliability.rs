@@ -246,3 +246,11 @@ fn absurd_type_counts_are_refused() {
         expect(sub, &[&deck("in.many_types_data"), "-var", "data", &data, "-log", "none"], 2, &["too many atom types: 2147483647; dmhs accepts at most 4096", "many_types.data:4:1"]);
     }
 }
+
+/// Found by tests/fuzz.rs: 100,400 atoms in a strip of a periodic box 1e19 long. Bins grow only
+/// along the long dimension; with the bins of every dimension grown the strip was one bin and
+/// each neighbour build O(N^2) (over 60 s).
+#[test]
+fn a_strip_in_a_huge_box_keeps_fine_bins() {
+    expect("run", &[&deck("in.sparse_strip"), "-log", "none"], 0, &["for 2 steps with 100400 atoms"]);
+}

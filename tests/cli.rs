@@ -145,6 +145,7 @@ fn check_and_run_report_the_active_models() {
 /// `dmhs bench --repeat 2` against LAMMPS: one row per engine with the median of two interleaved
 /// rounds, a ratio column relative to LAMMPS, and the range of the per-round ratios.
 #[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn bench_repeats_rounds_and_reports_medians() {
     if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;

@@ -394,6 +394,7 @@ fn blend_is_the_weighted_sum_of_sph_and_dem() {
 /// (measured: esph to 2.2e-16 relative after 500 steps). Skipped without LAMMPS unless
 /// DMHS_REQUIRE_LAMMPS=1.
 #[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn hybrid_heat_exchange_matches_lammps() {
     if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;

@@ -49,11 +49,18 @@ fn noise_grows_above_the_limit_and_dies_out_below() {
     let (start, damped, text) = run_dmhs("1", tmp.path());
     // measured: 3.52e-7 J -> 9.8e-10 J
     assert!(damped < 0.01 * start, "at the limit: kinetic energy {start} -> {damped}\n{text}");
+}
 
-    // the same numbers from LAMMPS (its fix sph has the lag: this is the model, not an engine bug)
+/// The same numbers from LAMMPS (its fix sph has the lag: this is the model, not an engine bug).
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn lammps_gives_the_same_growth_and_decay() {
     let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, grown, _) = run_dmhs("2", tmp.path());
+    let (_, damped, _) = run_dmhs("1", tmp.path());
     let lmp = dmhs::tools::lammps::find_lmp(&python).unwrap();
     for (f, ours) in [("2", grown), ("1", damped)] {
         let o = Command::new(&lmp)

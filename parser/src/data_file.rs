@@ -35,6 +35,11 @@ use Column as C;
 /// `tagint` is a 32-bit int), 2^31 - 1.
 pub const MAX_ATOM_ID: i64 = i32::MAX as i64;
 
+/// The most types of one kind dmhs accepts (create_box, data file headers). It keeps tables per
+/// type and per pair of atom types ((N + 1)^2 entries), so 2^31 types (accepted by LAMMPS'
+/// parser) was an allocation of gigabytes that aborted.
+pub const MAX_TYPES: usize = 4096;
+
 /// The five kinds of types (atom, bond, angle, dihedral, improper).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TypeKind {

@@ -23,6 +23,7 @@ use crate::args::{is_lammps_integer, word_type_range};
 use crate::commands::{is_lammps_command, lammps_commands, unknown_command};
 use crate::context::{EvalContext, Host};
 use crate::diag::Diagnostic;
+use crate::follow_on::Refused;
 use crate::lexer::{self, LexWord, Located, LogicalLine};
 use crate::span::{FileId, SourceMap, Span};
 use crate::suggest::did_you_mean_help;
@@ -56,6 +57,9 @@ pub struct Outcome {
     pub exit: Exit,
     /// Errors recorded in keep-going mode (their commands were skipped).
     pub errors: Vec<Diagnostic>,
+    /// Keep-going mode: errors that only follow from an earlier refused definition, each with
+    /// where that definition was (not counted as errors; `dmhs check` shows them as notes).
+    pub follow_ons: Vec<(Diagnostic, Span)>,
 }
 
 type Flow = Result<(), Vec<Diagnostic>>;
@@ -77,6 +81,9 @@ pub struct Interpreter {
     echo_log: bool,
     keep_going: bool,
     recorded: Vec<Diagnostic>,
+    /// Keep-going mode: the refused definitions, and the errors that follow from them.
+    refused: Refused,
+    follow_ons: Vec<(Diagnostic, Span)>,
     /// Command names the pre-pass already reported (not reported again when reached).
     reported: HashSet<Span>,
     warned_non_ascii: bool,
@@ -131,6 +138,8 @@ impl Interpreter {
             echo_log: true,
             keep_going: false,
             recorded: vec![],
+            refused: Refused::default(),
+            follow_ons: vec![],
             reported: HashSet::new(),
             warned_non_ascii: false,
             quit: None,
@@ -216,7 +225,7 @@ impl Interpreter {
             Some(code) => Exit::Quit(code),
             None => Exit::EndOfInput,
         };
-        Ok(Outcome { exit, errors: std::mem::take(&mut self.recorded) })
+        Ok(Outcome { exit, errors: std::mem::take(&mut self.recorded), follow_ons: std::mem::take(&mut self.follow_ons) })
     }
 
     /// An error: recorded in keep-going mode, returned otherwise.
@@ -339,7 +348,10 @@ impl Interpreter {
         };
         let (words, non_ascii) = match parsed {
             Ok(x) => x,
-            Err(d) => return self.fail(one(d)),
+            Err(d) => {
+                let raw: Vec<&str> = line.text().split_whitespace().collect();
+                return self.fail_command(&raw, line, d);
+            }
         };
         if non_ascii && !scanning && !self.warned_non_ascii {
             self.warned_non_ascii = true;
@@ -353,8 +365,34 @@ impl Interpreter {
             return Ok(());
         }
         match self.execute(&words, line, host) {
-            Ok(()) => Ok(()),
+            Ok(()) => {
+                if self.keep_going {
+                    self.refused.defined(&words.iter().map(LexWord::as_str).collect::<Vec<_>>());
+                }
+                Ok(())
+            }
+            Err(ds) if ds.len() == 1 && self.keep_going => {
+                let w: Vec<&str> = words.iter().map(LexWord::as_str).collect();
+                self.fail_command(&w, line, ds.into_iter().next().unwrap())
+            }
             Err(ds) => self.fail(ds),
+        }
+    }
+
+    /// A command failed: in keep-going mode, what it would have defined is refused, and its
+    /// error is a follow-on when it only follows from an earlier refused definition.
+    fn fail_command(&mut self, words: &[&str], line: &Located, d: Diagnostic) -> Flow {
+        if !self.keep_going {
+            return Err(one(d));
+        }
+        let cause = self.refused.cause(words, line.text(), &d.message);
+        self.refused.refuse(words, d.primary_span().unwrap_or(line.full_span()));
+        match cause {
+            Some(at) => {
+                self.follow_ons.push((d, at));
+                Ok(())
+            }
+            None => self.fail(one(d)),
         }
     }
 

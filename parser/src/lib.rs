@@ -12,6 +12,7 @@ pub mod context;
 pub mod data_file;
 pub mod diag;
 pub mod expr;
+pub mod follow_on;
 pub mod interp;
 pub mod lexer;
 pub mod numfmt;

@@ -50,7 +50,9 @@ pub fn create_box(
     boundary: [[BoundaryKind; 2]; 3],
 ) -> DResult<CreateBox> {
     let mut a = Args::new(cmd, BOX_SYNTAX);
-    let ntypes = a.i64_in("number of atom types", 1, i32::MAX as i64)? as usize;
+    // dmhs keeps tables per type and per pair of types: MAX_TYPES, not LAMMPS' 2^31 - 1
+    let max_types = dmhs_parser::data_file::MAX_TYPES as i64;
+    let ntypes = a.i64_in("number of atom types", 1, max_types)? as usize;
     crate::sim::memory::check_types(ntypes).map_err(|e| Diagnostic::at(cmd.span, format!("create_box {ntypes} atom types: {e}"), "too many atom types"))?;
     let rw = a.word("region ID")?;
     if rw.text == "NULL" {
@@ -135,7 +137,7 @@ pub fn create_box(
         let Some(k) = KEYWORDS.iter().position(|s| *s == kw.text) else {
             return Err(a.unknown_keyword(kw, &KEYWORDS));
         };
-        let n = a.i64_in(KEYWORDS[k], 0, i32::MAX as i64)? as usize;
+        let n = a.i64_in(KEYWORDS[k], 0, if k < 4 { max_types } else { i32::MAX as i64 })? as usize;
         let slot = match k {
             0 => &mut out.bond_types,
             1 => &mut out.angle_types,

@@ -54,6 +54,8 @@ pub struct DeckRun {
     pub interp: Interpreter,
     pub quit: Option<i32>,
     pub check_errors: Vec<Diagnostic>,
+    /// Check mode: errors that only follow from a refused definition, with where it was.
+    pub follow_ons: Vec<(Diagnostic, dmhs_parser::Span)>,
 }
 
 fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> {
@@ -112,7 +114,7 @@ fn finish(
                 Exit::Quit(c) => Some(c),
                 Exit::EndOfInput => None,
             };
-            Ok(DeckRun { sim, interp, quit, check_errors: outcome.errors })
+            Ok(DeckRun { sim, interp, quit, check_errors: outcome.errors, follow_ons: outcome.follow_ons })
         }
         Err(diags) => {
             let rendered: String = diags.iter().map(|d| d.render(interp.sources())).collect::<Vec<_>>().join("\n");

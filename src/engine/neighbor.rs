@@ -590,7 +590,7 @@ struct Grid {
 }
 
 impl Grid {
-    /// The largest number of bins (before the margins); larger grids get larger bins.
+    /// The largest number of bins (margins included); larger grids get larger bins.
     const MAX_BINS: f64 = (1u64 << 24) as f64;
 
     /// None if the extent `hi - lo` is not finite (a box of 1e308 widened by the cutoff, or
@@ -599,27 +599,35 @@ impl Grid {
         let mut nb = [1usize; 3];
         let mut size = [1.0; 3];
         let mut ext = [0.0; 3];
-        let mut binsize = binsize;
+        let mut bs = [binsize; 3];
         if !(0..dim).all(|d| (hi[d] - lo[d]).is_finite()) || !(binsize > 0.0 && cut.is_finite()) {
             return None;
         }
         // keep the bin count bounded for very sparse systems: counted in floating point, so
-        // that a huge box cannot overflow the count (each count is then at most MAX_BINS);
-        // doubling from any positive size reaches a finite extent within about 2100 steps
+        // that a huge box cannot overflow the count; doubling from any positive size reaches
+        // a finite extent within about 2100 steps per dimension
         loop {
             let mut count = [1.0f64; 3];
+            // with the margins of `reach` bins on both sides: a box long in one dimension
+            // (1e9 x 8 x 8) had 2^24 bins along it, times 7 x 7 with its margins (3 GB)
+            let mut total = [1.0f64; 3];
             for d in 0..dim {
-                ext[d] = (hi[d] - lo[d]).max(binsize);
-                count[d] = (ext[d] / binsize).floor().max(1.0);
+                ext[d] = (hi[d] - lo[d]).max(bs[d]);
+                count[d] = (ext[d] / bs[d]).floor().max(1.0);
+                total[d] = count[d] + 2.0 * (cut / (ext[d] / count[d])).ceil();
             }
-            if count[0] * count[1] * count[2] <= Self::MAX_BINS {
+            if total[0] * total[1] * total[2] <= Self::MAX_BINS {
                 for d in 0..dim {
                     nb[d] = count[d] as usize;
                     size[d] = ext[d] / nb[d] as f64;
                 }
                 break;
             }
-            binsize *= 2.0;
+            // coarser bins along the dimension with the most only: a box huge in one
+            // dimension keeps fine bins in the others (one bin across 40,000 atoms of a
+            // strip made every build O(N^2))
+            let d = (0..dim).max_by(|&a, &b| total[a].total_cmp(&total[b])).unwrap_or(0);
+            bs[d] *= 2.0;
         }
         let mut reach = [0i64; 3];
         let mut inv = [1.0; 3];
@@ -708,6 +716,27 @@ mod tests {
             assert!(neighbor.list.chunks.len() >= 2, "{len:?}: {} chunks", neighbor.list.chunks.len());
             assert_eq!(neighbor.list.check_slab_invariant(), Ok(()));
         }
+    }
+
+    /// A box long in one dimension only (8.4 x 8.4 x 3.6e9, from a fuzzed `region` line): the
+    /// grid, margins included, stays within MAX_BINS (it was 49 x 2^24 bins, 3 GB), and a
+    /// close pair far along the long axis is listed.
+    #[test]
+    fn long_thin_boxes_keep_the_bin_count_bounded() {
+        let g = Grid::new([0.0; 3], [8.4, 8.4, 3.6e9], 2.8 / 3.0, 3, 2.8).unwrap();
+        assert!(g.total as f64 <= Grid::MAX_BINS, "{} bins", g.total);
+        // only the long dimension gets coarser bins (40,000 atoms of a strip in one bin made
+        // each build O(N^2))
+        let g = Grid::new([0.0; 3], [1e19, 400.0, 0.5], 1.1 / 3.0, 2, 1.1).unwrap();
+        assert!(g.total as f64 <= Grid::MAX_BINS && g.nb[1] > 1000, "{:?}", g.nb);
+        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [8.4, 8.4, 3.6e9], boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        atoms.push(&NewAtom::at(1, 1, [1.0, 1.0, 2.0e9]));
+        atoms.push(&NewAtom::at(2, 1, [2.0, 1.0, 2.0e9]));
+        let mut neighbor = Neighbor::default();
+        neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, &SpecialTable::default()).unwrap();
+        let pairs: usize = neighbor.list.chunks.iter().map(|c| c.neigh.len()).sum();
+        assert_eq!(pairs, 1);
     }
 
     /// Boxes of 1e30..1e308 with a close pair near a face: bin counts and indices stay in range

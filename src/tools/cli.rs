@@ -287,21 +287,35 @@ fn check_cmd(cli: &Cli) -> i32 {
     opts.log = None;
     match run_file(deck, &opts) {
         Ok(r) => {
-            let mut errors = r.check_errors;
-            if errors.is_empty() {
+            let sources = r.interp.sources();
+            // errors that only follow from a refused definition: one line each, not counted
+            let notes: Vec<String> = r
+                .follow_ons
+                .iter()
+                .map(|(d, cause)| {
+                    let at = d.primary_span().map(|s| format!("{}: ", sources.location(s))).unwrap_or_default();
+                    let line = sources.get(cause.file).map(|f| f.line_col(cause.lo).0).unwrap_or(0);
+                    format!("note: {at}{} (follows from the error at line {line})\n", d.message)
+                })
+                .collect();
+            if r.check_errors.is_empty() && notes.is_empty() {
                 println!("\n{}", r.sim.describe());
                 println!("check: {} is valid", deck.display());
-                0
-            } else {
-                for d in errors.drain(..) {
-                    eprint!("{}", d.render(r.interp.sources()));
-                }
-                println!("\n{}", r.sim.describe());
-                2
+                return 0;
             }
+            // the half-built set-up after errors would only mislead: errors and a count
+            for d in &r.check_errors {
+                eprint!("{}", d.render(sources));
+            }
+            eprint!("{}", notes.concat());
+            let n = r.check_errors.len();
+            eprintln!("{n} error{}", if n == 1 { "" } else { "s" });
+            2
         }
         Err(f) => {
             eprint!("{}", f.rendered);
+            let n = f.diagnostics.iter().filter(|d| d.is_error()).count().max(1);
+            eprintln!("{n} error{}", if n == 1 { "" } else { "s" });
             2
         }
     }

@@ -437,10 +437,10 @@ impl<'a> Reader<'a> {
             }
             HeaderKey::Types(k) => {
                 if let Some(n) = count(self, &values[0]) {
-                    if n > i32::MAX as usize {
+                    if n > super::MAX_TYPES {
                         self.err(Diagnostic::at(
                             values[0].span,
-                            format!("too many {} types", k.name()),
+                            format!("too many {} types: {n}; dmhs accepts at most {} (it keeps tables per type and per pair of types)", k.name(), super::MAX_TYPES),
                             "out of range",
                         ));
                     } else {

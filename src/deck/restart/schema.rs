@@ -13,8 +13,8 @@ pub const FORMAT: &str = "dmhs restart";
 pub const VERSION: u32 = 2;
 /// The largest atom ID: LAMMPS' MAXTAGINT in its default (smallbig) build.
 pub const MAX_ID: i64 = i32::MAX as i64;
-/// The largest type count, as the data-file reader allows.
-const MAX_TYPES: usize = i32::MAX as usize;
+/// The largest type count, as create_box and the data-file reader allow.
+const MAX_TYPES: usize = dmhs_parser::data_file::MAX_TYPES;
 /// The commands read_restart replays; the same list as the private `commands::FORCE_FIELD`,
 /// which decides what write_restart stores.
 const FORCE_FIELD: &[&str] = &["pair_style", "pair_coeff", "pair_modify", "bond_style", "bond_coeff", "angle_style", "angle_coeff", "dihedral_style", "dihedral_coeff", "special_bonds"];

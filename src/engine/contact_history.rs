@@ -66,14 +66,18 @@ impl ContactHistory {
 
     /// Change the values per contact and which of them keep their sign from the other side
     /// (`keep.len()` values). A new size drops the stored contacts (they are aligned again at
-    /// the next rebuild); contacts pending from a restart file stay.
-    pub fn set_layout(&mut self, keep: Vec<bool>) {
+    /// the next rebuild); contacts pending from a restart file stay, and must have that size.
+    pub fn set_layout(&mut self, keep: Vec<bool>) -> Result<(), String> {
+        if let Some(r) = self.pending.as_ref().and_then(|p| p.iter().find(|r| r.values.len() != keep.len())) {
+            return Err(format!("the restart file's contact histories keep {} values per contact; this pair style keeps {}", r.values.len(), keep.len()));
+        }
         if keep.len() != self.size {
             self.size = keep.len();
             self.chunks.clear();
             self.list.clear();
         }
         self.keep = keep;
+        Ok(())
     }
 
     pub fn size(&self) -> usize {

@@ -682,8 +682,7 @@ impl PairStyle for Granular {
             }
         }
         self.models = GranularModels(models, size, beyond);
-        self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect());
-        Ok(())
+        self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         let m = self.models.0.get(it, jt);

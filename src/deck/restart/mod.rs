@@ -229,9 +229,7 @@ pub fn read_restart(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap
         return Err(fail(format!("contact_histories has {} stores; the pair style of the file's force field has {}", histories.len(), stores.len())));
     }
     for (k, (store, h)) in stores.iter_mut().zip(histories).enumerate() {
-        // pair granular lays its store out when a run starts (its models are mixed then):
-        // set_layout checks the restored contacts
-        if store.size() != h.size && store.size() != 0 {
+        if store.size() != h.size {
             return Err(fail(format!("contact_histories[{k}] has {} values per contact; the pair style's store has {}", h.size, store.size())));
         }
         store.restore(h.contacts.into_iter().map(|Contact(owner, partner, image, values)| ContactRecord { owner, partner, image, values }).collect());

@@ -649,6 +649,19 @@ impl PairStyle for Granular {
             }
         }
         self.types.set_range(ilo, ihi, jlo, jhi);
+        // lay the history store out now (init does it again with the mixed pairs, which use the
+        // same sub-models): read_restart checks a file's contacts against it before any run
+        let (mut size, mut keep) = (0, 0);
+        for s in self.coeff.data.iter().filter(|s| s.set) {
+            let g = GranModel::build(s, false);
+            (size, keep) = (size.max(g.history_size), keep | g.history_keep);
+        }
+        if let Err(e) = self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect()) {
+            return Err(match args.last() {
+                Some(w) => args.error_at(w, e, "history size"),
+                None => args.missing(&e),
+            });
+        }
         Ok(())
     }
     fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {

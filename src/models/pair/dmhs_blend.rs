@@ -107,11 +107,7 @@ impl PairStyle for DmhsBlend {
         if !a.features.sphere || !a.features.sph {
             return Err("pair dmhs/blend needs SPH and sphere attributes (atom_style hybrid sph sphere)".into());
         }
-        self.maxrad = (0..=setup.ntypes).map(|t| setup.insert_radius.get(t).copied().unwrap_or(0.0)).collect();
-        for i in 0..a.nlocal {
-            let t = a.typ[i];
-            self.maxrad[t] = self.maxrad[t].max(a.radius[i]);
-        }
+        self.maxrad = setup.max_radii(setup.ntypes);
         Ok(())
     }
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {

@@ -78,17 +78,9 @@ impl GranTypes {
         }
         Ok(())
     }
-    /// Largest radius per type over the owned atoms.
+    /// Largest radius per type over the owned atoms and the particles fixes will insert.
     pub fn init_radii(&mut self, setup: &PairSetup) {
-        let a = setup.atoms;
-        let n = self.ntypes.max(setup.ntypes);
-        self.maxrad = (0..=n).map(|t| setup.insert_radius.get(t).copied().unwrap_or(0.0)).collect();
-        for i in 0..a.nlocal {
-            let t = a.typ[i];
-            if t <= n {
-                self.maxrad[t] = self.maxrad[t].max(a.radius[i]);
-            }
-        }
+        self.maxrad = setup.max_radii(self.ntypes.max(setup.ntypes));
     }
     pub fn cutoff(&self, it: usize, jt: usize) -> f64 {
         match (self.maxrad.get(it), self.maxrad.get(jt)) {

@@ -150,6 +150,21 @@ pub struct PairSetup<'a> {
     pub insert_radius: Vec<f64>,
 }
 
+impl PairSetup<'_> {
+    /// Largest radius of each type 0..=n among the owned atoms and the particles fixes will
+    /// insert (granular cutoffs: LAMMPS' maxrad_dynamic).
+    pub fn max_radii(&self, n: usize) -> Vec<f64> {
+        let a = self.atoms;
+        let mut r: Vec<f64> = (0..=n).map(|t| self.insert_radius.get(t).copied().unwrap_or(0.0)).collect();
+        for i in 0..a.nlocal {
+            if let Some(m) = r.get_mut(a.typ[i]) {
+                *m = m.max(a.radius[i]);
+            }
+        }
+        r
+    }
+}
+
 /// A pair style as the engine drives it.
 pub trait PairStyle: Send + Sync {
     fn style(&self) -> &str;

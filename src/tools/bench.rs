@@ -1,11 +1,13 @@
 //! `dmhs bench --against lammps [--against liggghts] DECK...`: particle-steps per second of dmhs
-//! (at several thread counts) and of the reference engines (serial: LAMMPS' `lmp`, LIGGGHTS for
-//! granular decks) on the same decks, measured in the same invocation. The ratio column is
-//! relative to LAMMPS (to LIGGGHTS when only it is given).
+//! and of the reference engines on the same decks, measured in the same invocation, each engine a
+//! child process whose peak memory is read from /proc. For every core count N of
+//! `--threads-list`, LAMMPS runs as a user with N cores would run it: serial for N = 1,
+//! `mpiexec -np N` and `-sf omp -pk omp N` above; LIGGGHTS runs serial. The ratio column compares
+//! each engine with the fastest reference engine on the same number of cores.
 
-use crate::tools::cli::deck_dir;
-use crate::deck::{run_file, DeckOptions};
-use std::path::PathBuf;
+use crate::tools::lammps::{LmpConfig, RunTiming};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 /// One measurement.
 #[derive(Clone, Debug)]
@@ -14,7 +16,7 @@ pub struct Timing {
     pub seconds: f64,
     pub steps: u64,
     pub atoms: u64,
-    pub bytes_per_particle: Option<f64>,
+    pub peak_bytes: Option<u64>,
 }
 
 impl Timing {
@@ -23,37 +25,60 @@ impl Timing {
     }
 }
 
-/// Time a deck in dmhs with `threads` worker threads.
-pub fn time_dmhs(deck: &std::path::Path, vars: &[(String, Vec<String>)], threads: usize) -> Result<Timing, String> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| e.to_string())?;
-    let opts = DeckOptions { vars: vars.to_vec(), screen: false, log: None, base_dir: Some(deck_dir(deck)), ..Default::default() };
-    let run = pool.install(|| run_file(deck, &opts)).map_err(|f| f.rendered)?;
-    let s = &run.sim;
-    Ok(Timing {
-        engine: format!("dmhs {threads}t"),
-        seconds: s.last_loop_seconds,
-        steps: s.last_loop_steps as u64,
-        atoms: s.state.atoms.nlocal as u64,
-        bytes_per_particle: Some(crate::sim::memory::bytes_per_particle(s)),
-    })
+/// Time a deck in dmhs with `threads` worker threads, as a child process (this executable).
+pub fn time_dmhs(deck: &Path, vars: &[(String, Vec<String>)], threads: usize) -> Result<RunTiming, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find the dmhs executable: {e}"))?;
+    let dir = deck.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let mut cmd = std::process::Command::new(&exe);
+    cmd.current_dir(dir).arg("-in").arg(deck.file_name().unwrap_or_default()).arg("-log").arg("none").arg("-threads").arg(threads.to_string());
+    for (name, values) in vars {
+        cmd.arg("-var").arg(name).args(values);
+    }
+    let name = exe.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let m = crate::tools::measure::run_measured(&mut cmd, &name, Duration::from_millis(50)).map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    if !m.status.success() {
+        return Err(format!("dmhs failed on {}:\n{}{}", deck.display(), m.stdout, m.stderr));
+    }
+    let (seconds, steps, atoms) = crate::tools::lammps::parse_loop_time(&m.stdout).ok_or_else(|| format!("no `Loop time` line in the output of dmhs for {}", deck.display()))?;
+    Ok(RunTiming { seconds, steps, atoms, peak_bytes: m.peak_bytes })
 }
 
-/// One engine of a bench: a reference engine (serial) or dmhs at a thread count.
+/// One engine of a bench.
 #[derive(Clone, Copy)]
-enum Engine<'a> {
-    Reference(&'a str),
+enum Engine {
+    Lammps(LmpConfig),
+    Liggghts,
     Dmhs(usize),
 }
 
-impl Engine<'_> {
-    fn time(&self, deck: &std::path::Path, vars: &[(String, Vec<String>)]) -> Result<Timing, String> {
-        match *self {
-            Engine::Reference(name) => {
-                let (seconds, steps, atoms) = if name == "lammps" { crate::tools::lammps::time_lmp(deck, vars)? } else { crate::tools::liggghts::time_liggghts(deck, vars)? };
-                Ok(Timing { engine: format!("{name} 1t"), seconds, steps, atoms, bytes_per_particle: None })
-            }
-            Engine::Dmhs(n) => time_dmhs(deck, vars, n),
+impl Engine {
+    fn cores(self) -> usize {
+        match self {
+            Engine::Lammps(c) => c.cores(),
+            Engine::Liggghts => 1,
+            Engine::Dmhs(n) => n,
         }
+    }
+
+    fn is_reference(self) -> bool {
+        !matches!(self, Engine::Dmhs(_))
+    }
+
+    fn label(self) -> String {
+        match self {
+            Engine::Lammps(c) => format!("lammps {}", c.label()),
+            Engine::Liggghts => "liggghts 1t".into(),
+            Engine::Dmhs(n) => format!("dmhs {n}t"),
+        }
+    }
+
+    fn time(self, deck: &Path, vars: &[(String, Vec<String>)]) -> Result<Timing, String> {
+        let t = match self {
+            Engine::Lammps(config) => crate::tools::lammps::time_lmp(deck, vars, config)?,
+            Engine::Liggghts => crate::tools::liggghts::time_liggghts(deck, vars)?,
+            Engine::Dmhs(n) => time_dmhs(deck, vars, n)?,
+        };
+        Ok(Timing { engine: self.label(), seconds: t.seconds, steps: t.steps, atoms: t.atoms, peak_bytes: t.peak_bytes })
     }
 }
 
@@ -65,9 +90,10 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// `repeat` rounds, each timing every engine once in turn (so that a slow spell of a shared
-/// machine hits all engines of a round alike); each engine's row gives its median time, and with
-/// more than one round the lowest and highest of the per-round ratios.
-pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], threads: Vec<usize>, repeat: usize) -> i32 {
+/// machine hits all engines of a round alike); each engine's row gives its median time, its ratio
+/// to the fastest reference engine on as many cores (medians), and with more than one round the
+/// lowest and highest of the per-round ratios.
+pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[String], threads: Vec<usize>, repeat: usize) -> i32 {
     if decks.is_empty() {
         eprintln!("dmhs bench: give at least one deck");
         return 2;
@@ -78,16 +104,23 @@ pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], thre
             return 2;
         }
     }
-    // LAMMPS first: it is the reference of the ratio column
     let mut engines: Vec<Engine> = vec![];
-    for name in ["lammps", "liggghts"] {
-        if against.iter().any(|a| a == name) {
-            engines.push(Engine::Reference(name));
+    if against.iter().any(|a| a == "lammps") {
+        for &n in &threads {
+            if n == 1 {
+                engines.push(Engine::Lammps(LmpConfig::Serial));
+            } else {
+                engines.push(Engine::Lammps(LmpConfig::Mpi(n)));
+                engines.push(Engine::Lammps(LmpConfig::Omp(n)));
+            }
         }
+    }
+    if against.iter().any(|a| a == "liggghts") {
+        engines.push(Engine::Liggghts);
     }
     engines.extend(threads.iter().map(|&n| Engine::Dmhs(n)));
     let rounds_col = if repeat > 1 { format!(" {:>13}", "round ratios") } else { String::new() };
-    println!("{:<40} {:<12} {:>10} {:>8} {:>9} {:>14} {:>8} {:>10}{}", "deck", "engine", "atoms", "steps", "seconds", "particle-st/s", "ratio", "bytes/part", rounds_col);
+    println!("{:<40} {:<12} {:>10} {:>8} {:>9} {:>14} {:>8} {:>9} {:>10}{}", "deck", "engine", "atoms", "steps", "seconds", "particle-st/s", "ratio", "peak MiB", "bytes/part", rounds_col);
     let mut status = 0;
     for deck in decks {
         let name = deck.display().to_string();
@@ -95,7 +128,7 @@ pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], thre
         let mut times: Vec<Vec<Option<Timing>>> = vec![vec![]; engines.len()];
         for _ in 0..repeat {
             for (e, engine) in engines.iter().enumerate() {
-                let t = engine.time(deck, &opts.vars);
+                let t = engine.time(deck, vars);
                 if let Err(msg) = &t {
                     eprintln!("dmhs bench: {}", msg.trim_end());
                     status = 1;
@@ -104,33 +137,37 @@ pub fn bench_cmd(decks: &[PathBuf], opts: &DeckOptions, against: &[String], thre
             }
         }
         let pss = |t: &Option<Timing>| t.as_ref().map(|t| t.particle_steps_per_second());
-        // the reference: the first engine, if it is a reference engine and ran
-        let reference_rounds: Option<&Vec<Option<Timing>>> = match engines.first() {
-            Some(Engine::Reference(_)) => times.first(),
-            _ => None,
+        // the fastest reference engine on `cores` cores: by medians, and in round r
+        let best_median = |cores: usize| -> Option<f64> {
+            engines.iter().zip(&times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, r)| {
+                let ok: Vec<f64> = r.iter().filter_map(pss).collect();
+                (!ok.is_empty()).then(|| median(ok))
+            }).reduce(f64::max)
         };
-        let reference = reference_rounds.and_then(|r| {
-            let ok: Vec<f64> = r.iter().filter_map(pss).collect();
-            if ok.is_empty() { None } else { Some(median(ok)) }
-        });
-        for rounds in &times {
+        let best_in_round = |cores: usize, r: usize| -> Option<f64> {
+            engines.iter().zip(&times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, t)| pss(&t[r])).reduce(f64::max)
+        };
+        for (engine, rounds) in engines.iter().zip(&times) {
             let ok: Vec<&Timing> = rounds.iter().flatten().collect();
             let Some(first) = ok.first() else { continue };
             let seconds = median(ok.iter().map(|t| t.seconds).collect());
             let p = median(ok.iter().map(|t| t.particle_steps_per_second()).collect());
-            let ratio = reference.map(|r| format!("{:.2}", p / r)).unwrap_or("-".into());
-            let bytes = first.bytes_per_particle.map(|b| format!("{b:.0}")).unwrap_or("-".into());
-            let mut line = format!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>10}", name, first.engine, first.atoms, first.steps, seconds, p, ratio, bytes);
+            let ratio = best_median(engine.cores()).map(|r| format!("{:.2}", p / r)).unwrap_or("-".into());
+            let peak = ok.iter().filter_map(|t| t.peak_bytes).max();
+            let mib = peak.map(|b| format!("{:.1}", b as f64 / 1048576.0)).unwrap_or("-".into());
+            let per_particle = peak.map(|b| format!("{:.0}", b as f64 / first.atoms.max(1) as f64)).unwrap_or("-".into());
+            let mut line = format!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>9} {:>10}", name, first.engine, first.atoms, first.steps, seconds, p, ratio, mib, per_particle);
             if repeat > 1 {
-                let per_round: Vec<f64> = match reference_rounds {
-                    Some(r) => rounds.iter().zip(r).filter_map(|(t, rt)| Some(pss(t)? / pss(rt)?)).collect(),
-                    None => vec![],
-                };
+                let per_round: Vec<f64> = rounds.iter().enumerate().filter_map(|(r, t)| Some(pss(t)? / best_in_round(engine.cores(), r)?)).collect();
                 let range = if per_round.is_empty() { "-".to_string() } else { format!("{:.2}-{:.2}", per_round.iter().copied().fold(f64::INFINITY, f64::min), per_round.iter().copied().fold(0.0, f64::max)) };
                 line += &format!(" {range:>13}");
             }
             println!("{line}");
         }
+    }
+    if !against.is_empty() {
+        println!("ratio: particle-steps/s over the fastest reference engine on as many cores (LAMMPS: serial on 1; mpiexec -np N and -sf omp -pk omp N on N)");
+        println!("peak MiB: the summed high-water resident memory of the engine's processes; bytes/part: that over the atoms");
     }
     status
 }

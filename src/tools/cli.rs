@@ -45,7 +45,8 @@ options:
               --pos-tol X   (default 1e-9, relative to the box length)
               --vel-tol X   (default 1e-8, relative to the largest speed in the run)
               --curve FILE  also write the divergence table to FILE
-  bench: --threads-list 1,2 (dmhs thread counts to time; default 1,2)
+  bench: --threads-list 1,2 (core counts: dmhs threads; LAMMPS serial on 1 core,
+                        mpiexec -np N and -sf omp -pk omp N on N; default 1,2)
          --repeat N    (N interleaved rounds of all engines; medians and the
                         range of the per-round ratios; default 1)
   validate: --quick (the fast variants the tests run), --engine dmhs|lammps,
@@ -223,7 +224,7 @@ pub fn main_with_args(args: &[String]) -> i32 {
     };
     if cli.sub == "bench" {
         // the benchmark makes its own pool per thread count
-        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1));
+        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1));
     }
     // The whole command runs on a worker of its pool: each parallel loop is then started from
     // inside the pool (work is pushed to the local queue and stolen) instead of being sent in

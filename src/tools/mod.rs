@@ -9,5 +9,6 @@ pub mod cli_crosscheck;
 pub mod crosscheck;
 pub mod lammps;
 pub mod liggghts;
+pub mod measure;
 pub mod plot_cmd;
 pub mod validate;

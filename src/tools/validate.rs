@@ -652,7 +652,7 @@ pub fn speed_sweep(quick: bool, progress: &mut dyn FnMut(&SpeedPoint)) -> Result
                     q.error = Some(e).filter(|e| e.is_finite());
                     q.seconds = f64::INFINITY;
                     for _ in 0..TIMING_REPEATS {
-                        q.seconds = q.seconds.min(crate::tools::lammps::time_lmp(&deck_path, &deck_vars(&vars))?.0);
+                        q.seconds = q.seconds.min(crate::tools::lammps::time_lmp(&deck_path, &deck_vars(&vars), crate::tools::lammps::LmpConfig::Serial)?.seconds);
                     }
                 }
                 Err(e) => q.note = e.lines().find(|l| l.contains("ERROR")).unwrap_or("failed").trim().to_string(),

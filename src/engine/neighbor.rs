@@ -117,7 +117,7 @@ impl Exclusions {
         self.types.is_empty() && self.groups.is_empty() && self.molecule.is_empty()
     }
     #[inline]
-    fn excluded(&self, a: &Atoms, i: usize, j: usize) -> bool {
+    pub fn excluded(&self, a: &Atoms, i: usize, j: usize) -> bool {
         let (ti, tj) = (a.typ[i], a.typ[j]);
         if self.types.iter().any(|&(p, q)| (p == ti && q == tj) || (p == tj && q == ti)) {
             return true;

@@ -9,6 +9,7 @@ mod modify_cmds;
 mod output_cmds;
 mod run_cmds;
 mod settings;
+mod topology_cmds;
 
 pub(crate) use settings::features_of;
 
@@ -40,6 +41,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("delete_atoms", box_cmds::delete_atoms),
     ("displace_atoms", box_cmds::displace_atoms),
     ("read_data", box_cmds::read_data),
+    ("create_bonds", topology_cmds::create_bonds),
     ("write_data", box_cmds::write_data),
     ("mass", atoms_cmds::mass),
     ("set", atoms_cmds::set),

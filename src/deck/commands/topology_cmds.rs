@@ -1,0 +1,209 @@
+//! Topology commands: create_bonds.
+
+use super::need_box;
+use crate::engine::topology::{Angle, Bond, Dihedral};
+use crate::sim::Simulation;
+use dmhs_parser::args::Args;
+use dmhs_parser::{Command, DResult, Diagnostic, SourceMap};
+
+/// `create_bonds many group1 group2 btype rmin rmax`, `single/bond btype a1 a2`,
+/// `single/angle atype a1 a2 a3`, `single/dihedral dtype a1 a2 a3 a4`, each with `special yes|no`.
+/// As LAMMPS: `many` bonds every pair of atoms, one in each group, whose distance lies in
+/// [rmin, rmax] and that LAMMPS' neighbour list holds (the pair's type has a cutoff, no
+/// `neigh_modify exclude` rule removes it, the atoms are not bonded already); the special lists
+/// are rebuilt (with `special yes`, the default).
+pub fn create_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let syntax = "create_bonds many group1 group2 btype rmin rmax | single/bond btype a1 a2 | single/angle atype a1 a2 a3 | single/dihedral dtype a1 a2 a3 a4 [special yes|no]";
+    let mut a = Args::new(cmd, syntax);
+    if !sim.state.atoms.features.molecular() {
+        return Err(a.error_at(&cmd.name, "create_bonds needs an atom style with bonds (bond, angle, molecular, full, or a hybrid of them)", "atoms have no bonds"));
+    }
+    let style_w = a.word("style")?;
+    let styles = ["many", "single/bond", "single/angle", "single/dihedral", "single/improper"];
+    let Some(style) = styles.iter().position(|s| *s == style_w.text) else {
+        return Err(a.unknown_keyword(style_w, &styles));
+    };
+    if style == 4 {
+        return Err(a.error_at(style_w, "create_bonds single/improper is not supported: dmhs has no improper styles", "not supported"));
+    }
+    let topo = &sim.state.topo;
+    let (ntypes_of, what) = match style {
+        0 | 1 => (topo.nbondtypes, "bond type"),
+        2 => (topo.nangletypes, "angle type"),
+        _ => (topo.ndihedraltypes, "dihedral type"),
+    };
+    let mut groups = [0u32; 2];
+    let mut range = [0.0f64; 2];
+    if style == 0 {
+        for g in &mut groups {
+            let w = a.word("group ID")?;
+            *g = sim.state.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?;
+        }
+    }
+    if ntypes_of == 0 {
+        let w = a.peek().unwrap_or(style_w);
+        return Err(a.error_at(w, format!("no {what}s are defined (create_box ... {}/types N, or a data file header)", what.split(' ').next().unwrap()), format!("no {what}s")));
+    }
+    let typ = a.i64_in(what, 1, ntypes_of as i64)? as usize;
+    let mut ids = vec![];
+    if style == 0 {
+        range = [a.f64("rmin")?, a.f64("rmax")?];
+        if range[0] > range[1] {
+            let w = a.last().unwrap();
+            return Err(a.error_at(w, format!("rmin {} is larger than rmax {}", range[0], range[1]), "rmax must be >= rmin"));
+        }
+    } else {
+        let n = style + 1;
+        let map = sim.state.atoms.tag_map();
+        for _ in 0..n {
+            let id = a.i64("atom ID")?;
+            let w = a.last().unwrap();
+            if map.get(id).is_none_or(|i| i >= sim.state.atoms.nlocal) {
+                return Err(a.error_at(w, format!("atom {id} does not exist"), "no such atom"));
+            }
+            if ids.contains(&id) {
+                return Err(a.error_at(w, format!("atom {id} appears twice"), "the atoms must differ"));
+            }
+            ids.push(id);
+        }
+    }
+    let mut special = true;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "special" => special = a.yes_no("special")?,
+            _ => return Err(a.unknown_keyword(w, &["special"])),
+        }
+    }
+    if style == 0 && !special {
+        return Err(a.error_at(a.last().unwrap(), "create_bonds many cannot use `special no` (LAMMPS refuses it too: the next many would bond bonded pairs again)", "needs special yes"));
+    }
+    match style {
+        0 => {
+            let added = many(sim, cmd, groups, typ, range)?;
+            let total = sim.state.topo.bonds.len();
+            sim.out.print(&format!("Added {added} bonds, new total = {total}"));
+        }
+        1 => sim.state.topo.bonds.push(Bond { typ, atoms: [ids[0], ids[1]] }),
+        2 => sim.state.topo.angles.push(Angle { typ, atoms: [ids[0], ids[1], ids[2]] }),
+        _ => sim.state.topo.dihedrals.push(Dihedral { typ, atoms: [ids[0], ids[1], ids[2], ids[3]] }),
+    }
+    if special {
+        sim.state.rebuild_special().map_err(|e| Diagnostic::at(cmd.span, e, "special lists"))?;
+    } else {
+        // LAMMPS leaves the special lists as they were until the next rebuild asks for them
+        sim.state.special_dirty = true;
+    }
+    sim.state.lists_valid = false;
+    Ok(())
+}
+
+/// The bonds of `create_bonds many`; returns how many it added.
+fn many(sim: &mut Simulation, cmd: &Command, groups: [u32; 2], typ: usize, range: [f64; 2]) -> DResult<usize> {
+    // LAMMPS initialises the whole system and builds a neighbour list for the command
+    sim.init_run().map_err(|e| Diagnostic::at(e.at.unwrap_or(cmd.span), e.message, "while initialising for create_bonds"))?;
+    let Some(pair) = sim.pair.as_deref() else {
+        return Err(Diagnostic::at(cmd.span, "create_bonds many needs a pair style (its neighbour list finds the pairs)", "no pair style"));
+    };
+    if sim.state.special_bonds.lj[1] != 0.0 || sim.state.special_bonds.coul[1] != 0.0 {
+        return Err(Diagnostic::at(cmd.span, "create_bonds many needs special_bonds 1-2 weights of 0.0 (so that bonded pairs are not in the neighbour list)", "special_bonds 1-2 weight is not 0"));
+    }
+    let state = &sim.state;
+    let ntypes = state.ntypes;
+    let skin = state.neigh_settings.skin;
+    // the list cutoff of each type pair (0: the pair is not in LAMMPS' list)
+    let stride = ntypes + 1;
+    let mut cutneigh = vec![0.0; stride * stride];
+    let mut cutmax: f64 = 0.0;
+    for i in 1..=ntypes {
+        for j in 1..=ntypes {
+            let c = pair.cutoff(i, j);
+            if c > 0.0 {
+                cutneigh[i * stride + j] = c + skin;
+                cutmax = cutmax.max(c + skin);
+            }
+        }
+    }
+    if range[1] > cutmax {
+        return Err(Diagnostic::at(cmd.span, format!("create_bonds max distance {} is larger than the neighbour cutoff {} (largest pair cutoff + skin)", range[1], cutmax), "rmax beyond the neighbour list"));
+    }
+    let domain = state.domain.as_ref().unwrap();
+    let at = &state.atoms;
+    let n = at.nlocal;
+    let bonded: std::collections::HashSet<(i64, i64)> = state.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect();
+    let (rminsq, rmaxsq) = (range[0] * range[0], range[1] * range[1]);
+    // candidates: atoms in either group, binned at rmax (a bin of at least 1e-12 of the box)
+    let cand: Vec<usize> = (0..n).filter(|&i| at.mask[i] & (groups[0] | groups[1]) != 0).collect();
+    let prd = domain.prd();
+    let dim = domain.dimension;
+    let nbin: Vec<usize> = (0..3).map(|d| if d < dim { ((prd[d] / range[1].max(1e-12 * prd[d])).floor() as usize).clamp(1, 1 << 10) } else { 1 }).collect();
+    let bin_of = |x: [f64; 3]| -> [usize; 3] {
+        let mut b = [0usize; 3];
+        for d in 0..dim {
+            let f = ((x[d] - domain.lo[d]) / prd[d] * nbin[d] as f64).floor();
+            b[d] = (f.max(0.0) as usize).min(nbin[d] - 1);
+        }
+        b
+    };
+    let mut bins: std::collections::HashMap<[usize; 3], Vec<usize>> = std::collections::HashMap::new();
+    for &i in &cand {
+        bins.entry(bin_of(at.x[i])).or_default().push(i);
+    }
+    let mut new_bonds: Vec<(i64, i64)> = vec![];
+    for &i in &cand {
+        let b = bin_of(at.x[i]);
+        let mut seen_bins: Vec<[usize; 3]> = vec![];
+        let offs: Vec<i64> = vec![-1, 0, 1];
+        for dx in &offs {
+            for dy in &offs {
+                for dz in if dim == 3 { offs.as_slice() } else { &[0i64][..] } {
+                    let mut nb = [0usize; 3];
+                    let mut ok = true;
+                    for (d, o) in [*dx, *dy, *dz].iter().enumerate() {
+                        let m = nbin[d] as i64;
+                        let k = b[d] as i64 + o;
+                        nb[d] = if (0..m).contains(&k) {
+                            k as usize
+                        } else if domain.periodic(d) {
+                            k.rem_euclid(m) as usize
+                        } else {
+                            ok = false;
+                            0
+                        };
+                    }
+                    if !ok || seen_bins.contains(&nb) {
+                        continue;
+                    }
+                    seen_bins.push(nb);
+                    for &j in bins.get(&nb).map(|v| v.as_slice()).unwrap_or(&[]) {
+                        let (ti, tj) = (at.tag[i], at.tag[j]);
+                        if ti >= tj {
+                            continue;
+                        }
+                        let ok_groups = (at.mask[i] & groups[0] != 0 && at.mask[j] & groups[1] != 0) || (at.mask[i] & groups[1] != 0 && at.mask[j] & groups[0] != 0);
+                        if !ok_groups || bonded.contains(&(ti, tj)) {
+                            continue;
+                        }
+                        let cut = cutneigh[at.typ[i] * stride + at.typ[j]];
+                        if cut == 0.0 || state.neigh_settings.exclusions.excluded(at, i, j) {
+                            continue;
+                        }
+                        let mut del = [at.x[i][0] - at.x[j][0], at.x[i][1] - at.x[j][1], at.x[i][2] - at.x[j][2]];
+                        domain.minimum_image(&mut del);
+                        let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                        if rsq < rminsq || rsq > rmaxsq || rsq > cut * cut {
+                            continue;
+                        }
+                        new_bonds.push((ti, tj));
+                    }
+                }
+            }
+        }
+    }
+    new_bonds.sort_unstable();
+    new_bonds.dedup();
+    let added = new_bonds.len();
+    sim.state.topo.bonds.extend(new_bonds.into_iter().map(|(i, j)| Bond { typ, atoms: [i, j] }));
+    Ok(added)
+}

@@ -89,14 +89,24 @@ fn check_reports_several_errors() {
     assert!(t.contains("in.bad:8:11") && t.contains("fix style `npt` is a LAMMPS style that dmhs does not support"), "{t}");
 }
 
+/// The built-in example (examples/capsules/in.capsules), shortened: it says what it is, runs
+/// the three models, prints its summary and leaves its pictures.
 #[test]
 fn builtin_example_runs() {
     let tmp = tempfile::tempdir().unwrap();
-    let o = dmhs(&["-var", "nsteps", "10", "-var", "n", "4"], tmp.path());
+    let o = dmhs(&["-var", "nsteps", "20"], tmp.path());
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
-    assert!(t.contains("for 10 steps with 256 atoms"), "{t}");
-    assert!(tmp.path().join("log.dmhs").exists());
+    assert!(t.contains("DMHS example: 1496 SPH fluid particles, 512 wall/post particles"), "{t}");
+    assert!(t.contains("three bonded capsules (72 particles, 195 bonds)"), "{t}");
+    assert!(t.contains("for 20 steps with 2080 atoms"), "{t}");
+    for model in ["pair sph/taitwater/morris (1-1 1-2)", "pair lj/cut (1-3)", "pair granular (2-3 3-3)", "bond harmonic"] {
+        assert!(t.contains(model), "{model}: {t}");
+    }
+    assert!(t.contains("Summary after 0.02 time units"), "{t}");
+    for f in ["log.dmhs", "dmhs-example.0.png", "dmhs-example.20.png"] {
+        assert!(tmp.path().join(f).exists(), "{f}");
+    }
 }
 
 #[test]
@@ -165,10 +175,11 @@ fn bench_repeats_rounds_and_reports_medians() {
         assert_eq!(r[3], "256", "{t}");
         assert_eq!(r[4], "200", "{t}");
         assert!(r[5].parse::<f64>().unwrap() > 0.0, "{t}");
-        // a process of a few MiB at least, and per particle that over 256 atoms
+        // a process of a few MiB at least, and per particle that over 256 atoms (MiB printed
+        // to 0.1)
         let mib: f64 = r[8].parse().unwrap();
         assert!(mib > 1.0 && mib < 4096.0, "{t}");
-        assert!((r[9].parse::<f64>().unwrap() - mib * 1048576.0 / 256.0).abs() < 0.01 * mib * 1048576.0 / 256.0 + 1.0, "{t}");
+        assert!((r[9].parse::<f64>().unwrap() - mib * 1048576.0 / 256.0).abs() <= 0.05 * 1048576.0 / 256.0 + 1.0, "{t}");
     }
     assert_eq!(rows[0][7], "1.00", "the only 1-core reference:\n{t}");
     assert_eq!(rows[0][10], "1.00-1.00", "{t}");

@@ -6,13 +6,15 @@ use crate::deck::{run_file, run_text, DeckOptions};
 use std::path::{Path, PathBuf};
 
 /// The deck `dmhs` runs when given none.
-pub const BUILTIN_EXAMPLE: &str = include_str!("../../examples/lj-melt/in.melt");
+pub const BUILTIN_EXAMPLE: &str = include_str!("../../examples/capsules/in.capsules");
 
 pub const USAGE: &str = "\
 dmhs: particle engine for solid-liquid flows (SPH + CGMD + DEM), reading LAMMPS input
 
 usage:
-  dmhs                              run the built-in example (3D Lennard-Jones melt)
+  dmhs                              run the built-in example: elastic capsules carried by a
+                                    channel flow past a post (SPH + bonds + contact, about 10 s;
+                                    writes dmhs-example.*.png here)
   dmhs run DECK [options]           run an input deck
   dmhs -in DECK [options]           the same, LAMMPS style
   dmhs check DECK [options]         parse and build the deck without running; print the set-up
@@ -262,7 +264,7 @@ fn dispatch(cli: &Cli) -> i32 {
 
 fn run_cmd(cli: &Cli) -> i32 {
     let result = match cli.decks.as_slice() {
-        [] => run_text("<built-in example: examples/lj-melt/in.melt>", BUILTIN_EXAMPLE, &cli.opts),
+        [] => run_text("<built-in example: examples/capsules/in.capsules>", BUILTIN_EXAMPLE, &cli.opts),
         [deck] => run_file(deck, &cli.opts),
         _ => {
             eprintln!("dmhs run: give one deck");

@@ -63,17 +63,25 @@ impl GranTypes {
     pub fn is_set(&self, i: usize, j: usize) -> bool {
         self.setflag.get(i * (self.ntypes + 1) + j).copied().unwrap_or(false)
     }
-    /// Every I,I pair (of the active ones) must be set.
+    /// Alone, every I,I pair must be set (LAMMPS' Pair::init); as a sub-style of a hybrid, only
+    /// its own pairs count, and one that pair_coeff did not name is mixed from I,I and J,J, which
+    /// must then be set.
     pub fn check(&mut self, ntypes: usize, active: Option<&[bool]>, style: &str) -> Result<(), String> {
         self.grow(ntypes);
         for i in 1..=ntypes {
-            if let Some(a) = active {
-                if !(1..=ntypes).any(|j| a[i * (ntypes + 1) + j]) {
+            let Some(a) = active else {
+                if !self.is_set(i, i) {
+                    return Err(format!("pair {style} coefficients for types {i} {i} are not set (use pair_coeff * *)"));
+                }
+                continue;
+            };
+            for j in i..=ntypes {
+                if !a[i * (ntypes + 1) + j] || self.is_set(i, j) {
                     continue;
                 }
-            }
-            if !self.is_set(i, i) {
-                return Err(format!("pair {style} coefficients for types {i} {i} are not set (use pair_coeff * *)"));
+                if let Some(t) = [i, j].into_iter().find(|&t| !self.is_set(t, t)) {
+                    return Err(format!("pair {style} coefficients for types {i} {j} are not set, nor those of {t} {t} to mix them from"));
+                }
             }
         }
         Ok(())

@@ -153,11 +153,13 @@ pub struct NeighborSettings {
     /// Bin size given by `neigh_modify binsize` (0 = half the largest cutoff, as LAMMPS).
     pub binsize: f64,
     pub exclusions: Exclusions,
+    /// `neighbor skin multi` (lists as `bin` here; `comm_modify mode multi` requires it, as LAMMPS).
+    pub multi: bool,
 }
 
 impl NeighborSettings {
     pub fn new(skin: f64) -> NeighborSettings {
-        NeighborSettings { skin, every: 1, delay: 0, check: true, once: false, binsize: 0.0, exclusions: Exclusions::default() }
+        NeighborSettings { skin, every: 1, delay: 0, check: true, once: false, binsize: 0.0, exclusions: Exclusions::default(), multi: false }
     }
 }
 

@@ -35,7 +35,11 @@ pub struct Thermo {
     pub format_float: Option<String>,
     /// Per-column formats (1-based column -> format).
     pub format_column: Vec<(usize, String)>,
+    /// `thermo_modify lost warn|ignore`: atoms that leave a fixed boundary are removed.
     pub lost_ignore: bool,
+    /// `lost warn`: the first loss is reported (LAMMPS warns once).
+    pub lost_warn: bool,
+    pub lost_warned: bool,
     pub flush: bool,
 }
 
@@ -51,6 +55,8 @@ impl Default for Thermo {
             format_float: None,
             format_column: vec![],
             lost_ignore: false,
+            lost_warn: false,
+            lost_warned: false,
             flush: false,
         }
     }

@@ -250,6 +250,8 @@ impl Simulation {
         // pairs across periodic faces see the old vest, exactly as in LAMMPS.
         self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
         self.timers.charge(Stage::Modify);
+        // what fixes noticed when the run starts (e.g. a region defined again)
+        self.flush_messages();
         self.compute_forces(true, false)?;
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;

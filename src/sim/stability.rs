@@ -311,8 +311,9 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Atoms outside a fixed face are lost, as in LAMMPS: an error naming the first one
-/// (or, with `thermo_modify lost ignore`, they are removed).
+/// Atoms outside a fixed face are lost, as in LAMMPS: an error naming the first one (or, with
+/// `thermo_modify lost ignore|warn`, they are removed; `warn` reports the first loss once, as
+/// LAMMPS' "Lost atoms: original N current M").
 pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
     let Some(domain) = sim.state.domain.as_ref() else { return Ok(()) };
     let a = &sim.state.atoms;
@@ -332,8 +333,13 @@ pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
     let Some((i, d)) = first else { return Ok(()) };
     if sim.thermo.lost_ignore {
         let tags: std::collections::HashSet<i64> = (0..a.nlocal).filter(|&k| gone[k]).map(|k| a.tag[k]).collect();
+        let before = a.nlocal;
         sim.state.atoms.retain(&gone);
         sim.state.topo.remove_atoms(&tags);
+        if sim.thermo.lost_warn && !sim.thermo.lost_warned {
+            sim.thermo.lost_warned = true;
+            sim.state.messages.push(format!("WARNING: Lost atoms: original {before} current {}", sim.state.atoms.nlocal));
+        }
         return Ok(());
     }
     let n_lost = gone.iter().filter(|&&g| g).count();

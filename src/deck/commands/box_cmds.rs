@@ -16,6 +16,18 @@ pub fn lattice(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResul
 }
 
 pub fn region(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    // `region ID delete`: users (fixes, unions) look the ID up again before each run
+    if cmd.args.get(1).is_some_and(|w| w.text == "delete") {
+        let mut a = Args::new(cmd, "region ID delete");
+        let w = a.word("region ID")?;
+        a.skip(1);
+        a.finish()?;
+        let Some(k) = sim.state.regions.iter().position(|r| r.id == w.text) else {
+            return Err(a.error_at(w, format!("region `{}` to delete does not exist", w.text), "unknown region"));
+        };
+        sim.state.regions.remove(k);
+        return Ok(());
+    }
     let r = crate::engine::region::Region::from_lammps(cmd, sim.state.domain.as_ref(), sim.state.lattice.as_ref(), &sim.state.regions)?;
     sim.state.regions.push(r);
     Ok(())

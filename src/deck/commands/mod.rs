@@ -31,6 +31,8 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("neighbor", settings::neighbor),
     ("neigh_modify", settings::neigh_modify),
     ("comm_modify", settings::comm_modify),
+    ("comm_style", settings::comm_style),
+    ("balance", settings::balance),
     ("special_bonds", settings::special_bonds),
     ("log", settings::log),
     ("dmhs/stability", settings::dmhs_stability),

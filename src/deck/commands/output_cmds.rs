@@ -69,7 +69,11 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
         match w.text.as_str() {
             "norm" => sim.thermo.norm = Some(a.yes_no("norm")?),
             "flush" => sim.thermo.flush = a.yes_no("flush")?,
-            "lost" => sim.thermo.lost_ignore = a.choice("lost", &["error", "warn", "ignore"])? != 0,
+            "lost" => {
+                let k = a.choice("lost", &["error", "warn", "ignore"])?;
+                sim.thermo.lost_ignore = k != 0;
+                sim.thermo.lost_warn = k == 1;
+            }
             "lost/bond" => {
                 a.choice("lost/bond", &["error", "warn", "ignore"])?;
             }

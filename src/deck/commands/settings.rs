@@ -228,6 +228,25 @@ pub fn processors(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     Ok(())
 }
 
+/// `comm_style brick|tiled`: how MPI sub-domains are shaped; one process has one.
+pub fn comm_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "comm_style brick|tiled");
+    a.choice("comm_style", &["brick", "tiled"])?;
+    a.finish()?;
+    let _ = sim;
+    Ok(())
+}
+
+/// `balance thresh style args ... [keywords]`: LAMMPS' load balancing of MPI sub-domains.
+/// dmhs runs one process, which has nothing to balance (`dmhs check` says so).
+pub fn balance(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "balance thresh x|y|z|shift|rcb args ... [keyword value ...]");
+    a.f64_where("thresh", "thresh >= 1.0", |t| t >= 1.0)?;
+    a.choice("balance style", &["x", "y", "z", "shift", "rcb"])?;
+    sim.out.print("note: balance does nothing: dmhs runs one process, which has nothing to balance");
+    Ok(())
+}
+
 pub fn timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "timestep dt");
     let dt = a.f64("dt")?;
@@ -242,9 +261,10 @@ pub fn timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
 pub fn neighbor(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "neighbor skin bin|nsq|multi");
     let skin = a.non_negative_f64("skin")?;
-    a.choice("neighbor style", &["bin", "nsq", "multi"])?;
+    let multi = a.choice("neighbor style", &["bin", "nsq", "multi"])? == 2;
     a.finish()?;
     sim.state.neigh_settings.skin = skin;
+    sim.state.neigh_settings.multi = multi;
     sim.state.lists_valid = false;
     Ok(())
 }
@@ -313,7 +333,7 @@ fn group_bit(a: &mut Args, groups: &crate::engine::groups::Groups) -> DResult<u3
 }
 
 pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "comm_modify keyword value ...  (vel yes|no, cutoff x, mode single)");
+    let mut a = Args::new(cmd, "comm_modify keyword value ...  (vel yes|no, cutoff x, cutoff/multi type x, reduce/multi, mode single|multi, group G)");
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }
@@ -325,10 +345,25 @@ pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
             "cutoff" => {
                 a.non_negative_f64("cutoff")?;
             }
+            // ghost cutoffs by type and the ghost group only shape MPI communication: one
+            // process makes the ghosts its lists need
             "mode" => {
-                a.choice("mode", &["single"])?;
+                if a.choice("mode", &["single", "multi", "multi/old"])? == 1 && !sim.state.neigh_settings.multi {
+                    return Err(a.error_at(a.last().unwrap(), "cannot use comm mode `multi` without `multi` style neighbor lists (neighbor skin multi), as LAMMPS", "needs neighbor multi"));
+                }
             }
-            _ => return Err(a.unknown_keyword(w, &["vel", "cutoff", "mode"])),
+            "cutoff/multi" | "cutoff/multi/old" => {
+                a.word("type range")?;
+                a.non_negative_f64("cutoff")?;
+            }
+            "reduce/multi" => {}
+            "group" => {
+                let g = a.word("group ID")?;
+                if sim.state.groups.find(&g.text).is_none() {
+                    return Err(a.error_at(g, format!("comm_modify group `{}` does not exist", g.text), "unknown group"));
+                }
+            }
+            _ => return Err(a.unknown_keyword(w, &["vel", "cutoff", "cutoff/multi", "reduce/multi", "mode", "group"])),
         }
     }
     Ok(())

@@ -12,8 +12,8 @@ pub const INTERSECT: Style = Style { syntax: "intersect N id1 id2 ...", nargs: c
 struct Boolean {
     /// Intersect (all) or union (any).
     all: bool,
-    /// Copies of the sub-regions as defined (LAMMPS refers to them; a moving sub-region will
-    /// need that too).
+    /// Copies of the sub-regions as defined (handed to the Region, which looks them up again by
+    /// ID before each run, as LAMMPS does).
     subs: Vec<Region>,
 }
 
@@ -47,42 +47,47 @@ fn parse(s: &ShapeArgs, all: bool) -> DResult<Box<dyn Shape>> {
 }
 
 impl Shape for Boolean {
-    fn inside(&self, x: &Vec3) -> bool {
-        let x = (*x).into();
-        if self.all {
-            self.subs.iter().all(|r| r.matches(x))
-        } else {
-            self.subs.iter().any(|r| r.matches(x))
-        }
+    // the Region takes the sub-regions (Kind::Boolean) and answers for them
+    fn inside(&self, _x: &Vec3) -> bool {
+        unreachable!("a union or intersection is answered by its Region")
     }
 
     fn extent(&self) -> Option<(Vec3, Vec3)> {
-        let min = |p: f64, q: f64| if p < q { p } else { q };
-        let max = |p: f64, q: f64| if p > q { p } else { q };
-        if self.all {
-            // the overlap of the sub-regions that have a bounding box
-            let mut ext: Option<(Vec3, Vec3)> = None;
-            for (rlo, rhi) in self.subs.iter().filter_map(Region::extent) {
-                let (rlo, rhi) = (Vec3::from(rlo), Vec3::from(rhi));
-                let (lo, hi) = ext.unwrap_or((rlo, rhi));
-                ext = Some((lo.zip_map(&rlo, max), hi.zip_map(&rhi, min)));
-            }
-            ext
-        } else {
-            // only if every sub-region has one
-            let mut lo = Vec3::repeat(BIG);
-            let mut hi = Vec3::repeat(-BIG);
-            for r in &self.subs {
-                let (rlo, rhi) = r.extent()?;
-                lo = lo.zip_map(&Vec3::from(rlo), min);
-                hi = hi.zip_map(&Vec3::from(rhi), max);
-            }
-            Some((lo, hi))
-        }
+        unreachable!("a union or intersection is answered by its Region")
     }
 
     fn has_faces(&self) -> bool {
         false
+    }
+
+    fn boolean(&self) -> Option<(bool, Vec<Region>)> {
+        Some((self.all, self.subs.clone()))
+    }
+}
+
+/// The bounding box of an intersection (`all`) or union of `subs` (LAMMPS' extent_*).
+pub(super) fn extent(all: bool, subs: &[Region]) -> Option<([f64; 3], [f64; 3])> {
+    let min = |p: f64, q: f64| if p < q { p } else { q };
+    let max = |p: f64, q: f64| if p > q { p } else { q };
+    if all {
+        // the overlap of the sub-regions that have a bounding box
+        let mut ext: Option<(Vec3, Vec3)> = None;
+        for (rlo, rhi) in subs.iter().filter_map(Region::extent) {
+            let (rlo, rhi) = (Vec3::from(rlo), Vec3::from(rhi));
+            let (lo, hi) = ext.unwrap_or((rlo, rhi));
+            ext = Some((lo.zip_map(&rlo, max), hi.zip_map(&rhi, min)));
+        }
+        ext.map(|(lo, hi)| (lo.into(), hi.into()))
+    } else {
+        // only if every sub-region has one
+        let mut lo = Vec3::repeat(BIG);
+        let mut hi = Vec3::repeat(-BIG);
+        for r in subs {
+            let (rlo, rhi) = r.extent()?;
+            lo = lo.zip_map(&Vec3::from(rlo), min);
+            hi = hi.zip_map(&Vec3::from(rhi), max);
+        }
+        Some((lo.into(), hi.into()))
     }
 }
 

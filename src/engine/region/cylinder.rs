@@ -2,7 +2,7 @@
 //! is the axis position in the other two dimensions (in x, y, z order), `lo hi` its extent
 //! along the axis (INF or EDGE allowed). Faces for `open`: 1 and 2 the ends, 3 the side.
 
-use super::{fixed, Shape, ShapeArgs, Style, Vec3};
+use super::{fixed, Shape, ShapeArgs, Style, Vec3, WallContact, BIG};
 use dmhs_parser::DResult;
 
 pub const STYLE: Style = Style { syntax: "cylinder dim c1 c2 r lo hi", nargs: fixed::<6>, parse };
@@ -67,6 +67,112 @@ impl Shape for Cylinder {
 
     fn simple(&self) -> Option<super::Simple> {
         Some(super::Simple::Cylinder { axis: self.axis, center: self.center.into(), radius: self.radius, lo: self.lo, hi: self.hi })
+    }
+
+    fn has_surface(&self) -> bool {
+        true
+    }
+
+    /// The curved side (wall 2, radius of curvature -2R; none on the axis), then the lo and hi
+    /// ends (walls 0 and 1).
+    fn surface_interior(&self, x: &Vec3, cutoff: f64, open: &[bool; 6], out: &mut Vec<WallContact>) {
+        let (a, d1, d2) = self.axes();
+        let del1 = x[d1] - self.center[d1];
+        let del2 = x[d2] - self.center[d2];
+        let r = (del1 * del1 + del2 * del2).sqrt();
+        if r > self.radius || x[a] < self.lo || x[a] > self.hi {
+            return;
+        }
+        let delta = self.radius - r;
+        if delta < cutoff && r > 0.0 && !open[2] {
+            let mut del = [0.0; 3];
+            del[d1] = del1 * (1.0 - self.radius / r);
+            del[d2] = del2 * (1.0 - self.radius / r);
+            out.push(WallContact { r: delta, del, radius: -2.0 * self.radius, iwall: 2, vwall: [0.0; 3] });
+        }
+        let delta = x[a] - self.lo;
+        if delta < cutoff && !open[0] {
+            out.push(WallContact::face(a, delta, 1.0, 0));
+        }
+        let delta = self.hi - x[a];
+        if delta < cutoff && !open[1] {
+            out.push(WallContact::face(a, delta, -1.0, 1));
+        }
+    }
+
+    /// The nearest point of the outside (curvature 2R on the curved side, 0 elsewhere; 0 also
+    /// when a face is open, as LAMMPS), wall 0.
+    fn surface_exterior(&self, x: &Vec3, cutoff: f64, open: &[bool; 6], out: &mut Vec<WallContact>) {
+        let (a, d1, d2) = self.axes();
+        let (c1, c2, radius, lo, hi) = (self.center[d1], self.center[d2], self.radius, self.lo, self.hi);
+        let del1 = x[d1] - c1;
+        let del2 = x[d2] - c2;
+        let r = (del1 * del1 + del2 * del2).sqrt();
+        if r >= radius + cutoff || x[a] <= lo - cutoff || x[a] >= hi + cutoff {
+            return;
+        }
+        if r < radius && x[a] > lo && x[a] < hi {
+            return;
+        }
+        let mut p = [0.0; 3];
+        let mut crad = 0.0;
+        if !open.contains(&true) {
+            if r > radius {
+                p[d1] = c1 + del1 * radius / r;
+                p[d2] = c2 + del2 * radius / r;
+                crad = 2.0 * radius;
+            } else {
+                p[d1] = x[d1];
+                p[d2] = x[d2];
+            }
+            p[a] = if x[a] < lo { lo } else if x[a] > hi { hi } else { x[a] };
+        } else {
+            let dr = r - radius;
+            let dr2 = dr * dr;
+            let mut d2prev = BIG;
+            if !open[2] {
+                p[d1] = c1 + del1 * radius / r;
+                p[d2] = c2 + del2 * radius / r;
+                let dx;
+                (dx, p[a]) = if x[a] < lo { (lo - x[a], lo) } else if x[a] > hi { (x[a] - hi, hi) } else { (0.0, x[a]) };
+                d2prev = dr2 + dx * dx;
+            }
+            for (face, end) in [(0, lo), (1, hi)] {
+                if open[face] {
+                    continue;
+                }
+                let dx = end - x[a];
+                let dsq = if r < radius { dx * dx } else { dr2 + dx * dx };
+                if dsq < d2prev {
+                    p[a] = end;
+                    if r < radius {
+                        p[d1] = x[d1];
+                        p[d2] = x[d2];
+                    }
+                    d2prev = dsq;
+                }
+            }
+        }
+        let mut c = WallContact::to_point(x, p);
+        c.radius = crad;
+        if c.r < cutoff {
+            out.push(c);
+        }
+    }
+
+    fn contact_counts(&self, interior: bool) -> (usize, usize) {
+        (3, if interior { 2 } else { 1 })
+    }
+}
+
+impl Cylinder {
+    /// The axis and the two other dimensions, in x, y, z order.
+    fn axes(&self) -> (usize, usize, usize) {
+        match self.axis {
+            0 => (0, 1, 2),
+            1 => (1, 0, 2),
+            _ => (2, 0, 1),
+        }
     }
 }
 

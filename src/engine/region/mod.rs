@@ -10,11 +10,17 @@
 //!
 //! A style sees points in its own frame only: LAMMPS' `move`/`rotate` keywords map a point back
 //! through the inverse displacement and rotation before the style's test (`Region::match`), so
-//! they belong in [`Region::matches`], not in the styles.
+//! they belong in [`Region`] (motion.rs), not in the styles. Granular walls
+//! (`fix wall/gran/region`) ask a region for the points of its surface within a cutoff of a
+//! particle ([`Region::surface`], surface.rs): the styles give them in their own frame
+//! ([`Shape::surface_interior`], [`Shape::surface_exterior`]) and the region moves them back.
 
 mod block;
 mod boolean;
+mod cone;
 mod cylinder;
+mod motion;
+mod surface;
 mod plane;
 mod prism;
 mod sphere;
@@ -27,6 +33,8 @@ use std::fmt::Debug;
 use std::sync::Arc;
 
 pub type Vec3 = Vector3<f64>;
+
+pub use surface::WallContact;
 
 /// What LAMMPS substitutes for `INF` bounds.
 const BIG: f64 = 1.0e20;
@@ -44,6 +52,24 @@ pub trait Shape: Debug + Send + Sync {
     /// The parameters of a block or cylinder, for commands that accept only those (fix pour).
     fn simple(&self) -> Option<Simple> {
         None
+    }
+    /// Union and intersect: whether all sub-regions must match, and the sub-regions (taken into
+    /// the [`Region`], which keeps their motion state).
+    fn boolean(&self) -> Option<(bool, Vec<Region>)> {
+        None
+    }
+    /// Whether the style gives wall contacts (LAMMPS' surface_interior/exterior).
+    fn has_surface(&self) -> bool {
+        false
+    }
+    /// LAMMPS `surface_interior`: contacts with the inner side of the faces that are not open,
+    /// for a point at most `cutoff` away (none if the point is outside).
+    fn surface_interior(&self, _x: &Vec3, _cutoff: f64, _open: &[bool; 6], _out: &mut Vec<WallContact>) {}
+    /// LAMMPS `surface_exterior`: the one nearest point of the outer side, if closer than `cutoff`.
+    fn surface_exterior(&self, _x: &Vec3, _cutoff: f64, _open: &[bool; 6], _out: &mut Vec<WallContact>) {}
+    /// LAMMPS `cmax` (contacts a point can have) and `tmax` (touching contacts, by side).
+    fn contact_counts(&self, _interior: bool) -> (usize, usize) {
+        (0, 0)
     }
 }
 
@@ -65,6 +91,20 @@ pub struct Style {
     parse: fn(&ShapeArgs) -> DResult<Box<dyn Shape>>,
 }
 
+/// LAMMPS `point_on_line_segment`: the point of segment `a`-`b` nearest to `c`.
+pub(crate) fn point_on_segment(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> [f64; 3] {
+    let ba = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let ca = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let t = (ca[0] * ba[0] + ca[1] * ba[1] + ca[2] * ba[2]) / (ba[0] * ba[0] + ba[1] * ba[1] + ba[2] * ba[2]);
+    if t <= 0.0 {
+        *a
+    } else if t >= 1.0 {
+        *b
+    } else {
+        [a[0] + t * ba[0], a[1] + t * ba[1], a[2] + t * ba[2]]
+    }
+}
+
 /// `nargs` of a style with a fixed number of shape words.
 fn fixed<const N: usize>(_: &mut Args, _: &str) -> DResult<usize> {
     Ok(N)
@@ -75,15 +115,15 @@ const STYLES: &[(&str, Style)] = &[
     ("block", block::STYLE),
     ("sphere", sphere::STYLE),
     ("cylinder", cylinder::STYLE),
+    ("cone", cone::STYLE),
     ("prism", prism::STYLE),
     ("plane", plane::STYLE),
     ("union", boolean::UNION),
     ("intersect", boolean::INTERSECT),
 ];
 
-/// LAMMPS region styles (and `region ID delete`) that dmhs lacks: named as unsupported
-/// (checked after `STYLES`).
-const LAMMPS_ONLY: &[&str] = &["cone", "ellipsoid", "delete"];
+/// LAMMPS region styles that dmhs lacks: named as unsupported (checked after `STYLES`).
+const LAMMPS_ONLY: &[&str] = &["ellipsoid"];
 
 /// Names of the supported styles.
 pub fn style_names() -> impl Iterator<Item = &'static str> {
@@ -93,7 +133,7 @@ pub fn style_names() -> impl Iterator<Item = &'static str> {
 fn syntax() -> String {
     let styles: Vec<&str> = STYLES.iter().map(|(_, s)| s.syntax).collect();
     format!(
-        "region ID style args keyword value ... (styles: {}; keywords: side in|out, units lattice|box, open face)",
+        "region ID style args keyword value ... | region ID delete (styles: {}; keywords: side in|out, units lattice|box, open face, move v_x|NULL v_y|NULL v_z|NULL, rotate v_theta Px Py Pz Rx Ry Rz)",
         styles.join(" | ")
     )
 }
@@ -165,33 +205,67 @@ impl ShapeArgs<'_> {
     }
 }
 
+/// What a region is: one style's shape, or a union/intersection of sub-regions (copies that
+/// keep their own motion state, looked up again by ID before each run as LAMMPS does).
+#[derive(Clone, Debug)]
+enum Kind {
+    Shape(Arc<dyn Shape>),
+    Boolean { all: bool, subs: Vec<Region> },
+}
+
 #[derive(Clone, Debug)]
 pub struct Region {
     pub id: String,
     pub style: &'static str,
-    shape: Arc<dyn Shape>,
+    kind: Kind,
     /// `side in` (true, the default) or `side out`.
     pub interior: bool,
     /// Faces listed with the `open` keyword (1-based in the command, 0-based here).
     pub open_faces: [bool; 6],
+    /// Which `region` command made it: a region deleted and defined again is another region.
+    pub serial: u64,
+    /// `move` and `rotate`, the current displacement and angle, and the velocities inferred
+    /// from them (motion.rs).
+    motion: motion::Motion,
 }
 
+static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
 impl Region {
-    /// LAMMPS `Region::match`: is `x` in the region, honouring `side`. A region with any `open`
-    /// face matches every point (as in LAMMPS, where open faces only matter for wall contacts).
+    /// LAMMPS `Region::match`: is `x` in the region, honouring `side`. A moving region maps `x`
+    /// back to where it was defined first. A region with any `open` face matches every point (as
+    /// in LAMMPS, where open faces only matter for wall contacts). A union or intersection asks
+    /// its sub-regions (each with its own motion and open faces).
     pub fn matches(&self, x: [f64; 3]) -> bool {
-        if self.open_faces.contains(&true) && self.shape.has_faces() {
-            return true;
+        match &self.kind {
+            Kind::Shape(shape) => {
+                let xl = self.motion.inverse(x);
+                if self.openflag() {
+                    return true;
+                }
+                shape.inside(&Vec3::from(xl)) == self.interior
+            }
+            Kind::Boolean { all, subs } => {
+                let inside = if *all { subs.iter().all(|r| r.matches(x)) } else { subs.iter().any(|r| r.matches(x)) };
+                inside == self.interior
+            }
         }
-        self.shape.inside(&Vec3::from(x)) == self.interior
     }
 
-    /// The block or cylinder this region is, if it is one (`side in`, no open faces).
+    /// LAMMPS `openflag`: some face was given with `open` (union and intersect have none).
+    pub fn openflag(&self) -> bool {
+        matches!(self.kind, Kind::Shape(_)) && self.open_faces.contains(&true)
+    }
+
+    /// The block or cylinder this region is, if it is one (`side in`, no open faces, still).
     pub fn simple(&self) -> Option<Simple> {
-        if !self.interior || self.open_faces.contains(&true) {
+        if !self.interior || self.open_faces.contains(&true) || self.is_dynamic() {
             return None;
         }
-        self.shape.simple()
+        match &self.kind {
+            Kind::Shape(shape) => shape.simple(),
+            Kind::Boolean { .. } => None,
+        }
     }
 
     /// The bounding box LAMMPS uses (`bboxflag` and `extent_*`): interior regions of finite shapes.
@@ -199,7 +273,10 @@ impl Region {
         if !self.interior {
             return None;
         }
-        self.shape.extent().map(|(lo, hi)| (lo.into(), hi.into()))
+        match &self.kind {
+            Kind::Shape(shape) => shape.extent().map(|(lo, hi)| (lo.into(), hi.into())),
+            Kind::Boolean { all, subs } => boolean::extent(*all, subs),
+        }
     }
 
     /// Parse a `region` command. `domain` is needed for `EDGE`/`INF` bounds; `lattice` gives
@@ -223,10 +300,13 @@ impl Region {
                 "invalid ID",
             ));
         }
+        let style_word = a.word("region style")?;
+        if style_word.text == "delete" {
+            return Err(a.error_at(style_word, "`region ID delete` removes a region (handled by the region command)", "delete"));
+        }
         if existing.iter().any(|r| r.id == id) {
             return Err(a.error_at(id_word, format!("reuse of region ID `{id}`"), "already defined"));
         }
-        let style_word = a.word("region style")?;
         let Some(&(name, style)) = STYLES.iter().find(|(n, _)| *n == style_word.text) else {
             if LAMMPS_ONLY.contains(&style_word.text.as_str()) {
                 return Err(a.error_at(
@@ -251,6 +331,8 @@ impl Region {
         let mut open_faces = [false; 6];
         const KEYWORDS: [&str; 5] = ["side", "units", "open", "move", "rotate"];
         let mut open: Vec<(&Word, usize)> = vec![];
+        let mut moving = motion::Motion::default();
+        let mut dynamic_word = None;
         while let Some(kw) = a.peek() {
             a.skip(1);
             match kw.text.as_str() {
@@ -261,20 +343,30 @@ impl Region {
                     open_faces[face - 1] = true;
                     open.push((a.last().unwrap(), face));
                 }
-                "move" | "rotate" => {
-                    return Err(a.error_at(
-                        kw,
-                        format!("region keyword `{}` (dynamic regions) is not supported", kw.text),
-                        "not supported",
-                    ));
+                "move" => {
+                    moving.parse_move(&mut a)?;
+                    dynamic_word = Some(kw);
+                }
+                "rotate" => {
+                    moving.parse_rotate(&mut a)?;
+                    dynamic_word = Some(kw);
                 }
                 _ => return Err(a.unknown_keyword(kw, &KEYWORDS)),
             }
         }
         let spacing = lattice.map_or(Lattice::default().spacing(), Lattice::spacing);
         let scale = if lattice_units { Vec3::from(spacing) } else { Vec3::repeat(1.0) };
+        if let (Some(kw), "union" | "intersect") = (dynamic_word, name) {
+            return Err(a.error_at(kw, format!("region {name} cannot be dynamic (its sub-regions may move)"), "not allowed here"));
+        }
+        moving.scale_point(&scale);
         let shape = (style.parse)(&ShapeArgs { args: &a, style: name, words, scale, domain, open: &open, existing })?;
-        Ok(Region { id, style: name, shape: shape.into(), interior, open_faces })
+        let kind = match shape.boolean() {
+            Some((all, subs)) => Kind::Boolean { all, subs },
+            None => Kind::Shape(shape.into()),
+        };
+        let serial = SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(Region { id, style: name, kind, interior, open_faces, serial, motion: moving })
     }
 }
 
@@ -319,20 +411,27 @@ pub(crate) mod tests {
     fn help_line_lists_every_style() {
         assert_eq!(
             syntax(),
-            "region ID style args keyword value ... (styles: block xlo xhi ylo yhi zlo zhi | sphere x y z r | \
-cylinder dim c1 c2 r lo hi | prism xlo xhi ylo yhi zlo zhi xy xz yz | plane px py pz nx ny nz | \
-union N id1 id2 ... | intersect N id1 id2 ...; keywords: side in|out, units lattice|box, open face)"
+            "region ID style args keyword value ... | region ID delete (styles: block xlo xhi ylo yhi zlo zhi | sphere x y z r | \
+cylinder dim c1 c2 r lo hi | cone dim c1 c2 radlo radhi lo hi | prism xlo xhi ylo yhi zlo zhi xy xz yz | plane px py pz nx ny nz | \
+union N id1 id2 ...; keywords: side in|out, units lattice|box, open face, move v_x|NULL v_y|NULL v_z|NULL, rotate v_theta Px Py Pz Rx Ry Rz)"
+                .replace("union N id1 id2 ...;", "union N id1 id2 ... | intersect N id1 id2 ...;")
         );
     }
 
     #[test]
     fn dynamic_and_unknown_are_rejected() {
-        let e = reg("region r block 0 1 0 1 0 1 move v_x NULL NULL", None, None, &[]).unwrap_err();
-        assert!(e.message.contains("not supported"));
+        let e = reg("region r block 0 1 0 1 0 1 move x NULL NULL", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("v_name or NULL"), "{}", e.message);
+        let e = reg("region r block 0 1 0 1 0 1 rotate v_t 0 0 0 0 0 0", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("0 length rotation"), "{}", e.message);
+        let a = reg("region a block 0 1 0 1 0 1 move v_x NULL NULL", None, None, &[]).unwrap();
+        let b = reg("region b block 0 1 0 1 0 1", None, None, &[]).unwrap();
+        let e = reg("region u union 2 a b rotate v_t 0 0 0 0 0 1", None, None, &[a, b]).unwrap_err();
+        assert!(e.message.contains("cannot be dynamic"), "{}", e.message);
         let e = reg("region r blok 0 1 0 1 0 1", None, None, &[]).unwrap_err();
         assert!(e.help[0].contains("block"), "{:?}", e.help);
-        let e = reg("region r cone z 0 0 1 2 0 1", None, None, &[]).unwrap_err();
-        assert_eq!(e.message, "region style `cone` is not supported");
+        let e = reg("region r ellipsoid 0 0 0 1 2 3", None, None, &[]).unwrap_err();
+        assert_eq!(e.message, "region style `ellipsoid` is not supported");
         let e = reg("region r sphere 0 0 0", None, None, &[]).unwrap_err();
         assert!(e.message.contains("missing"));
         let e = reg("region r sphere 0 0 v_z 1", None, None, &[]).unwrap_err();

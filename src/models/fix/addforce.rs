@@ -13,7 +13,7 @@ pub struct FixAddForce {
     groupbit: u32,
     value: [FixValue; 3],
     every: i64,
-    region: Option<usize>,
+    region: Option<String>,
     /// -sum(F . x_unwrapped), then the original force sum.
     foriginal: [f64; 4],
 }
@@ -62,7 +62,7 @@ impl Fix for FixAddForce {
             fv[k] = ctx.value(state, self, &self.value[k])?.unwrap_or(0.0);
         }
         let domain = state.domain.clone().ok_or_else(|| RunError::new(state.step, "no box"))?;
-        let region = self.region.map(|k| &state.regions[k]);
+        let region = super::setforce::region_now(&state.regions, state.step, &self.id, &self.region)?;
         let a = &mut state.atoms;
         self.foriginal = [0.0; 4];
         for i in 0..a.nlocal {

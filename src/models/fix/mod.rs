@@ -2,6 +2,7 @@
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
 pub mod addforce;
+pub mod balance;
 pub mod bond_break;
 pub mod bond_create;
 pub mod dmhs_cooling;
@@ -20,6 +21,7 @@ pub mod setforce;
 pub mod sph;
 pub mod viscous;
 pub mod wall_gran;
+pub mod wall_gran_region;
 pub mod wall_reflect;
 
 use crate::engine::state::{RunError, State};
@@ -212,6 +214,8 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/reflect", |d, state| Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("wall/gran/region", |d, state| Ok(Box::new(wall_gran_region::FixWallGranRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("balance", |d, state| Ok(Box::new(balance::FixBalance::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
     ("move", |d, state| Ok(Box::new(move_linear::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("sph", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),

@@ -12,17 +12,26 @@ pub struct FixSetForce {
     id: String,
     groupbit: u32,
     value: [FixValue; 3],
-    region: Option<usize>,
+    /// Looked up by ID each time, so that `region ID delete` and a new definition are seen.
+    region: Option<String>,
     foriginal: [f64; 3],
 }
 
-/// `region ID` keyword of a fix: the region's index.
-pub fn find_region(a: &mut Args, state: &State) -> DResult<usize> {
+/// `region ID` keyword of a fix: the region's ID, which must exist now.
+pub fn find_region(a: &mut Args, state: &State) -> DResult<String> {
     let w = a.word("region ID")?;
-    state.regions
-        .iter()
-        .position(|r| r.id == w.text)
-        .ok_or_else(|| a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region"))
+    match state.regions.iter().any(|r| r.id == w.text) {
+        true => Ok(w.text.clone()),
+        false => Err(a.error_at(w, format!("region `{}` does not exist", w.text), "unknown region")),
+    }
+}
+
+/// The region a fix names, at run time (LAMMPS checks it when a run starts).
+pub fn region_now<'a>(regions: &'a [crate::engine::region::Region], step: i64, fix: &str, id: &Option<String>) -> Result<Option<&'a crate::engine::region::Region>, RunError> {
+    match id {
+        None => Ok(None),
+        Some(id) => regions.iter().find(|r| &r.id == id).map(Some).ok_or_else(|| RunError::new(step, format!("region {id} for fix {fix} does not exist"))),
+    }
 }
 
 impl FixSetForce {
@@ -63,7 +72,7 @@ impl Fix for FixSetForce {
         for k in 0..3 {
             fv[k] = ctx.value(state, self, &self.value[k])?;
         }
-        let region = self.region.map(|k| &state.regions[k]);
+        let region = region_now(&state.regions, state.step, &self.id, &self.region)?;
         let a = &mut state.atoms;
         self.foriginal = [0.0; 3];
         for i in 0..a.nlocal {

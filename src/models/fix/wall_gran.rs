@@ -25,7 +25,7 @@ use crate::engine::state::{RunError, State};
 use crate::engine::par::{ranges, AtomsMut};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-fn syntax() -> &'static str {
+pub(super) fn syntax() -> &'static str {
     static S: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     S.get_or_init(|| {
         format!(
@@ -66,6 +66,34 @@ fn classic_spec(form: &str, c: &Classic, limit_damping: bool) -> Result<GranSpec
     })
 }
 
+
+/// The contact model of a granular wall (fix wall/gran and wall/gran/region): the `granular`
+/// form's sub-models or a classic form, read from `a`.
+pub(super) fn parse_model(a: &mut Args, cmd: &Command, syntax: &str, state: &mut State) -> DResult<GranSpec> {
+    let first = a.word("the contact model form (granular, hooke, hooke/history or hertz/history)")?;
+    let spec = match first.text.as_str() {
+        "granular" => GranSpec::parse(a, true)?,
+        "hooke" | "hooke/history" | "hertz/history" => {
+            let n = a.len_remaining().min(6);
+            let c = Classic::from_lammps_words(&a.remaining()[..n], cmd, syntax)?;
+            a.skip(n);
+            let limit_damping = a.peek().map(|w| w.text == "limit_damping").unwrap_or(false);
+            if limit_damping {
+                a.skip(1);
+            }
+            if first.text == "hooke/history" {
+                state.messages.push(
+                    "WARNING: fix wall/gran hooke/history is LAMMPS 2025's linear_history_classic wall, whose tangential spring lets a sphere resting on a slope creep (as in LAMMPS); `wall/gran granular hooke Kn eta_n0 tangential linear_history Kt x_gt mu damping mass_velocity` holds it elastically"
+                        .into(),
+                );
+            }
+            classic_spec(&first.text, &c, limit_damping).map_err(|m| a.error_at(first, m, "not supported"))?
+        }
+        _ => return Err(a.unknown_keyword(first, &["granular", "hooke", "hooke/history", "hertz/history"])),
+    };
+    Ok(spec)
+}
+
 const BIG: f64 = 1.0e20;
 
 enum Motion {
@@ -95,34 +123,15 @@ impl FixWallGran {
         if !state.atoms.features.sphere {
             return Err(a.error_at(&cmd.name, "fix wall/gran requires atom attributes radius and omega (atom_style sphere)", "no sphere attributes"));
         }
-        let first = a.word("the contact model form (granular, hooke, hooke/history or hertz/history)")?;
-        let spec = match first.text.as_str() {
-            "granular" => GranSpec::parse(&mut a, true)?,
-            "hooke" | "hooke/history" | "hertz/history" => {
-                let n = a.len_remaining().min(6);
-                let c = Classic::from_lammps_words(&a.remaining()[..n], cmd, syntax())?;
-                a.skip(n);
-                let limit_damping = a.peek().map(|w| w.text == "limit_damping").unwrap_or(false);
-                if limit_damping {
-                    a.skip(1);
-                }
-                if first.text == "hooke/history" {
-                    state.messages.push(
-                        "WARNING: fix wall/gran hooke/history is LAMMPS 2025's linear_history_classic wall, whose tangential spring lets a sphere resting on a slope creep (as in LAMMPS); `wall/gran granular hooke Kn eta_n0 tangential linear_history Kt x_gt mu damping mass_velocity` holds it elastically"
-                            .into(),
-                    );
-                }
-                classic_spec(&first.text, &c, limit_damping).map_err(|m| a.error_at(first, m, "not supported"))?
-            }
-            _ => return Err(a.unknown_keyword(first, &["granular", "hooke", "hooke/history", "hertz/history"])),
-        };
+        let spec = parse_model(&mut a, cmd, syntax(), state)?;
         let model = GranModel::build(&spec, true);
         let w = a.word("wall style (xplane, yplane or zplane)")?;
         let dim = match w.text.as_str() {
             "xplane" => 0,
             "yplane" => 1,
             "zplane" => 2,
-            "zcylinder" | "region" => return Err(a.error_at(w, format!("fix wall/gran {} is not supported (plane walls only)", w.text), "not supported")),
+            "region" => return Err(a.error_at(w, "use fix wall/gran/region for region walls", "see fix wall/gran/region")),
+            "zcylinder" => return Err(a.error_at(w, "fix wall/gran zcylinder is not supported (plane walls and fix wall/gran/region only)", "not supported")),
             _ => return Err(a.unknown_keyword(w, &["xplane", "yplane", "zplane"])),
         };
         let bound = |a: &mut Args, what: &str, null: f64| -> DResult<f64> {

@@ -305,6 +305,15 @@ pub fn tait_p_over_rho2<T: Copy + Mul<Output = T> + Div<Output = T> + Sub<f64, O
     b * (f * f * tmp - 1.0) / (rho * rho)
 }
 
+/// Monaghan's artificial viscosity term Pi of sph/taitwater and sph/idealgas, for approaching
+/// pairs only (v.x < 0; +0 otherwise): mu = h v.x/(r^2 + eps), Pi = coef mu/(rho_i + rho_j), with
+/// eps = 0.01 h^2 and coef = -alpha (c_i + c_j), in LAMMPS' order of operations.
+#[inline(always)]
+pub fn monaghan_lanes(coef: L, h: L, dvdr: L, rsq: L, eps: L, rho_sum: L) -> L {
+    let mu = h * dvdr / (rsq + eps);
+    dvdr.lt_or_zero(&L::splat(0.0), &(coef * mu / rho_sum))
+}
+
 /// Per-pair coefficients: `set` and the values of `pair_coeff I J ...`.
 #[derive(Clone, Debug)]
 pub struct PairTable<T: Clone> {

@@ -7,29 +7,20 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, dot_lanes, lanes, monaghan_lanes, parse_kernel, Batch, Kernel, L, Packed, PairTable, PerTypePair, SphContribution, SphKernel, Support, SupportLanes, LANES};
+use super::sph::{compute_sph, parse_kernel, Batch, Packed, SphContribution, SphKernel, ViscousPairs, L};
 use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/idealgas [kernel lucy|cubic|wendland2]";
-pub const COEFF_SYNTAX: &str = "pair_coeff I J alpha h";
 
 pub struct SphIdealGas {
-    kernel: Kernel,
-    /// (alpha, h) per pair
-    pairs: PairTable<(f64, f64)>,
-    cutsq: Vec<f64>,
-    /// Per type pair: the support, 0.01 h^2 and -alpha (LAMMPS' arithmetic).
-    derived: PerTypePair<(Support, f64, f64)>,
-    n: usize,
-    dim3: bool,
+    pairs: ViscousPairs,
 }
 
 impl SphIdealGas {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        let kernel = parse_kernel(&mut a)?;
-        Ok(SphIdealGas { kernel, pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
+        Ok(SphIdealGas { pairs: ViscousPairs::new(parse_kernel(&mut a)?) })
     }
 }
 
@@ -49,33 +40,14 @@ impl SphKernel for SphIdealGas {
     }
     #[inline(always)]
     fn cutsq_row(&self, ti: usize) -> &[f64] {
-        &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
+        self.pairs.cutsq_row(ti)
     }
     #[inline(always)]
     fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
-        let d: [(Support, f64, f64); LANES] = self.derived.batch(ti, &b.tj);
-        let sup = SupportLanes::gather(|l| d[l].0);
-        let (eps, neg_alpha) = (lanes(|l| d[l].1), lanes(|l| d[l].2));
-        let del = &b.del;
-        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
-        let imass = input.type_mass[ti];
-        let jmass = b.m;
         // LAMMPS: fi = 0.4*esph/m/rho, ci = sqrt(0.4*esph/m), the same for j
-        let (fi, ci) = (pi.b / pi.a, pi.b.sqrt());
+        let (fi, ci) = (L::splat(pi.b / pi.a), L::splat(pi.b.sqrt()));
         let (fj, cj) = (b.b / b.a, b.b.sqrt());
-        let vel: [L; D] = std::array::from_fn(|k| pi.v[k] - b.v[k]);
-        let dvdr = dot_lanes(del, &vel);
-        let fvisc = monaghan_lanes(neg_alpha * (ci + cj), sup.h, dvdr, b.rsq, eps, pi.a + b.a);
-        let fpair = -imass * jmass * (fi + fj + fvisc) * wfd;
-        let de = -0.5 * fpair * dvdr;
-        SphContribution {
-            f: std::array::from_fn(|k| del[k] * fpair),
-            fpair,
-            drho_i: jmass * dvdr * wfd,
-            drho_j: imass * dvdr * wfd,
-            de_i: de,
-            de_j: de,
-        }
+        self.pairs.pair(input, pi, ti, b, fi, fj, ci + cj)
     }
 }
 
@@ -84,44 +56,26 @@ impl PairStyle for SphIdealGas {
         "sph/idealgas"
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        args.syntax = COEFF_SYNTAX;
-        let alpha = args.f64("alpha (artificial viscosity)")?;
-        let h = args.positive_f64("h (kernel support)")?;
-        args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, (alpha, h));
-        Ok(())
+        self.pairs.coeff(ilo, ihi, jlo, jhi, args)
     }
     fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
         super::sph::check_setup(setup, self.style())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.pairs.check_all(ntypes, active, "sph/idealgas")?;
-        self.pairs.grow(ntypes);
-        self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
-        let pairs = &self.pairs;
-        self.derived = PerTypePair::new(ntypes, |i, j| {
-            if i == 0 || j == 0 {
-                return (Support::default(), 0.0, 0.0);
-            }
-            let (alpha, h) = *pairs.get(i, j);
-            // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
-            (Support::new(h), 0.01 * h * h, -alpha)
-        });
-        Ok(())
+        self.pairs.init(ntypes, active, "sph/idealgas")
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
-        self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
+        self.pairs.cutoff(it, jt)
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        self.dim3 = input.dimension == 3;
+        self.pairs.dim3 = input.dimension == 3;
         compute_sph(self, input, out)
     }
     fn needs_type_mass(&self) -> bool {
         true
     }
     fn describe(&self) -> String {
-        format!("sph/idealgas (kernel {}, gamma 1.4)", self.kernel.name())
+        format!("sph/idealgas (kernel {}, gamma 1.4)", self.pairs.kernel.name())
     }
 }
 

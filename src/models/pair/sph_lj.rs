@@ -9,31 +9,24 @@
 //! grows along the list), so its forces depend on the list order; dmhs adds it once per pair
 //! (docs/commands.md, SPH).
 
-use super::sph::{compute_sph, dot_lanes, lanes, monaghan_lanes, parse_kernel, Batch, Kernel, L, Packed, PairTable, PerTypePair, SphContribution, SphKernel, Support, SupportLanes, LANES};
+use super::sph::{compute_sph, lanes, parse_kernel, Batch, Packed, PerTypePair, SphContribution, SphKernel, Support, ViscousPairs, L};
 use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "pair_style sph/lj [kernel lucy|cubic|wendland2]";
-pub const COEFF_SYNTAX: &str = "pair_coeff I J alpha h";
 
 pub struct SphLj {
-    kernel: Kernel,
-    /// (alpha, h) per pair
-    pairs: PairTable<(f64, f64)>,
-    cutsq: Vec<f64>,
-    /// Per type pair: the support, 0.01 h^2, -alpha and lrc (LAMMPS' arithmetic).
-    derived: PerTypePair<(Support, f64, f64, f64)>,
+    pairs: ViscousPairs,
+    /// lrc per type pair
+    lrc: PerTypePair<f64>,
     /// Per particle (owned, then ghosts) of the current pass: P/rho^2 and the sound speed.
     eos: Vec<(f64, f64)>,
-    n: usize,
-    dim3: bool,
 }
 
 impl SphLj {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        let kernel = parse_kernel(&mut a)?;
-        Ok(SphLj { kernel, pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), eos: vec![], n: 0, dim3: true })
+        Ok(SphLj { pairs: ViscousPairs::new(parse_kernel(&mut a)?), lrc: PerTypePair::default(), eos: vec![] })
     }
 }
 
@@ -73,32 +66,13 @@ impl SphKernel for SphLj {
     }
     #[inline(always)]
     fn cutsq_row(&self, ti: usize) -> &[f64] {
-        &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
+        self.pairs.cutsq_row(ti)
     }
     #[inline(always)]
     fn pair_lanes<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>) -> SphContribution<D> {
-        let d: [(Support, f64, f64, f64); LANES] = self.derived.batch(ti, &b.tj);
-        let sup = SupportLanes::gather(|l| d[l].0);
-        let (eps, neg_alpha, lrc) = (lanes(|l| d[l].1), lanes(|l| d[l].2), lanes(|l| d[l].3));
-        let del = &b.del;
-        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
-        let imass = input.type_mass[ti];
-        let jmass = b.m;
+        let lrc = L(self.lrc.batch(ti, &b.tj));
         let (ci, cj) = (self.eos[b.i].1, lanes(|l| self.eos[b.j[l]].1));
-        let (fi, fj) = (pi.b + lrc, b.b + lrc);
-        let vel: [L; D] = std::array::from_fn(|k| pi.v[k] - b.v[k]);
-        let dvdr = dot_lanes(del, &vel);
-        let fvisc = monaghan_lanes(neg_alpha * (ci + cj), sup.h, dvdr, b.rsq, eps, pi.a + b.a);
-        let fpair = -imass * jmass * (fi + fj + fvisc) * wfd;
-        let de = -0.5 * fpair * dvdr;
-        SphContribution {
-            f: std::array::from_fn(|k| del[k] * fpair),
-            fpair,
-            drho_i: jmass * dvdr * wfd,
-            drho_j: imass * dvdr * wfd,
-            de_i: de,
-            de_j: de,
-        }
+        self.pairs.pair(input, pi, ti, b, pi.b + lrc, b.b + lrc, ci + cj)
     }
 }
 
@@ -107,37 +81,22 @@ impl PairStyle for SphLj {
         "sph/lj"
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        args.syntax = COEFF_SYNTAX;
-        let alpha = args.f64("alpha (artificial viscosity)")?;
-        let h = args.positive_f64("h (kernel support and LJ cutoff)")?;
-        args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, (alpha, h));
-        Ok(())
+        self.pairs.coeff(ilo, ihi, jlo, jhi, args)
     }
     fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
         super::sph::check_setup(setup, self.style())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.pairs.check_all(ntypes, active, "sph/lj")?;
-        self.pairs.grow(ntypes);
-        self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        self.pairs.init(ntypes, active, "sph/lj")?;
         let pairs = &self.pairs;
-        self.derived = PerTypePair::new(ntypes, |i, j| {
-            if i == 0 || j == 0 {
-                return (Support::default(), 0.0, 0.0, 0.0);
-            }
-            let (alpha, h) = *pairs.get(i, j);
-            let s = Support::new(h);
-            (s, 0.01 * h * h, -alpha, lrc(&s))
-        });
+        self.lrc = PerTypePair::new(ntypes, |i, j| if i == 0 || j == 0 { 0.0 } else { lrc(&pairs.support(i, j)) });
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
-        self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
+        self.pairs.cutoff(it, jt)
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        self.dim3 = input.dimension == 3;
+        self.pairs.dim3 = input.dimension == 3;
         // the EOS once per particle (LAMMPS evaluates it again for every pair, with the same bits)
         let a = input.atoms;
         self.eos.clear();
@@ -151,7 +110,7 @@ impl PairStyle for SphLj {
         true
     }
     fn describe(&self) -> String {
-        format!("sph/lj (kernel {}, Ree 1980 LJ EOS)", self.kernel.name())
+        format!("sph/lj (kernel {}, Ree 1980 LJ EOS)", self.pairs.kernel.name())
     }
 }
 

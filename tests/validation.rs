@@ -83,6 +83,18 @@ fn dam_break_front_against_martin_moyce() {
     }
 }
 
+#[test]
+fn sod_shock_tube_against_exact_riemann() {
+    let rep = run_case("sod", &quick()).unwrap();
+    assert_passed(&rep);
+    // L1 (mean absolute per particle within 60 of the diaphragm) at t = 20, 2008 particles
+    assert_close("rho", rep.summary_value("l1_rho").unwrap(), 9.6575e-3, 1e-3);
+    assert_close("u", rep.summary_value("l1_u").unwrap(), 2.7709e-2, 1e-3);
+    assert_close("p", rep.summary_value("l1_p").unwrap(), 1.1040e-2, 1e-3);
+    // the exact star state of Sod's problem (Toro: p* 0.30313, u* 0.92745)
+    assert_close("p*", rep.runs[0]["p_star"].as_f64().unwrap(), 0.30313, 1e-4);
+}
+
 /// dmhs and LAMMPS on the same validation deck: the same state, hence the same error.
 #[test]
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]

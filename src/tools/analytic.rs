@@ -1,6 +1,7 @@
 //! Analytic and experimental references for the SPH validation cases (`dmhs validate`):
 //! Poiseuille and Couette flow start-up (Fourier series), 1D heat conduction (erf), the
-//! hydrostatic pressure of a Tait fluid column, and Martin & Moyce's dam-break surge-front data.
+//! hydrostatic pressure of a Tait fluid column, Martin & Moyce's dam-break surge-front data, and the
+//! exact Riemann solution of an ideal gas (the Sod shock tube).
 
 use std::f64::consts::PI;
 
@@ -331,5 +332,127 @@ mod stefan_tests {
         // the paper's casting values with T_i = 100 (examples/heat/in.stefan)
         let l = super::stefan_lambda(1000.0, 1.0, 2.0, 1.0, 1.0, 50.0, 0.0, 25.0, 100.0);
         assert!((l - 0.27301889799).abs() < 1e-9, "{l}");
+    }
+}
+
+/// A state of an ideal gas in one dimension: density, velocity, pressure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GasState {
+    pub rho: f64,
+    pub u: f64,
+    pub p: f64,
+}
+
+/// The exact solution of the Riemann problem of an ideal gas (Toro, "Riemann Solvers and
+/// Numerical Methods for Fluid Dynamics", ch. 4): `left` for x < x0 and `right` for x > x0 at
+/// t = 0, ratio of specific heats `gamma`. [`Riemann::sample`] gives the state at (x, t).
+#[derive(Clone, Copy, Debug)]
+pub struct Riemann {
+    pub left: GasState,
+    pub right: GasState,
+    pub gamma: f64,
+    pub x0: f64,
+    /// Pressure and velocity of the star region between the two waves.
+    pub p_star: f64,
+    pub u_star: f64,
+}
+
+impl Riemann {
+    pub fn new(left: GasState, right: GasState, gamma: f64, x0: f64) -> Riemann {
+        let g = gamma;
+        let sound = |s: &GasState| (g * s.p / s.rho).sqrt();
+        let (cl, cr) = (sound(&left), sound(&right));
+        // f_K(p) and its derivative: shock (p > p_K) or rarefaction (p <= p_K) branch
+        let f = |p: f64, s: &GasState, c: f64| -> (f64, f64) {
+            if p > s.p {
+                let a = 2.0 / ((g + 1.0) * s.rho);
+                let b = (g - 1.0) / (g + 1.0) * s.p;
+                let q = (a / (p + b)).sqrt();
+                ((p - s.p) * q, q * (1.0 - 0.5 * (p - s.p) / (b + p)))
+            } else {
+                let e = (g - 1.0) / (2.0 * g);
+                let r = (p / s.p).powf(e);
+                (2.0 * c / (g - 1.0) * (r - 1.0), r / (s.rho * c) * (s.p / p))
+            }
+        };
+        // Newton from the two-rarefaction guess, p kept positive
+        let e = (g - 1.0) / (2.0 * g);
+        let du = right.u - left.u;
+        let mut p = ((cl + cr - 0.5 * (g - 1.0) * du) / (cl / left.p.powf(e) + cr / right.p.powf(e))).powf(1.0 / e).max(1e-12);
+        for _ in 0..100 {
+            let ((fl, dl), (fr, dr)) = (f(p, &left, cl), f(p, &right, cr));
+            let next = (p - (fl + fr + du) / (dl + dr)).max(1e-14);
+            let done = (next - p).abs() <= 1e-15 * (next + p);
+            p = next;
+            if done {
+                break;
+            }
+        }
+        let u = 0.5 * (left.u + right.u) + 0.5 * (f(p, &right, cr).0 - f(p, &left, cl).0);
+        Riemann { left, right, gamma, x0, p_star: p, u_star: u }
+    }
+
+    /// The state at position x and time t > 0.
+    pub fn sample(&self, x: f64, t: f64) -> GasState {
+        let g = self.gamma;
+        let s = (x - self.x0) / t;
+        let (ps, us) = (self.p_star, self.u_star);
+        // mirror the right side onto the left: the same formulas with u -> -u
+        let (k, sign, s) = if s <= us { (self.left, 1.0, s) } else { (self.right, -1.0, -s) };
+        let (u_k, us) = (sign * k.u, sign * us);
+        let c = (g * k.p / k.rho).sqrt();
+        let state = |rho: f64, u: f64, p: f64| GasState { rho, u: sign * u, p };
+        if ps > k.p {
+            // shock moving away from the contact
+            let r = ps / k.p;
+            let gm = (g - 1.0) / (g + 1.0);
+            let speed = u_k - c * ((g + 1.0) / (2.0 * g) * r + (g - 1.0) / (2.0 * g)).sqrt();
+            if s < speed { state(k.rho, u_k, k.p) } else { state(k.rho * (r + gm) / (gm * r + 1.0), us, ps) }
+        } else {
+            let c_star = c * (ps / k.p).powf((g - 1.0) / (2.0 * g));
+            let (head, tail) = (u_k - c, us - c_star);
+            if s < head {
+                state(k.rho, u_k, k.p)
+            } else if s > tail {
+                state(k.rho * (ps / k.p).powf(1.0 / g), us, ps)
+            } else {
+                // inside the fan
+                let f = 2.0 / (g + 1.0) + (g - 1.0) / ((g + 1.0) * c) * (u_k - s);
+                state(k.rho * f.powf(2.0 / (g - 1.0)), 2.0 / (g + 1.0) * (c + 0.5 * (g - 1.0) * u_k + s), k.p * f.powf(2.0 * g / (g - 1.0)))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod riemann_tests {
+    use super::*;
+
+    #[test]
+    fn sod_star_state_is_toros() {
+        // Toro's test 1 (Sod): p* = 0.30313, u* = 0.92745, rho*L = 0.42632, rho*R = 0.26557
+        let r = Riemann::new(GasState { rho: 1.0, u: 0.0, p: 1.0 }, GasState { rho: 0.125, u: 0.0, p: 0.1 }, 1.4, 0.5);
+        assert!((r.p_star - 0.30313).abs() < 1e-5, "{}", r.p_star);
+        assert!((r.u_star - 0.92745).abs() < 1e-5, "{}", r.u_star);
+        let t = 0.25;
+        let left_star = r.sample(0.5 + 0.5 * r.u_star * t, t);
+        let right_star = r.sample(0.5 + 1.2 * r.u_star * t, t);
+        assert!((left_star.rho - 0.42632).abs() < 1e-5, "{left_star:?}");
+        assert!((right_star.rho - 0.26557).abs() < 1e-5, "{right_star:?}");
+        // far states untouched, and the fan continuous at its head
+        assert_eq!(r.sample(0.0, t), GasState { rho: 1.0, u: 0.0, p: 1.0 });
+        assert_eq!(r.sample(1.0, t), GasState { rho: 0.125, u: 0.0, p: 0.1 });
+        let head = 0.5 - 1.4f64.sqrt() * t;
+        assert!((r.sample(head + 1e-9, t).rho - 1.0).abs() < 1e-8);
+    }
+
+    #[test]
+    fn mirrored_problem_mirrors_the_solution() {
+        let (a, b) = (GasState { rho: 1.0, u: 0.0, p: 1.0 }, GasState { rho: 0.25, u: 0.0, p: 0.25 });
+        let (r, m) = (Riemann::new(a, b, 1.4, 0.0), Riemann::new(b, a, 1.4, 0.0));
+        for x in [-0.9, -0.5, -0.1, 0.05, 0.3, 0.7] {
+            let (s, t) = (r.sample(x, 1.0), m.sample(-x, 1.0));
+            assert!((s.rho - t.rho).abs() < 1e-12 && (s.u + t.u).abs() < 1e-12 && (s.p - t.p).abs() < 1e-12, "{x}: {s:?} {t:?}");
+        }
     }
 }

@@ -6,6 +6,7 @@ pub mod com;
 pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
 pub mod ke;
+pub mod ke_atom;
 pub mod pe;
 pub mod pressure;
 pub mod property;
@@ -89,6 +90,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("temp", |d, _| Ok(Box::new(temp::ComputeTemp::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("temp/sphere", |d, w| Ok(Box::new(temp_sphere::ComputeTempSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("ke/atom", |d, _| Ok(Box::new(ke_atom::ComputeKeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

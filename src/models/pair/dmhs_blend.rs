@@ -65,6 +65,8 @@ impl PairKernel for Blended<'_> {
         if fluid {
             let (pi, pj) = (sph.pack(input, i), sph.pack(input, j));
             let b: Batch<3> = Batch {
+                i,
+                j: [j; 4],
                 tj: [tj; 4],
                 m: L::splat(input.type_mass[tj]),
                 del: [L::splat(del[0]), L::splat(del[1]), L::splat(del[2])],

@@ -18,6 +18,8 @@ pub mod lj_cut;
 pub mod sph;
 pub mod sph_loop;
 pub mod sph_heatconduction;
+pub mod sph_idealgas;
+pub mod sph_lj;
 pub mod sph_rhosum;
 pub mod sph_taitwater;
 pub mod sph_taitwater_morris;
@@ -304,6 +306,8 @@ const STYLES: &[(&str, PairCtor)] = &[
     ("sph/taitwater", |_, args, cmd| Ok(Box::new(sph_taitwater::SphTaitwater::from_lammps(args, cmd)?))),
     ("sph/taitwater/morris", |_, args, cmd| Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?))),
     ("sph/heatconduction", |_, args, cmd| Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?))),
+    ("sph/idealgas", |_, args, cmd| Ok(Box::new(sph_idealgas::SphIdealGas::from_lammps(args, cmd)?))),
+    ("sph/lj", |_, args, cmd| Ok(Box::new(sph_lj::SphLj::from_lammps(args, cmd)?))),
     ("sph/rhosum", |_, args, cmd| Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?))),
     ("dmhs/blend", |_, args, cmd| Ok(Box::new(dmhs_blend::DmhsBlend::from_lammps(args, cmd)?))),
     ("dmhs/heatconduction", |_, args, cmd| Ok(Box::new(dmhs_heatconduction::DmhsHeatConduction::from_lammps(args, cmd)?))),

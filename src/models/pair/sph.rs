@@ -305,6 +305,98 @@ pub fn tait_p_over_rho2<T: Copy + Mul<Output = T> + Div<Output = T> + Sub<f64, O
     b * (f * f * tmp - 1.0) / (rho * rho)
 }
 
+/// Monaghan's artificial viscosity term Pi of sph/taitwater and sph/idealgas, for approaching
+/// pairs only (v.x < 0; +0 otherwise): mu = h v.x/(r^2 + eps), Pi = coef mu/(rho_i + rho_j), with
+/// eps = 0.01 h^2 and coef = -alpha (c_i + c_j), in LAMMPS' order of operations.
+#[inline(always)]
+pub fn monaghan_lanes(coef: L, h: L, dvdr: L, rsq: L, eps: L, rho_sum: L) -> L {
+    let mu = h * dvdr / (rsq + eps);
+    dvdr.lt_or_zero(&L::splat(0.0), &(coef * mu / rho_sum))
+}
+
+/// The pair coefficients and pair term of the equation-of-state styles with Monaghan viscosity
+/// and `pair_coeff I J alpha h` (sph/idealgas, sph/lj): each style gives P/rho^2 of both
+/// particles and the sum of their sound speeds; the rest is LAMMPS' common pair code.
+pub struct ViscousPairs {
+    pub kernel: Kernel,
+    /// (alpha, h) per pair
+    pairs: PairTable<(f64, f64)>,
+    cutsq: Vec<f64>,
+    /// Per type pair: the support, 0.01 h^2 and -alpha (LAMMPS' arithmetic).
+    derived: PerTypePair<(Support, f64, f64)>,
+    n: usize,
+    pub dim3: bool,
+}
+
+pub const VISCOUS_COEFF_SYNTAX: &str = "pair_coeff I J alpha h";
+
+impl ViscousPairs {
+    pub fn new(kernel: Kernel) -> Self {
+        ViscousPairs { kernel, pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true }
+    }
+    /// `pair_coeff I J alpha h`.
+    pub fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
+        args.syntax = VISCOUS_COEFF_SYNTAX;
+        let alpha = args.f64("alpha (artificial viscosity)")?;
+        let h = args.positive_f64("h (kernel support)")?;
+        args.finish()?;
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (alpha, h));
+        Ok(())
+    }
+    pub fn init(&mut self, ntypes: usize, active: Option<&[bool]>, style: &str) -> Result<(), String> {
+        self.pairs.check_all(ntypes, active, style)?;
+        self.pairs.grow(ntypes);
+        self.n = ntypes;
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        let pairs = &self.pairs;
+        self.derived = PerTypePair::new(ntypes, |i, j| {
+            if i == 0 || j == 0 {
+                return (Support::default(), 0.0, 0.0);
+            }
+            let (alpha, h) = *pairs.get(i, j);
+            // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
+            (Support::new(h), 0.01 * h * h, -alpha)
+        });
+        Ok(())
+    }
+    /// The kernel support of a type pair after `init`.
+    pub fn support(&self, i: usize, j: usize) -> Support {
+        self.derived.get(i, j).0
+    }
+    #[inline(always)]
+    pub fn cutsq_row(&self, ti: usize) -> &[f64] {
+        &self.cutsq[ti * (self.n + 1)..(ti + 1) * (self.n + 1)]
+    }
+    pub fn cutoff(&self, it: usize, jt: usize) -> f64 {
+        self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
+    }
+    /// The pair term for P/rho^2 `fi`, `fj` and the sound speeds' sum `csum`:
+    /// F_i = -m_i m_j (fi + fj + Pi) wfd x_ij, drho as the Tait styles, de_i = de_j = -F.v/2.
+    #[inline(always)]
+    pub fn pair<const D: usize>(&self, input: &PairInput, pi: &Packed, ti: usize, b: &Batch<D>, fi: L, fj: L, csum: L) -> SphContribution<D> {
+        let d: [(Support, f64, f64); LANES] = self.derived.batch(ti, &b.tj);
+        let sup = SupportLanes::gather(|l| d[l].0);
+        let (eps, neg_alpha) = (lanes(|l| d[l].1), lanes(|l| d[l].2));
+        let del = &b.del;
+        let wfd = self.kernel.wfd_lanes(&b.r, &sup, self.dim3);
+        let imass = input.type_mass[ti];
+        let jmass = b.m;
+        let vel: [L; D] = std::array::from_fn(|k| pi.v[k] - b.v[k]);
+        let dvdr = dot_lanes(del, &vel);
+        let fvisc = monaghan_lanes(neg_alpha * csum, sup.h, dvdr, b.rsq, eps, pi.a + b.a);
+        let fpair = -imass * jmass * (fi + fj + fvisc) * wfd;
+        let de = -0.5 * fpair * dvdr;
+        SphContribution {
+            f: std::array::from_fn(|k| del[k] * fpair),
+            fpair,
+            drho_i: jmass * dvdr * wfd,
+            drho_j: imass * dvdr * wfd,
+            de_i: de,
+            de_j: de,
+        }
+    }
+}
+
 /// Per-pair coefficients: `set` and the values of `pair_coeff I J ...`.
 #[derive(Clone, Debug)]
 pub struct PairTable<T: Clone> {

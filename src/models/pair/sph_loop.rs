@@ -22,6 +22,10 @@ use crate::engine::par::{completed_after, ranges, slab_phase, AtomsMut};
 /// their results are ignored). `D` is the dimension of the vectors.
 #[derive(Clone, Copy, Debug)]
 pub struct Batch<const D: usize> {
+    /// The particle i and the j (indices into the atoms, owned then ghosts), for styles that
+    /// keep per-particle values beside the records (sph/lj: the sound speed).
+    pub i: usize,
+    pub j: [usize; LANES],
     /// Types of the j.
     pub tj: [usize; LANES],
     /// x_i - x_j
@@ -295,7 +299,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 };
                 let del: [L; D] = std::array::from_fn(|k| xi[k] - xj[k]);
                 let rsq = dot_lanes(&del, &del);
-                let b = Batch { tj, del, rsq, r: rsq.sqrt(), v: vj, a: aj, b: bj, m: mj };
+                let b = Batch { i, j: js, tj, del, rsq, r: rsq.sqrt(), v: vj, a: aj, b: bj, m: mj };
                 let c = kernel.pair_lanes::<D>(input, &pi, ti, &b);
                 // rows per lane: what i gets and what j gets (minus the force)
                 let nf: [L; D] = c.f.map(|f| -f);

@@ -5,7 +5,7 @@
 //! Pi = -alpha (c_i + c_j) mu / (rho_i + rho_j); F_i = -m_i m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi) wfd x_ij;
 //! drho_i = m_j v.x wfd; de_i = de_j = -F.v/2 (velocities are the estimates `vest`).
 
-use super::sph::{compute_sph, lanes, parse_tait_options, tait_coeff, tait_pack, tait_pack_lanes, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
+use super::sph::{compute_sph, lanes, monaghan_lanes, parse_tait_options, tait_coeff, tait_pack, tait_pack_lanes, dot_lanes, Batch, Kernel, L, Packed, PairTable, SphContribution, SphKernel, Support, SupportLanes, PerTypePair, TaitTypes, LANES};
 use super::{PairInput, PairModify, PairOutput, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -67,8 +67,7 @@ impl SphKernel for SphTaitwater {
         let (f, fpair, drho_i, drho_j, de) = if D == 2 {
             let vel: [L; D] = std::array::from_fn(|k| vi[k] - b.v[k]);
             let dvdr = dot_lanes(del, &vel);
-            let mu = sup.h * dvdr / (*rsq + eps);
-            let fvisc = dvdr.lt_or_zero(&L::splat(0.0), &(visc_c * mu / (pi.a + b.a)));
+            let fvisc = monaghan_lanes(visc_c, sup.h, dvdr, *rsq, eps, pi.a + b.a);
             let fpair = -imass * jmass * (pi.b + b.b + fvisc) * wfd;
             let f: [L; D] = std::array::from_fn(|k| del[k] * fpair);
             (f, fpair, jmass * dvdr * wfd, imass * dvdr * wfd, -0.5 * fpair * dvdr)

@@ -50,26 +50,62 @@ fn lammps_and_logfile_read_the_outputs() {
     assert!(o.status.success() && text.contains("ALL OK"), "output check failed:\n{text}");
 }
 
-/// Writes the VTU dumps of a small SPH deck into a fresh folder.
+/// Writes the VTU dumps of a small SPH deck into a fresh folder: binary (the default) and ASCII
+/// (`dump_modify binary no`), and a dump custom of the same values to compare with.
 fn run_vtu() -> tempfile::TempDir {
     let tmp = tempfile::tempdir().unwrap();
     let deck = "dimension 2\nunits lj\natom_style sph\nboundary p p p\nregion box block 0 6 0 6 -0.5 0.5\ncreate_box 1 box\n\
-                lattice sq 1.0\ncreate_atoms 1 box\nmass 1 1.0\nset group all sph/rho 1.0 sph/e 2.0\n\
+                lattice sq 1.0\ncreate_atoms 1 box\nmass 1 1.0\nset group all sph/rho 1.0 sph/e 2.0\nvelocity all create 0.1 4928\n\
                 pair_style sph/taitwater\npair_coeff * * 1.0 10.0 0.1 1.3\nfix 1 all sph\nfix 2 all enforce2d\n\
-                compute t all sph/t/atom\ndump v all vtk 5 out.*.vtu\ndump w all vtk 10 sel_*.vtu id vx c_t\nrun 10\n";
+                compute t all sph/t/atom\ndump v all vtk 5 out.*.vtu\ndump w all vtk 10 sel_*.vtu id vx c_t\n\
+                dump a all vtk 10 asc.*.vtu id vx vy vz\ndump_modify a binary no\n\
+                dump c all custom 10 ref.*.txt id x y z vx vy vz fx fy fz rho\ndump_modify c format float %.17g sort id\nrun 10\n";
     let opts = dmhs::deck::DeckOptions { base_dir: Some(tmp.path().to_path_buf()), ..Default::default() };
     dmhs::deck::run_text("vtu", deck, &opts).map_err(|f| f.rendered).unwrap();
     tmp
 }
 
 #[test]
-fn vtu_files_are_written() {
+fn vtu_files_are_written_with_a_series() {
+    use dmhs::output::dump_vtu::{read, Values};
     let tmp = run_vtu();
     for step in [0, 5, 10] {
         assert!(tmp.path().join(format!("out.{step}.vtu")).exists());
     }
-    let text = std::fs::read_to_string(tmp.path().join("sel_10.vtu")).unwrap();
-    assert!(text.contains("NumberOfPoints=\"36\"") && text.contains("Name=\"c_t\""));
+    // the .pvd lists the snapshots with their times
+    let pvd = std::fs::read_to_string(tmp.path().join("out.pvd")).unwrap();
+    for (t, step) in [("0.0", 0), ("0.025", 5), ("0.05", 10)] {
+        assert!(pvd.contains(&format!("<DataSet timestep=\"{t}\" part=\"0\" file=\"out.{step}.vtu\"/>")), "{pvd}");
+    }
+    assert!(tmp.path().join("sel.pvd").exists() && tmp.path().join("asc.pvd").exists());
+    // binary arrays hold the dump custom values bit for bit: ids as integers, v and f as vectors
+    let reference = std::fs::read_to_string(tmp.path().join("ref.10.txt")).unwrap();
+    let rows: Vec<Vec<f64>> = reference.lines().skip(9).map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect()).collect();
+    let (points, fields) = read(&std::fs::read_to_string(tmp.path().join("out.10.vtu")).unwrap()).unwrap();
+    assert_eq!(points.len(), 36);
+    let get = |name: &str| fields.iter().find(|f| f.name == name).unwrap_or_else(|| panic!("{name}"));
+    assert_eq!(get("id").values, Values::I64((1..=36).collect()));
+    assert_eq!(get("type").values, Values::I64(vec![1; 36]));
+    let (v, f) = (get("v"), get("f"));
+    assert_eq!((v.components, f.components), (3, 3));
+    for (k, r) in rows.iter().enumerate() {
+        assert_eq!(points[k], [r[1], r[2], r[3]]);
+        let (Values::F64(vv), Values::F64(ff)) = (&v.values, &f.values) else { panic!() };
+        assert_eq!(&vv[3 * k..3 * k + 3], &r[4..7]);
+        assert_eq!(&ff[3 * k..3 * k + 3], &r[7..10]);
+        let Values::F64(rho) = &get("rho").values else { panic!() };
+        assert_eq!(rho[k], r[10]);
+    }
+    // the ASCII form reads back to the same vector
+    let (_, asc) = read(&std::fs::read_to_string(tmp.path().join("asc.10.vtu")).unwrap()).unwrap();
+    let text = std::fs::read_to_string(tmp.path().join("asc.10.vtu")).unwrap();
+    assert!(text.contains("format=\"ascii\"") && !text.contains("format=\"binary\""));
+    assert!(std::fs::read_to_string(tmp.path().join("out.10.vtu")).unwrap().contains("format=\"binary\""));
+    assert_eq!(asc.iter().find(|f| f.name == "v").unwrap().values, v.values);
+    // a lone component stays a scalar array
+    let (_, sel) = read(&std::fs::read_to_string(tmp.path().join("sel_10.vtu")).unwrap()).unwrap();
+    let names: Vec<&str> = sel.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["id", "vx", "c_t"]);
 }
 
 /// meshio (in the LAMMPS venv) reads the VTU files back.
@@ -81,7 +117,7 @@ fn vtu_files_are_read_by_meshio() {
     };
     let tmp = run_vtu();
     let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/outputs/check_vtu.py");
-    for (file, fields) in [("out.10.vtu", vec!["id", "type", "rho", "esph", "vx"]), ("sel_10.vtu", vec!["id", "vx", "c_t"])] {
+    for (file, fields) in [("out.10.vtu", vec!["id", "type", "rho", "esph", "v:3", "f:3"]), ("sel_10.vtu", vec!["id", "vx", "c_t"]), ("asc.10.vtu", vec!["id", "v:3"])] {
         let o = Command::new(&python).arg(&script).arg(tmp.path().join(file)).arg("36").args(&fields).output().unwrap();
         let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
         assert!(o.status.success() && text.contains("VTU OK"), "{file}: {text}");

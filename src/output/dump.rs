@@ -41,6 +41,10 @@ pub struct Dump {
     file: Option<File>,
     /// `dump image` / `dump movie` settings.
     pub picture: Option<Box<crate::output::dump_image::ImageDump>>,
+    /// dump vtk: binary (appended raw) arrays, else ASCII (`dump_modify ID binary no`).
+    pub binary: bool,
+    /// dump vtk: the snapshots written, (time, file name), for the .pvd collection.
+    series: Vec<(f64, String)>,
 }
 
 impl Dump {
@@ -90,6 +94,8 @@ impl Dump {
             last_written: None,
             file: None,
             picture,
+            binary: true,
+            series: vec![],
         };
         if d.picture.is_some() {
             return Ok(d);
@@ -130,7 +136,7 @@ impl Dump {
 
     /// `dump_modify ID keyword value ...`
     pub fn modify(&mut self, a: &mut Args) -> DResult<()> {
-        let keys = ["sort", "format", "every", "first", "image", "append", "flush"];
+        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary"];
         while let Some(w) = a.peek() {
             a.skip(1);
             if let Some(p) = self.picture.as_mut() {
@@ -172,6 +178,7 @@ impl Dump {
                 "every" => self.every = a.i64_in("every", 1, i64::MAX)?,
                 "first" => self.first = a.yes_no("first")?,
                 "append" => self.append = a.yes_no("append")?,
+                "binary" if self.style == "vtk" => self.binary = a.yes_no("binary")?,
                 "flush" => {
                     a.yes_no("flush")?;
                 }
@@ -263,15 +270,40 @@ impl Dump {
         let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         idx.sort_by_key(|&i| a.tag[i]);
         let points: Vec<[f64; 3]> = idx.iter().map(|&i| a.x[i]).collect();
-        let mut fields = vec![];
+        let mut columns = vec![];
         for (name, c) in self.names.iter().zip(&self.columns) {
             if matches!(name.as_str(), "x" | "y" | "z") {
                 continue;
             }
             let values = column_values(c, w, &idx).map_err(|e| format!("dump {}: {e}", self.id))?;
-            fields.push(crate::output::dump_vtu::Field { name: name.clone(), components: 1, values });
+            columns.push((name.clone(), values, matches!(c, Column::Attr(f) if f.is_int())));
         }
-        Ok(crate::output::dump_vtu::document(&points, &fields, w.state.step, w.state.time()))
+        let fields = crate::output::dump_vtu::fields(columns);
+        Ok(crate::output::dump_vtu::document(&points, &fields, w.state.step, w.state.time(), self.binary))
+    }
+
+    /// Write a VTU snapshot and rewrite the run's .pvd collection with it.
+    fn write_vtu(&mut self, w: &World) -> Result<(), String> {
+        let text = self.snapshot_vtu(w)?;
+        let name = self.path.to_string_lossy().to_string();
+        let step = w.state.step.to_string();
+        let p = if name.contains('*') { PathBuf::from(name.replace('*', &step)) } else { PathBuf::from(name.replace(".vtu", &format!(".{step}.vtu"))) };
+        write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
+        let file = p.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+        self.series.retain(|(_, f)| *f != file);
+        self.series.push((w.state.time(), file));
+        let pvd = self.pvd_path();
+        write_atomic(&pvd, crate::output::dump_vtu::collection(&self.series).as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, pvd.display()))
+    }
+
+    /// The .pvd beside the snapshots: the file pattern without its `*` and `.vtu`
+    /// (out.*.vtu -> out.pvd).
+    fn pvd_path(&self) -> PathBuf {
+        let file = self.path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+        let stem = file.trim_end_matches(".vtu").replace('*', "");
+        let stem = stem.trim_matches(|c| c == '.' || c == '_' || c == '-');
+        let stem = if stem.is_empty() { "dump" } else { stem };
+        self.path.with_file_name(format!("{stem}.pvd"))
     }
 
     /// Write a snapshot now; `equal` evaluates equal-style variables (pictures' view settings).
@@ -282,10 +314,7 @@ impl Dump {
             return Ok(());
         }
         if self.style == "vtk" {
-            let text = self.snapshot_vtu(w)?;
-            let name = self.path.to_string_lossy().to_string();
-            let p = if name.contains('*') { PathBuf::from(name.replace('*', &w.state.step.to_string())) } else { PathBuf::from(name.replace(".vtu", &format!(".{}.vtu", w.state.step))) };
-            write_atomic(&p, text.as_bytes()).map_err(|e| format!("dump {}: cannot write {}: {e}", self.id, p.display()))?;
+            self.write_vtu(w)?;
             self.last_written = Some(w.state.step);
             return Ok(());
         }

@@ -1,5 +1,5 @@
 //! The box and its atoms: lattice, region, create_box, create_atoms, delete_atoms,
-//! displace_atoms, read_data, write_data.
+//! read_data, write_data.
 
 use super::{before_box, need_box};
 use crate::engine::atoms::NewAtom;
@@ -212,50 +212,6 @@ fn overlap_deletions(sim: &Simulation, cut: f64, g1: u32, g2: u32) -> Vec<bool> 
         }
     }
     gone
-}
-
-pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    need_box(sim, cmd)?;
-    let syntax = "displace_atoms group-ID move dx dy dz [units box|lattice]";
-    let mut a = Args::new(cmd, syntax);
-    let gw = a.word("group ID")?;
-    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
-    let sw = a.word("displacement style")?;
-    if sw.text != "move" {
-        return Err(a.error_at(sw, format!("displace_atoms {} is not supported yet", sw.text), "supported: move"));
-    }
-    let mut delta = [a.f64("dx")?, a.f64("dy")?, a.f64("dz")?];
-    let mut lattice_units = true;
-    while let Some(w) = a.peek() {
-        a.skip(1);
-        match w.text.as_str() {
-            "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
-            _ => return Err(a.unknown_keyword(w, &["units"])),
-        }
-    }
-    if lattice_units {
-        let s = sim.state.lattice_scale().map_err(|e| a.error_at(sw, e, "needs a lattice"))?;
-        for k in 0..3 {
-            delta[k] *= s[k];
-        }
-    }
-    sim.state.atoms.clear_ghosts();
-    let d = sim.state.domain.clone().unwrap();
-    let at = &mut sim.state.atoms;
-    for i in 0..at.nlocal {
-        if at.mask[i] & bit != 0 {
-            for k in 0..3 {
-                at.x[i][k] += delta[k];
-            }
-            if !at.x[i].iter().all(|c| c.is_finite()) {
-                return Err(Diagnostic::at(cmd.span, format!("displace_atoms moves atom {} to a non-finite position {:?}", at.tag[i], at.x[i]), "non-finite position"));
-            }
-            // LAMMPS remaps moved atoms back into a periodic box, updating image flags
-            d.remap(&mut at.x[i], &mut at.image[i]);
-        }
-    }
-    sim.state.lists_valid = false;
-    Ok(())
 }
 
 pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {

@@ -4,6 +4,8 @@
 
 mod atoms_cmds;
 mod box_cmds;
+mod change_box;
+mod displace;
 mod forcefield;
 mod modify_cmds;
 mod output_cmds;
@@ -41,7 +43,8 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("create_box", box_cmds::create_box),
     ("create_atoms", box_cmds::create_atoms),
     ("delete_atoms", box_cmds::delete_atoms),
-    ("displace_atoms", box_cmds::displace_atoms),
+    ("displace_atoms", displace::displace_atoms),
+    ("change_box", change_box::change_box),
     ("read_data", box_cmds::read_data),
     ("create_bonds", topology_cmds::create_bonds),
     ("write_data", box_cmds::write_data),
@@ -70,6 +73,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("undump", output_cmds::undump),
     ("dump_modify", output_cmds::dump_modify),
     ("run", run_cmds::run),
+    ("run_style", run_cmds::run_style),
     ("reset_timestep", run_cmds::reset_timestep),
     ("write_restart", crate::deck::restart::write_restart),
     ("read_restart", crate::deck::restart::read_restart),

@@ -75,3 +75,17 @@ pub fn reset_timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     }
     Ok(())
 }
+
+/// `run_style verlet` (the default, LAMMPS' velocity-Verlet, the only integrator dmhs has);
+/// any other style is a located error.
+pub fn run_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let mut a = Args::new(cmd, "run_style verlet");
+    let w = a.word("integrator style")?;
+    if w.text != "verlet" {
+        return Err(a
+            .error_at(w, format!("run_style {} is not supported: dmhs has one integrator, velocity-Verlet (run_style verlet)", w.text), "not supported")
+            .with_help("remove the run_style line or use run_style verlet"));
+    }
+    a.finish()
+}

@@ -6,7 +6,7 @@ use crate::engine::domain::BoundaryKind;
 use crate::sim::Simulation;
 use crate::engine::special::SpecialBonds;
 use crate::engine::units::{UnitStyle, Units};
-use dmhs_parser::{Args, Command, DResult, SourceMap};
+use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 
 pub fn units(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     before_box(sim, cmd)?;
@@ -52,16 +52,25 @@ pub fn boundary(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
     before_box(sim, cmd)?;
     let syntax = "boundary x y z  (each p, f, s, m or a pair like fs)";
     let mut a = Args::new(cmd, syntax);
-    let mut b = sim.state.boundary;
-    for d in 0..3 {
-        let w = a.word(["x boundary", "y boundary", "z boundary"][d])?;
-        let letter = |c: char| match c {
-            'p' => Some(BoundaryKind::Periodic),
-            'f' => Some(BoundaryKind::Fixed),
-            's' => Some(BoundaryKind::Shrink),
-            'm' => Some(BoundaryKind::ShrinkMin),
-            _ => None,
-        };
+    for what in ["x boundary", "y boundary", "z boundary"] {
+        a.word(what)?;
+    }
+    a.finish()?;
+    sim.state.boundary = parse_boundary(&cmd.args[..3], sim.state.dimension)?;
+    Ok(())
+}
+
+/// The three words of `boundary x y z` (each p, f, s, m or a pair such as fs).
+pub(super) fn parse_boundary(words: &[Word], dim: usize) -> DResult<[[BoundaryKind; 2]; 3]> {
+    let letter = |c: char| match c {
+        'p' => Some(BoundaryKind::Periodic),
+        'f' => Some(BoundaryKind::Fixed),
+        's' => Some(BoundaryKind::Shrink),
+        'm' => Some(BoundaryKind::ShrinkMin),
+        _ => None,
+    };
+    let mut b = [[BoundaryKind::Periodic; 2]; 3];
+    for (d, w) in words.iter().enumerate() {
         let chars: Vec<char> = w.text.chars().collect();
         let pair = match chars.as_slice() {
             [c] => letter(*c).map(|k| [k, k]),
@@ -69,19 +78,17 @@ pub fn boundary(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
             _ => None,
         };
         let Some(pair) = pair else {
-            return Err(a.error_at(w, format!("invalid boundary `{}`", w.text), "expected p, f, s, m or a pair of f/s/m"));
+            return Err(Diagnostic::at(w.span, format!("invalid boundary `{}`", w.text), "expected p, f, s, m or a pair of f/s/m"));
         };
         if (pair[0] == BoundaryKind::Periodic) != (pair[1] == BoundaryKind::Periodic) {
-            return Err(a.error_at(w, "both faces must be periodic or neither", "mixed periodic boundary"));
+            return Err(Diagnostic::at(w.span, "both faces must be periodic or neither", "mixed periodic boundary"));
         }
         b[d] = pair;
     }
-    a.finish()?;
-    if sim.state.dimension == 2 && b[2][0] != BoundaryKind::Periodic {
-        return Err(a.error_at(&cmd.args[2], "a 2d simulation must be periodic in z", "must be p"));
+    if dim == 2 && b[2][0] != BoundaryKind::Periodic {
+        return Err(Diagnostic::at(words[2].span, "a 2d simulation must be periodic in z", "must be p"));
     }
-    sim.state.boundary = b;
-    Ok(())
+    Ok(b)
 }
 
 /// The atom styles dmhs implements (LAMMPS names).

@@ -12,6 +12,7 @@ pub mod dmhs_stokes;
 pub mod dmhs_swell;
 pub mod value;
 pub mod enforce2d;
+pub mod freeze;
 pub mod gravity;
 pub mod move_linear;
 pub mod nve;
@@ -210,6 +211,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("gravity", |d, state| Ok(Box::new(gravity::FixGravity::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("addforce", |d, state| Ok(Box::new(addforce::FixAddForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/reflect", |d, state| Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

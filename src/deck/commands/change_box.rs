@@ -1,0 +1,173 @@
+//! `change_box group-ID x|y|z final lo hi | delta dlo dhi | scale f  boundary x y z  remap [x]
+//! set  [units lattice|box]`, as LAMMPS' ChangeBox for an orthogonal box: atoms are first
+//! wrapped into the current box (and shrink-wrapped faces reset), the parameters are applied
+//! in the order given, `remap` maps the group's atoms from the box saved last (at the start, by
+//! `set` or by the previous `remap`) to the current one through fractional coordinates, and
+//! at the end every owned atom is remapped into a periodic box.
+
+use super::need_box;
+use crate::engine::boundary::reset_shrink_wrap;
+use crate::engine::domain::Domain;
+use crate::output::format::g8;
+use crate::sim::Simulation;
+use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
+
+const SYNTAX: &str = "change_box group-ID  x|y|z final lo hi | delta dlo dhi | scale factor  boundary x y z  remap [x]  set ... [units lattice|box]";
+
+enum Op<'a> {
+    /// dimension, flavour (final/delta/scale) and its values (lo, hi or the factor twice)
+    Xyz(usize, usize, [f64; 2]),
+    Boundary(&'a [Word]),
+    Remap,
+    Set,
+}
+
+pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let mut a = Args::new(cmd, SYNTAX);
+    let gw = a.word("group ID")?;
+    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let dim = sim.state.dimension;
+    let mut ops = vec![];
+    let mut lattice_units = true;
+    const PARAMS: &[&str] = &["x", "y", "z", "boundary", "remap", "set", "units"];
+    if a.peek().is_none() {
+        return Err(Diagnostic::at(cmd.span, "change_box needs at least one parameter", "nothing to change").with_help(format!("syntax: {SYNTAX}")));
+    }
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "x" | "y" | "z" => {
+                let d = (w.text.as_bytes()[0] - b'x') as usize;
+                if dim == 2 && d == 2 {
+                    return Err(a.error_at(w, "cannot change box z dimension for a 2d simulation", "z in 2d"));
+                }
+                let fw = a.peek();
+                let flavor = a.choice("change style", &["final", "delta", "scale", "volume"])?;
+                let v = match flavor {
+                    0 => [a.f64("lo")?, a.f64("hi")?],
+                    1 => [a.f64("dlo")?, a.f64("dhi")?],
+                    2 => {
+                        let f = a.f64("scale factor")?;
+                        [f, f]
+                    }
+                    _ => return Err(a.error_at(fw.unwrap(), "change_box ... volume is not supported by dmhs", "not supported").with_help("use final, delta or scale")),
+                };
+                ops.push(Op::Xyz(d, flavor, v));
+            }
+            "boundary" => {
+                let words = a.remaining().get(..3).ok_or_else(|| a.error_at(w, "change_box boundary needs 3 values (x y z)", "too few values"))?;
+                a.skip(3);
+                ops.push(Op::Boundary(words));
+            }
+            "remap" => {
+                // LAMMPS accepts `remap x` (atoms' coordinates); `remap v` is not an option
+                if a.peek().is_some_and(|n| n.text == "x") {
+                    a.skip(1);
+                }
+                ops.push(Op::Remap);
+            }
+            "set" => ops.push(Op::Set),
+            "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
+            "xy" | "xz" | "yz" | "ortho" | "triclinic" => {
+                return Err(a.error_at(w, format!("change_box {} is not supported: dmhs boxes are orthogonal", w.text), "not supported"));
+            }
+            _ => return Err(a.unknown_keyword(w, PARAMS)),
+        }
+    }
+    let scale = match lattice_units {
+        true => sim.state.lattice_scale().map_err(|e| Diagnostic::at(cmd.span, e, "needs a lattice"))?,
+        false => [1.0; 3],
+    };
+    sim.out.print("Changing box ...");
+    let st = &mut sim.state;
+    st.atoms.clear_ghosts();
+    let mut domain = st.domain.clone().unwrap();
+    // atoms into the current box first (LAMMPS pbc and reset_box), then save it
+    for i in 0..st.atoms.nlocal {
+        domain.wrap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
+    }
+    if let Some(initial) = st.box_initial.as_ref() {
+        reset_shrink_wrap(&mut domain, initial, &st.atoms);
+    }
+    let mut saved = domain.clone();
+    for op in &ops {
+        match op {
+            Op::Xyz(d, flavor, v) => {
+                let d = *d;
+                match flavor {
+                    0 => {
+                        domain.lo[d] = scale[d] * v[0];
+                        domain.hi[d] = scale[d] * v[1];
+                    }
+                    1 => {
+                        domain.lo[d] += scale[d] * v[0];
+                        domain.hi[d] += scale[d] * v[1];
+                    }
+                    _ => {
+                        let mid = 0.5 * (domain.lo[d] + domain.hi[d]);
+                        domain.lo[d] = mid + v[0] * (domain.lo[d] - mid);
+                        domain.hi[d] = mid + v[0] * (domain.hi[d] - mid);
+                    }
+                }
+                if !(domain.hi[d] > domain.lo[d]) {
+                    return Err(Diagnostic::at(cmd.span, format!("change_box makes the box empty or inverted in {}: {} to {}", ["x", "y", "z"][d], domain.lo[d], domain.hi[d]), "bad box"));
+                }
+                st.box_initial = Some(domain.clone());
+                sim.out.print(&format!(
+                    "  orthogonal box = ({} {} {}) to ({} {} {})",
+                    g8(domain.lo[0]),
+                    g8(domain.lo[1]),
+                    g8(domain.lo[2]),
+                    g8(domain.hi[0]),
+                    g8(domain.hi[1]),
+                    g8(domain.hi[2])
+                ));
+            }
+            Op::Boundary(words) => {
+                domain.boundary = super::settings::parse_boundary(words, dim)?;
+                st.boundary = domain.boundary;
+                st.box_initial = Some(domain.clone());
+                // image flags of non-periodic dimensions are reset (LAMMPS' warning)
+                let mut reset = false;
+                for img in st.atoms.image[..st.atoms.nlocal].iter_mut() {
+                    for d in (0..3).filter(|&d| !domain.periodic(d)) {
+                        reset |= img[d] != 0;
+                        img[d] = 0;
+                    }
+                }
+                if reset {
+                    sim.out.print("WARNING: Resetting image flags for non-periodic dimensions");
+                }
+            }
+            Op::Set => saved = domain.clone(),
+            Op::Remap => {
+                for i in 0..st.atoms.nlocal {
+                    if st.atoms.mask[i] & bit != 0 {
+                        st.atoms.x[i] = remap_point(st.atoms.x[i], &saved, &domain);
+                    }
+                }
+                saved = domain.clone();
+            }
+        }
+    }
+    if let Some(initial) = st.box_initial.as_ref() {
+        reset_shrink_wrap(&mut domain, initial, &st.atoms);
+    }
+    for i in 0..st.atoms.nlocal {
+        domain.remap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
+    }
+    st.domain = Some(domain);
+    st.lists_valid = false;
+    Ok(())
+}
+
+/// A point's fractional coordinates in `from`, placed in `to` (LAMMPS x2lamda with the saved
+/// box then lamda2x with the current one; h_inv = 1/prd as LAMMPS stores it).
+fn remap_point(x: [f64; 3], from: &Domain, to: &Domain) -> [f64; 3] {
+    let (pf, pt) = (from.prd(), to.prd());
+    std::array::from_fn(|d| {
+        let lamda = (1.0 / pf[d]) * (x[d] - from.lo[d]);
+        pt[d] * lamda + to.lo[d]
+    })
+}

@@ -6,7 +6,8 @@
 //! defining frame, as in LAMMPS). A region with open faces gets the contacts of both sides
 //! (LAMMPS calls surface_exterior and surface_interior; one of them finds none except for a
 //! particle exactly on a face). Each contact carries the wall velocity at its point (LAMMPS'
-//! `velocity_contact`, asked of the sub-region that made the contact).
+//! `velocity_contact`, asked of the region the fix names: a union or intersection has no motion
+//! of its own, so its walls are at rest for the contact model even where its sub-regions move).
 
 use super::{Kind, Region, Vec3};
 
@@ -134,9 +135,48 @@ fn boolean_surface(all: bool, interior: bool, subs: &[Region], x: [f64; 3], cuto
             });
             if keep {
                 let iwall = if interior { c.iwall + walloffset } else { i };
-                out.push(WallContact { iwall, ..*c });
+                // LAMMPS' velocity_contact is not virtual: fix wall/gran/region asks the union or
+                // intersection itself, which never moves (only its sub-regions do), so the wall
+                // velocity is zero whatever the sub-region that made the contact
+                out.push(WallContact { iwall, vwall: [0.0; 3], ..*c });
             }
         }
         walloffset += sub.contact_counts().0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::WallContact;
+    use crate::engine::region::tests::reg;
+    use crate::engine::region::Region;
+
+    /// Contacts of `r` for a particle at `x` of radius 0.5 after the blade turned by 0.1 in one step.
+    fn turned(r: &mut Region, regions: &[Region], x: [f64; 3]) -> Vec<WallContact> {
+        r.init(regions).unwrap();
+        r.prematch(&mut |_| Ok(0.0)).unwrap();
+        r.set_velocity(1, 0.5);
+        r.prematch(&mut |_| Ok(0.1)).unwrap();
+        r.set_velocity(2, 0.5);
+        let mut out = vec![];
+        r.surface(x, 0.5, &mut out);
+        out
+    }
+
+    #[test]
+    fn walls_of_an_intersect_are_at_rest_though_its_blade_turns() {
+        let blade = reg("region b1 block 1 9 4.5 5.5 0 4 side out rotate v_t 5 5 0 0 0 1 units box", None, None, &[]).unwrap();
+        let tank = reg("region tank cylinder z 5 5 4.5 0 10 units box", None, None, &[]).unwrap();
+        let subs = [tank, blade.clone()];
+        let mut mixer = reg("region mixer intersect 2 tank b1 units box", None, None, &subs).unwrap();
+        // on the blade's top face, 3 from the axis: the blade alone moves there (omega 0.2)
+        let x = [8.0, 5.0, 4.3];
+        let own = turned(&mut blade.clone(), &subs, x);
+        assert_eq!(own.len(), 1);
+        assert!(own[0].vwall[1].abs() > 0.5, "{own:?}");
+        // LAMMPS asks the intersect (velocity_contact is not virtual), which has no motion
+        let c = turned(&mut mixer, &subs, x);
+        assert_eq!(c.len(), 1);
+        assert_eq!((c[0].del, c[0].vwall), (own[0].del, [0.0; 3]));
     }
 }

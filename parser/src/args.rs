@@ -266,6 +266,19 @@ impl<'a> Args<'a> {
         let w = self.word(what)?;
         word_type_range(w, what, max).map_err(|d| self.help(d))
     }
+    /// The rest of the words as `units box|lattice` keywords, the only keyword a command takes
+    /// after its arguments (displace_atoms, fix move); true for lattice units, LAMMPS' default.
+    pub fn units_keyword_only(&mut self) -> DResult<bool> {
+        let mut lattice_units = true;
+        while let Some(w) = self.peek() {
+            self.skip(1);
+            match w.text.as_str() {
+                "units" => lattice_units = self.choice("units", &["box", "lattice"])? == 1,
+                _ => return Err(self.unknown_keyword(w, &["units"])),
+            }
+        }
+        Ok(lattice_units)
+    }
     /// Error if words are left over.
     pub fn finish(&self) -> DResult<()> {
         match self.words.get(self.pos) {

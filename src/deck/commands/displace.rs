@@ -23,14 +23,7 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     // the keywords follow the style's arguments (LAMMPS reads them first: units scale them)
     let params: &[Word] = a.remaining().get(..STYLES[style].1).ok_or_else(|| Diagnostic::at(cmd.span, format!("displace_atoms {} needs {} arguments", sw.text, STYLES[style].1), "too few arguments").with_help(format!("syntax: {SYNTAX}")))?;
     a.skip(params.len());
-    let mut lattice_units = true;
-    while let Some(w) = a.peek() {
-        a.skip(1);
-        match w.text.as_str() {
-            "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
-            _ => return Err(a.unknown_keyword(w, &["units"])),
-        }
-    }
+    let lattice_units = a.units_keyword_only()?;
     let scale = match lattice_units {
         true => sim.state.lattice_scale().map_err(|e| a.error_at(sw, e, "needs a lattice"))?,
         false => [1.0; 3],

@@ -35,14 +35,7 @@ impl FixMove {
             let w = a.word(what)?;
             vel[k] = if w.text == "NULL" { None } else { Some(word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?) };
         }
-        let mut lattice_units = true;
-        while let Some(w) = a.peek() {
-            a.skip(1);
-            match w.text.as_str() {
-                "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
-                _ => return Err(a.unknown_keyword(w, &["units"])),
-            }
-        }
+        let lattice_units = a.units_keyword_only()?;
         if lattice_units && vel.iter().any(|v| v.is_some()) {
             let scale = state.lattice_scale().map_err(|e| a.error_at(style, e, "needs a lattice (or `units box`)"))?;
             for d in 0..3 {

@@ -93,7 +93,7 @@ impl ContactHistory {
         let mut out = Vec::new();
         for (chunk, hist) in self.list.iter().zip(&self.chunks) {
             for i in chunk.start..chunk.end {
-                let k0 = chunk.offsets[i - chunk.start] as usize;
+                let k0 = chunk.first_entry(i);
                 for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
                     let e = k0 + k;
                     if hist.touch[e] == 0 {
@@ -177,13 +177,13 @@ impl ContactHistory {
             .chunks
             .par_iter()
             .map(|chunk| {
-                let len = chunk.neigh.len();
+                let len = chunk.len();
                 let mut h = HistoryChunk { touch: vec![0; len], values: vec![0.0; len * size] };
                 if records.is_empty() {
                     return h;
                 }
                 for i in chunk.start..chunk.end {
-                    let k0 = chunk.offsets[i - chunk.start] as usize;
+                    let k0 = chunk.first_entry(i);
                     for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
                         let j = (jraw & NEIGH_MASK) as usize;
                         if !touching(i, j) {

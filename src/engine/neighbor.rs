@@ -14,10 +14,11 @@
 use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::domain::Domain;
 use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
+use crate::engine::par::bounded::{Entries, Entry, Scope, INDEX_BITS};
 use rayon::prelude::*;
 
 /// Bits of a neighbour entry that hold the special-bond level (as LAMMPS' SBBITS).
-pub const SPECIAL_SHIFT: u32 = 30;
+pub const SPECIAL_SHIFT: u32 = INDEX_BITS;
 pub const NEIGH_MASK: u32 = (1 << SPECIAL_SHIFT) - 1;
 
 /// Special level of a neighbour entry: 0 = ordinary pair, 1/2/3 = 1-2/1-3/1-4 neighbours.
@@ -163,23 +164,61 @@ impl NeighborSettings {
     }
 }
 
-/// The neighbours of a contiguous range of owned atoms (one slab chunk).
+/// The neighbours of a contiguous range of owned atoms (one slab chunk). Its entries are
+/// checked against the atoms they index when it is made, so loops read per-atom arrays
+/// through them unchecked ([`crate::engine::par::bounded`]).
 #[derive(Clone, Debug, Default)]
 pub struct ChunkList {
     /// Owned atoms `start..end`.
     pub start: usize,
     pub end: usize,
-    /// `offsets[k]..offsets[k+1]` indexes `neigh` for atom `start + k`.
-    pub offsets: Vec<u32>,
+    /// `offsets[k]..offsets[k+1]` indexes the entries of atom `start + k`.
+    offsets: Vec<u32>,
     /// Neighbour index with the special level in the top two bits.
-    pub neigh: Vec<u32>,
+    neigh: Entries,
 }
 
 impl ChunkList {
+    /// The list of atoms `start..end` whose neighbours are `neigh[offsets[k]..offsets[k + 1]]`,
+    /// indexing `nall` atoms.
+    pub fn new(start: usize, end: usize, offsets: Vec<u32>, neigh: Vec<u32>, nall: usize) -> ChunkList {
+        assert!(offsets.len() == end - start + 1 && offsets.windows(2).all(|w| w[0] <= w[1]) && offsets.last().is_none_or(|&o| o as usize == neigh.len()));
+        ChunkList { start, end, offsets, neigh: Entries::new(neigh, nall) }
+    }
+    /// The entries of atom `i` (index and special level).
     #[inline]
     pub fn neighbors(&self, i: usize) -> &[u32] {
+        &self.neigh.raw()[self.span(i)]
+    }
+    /// The entries of atom `i` as values of scope `s`, for unchecked reads.
+    #[inline]
+    pub fn entries<'id>(&self, s: &Scope<'id>, i: usize) -> &[Entry<'id>] {
+        self.neigh.view(s, self.span(i))
+    }
+    #[inline]
+    fn span(&self, i: usize) -> std::ops::Range<usize> {
         let k = i - self.start;
-        &self.neigh[self.offsets[k] as usize..self.offsets[k + 1] as usize]
+        self.offsets[k] as usize..self.offsets[k + 1] as usize
+    }
+    /// Position of atom `i`'s first entry among the chunk's entries (per-entry data such as
+    /// contact histories are stored in that order).
+    #[inline]
+    pub fn first_entry(&self, i: usize) -> usize {
+        self.offsets[i - self.start] as usize
+    }
+    /// All entries of the chunk.
+    pub fn len(&self) -> usize {
+        self.neigh.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.neigh.is_empty()
+    }
+    pub fn raw(&self) -> &[u32] {
+        self.neigh.raw()
+    }
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.neigh.capacity() * 4 + self.offsets.capacity() * 4
     }
 }
 
@@ -207,10 +246,10 @@ impl NeighList {
     /// The slab schedule's invariant (see [`crate::engine::par`]): every owned partner of an
     /// atom of chunk c lies in chunk c or c + 1.
     pub fn check_slab_invariant(&self) -> Result<(), String> {
-        crate::engine::par::check_slab_invariant(&self.bounds(), |c| &self.chunks[c].neigh, |j| (j & NEIGH_MASK) as usize)
+        crate::engine::par::check_slab_invariant(&self.bounds(), |c| self.chunks[c].raw(), |j| (j & NEIGH_MASK) as usize)
     }
     pub fn npairs(&self) -> usize {
-        self.chunks.iter().map(|c| c.neigh.len()).sum()
+        self.chunks.iter().map(|c| c.len()).sum()
     }
 
     /// The entries whose type pair `keep` marks (row-major over `0..=ntypes`), in the same
@@ -221,15 +260,15 @@ impl NeighList {
             .chunks
             .iter()
             .map(|c| {
-                let mut offsets = Vec::with_capacity(c.offsets.len());
-                let mut neigh = Vec::with_capacity(c.neigh.len());
+                let mut offsets = Vec::with_capacity(c.end - c.start + 1);
+                let mut neigh = Vec::with_capacity(c.len());
                 offsets.push(0);
                 for i in c.start..c.end {
                     let row = &keep[typ[i] * stride..(typ[i] + 1) * stride];
                     neigh.extend(c.neighbors(i).iter().filter(|&&j| row[typ[(j & NEIGH_MASK) as usize]]));
                     offsets.push(neigh.len() as u32);
                 }
-                ChunkList { start: c.start, end: c.end, offsets, neigh }
+                ChunkList::new(c.start, c.end, offsets, neigh, c.neigh.bound())
             })
             .collect();
         NeighList { chunks, ..self.clone_header() }
@@ -558,11 +597,11 @@ impl Neighbor {
                     }
                     offsets.push(neigh.len() as u32);
                 }
-                ChunkList { start, end, offsets, neigh }
+                ChunkList::new(start, end, offsets, neigh, nall)
             })
             .collect();
 
-        let has_special = use_special && chunks.iter().any(|c| c.neigh.iter().any(|&j| j > NEIGH_MASK));
+        let has_special = use_special && chunks.iter().any(|c| c.raw().iter().any(|&j| j > NEIGH_MASK));
         // unique over the process, so no derived list can mistake a new build for its own
         static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         let generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);

@@ -29,7 +29,7 @@ pub fn bytes_per_rank(sim: &Simulation) -> usize {
     let n = a.x.capacity();
     let mut b = n * bytes_per_atom(a.features, 0);
     b += a.extra.iter().map(|e| e.data.capacity() * 8).sum::<usize>();
-    b += sim.state.neighbor.list.chunks.iter().map(|c| c.neigh.capacity() * 4 + c.offsets.capacity() * 4).sum::<usize>();
+    b += sim.state.neighbor.list.chunks.iter().map(|c| c.bytes()).sum::<usize>();
     b
 }
 

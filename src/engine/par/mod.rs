@@ -1,5 +1,6 @@
-//! Every threading primitive of dmhs and every `unsafe` block of the engine crate (the other is
-//! in [`lanes`], the vector type of the batched kernels).
+//! Every threading primitive of dmhs and every `unsafe` block of the engine crate (the others
+//! are in [`lanes`], the vector type of the batched kernels, and [`bounded`], neighbour entries
+//! that read per-atom arrays without bounds checks).
 //!
 //! - The slab schedule ([`slab_phase`]): the pair and bonded passes split the owned atoms into chunks
 //!   along one axis (the neighbour list's chunks); task `c` writes only to the atoms of chunks
@@ -15,6 +16,7 @@
 //! in chunk `c` or `c + 1`) is established by the neighbour-list builder and checked there with
 //! [`check_slab_invariant`] in debug builds.
 
+pub mod bounded;
 pub mod lanes;
 
 use rayon::prelude::*;

@@ -11,9 +11,10 @@
 
 use super::{sum_tallies, PairInput, PairOutput, Tally};
 use crate::engine::par::lanes::{lanes, L, LANES};
+use crate::engine::par::bounded::scope;
 use crate::engine::par::{slab_phase, AtomsMut, ChunksMut};
 use crate::engine::contact_history::{ContactHistory, HistoryChunk};
-use crate::engine::neighbor::{special_level, NEIGH_MASK};
+use crate::engine::neighbor::special_level;
 
 /// What a contact model sees of one overlapping pair (i is the atom that lists the pair), or of
 /// a batch of pairs with `T` = [`L`].
@@ -233,8 +234,11 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let list = input.list;
     let bounds = list.bounds();
     let mut parts = vec![Tally::default(); list.chunks.len()];
+    // neighbour entries read positions, radii and types unchecked (all hold every atom)
+    scope(nall, |s| {
+    let (x_of, radius_of, typ_of) = (s.reader(x), s.reader(radius), s.reader(typ));
     for parity in 0..2 {
-        let windows = (AtomsMut::new(&mut *out.f), AtomsMut::new(&mut *out.torque), ChunksMut::new(hist));
+        let windows = (AtomsMut::new(&mut *out.f), AtomsMut::new(&mut *out.torque), ChunksMut::new(&mut *hist));
         slab_phase(&bounds, parity, windows, &mut parts, |c, (mut fo, mut to, mut hist)| {
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
@@ -297,15 +301,15 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
             let xi = x[i];
             let radi = radius[i];
             let ti = typ[i];
-            let k0 = chunk.offsets[i - chunk.start] as usize;
-            for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
-                let j = (jraw & NEIGH_MASK) as usize;
-                let (xj, radj) = (x[j], radius[j]);
+            let k0 = chunk.first_entry(i);
+            for (k, &je) in chunk.entries(&s, i).iter().enumerate() {
+                let (j, jraw) = (je.index(), je.raw());
+                let (xj, radj) = (*x_of.get(je), *radius_of.get(je));
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let radsum = radi + radj;
                 let e = k0 + k;
-                let touching = if beyond { M::touch(model.params(ti, typ[j]), rsq, radi, radj, touch[e] != 0) } else { rsq < radsum * radsum };
+                let touching = if beyond { M::touch(model.params(ti, *typ_of.get(je)), rsq, radi, radj, touch[e] != 0) } else { rsq < radsum * radsum };
                 if !EXTRA {
                     // the common case without branches on the (unpredictable) overlap test:
                     // every entry is written to the next lane, which is kept only if touching
@@ -334,7 +338,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     }
                     continue;
                 }
-                let tj = typ[j];
+                let tj = *typ_of.get(je);
                 if let Some(filter) = input.type_filter {
                     if !filter[ti * stride + tj] {
                         continue;
@@ -362,5 +366,6 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         t
         });
     }
+    });
     sum_tallies(&parts)
 }

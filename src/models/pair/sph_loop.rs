@@ -14,7 +14,7 @@
 
 use super::sph::{Packed, SphKernel};
 use super::{sum_tallies, PairInput, PairOutput, Tally};
-use crate::engine::neighbor::NEIGH_MASK;
+use crate::engine::par::bounded::{scope, Entry, Reader};
 use crate::engine::par::lanes::{for_each_lane, lanes, transpose4, L, LANES};
 use crate::engine::par::{completed_after, ranges, slab_phase, AtomsMut};
 
@@ -100,12 +100,11 @@ impl Record {
 /// Write the neighbours j with `keep(j, rsq)` to `out` without branches; returns their count.
 /// `out` must have room for all of `neigh`.
 #[inline(always)]
-fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: &mut [u32], keep: impl Fn(usize, f64) -> bool) -> usize {
+fn gather_inside<'id, const D: usize>(neigh: &[Entry<'id>], recs: Reader<'id, '_, Record>, xi: [f64; 3], out: &mut [Entry<'id>], keep: impl Fn(Entry<'id>, f64) -> bool) -> usize {
     let out = &mut out[..neigh.len()];
     let mut n_in = 0usize;
-    for (&jraw, slot) in neigh.iter().zip(0..) {
-        let j = (jraw & NEIGH_MASK) as usize;
-        let xj = recs[j].0[0];
+    for (&j, slot) in neigh.iter().zip(0..) {
+        let xj = recs.get(j).0[0];
         let (dx, dy) = (xi[0] - xj[0], xi[1] - xj[1]);
         let rsq = if D == 2 {
             dx * dx + dy * dy
@@ -115,7 +114,7 @@ fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], o
         };
         let ok = keep(j, rsq);
         // n_in <= slot: every write lands inside `out`
-        out[n_in.min(slot)] = j as u32;
+        out[n_in.min(slot)] = j;
         n_in += ok as usize;
     }
     n_in
@@ -126,15 +125,15 @@ fn gather_inside<const D: usize>(neigh: &[u32], recs: &[Record], xi: [f64; 3], o
 /// rsq, so the same neighbours in the same order. (In 3D this measured slower than the scalar
 /// gather, although it ran 10% fewer instructions.)
 #[inline(always)]
-fn gather_inside_uniform_2d(neigh: &[u32], recs: &[Record], xi: [f64; 3], out: &mut [u32], cutsq: f64) -> usize {
+fn gather_inside_uniform_2d<'id>(neigh: &[Entry<'id>], recs: Reader<'id, '_, Record>, xi: [f64; 3], out: &mut [Entry<'id>], cutsq: f64) -> usize {
     let quads = neigh.chunks_exact(LANES);
     let rest = quads.remainder();
     let out = &mut out[..neigh.len()];
     let c = L::splat(cutsq);
     let mut n_in = 0usize;
     for (q, slot) in quads.zip((0..).step_by(LANES)) {
-        let j: [u32; LANES] = std::array::from_fn(|l| q[l] & NEIGH_MASK);
-        let r: [&Record; LANES] = j.map(|j| &recs[j as usize]);
+        let j: [Entry; LANES] = std::array::from_fn(|l| q[l]);
+        let r: [&Record; LANES] = j.map(|j| recs.get(j));
         let t = transpose4([&r[0].0[0], &r[1].0[0], &r[2].0[0], &r[3].0[0]]);
         let (dx, dy) = (xi[0] - t[0], xi[1] - t[1]);
         let inside = (dx * dx + dy * dy).lt_bits(&c);
@@ -251,12 +250,15 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let nchunks = list.chunks.len();
     let bounds = list.bounds();
     let mut parts = vec![Tally::default(); nchunks];
+    // neighbour entries read the records and types unchecked (both hold every atom)
+    scope(a.nall(), |s| {
+    let (recs_of, typ_of) = (s.reader(recs), s.reader(&typ));
     for parity in 0..2 {
         let windows = (AtomsMut::new(&mut acc), AtomsMut::new(&mut acc_e), AtomsMut::new(forces), AtomsMut::new(&mut *first), AtomsMut::new(&mut *second));
         slab_phase(&bounds, parity, windows, &mut parts, |c, (mut acc, mut acc_e, mut f, mut first, mut second)| {
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
-        let mut inside: Vec<u32> = Vec::new();
+        let mut inside: Vec<Entry> = Vec::new();
         for i in chunk.start..chunk.end {
             let pi = recs[i].packed::<D>();
             let xi = pi.x;
@@ -265,15 +267,17 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
             // gather the neighbours inside the cutoff (and the type filter), branch-free; room
             // for every neighbour and the padding of the last batch
-            let neigh = chunk.neighbors(i);
-            if inside.len() < neigh.len() + LANES {
-                inside.resize(neigh.len() + LANES, 0);
+            let neigh = chunk.entries(&s, i);
+            if let Some(&first) = neigh.first() {
+                if inside.len() < neigh.len() + LANES {
+                    inside.resize(neigh.len() + LANES, first);
+                }
             }
             let n_in = match uniform_cut[ti] {
-                Some(c) if D == 2 => gather_inside_uniform_2d(neigh, recs, xi, &mut inside, c),
-                Some(c) => gather_inside::<D>(neigh, recs, xi, &mut inside, |_, rsq| rsq < c),
-                None => gather_inside::<D>(neigh, recs, xi, &mut inside, |j, rsq| {
-                    let tj = typ[j] as usize;
+                Some(c) if D == 2 => gather_inside_uniform_2d(neigh, recs_of, xi, &mut inside, c),
+                Some(c) => gather_inside::<D>(neigh, recs_of, xi, &mut inside, |_, rsq| rsq < c),
+                None => gather_inside::<D>(neigh, recs_of, xi, &mut inside, |j, rsq| {
+                    let tj = *typ_of.get(j) as usize;
                     rsq < cutsq[tj] && filter.map(|fl| fl[tj]).unwrap_or(true)
                 }),
             };
@@ -286,11 +290,12 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             }
             for (start, batch) in (0..n_in).step_by(LANES).zip(inside[..padded].chunks_exact(LANES)) {
                 let n = (n_in - start).min(LANES);
-                let js: [usize; LANES] = std::array::from_fn(|l| batch[l] as usize);
-                let rj: [&Record; LANES] = js.map(|j| &recs[j]);
+                let es: [Entry; LANES] = std::array::from_fn(|l| batch[l]);
+                let js = es.map(Entry::index);
+                let rj: [&Record; LANES] = es.map(|e| recs_of.get(e));
                 let c0 = transpose4([&rj[0].0[0], &rj[1].0[0], &rj[2].0[0], &rj[3].0[0]]);
                 let c1 = transpose4([&rj[0].0[1], &rj[1].0[1], &rj[2].0[1], &rj[3].0[1]]);
-                let tj = js.map(|j| typ[j] as usize);
+                let tj = es.map(|e| *typ_of.get(e) as usize);
                 let (xj, vj, aj, bj, mj): ([L; D], [L; D], L, L, L) = if D == 2 {
                     (std::array::from_fn(|k| c0[k]), std::array::from_fn(|k| c0[2 + k]), c1[0], c1[1], c1[2])
                 } else {
@@ -357,5 +362,6 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
         t
         });
     }
+    });
     sum_tallies(&parts)
 }

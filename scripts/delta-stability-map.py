@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """Time-step stability map of the cubes' water with and without delta-SPH (docs/multihybrid.md,
 "delta-SPH"): examples/validation/delta/in.water_dt (a periodic box of the cubes' water at rest
-with velocity noise) over a grid of c0, mu and delta, for 0.1 s of physical time at each dt of a
-ladder (factor sqrt 2 from 3.125e-6 s to 1e-4 s).
+with velocity noise) over a grid of c0, mu and delta, for 0.3 s of physical time at each dt of a
+ladder (factor sqrt 2 from 3.125e-6 s to 4e-4 s).
 
-"Stable": the run's stability guards do not stop it and the kinetic energy after 0.1 s is not above
+"Stable": the run's stability guards do not stop it and the kinetic energy after 0.3 s is not above
 its start (the noise decays or stays). Each (c0, mu, delta) is scanned from the largest dt down
 and stops at the first stable one (the smaller ones are taken as stable: cheaper runs first).
 
-    scripts/delta-stability-map.py [--c0 4 8 16] [--mu 0.01 0.1 1] [--delta 0 0.1 0.5] [--tend 0.1]
+    scripts/delta-stability-map.py [--c0 4 8 16] [--mu 0.01 0.1 1] [--delta 0 0.1 0.5] [--tend 0.3]
         [--svg docs/img/delta_stability_map.svg]
 Prints one line per run and the table of the largest stable dt.
 """
@@ -21,7 +21,7 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(ROOT, "examples/validation/delta/in.water_dt")
-LADDER = [3.125e-6 * 2 ** (k / 2) for k in range(11)]
+LADDER = [3.125e-6 * 2 ** (k / 2) for k in range(15)]
 
 
 def run(binary, c0, mu, delta, dt, tend, work):
@@ -48,7 +48,7 @@ def svg(results, c0s, mus, deltas, path):
     height = top + ch * len(rows) + 70
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
            '<rect width="100%" height="100%" fill="white"/>',
-           '<text x="10" y="18" font-size="14">Cubes water (periodic box, 0.1 s): stable time steps with and without delta-SPH</text>']
+           '<text x="10" y="18" font-size="14">Cubes water (periodic box, 0.3 s): stable time steps with and without delta-SPH</text>']
     for p, d in enumerate(deltas):
         x0 = p * (pw + gap)
         out.append('<text x="%d" y="40" font-size="13">%s</text>' % (x0 + left, "no delta-SPH" if d == 0 else "delta = %g (molteni)" % d))
@@ -77,7 +77,7 @@ def main():
     ap.add_argument("--c0", type=float, nargs="+", default=[4.0, 8.0, 16.0])
     ap.add_argument("--mu", type=float, nargs="+", default=[0.01, 0.1, 1.0])
     ap.add_argument("--delta", type=float, nargs="+", default=[0.0, 0.1, 0.5])
-    ap.add_argument("--tend", type=float, default=0.1)
+    ap.add_argument("--tend", type=float, default=0.3)
     ap.add_argument("--svg", default=None)
     ap.add_argument("--bin", default=os.path.join(ROOT, "target/release/dmhs"))
     a = ap.parse_args()

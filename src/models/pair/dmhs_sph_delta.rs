@@ -255,6 +255,15 @@ impl PairStyle for SphDelta {
     fn diffuses_density(&self) -> Option<Vec<f64>> {
         Some(self.types.rho0.clone())
     }
+    /// delta h_s c0 = delta h c0 / 2 of the pair t-t: D_i is kappa times Brookshaw's SPH
+    /// Laplacian of rho (2 sum_j V_j (rho_i - rho_j) wfd).
+    fn density_diffusivity(&self, t: usize) -> f64 {
+        if t == 0 || t > self.pairs.n || !self.pairs.is_set(t, t) || t >= self.types.c0.len() {
+            return 0.0;
+        }
+        let (delta, h) = *self.pairs.get(t, t);
+        0.5 * delta * h * self.types.c0[t]
+    }
 }
 
 #[cfg(test)]

@@ -281,6 +281,10 @@ impl PairStyle for Hybrid {
         any
     }
 
+    fn density_diffusivity(&self, t: usize) -> f64 {
+        self.styles.iter().map(|s| s.density_diffusivity(t)).sum()
+    }
+
     fn dt_limits(&self) -> Vec<crate::models::Limit> {
         self.styles.iter().flat_map(|s| s.dt_limits()).collect()
     }

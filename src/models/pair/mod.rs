@@ -218,6 +218,12 @@ pub trait PairStyle: Send + Sync {
     fn diffuses_density(&self) -> Option<Vec<f64>> {
         None
     }
+    /// The density diffusivity kappa (m^2/s) the style gives type `t` with itself (dmhs/sph/delta:
+    /// delta h c0 / 2), which damps sound waves as the kinematic viscosity does (the
+    /// sound-viscosity limit becomes 2 (nu + kappa)/c^2, src/sim/stability.rs).
+    fn density_diffusivity(&self, _t: usize) -> f64 {
+        0.0
+    }
     /// SPH parameters for stability estimates (`dmhs check`), if this is an SPH style.
     fn sph_info(&self) -> Option<SphInfo> {
         None

@@ -142,17 +142,20 @@ fn pair_period(m: f64, k: f64) -> f64 {
 /// The sound-viscosity limit 2 nu/c^2 of the tightest fluid type of a Morris style. Types whose
 /// atoms are all bonded (CGMD solids inside the fluid) are left out: their bonded pairs have no SPH
 /// (special_bonds), so no sound wave runs through them (a cube at 8x its own limit in water
-/// within the water's limit stays quiet: examples/scenes/cubes/README.md).
+/// within the water's limit stays quiet: examples/scenes/cubes/README.md); so are fix
+/// sph/stationary walls, which do not move. With delta-SPH on a type: 2 (nu + kappa)/c^2.
 fn sound_viscosity_limit(sim: &Simulation) -> Option<Limit> {
     let sv = sim.pair.as_ref().and_then(|p| p.sph_info())?.sound_visc;
     if sv.is_empty() {
         return None;
     }
     let bonded: std::collections::HashSet<i64> = sim.state.topo.bonds.iter().flat_map(|b| b.atoms).collect();
+    // fix sph/stationary walls do not move: no sound wave runs through them
+    let stationary = sim.fixes.iter().filter(|f| f.style() == "sph/stationary").fold(0u32, |m, f| m | f.groupbit());
     let a = &sim.state.atoms;
     let mut fluid = vec![false; sim.state.ntypes + 1];
     for i in 0..a.nlocal {
-        if !bonded.contains(&a.tag[i]) {
+        if !bonded.contains(&a.tag[i]) && a.mask[i] & stationary == 0 {
             if let Some(f) = fluid.get_mut(a.typ[i]) {
                 *f = true;
             }

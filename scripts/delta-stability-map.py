@@ -45,7 +45,7 @@ def svg(results, c0s, mus, deltas, path):
     rows = [(c, m) for c in c0s for m in mus]
     pw = left + cw * len(LADDER)
     width = pw * len(deltas) + gap * (len(deltas) - 1) + 10
-    height = top + ch * len(rows) + 70
+    height = top + ch * len(rows) + 90
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
            '<rect width="100%" height="100%" fill="white"/>',
            '<text x="10" y="18" font-size="14">Cubes water (periodic box, 0.3 s): stable time steps with and without delta-SPH</text>']

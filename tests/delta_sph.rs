@@ -308,3 +308,48 @@ fn bad_input_is_a_located_error() {
     let text = failure(deck);
     assert!(text.contains("requires atom attributes rho") && text.contains("delta-err:10:"), "{text}");
 }
+
+/// (START_KE, FINAL_KE) of the cubes' water box (examples/validation/delta/in.water_dt); Err:
+/// stopped by a stability guard.
+fn water_box(vars: &[(&str, &str)]) -> Result<(f64, f64), String> {
+    let deck = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/validation/delta/in.water_dt");
+    let mut o = opts(vars);
+    o.capture_text = true;
+    let run = run_file(&deck, &o).map_err(|f| f.rendered)?;
+    let text = run.sim.out.captured.clone().unwrap_or_default();
+    let value = |key: &str| text.lines().find_map(|l| l.strip_prefix(key)).map(|v| v.trim().parse::<f64>().unwrap()).unwrap();
+    Ok((value("START_KE"), value("FINAL_KE")))
+}
+
+/// The paper's 5e-5 s for the cubes' water (c0 8, mu 0.1: 16x 2 nu/c^2): the velocity noise
+/// decays with delta = 0.1 (limit 2 (nu + kappa)/c^2 = 7.3e-5 s) and grows without.
+#[test]
+fn cubes_water_at_the_papers_time_step() {
+    let with = water_box(&[("dt", "5e-5"), ("tend", "0.15"), ("delta", "0.1")]).unwrap();
+    let without = water_box(&[("dt", "5e-5"), ("tend", "0.15")]);
+    eprintln!("cubes water, dt 5e-5, 0.15 s: kinetic energy with delta 0.1 {:.3e} -> {:.3e}; without {without:?}", with.0, with.1);
+    assert!(with.1 < 0.1 * with.0, "{with:?}");
+    match without {
+        Ok((start, end)) => assert!(end > 100.0 * start, "{start} -> {end}"),
+        Err(e) => assert!(e.contains("run stopped"), "{e}"),
+    }
+}
+
+/// `dmhs check` reports the sound-viscosity limit with the diffusivity, and no warning at 5e-5 s.
+#[test]
+fn check_reports_the_limit_with_delta() {
+    let deck = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/validation/delta/in.water_dt");
+    let tmp = tempfile::tempdir().unwrap();
+    let check = |extra: &[&str]| {
+        let mut args = vec!["check", deck.to_str().unwrap(), "-var", "dt", "5e-5"];
+        args.extend(extra);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(&args).current_dir(tmp.path()).output().unwrap();
+        format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+    };
+    let text = check(&["-var", "delta", "0.1"]);
+    // 2 (1e-4 + 0.1 * 5.6e-3 * 8 / 2) / 64
+    assert!(text.contains("sound-viscosity 2 (nu + kappa)/c^2 (type 1: nu = mu/rho0 = 0.1/1000, kappa = delta h c0/2 = 2.2400e-3, c = 8) dt <= 7.3125e-5"), "{text}");
+    assert!(!text.contains("WARNING"), "{text}");
+    let text = check(&[]);
+    assert!(text.contains("WARNING: the time step 5.0000e-5 is 16.00x the sound-viscosity 2 nu/c^2 limit"), "{text}");
+}

@@ -20,9 +20,10 @@
 //!   rho^H_ji = rho0 [(s + q)^(1/7) - (s - q)^(1/7)],  s = ((rho_i/rho0)^7 + (rho_j/rho0)^7)/2,
 //!   q = (P_j - P_i)/(2B) = -7 g . x_ij / (2 c0^2).
 //!
-//! Fourtakas evaluates the Tait inverse around P_i = 0 instead; the mean pressure makes the term
-//! exactly antisymmetric in i, j (DualSPHysics' form is not, by O((P_j - P_i)/B)^2) and exactly
-//! zero on the Tait hydrostatic column, where the original leaves O(P/B) of it.
+//! Fourtakas writes the Tait inverse around P_i = 0, rho0 [(1 + (P_j - P_i)/B)^(1/7) - 1]: that is
+//! antisymmetric in i, j only to O(((P_j - P_i)/B)^2) and leaves O(P/B) on a Tait hydrostatic
+//! column; the mean pressure makes the term exactly antisymmetric and exactly zero there. (The
+//! DualSPHysics source was not read; the forms here are the papers'.)
 //!
 //! Per pair, drho_i = K V_j and drho_j = -K V_i (K the pair's coefficient times its density
 //! difference times wfd), so sum_i V_i drho_i = 0: the term moves mass sum_i V_i rho_i between

@@ -12,8 +12,10 @@
 //! the pressure of a sound wave lags it by dt/2: an anti-damping of energy rate k^2 c^2 dt/2 against
 //! the viscous k^2 nu, for every wavelength. Measured in a periodic water box (tests/
 //! stability_sound_viscosity.rs, examples/scenes/cubes/README.md): noise decays at 1x, grows from
-//! about 1.3x (the same in LAMMPS). Pair potentials with a well (LJ): T/20 of the oscillation of
-//! the two lightest atoms in the well, k = V''(r_min), as for harmonic bonds.
+//! about 1.3x (the same in LAMMPS). With delta-SPH density diffusion (dmhs/sph/delta) on the
+//! type: 2 (nu + kappa)/c^2, kappa = delta h c0/2 (docs/multihybrid.md, "delta-SPH": the measured
+//! map follows it). Pair potentials with a well (LJ): T/20 of the oscillation of the two
+//! lightest atoms in the well, k = V''(r_min), as for harmonic bonds.
 //!
 //! Guards, checked after every step (every N with `dmhs/stability every N`) in one branch-free
 //! pass over the atoms; only when it finds something is the particle searched for:
@@ -140,28 +142,41 @@ fn pair_period(m: f64, k: f64) -> f64 {
 /// The sound-viscosity limit 2 nu/c^2 of the tightest fluid type of a Morris style. Types whose
 /// atoms are all bonded (CGMD solids inside the fluid) are left out: their bonded pairs have no SPH
 /// (special_bonds), so no sound wave runs through them (a cube at 8x its own limit in water
-/// within the water's limit stays quiet: examples/scenes/cubes/README.md).
+/// within the water's limit stays quiet: examples/scenes/cubes/README.md); so are fix
+/// sph/stationary walls, which do not move. With delta-SPH on a type: 2 (nu + kappa)/c^2.
 fn sound_viscosity_limit(sim: &Simulation) -> Option<Limit> {
     let sv = sim.pair.as_ref().and_then(|p| p.sph_info())?.sound_visc;
     if sv.is_empty() {
         return None;
     }
     let bonded: std::collections::HashSet<i64> = sim.state.topo.bonds.iter().flat_map(|b| b.atoms).collect();
+    // fix sph/stationary walls do not move: no sound wave runs through them
+    let stationary = sim.fixes.iter().filter(|f| f.style() == "sph/stationary").fold(0u32, |m, f| m | f.groupbit());
     let a = &sim.state.atoms;
     let mut fluid = vec![false; sim.state.ntypes + 1];
     for i in 0..a.nlocal {
-        if !bonded.contains(&a.tag[i]) {
+        if !bonded.contains(&a.tag[i]) && a.mask[i] & stationary == 0 {
             if let Some(f) = fluid.get_mut(a.typ[i]) {
                 *f = true;
             }
         }
     }
+    let pair = sim.pair.as_ref()?;
     sv.iter()
         .filter(|&&(t, rho0, c0, mu)| fluid.get(t).copied().unwrap_or(false) && rho0 > 0.0 && c0 > 0.0 && mu > 0.0)
-        .map(|&(t, rho0, c0, mu)| Limit {
-            model: "SPH".into(),
-            rule: format!("sound-viscosity 2 nu/c^2 (type {t}: nu = mu/rho0 = {mu}/{rho0}, c = {c0})"),
-            dt_max: 2.0 * mu / rho0 / (c0 * c0),
+        .map(|&(t, rho0, c0, mu)| {
+            // delta-SPH density diffusion damps the wave's density as viscosity damps its velocity
+            // (measured: the cubes' water map of docs/multihybrid.md, "delta-SPH", follows it)
+            let kappa = pair.density_diffusivity(t);
+            if kappa > 0.0 {
+                Limit {
+                    model: "SPH".into(),
+                    rule: format!("sound-viscosity 2 (nu + kappa)/c^2 (type {t}: nu = mu/rho0 = {mu}/{rho0}, kappa = delta h c0/2 = {kappa:.4e}, c = {c0})"),
+                    dt_max: 2.0 * (mu / rho0 + kappa) / (c0 * c0),
+                }
+            } else {
+                Limit { model: "SPH".into(), rule: format!("sound-viscosity 2 nu/c^2 (type {t}: nu = mu/rho0 = {mu}/{rho0}, c = {c0})"), dt_max: 2.0 * mu / rho0 / (c0 * c0) }
+            }
         })
         .min_by(|x, y| x.dt_max.total_cmp(&y.dt_max))
 }

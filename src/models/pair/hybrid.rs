@@ -234,7 +234,7 @@ impl PairStyle for Hybrid {
         for (style, active) in self.styles.iter_mut().zip(&self.assigned) {
             style.init(ntypes, modify, Some(active)).map_err(|e| format!("{e} (sub-style {})", style.style()))?;
         }
-        Ok(())
+        check_density_diffusion(&self.styles)
     }
 
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
@@ -279,6 +279,10 @@ impl PairStyle for Hybrid {
             self.seconds[k] += t0.elapsed().as_secs_f64();
         }
         any
+    }
+
+    fn density_diffusivity(&self, t: usize) -> f64 {
+        self.styles.iter().map(|s| s.density_diffusivity(t)).sum()
     }
 
     fn dt_limits(&self) -> Vec<crate::models::Limit> {
@@ -326,4 +330,25 @@ impl PairStyle for Hybrid {
     fn reset_model_seconds(&mut self) {
         self.seconds.iter_mut().for_each(|t| *t = 0.0);
     }
+}
+
+/// A sub-style that only diffuses density (dmhs/sph/delta) needs an SPH density style
+/// beside it with the same rest density for every type it covers.
+fn check_density_diffusion(styles: &[Box<dyn PairStyle>]) -> Result<(), String> {
+    for (k, style) in styles.iter().enumerate() {
+        let Some(rho0) = style.diffuses_density() else { continue };
+        let dens: Vec<Vec<f64>> = styles.iter().enumerate().filter(|&(m, _)| m != k).filter_map(|(_, s)| s.sph_info()).map(|i| i.rho0).collect();
+        if dens.is_empty() {
+            return Err(format!("pair {} adds to the density rate of an SPH density style, and this hybrid has none (add sph/taitwater or sph/taitwater/morris)", style.style()));
+        }
+        for (t, &r) in rho0.iter().enumerate().skip(1).filter(|&(_, &r)| r > 0.0) {
+            let theirs = dens.iter().filter_map(|d| d.get(t).copied()).find(|&x| x > 0.0);
+            match theirs {
+                None => return Err(format!("pair {}: type {t} has no SPH density style (no rho0 for it in another sub-style)", style.style())),
+                Some(x) if x != r => return Err(format!("pair {}: rho0 of type {t} is {r}, the density style's is {x} (they must be the same)", style.style())),
+                _ => {}
+            }
+        }
+    }
+    Ok(())
 }

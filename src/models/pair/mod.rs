@@ -9,6 +9,7 @@ pub mod contact;
 pub mod dmhs_blend;
 pub mod dmhs_heatconduction;
 pub mod dmhs_lj_wet;
+pub mod dmhs_sph_delta;
 pub mod dmhs_sph_diffusion;
 pub mod gran_hooke;
 pub mod gran_hooke_history;
@@ -211,6 +212,18 @@ pub trait PairStyle: Send + Sync {
     fn density_pass(&mut self, _input: &PairInput, _rho: &mut [f64]) -> bool {
         false
     }
+    /// A style that only adds to the density rate of an SPH density style (dmhs/sph/delta):
+    /// the rest density it assumes per type (index 0 unused, 0: not covered), which `hybrid`
+    /// checks against the density style's.
+    fn diffuses_density(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// The density diffusivity kappa (m^2/s) the style gives type `t` with itself (dmhs/sph/delta:
+    /// delta h c0 / 2), which damps sound waves as the kinematic viscosity does (the
+    /// sound-viscosity limit becomes 2 (nu + kappa)/c^2, src/sim/stability.rs).
+    fn density_diffusivity(&self, _t: usize) -> f64 {
+        0.0
+    }
     /// SPH parameters for stability estimates (`dmhs check`), if this is an SPH style.
     fn sph_info(&self) -> Option<SphInfo> {
         None
@@ -311,6 +324,7 @@ const STYLES: &[(&str, PairCtor)] = &[
     ("sph/rhosum", |_, args, cmd| Ok(Box::new(sph_rhosum::SphRhoSum::from_lammps(args, cmd)?))),
     ("dmhs/blend", |_, args, cmd| Ok(Box::new(dmhs_blend::DmhsBlend::from_lammps(args, cmd)?))),
     ("dmhs/heatconduction", |_, args, cmd| Ok(Box::new(dmhs_heatconduction::DmhsHeatConduction::from_lammps(args, cmd)?))),
+    ("dmhs/sph/delta", |_, args, cmd| Ok(Box::new(dmhs_sph_delta::SphDelta::from_lammps(args, cmd)?))),
     ("dmhs/sph/diffusion", |_, args, cmd| Ok(Box::new(dmhs_sph_diffusion::SphDiffusion::from_lammps(args, cmd)?))),
     ("dmhs/lj/wet", |_, args, cmd| Ok(Box::new(dmhs_lj_wet::LjWet::from_lammps(args, cmd)?))),
     ("gran/hooke", |_, args, cmd| Ok(Box::new(gran_hooke::GranHooke::from_lammps(args, cmd)?))),

@@ -204,7 +204,8 @@ impl<T: Copy + PartialEq> PerTypePair<T> {
     }
 }
 
-fn kernel_choice(a: &mut Args) -> DResult<Kernel> {
+/// The value of a `kernel` keyword: lucy, cubic or wendland2.
+pub fn kernel_choice(a: &mut Args) -> DResult<Kernel> {
     Ok(match a.choice("kernel", &["lucy", "cubic", "wendland2"])? {
         0 => Kernel::Lucy,
         1 => Kernel::Cubic,

@@ -1,7 +1,8 @@
 //! The BPM package against LAMMPS beyond what lammps_parity.rs compares (forces at step 0 and
 //! positions, velocities, spins at the end): the orientations fix nve/bpm/sphere integrates
 //! (the quaternions of atom_style bpm/sphere) after the run of lammps-refs/decks/in.bpm_sphere_nve,
-//! and located errors for bad BPM input.
+//! and located errors for bad BPM input (pair bpm/spring is compared in lammps_parity.rs through
+//! the bpm_pair_spring deck).
 //!
 //! * `stored_orientations`: against lammps-refs/refs/bpm_sphere_nve/quat.txt (runs everywhere).
 //! * `live_orientations`: against LAMMPS run now (`dump custom ... quatw quati quatj quatk`).
@@ -137,6 +138,17 @@ fn bad_input_is_located() {
     assert!(e.contains("bond type") && e.contains("in.test:6:"), "{e}");
     let e = error_of("atom_style sphere\nunits lj\nregion b block 0 4 0 4 0 4\ncreate_box 1 b\ncompute 1 all nbond/atom\n");
     assert!(e.contains("requires an atom style with bonds") && e.contains("in.test:5:"), "{e}");
+    // pair bpm/spring: keywords, coefficients (ka only with anharmonic yes), ghost velocities
+    let e = error_of(&format!("atom_style bpm/sphere\n{BOX}pair_style bpm/spring smooth no\n"));
+    assert!(e.contains("smooth") && e.contains("in.test:6:"), "{e}");
+    let e = error_of(&format!("atom_style bpm/sphere\n{BOX}pair_style bpm/spring anharmonic yes\npair_coeff 1 1 1.0 1.0 1.0\n"));
+    assert!(e.contains("ka") && e.contains("in.test:7:"), "{e}");
+    let e = error_of(&format!("atom_style bpm/sphere\n{BOX}pair_style bpm/spring\npair_coeff 1 1 1.0 1.0 1.0 2.0\n"));
+    assert!(e.contains("in.test:7:"), "{e}");
+    let e = error_of(&format!("atom_style bpm/sphere\n{BOX}pair_style bpm/spring\npair_coeff 1 1 1.0 -1.0 1.0\n"));
+    assert!(e.contains("cutoff") && e.contains("in.test:7:"), "{e}");
+    let e = error_of(&format!("atom_style bpm/sphere\n{BOX}pair_style bpm/spring\npair_coeff 1 1 1.0 1.0 1.0\nrun 0\n"));
+    assert!(e.contains("comm_modify vel yes"), "{e}");
     // dynamic radii are not supported
     let e = error_of("atom_style bpm/sphere 1\n");
     assert!(e.contains("dynamic radius") && e.contains("in.test:1:"), "{e}");

@@ -171,3 +171,23 @@ fn created_atoms_have_identity_orientations_and_unit_spheres() {
     assert!((q[0] - 1f64.cos()).abs() < 3e-5 && (q[3] - 1f64.sin()).abs() < 3e-5 && q[1] == 0.0 && q[2] == 0.0, "{q:?}");
     assert!((a.x[i][0] - 1.1).abs() < 1e-12);
 }
+
+#[test]
+fn orientations_survive_a_restart() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bpm.restart");
+    let deck = format!(
+        "atom_style bpm/sphere\n{BOX}create_atoms 1 single 2 2 2\nset atom 1 omega 0.3 -0.7 1.1\nset atom 2 omega -0.2 0.5 0.4\n\
+         fix 1 all nve/bpm/sphere\ntimestep 0.01\nrun 37\nwrite_restart {}\n",
+        file.display()
+    );
+    let opts = DeckOptions { screen: false, ..Default::default() };
+    let before = run_text("in.test", &deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let read = format!("read_restart {}\n", file.display());
+    let after = run_text("in.read", &read, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let quats = |a: &dmhs::engine::atoms::Atoms| -> BTreeMap<i64, [u64; 4]> { (0..a.nlocal).map(|i| (a.tag[i], a.quat[i].map(f64::to_bits))).collect() };
+    let (q0, q1) = (quats(&before.sim.state.atoms), quats(&after.sim.state.atoms));
+    assert_ne!(q0[&1], [1f64.to_bits(), 0, 0, 0], "atom 1 did not turn");
+    assert_eq!(q0, q1);
+    assert!(after.sim.state.atoms.features.quat);
+}

@@ -38,6 +38,7 @@ fi
 "$py" "$here/gen_beds.py"
 "$py" "$here/gen_coupling.py"
 "$py" "$here/gen_bondchange.py"
+"$py" "$here/gen_bpm.py"
 for name in "${names[@]+"${names[@]}"}"; do
     echo "== $name"
     out="$here/refs/$name"
@@ -47,6 +48,8 @@ for name in "${names[@]+"${names[@]}"}"; do
     case "$name" in
         bond*) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
                    "$out/log.lammps" > "$out/thermo.txt" ;;
+        # the orientations at the end (tests/bpm.rs)
+        bpm_sphere_nve) "$py" "$here/bpm_quat.py" "$here/decks/in.$name" "$out" ;;
     esac
     if [ "$chaos" = 1 ]; then
         "$py" "$here/chaos_check.py" "$here/decks/in.$name"

@@ -19,6 +19,8 @@ pub struct AtomFeatures {
     pub sphere: bool,
     /// rho, drho, esph, desph, cv, vest (sph)
     pub sph: bool,
+    /// orientation quaternion (bpm/sphere)
+    pub quat: bool,
 }
 
 impl AtomFeatures {
@@ -69,6 +71,8 @@ pub struct Atoms {
     pub rmass: Vec<f64>,
     pub omega: Vec<[f64; 3]>,
     pub torque: Vec<[f64; 3]>,
+    /// Orientation (w, i, j, k), LAMMPS' `quat` of atom_style bpm/sphere; (1, 0, 0, 0) when made.
+    pub quat: Vec<[f64; 4]>,
 
     pub rho: Vec<f64>,
     pub drho: Vec<f64>,
@@ -152,6 +156,9 @@ impl Atoms {
             self.omega.push([0.0; 3]);
             self.torque.push([0.0; 3]);
         }
+        if ft.quat {
+            self.quat.push([1.0, 0.0, 0.0, 0.0]);
+        }
         if ft.sph {
             self.rho.push(a.rho);
             self.drho.push(0.0);
@@ -190,6 +197,9 @@ impl Atoms {
             self.rmass.truncate(n);
             self.omega.truncate(n);
             self.torque.truncate(n);
+        }
+        if ft.quat {
+            self.quat.truncate(n);
         }
         if ft.sph {
             self.rho.truncate(n);
@@ -235,6 +245,9 @@ impl Atoms {
             self.rmass.push(self.rmass[owner]);
             self.omega.push(self.omega[owner]);
             self.torque.push([0.0; 3]);
+        }
+        if ft.quat {
+            self.quat.push(self.quat[owner]);
         }
         if ft.sph {
             self.rho.push(self.rho[owner]);
@@ -287,6 +300,9 @@ impl Atoms {
             Self::forward_field(&mut self.radius, n, own);
             Self::forward_field(&mut self.rmass, n, own);
         }
+        if ft.quat {
+            Self::forward_field(&mut self.quat, n, own);
+        }
         if ft.sph {
             Self::forward_field(&mut self.rho, n, own);
             Self::forward_field(&mut self.esph, n, own);
@@ -326,6 +342,7 @@ impl Atoms {
         apply(&mut self.rmass, order);
         apply(&mut self.omega, order);
         apply(&mut self.torque, order);
+        apply(&mut self.quat, order);
         apply(&mut self.rho, order);
         apply(&mut self.drho, order);
         apply(&mut self.esph, order);

@@ -10,6 +10,7 @@ pub mod groups;
 pub mod lattice;
 pub mod neighbor;
 pub mod par;
+pub mod quat;
 pub mod random_park;
 pub mod region;
 pub mod special;

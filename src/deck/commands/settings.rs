@@ -92,7 +92,7 @@ pub(super) fn parse_boundary(words: &[Word], dim: usize) -> DResult<[[BoundaryKi
 }
 
 /// The atom styles dmhs implements (LAMMPS names).
-pub const ATOM_STYLES: &[&str] = &["atomic", "bond", "angle", "molecular", "full", "charge", "sphere", "sph", "hybrid"];
+pub const ATOM_STYLES: &[&str] = &["atomic", "bond", "angle", "molecular", "full", "charge", "sphere", "bpm/sphere", "sph", "hybrid"];
 
 /// Features of an atom style given as words (`hybrid a b ...` included).
 pub fn features_of(styles: &[&str]) -> Result<AtomFeatures, String> {
@@ -124,6 +124,13 @@ pub fn features_of(styles: &[&str]) -> Result<AtomFeatures, String> {
             }
             "charge" => f.charge = true,
             "sphere" => f.sphere = true,
+            // LAMMPS' AtomVecBPMSphere: molecular (bonds only) finite-size spheres with orientations
+            "bpm/sphere" => {
+                f.molecule = true;
+                f.bonds = true;
+                f.sphere = true;
+                f.quat = true;
+            }
             "sph" => f.sph = true,
             other => return Err(other.to_string()),
         }
@@ -133,7 +140,7 @@ pub fn features_of(styles: &[&str]) -> Result<AtomFeatures, String> {
 
 pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     before_box(sim, cmd)?;
-    let syntax = "atom_style atomic|bond|angle|molecular|full|charge|sphere|sph|hybrid style1 style2 ...";
+    let syntax = "atom_style atomic|bond|angle|molecular|full|charge|sphere|bpm/sphere|sph|hybrid style1 style2 ...";
     let a = Args::new(cmd, syntax);
     let Some(first) = cmd.args.first() else { return Err(a.missing("an atom style")) };
     let mut names: Vec<&str> = vec![];
@@ -148,9 +155,9 @@ pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             }
             // `sphere 0|1` takes an optional flag (dynamic radius): accept 0 only
             if w.text == "0" || w.text == "1" {
-                if names.last() == Some(&"sphere") {
+                if let Some(&prev @ ("sphere" | "bpm/sphere")) = names.last() {
                     if w.text == "1" {
-                        return Err(a.error_at(w, "atom_style sphere with dynamic radius (1) is not supported", "use 0"));
+                        return Err(a.error_at(w, format!("atom_style {prev} with dynamic radius (1) is not supported"), "use 0"));
                     }
                     continue;
                 }
@@ -166,7 +173,11 @@ pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         }
         names.push(&first.text);
         let rest = &cmd.args[1..];
-        let ok_extra = first.text == "sphere" && rest.len() == 1 && rest[0].text == "0";
+        let takes_flag = first.text == "sphere" || first.text == "bpm/sphere";
+        let ok_extra = takes_flag && rest.len() == 1 && rest[0].text == "0";
+        if takes_flag && rest.len() == 1 && rest[0].text == "1" {
+            return Err(a.error_at(&rest[0], format!("atom_style {} with dynamic radius (1) is not supported", first.text), "use 0"));
+        }
         if !rest.is_empty() && !ok_extra {
             return Err(a.error_at(&rest[0], format!("unexpected argument `{}`", rest[0].text), "not expected here"));
         }

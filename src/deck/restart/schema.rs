@@ -113,6 +113,9 @@ pub struct AtomSection {
     pub rmass: Option<Vec<f64>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub omega: Option<Vec<[f64; 3]>>,
+    /// Orientations (atom_style bpm/sphere).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quat: Option<Vec<[f64; 4]>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rho: Option<Vec<f64>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -360,6 +363,7 @@ impl Restart {
         optional("radius", a.radius.as_ref().map(Vec::len), ft.sphere)?;
         optional("rmass", a.rmass.as_ref().map(Vec::len), ft.sphere)?;
         optional("omega", a.omega.as_ref().map(Vec::len), ft.sphere)?;
+        optional("quat", a.quat.as_ref().map(Vec::len), ft.quat)?;
         for (name, v) in [("rho", &a.rho), ("drho", &a.drho), ("esph", &a.esph), ("desph", &a.desph), ("cv", &a.cv)] {
             optional(name, v.as_ref().map(Vec::len), ft.sph)?;
         }
@@ -400,6 +404,9 @@ impl Restart {
                 m => Err(format!("is {m}: a mass must be > 0")),
             })?;
             each("omega", &|i| finite(&omega[i]))?;
+        }
+        if let Some(quat) = &a.quat {
+            each("quat", &|i| finite(&quat[i]))?;
         }
         for (name, v) in [("rho", &a.rho), ("drho", &a.drho), ("esph", &a.esph), ("desph", &a.desph), ("cv", &a.cv)] {
             if let Some(v) = v {

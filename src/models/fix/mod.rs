@@ -16,6 +16,7 @@ pub mod freeze;
 pub mod gravity;
 pub mod move_linear;
 pub mod nve;
+pub mod nve_bpm_sphere;
 pub mod nve_sphere;
 pub mod pour;
 pub mod setforce;
@@ -208,6 +209,7 @@ type FixCtor = fn(FixDef, &mut State) -> DResult<Box<dyn Fix>>;
 const STYLES: &[(&str, FixCtor)] = &[
     ("nve", |d, _| Ok(Box::new(nve::FixNve::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("nve/sphere", |d, state| Ok(Box::new(nve_sphere::FixNveSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("nve/bpm/sphere", |d, state| Ok(Box::new(nve_bpm_sphere::FixNveBpmSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("gravity", |d, state| Ok(Box::new(gravity::FixGravity::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("addforce", |d, state| Ok(Box::new(addforce::FixAddForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

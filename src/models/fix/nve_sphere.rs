@@ -112,6 +112,15 @@ impl HalfStep<'_> {
     }
 }
 
+/// LAMMPS' init check of the sphere integrators: no point particles in the group.
+pub fn require_extended(state: &State, groupbit: u32, style: &str) -> Result<(), String> {
+    let a = &state.atoms;
+    match (0..a.nlocal).find(|&i| a.mask[i] & groupbit != 0 && a.radius[i] == 0.0) {
+        Some(i) => Err(format!("fix {style} requires extended particles (atom {} has radius 0)", a.tag[i])),
+        None => Ok(()),
+    }
+}
+
 impl Fix for FixNveSphere {
     fn id(&self) -> &str {
         &self.id
@@ -126,13 +135,7 @@ impl Fix for FixNveSphere {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
-        let a = &state.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit != 0 && a.radius[i] == 0.0 {
-                return Err(format!("fix nve/sphere requires extended particles (atom {} has radius 0)", a.tag[i]));
-            }
-        }
-        Ok(())
+        require_extended(state, self.groupbit, "nve/sphere")
     }
     fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         self.integrate(state, true);

@@ -49,7 +49,7 @@ struct Blended<'a> {
 }
 
 impl PairKernel for Blended<'_> {
-    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64) -> Option<PairResult> {
+    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, _factor: f64) -> Option<PairResult> {
         let (sph, dem) = (&self.style.sph, &self.style.dem);
         let a = input.atoms;
         let (ti, tj) = (a.typ[i], a.typ[j]);

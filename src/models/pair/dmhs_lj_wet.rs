@@ -85,18 +85,6 @@ impl LjWet {
         }
         Ok(LjWet { cut_global, conc_max, scale_all, dmax, coeff: TypeTable::new(0), derived: TypeTable::new(0) })
     }
-
-    fn grow(&mut self, n: usize) {
-        if self.coeff.n < n {
-            let mut t = TypeTable::new(n);
-            for i in 1..=self.coeff.n {
-                for j in 1..=self.coeff.n {
-                    t.set(i, j, *self.coeff.get(i, j));
-                }
-            }
-            self.coeff = t;
-        }
-    }
 }
 
 /// The pair's force over r (force on i = fpair (x_i - x_j)) and energy at distance r, for
@@ -162,7 +150,7 @@ impl PairStyle for LjWet {
         "dmhs/lj/wet"
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        self.grow(ihi.max(jhi));
+        self.coeff.grow(ihi.max(jhi));
         args.syntax = COEFF_SYNTAX;
         let epsilon = args.non_negative_f64("epsilon")?;
         let sigma = args.positive_f64("sigma")?;
@@ -177,7 +165,7 @@ impl PairStyle for LjWet {
         Ok(())
     }
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.grow(ntypes);
+        self.coeff.grow(ntypes);
         let mut derived = TypeTable::new(ntypes);
         for i in 1..=ntypes {
             for j in i..=ntypes {

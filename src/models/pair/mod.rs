@@ -4,6 +4,7 @@
 //! the loop over the neighbour list, Newton's third law, threading and energy/virial tallies
 //! live here. Adding a style touches one list: [`new_pair_style`].
 
+pub mod bpm_spring;
 pub mod classic;
 pub mod contact;
 pub mod dmhs_blend;
@@ -316,6 +317,7 @@ type PairCtor = fn(&Word, &[Word], &Command) -> DResult<Box<dyn PairStyle>>;
 /// Every pair style this build implements: `pair_style NAME args...` builds it.
 const STYLES: &[(&str, PairCtor)] = &[
     ("lj/cut", |_, args, cmd| Ok(Box::new(lj_cut::LjCut::from_lammps(args, cmd)?))),
+    ("bpm/spring", |_, args, cmd| Ok(Box::new(bpm_spring::PairBpmSpring::from_lammps(args, cmd)?))),
     ("sph/taitwater", |_, args, cmd| Ok(Box::new(sph_taitwater::SphTaitwater::from_lammps(args, cmd)?))),
     ("sph/taitwater/morris", |_, args, cmd| Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?))),
     ("sph/heatconduction", |_, args, cmd| Ok(Box::new(sph_heatconduction::SphHeatConduction::from_lammps(args, cmd)?))),
@@ -512,12 +514,15 @@ pub struct PairResult {
     pub tj: [f64; 3],
     pub rate_i: [f64; 2],
     pub rate_j: [f64; 2],
+    /// The pair's energy (tallied when energies are).
+    pub energy: f64,
 }
 
 /// A kernel for any pair interaction, one pair at a time.
 pub trait PairKernel: Sync {
-    /// The pair (i, j) with `del` = x_i - x_j, or None if it does not interact.
-    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64) -> Option<PairResult>;
+    /// The pair (i, j) with `del` = x_i - x_j, or None if it does not interact; `factor` is
+    /// the pair's special-bond lj weight (1 for a pair that is not special).
+    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, factor: f64) -> Option<PairResult>;
 }
 
 /// Every listed pair through a [`PairKernel`], on one thread in list order (the order
@@ -540,7 +545,8 @@ pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut Pai
                 let xj = a.x[j];
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                let Some(r) = kernel.pair(input, i, j, del, rsq) else { continue };
+                let factor = if input.list.has_special { input.special_lj[special_level(jraw)] } else { 1.0 };
+                let Some(r) = kernel.pair(input, i, j, del, rsq, factor) else { continue };
                 let owned = j < nlocal;
                 if has_rates {
                     drho[i] += r.rate_i[0];
@@ -565,7 +571,9 @@ pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut Pai
                     }
                 }
                 if input.eflag {
-                    t.xyz(if owned { 1.0 } else { 0.5 }, del, r.f);
+                    let w = if owned { 1.0 } else { 0.5 };
+                    t.evdwl += w * r.energy;
+                    t.xyz(w, del, r.f);
                 }
             }
         }
@@ -592,6 +600,18 @@ impl<T: Clone + Default> TypeTable<T> {
     #[inline]
     pub fn row(&self, i: usize) -> &[T] {
         &self.data[i * (self.n + 1)..(i + 1) * (self.n + 1)]
+    }
+    /// Make room for types 1..=n, keeping the values set so far (a larger table only).
+    pub fn grow(&mut self, n: usize) {
+        if self.n < n {
+            let mut t = TypeTable::new(n);
+            for i in 1..=self.n {
+                for j in 1..=self.n {
+                    t.set(i, j, self.get(i, j).clone());
+                }
+            }
+            *self = t;
+        }
     }
     #[inline]
     pub fn set(&mut self, i: usize, j: usize, v: T) {

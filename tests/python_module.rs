@@ -60,10 +60,12 @@ fn python_module_pytest() {
             std::fs::copy(&p, pkg.join(p.file_name().unwrap())).unwrap();
         }
     }
+    // the package first, then whatever PYTHONPATH the caller set
+    let pythonpath = std::env::join_paths(std::iter::once(tmp.path().to_path_buf()).chain(std::env::var_os("PYTHONPATH").iter().flat_map(std::env::split_paths))).unwrap();
     let out = Command::new(&python)
         .args(["-m", "pytest", "-q", "-p", "no:cacheprovider", "python/tests"])
         .current_dir(root())
-        .env("PYTHONPATH", tmp.path())
+        .env("PYTHONPATH", pythonpath)
         .env("PYTHONDONTWRITEBYTECODE", "1")
         // the LAMMPS comparisons must run here, not skip
         .env("DMHS_REQUIRE_LAMMPS", "1")
@@ -73,4 +75,27 @@ fn python_module_pytest() {
     let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     println!("{text}");
     assert!(out.status.success(), "pytest python/tests failed (is pytest in the LAMMPS venv? scripts/setup-lammps.sh installs it):\n{text}");
+}
+
+/// The engine hooks the module uses, without Python: a simulation fed commands one by one, and
+/// the cancellation flag stopping a run at its next step with the instance still usable.
+#[test]
+fn cancel_flag_stops_a_run_and_the_simulation_goes_on() {
+    use std::sync::atomic::Ordering;
+    let opts = dmhs::deck::DeckOptions::default();
+    let (mut sim, mut interp) = dmhs::deck::prepare(&opts).unwrap();
+    let setup = "units lj\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\n\
+                 mass 1 1.0\nvelocity all create 1.0 4928459\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n";
+    interp.run_source("<setup>", setup, &mut sim).unwrap();
+    interp.execute_line("run 3", &mut sim).unwrap();
+    sim.cancel.store(true, Ordering::Relaxed);
+    let err = interp.execute_line("run 100", &mut sim).err().expect("a cancelled run fails");
+    let text: String = err.iter().map(|d| d.render(interp.sources())).collect();
+    assert!(text.contains("run stopped at step 3: run interrupted") && text.contains("<command>:1:1"), "{text}");
+    assert!(!sim.cancel.load(Ordering::Relaxed), "the run clears the flag it honoured");
+    interp.execute_line("run 4", &mut sim).unwrap();
+    assert_eq!(sim.state.step, 7);
+    // the time origin moves to the end of each run (LAMMPS' update_time)
+    let dt = sim.state.dt;
+    assert_eq!((sim.state.atimestep, sim.state.atime), (7, (0.0 + 3.0 * dt) + 4.0 * dt));
 }

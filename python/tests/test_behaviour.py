@@ -154,6 +154,7 @@ def test_gil_released_during_run(from_thread):
     t0 = time.perf_counter()
     lmp.command("run 200")
     t_run = time.perf_counter() - t0
+    steps = max(600, int(200 * 0.5 / t_run))  # about half a second of run
     # a Python thread counts while the run goes on; with the GIL held it would stall
     stop = threading.Event()
     count, counter = _counting(stop)
@@ -161,11 +162,11 @@ def test_gil_released_during_run(from_thread):
     before = count[0]
     t0 = time.perf_counter()
     if from_thread:
-        worker = threading.Thread(target=lmp.command, args=("run 600",))
+        worker = threading.Thread(target=lmp.command, args=(f"run {steps}",))
         worker.start()
         worker.join()
     else:
-        lmp.command("run 600")
+        lmp.command(f"run {steps}")
     elapsed = time.perf_counter() - t0
     during = count[0] - before
     stop.set()

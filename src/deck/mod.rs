@@ -58,7 +58,10 @@ pub struct DeckRun {
     pub follow_ons: Vec<(Diagnostic, dmhs_parser::Span)>,
 }
 
-fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> {
+/// A simulation and an interpreter set up as `opts` says, before any command: the pair that
+/// `run_text` drives, and that a library user (the Python module) feeds commands to with
+/// `interp.run_source`/`execute_line`.
+pub fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> {
     let mut sim = Simulation::new();
     sim.out.screen = opts.screen;
     if opts.capture_text {

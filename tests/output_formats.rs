@@ -108,7 +108,8 @@ fn vtu_files_are_written_with_a_series() {
     assert_eq!(names, ["id", "vx", "c_t"]);
 }
 
-/// meshio (in the LAMMPS venv) reads the VTU files back.
+/// meshio and VTK's own XML reader (both in the LAMMPS venv) read the VTU files back, with the
+/// same values.
 #[test]
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn vtu_files_are_read_by_meshio() {

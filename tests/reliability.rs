@@ -270,3 +270,11 @@ fn absurd_type_counts_are_refused() {
 fn a_strip_in_a_huge_box_keeps_fine_bins() {
     expect("run", &[&deck("in.sparse_strip"), "-log", "none"], 0, &["for 2 steps with 100400 atoms"]);
 }
+
+/// A neighbour skin that reaches every atom: the list (3.2 GB for 40,000 atoms) is more than the
+/// 2 GB the test allows, and the run stops with a located error naming the cutoff instead of
+/// aborting in the allocator (found by the fuzz test: a mutated dam-break skin of 100).
+#[test]
+fn a_neighbour_list_larger_than_memory_is_an_error() {
+    expect("-in", &[&deck("in.huge_skin"), "-log", "none"], 1, &["the neighbour list does not fit in memory", "the neighbour cutoff 1001 (pair cutoff + skin)", "in.huge_skin:16:1"]);
+}

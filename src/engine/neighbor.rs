@@ -305,6 +305,9 @@ pub enum NeighError {
     /// The region to bin (the box, or the atoms' extent, widened by the cutoff) is too large
     /// for bins of any size dmhs can count (its extent overflows).
     TooLarge { lo: [f64; 3], hi: [f64; 3], cut: f64 },
+    /// The list does not fit in memory: `entries` were listed when the allocator refused more
+    /// (a cutoff + skin that reaches most of the system).
+    OutOfMemory { entries: usize, cut: f64 },
 }
 
 impl Neighbor {
@@ -507,7 +510,7 @@ impl Neighbor {
         let a: &Atoms = atoms;
         let excl = &settings.exclusions;
         let use_special = !special.is_empty();
-        let chunks: Vec<ChunkList> = bounds
+        let chunks: Result<Vec<ChunkList>, usize> = bounds
             .windows(2)
             .collect::<Vec<_>>()
             .par_iter()
@@ -515,7 +518,18 @@ impl Neighbor {
             .map(|w| {
                 let (start, end) = (w[0], w[1]);
                 let mut offsets = Vec::with_capacity(end - start + 1);
-                let mut neigh = Vec::with_capacity((end - start) * 48);
+                let mut neigh = Vec::new();
+                // a list too large for memory is an error, not an abort: every growth is asked
+                // of the allocator first
+                let refused = std::cell::Cell::new(false);
+                let room = |neigh: &mut Vec<u32>, more: usize| {
+                    let ok = !refused.get() && neigh.try_reserve(more).is_ok();
+                    refused.set(!ok);
+                    ok
+                };
+                if !room(&mut neigh, (end - start) * 48) {
+                    return Err(0);
+                }
                 offsets.push(0u32);
                 for i in start..end {
                     let xi = a.x[i];
@@ -544,7 +558,9 @@ impl Neighbor {
                                 PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
                             }
                         }
-                        neigh.push(entry);
+                        if neigh.len() < neigh.capacity() || room(neigh, 1) {
+                            neigh.push(entry);
+                        }
                     };
                     // candidates of a contiguous index range: without exclusions or special
                     // bonds every candidate is written and kept only if within the cutoff
@@ -556,7 +572,7 @@ impl Neighbor {
                             }
                             return;
                         }
-                        if j1 <= j0 {
+                        if j1 <= j0 || !room(neigh, j1 - j0) {
                             return;
                         }
                         // room for every candidate, written in place and kept by advancing len
@@ -595,11 +611,15 @@ impl Neighbor {
                             }
                         }
                     }
+                    if refused.get() {
+                        return Err(neigh.len());
+                    }
                     offsets.push(neigh.len() as u32);
                 }
-                ChunkList::new(start, end, offsets, neigh, nall)
+                Ok(ChunkList::new(start, end, offsets, neigh, nall))
             })
             .collect();
+        let chunks = chunks.map_err(|entries| NeighError::OutOfMemory { entries, cut: cutmax })?;
 
         let has_special = use_special && chunks.iter().any(|c| c.raw().iter().any(|&j| j > NEIGH_MASK));
         // unique over the process, so no derived list can mistake a new build for its own

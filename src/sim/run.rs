@@ -130,6 +130,14 @@ impl Simulation {
                         ),
                     )
                 }
+                NeighError::OutOfMemory { entries, cut } => RunError::new(
+                    step,
+                    format!(
+                        "the neighbour list does not fit in memory (the allocator refused more after {entries} entries of one chunk, with {} atoms): the neighbour cutoff {} (pair cutoff + skin) reaches too many atoms; check `neighbor` (skin) and the pair cutoffs",
+                        self.state.atoms.nall(),
+                        crate::output::format::g(cut)
+                    ),
+                ),
             })?;
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);

@@ -14,12 +14,12 @@
 use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::domain::Domain;
 use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
-use crate::engine::par::bounded::{Entries, Entry, Scope, INDEX_BITS};
+use crate::engine::par::bounded::{Entries, Entry, Scope, INDEX_BITS, INDEX_MASK};
 use rayon::prelude::*;
 
 /// Bits of a neighbour entry that hold the special-bond level (as LAMMPS' SBBITS).
 pub const SPECIAL_SHIFT: u32 = INDEX_BITS;
-pub const NEIGH_MASK: u32 = (1 << SPECIAL_SHIFT) - 1;
+pub const NEIGH_MASK: u32 = INDEX_MASK;
 
 /// Special level of a neighbour entry: 0 = ordinary pair, 1/2/3 = 1-2/1-3/1-4 neighbours.
 #[inline]

@@ -123,10 +123,6 @@ impl<'id, 'a, T> Reader<'id, 'a, T> {
         // (`reader`'s check), and the brand ties e to this scope
         unsafe { self.data.get_unchecked(e.index()) }
     }
-    /// The whole array, for reads by other indices (checked).
-    pub fn all(self) -> &'a [T] {
-        self.data
-    }
 }
 
 #[cfg(test)]

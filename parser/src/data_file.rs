@@ -16,7 +16,7 @@
 //! `write_data` writes, with every floating-point number at full round-trip precision.
 
 mod layout;
-mod read;
+pub(crate) mod read;
 mod write;
 
 pub use layout::{AtomLayout, Column};

@@ -15,6 +15,7 @@ pub mod expr;
 pub mod follow_on;
 pub mod interp;
 pub mod lexer;
+pub mod molecule_file;
 pub mod numfmt;
 pub mod span;
 pub mod suggest;

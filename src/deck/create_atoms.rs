@@ -5,6 +5,7 @@
 
 use crate::engine::domain::{BoundaryKind, Domain};
 use crate::engine::lattice::Lattice;
+use crate::engine::molecule::Molecule;
 use crate::engine::random_park::RanPark;
 use crate::engine::region::Region;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span};
@@ -15,7 +16,7 @@ const BOX_SYNTAX: &str = "create_box N region-ID keyword value ... \
 extra/angle/per/atom, extra/dihedral/per/atom, extra/improper/per/atom, extra/special/per/atom)";
 
 const ATOMS_SYNTAX: &str = "create_atoms type box|region ID|single x y z|random N seed region-ID|NULL \
-keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, overlap d, maxtry n)";
+keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, overlap d, maxtry n, mol template-ID seed)";
 
 /// Relative shrink of the insertion box at periodic faces (LAMMPS `EPSILON`).
 const EPSILON: f64 = 1.0e-6;
@@ -179,6 +180,9 @@ pub struct CreateAtoms {
     /// Minimum distance to existing atoms for `random` (box units).
     pub overlap: Option<f64>,
     pub maxtry: usize,
+    /// `mol ID seed`: a copy of this molecule template, randomly rotated, at each point (the
+    /// generated points are then molecule centres).
+    pub mol: Option<(String, i64)>,
     pub span: Span,
 }
 
@@ -198,6 +202,7 @@ impl CreateAtoms {
         dimension: usize,
         lattice: Option<&Lattice>,
         regions: &[Region],
+        molecules: &[Molecule],
     ) -> DResult<CreateAtoms> {
         let none = Lattice::none(1.0);
         let lattice = lattice.unwrap_or(&none);
@@ -242,7 +247,9 @@ impl CreateAtoms {
         let mut lattice_units = true;
         let mut overlap = None;
         let mut maxtry = 1000;
-        const KEYWORDS: [&str; 5] = ["basis", "remap", "units", "overlap", "maxtry"];
+        let mut mol = None;
+        let mut mol_word = None;
+        const KEYWORDS: [&str; 6] = ["basis", "remap", "units", "overlap", "maxtry", "mol"];
         while let Some(kw) = a.peek() {
             a.skip(1);
             match kw.text.as_str() {
@@ -269,7 +276,22 @@ impl CreateAtoms {
                 }
                 "overlap" => overlap = Some(a.positive_f64("overlap distance")?),
                 "maxtry" => maxtry = a.i64_in("maxtry", 1, i32::MAX as i64)? as usize,
-                "mol" | "var" | "set" | "rotate" | "ratio" | "subset" | "meshmode" | "radscale" => {
+"mol" => {
+                    let w = a.word("molecule template ID")?;
+                    let Some(m) = molecules.iter().find(|m| m.id == w.text) else {
+                        return Err(a.error_at(w, format!("molecule template `{}` for create_atoms does not exist", w.text), "unknown molecule template ID"));
+                    };
+                    if m.typ.is_none() {
+                        return Err(a.error_at(w, "create_atoms molecule must have atom types (a Types section)", "template without types"));
+                    }
+                    let seed = a.i64_in("molecule random seed", 1, crate::engine::random_mars::RanMars::MAX_SEED)?;
+                    if is_random {
+                        return Err(a.error_at(kw, "create_atoms random with mol is not supported yet", "supported with single, box and region"));
+                    }
+                    mol_word = Some(w);
+                    mol = Some((w.text.clone(), seed));
+                }
+                "var" | "set" | "rotate" | "ratio" | "subset" | "meshmode" | "radscale" => {
                     return Err(a.error_at(
                         kw,
                         format!("create_atoms keyword `{}` is not supported", kw.text),
@@ -279,7 +301,13 @@ impl CreateAtoms {
                 _ => return Err(a.unknown_keyword(kw, &KEYWORDS)),
             }
         }
-        if atom_type < 1 || atom_type as usize > ntypes {
+        if let (Some((id, _)), Some(w)) = (&mol, mol_word) {
+            // the type argument offsets the template's types
+            let maxt = molecules.iter().find(|m| &m.id == id).map(|m| m.max_type()).unwrap_or(0) as i64;
+            if atom_type < 0 || atom_type + maxt > ntypes as i64 {
+                return Err(a.error_at(w, format!("invalid atom type in create_atoms mol: the offset {atom_type} plus the template's largest type {maxt} exceeds the {ntypes} atom types of the box"), "type out of range"));
+            }
+        } else if atom_type < 1 || atom_type as usize > ntypes {
             let w = type_word.unwrap();
             return Err(a.error_at(
                 w,
@@ -322,7 +350,7 @@ impl CreateAtoms {
                 }
             }
         }
-        Ok(CreateAtoms { style, basis_types, atom_type: atom_type as usize, remap, overlap, maxtry, span: cmd.span })
+        Ok(CreateAtoms { style, basis_types, atom_type: atom_type as usize, remap, overlap, maxtry, mol, span: cmd.span })
     }
 
     /// Generate the atoms on one rank owning the whole `domain`, in LAMMPS' order.
@@ -565,6 +593,30 @@ impl CreateAtoms {
     }
 }
 
+/// Copies of the template `m` centred at `centers` (in LAMMPS' creation order), each turned by a
+/// random rotation from LAMMPS' molecule stream (`RanMars(seed + rank)`, rank 0): a random axis
+/// (3d; z in 2d) and angle. Atom and molecule IDs follow the largest present ones.
+pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed: i64, type_offset: usize, centers: &[[f64; 3]]) -> Result<(), String> {
+    m.check_types(state)?;
+    let mut ran = crate::engine::random_mars::RanMars::new(seed)?;
+    let domain = state.domain.clone().ok_or("create_atoms before the box is defined")?;
+    let nlocal = state.atoms.nlocal;
+    let mut mol_offset = if state.atoms.features.molecule { state.atoms.molecule[..nlocal].iter().copied().max().unwrap_or(0).max(0) } else { 0 };
+    let mut tag = state.atoms.max_tag();
+    for c in centers {
+        let r = if domain.dimension == 3 { [ran.uniform() - 0.5, ran.uniform() - 0.5, ran.uniform() - 0.5] } else { [0.0, 0.0, 1.0] };
+        let rot = crate::engine::molecule::rotation(r, ran.uniform() * std::f64::consts::TAU);
+        let placed = m.place(&rot, *c, &domain);
+        m.push_copy(state, &placed, tag, mol_offset, type_offset, [0.0; 3]);
+        tag += m.natoms() as i64;
+        mol_offset += m.nmolecules();
+    }
+    if !centers.is_empty() && m.has_topology() {
+        state.rebuild_special()?;
+    }
+    Ok(())
+}
+
 /// Parse a LAMMPS logical (`yes/no`, `on/off`, `true/false`, `1/0`).
 fn logical(a: &mut Args, what: &str) -> DResult<bool> {
     let k = a.choice(what, &["yes", "no", "on", "off", "true", "false", "1", "0"])?;
@@ -579,9 +631,10 @@ pub fn create_atoms(
     ntypes: usize,
     lattice: Option<&Lattice>,
     regions: &[Region],
+    molecules: &[Molecule],
     existing: &[[f64; 3]],
 ) -> DResult<Created> {
-    CreateAtoms::from_lammps(cmd, ntypes, domain.dimension, lattice, regions)?
+    CreateAtoms::from_lammps(cmd, ntypes, domain.dimension, lattice, regions, molecules)?
         .generate(domain, lattice, regions, existing)
 }
 
@@ -644,7 +697,7 @@ pub(crate) mod tests {
                 "create_atoms" => {
                     let b = st.boxed.as_ref().unwrap();
                     let existing: Vec<[f64; 3]> = st.atoms.iter().map(|a| a.0).collect();
-                    let made = create_atoms(&c, &b.domain, b.ntypes, st.lattice.as_ref(), &st.regions, &existing)?;
+                    let made = create_atoms(&c, &b.domain, b.ntypes, st.lattice.as_ref(), &st.regions, &[], &existing)?;
                     st.atoms.extend(made.atoms);
                 }
                 _ => {}

@@ -4,6 +4,7 @@ pub mod check;
 pub mod commands;
 pub mod create_atoms;
 pub mod data;
+pub mod molecule;
 pub mod restart;
 pub mod velocity;
 pub mod velocity_create;

@@ -35,6 +35,15 @@ pub struct Domain {
 }
 
 impl Domain {
+    /// Whether an inserting fix (pour, deposit) keeps a new atom at `x`: inside the box, or
+    /// above its top (z in 3D, y in 2D) and inside laterally (on one process the sub-box is the
+    /// box, and LAMMPS' top process also takes atoms above it).
+    pub fn takes_inserted(&self, x: [f64; 3]) -> bool {
+        let vertical = self.dimension - 1;
+        let inside = (0..3).all(|k| x[k] >= self.lo[k] && x[k] < self.hi[k]);
+        inside || (x[vertical] >= self.hi[vertical] && (0..vertical).all(|k| x[k] >= self.lo[k] && x[k] < self.hi[k]))
+    }
+
     pub fn periodic(&self, d: usize) -> bool {
         self.boundary[d][0] == BoundaryKind::Periodic
     }

@@ -47,6 +47,49 @@ pub fn richardson_sphere(q: &mut Quat, w: &[f64; 3], dtq: f64) {
     qnormalize(q);
 }
 
+/// `axisangle_to_quat`: the rotation by `angle` about the unit vector `v`.
+pub fn axisangle_to_quat(v: &[f64; 3], angle: f64) -> Quat {
+    let halfa = 0.5 * angle;
+    let sina = halfa.sin();
+    [halfa.cos(), v[0] * sina, v[1] * sina, v[2] * sina]
+}
+
+/// `quat_to_mat`: the rotation matrix of a unit quaternion (rows).
+pub fn quat_to_mat(q: &Quat) -> [[f64; 3]; 3] {
+    let w2 = q[0] * q[0];
+    let i2 = q[1] * q[1];
+    let j2 = q[2] * q[2];
+    let k2 = q[3] * q[3];
+    let twoij = 2.0 * q[1] * q[2];
+    let twoik = 2.0 * q[1] * q[3];
+    let twojk = 2.0 * q[2] * q[3];
+    let twoiw = 2.0 * q[1] * q[0];
+    let twojw = 2.0 * q[2] * q[0];
+    let twokw = 2.0 * q[3] * q[0];
+    [
+        [w2 + i2 - j2 - k2, twoij - twokw, twojw + twoik],
+        [twoij + twokw, w2 - i2 + j2 - k2, twojk - twoiw],
+        [twoik - twojw, twojk + twoiw, w2 - i2 - j2 + k2],
+    ]
+}
+
+/// `matvec`: m v.
+pub fn matvec(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
+    [
+        m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+        m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+        m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2],
+    ]
+}
+
+/// `norm3`: scale a vector to unit length (one reciprocal, three products).
+pub fn norm3(v: &mut [f64; 3]) {
+    let scale = 1.0 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    for c in v.iter_mut() {
+        *c *= scale;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -106,6 +106,8 @@ pub struct State {
     pub groups: Groups,
     pub lattice: Option<Lattice>,
     pub regions: Vec<Region>,
+    /// Molecule templates (`molecule` command).
+    pub molecules: Vec<crate::engine::molecule::Molecule>,
     pub dt: f64,
     pub dt_set: bool,
     pub step: i64,
@@ -160,6 +162,7 @@ impl State {
             groups: Groups::default(),
             lattice: None,
             regions: Vec::new(),
+            molecules: Vec::new(),
             dt: units.dt,
             dt_set: false,
             step: 0,

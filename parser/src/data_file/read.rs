@@ -114,14 +114,14 @@ fn topo_width(k: TypeKind) -> usize {
 }
 
 /// One line of the file.
-struct Line<'a> {
+pub(crate) struct Line<'a> {
     /// Byte offset of the line's start.
-    start: usize,
+    pub(crate) start: usize,
     /// The text without its line end.
-    text: &'a str,
+    pub(crate) text: &'a str,
 }
 
-fn split_lines(text: &str) -> Vec<Line<'_>> {
+pub(crate) fn split_lines(text: &str) -> Vec<Line<'_>> {
     let mut out = vec![];
     let mut start = 0;
     for piece in text.split_inclusive('\n') {
@@ -134,7 +134,7 @@ fn split_lines(text: &str) -> Vec<Line<'_>> {
 }
 
 /// LAMMPS' word separators (its `Tokenizer` default).
-fn is_sep(c: char) -> bool {
+pub(crate) fn is_sep(c: char) -> bool {
     matches!(c, ' ' | '\t' | '\r' | '\n' | '\x0c')
 }
 
@@ -142,12 +142,12 @@ fn is_sep(c: char) -> bool {
 /// (`Velocities`, coefficients, header) and at the first word starting with `#` in others
 /// (`Atoms`, `Masses`, `Bonds`, ...), so `1.0#x` is an error only in the latter.
 #[derive(Clone, Copy, PartialEq)]
-enum Comment {
+pub(crate) enum Comment {
     AnyHash,
     HashWord,
 }
 
-fn words_of(line: &Line, file: FileId, comment: Comment) -> Vec<Word> {
+pub(crate) fn words_of(line: &Line, file: FileId, comment: Comment) -> Vec<Word> {
     let text = match comment {
         Comment::AnyHash => line.text.split('#').next().unwrap_or(""),
         Comment::HashWord => line.text,

@@ -64,24 +64,37 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     sim.state.atoms.clear_ghosts();
     let existing: Vec<[f64; 3]> = sim.state.atoms.x[..sim.state.atoms.nlocal].to_vec();
     let domain = sim.state.domain.clone().unwrap();
-    let made = crate::deck::create_atoms::create_atoms(cmd, &domain, sim.state.ntypes, sim.state.lattice.as_ref(), &sim.state.regions, &existing)?;
+    let st = &sim.state;
+    let spec = crate::deck::create_atoms::CreateAtoms::from_lammps(cmd, st.ntypes, domain.dimension, st.lattice.as_ref(), &st.regions, &st.molecules)?;
+    let made = spec.generate(&domain, st.lattice.as_ref(), &st.regions, &existing)?;
     for w in made.warnings {
         sim.out.print(&format!("WARNING: {}", w.message));
     }
     let mut tag = sim.state.atoms.max_tag();
-    if made.atoms.len() as i64 > crate::engine::atoms::MAX_ATOM_ID - tag {
+    let mol = spec.mol.as_ref().map(|(id, seed)| (sim.state.molecules.iter().find(|m| &m.id == id).cloned().expect("checked by the parser"), *seed));
+    let per_point = mol.as_ref().map(|(m, _)| m.natoms()).unwrap_or(1);
+    let n = made.atoms.len() as i64 * per_point as i64;
+    if n > crate::engine::atoms::MAX_ATOM_ID - tag {
         return Err(Diagnostic::at(
             cmd.span,
-            format!("new atom IDs exceed the largest atom ID {}: {} atoms after ID {tag}", crate::engine::atoms::MAX_ATOM_ID, made.atoms.len()),
+            format!("new atom IDs exceed the largest atom ID {}: {n} atoms after ID {tag}", crate::engine::atoms::MAX_ATOM_ID),
             "too many atoms",
         ));
     }
-    for (x, typ) in &made.atoms {
-        tag += 1;
-        sim.state.atoms.push(&NewAtom::at(tag, *typ, *x));
+    match mol {
+        None => {
+            for (x, typ) in &made.atoms {
+                tag += 1;
+                sim.state.atoms.push(&NewAtom::at(tag, *typ, *x));
+            }
+        }
+        Some((m, seed)) => {
+            let centers: Vec<[f64; 3]> = made.atoms.iter().map(|(x, _)| *x).collect();
+            crate::deck::create_atoms::add_molecules(&mut sim.state, &m, seed, spec.atom_type, &centers).map_err(|e| Diagnostic::at(cmd.span, e, "create_atoms mol"))?;
+        }
     }
     sim.state.lists_valid = false;
-    sim.out.print(&format!("Created {} atoms", made.atoms.len()));
+    sim.out.print(&format!("Created {n} atoms"));
     Ok(())
 }
 

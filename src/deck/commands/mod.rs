@@ -47,6 +47,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("change_box", change_box::change_box),
     ("read_data", box_cmds::read_data),
     ("create_bonds", topology_cmds::create_bonds),
+    ("molecule", crate::deck::molecule::molecule),
     ("write_data", box_cmds::write_data),
     ("mass", atoms_cmds::mass),
     ("set", atoms_cmds::set),

@@ -11,6 +11,7 @@ pub mod dmhs_diffusion;
 pub mod dmhs_stokes;
 pub mod dmhs_swell;
 pub mod value;
+pub mod deposit;
 pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
@@ -221,6 +222,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("wall/gran/region", |d, state| Ok(Box::new(wall_gran_region::FixWallGranRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("balance", |d, state| Ok(Box::new(balance::FixBalance::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
+    ("deposit", |d, state| Ok(Box::new(deposit::FixDeposit::from_lammps(d, state)?))),
     ("move", |d, state| Ok(Box::new(move_linear::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("sph", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("sph/stationary", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),

@@ -427,10 +427,7 @@ impl Fix for FixPour {
             }
             v[vertical] = -(vfall * vfall + 2.0 * self.grav * (x[vertical] - hi_c)).sqrt();
             let dens = self.density.0 + self.random.uniform() * (self.density.1 - self.density.0);
-            // on one process the sub-box is the box; above the top (3D z, 2D y) counts as in
-            let inside = (0..3).all(|k| x[k] >= domain.lo[k] && x[k] < domain.hi[k]);
-            let above = x[vertical] >= domain.hi[vertical] && (0..vertical).all(|k| x[k] >= domain.lo[k] && x[k] < domain.hi[k]);
-            if inside || above {
+            if domain.takes_inserted(x) {
                 let mut atom = NewAtom::at(self.maxtag + 1, self.ntype, x);
                 atom.v = v;
                 atom.radius = radius;

@@ -1,0 +1,232 @@
+//! Molecule templates (the `molecule` command): atoms with their relative coordinates, types
+//! and optional per-atom values, and the bonds, angles and dihedrals among them. Commands that
+//! insert copies of a molecule (`create_atoms ... mol`) rotate the displacements `dx` about the
+//! geometric centre and add the copy's atom ID offset to the topology.
+
+use crate::engine::atoms::NewAtom;
+use crate::engine::domain::Domain;
+use crate::engine::quat::{axisangle_to_quat, matvec, norm3, quat_to_mat};
+use crate::engine::state::State;
+use crate::engine::topology::{Angle, Bond, Dihedral};
+
+/// The rotation matrix LAMMPS builds from a random axis `r` (not yet normalised) and angle
+/// `theta` when it inserts a molecule (`norm3`, `axisangle_to_quat`, `quat_to_mat`).
+pub fn rotation(mut r: [f64; 3], theta: f64) -> [[f64; 3]; 3] {
+    norm3(&mut r);
+    quat_to_mat(&axisangle_to_quat(&r, theta))
+}
+
+/// One molecule template, with the file's offsets and `scale` applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Molecule {
+    pub id: String,
+    /// Coordinates as in the file (times `scale`).
+    pub x: Vec<[f64; 3]>,
+    /// Atom types (with `toff`), when the file has a Types section.
+    pub typ: Option<Vec<usize>>,
+    /// Molecule IDs inside the template (Molecules section).
+    pub molecule: Option<Vec<i64>>,
+    pub q: Option<Vec<f64>>,
+    pub radius: Option<Vec<f64>>,
+    pub rmass: Option<Vec<f64>>,
+    /// Bonds (type with `boff`, 0-based atoms), in file order.
+    pub bonds: Vec<(usize, [usize; 2])>,
+    pub angles: Vec<(usize, [usize; 3])>,
+    pub dihedrals: Vec<(usize, [usize; 4])>,
+    /// The geometric centre and each atom's displacement from it (LAMMPS' `center`, `dx`).
+    pub center: [f64; 3],
+    pub dx: Vec<[f64; 3]>,
+    /// The largest distance of an atom's surface from the centre.
+    pub molradius: f64,
+}
+
+impl Molecule {
+    /// A template from its parts; computes the centre as LAMMPS' `compute_center` does (sum in
+    /// atom order, then one division per axis).
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(id: String, x: Vec<[f64; 3]>) -> Molecule {
+        let n = x.len() as f64;
+        let mut center = [0.0; 3];
+        for p in &x {
+            for d in 0..3 {
+                center[d] += p[d];
+            }
+        }
+        for c in center.iter_mut() {
+            *c /= n;
+        }
+        let dx: Vec<[f64; 3]> = x.iter().map(|p| [p[0] - center[0], p[1] - center[1], p[2] - center[2]]).collect();
+        Molecule {
+            id,
+            x,
+            typ: None,
+            molecule: None,
+            q: None,
+            radius: None,
+            rmass: None,
+            bonds: vec![],
+            angles: vec![],
+            dihedrals: vec![],
+            center,
+            dx,
+            molradius: 0.0,
+        }
+        .with_radius()
+    }
+
+    /// Sets `molradius` from `dx` and the radii.
+    pub fn with_radius(mut self) -> Molecule {
+        self.molradius = 0.0;
+        for (i, d) in self.dx.iter().enumerate() {
+            let mut rad = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if let Some(r) = &self.radius {
+                rad += r[i];
+            }
+            self.molradius = if self.molradius > rad { self.molradius } else { rad };
+        }
+        self
+    }
+
+    /// The atoms of a copy turned by `rot` and centred at `center`, each wrapped into the
+    /// periodic box, with its image flags (LAMMPS: `matvec`, `add3`, `remap`).
+    pub fn place(&self, rot: &[[f64; 3]; 3], center: [f64; 3], domain: &Domain) -> Vec<([f64; 3], [i32; 3])> {
+        self.dx
+            .iter()
+            .map(|dx| {
+                let d = matvec(rot, dx);
+                let mut x = [d[0] + center[0], d[1] + center[1], d[2] + center[2]];
+                let mut image = [0; 3];
+                domain.remap(&mut x, &mut image);
+                (x, image)
+            })
+            .collect()
+    }
+
+    /// Add a copy with atoms at `placed`: atom IDs `tag_offset + 1..`, molecule IDs
+    /// `mol_offset +` the template's own (1 without a Molecules section), types shifted by
+    /// `type_offset`, velocity `v`, the template's charges, radii and masses where the atom style
+    /// holds them (a sphere without a mass gets density 1, as LAMMPS' `add_molecule_atom`), and
+    /// the template's bonds, angles and dihedrals in LAMMPS' storage order (a bond with its first
+    /// atom, an angle and a dihedral with their second; file order within an atom). Returns the
+    /// local indices of the new atoms. The special lists are left to the caller.
+    pub fn push_copy(&self, state: &mut State, placed: &[([f64; 3], [i32; 3])], tag_offset: i64, mol_offset: i64, type_offset: usize, v: [f64; 3]) -> std::ops::Range<usize> {
+        let typ = self.typ.as_ref().expect("templates used for insertion have types (checked when parsed)");
+        let first = state.atoms.nlocal;
+        for (k, &(x, image)) in placed.iter().enumerate() {
+            let mut a = NewAtom::at(tag_offset + k as i64 + 1, type_offset + typ[k], x);
+            a.image = image;
+            a.v = v;
+            a.molecule = mol_offset + self.molecule.as_ref().map(|m| m[k]).unwrap_or(1);
+            if let Some(q) = &self.q {
+                a.q = q[k];
+            }
+            if let Some(r) = &self.radius {
+                a.radius = r[k];
+            }
+            a.rmass = match &self.rmass {
+                Some(m) => m[k],
+                None => 4.0 * std::f64::consts::PI / 3.0 * a.radius * a.radius * a.radius,
+            };
+            state.atoms.push(&a);
+        }
+        let id = |i: usize| tag_offset + i as i64 + 1;
+        let topo = &mut state.topo;
+        for k in 0..self.natoms() {
+            for &(t, at) in self.bonds.iter().filter(|b| b.1[0] == k) {
+                topo.bonds.push(Bond { typ: t, atoms: at.map(id) });
+            }
+            for &(t, at) in self.angles.iter().filter(|b| b.1[1] == k) {
+                topo.angles.push(Angle { typ: t, atoms: at.map(id) });
+            }
+            for &(t, at) in self.dihedrals.iter().filter(|b| b.1[1] == k) {
+                topo.dihedrals.push(Dihedral { typ: t, atoms: at.map(id) });
+            }
+        }
+        first..state.atoms.nlocal
+    }
+
+    /// The number of molecule IDs a copy uses.
+    pub fn nmolecules(&self) -> i64 {
+        self.molecule.as_ref().map(|v| v.iter().copied().max().unwrap_or(1)).unwrap_or(1)
+    }
+
+    /// Whether a copy adds bonds, angles or dihedrals (then the special lists need a rebuild).
+    pub fn has_topology(&self) -> bool {
+        !(self.bonds.is_empty() && self.angles.is_empty() && self.dihedrals.is_empty())
+    }
+
+    /// `Err` naming the first bond, angle or dihedral type beyond the box's counts.
+    pub fn check_types(&self, state: &State) -> Result<(), String> {
+        let t = &state.topo;
+        for (kind, n, max) in [
+            ("bond", t.nbondtypes, self.bonds.iter().map(|b| b.0).max()),
+            ("angle", t.nangletypes, self.angles.iter().map(|b| b.0).max()),
+            ("dihedral", t.ndihedraltypes, self.dihedrals.iter().map(|b| b.0).max()),
+        ] {
+            if let Some(mx) = max.filter(|&mx| mx > n) {
+                return Err(format!("molecule template `{}` has {kind} type {mx}, but the box has {n} {kind} types", self.id));
+            }
+        }
+        Ok(())
+    }
+
+    pub fn natoms(&self) -> usize {
+        self.x.len()
+    }
+
+    /// The largest atom type (0 without types).
+    pub fn max_type(&self) -> usize {
+        self.typ.as_ref().and_then(|t| t.iter().max().copied()).unwrap_or(0)
+    }
+
+    /// Each atom's 1-2, 1-3 and 1-4 partners inside the molecule (0-based), as LAMMPS'
+    /// `special_generate` finds them from the bonds: 1-2 in bond order, then partners of
+    /// partners not already listed (and not the atom itself), likewise for 1-4.
+    pub fn special_lists(&self) -> Vec<[Vec<usize>; 3]> {
+        let n = self.natoms();
+        let mut out: Vec<[Vec<usize>; 3]> = vec![Default::default(); n];
+        for &(_, [a, b]) in &self.bonds {
+            out[a][0].push(b);
+            out[b][0].push(a);
+        }
+        for level in 1..3 {
+            for i in 0..n {
+                let mut next = vec![];
+                for &j in &out[i][level - 1] {
+                    for &k in &out[j][0] {
+                        let known = k == i || (0..level).any(|l| out[i][l].contains(&k)) || next.contains(&k);
+                        if !known {
+                            next.push(k);
+                        }
+                    }
+                }
+                out[i][level] = next;
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centre_and_radius_of_a_dimer() {
+        let mut m = Molecule::new("d".into(), vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]]);
+        assert_eq!(m.center, [1.0, 0.0, 0.0]);
+        assert_eq!(m.dx, vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]);
+        assert_eq!(m.molradius, 1.0);
+        m.radius = Some(vec![0.5, 0.25]);
+        assert_eq!(m.with_radius().molradius, 1.5);
+    }
+
+    #[test]
+    fn special_lists_of_a_chain() {
+        let mut m = Molecule::new("c".into(), (0..5).map(|i| [i as f64, 0.0, 0.0]).collect());
+        m.bonds = vec![(1, [0, 1]), (1, [1, 2]), (1, [2, 3]), (1, [3, 4])];
+        let s = m.special_lists();
+        assert_eq!(s[0], [vec![1], vec![2], vec![3]]);
+        assert_eq!(s[2], [vec![1, 3], vec![0, 4], vec![]]);
+    }
+}

@@ -124,3 +124,23 @@ fn fix_deposit_bad_input_is_located() {
         assert!(e.contains(want) && e.contains("in.test:"), "{to}: expected `{want}`:\n{e}");
     }
 }
+
+#[test]
+fn rotate_turns_every_copy_as_lammps_does() {
+    // LAMMPS 22 Jul 2025 wrote these positions (write_data) for the same deck
+    let mol = "dimer\n2 atoms\n\nCoords\n\n1 0 0 0\n2 1 0 0\n\nTypes\n\n1 1\n2 1\n";
+    let deck = "units lj\natom_style atomic\nregion box block -5 5 -5 5 -5 5\ncreate_box 1 box\nmolecule m t.mol\ncreate_atoms 0 single 0 0 0 mol m 4567 rotate 90 0 0 1\ncreate_atoms 0 single 1 1 1 mol m 4567 rotate 30 1 1 0\n";
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("t.mol"), mol).unwrap();
+    let run = run_text("in.test", deck, &opts(tmp.path().to_path_buf())).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let a = &run.sim.state.atoms;
+    let want = [
+        [-1.1102230246251565e-16, -0.5, 0.0],
+        [1.1102230246251565e-16, 0.5, 0.0],
+        [0.5334936490538903, 0.9665063509461097, 1.176776695296637],
+        [1.4665063509461098, 1.0334936490538904, 0.8232233047033631],
+    ];
+    for (i, w) in want.iter().enumerate() {
+        assert_eq!(a.x[a.tag_map().get(i as i64 + 1).unwrap()], *w, "atom {}", i + 1);
+    }
+}

@@ -16,7 +16,7 @@ const BOX_SYNTAX: &str = "create_box N region-ID keyword value ... \
 extra/angle/per/atom, extra/dihedral/per/atom, extra/improper/per/atom, extra/special/per/atom)";
 
 const ATOMS_SYNTAX: &str = "create_atoms type box|region ID|single x y z|random N seed region-ID|NULL \
-keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, overlap d, maxtry n, mol template-ID seed)";
+keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, overlap d, maxtry n, mol template-ID seed, rotate theta Rx Ry Rz)";
 
 /// Relative shrink of the insertion box at periodic faces (LAMMPS `EPSILON`).
 const EPSILON: f64 = 1.0e-6;
@@ -183,6 +183,8 @@ pub struct CreateAtoms {
     /// `mol ID seed`: a copy of this molecule template, randomly rotated, at each point (the
     /// generated points are then molecule centres).
     pub mol: Option<(String, i64)>,
+    /// `rotate theta Rx Ry Rz`: this rotation for every molecule instead of random ones.
+    pub rotate: Option<[[f64; 3]; 3]>,
     pub span: Span,
 }
 
@@ -249,7 +251,8 @@ impl CreateAtoms {
         let mut maxtry = 1000;
         let mut mol = None;
         let mut mol_word = None;
-        const KEYWORDS: [&str; 6] = ["basis", "remap", "units", "overlap", "maxtry", "mol"];
+        let mut rotate = None;
+        const KEYWORDS: [&str; 7] = ["basis", "remap", "units", "overlap", "maxtry", "mol", "rotate"];
         while let Some(kw) = a.peek() {
             a.skip(1);
             match kw.text.as_str() {
@@ -291,7 +294,18 @@ impl CreateAtoms {
                     mol_word = Some(w);
                     mol = Some((w.text.clone(), seed));
                 }
-                "var" | "set" | "rotate" | "ratio" | "subset" | "meshmode" | "radscale" => {
+                "rotate" => {
+                    let theta = a.f64("rotation angle (degrees)")?;
+                    let r = [a.f64("Rx")?, a.f64("Ry")?, a.f64("Rz")?];
+                    if r == [0.0; 3] {
+                        return Err(a.error_at(a.last().unwrap(), "create_atoms rotate needs a nonzero rotation axis", "zero axis"));
+                    }
+                    if dimension == 2 && (r[0] != 0.0 || r[1] != 0.0) {
+                        return Err(a.error_at(a.last().unwrap(), "invalid create_atoms rotation vector for 2d model (must be along z)", "not along z"));
+                    }
+                    rotate = Some(crate::engine::molecule::rotation(r, theta * std::f64::consts::PI / 180.0));
+                }
+                "var" | "set" | "ratio" | "subset" | "meshmode" | "radscale" => {
                     return Err(a.error_at(
                         kw,
                         format!("create_atoms keyword `{}` is not supported", kw.text),
@@ -350,7 +364,7 @@ impl CreateAtoms {
                 }
             }
         }
-        Ok(CreateAtoms { style, basis_types, atom_type: atom_type as usize, remap, overlap, maxtry, mol, span: cmd.span })
+        Ok(CreateAtoms { style, basis_types, atom_type: atom_type as usize, remap, overlap, maxtry, mol, rotate, span: cmd.span })
     }
 
     /// Generate the atoms on one rank owning the whole `domain`, in LAMMPS' order.
@@ -595,8 +609,9 @@ impl CreateAtoms {
 
 /// Copies of the template `m` centred at `centers` (in LAMMPS' creation order), each turned by a
 /// random rotation from LAMMPS' molecule stream (`RanMars(seed + rank)`, rank 0): a random axis
-/// (3d; z in 2d) and angle. Atom and molecule IDs follow the largest present ones.
-pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed: i64, type_offset: usize, centers: &[[f64; 3]]) -> Result<(), String> {
+/// (3d; z in 2d) and angle, or the fixed rotation `rotate`. Atom and molecule IDs follow the
+/// largest present ones.
+pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed: i64, rotate: Option<[[f64; 3]; 3]>, type_offset: usize, centers: &[[f64; 3]]) -> Result<(), String> {
     m.check_types(state)?;
     let mut ran = crate::engine::random_mars::RanMars::new(seed)?;
     let domain = state.domain.clone().ok_or("create_atoms before the box is defined")?;
@@ -604,8 +619,13 @@ pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed
     let mut mol_offset = if state.atoms.features.molecule { state.atoms.molecule[..nlocal].iter().copied().max().unwrap_or(0).max(0) } else { 0 };
     let mut tag = state.atoms.max_tag();
     for c in centers {
-        let r = if domain.dimension == 3 { [ran.uniform() - 0.5, ran.uniform() - 0.5, ran.uniform() - 0.5] } else { [0.0, 0.0, 1.0] };
-        let rot = crate::engine::molecule::rotation(r, ran.uniform() * std::f64::consts::TAU);
+        let rot = match rotate {
+            Some(rot) => rot,
+            None => {
+                let r = if domain.dimension == 3 { [ran.uniform() - 0.5, ran.uniform() - 0.5, ran.uniform() - 0.5] } else { [0.0, 0.0, 1.0] };
+                crate::engine::molecule::rotation(r, ran.uniform() * std::f64::consts::TAU)
+            }
+        };
         let placed = m.place(&rot, *c, &domain);
         m.push_copy(state, &placed, tag, mol_offset, type_offset, [0.0; 3]);
         tag += m.natoms() as i64;

@@ -75,10 +75,11 @@ pub fn molecule(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) ->
     let max = |v: &[usize]| v.iter().copied().max().unwrap_or(0);
     let nmol = m.molecule.as_ref().map(|v| v.iter().copied().max().unwrap_or(1)).unwrap_or(1);
     sim.out.print(&format!(
-        "Read molecule template {}:\n{}\n  {} molecules\n  0 fragments\n  0 bodies\n  {} atoms with max type {}\n  {} bonds with max type {}\n  {} angles with max type {}\n  {} dihedrals with max type {}\n  0 impropers with max type 0",
+        "Read molecule template {}:\n{}\n  {} molecules\n  {} fragments\n  0 bodies\n  {} atoms with max type {}\n  {} bonds with max type {}\n  {} angles with max type {}\n  {} dihedrals with max type {}\n  0 impropers with max type 0",
         m.id,
         mf.title,
         nmol,
+        mf.nfragments,
         m.natoms(),
         m.max_type(),
         m.bonds.len(),

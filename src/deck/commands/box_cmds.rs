@@ -90,7 +90,7 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         }
         Some((m, seed)) => {
             let centers: Vec<[f64; 3]> = made.atoms.iter().map(|(x, _)| *x).collect();
-            crate::deck::create_atoms::add_molecules(&mut sim.state, &m, seed, spec.atom_type, &centers).map_err(|e| Diagnostic::at(cmd.span, e, "create_atoms mol"))?;
+            crate::deck::create_atoms::add_molecules(&mut sim.state, &m, seed, spec.rotate, spec.atom_type, &centers).map_err(|e| Diagnostic::at(cmd.span, e, "create_atoms mol"))?;
         }
     }
     sim.state.lists_valid = false;

@@ -264,6 +264,8 @@ impl Simulation {
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;
         self.timers.charge(Stage::Modify);
+        // lines fixes printed in their setup (fix print)
+        self.flush_messages();
         Ok(())
     }
 
@@ -302,6 +304,9 @@ impl Simulation {
         self.fix_hook(|h| h.final_integrate, |f, s, c| f.final_integrate(s, c))?;
         self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
         self.timers.charge(Stage::Modify);
+        if !self.state.messages.is_empty() {
+            self.flush_messages();
+        }
         Ok(())
     }
 
@@ -454,9 +459,13 @@ impl Simulation {
         }
     }
 
-    /// Energies are needed on thermo steps, the last step and dump steps.
+    /// Energies are needed on thermo steps, the last step, dump steps and the steps on which a
+    /// fix reads values (fix ave/time, fix print).
     fn output_due(&self, step: i64, last: i64) -> bool {
-        step == last || (self.thermo.every > 0 && step % self.thermo.every == 0) || self.dumps.iter().any(|d| d.due(step, false))
+        step == last
+            || (self.thermo.every > 0 && step % self.thermo.every == 0)
+            || self.dumps.iter().any(|d| d.due(step, false))
+            || self.fixes.iter().any(|f| f.wants_energy(step))
     }
 
     /// Thermo line and dumps for the current step.

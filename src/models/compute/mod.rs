@@ -3,16 +3,19 @@
 //! registry. Computes only read the simulation.
 
 pub mod com;
+pub mod displace_atom;
 pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
 pub mod erotate_sphere_atom;
 pub mod ke;
 pub mod ke_atom;
+pub mod msd;
 pub mod nbond_atom;
 pub mod pe;
 pub mod pressure;
 pub mod property;
 pub mod property_atom;
+pub mod rdf;
 pub mod reduce;
 pub mod sph_atom;
 pub mod temp;
@@ -47,6 +50,19 @@ pub trait Compute: Send + Sync {
     /// Global vector.
     fn vector(&self, _w: &World) -> Result<Vec<f64>, String> {
         Err(format!("compute {} ({}) does not compute a global vector", self.id(), self.style()))
+    }
+    /// Length of the global vector when it is known before the compute runs (fix ave/time
+    /// expands `c_ID[*]` with it).
+    fn size_vector(&self) -> Option<usize> {
+        None
+    }
+    /// Global array, row by row (compute rdf); read as columns by fix ave/time `c_ID[j]`.
+    fn array(&self, _w: &World) -> Result<Vec<Vec<f64>>, String> {
+        Err(format!("compute {} ({}) does not compute a global array", self.id(), self.style()))
+    }
+    /// Columns of the global array (None: no array).
+    fn array_cols(&self) -> Option<usize> {
+        None
     }
     /// Whether the global scalar (`index` None) or vector element `index` (1-based) is
     /// extensive: thermo output divides it by the atom count under `thermo_modify norm yes`.
@@ -98,6 +114,9 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("erotate/sphere/atom", |d, w| Ok(Box::new(erotate_sphere_atom::ComputeErotateSphereAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("reduce", |d, w| Ok(Box::new(reduce::ComputeReduce::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

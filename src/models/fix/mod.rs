@@ -2,6 +2,7 @@
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
 pub mod addforce;
+pub mod ave_atom;
 pub mod ave_time;
 pub mod balance;
 pub mod bond_break;
@@ -21,6 +22,7 @@ pub mod nve;
 pub mod nve_bpm_sphere;
 pub mod nve_sphere;
 pub mod pour;
+pub mod sampling;
 pub mod print;
 pub mod setforce;
 pub mod sph;
@@ -141,6 +143,14 @@ pub trait Fix: Send + Sync {
     fn wants_energy(&self, _step: i64) -> bool {
         false
     }
+    /// Per-atom values (owned atoms, local order), for dumps and compute reduce (`f_ID[N]`).
+    fn peratom(&self, _state: &State) -> Result<crate::models::compute::PerAtom, String> {
+        Err(format!("fix {} ({}) does not compute per-atom values", self.id(), self.style()))
+    }
+    /// Columns of per-atom output (None: not per-atom).
+    fn peratom_cols(&self) -> Option<usize> {
+        None
+    }
     /// Length of the global vector (for `mode vector` of fix ave/time), 0 if none.
     fn size_vector(&self) -> usize {
         0
@@ -255,6 +265,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran/region", |d, state| Ok(Box::new(wall_gran_region::FixWallGranRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("balance", |d, state| Ok(Box::new(balance::FixBalance::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("ave/atom", |d, state| Ok(Box::new(ave_atom::FixAveAtom::from_lammps(d, state)?))),
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

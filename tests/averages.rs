@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const FILES: [&str; 8] = ["ave_scalar.txt", "ave_running.txt", "ave_window.txt", "rdf.txt", "ave_format.txt", "print.txt", "ave_atom_sum.txt", "ave_atom.dump"];
+const FILES: [&str; 9] = ["ave_scalar.txt", "rdf_cut.txt", "ave_running.txt", "ave_window.txt", "rdf.txt", "ave_format.txt", "print.txt", "ave_atom_sum.txt", "ave_atom.dump"];
 const REL_TOL: f64 = 1e-5;
 const ABS_TOL: f64 = 1e-12;
 
@@ -116,4 +116,34 @@ fn files_match_lammps_now() {
     assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
     let stale = compare_dirs(lmp.path(), &deck_dir().join("expected"));
     assert!(stale.is_empty(), "tests/averages/expected is not what LAMMPS writes now:\n{}", stale.join("\n"));
+}
+
+/// Bad input is a located error (deck:line:col and what was expected), never a panic.
+#[test]
+fn bad_input_is_a_located_error() {
+    let base = "units lj\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+                pair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n";
+    let cases: &[(&str, &str)] = &[
+        ("fix a all ave/time 3 2 10 c_thermo_temp\n", "inconsistent fix ave/time Nevery/Nrepeat/Nfreq 3 2 10"),
+        ("fix a all ave/time 1 1 10 c_nope\n", "compute `nope` for fix ave/time does not exist"),
+        ("fix a all ave/time 1 1 10 c_thermo_temp bogus 1\n", "bogus"),
+        ("fix a all ave/time 1 1 10 c_thermo_temp c_thermo_pe off 3\n", "invalid fix ave/time off column 3"),
+        ("fix a all ave/time 1 1 10 c_thermo_temp[*]\n", "cannot be expanded"),
+        ("fix a all ave/atom 1 1 10 c_thermo_temp\n", "does not compute per-atom values"),
+        ("fix p all print 10 hello screen maybe\n", "maybe"),
+        ("compute r all rdf 10 1\n", "itype jtype"),
+        ("fix s all spring tether 1.0 0 0 0 -1\n", "R0"),
+        ("fix w all wall/lj93 xlo EDGE 1.0 1.0 2.5\n", "periodic dimension"),
+        ("fix i all indent 10.0 cone 1 2 3\n", "cone"),
+        ("pair_style soft 1.0\npair_coeff 1 1\n", "A"),
+    ];
+    for (extra, want) in cases {
+        let deck = format!("{base}{extra}run 0\n");
+        let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
+        assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
+    }
+    // a reference that fails when the line is printed stops the run with a message
+    let deck = format!("{base}fix p all print 1 \"x $(v_nosuch)\"\nrun 2\n");
+    let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().expect("runs with an undefined variable");
+    assert!(f.rendered.contains("nosuch"), "{}", f.rendered);
 }

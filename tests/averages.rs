@@ -142,6 +142,10 @@ fn bad_input_is_a_located_error() {
         let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
         assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
     }
+    // as LAMMPS: thermo output of a fix ave/time on steps where its values are not current
+    let deck = format!("{base}fix a all ave/time 1 1 25 c_thermo_pe\nthermo_style custom step f_a\nthermo 20\nrun 0\n");
+    let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().expect("thermo 20 with Nfreq 25");
+    assert!(f.rendered.contains("not computed at compatible times"), "{}", f.rendered);
     // a reference that fails when the line is printed stops the run with a message
     let deck = format!("{base}fix p all print 1 \"x $(v_nosuch)\"\nrun 2\n");
     let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().expect("runs with an undefined variable");

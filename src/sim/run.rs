@@ -87,6 +87,17 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
+        // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
+        for c in &self.thermo.columns {
+            if let crate::output::thermo::Field::Fix(id, _) = &c.field {
+                if let Some(f) = self.fixes.iter().find(|f| f.id() == id) {
+                    let freq = f.global_freq();
+                    if self.thermo.every % freq != 0 {
+                        return Err(format!("thermo every {} and fix {id} ({}) are not computed at compatible times: its values are current every {freq} steps", self.thermo.every, f.style()).into());
+                    }
+                }
+            }
+        }
         self.setup_computes(None);
         Ok(())
     }

@@ -449,6 +449,9 @@ impl Fix for FixAveTime {
     fn end_of_step(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.invoke(state, ctx)
     }
+    fn global_freq(&self) -> i64 {
+        self.sampling.nfreq
+    }
     fn wants_energy(&self, step: i64) -> bool {
         self.sampling.due(step)
     }

@@ -143,6 +143,11 @@ pub trait Fix: Send + Sync {
     fn wants_energy(&self, _step: i64) -> bool {
         false
     }
+    /// Steps between which the fix's global values are current (LAMMPS' global_freq): thermo
+    /// output must come on multiples of it.
+    fn global_freq(&self) -> i64 {
+        1
+    }
     /// Per-atom values (owned atoms, local order), for dumps and compute reduce (`f_ID[N]`).
     fn peratom(&self, _state: &State) -> Result<crate::models::compute::PerAtom, String> {
         Err(format!("fix {} ({}) does not compute per-atom values", self.id(), self.style()))

@@ -198,7 +198,7 @@ impl FixAveTime {
         }
 
         let mut fix = FixAveTime {
-            id: d.id,
+            id: d.id.clone(),
             groupbit: d.groupbit,
             sampling,
             values,
@@ -219,7 +219,7 @@ impl FixAveTime {
             if w.text.ends_with(".yaml") || w.text.ends_with(".yml") {
                 return Err(a.error_at(w, "fix ave/time YAML output is not supported; use a plain file name", "YAML file"));
             }
-            let path = crate::output::log::resolve_path(d.base_dir, &w.text);
+            let path = d.path(&w.text);
             let mut f = std::fs::File::create(&path).map_err(|e| a.error_at(w, format!("cannot open fix ave/time file {}: {e}", path.display()), "cannot open"))?;
             let head = fix.header(&names, &titles);
             f.write_all(head.as_bytes()).map_err(|e| a.error_at(w, format!("cannot write {}: {e}", path.display()), "cannot write"))?;
@@ -371,7 +371,7 @@ impl FixAveTime {
     fn fmt(&self, x: f64) -> String {
         match &self.format {
             Some(f) => dmhs_parser::numfmt::format_printf(f, x).unwrap_or_default(),
-            None => format!(" {}", crate::output::format::g(x)),
+            None => format!(" {}", dmhs_parser::numfmt::format_g(x, 6)),
         }
     }
 

@@ -290,6 +290,16 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 
+impl FixDef<'_> {
+    /// A file name of the fix's arguments, relative to the deck's directory if one is set.
+    pub fn path(&self, name: &str) -> std::path::PathBuf {
+        match self.base_dir {
+            Some(d) if std::path::Path::new(name).is_relative() => d.join(name),
+            _ => std::path::PathBuf::from(name),
+        }
+    }
+}
+
 /// What is defined when a fix is made.
 pub struct Defined<'a> {
     pub fixes: &'a [Box<dyn Fix>],

@@ -52,7 +52,7 @@ impl FixPrint {
         let file = match file {
             None => None,
             Some((append, w)) => {
-                let path = crate::output::log::resolve_path(d.base_dir, &w.text);
+                let path = d.path(&w.text);
                 let opened = std::fs::OpenOptions::new().write(true).create(true).append(append).truncate(!append).open(&path);
                 let mut f = opened.map_err(|e| a.error_at(w, format!("cannot open fix print file {}: {e}", path.display()), "cannot open"))?;
                 let head = match title {

@@ -293,6 +293,8 @@ pub struct Neighbor {
     pub ndanger: u64,
     /// Largest list cutoff (pair cutoff + skin): the ghost shell thickness.
     pub cutneighmax: f64,
+    /// Largest pair cutoff (LAMMPS' `cutforce`), without the skin.
+    pub cutforce: f64,
 }
 
 /// Error raised while building lists (reported by the engine with the step number).
@@ -364,9 +366,11 @@ impl Neighbor {
         let stride = ntypes + 1;
         let mut cutneighsq = vec![0.0; stride * stride];
         let mut cutmax: f64 = 0.0;
+        self.cutforce = 0.0;
         for it in 1..=ntypes {
             for jt in 1..=ntypes {
                 let c = cut_pair(it, jt);
+                self.cutforce = self.cutforce.max(c);
                 if c > 0.0 {
                     let cn = c + settings.skin;
                     cutneighsq[it * stride + jt] = cn * cn;

@@ -17,8 +17,8 @@ pub const SYNTAX: &str = "dump ID group atom|custom|vtk|image|movie N file [cust
 #[derive(Clone, Debug)]
 pub(crate) enum Column {
     Attr(Field),
-    /// per-atom compute, column (0-based; None for a per-atom vector)
-    Compute(String, Option<usize>),
+    /// a per-atom compute or fix column
+    PerAtom(crate::models::compute::PerAtomRef),
 }
 
 pub struct Dump {
@@ -230,10 +230,7 @@ impl Dump {
         let mut peratom: Vec<Option<crate::models::compute::PerAtom>> = Vec::new();
         for c in &self.columns {
             peratom.push(match c {
-                Column::Compute(cid, _) => {
-                    let c = w.compute(cid).ok_or_else(|| format!("dump {}: compute `{cid}` does not exist", self.id))?;
-                    Some(c.peratom(w)?)
-                }
+                Column::PerAtom(r) => Some(r.values(w).map_err(|e| format!("dump {}: {e}", self.id))?),
                 _ => None,
             });
         }
@@ -251,7 +248,7 @@ impl Dump {
             for (k, c) in self.columns.iter().enumerate() {
                 let v = match c {
                     Column::Attr(f) => f.value(w.state, i),
-                    Column::Compute(_, col) => peratom[k].as_ref().unwrap().get(i, col.unwrap_or(0)),
+                    Column::PerAtom(r) => r.get(peratom[k].as_ref().unwrap(), i),
                 };
                 let text = format_printf(&fmts[k], if ints[k] { v.round() } else { v }).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
                 s += &text;
@@ -344,9 +341,9 @@ impl Dump {
 pub(crate) fn column_values(c: &Column, w: &World, idx: &[usize]) -> Result<Vec<f64>, String> {
     Ok(match c {
         Column::Attr(f) => idx.iter().map(|&i| f.value(w.state, i)).collect(),
-        Column::Compute(cid, col) => {
-            let p = w.compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?.peratom(w)?;
-            idx.iter().map(|&i| p.get(i, col.unwrap_or(0))).collect()
+        Column::PerAtom(r) => {
+            let p = r.values(w)?;
+            idx.iter().map(|&i| r.get(&p, i)).collect()
         }
     })
 }
@@ -357,25 +354,11 @@ fn sci16(x: f64) -> String {
 }
 
 pub(crate) fn parse_column(name: &str, w: &World) -> Result<Column, String> {
-    if let Some(rest) = name.strip_prefix("c_") {
-        let (cid, col) = match rest.find('[') {
-            Some(k) if rest.ends_with(']') => {
-                let n: usize = rest[k + 1..rest.len() - 1].parse().map_err(|_| format!("bad column in `{name}`"))?;
-                (&rest[..k], Some(n))
-            }
-            _ => (rest, None),
-        };
-        let cols = w.compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?.peratom_cols().ok_or_else(|| format!("compute `{cid}` does not compute per-atom values"))?;
-        let col = match col {
-            None if cols == 1 => None,
-            None => return Err(format!("compute `{cid}` has {cols} columns: use c_{cid}[N]")),
-            Some(n) if n >= 1 && n <= cols => Some(n - 1),
-            Some(n) => return Err(format!("column {n} is out of range 1..{cols}")),
-        };
-        return Ok(Column::Compute(cid.to_string(), col));
+    if let Some(r) = crate::models::compute::PerAtomRef::parse(name, w) {
+        return Ok(Column::PerAtom(r?));
     }
-    if name.starts_with("v_") || name.starts_with("f_") || name.starts_with("d_") || name.starts_with("i_") {
-        return Err(format!("dump field `{name}` is not supported yet (attributes and per-atom computes are)"));
+    if name.starts_with("v_") || name.starts_with("d_") || name.starts_with("i_") {
+        return Err(format!("dump field `{name}` is not supported yet (attributes, per-atom computes and fixes are)"));
     }
     let f = Field::parse(name).ok_or_else(|| format!("unknown dump field `{name}`"))?;
     f.check(w.state)?;

@@ -87,6 +87,17 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
+        // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
+        for c in &self.thermo.columns {
+            if let crate::output::thermo::Field::Fix(id, _) = &c.field {
+                if let Some(f) = self.fixes.iter().find(|f| f.id() == id) {
+                    let freq = f.global_freq();
+                    if self.thermo.every % freq != 0 {
+                        return Err(format!("thermo every {} and fix {id} ({}) are not computed at compatible times: its values are current every {freq} steps", self.thermo.every, f.style()).into());
+                    }
+                }
+            }
+        }
         self.setup_computes(None);
         Ok(())
     }
@@ -264,6 +275,8 @@ impl Simulation {
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;
         self.timers.charge(Stage::Modify);
+        // lines fixes printed in their setup (fix print)
+        self.flush_messages();
         Ok(())
     }
 
@@ -302,6 +315,9 @@ impl Simulation {
         self.fix_hook(|h| h.final_integrate, |f, s, c| f.final_integrate(s, c))?;
         self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
         self.timers.charge(Stage::Modify);
+        if !self.state.messages.is_empty() {
+            self.flush_messages();
+        }
         Ok(())
     }
 
@@ -454,9 +470,13 @@ impl Simulation {
         }
     }
 
-    /// Energies are needed on thermo steps, the last step and dump steps.
+    /// Energies are needed on thermo steps, the last step, dump steps and the steps on which a
+    /// fix reads values (fix ave/time, fix print).
     fn output_due(&self, step: i64, last: i64) -> bool {
-        step == last || (self.thermo.every > 0 && step % self.thermo.every == 0) || self.dumps.iter().any(|d| d.due(step, false))
+        step == last
+            || (self.thermo.every > 0 && step % self.thermo.every == 0)
+            || self.dumps.iter().any(|d| d.due(step, false))
+            || self.fixes.iter().any(|f| f.wants_energy(step))
     }
 
     /// Thermo line and dumps for the current step.

@@ -25,7 +25,7 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             return Err(a.error_at(id, format!("fix `{}` already exists with style {}; replacing it needs the same style", id.text, sim.fixes[k].style()), "ID in use"));
         }
     }
-    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, &sim.fixes, &mut sim.state)?;
+    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref() }, &mut sim.state)?;
     match existing {
         Some(k) => {
             let mut old = std::mem::replace(&mut sim.fixes[k], f);

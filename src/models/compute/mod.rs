@@ -3,16 +3,19 @@
 //! registry. Computes only read the simulation.
 
 pub mod com;
+pub mod displace_atom;
 pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
 pub mod erotate_sphere_atom;
 pub mod ke;
 pub mod ke_atom;
+pub mod msd;
 pub mod nbond_atom;
 pub mod pe;
 pub mod pressure;
 pub mod property;
 pub mod property_atom;
+pub mod rdf;
 pub mod reduce;
 pub mod sph_atom;
 pub mod temp;
@@ -36,6 +39,61 @@ impl PerAtom {
     }
 }
 
+/// A per-atom value that dumps and compute reduce read: `c_ID`, `c_ID[N]` of a per-atom compute
+/// or `f_ID`, `f_ID[N]` of a fix with per-atom output (fix ave/atom).
+#[derive(Clone, Debug)]
+pub struct PerAtomRef {
+    pub fix: bool,
+    pub id: String,
+    /// Column (0-based); None for a per-atom vector.
+    pub col: Option<usize>,
+}
+
+impl PerAtomRef {
+    /// `name` as a per-atom reference; None if it starts with neither `c_` nor `f_`.
+    pub fn parse(name: &str, w: &World) -> Option<Result<PerAtomRef, String>> {
+        let (fix, rest) = match (name.strip_prefix("c_"), name.strip_prefix("f_")) {
+            (Some(r), _) => (false, r),
+            (_, Some(r)) => (true, r),
+            _ => return None,
+        };
+        Some((|| {
+            let (id, col) = match rest.find('[') {
+                Some(k) if rest.ends_with(']') => (&rest[..k], Some(rest[k + 1..rest.len() - 1].parse::<usize>().map_err(|_| format!("bad column index in `{name}`"))?)),
+                _ => (rest, None),
+            };
+            let (kind, cols) = if fix {
+                let f = w.fix(id).ok_or_else(|| format!("fix `{id}` does not exist"))?;
+                ("fix", f.peratom_cols().ok_or_else(|| format!("fix `{id}` does not compute per-atom values"))?)
+            } else {
+                let c = w.compute(id).ok_or_else(|| format!("compute `{id}` does not exist"))?;
+                ("compute", c.peratom_cols().ok_or_else(|| format!("compute `{id}` does not compute per-atom values"))?)
+            };
+            let p = &name[..2];
+            let col = match col {
+                None if cols == 1 => None,
+                None => return Err(format!("{kind} `{id}` has {cols} per-atom columns: pick one with {p}{id}[N]")),
+                Some(n) if n >= 1 && n <= cols => Some(n - 1),
+                Some(n) => return Err(format!("column {n} of {kind} `{id}` is out of range 1..{cols}")),
+            };
+            Ok(PerAtomRef { fix, id: id.to_string(), col })
+        })())
+    }
+    /// The values now (owned atoms, in local order).
+    pub fn values(&self, w: &World) -> Result<PerAtom, String> {
+        if self.fix {
+            w.fix(&self.id).ok_or_else(|| format!("fix `{}` does not exist", self.id))?.peratom(w.state)
+        } else {
+            w.compute(&self.id).ok_or_else(|| format!("compute `{}` does not exist", self.id))?.peratom(w)
+        }
+    }
+    /// Atom `i`'s value in `p` (from [`PerAtomRef::values`]).
+    #[inline]
+    pub fn get(&self, p: &PerAtom, i: usize) -> f64 {
+        p.get(i, self.col.unwrap_or(0))
+    }
+}
+
 pub trait Compute: Send + Sync {
     fn id(&self) -> &str;
     fn style(&self) -> &str;
@@ -47,6 +105,19 @@ pub trait Compute: Send + Sync {
     /// Global vector.
     fn vector(&self, _w: &World) -> Result<Vec<f64>, String> {
         Err(format!("compute {} ({}) does not compute a global vector", self.id(), self.style()))
+    }
+    /// Length of the global vector when it is known before the compute runs (fix ave/time
+    /// expands `c_ID[*]` with it).
+    fn size_vector(&self) -> Option<usize> {
+        None
+    }
+    /// Global array, row by row (compute rdf); read as columns by fix ave/time `c_ID[j]`.
+    fn array(&self, _w: &World) -> Result<Vec<Vec<f64>>, String> {
+        Err(format!("compute {} ({}) does not compute a global array", self.id(), self.style()))
+    }
+    /// Columns of the global array (None: no array).
+    fn array_cols(&self) -> Option<usize> {
+        None
     }
     /// Whether the global scalar (`index` None) or vector element `index` (1-based) is
     /// extensive: thermo output divides it by the atom count under `thermo_modify norm yes`.
@@ -98,6 +169,9 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("erotate/sphere/atom", |d, w| Ok(Box::new(erotate_sphere_atom::ComputeErotateSphereAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("reduce", |d, w| Ok(Box::new(reduce::ComputeReduce::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

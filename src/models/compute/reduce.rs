@@ -25,8 +25,8 @@ enum Mode {
 #[derive(Clone, Debug)]
 enum Input {
     Attr(Field),
-    /// per-atom compute and its column (0-based; `None` for a per-atom vector)
-    Compute(String, Option<usize>),
+    /// a per-atom compute or fix column
+    PerAtom(super::PerAtomRef),
 }
 
 pub struct ComputeReduce {
@@ -53,25 +53,10 @@ impl ComputeReduce {
         while let Some(w) = a.peek() {
             a.skip(1);
             let t = w.text.as_str();
-            if let Some(rest) = t.strip_prefix("c_") {
-                let (cid, col) = match rest.find('[') {
-                    Some(k) if rest.ends_with(']') => {
-                        let n: usize = rest[k + 1..rest.len() - 1].parse().map_err(|_| a.error_at(w, format!("bad column index in `{t}`"), "expected c_ID[N]"))?;
-                        (&rest[..k], Some(n))
-                    }
-                    _ => (rest, None),
-                };
-                let c = world.compute(cid).ok_or_else(|| a.error_at(w, format!("compute `{cid}` does not exist"), "unknown compute"))?;
-                let cols = c.peratom_cols().ok_or_else(|| a.error_at(w, format!("compute `{cid}` does not compute per-atom values"), "not per-atom"))?;
-                let col = match col {
-                    None if cols == 1 => None,
-                    None => return Err(a.error_at(w, format!("compute `{cid}` has {cols} per-atom columns: pick one with c_{cid}[N]"), "needs a column")),
-                    Some(n) if n >= 1 && n <= cols => Some(n - 1),
-                    Some(n) => return Err(a.error_at(w, format!("column {n} is out of range 1..{cols}"), "bad column")),
-                };
-                inputs.push(Input::Compute(cid.to_string(), col));
-            } else if t.starts_with("f_") || t.starts_with("v_") || t.starts_with("d_") || t.starts_with("i_") {
-                return Err(a.error_at(w, format!("reduce input `{t}` is not supported yet (only attributes and per-atom computes)"), "not supported"));
+            if let Some(r) = super::PerAtomRef::parse(t, world) {
+                inputs.push(Input::PerAtom(r.map_err(|e| a.error_at(w, e, "not a per-atom value"))?));
+            } else if t.starts_with("v_") || t.starts_with("d_") || t.starts_with("i_") {
+                return Err(a.error_at(w, format!("reduce input `{t}` is not supported yet (only attributes, per-atom computes and fixes)"), "not supported"));
             } else if ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"].contains(&t) || Field::parse(t).is_some() {
                 let f = Field::parse(t).unwrap();
                 f.check(world.state).map_err(|e| a.error_at(w, e, "not available"))?;
@@ -90,10 +75,9 @@ impl ComputeReduce {
         let a = &w.state.atoms;
         let values: Vec<f64> = match input {
             Input::Attr(f) => (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| f.value(w.state, i)).collect(),
-            Input::Compute(cid, col) => {
-                let p = w.compute(cid).ok_or_else(|| format!("compute `{cid}` does not exist"))?.peratom(w)?;
-                let c = col.unwrap_or(0);
-                (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| p.get(i, c)).collect()
+            Input::PerAtom(r) => {
+                let p = r.values(w)?;
+                (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| r.get(&p, i)).collect()
             }
         };
         let n = values.len() as f64;

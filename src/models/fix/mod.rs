@@ -2,6 +2,8 @@
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
 pub mod addforce;
+pub mod ave_atom;
+pub mod ave_time;
 pub mod balance;
 pub mod bond_break;
 pub mod bond_create;
@@ -15,22 +17,29 @@ pub mod deposit;
 pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
+pub mod indent;
 pub mod move_linear;
 pub mod nve;
 pub mod nve_bpm_sphere;
 pub mod nve_sphere;
 pub mod pour;
+pub mod sampling;
+pub mod print;
 pub mod setforce;
 pub mod sph;
+pub mod spring;
 pub mod viscous;
 pub mod wall_gran;
 pub mod wall_gran_region;
+pub mod wall_lj93;
 pub mod wall_reflect;
 
 use crate::engine::state::{RunError, State};
 use crate::models::bonded::{AngleStyle, BondStyle};
 use crate::models::pair::PairStyle;
-use dmhs_parser::{Command, DResult, Word};
+use crate::models::compute::Compute;
+use crate::models::world::World;
+use dmhs_parser::{Command, DResult, EvalContext, Word};
 
 /// Where a fix acts in the step (LAMMPS' setmask bits), so the engine calls only what is used.
 #[derive(Clone, Copy, Debug, Default)]
@@ -50,6 +59,9 @@ pub struct FixHooks {
 pub trait Expressions {
     /// The value of equal-style variable `name` now; `running` is the fix whose hook asks.
     fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String>;
+    /// Run `work` with the read-only view of everything (computes, fixes) and an expression
+    /// context, for fixes that read `c_`, `f_` and `v_` values (fix ave/time, fix print).
+    fn with_eval(&mut self, state: &State, running: &dyn Fix, work: &mut dyn FnMut(&World, &mut dyn EvalContext) -> Result<(), String>) -> Result<(), String>;
 }
 
 /// What a fix hook may use besides the state: the force-field models (read only) and
@@ -72,6 +84,18 @@ impl FixCtx<'_> {
     /// may read that fix's own values, as in LAMMPS).
     pub fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String> {
         self.expressions.equal(state, running, name)
+    }
+    /// `work` with the view of every compute, fix and variable (see [`Expressions::with_eval`]).
+    pub fn eval<R>(&mut self, state: &State, running: &dyn Fix, work: impl FnOnce(&World, &mut dyn EvalContext) -> Result<R, String>) -> Result<R, RunError> {
+        let mut work = Some(work);
+        let mut out = None;
+        self.expressions
+            .with_eval(state, running, &mut |w, ev| {
+                out = Some(work.take().expect("called once")(w, ev)?);
+                Ok(())
+            })
+            .map_err(|e| RunError::new(state.step, e))?;
+        Ok(out.expect("with_eval runs its work"))
     }
     /// The current value of a fix argument (None for NULL), evaluated as [`FixCtx::equal`].
     pub fn value(&mut self, state: &State, running: &dyn Fix, v: &value::FixValue) -> Result<Option<f64>, RunError> {
@@ -114,6 +138,28 @@ pub trait Fix: Send + Sync {
     /// with `force_reneighbor`), if any.
     fn next_reneighbor(&self) -> Option<i64> {
         None
+    }
+    /// Whether this fix reads values on `step` that need the energies and virial of that step
+    /// (LAMMPS' `addstep_compute`: fix ave/time and fix print ask for their output steps).
+    fn wants_energy(&self, _step: i64) -> bool {
+        false
+    }
+    /// Steps between which the fix's global values are current (LAMMPS' global_freq): thermo
+    /// output must come on multiples of it.
+    fn global_freq(&self) -> i64 {
+        1
+    }
+    /// Per-atom values (owned atoms, local order), for dumps and compute reduce (`f_ID[N]`).
+    fn peratom(&self, _state: &State) -> Result<crate::models::compute::PerAtom, String> {
+        Err(format!("fix {} ({}) does not compute per-atom values", self.id(), self.style()))
+    }
+    /// Columns of per-atom output (None: not per-atom).
+    fn peratom_cols(&self) -> Option<usize> {
+        None
+    }
+    /// Length of the global vector (for `mode vector` of fix ave/time), 0 if none.
+    fn size_vector(&self) -> usize {
+        0
     }
     /// Gravity this fix applies (fix gravity), for fixes that insert falling particles.
     fn gravity(&self) -> Option<gravity::Gravity> {
@@ -198,6 +244,10 @@ pub struct FixDef<'a> {
     pub cmd: &'a Command,
     /// The fixes defined so far.
     pub fixes: &'a [Box<dyn Fix>],
+    /// The computes defined so far.
+    pub computes: &'a [Box<dyn Compute>],
+    /// Directory for relative file names (None: the working directory).
+    pub base_dir: Option<&'a std::path::Path>,
     pub id: String,
     pub groupbit: u32,
     pub style: &'a Word,
@@ -221,6 +271,12 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran/region", |d, state| Ok(Box::new(wall_gran_region::FixWallGranRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("balance", |d, state| Ok(Box::new(balance::FixBalance::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("ave/atom", |d, state| Ok(Box::new(ave_atom::FixAveAtom::from_lammps(d, state)?))),
+    ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
+    ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
+    ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("wall/lj93", |d, state| Ok(Box::new(wall_lj93::FixWallLj93::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("indent", |d, state| Ok(Box::new(indent::FixIndent::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
     ("deposit", |d, state| Ok(Box::new(deposit::FixDeposit::from_lammps(d, state)?))),
     ("move", |d, state| Ok(Box::new(move_linear::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
@@ -236,10 +292,27 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 
-/// Build a fix from `fix ID group style args...`.
-pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], fixes: &[Box<dyn Fix>], state: &mut State) -> DResult<Box<dyn Fix>> {
+impl FixDef<'_> {
+    /// A file name of the fix's arguments, relative to the deck's directory if one is set.
+    pub fn path(&self, name: &str) -> std::path::PathBuf {
+        match self.base_dir {
+            Some(d) if std::path::Path::new(name).is_relative() => d.join(name),
+            _ => std::path::PathBuf::from(name),
+        }
+    }
+}
+
+/// What is defined when a fix is made.
+pub struct Defined<'a> {
+    pub fixes: &'a [Box<dyn Fix>],
+    pub computes: &'a [Box<dyn Compute>],
+    pub base_dir: Option<&'a std::path::Path>,
+}
+
+/// Build a fix from `fix ID group style args...`; `defined` are the fixes and computes so far.
+pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], defined: Defined, state: &mut State) -> DResult<Box<dyn Fix>> {
     match STYLES.iter().find(|(n, _)| *n == style.text) {
-        Some((_, ctor)) => ctor(FixDef { cmd, fixes, id: id.text.clone(), groupbit, style, args }, state),
+        Some((_, ctor)) => ctor(FixDef { cmd, fixes: defined.fixes, computes: defined.computes, base_dir: defined.base_dir, id: id.text.clone(), groupbit, style, args }, state),
         None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),
     }
 }

@@ -24,31 +24,16 @@ impl FixWallReflect {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let domain = state.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/reflect needs a simulation box", "no box yet"))?;
-        let faces = ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"];
         let mut walls: Vec<(Wall, Option<&Word>)> = Vec::new();
         let mut lattice_units = true;
         while let Some(w) = a.peek() {
             a.skip(1);
-            if let Some(k) = faces.iter().position(|f| *f == w.text) {
-                let (dim, hi) = (k / 2, k % 2 == 1);
-                if walls.iter().any(|(x, _)| x.dim == dim && x.hi == hi) {
-                    return Err(a.error_at(w, format!("wall {} is defined twice", w.text), "repeated face"));
-                }
-                if domain.periodic(dim) {
+            let taken: Vec<(usize, bool)> = walls.iter().map(|(x, _)| (x.dim, x.hi)).collect();
+            if let Some(f) = parse_face(&mut a, w, &taken, state, "wall/reflect", SYNTAX)? {
+                if domain.periodic(f.dim) {
                     return Err(a.error_at(w, format!("cannot use fix wall/reflect {} in a periodic dimension", w.text), "periodic dimension"));
                 }
-                if dim == 2 && state.dimension == 2 {
-                    return Err(a.error_at(w, "cannot use fix wall/reflect zlo/zhi in a 2d simulation", "2d"));
-                }
-                let cw = a.word("wall coordinate")?;
-                let (coord, constant) = if cw.text == "EDGE" {
-                    (FixValue::Const(if hi { domain.hi[dim] } else { domain.lo[dim] }), None)
-                } else {
-                    let v = FixValue::parse(cw, "wall coordinate", false).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
-                    let c = matches!(v, FixValue::Const(_)).then_some(cw);
-                    (v, c)
-                };
-                walls.push((Wall { dim, hi, coord }, constant));
+                walls.push((Wall { dim: f.dim, hi: f.hi, coord: f.coord }, f.constant));
             } else if w.text == "units" {
                 lattice_units = a.choice("units", &["box", "lattice"])? == 1;
             } else {
@@ -58,19 +43,56 @@ impl FixWallReflect {
         if walls.is_empty() {
             return Err(a.missing("a wall face"));
         }
-        // constant coordinates are in lattice units by default
-        if lattice_units && walls.iter().any(|(_, c)| c.is_some()) {
-            let scale = state.lattice_scale().map_err(|e| a.error_at(walls.iter().find_map(|(_, c)| *c).unwrap(), e, "needs a lattice (or `units box`)"))?;
-            for (wall, c) in &mut walls {
-                if c.is_some() {
-                    if let FixValue::Const(x) = &mut wall.coord {
-                        *x *= scale[wall.dim];
-                    }
-                }
-            }
-        }
+        let mut coords: Vec<(usize, &mut FixValue, Option<&Word>)> = walls.iter_mut().map(|(w, c)| (w.dim, &mut w.coord, *c)).collect();
+        scale_constants(&a, lattice_units, &mut coords, state)?;
         Ok(FixWallReflect { id, groupbit, walls: walls.into_iter().map(|(w, _)| w).collect() })
     }
+}
+
+/// A wall face (`xlo` ... `zhi`) and its coordinate, as the wall fixes read them.
+pub struct Face<'a> {
+    pub dim: usize,
+    pub hi: bool,
+    /// EDGE (the box face now), a number or an equal-style variable.
+    pub coord: FixValue,
+    /// The word of a constant coordinate (scaled by lattice units).
+    pub constant: Option<&'a Word>,
+}
+
+/// If `w` is a face keyword, read its coordinate; `taken` are the faces defined before.
+pub fn parse_face<'a>(a: &mut Args<'a>, w: &'a Word, taken: &[(usize, bool)], state: &State, style: &str, syntax: &str) -> DResult<Option<Face<'a>>> {
+    let Some(k) = ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"].iter().position(|f| *f == w.text) else { return Ok(None) };
+    let (dim, hi) = (k / 2, k % 2 == 1);
+    if taken.contains(&(dim, hi)) {
+        return Err(a.error_at(w, format!("wall {} is defined twice", w.text), "repeated face"));
+    }
+    if dim == 2 && state.dimension == 2 {
+        return Err(a.error_at(w, format!("cannot use fix {style} zlo/zhi in a 2d simulation"), "2d"));
+    }
+    let domain = state.domain.as_ref().ok_or_else(|| a.error_at(w, format!("fix {style} needs a simulation box"), "no box yet"))?;
+    let cw = a.word("wall coordinate")?;
+    if cw.text == "EDGE" {
+        return Ok(Some(Face { dim, hi, coord: FixValue::Const(if hi { domain.hi[dim] } else { domain.lo[dim] }), constant: None }));
+    }
+    let coord = FixValue::parse(cw, "wall coordinate", false).map_err(|d| d.with_help(format!("syntax: {syntax}")))?;
+    let constant = matches!(coord, FixValue::Const(_)).then_some(cw);
+    Ok(Some(Face { dim, hi, coord, constant }))
+}
+
+/// Constant coordinates (dimension, value, its word if constant) are in lattice units unless
+/// `units box`.
+pub fn scale_constants(a: &Args, lattice_units: bool, coords: &mut [(usize, &mut FixValue, Option<&Word>)], state: &State) -> DResult<()> {
+    let Some(first) = coords.iter().find_map(|c| c.2) else { return Ok(()) };
+    if !lattice_units {
+        return Ok(());
+    }
+    let scale = state.lattice_scale().map_err(|e| a.error_at(first, e, "needs a lattice (or `units box`)"))?;
+    for (dim, v, c) in coords.iter_mut() {
+        if let (Some(_), FixValue::Const(x)) = (c, &mut **v) {
+            *x *= scale[*dim];
+        }
+    }
+    Ok(())
 }
 
 impl Fix for FixWallReflect {

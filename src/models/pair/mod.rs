@@ -17,6 +17,7 @@ pub mod gran_hooke_history;
 pub mod granular;
 pub mod hybrid;
 pub mod lj_cut;
+pub mod soft;
 pub mod sph;
 pub mod sph_loop;
 pub mod sph_heatconduction;
@@ -317,6 +318,7 @@ type PairCtor = fn(&Word, &[Word], &Command) -> DResult<Box<dyn PairStyle>>;
 /// Every pair style this build implements: `pair_style NAME args...` builds it.
 const STYLES: &[(&str, PairCtor)] = &[
     ("lj/cut", |_, args, cmd| Ok(Box::new(lj_cut::LjCut::from_lammps(args, cmd)?))),
+    ("soft", |_, args, cmd| Ok(Box::new(soft::Soft::from_lammps(args, cmd)?))),
     ("bpm/spring", |_, args, cmd| Ok(Box::new(bpm_spring::PairBpmSpring::from_lammps(args, cmd)?))),
     ("sph/taitwater", |_, args, cmd| Ok(Box::new(sph_taitwater::SphTaitwater::from_lammps(args, cmd)?))),
     ("sph/taitwater/morris", |_, args, cmd| Ok(Box::new(sph_taitwater_morris::SphTaitwaterMorris::from_lammps(args, cmd)?))),

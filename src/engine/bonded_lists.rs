@@ -8,6 +8,8 @@ pub struct Entry<const N: usize> {
     pub atoms: [u32; N],
     pub shift: [[i8; 3]; N],
     pub typ: usize,
+    /// Index of the interaction's record in the topology (per-bond history lives there).
+    pub rec: u32,
 }
 
 impl<const N: usize> Entry<N> {

@@ -48,6 +48,34 @@ impl<E> Slabbed<E> {
     }
 }
 
+impl<const N: usize> Slabbed<Entry<N>> {
+    /// Keep the entries for which `keep` gives a new record index (records were removed from
+    /// the topology), in order; chunk boundaries follow.
+    pub fn retain_records(&mut self, keep: impl Fn(u32) -> Option<u32>) {
+        let mut out = 0;
+        let mut start = 0;
+        for c in 0..self.nchunks() {
+            let end = self.offsets[c + 1] as usize;
+            for k in start..end {
+                if let Some(rec) = keep(self.entries[k].rec) {
+                    self.entries[out] = Entry { rec, ..self.entries[k] };
+                    out += 1;
+                }
+            }
+            start = end;
+            self.offsets[c + 1] = out as u32;
+        }
+        self.entries.truncate(out);
+        self.leftover.retain_mut(|e| match keep(e.rec) {
+            Some(rec) => {
+                e.rec = rec;
+                true
+            }
+            None => false,
+        });
+    }
+}
+
 /// The interactions of chunk `c` (none if the kind has fewer chunks).
 pub fn chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
     if c + 1 < s.offsets.len() {

@@ -249,8 +249,8 @@ impl Simulation {
     }
 
     /// Bonds of a BPM style broke in this force evaluation: their records go to the style's
-    /// fix store/local, then they leave the topology, the special table and the neighbour list,
-    /// and the bonded lists are remade.
+    /// fix store/local, then they leave the topology, the special table, the neighbour list and
+    /// the bonded lists.
     fn bonds_broken(&mut self, broken: &[crate::models::bonded::bond_bpm_spring::Broken]) -> Result<(), RunError> {
         let bpm = self.bond_style.as_deref().and_then(|b| b.as_bpm_spring()).expect("a BPM bond style");
         if let Some(sl) = &bpm.store_local {
@@ -261,7 +261,7 @@ impl Simulation {
             fix.add_rows(rows, &masks);
         }
         crate::models::bonded::bond_bpm_spring::remove_broken(&mut self.state, broken);
-        crate::models::bonded::pass::build_bonded_lists(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style))
+        Ok(())
     }
 
     /// LAMMPS `Verlet::setup`: lists, forces of the current state, fix setup, first output.

@@ -273,20 +273,33 @@ struct Inputs<'a> {
     x: &'a [Vec3],
     v: &'a [Vec3],
     tag: &'a [i64],
-    r0: &'a [f64],
+    bonds: &'a [crate::engine::topology::Bond],
     prd: Vec3,
     eflag: bool,
 }
 
-fn run_bonds(style: &BondBpmSpring, inp: &Inputs, entries: &[Entry<2>], shifts: bool, f: &mut AtomsMut<Vec3>, tally: &mut BondedTally, broken: &mut Vec<Broken>) {
+/// What a pass over some bonds found besides forces: bonds that broke, and reference lengths
+/// stored now (LAMMPS' store_bond for bonds created since the first evaluation).
+#[derive(Clone, Debug, Default)]
+struct Found {
+    broken: Vec<Broken>,
+    stored: Vec<(u32, f64)>,
+}
+
+fn run_bonds(style: &BondBpmSpring, inp: &Inputs, entries: &[Entry<2>], shifts: bool, f: &mut AtomsMut<Vec3>, tally: &mut BondedTally, found: &mut Found) {
     for e in entries {
         let [(i1, s1), (i2, s2)] = ordered(e, inp.tag);
         let (p1, p2) = (image(inp.x, i1, s1, inp.prd, shifts), image(inp.x, i2, s2, inp.prd, shifts));
         let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
         let (v1, v2) = (inp.v[i1 as usize], inp.v[i2 as usize]);
         let dv = [v1[0] - v2[0], v1[1] - v2[1], v1[2] - v2[2]];
-        let Some((fbond, energy)) = style.kernel(e.typ, inp.r0[e.rec as usize], del, dv) else {
-            broken.push(Broken { rec: e.rec, atoms: [i1, i2], x: [p1, p2] });
+        let mut r0 = inp.bonds[e.rec as usize].r0;
+        if r0 < EPSILON || r0.is_nan() {
+            r0 = (del[0] * del[0] + del[1] * del[1] + del[2] * del[2]).sqrt();
+            found.stored.push((e.rec, r0));
+        }
+        let Some((fbond, energy)) = style.kernel(e.typ, r0, del, dv) else {
+            found.broken.push(Broken { rec: e.rec, atoms: [i1, i2], x: [p1, p2] });
             continue;
         };
         let fa = &mut f[i1 as usize];
@@ -317,37 +330,40 @@ pub fn compute(state: &mut State, style: &BondBpmSpring, eflag: bool) -> Result<
     }
     let prd = state.domain.as_ref().unwrap().prd();
     let (x, tag) = (&state.atoms.x, &state.atoms.tag);
-    // LAMMPS: every bond at the first evaluation (store_data), later ones when their r0 is unset
-    let all = !style.stored.swap(true, Ordering::Relaxed);
-    for (e, shifts) in lists.entries.iter().map(|e| (e, false)).chain(lists.leftover.iter().map(|e| (e, true))) {
-        let b = &mut state.topo.bonds[e.rec as usize];
-        if all || b.r0 < EPSILON || b.r0.is_nan() {
+    // LAMMPS' store_data: every bond's r0 at the first evaluation of the style; later, bonds
+    // whose r0 is unset store it when computed (run_bonds)
+    if !style.stored.swap(true, Ordering::Relaxed) {
+        for (e, shifts) in lists.entries.iter().map(|e| (e, false)).chain(lists.leftover.iter().map(|e| (e, true))) {
             let [(i1, s1), (i2, s2)] = ordered(e, tag);
             let (p1, p2) = (image(x, i1, s1, prd, shifts), image(x, i2, s2, prd, shifts));
             let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
-            b.r0 = (del[0] * del[0] + del[1] * del[1] + del[2] * del[2]).sqrt();
+            state.topo.bonds[e.rec as usize].r0 = (del[0] * del[0] + del[1] * del[1] + del[2] * del[2]).sqrt();
         }
     }
-    let r0: Vec<f64> = state.topo.bonds.iter().map(|b| b.r0).collect();
     let mut f = std::mem::take(&mut state.atoms.f);
-    let inp = Inputs { x, v: &state.atoms.v, tag, r0: &r0, prd, eflag };
+    let inp = Inputs { x, v: &state.atoms.v, tag, bonds: &state.topo.bonds, prd, eflag };
     let bounds = state.neighbor.list.bounds();
     assert!(lists.nchunks() + 1 <= bounds.len(), "bonded lists built on another neighbour list");
-    let mut parts: Vec<(BondedTally, Vec<Broken>)> = vec![Default::default(); bounds.len() - 1];
+    let mut parts: Vec<(BondedTally, Found)> = vec![Default::default(); bounds.len() - 1];
     for parity in 0..2 {
         slab_phase(&bounds, parity, AtomsMut::new(&mut f), &mut parts, |c, mut f| {
-            let mut out = (BondedTally::default(), vec![]);
+            let mut out = (BondedTally::default(), Found::default());
             run_bonds(style, &inp, chunk(lists, c), false, &mut f, &mut out.0, &mut out.1);
             out
         });
     }
     let mut tally = BondedTally::default();
-    let mut broken = vec![];
-    for (t, b) in parts {
+    let mut found = Found::default();
+    for (t, p) in parts {
         tally.add(&t);
-        broken.extend(b);
+        found.broken.extend(p.broken);
+        found.stored.extend(p.stored);
     }
-    run_bonds(style, &inp, &lists.leftover, true, &mut AtomsMut::new(&mut f), &mut tally, &mut broken);
+    run_bonds(style, &inp, &lists.leftover, true, &mut AtomsMut::new(&mut f), &mut tally, &mut found);
+    for (rec, r0) in found.stored {
+        state.topo.bonds[rec as usize].r0 = r0;
+    }
+    let broken = found.broken;
     state.atoms.f = f;
     Ok((tally, broken))
 }
@@ -373,14 +389,25 @@ pub fn record(values: &[LocalValue], state: &State, b: &Broken) -> Vec<f64> {
 
 /// Remove the broken bonds: their topology records, the 1-2 entries of their atoms' special
 /// lists and the special bits of their neighbour-list entries (LAMMPS' fix
-/// update/special/bonds), so the pair acts from the next force evaluation. The caller remakes
-/// the bonded lists (their record indices are stale).
+/// update/special/bonds), so the pair acts from the next force evaluation; the bonded lists
+/// lose their entries and follow the records' new indices.
 pub fn remove_broken(state: &mut State, broken: &[Broken]) {
     if broken.is_empty() {
         return;
     }
     let recs: Vec<usize> = broken.iter().map(|b| b.rec as usize).collect();
     let pairs: Vec<[i64; 2]> = recs.iter().map(|&k| state.topo.bonds[k].atoms).collect();
+    // new index of each record: its old one less the removed records before it
+    let mut index: Vec<Option<u32>> = vec![Some(0); state.topo.bonds.len()];
+    for &k in &recs {
+        index[k] = None;
+    }
+    let mut next = 0;
+    for slot in index.iter_mut().flatten() {
+        *slot = next;
+        next += 1;
+    }
+    state.bonded_lists.bonds.retain_records(|rec| index[rec as usize]);
     state.topo.remove_bond_records(&recs);
     for &[p, q] in &pairs {
         state.special_table.remove_one_two(p, q);

@@ -163,7 +163,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
     };
     for b in &data.bonds {
         check_type(b.topo_type, h.bond_types, b.span, "bond")?;
-        sim.state.topo.bonds.push(Bond { typ: b.topo_type, atoms: b.atoms });
+        sim.state.topo.bonds.push(Bond::new(b.topo_type, b.atoms));
     }
     for b in &data.angles {
         check_type(b.topo_type, h.angle_types, b.span, "angle")?;

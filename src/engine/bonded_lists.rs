@@ -8,6 +8,8 @@ pub struct Entry<const N: usize> {
     pub atoms: [u32; N],
     pub shift: [[i8; 3]; N],
     pub typ: usize,
+    /// Index of the interaction's record in the topology (per-bond history lives there).
+    pub rec: u32,
 }
 
 impl<const N: usize> Entry<N> {
@@ -43,6 +45,34 @@ impl<E> Slabbed<E> {
     }
     pub fn nchunks(&self) -> usize {
         self.offsets.len() - 1
+    }
+}
+
+impl<const N: usize> Slabbed<Entry<N>> {
+    /// Keep the entries for which `keep` gives a new record index (records were removed from
+    /// the topology), in order; chunk boundaries follow.
+    pub fn retain_records(&mut self, keep: impl Fn(u32) -> Option<u32>) {
+        let mut out = 0;
+        let mut start = 0;
+        for c in 0..self.nchunks() {
+            let end = self.offsets[c + 1] as usize;
+            for k in start..end {
+                if let Some(rec) = keep(self.entries[k].rec) {
+                    self.entries[out] = Entry { rec, ..self.entries[k] };
+                    out += 1;
+                }
+            }
+            start = end;
+            self.offsets[c + 1] = out as u32;
+        }
+        self.entries.truncate(out);
+        self.leftover.retain_mut(|e| match keep(e.rec) {
+            Some(rec) => {
+                e.rec = rec;
+                true
+            }
+            None => false,
+        });
     }
 }
 

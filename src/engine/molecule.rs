@@ -133,7 +133,7 @@ impl Molecule {
         let topo = &mut state.topo;
         for k in 0..self.natoms() {
             for &(t, at) in self.bonds.iter().filter(|b| b.1[0] == k) {
-                topo.bonds.push(Bond { typ: t, atoms: at.map(id) });
+                topo.bonds.push(Bond::new(t, at.map(id)));
             }
             for &(t, at) in self.angles.iter().filter(|b| b.1[1] == k) {
                 topo.angles.push(Angle { typ: t, atoms: at.map(id) });

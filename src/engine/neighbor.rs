@@ -17,6 +17,9 @@ use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, Speci
 use crate::engine::par::bounded::{Entries, Entry, Scope, INDEX_BITS, INDEX_MASK};
 use rayon::prelude::*;
 
+/// Builds (and edits) of neighbour lists in the process: each list's `generation`.
+static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
 /// Bits of a neighbour entry that hold the special-bond level (as LAMMPS' SBBITS).
 pub const SPECIAL_SHIFT: u32 = INDEX_BITS;
 pub const NEIGH_MASK: u32 = INDEX_MASK;
@@ -72,6 +75,20 @@ impl SpecialTable {
     }
     pub fn is_empty(&self) -> bool {
         self.partners.is_empty()
+    }
+    /// Atoms `p` and `q` are no longer 1-2 partners (a bond between them broke; LAMMPS' fix
+    /// update/special/bonds). Their other partners keep their levels.
+    pub fn remove_one_two(&mut self, p: i64, q: i64) {
+        for (a, b) in [(p, q), (q, p)] {
+            let Some(t) = self.keys.key(a) else { continue };
+            if t + 1 >= self.offsets.len() {
+                continue;
+            }
+            let (lo, hi) = (self.offsets[t] as usize, self.offsets[t + 1] as usize);
+            if let Some(e) = self.partners[lo..hi].iter_mut().find(|e| e.0 == b && e.1 == 1) {
+                e.1 = 0;
+            }
+        }
     }
     #[inline]
     fn level(&self, itag: i64, jtag: i64) -> u8 {
@@ -206,6 +223,15 @@ impl ChunkList {
     pub fn first_entry(&self, i: usize) -> usize {
         self.offsets[i - self.start] as usize
     }
+    /// Clear the special level of atom `i`'s entries whose atom `hit` accepts.
+    pub fn clear_special(&mut self, i: usize, hit: impl Fn(usize) -> bool) {
+        for k in self.span(i) {
+            let j = self.neigh.raw()[k];
+            if j > NEIGH_MASK && hit((j & NEIGH_MASK) as usize) {
+                self.neigh.clear_level(k);
+            }
+        }
+    }
     /// All entries of the chunk.
     pub fn len(&self) -> usize {
         self.neigh.len()
@@ -247,6 +273,14 @@ impl NeighList {
     /// atom of chunk c lies in chunk c or c + 1.
     pub fn check_slab_invariant(&self) -> Result<(), String> {
         crate::engine::par::check_slab_invariant(&self.bounds(), |c| self.chunks[c].raw(), |j| (j & NEIGH_MASK) as usize)
+    }
+    /// Clear the special level of owned atom `i`'s entries whose atom `hit` accepts (LAMMPS'
+    /// fix update/special/bonds after a bond broke); lists derived from this one are remade.
+    pub fn clear_special(&mut self, i: usize, hit: impl Fn(usize) -> bool) {
+        if let Some(c) = self.chunks.iter_mut().find(|c| (c.start..c.end).contains(&i)) {
+            c.clear_special(i, hit);
+            self.generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        }
     }
     pub fn npairs(&self) -> usize {
         self.chunks.iter().map(|c| c.len()).sum()
@@ -627,7 +661,6 @@ impl Neighbor {
 
         let has_special = use_special && chunks.iter().any(|c| c.raw().iter().any(|&j| j > NEIGH_MASK));
         // unique over the process, so no derived list can mistake a new build for its own
-        static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         let generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         self.list = NeighList { chunks, cutneighsq, ntypes, has_special, generation };
         debug_assert_eq!(self.list.check_slab_invariant(), Ok(()));

@@ -3,10 +3,19 @@
 //! an angle and a dihedral on their second atom; forces use the closest image of the other
 //! atoms relative to that one).
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bond {
     pub typ: usize,
     pub atoms: [i64; 2],
+    /// Per-bond history of the BPM bond styles (LAMMPS' fix bond/history): the reference
+    /// length, 0 until the style stores it at its first force evaluation.
+    pub r0: f64,
+}
+
+impl Bond {
+    pub fn new(typ: usize, atoms: [i64; 2]) -> Bond {
+        Bond { typ, atoms, r0: 0.0 }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,6 +47,18 @@ impl Topology {
         self.bonds.retain(|b| !b.atoms.iter().any(|t| gone.contains(t)));
         self.angles.retain(|a| !a.atoms.iter().any(|t| gone.contains(t)));
         self.dihedrals.retain(|d| !d.atoms.iter().any(|t| gone.contains(t)));
+    }
+    /// Drop the bonds at record indices `recs` (any order), keeping the others' order.
+    pub fn remove_bond_records(&mut self, recs: &[usize]) {
+        let mut gone = vec![false; self.bonds.len()];
+        for &k in recs {
+            gone[k] = true;
+        }
+        let mut k = 0;
+        self.bonds.retain(|_| {
+            k += 1;
+            !gone[k - 1]
+        });
     }
     pub fn is_empty(&self) -> bool {
         self.bonds.is_empty() && self.angles.is_empty() && self.dihedrals.is_empty()

@@ -12,13 +12,17 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::PathBuf;
 
-pub const SYNTAX: &str = "dump ID group atom|custom|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...]";
+pub const SYNTAX: &str = "dump ID group atom|custom|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index f_ID f_ID[N]]";
 
 #[derive(Clone, Debug)]
 pub(crate) enum Column {
     Attr(Field),
     /// a per-atom compute or fix column
     PerAtom(crate::models::compute::PerAtomRef),
+    /// dump local: a fix's local vector (None) or array column (0-based)
+    LocalFix(String, Option<usize>),
+    /// dump local: the row number, from 1
+    Index,
 }
 
 pub struct Dump {
@@ -45,6 +49,8 @@ pub struct Dump {
     pub binary: bool,
     /// dump vtk: the snapshots written, (time, file name), for the .pvd collection.
     series: Vec<(f64, String)>,
+    /// `dump_modify header yes/no`: the ITEM lines before each snapshot.
+    pub header: bool,
 }
 
 impl Dump {
@@ -56,13 +62,13 @@ impl Dump {
         let groupbit = w.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
         let style_w = a.word("dump style")?;
         let style = style_w.text.clone();
-        if !["atom", "custom", "vtk", "image", "movie"].contains(&style.as_str()) {
+        if !["atom", "custom", "local", "vtk", "image", "movie"].contains(&style.as_str()) {
             let msg = if dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Dump, &style) {
-                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, vtk, image or movie)")
+                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, local, vtk, image or movie)")
             } else {
                 format!("unknown dump style `{style}`")
             };
-            return Err(a.error_at(style_w, msg, "expected atom, custom, vtk, image or movie"));
+            return Err(a.error_at(style_w, msg, "expected atom, custom, local, vtk, image or movie"));
         }
         let every = a.i64_in("N (dump every N steps)", 1, i64::MAX)?;
         let fw = a.word("file name")?;
@@ -96,6 +102,7 @@ impl Dump {
             picture,
             binary: true,
             series: vec![],
+            header: true,
         };
         if d.picture.is_some() {
             return Ok(d);
@@ -103,7 +110,20 @@ impl Dump {
         if style == "vtk" && !fw.text.ends_with(".vtu") {
             return Err(a.error_at(fw, "dump vtk writes VTK XML files: the name must end in .vtu (with * for the step, e.g. out.*.vtu)", "expected a .vtu file name"));
         }
-        if style == "atom" {
+        if style == "local" {
+            if a.is_empty() {
+                return Err(a.missing("at least one local field (index, f_ID, f_ID[N])"));
+            }
+            while let Some(word) = a.peek() {
+                a.skip(1);
+                let col = parse_local_column(&word.text, every, w).map_err(|e| a.error_at(word, e, "bad dump local field"))?;
+                d.names.push(word.text.clone());
+                d.columns.push(col);
+            }
+            if !d.columns.iter().any(|c| matches!(c, Column::LocalFix(..))) {
+                return Err(a.error_at(style_w, "Dump local attributes contain no compute or fix", "needs an f_ID field"));
+            }
+        } else if style == "atom" {
             a.finish()?;
             d.set_atom_columns();
         } else if style == "vtk" && a.is_empty() {
@@ -136,7 +156,7 @@ impl Dump {
 
     /// `dump_modify ID keyword value ...`
     pub fn modify(&mut self, a: &mut Args) -> DResult<()> {
-        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary"];
+        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary", "header"];
         while let Some(w) = a.peek() {
             a.skip(1);
             if let Some(p) = self.picture.as_mut() {
@@ -177,6 +197,7 @@ impl Dump {
                 }
                 "every" => self.every = a.i64_in("every", 1, i64::MAX)?,
                 "first" => self.first = a.yes_no("first")?,
+                "header" => self.header = a.yes_no("header")?,
                 "append" => self.append = a.yes_no("append")?,
                 "binary" if self.style == "vtk" => self.binary = a.yes_no("binary")?,
                 "flush" => {
@@ -219,9 +240,61 @@ impl Dump {
         }
     }
 
+    /// The ITEM lines of a snapshot up to the column names (`what`: ATOMS or ENTRIES).
+    fn header_lines(&self, w: &World, what: &str, count: usize) -> Result<String, String> {
+        let dom = w.state.domain()?;
+        let mut s = format!("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF {what}\n{}\n", w.state.step, count);
+        let bstr: Vec<String> = (0..3).map(|d| format!("{}{}", dom.boundary[d][0].letter(), dom.boundary[d][1].letter())).collect();
+        s += &format!("ITEM: BOX BOUNDS {}\n", bstr.join(" "));
+        for d in 0..3 {
+            s += &format!("{} {}\n", sci16(dom.lo[d]), sci16(dom.hi[d]));
+        }
+        s += &format!("ITEM: {what} {}\n", self.names.join(" "));
+        Ok(s)
+    }
+
+    /// A `dump local` snapshot: one line per row of the fixes' local data, each value followed
+    /// by a space (LAMMPS' DumpLocal).
+    fn snapshot_local(&self, w: &World) -> Result<String, String> {
+        let mut data: Vec<(&[Vec<f64>], Option<usize>)> = vec![];
+        let mut rows: Option<usize> = None;
+        for c in &self.columns {
+            if let Column::LocalFix(id, col) = c {
+                let (r, _, _) = w.fix(id).and_then(|f| f.local()).ok_or_else(|| format!("dump {}: fix `{id}` has no local data", self.id))?;
+                if rows.is_some_and(|n| n != r.len()) {
+                    return Err(format!("dump {}: Dump local count is not consistent across input fields", self.id));
+                }
+                rows = Some(r.len());
+                data.push((r, *col));
+            }
+        }
+        let n = rows.unwrap_or(0);
+        let fmts: Vec<String> = self.columns.iter().enumerate().map(|(k, c)| self.format_of(k, matches!(c, Column::Index))).collect();
+        let mut s = if self.header { self.header_lines(w, "ENTRIES", n)? } else { String::new() };
+        for r in 0..n {
+            let mut fixcol = 0;
+            for (k, c) in self.columns.iter().enumerate() {
+                let v = match c {
+                    Column::Index => (r + 1) as f64,
+                    _ => {
+                        let (rows, col) = data[fixcol];
+                        fixcol += 1;
+                        rows[r][col.unwrap_or(0)]
+                    }
+                };
+                s += &format_printf(&fmts[k], v).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
+                s.push(' ');
+            }
+            s.push('\n');
+        }
+        Ok(s)
+    }
+
     /// Format a snapshot of the current state.
     pub fn snapshot(&self, w: &World) -> Result<String, String> {
-        let dom = w.state.domain()?;
+        if self.style == "local" {
+            return self.snapshot_local(w);
+        }
         let a = &w.state.atoms;
         let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         if self.sort {
@@ -237,18 +310,15 @@ impl Dump {
         let ints: Vec<bool> = self.columns.iter().map(|c| matches!(c, Column::Attr(f) if f.is_int())).collect();
         let fmts: Vec<String> = (0..self.columns.len()).map(|k| self.format_of(k, ints[k])).collect();
         let mut s = String::with_capacity(64 * (idx.len() + 10));
-        s += &format!("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}\n", w.state.step, idx.len());
-        let bstr: Vec<String> = (0..3).map(|d| format!("{}{}", dom.boundary[d][0].letter(), dom.boundary[d][1].letter())).collect();
-        s += &format!("ITEM: BOX BOUNDS {}\n", bstr.join(" "));
-        for d in 0..3 {
-            s += &format!("{} {}\n", sci16(dom.lo[d]), sci16(dom.hi[d]));
+        if self.header {
+            s += &self.header_lines(w, "ATOMS", idx.len())?;
         }
-        s += &format!("ITEM: ATOMS {}\n", self.names.join(" "));
         for &i in &idx {
             for (k, c) in self.columns.iter().enumerate() {
                 let v = match c {
                     Column::Attr(f) => f.value(w.state, i),
                     Column::PerAtom(r) => r.get(peratom[k].as_ref().unwrap(), i),
+                    Column::LocalFix(..) | Column::Index => unreachable!("local columns only in dump local"),
                 };
                 let text = format_printf(&fmts[k], if ints[k] { v.round() } else { v }).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
                 s += &text;
@@ -345,7 +415,41 @@ pub(crate) fn column_values(c: &Column, w: &World, idx: &[usize]) -> Result<Vec<
             let p = r.values(w)?;
             idx.iter().map(|&i| r.get(&p, i)).collect()
         }
+        Column::LocalFix(..) | Column::Index => return Err("local fields are for dump local only".into()),
     })
+}
+
+/// A field of `dump local`: `index`, `f_ID` (a local vector) or `f_ID[N]` (a column of a local
+/// array), checked as LAMMPS does (the fix's local data, its shape, its frequency).
+fn parse_local_column(name: &str, every: i64, w: &World) -> Result<Column, String> {
+    if name == "index" {
+        return Ok(Column::Index);
+    }
+    let Some(rest) = name.strip_prefix("f_") else {
+        return Err(if name.starts_with("c_") {
+            format!("dump local field `{name}`: local computes are not supported yet (fix local data f_ID is)")
+        } else {
+            format!("Invalid attribute `{name}` in dump local command (expected index, f_ID or f_ID[N])")
+        });
+    };
+    let (id, col) = match rest.find('[') {
+        Some(k) if rest.ends_with(']') => (&rest[..k], Some(rest[k + 1..rest.len() - 1].parse::<usize>().map_err(|_| format!("bad column in `{name}`"))?)),
+        Some(_) => return Err(format!("Invalid attribute `{name}` in dump local command")),
+        None => (rest, None),
+    };
+    let fix = w.fix(id).ok_or_else(|| format!("Could not find dump local fix ID `{id}`"))?;
+    let (_, cols, freq) = fix.local().ok_or_else(|| format!("Dump local fix `{id}` does not compute local info"))?;
+    let col = match col {
+        None if cols > 0 => return Err(format!("Dump local fix `{id}` does not compute a local vector (use f_{id}[N], N in 1..{cols})")),
+        None => None,
+        Some(_) if cols == 0 => return Err(format!("Dump local fix `{id}` does not compute a local array")),
+        Some(n) if n >= 1 && n <= cols => Some(n - 1),
+        Some(n) => return Err(format!("Dump local fix vector is accessed out-of-range: column {n} of 1..{cols}")),
+    };
+    if every % freq != 0 {
+        return Err(format!("Dump local and fix not computed at compatible times (dump every {every}, fix `{id}` every {freq})"));
+    }
+    Ok(Column::LocalFix(id.to_string(), col))
 }
 
 /// LAMMPS' `%-1.16e` for box bounds.

@@ -231,7 +231,16 @@ impl Simulation {
             pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
         }
         self.timers.charge(Stage::Pair);
-        let bonded = crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?;
+        let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm_spring()) {
+            Some(bpm) => {
+                let (tally, broken) = crate::models::bonded::bond_bpm_spring::compute(&mut self.state, bpm, eflag)?;
+                if !broken.is_empty() {
+                    self.bonds_broken(&broken)?;
+                }
+                tally
+            }
+            None => crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?,
+        };
         self.timers.charge(Stage::Bond);
         if eflag {
             let mut virial = pair_tally.virial;
@@ -247,6 +256,22 @@ impl Simulation {
                 step: self.state.step,
             };
         }
+        Ok(())
+    }
+
+    /// Bonds of a BPM style broke in this force evaluation: their records go to the style's
+    /// fix store/local, then they leave the topology, the special table, the neighbour list and
+    /// the bonded lists.
+    fn bonds_broken(&mut self, broken: &[crate::models::bonded::bond_bpm_spring::Broken]) -> Result<(), RunError> {
+        let bpm = self.bond_style.as_deref().and_then(|b| b.as_bpm_spring()).expect("a BPM bond style");
+        if let Some(sl) = &bpm.store_local {
+            let rows: Vec<Vec<f64>> = broken.iter().map(|b| crate::models::bonded::bond_bpm_spring::record(&sl.values, &self.state, b)).collect();
+            let masks: Vec<[u32; 2]> = broken.iter().map(|b| b.atoms.map(|i| self.state.atoms.mask[i as usize])).collect();
+            let fix = self.fixes.iter_mut().find(|f| f.id() == sl.fix_id).and_then(|f| f.as_store_local());
+            let Some(fix) = fix else { return Err(RunError::new(self.state.step, format!("Cannot find fix STORE/LOCAL id {}", sl.fix_id))) };
+            fix.add_rows(rows, &masks);
+        }
+        crate::models::bonded::bond_bpm_spring::remove_broken(&mut self.state, broken);
         Ok(())
     }
 

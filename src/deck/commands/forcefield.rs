@@ -108,7 +108,42 @@ pub fn bond_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         Some(w) => {
             let mut s = crate::models::bonded::new_bond_style(&w.text).unwrap();
             s.settings(&mut Args::from_words(&cmd.args[1..], cmd.span, "bond_style style args"))?;
+            if let Some(sl) = s.as_bpm_spring().and_then(|b| b.store_local.as_ref()) {
+                bpm_store_local(sim, sl)?;
+            }
             sim.bond_style = Some(s);
+        }
+    }
+    Ok(())
+}
+
+/// `store/local FIXID N values...` of a BPM bond style: the fix STORE/LOCAL that collects the
+/// broken bonds (LAMMPS creates it unless a fix of that ID exists), and the reference positions
+/// for x/ref, y/ref, z/ref (the positions now).
+fn bpm_store_local(sim: &mut Simulation, sl: &crate::models::bonded::bond_bpm_spring::StoreLocal) -> DResult<()> {
+    use crate::models::bonded::bond_bpm_spring::{LocalValue, X_REF};
+    match sim.fixes.iter_mut().find(|f| f.id() == sl.fix_id) {
+        Some(f) => {
+            if f.as_store_local().is_none() {
+                return Err(Diagnostic::at(sl.span, format!("Incorrect fix style matched, not STORE/LOCAL: {}", f.style()), "fix ID of another style"));
+            }
+        }
+        None => {
+            let all = sim.state.groups.bit("all").unwrap_or(1);
+            sim.fixes.push(Box::new(crate::models::fix::store_local::FixStoreLocal::new(sl.fix_id.clone(), all, sl.every, sl.values.len())));
+        }
+    }
+    if sl.values.iter().any(|v| matches!(v, LocalValue::XRef(_))) {
+        let a = &mut sim.state.atoms;
+        if a.nall() > a.nlocal {
+            a.clear_ghosts();
+            sim.state.lists_valid = false;
+        }
+        for (d, field) in X_REF.into_iter().enumerate() {
+            let k = a.add_field(field);
+            for i in 0..a.nlocal {
+                a.extra[k].data[i] = a.x[i][d];
+            }
         }
     }
     Ok(())

@@ -85,7 +85,7 @@ pub fn create_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             let total = sim.state.topo.bonds.len();
             sim.out.print(&format!("Added {added} bonds, new total = {total}"));
         }
-        1 => sim.state.topo.bonds.push(Bond { typ, atoms: [ids[0], ids[1]] }),
+        1 => sim.state.topo.bonds.push(Bond::new(typ, [ids[0], ids[1]])),
         2 => sim.state.topo.angles.push(Angle { typ, atoms: [ids[0], ids[1], ids[2]] }),
         _ => sim.state.topo.dihedrals.push(Dihedral { typ, atoms: [ids[0], ids[1], ids[2], ids[3]] }),
     }
@@ -204,6 +204,6 @@ fn many(sim: &mut Simulation, cmd: &Command, groups: [u32; 2], typ: usize, range
     new_bonds.sort_unstable();
     new_bonds.dedup();
     let added = new_bonds.len();
-    sim.state.topo.bonds.extend(new_bonds.into_iter().map(|(i, j)| Bond { typ, atoms: [i, j] }));
+    sim.state.topo.bonds.extend(new_bonds.into_iter().map(|(i, j)| Bond::new(typ, [i, j])));
     Ok(added)
 }

@@ -357,7 +357,7 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
         nangletypes: t.angle_types,
         ndihedraltypes: t.dihedral_types,
         nimpropertypes: t.improper_types,
-        bonds: t.bonds.iter().map(|b| Bond { typ: b[0] as usize, atoms: [b[1], b[2]] }).collect(),
+        bonds: t.bonds.iter().map(|b| Bond::new(b[0] as usize, [b[1], b[2]])).collect(),
         angles: t.angles.iter().map(|b| Angle { typ: b[0] as usize, atoms: [b[1], b[2], b[3]] }).collect(),
         dihedrals: t.dihedrals.iter().map(|b| Dihedral { typ: b[0] as usize, atoms: [b[1], b[2], b[3], b[4]] }).collect(),
     };

@@ -45,6 +45,10 @@ impl Entries {
     pub fn capacity(&self) -> usize {
         self.raw.capacity()
     }
+    /// Clear the special-bond level of entry `k` (its index, checked when made, stays).
+    pub fn clear_level(&mut self, k: usize) {
+        self.raw[k] &= INDEX_MASK;
+    }
     /// The atoms the entries may index.
     pub fn bound(&self) -> usize {
         self.bound

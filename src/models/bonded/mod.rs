@@ -16,6 +16,7 @@
 //! the virials from [`bond_virial`], [`angle_virial`], [`dihedral_virial`] summed per style.
 
 pub mod angle_harmonic;
+pub mod bond_bpm_spring;
 pub mod bond_harmonic;
 pub mod dihedral_harmonic;
 pub mod dihedral_quadratic;
@@ -72,6 +73,15 @@ pub trait BondStyle: Send + Sync {
     }
     /// The coefficient words `write_data` prints after the type number.
     fn coeff_words(&self, btype: usize) -> String;
+    /// Checks before a run that need the state (special weights, newton, ...); `many_body`:
+    /// an angle or dihedral style is defined.
+    fn init(&self, _state: &crate::engine::state::State, _many_body: bool) -> Result<(), String> {
+        Ok(())
+    }
+    /// bpm/spring runs its own pass (per-bond history, velocities, breaking).
+    fn as_bpm_spring(&self) -> Option<&bond_bpm_spring::BondBpmSpring> {
+        None
+    }
 }
 
 /// What one angle contributes. The middle atom gets `-(f1 + f3)` (see [`AngleForces::f2`]).
@@ -177,7 +187,10 @@ type BondCtor = fn() -> Box<dyn BondStyle>;
 type AngleCtor = fn() -> Box<dyn AngleStyle>;
 type DihedralCtor = fn() -> Box<dyn DihedralStyle>;
 
-const BOND_STYLES: &[(&str, BondCtor)] = &[("harmonic", || Box::new(bond_harmonic::BondHarmonic::default()))];
+const BOND_STYLES: &[(&str, BondCtor)] = &[
+    ("harmonic", || Box::new(bond_harmonic::BondHarmonic::default())),
+    ("bpm/spring", || Box::new(bond_bpm_spring::BondBpmSpring::default())),
+];
 const ANGLE_STYLES: &[(&str, AngleCtor)] = &[("harmonic", || Box::new(angle_harmonic::AngleHarmonic::default()))];
 const DIHEDRAL_STYLES: &[(&str, DihedralCtor)] = &[
     ("harmonic", || Box::new(dihedral_harmonic::DihedralHarmonic::default())),

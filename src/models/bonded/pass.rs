@@ -41,6 +41,7 @@ pub fn init_bonded(state: &mut State, bond: Option<&mut Box<dyn BondStyle>>, ang
             if t.nbondtypes > 0 {
                 s.check_all_set()?;
             }
+            s.init(state, angle.is_some() || dihedral.is_some())?;
         }
         if let Some(s) = angle {
             s.set_types(t.nangletypes);
@@ -102,24 +103,24 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
         };
         let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
         if styles.bond.is_some() {
-            for b in &t.bonds {
+            for (rec, b) in t.bonds.iter().enumerate() {
                 let i = [find(b.atoms[0], "bond")?, find(b.atoms[1], "bond")?];
-                bonds.push(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ });
+                bonds.push(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ, rec: rec as u32 });
             }
         }
         if styles.angle.is_some() {
-            for a in &t.angles {
+            for (rec, a) in t.angles.iter().enumerate() {
                 let i = [find(a.atoms[0], "angle")?, find(a.atoms[1], "angle")?, find(a.atoms[2], "angle")?];
                 let r = i[1] as usize;
-                angles.push(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ });
+                angles.push(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ, rec: rec as u32 });
             }
         }
         if styles.dihedral.is_some() {
-            for d in &t.dihedrals {
+            for (rec, d) in t.dihedrals.iter().enumerate() {
                 let i = [find(d.atoms[0], "dihedral")?, find(d.atoms[1], "dihedral")?, find(d.atoms[2], "dihedral")?, find(d.atoms[3], "dihedral")?];
                 let r = i[1] as usize;
                 let shift = [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize), closest(r, i[3] as usize)];
-                dihedrals.push(Entry { atoms: i, shift, typ: d.typ });
+                dihedrals.push(Entry { atoms: i, shift, typ: d.typ, rec: rec as u32 });
             }
         }
         let chunks = &state.neighbor.list.chunks;
@@ -170,7 +171,7 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
 }
 
 impl BondedTally {
-    fn add(&mut self, o: &BondedTally) {
+    pub fn add(&mut self, o: &BondedTally) {
         self.ebond += o.ebond;
         self.eangle += o.eangle;
         self.edihed += o.edihed;

@@ -277,7 +277,7 @@ mod tests {
     fn a_broken_bond_takes_its_angles_and_dihedrals_along() {
         let mut state = State::new();
         let t = &mut state.topo;
-        t.bonds = (1..5).map(|k| Bond { typ: 1, atoms: [k, k + 1] }).collect();
+        t.bonds = (1..5).map(|k| Bond::new(1, [k, k + 1])).collect();
         t.angles = (1..4).map(|k| Angle { typ: 1, atoms: [k, k + 1, k + 2] }).collect();
         t.dihedrals = (1..3).map(|k| Dihedral { typ: 1, atoms: [k, k + 1, k + 2, k + 3] }).collect();
         // bond 4-3 given in the other order: 3-4 goes, with angles 2-3-4 and 3-4-5 and both dihedrals

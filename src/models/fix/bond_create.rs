@@ -239,7 +239,7 @@ impl Fix for FixBondCreate {
         let new_bonds: HashSet<(i64, i64)> = created.iter().map(|&(i, j)| (state.atoms.tag[i], state.atoms.tag[j])).collect();
         for &(i, j) in &created {
             let (ti, tj) = (state.atoms.tag[i], state.atoms.tag[j]);
-            state.topo.bonds.push(Bond { typ: self.btype, atoms: [ti, tj] });
+            state.topo.bonds.push(Bond::new(self.btype, [ti, tj]));
             for m in [i, j] {
                 let c = &mut state.atoms.extra[k].data[m];
                 *c += 1.0;

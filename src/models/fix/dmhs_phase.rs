@@ -280,7 +280,7 @@ impl FixDmhsPhase {
                     }
                     let tj = a.tag[j];
                     if bonded.insert((ti.min(tj), ti.max(tj))) {
-                        state.topo.bonds.push(Bond { typ: btype, atoms: [ti, tj] });
+                        state.topo.bonds.push(Bond::new(btype, [ti, tj]));
                         self.created += 1;
                         topo_changed = true;
                     }

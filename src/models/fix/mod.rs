@@ -28,6 +28,7 @@ pub mod print;
 pub mod setforce;
 pub mod sph;
 pub mod spring;
+pub mod store_local;
 pub mod viscous;
 pub mod wall_gran;
 pub mod wall_gran_region;
@@ -208,6 +209,15 @@ pub trait Fix: Send + Sync {
         Ok(vec![])
     }
     /// One-line description for `dmhs check`.
+    /// The internal fix STORE/LOCAL of a BPM bond style.
+    fn as_store_local(&mut self) -> Option<&mut store_local::FixStoreLocal> {
+        None
+    }
+    /// Local data for `dump local`: the rows, the number of columns (0: a local vector) and
+    /// how often the rows are renewed (LAMMPS' `local_freq`).
+    fn local(&self) -> Option<(&[Vec<f64>], usize, i64)> {
+        None
+    }
     fn describe(&self) -> String {
         format!("fix {} {}", self.id(), self.style())
     }

@@ -14,13 +14,17 @@ pub mod value;
 pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
+pub mod langevin;
 pub mod move_linear;
 pub mod nve;
 pub mod nve_bpm_sphere;
 pub mod nve_sphere;
+pub mod nvt;
 pub mod pour;
 pub mod setforce;
 pub mod sph;
+pub mod temp_scale;
+pub mod thermostat;
 pub mod viscous;
 pub mod wall_gran;
 pub mod wall_gran_region;
@@ -231,11 +235,18 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("dmhs/cooling", |d, state| Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("dmhs/diffusion", |d, state| Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("dmhs/swell", |d, state| Ok(Box::new(dmhs_swell::FixSwell::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("langevin", |d, state| Ok(Box::new(langevin::FixLangevin::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("temp/rescale", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
+    ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
+    ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 
 /// Build a fix from `fix ID group style args...`.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], fixes: &[Box<dyn Fix>], state: &mut State) -> DResult<Box<dyn Fix>> {
+    if matches!(style.text.as_str(), "npt" | "nph") {
+        return Err(dmhs_parser::Args::from_words(&[], cmd.span, "").error_at(style, format!("fix {} (a barostat) is not supported: dmhs keeps the box fixed", style.text), "thermostats: nvt, langevin, temp/berendsen, temp/rescale"));
+    }
     match STYLES.iter().find(|(n, _)| *n == style.text) {
         Some((_, ctor)) => ctor(FixDef { cmd, fixes, id: id.text.clone(), groupbit, style, args }, state),
         None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),

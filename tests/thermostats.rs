@@ -7,7 +7,7 @@
 use dmhs::deck::{run_file, run_text, DeckOptions};
 use std::path::{Path, PathBuf};
 
-const DECKS: [&str; 4] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin"];
+const DECKS: [&str; 5] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega"];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -107,3 +107,46 @@ fn langevin_holds_the_target_temperature() {
     // the spread is the canonical one within 30 % (Langevin samples the canonical ensemble)
     assert!((sd / (1.2 * (2.0f64 / 1500.0).sqrt()) - 1.0).abs() < 0.3, "spread {sd}");
 }
+
+/// Bad thermostat commands give located errors (`dmhs check` on the langevin deck, edited).
+#[test]
+fn thermostat_errors_are_located() {
+    let base = std::fs::read_to_string(root().join("lammps-refs/decks/in.thermo_langevin")).unwrap();
+    let lang = "fix          2 all langevin v_tl 0.15 1.0 48279 scale 2 1.5 tally yes zero yes";
+    for (to, want) in [
+        ("fix 2 all langevin 0.1 0.1 1.0 0", "seed"),
+        ("fix 2 all langevin 0.1 0.1 1.0 900000001", "seed"),
+        ("fix 2 all langevin 0.1 0.1 0.0 5", "damp"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 gjf vhalf", "gjf"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 angmom 3.0", "angmom"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 scale 3 1.0", "atom type"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 wobble yes", "unknown keyword `wobble`"),
+        ("fix 2 all temp/rescale 0 0.1 0.1 0.01 1.0", "N (steps between rescales)"),
+        ("fix 2 all temp/berendsen 0.1 0.1", "damp"),
+        ("fix 2 all nvt temp 0.1 0.1 0.0", "Tdamp"),
+        ("fix 2 all nvt temp 0.0 0.1 1.0", "must be > 0.0"),
+        ("fix 2 all nvt tchain 3", "needs temperature control"),
+        ("fix 2 all nvt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "pressure control"),
+        ("fix 2 all npt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "barostat"),
+    ] {
+        let deck = base.replacen(lang, to, 1);
+        assert_ne!(deck, base);
+        let tmp = tempfile::tempdir().unwrap();
+        let path = tmp.path().join("in.th");
+        std::fs::write(&path, &deck).unwrap();
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).arg("check").arg(&path).current_dir(tmp.path()).output().unwrap();
+        let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert_eq!(o.status.code(), Some(2), "{to}: {out}");
+        assert!(out.contains(want) && out.contains("in.th:"), "{to}: expected `{want}`:\n{out}");
+    }
+}
+
+/// `fix langevin omega yes` needs finite-size particles: refused when the run starts.
+#[test]
+fn langevin_omega_needs_spheres() {
+    let base = std::fs::read_to_string(root().join("lammps-refs/decks/in.thermo_langevin")).unwrap();
+    let deck = base.replace("tally yes zero yes", "omega yes").replace("run          ${nsteps}", "run 10");
+    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(root().join("lammps-refs/decks")), ..Default::default() };
+    let err = run_text("in.omega", &deck, &opts).err().expect("a run error");
+    assert!(err.rendered.contains("omega requires atom style sphere"), "{}", err.rendered);
+}

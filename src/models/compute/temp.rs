@@ -144,6 +144,9 @@ impl Compute for ComputeTemp {
     fn setup(&mut self, w: &World) {
         self.dof.at_setup = Some(self.count_dof(w));
     }
+    fn plain_temp_extra(&self) -> Option<Option<f64>> {
+        Some(self.dof.extra)
+    }
     fn modify_dof(&mut self, extra: Option<f64>, dynamic: Option<bool>) {
         self.dof.modify(extra, dynamic);
     }

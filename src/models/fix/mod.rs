@@ -157,6 +157,11 @@ pub trait Fix: Send + Sync {
     fn phase_eos(&self) -> Option<crate::models::fix::dmhs_phase::PhaseEos> {
         None
     }
+    /// `fix_modify ID temp CID` with CID a plain `compute temp` of group `groupbit` (and extra
+    /// degrees of freedom `extra`, None: the dimension): measure the temperature as it does.
+    fn modify_temp(&mut self, _groupbit: u32, _extra: Option<f64>) -> Result<(), String> {
+        Err(format!("fix {} ({}) has no temperature to replace", self.id(), self.style()))
+    }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _state: &mut State) {}
     /// Wall planes drawn by `dump image ... fix ID`: (axis, coordinate) at the current step.

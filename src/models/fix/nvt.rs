@@ -188,6 +188,10 @@ impl Fix for FixNvt {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
+    fn modify_temp(&mut self, groupbit: u32, extra: Option<f64>) -> Result<(), String> {
+        self.temp.replace(groupbit, extra);
+        Ok(())
+    }
     fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
         self.temp.count_dof(state, ctx);
         self.tdrag_factor = 1.0 - (state.dt * self.t_freq * self.drag / self.nc_tchain as f64);

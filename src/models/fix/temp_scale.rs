@@ -59,6 +59,10 @@ impl Fix for FixTempScale {
     fn hooks(&self) -> FixHooks {
         FixHooks { end_of_step: true, ..FixHooks::default() }
     }
+    fn modify_temp(&mut self, groupbit: u32, extra: Option<f64>) -> Result<(), String> {
+        self.temp.replace(groupbit, extra);
+        Ok(())
+    }
     fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
         self.temp.count_dof(state, ctx);
         Ok(())

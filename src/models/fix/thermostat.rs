@@ -11,18 +11,24 @@ use dmhs_parser::{Args, DResult};
 #[derive(Clone, Copy, Debug, Default)]
 pub struct GroupTemp {
     pub groupbit: u32,
+    /// Degrees of freedom removed besides the fixes' (None: the dimension).
+    pub extra: Option<f64>,
     pub dof: f64,
 }
 
 impl GroupTemp {
     pub fn new(groupbit: u32) -> GroupTemp {
-        GroupTemp { groupbit, dof: 0.0 }
+        GroupTemp { groupbit, extra: None, dof: 0.0 }
     }
     /// LAMMPS' `dof_compute` (at init of a run).
     pub fn count_dof(&mut self, state: &State, ctx: &FixCtx) {
         let dim = state.dimension as f64;
         let fix_dof: f64 = ctx.other_fixes().map(|f| f.dof_removed(state, self.groupbit)).sum();
-        self.dof = dim * state.group_count(self.groupbit) as f64 - (dim + fix_dof);
+        self.dof = dim * state.group_count(self.groupbit) as f64 - (self.extra.unwrap_or(dim) + fix_dof);
+    }
+    /// `fix_modify temp`: the group and extra degrees of freedom of another `compute temp`.
+    pub fn replace(&mut self, groupbit: u32, extra: Option<f64>) {
+        (self.groupbit, self.extra) = (groupbit, extra);
     }
     /// The current temperature (0 without degrees of freedom).
     pub fn compute(&self, state: &State) -> f64 {

@@ -73,6 +73,8 @@ impl LammpsOrder {
     /// After dmhs' rebuild at `step`: LAMMPS' `Atom::sort` when it is due (always at the
     /// setup of a run; then on rebuilds from `nextsort` on), then the map to dmhs' indices.
     /// `cutneighmax` is the largest pair cutoff plus skin.
+    /// A box with more sort bins than LAMMPS allows (2^31 - 1; LAMMPS stops there) keeps the
+    /// order, where dmhs' own bins keep working.
     pub fn after_rebuild(&mut self, atoms: &Atoms, domain: &Domain, cutneighmax: f64, step: i64, setup: bool) {
         let map = atoms.tag_map();
         let local = |ids: &[i64]| -> Vec<usize> { ids.iter().map(|&t| map.get(t).expect("every ordered atom is owned")).collect() };
@@ -82,7 +84,8 @@ impl LammpsOrder {
                 self.nextsort = (step / self.sortfreq) * self.sortfreq + self.sortfreq;
                 let idx = local(&self.ids);
                 let bins = sort_bins(domain, binsize);
-                if bins.total() > 1 {
+                let total = bins.total().filter(|&t| t <= i32::MAX as usize).unwrap_or(1);
+                if total > 1 {
                     let key: Vec<usize> = idx.iter().map(|&i| bins.bin(&atoms.x[i])).collect();
                     let mut perm: Vec<usize> = (0..self.ids.len()).collect();
                     // stable: atoms of one bin keep their order (LAMMPS' linked lists)
@@ -122,8 +125,9 @@ fn sort_bins(domain: &Domain, binsize: f64) -> SortBins {
 }
 
 impl SortBins {
-    fn total(&self) -> usize {
-        self.n[0] * self.n[1] * self.n[2]
+    /// Number of bins (None if it overflows).
+    fn total(&self) -> Option<usize> {
+        self.n[0].checked_mul(self.n[1])?.checked_mul(self.n[2])
     }
     fn bin(&self, x: &[f64; 3]) -> usize {
         let mut c = [0usize; 3];
@@ -175,5 +179,19 @@ mod tests {
         atoms.push(&NewAtom::at(9, 1, [0.5; 3]));
         o.before_rebuild(&atoms);
         assert_eq!(o.ids, vec![1, 4, 3, 9]);
+    }
+
+    #[test]
+    fn a_box_with_too_many_sort_bins_keeps_the_order_instead_of_overflowing() {
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        atoms.push(&NewAtom::at(2, 1, [9e11; 3]));
+        atoms.push(&NewAtom::at(1, 1, [0.5; 3]));
+        let mut o = LammpsOrder::default();
+        o.before_rebuild(&atoms);
+        o.after_rebuild(&atoms, &domain(1e12), 1e-3, 0, true);
+        assert_eq!(o.ids, vec![2, 1]);
+        // with fewer bins the two atoms are sorted
+        o.after_rebuild(&atoms, &domain(1e12), 1e11, 0, true);
+        assert_eq!(o.ids, vec![1, 2]);
     }
 }

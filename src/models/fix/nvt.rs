@@ -56,8 +56,9 @@ impl FixNvt {
                     let period = a.positive_f64("Tdamp")?;
                     temp = Some((t0, t1, period));
                 }
-                "tchain" => mtchain = a.i64_in("tchain (chain length)", 1, 1_000_000)? as usize,
-                "tloop" => nc_tchain = a.i64_in("tloop (sub-cycles)", 0, i64::MAX)?,
+                "tchain" => mtchain = a.i64_in("tchain (chain length)", 1, 10_000)? as usize,
+                // LAMMPS takes any count; a bound keeps a typo from hanging the run
+                "tloop" => nc_tchain = a.i64_in("tloop (sub-cycles)", 0, 10_000)?,
                 "drag" => drag = a.non_negative_f64("drag factor")?,
                 // the MTK terms act on the barostat only
                 "mtk" => {

@@ -287,7 +287,7 @@ impl CreateAtoms {
                     if m.typ.is_none() {
                         return Err(a.error_at(w, "create_atoms molecule must have atom types (a Types section)", "template without types"));
                     }
-                    let seed = a.i64_in("molecule random seed", 1, crate::engine::random_mars::RanMars::MAX_SEED)?;
+                    let seed = a.i64_in("molecule random seed", 1, *crate::engine::random_mars::SEED_RANGE.end())?;
                     if is_random {
                         return Err(a.error_at(kw, "create_atoms random with mol is not supported yet", "supported with single, box and region"));
                     }
@@ -613,7 +613,7 @@ impl CreateAtoms {
 /// largest present ones.
 pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed: i64, rotate: Option<[[f64; 3]; 3]>, type_offset: usize, centers: &[[f64; 3]]) -> Result<(), String> {
     m.check_types(state)?;
-    let mut ran = crate::engine::random_mars::RanMars::new(seed)?;
+    let mut ran = crate::engine::random_mars::RanMars::new(seed as i32);
     let domain = state.domain.clone().ok_or("create_atoms before the box is defined")?;
     let nlocal = state.atoms.nlocal;
     let mut mol_offset = if state.atoms.features.molecule { state.atoms.molecule[..nlocal].iter().copied().max().unwrap_or(0).max(0) } else { 0 };

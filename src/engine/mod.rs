@@ -7,6 +7,7 @@ pub mod contact_history;
 pub mod domain;
 pub mod fields;
 pub mod groups;
+pub mod lammps_order;
 pub mod lattice;
 pub mod molecule;
 pub mod neighbor;

@@ -1,7 +1,10 @@
-//! LAMMPS' Marsaglia generator (`RanMars`, RANMAR of F. James, Comp. Phys. Comm. 60, 329
-//! (1990)): the stream LAMMPS uses per processor (seeded `seed + rank`) for molecule
-//! orientations, thermostat noise and the like. Same seed, same numbers, bit for bit.
+//! Marsaglia's RANMAR generator exactly as LAMMPS' `RanMars` computes it (James, Comp. Phys.
+//! Comm. 60, 329 (1990)): the same lagged-Fibonacci table built from the seed, the same
+//! carry sequence, the same polar Box-Muller. Fix langevin draws its forces from it, so the
+//! numbers (and their order) must be LAMMPS'.
 
+/// LAMMPS' `RanMars` generator state.
+#[derive(Clone, Debug, PartialEq)]
 pub struct RanMars {
     u: [f64; 98],
     i97: usize,
@@ -9,27 +12,25 @@ pub struct RanMars {
     c: f64,
     cd: f64,
     cm: f64,
-    /// The second number of the last Gaussian pair, when not used yet.
-    second: Option<f64>,
+    save: bool,
+    second: f64,
 }
 
-impl RanMars {
-    /// The largest seed LAMMPS accepts.
-    pub const MAX_SEED: i64 = 900_000_000;
+/// The seeds LAMMPS accepts (it stops with "Invalid seed" outside).
+pub const SEED_RANGE: std::ops::RangeInclusive<i64> = 1..=900_000_000;
 
-    /// A generator for `seed` in 1..=900000000 (`Err` with LAMMPS' message otherwise).
-    pub fn new(seed: i64) -> Result<RanMars, String> {
-        if seed <= 0 || seed > Self::MAX_SEED {
-            return Err(format!("invalid seed {seed} for the Marsaglia random number generator (expected 1 to {})", Self::MAX_SEED));
-        }
-        let seed = seed as i32;
+impl RanMars {
+    /// A generator seeded with `seed` in [`SEED_RANGE`] (callers check user seeds and report
+    /// the error at the seed's word).
+    pub fn new(seed: i32) -> RanMars {
+        assert!(SEED_RANGE.contains(&(seed as i64)), "RanMars seed out of range: {seed}");
+        let mut u = [0.0; 98];
         let ij = (seed - 1) / 30082;
         let kl = (seed - 1) - 30082 * ij;
         let mut i = (ij / 177) % 177 + 2;
         let mut j = ij % 177 + 2;
         let mut k = (kl / 169) % 178 + 1;
         let mut l = kl % 169;
-        let mut u = [0.0; 98];
         for slot in u.iter_mut().skip(1) {
             let mut s = 0.0;
             let mut t = 0.5;
@@ -53,13 +54,15 @@ impl RanMars {
             c: 362436.0 / 16777216.0,
             cd: 7654321.0 / 16777216.0,
             cm: 16777213.0 / 16777216.0,
-            second: None,
+            save: false,
+            second: 0.0,
         };
+        // LAMMPS discards one number in the constructor
         r.uniform();
-        Ok(r)
+        r
     }
 
-    /// A number in [0, 1).
+    /// Uniform deviate in [0, 1).
     pub fn uniform(&mut self) -> f64 {
         let mut uni = self.u[self.i97] - self.u[self.j97];
         if uni < 0.0 {
@@ -85,22 +88,17 @@ impl RanMars {
         uni
     }
 
-    /// A standard normal number (polar Box-Muller; the pair's second number is kept for the
-    /// next call, as LAMMPS does).
+    /// Gaussian deviate with zero mean and unit variance (polar Box-Muller; the second value
+    /// of each pair is returned by the next call).
     pub fn gaussian(&mut self) -> f64 {
-        if let Some(s) = self.second.take() {
-            return s;
+        if self.save {
+            self.save = false;
+            return self.second;
         }
-        loop {
-            let v1 = 2.0 * self.uniform() - 1.0;
-            let v2 = 2.0 * self.uniform() - 1.0;
-            let rsq = v1 * v1 + v2 * v2;
-            if rsq < 1.0 && rsq != 0.0 {
-                let fac = (-2.0 * rsq.ln() / rsq).sqrt();
-                self.second = Some(v1 * fac);
-                return v2 * fac;
-            }
-        }
+        let (first, second) = super::random_park::polar_pair(|| self.uniform());
+        self.second = second;
+        self.save = true;
+        first
     }
 }
 
@@ -109,23 +107,35 @@ mod tests {
     use super::*;
 
     #[test]
-    fn seeds_out_of_range_are_refused() {
-        assert!(RanMars::new(0).is_err());
-        assert!(RanMars::new(900_000_001).is_err());
-        assert!(RanMars::new(900_000_000).is_ok());
-    }
-
-    #[test]
-    fn uniform_numbers_are_in_the_unit_interval_and_average_one_half() {
-        let mut r = RanMars::new(12345).unwrap();
-        let n = 100_000;
+    fn uniform_deviates_lie_in_the_unit_interval_with_the_right_mean() {
+        let mut r = RanMars::new(12345);
+        let n = 200_000;
         let mut sum = 0.0;
         for _ in 0..n {
             let x = r.uniform();
             assert!((0.0..1.0).contains(&x));
             sum += x;
         }
-        // standard error of the mean: 1/sqrt(12 n) = 9.1e-4
-        assert!((sum / n as f64 - 0.5).abs() < 5e-3);
+        let mean = sum / n as f64;
+        // standard error of the mean is 1/sqrt(12 n) = 6.5e-4
+        assert!((mean - 0.5).abs() < 4e-3, "mean {mean}");
+    }
+
+    #[test]
+    fn different_seeds_give_different_streams_and_equal_seeds_the_same() {
+        let (mut a, mut b, mut c) = (RanMars::new(7), RanMars::new(7), RanMars::new(8));
+        let (xa, xb, xc) = (a.uniform(), b.uniform(), c.uniform());
+        assert_eq!(xa, xb);
+        assert_ne!(xa, xc);
+    }
+
+    #[test]
+    fn every_value_is_a_multiple_of_two_to_the_minus_24() {
+        // RANMAR works on 24-bit fractions: the table, the carry and their differences are exact
+        let mut r = RanMars::new(4928459);
+        for _ in 0..1000 {
+            let x = r.uniform() * 16777216.0;
+            assert_eq!(x, x.trunc());
+        }
     }
 }

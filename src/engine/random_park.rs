@@ -43,18 +43,10 @@ impl RanPark {
             self.save = false;
             return self.second;
         }
-        let (v1, v2, rsq) = loop {
-            let v1 = 2.0 * self.uniform() - 1.0;
-            let v2 = 2.0 * self.uniform() - 1.0;
-            let rsq = v1 * v1 + v2 * v2;
-            if rsq < 1.0 && rsq != 0.0 {
-                break (v1, v2, rsq);
-            }
-        };
-        let fac = (-2.0 * rsq.ln() / rsq).sqrt();
-        self.second = v1 * fac;
+        let (first, second) = polar_pair(|| self.uniform());
+        self.second = second;
         self.save = true;
-        v2 * fac
+        first
     }
 
     /// Restart the sequence from `seed` (positive).
@@ -102,6 +94,21 @@ impl RanPark {
     pub fn state(&self) -> i32 {
         self.seed
     }
+}
+
+/// Two Gaussian deviates from uniform ones by LAMMPS' polar Box-Muller (RanPark and RanMars
+/// alike): the first is returned at once, the second by the next call.
+pub fn polar_pair(mut uniform: impl FnMut() -> f64) -> (f64, f64) {
+    let (v1, v2, rsq) = loop {
+        let v1 = 2.0 * uniform() - 1.0;
+        let v2 = 2.0 * uniform() - 1.0;
+        let rsq = v1 * v1 + v2 * v2;
+        if rsq < 1.0 && rsq != 0.0 {
+            break (v1, v2, rsq);
+        }
+    };
+    let fac = (-2.0 * rsq.ln() / rsq).sqrt();
+    (v2 * fac, v1 * fac)
 }
 
 #[cfg(test)]

@@ -102,6 +102,8 @@ pub struct State {
     pub bonded_lists: BondedLists,
     pub neigh_settings: NeighborSettings,
     pub neighbor: Neighbor,
+    /// LAMMPS' local order of the owned atoms (for models whose bits depend on atom order).
+    pub lammps_order: super::lammps_order::LammpsOrder,
     pub comm_vel: bool,
     pub groups: Groups,
     pub lattice: Option<Lattice>,
@@ -158,6 +160,7 @@ impl State {
             bonded_lists: Default::default(),
             neigh_settings: NeighborSettings::new(units.skin),
             neighbor: Neighbor::default(),
+            lammps_order: Default::default(),
             comm_vel: false,
             groups: Groups::default(),
             lattice: None,

@@ -105,6 +105,11 @@ impl Simulation {
     /// Wrap periodic coordinates, resize shrink-wrapped boxes, remove atoms that left a fixed
     /// box, sort, make ghosts and build the lists.
     pub fn rebuild(&mut self) -> Result<(), RunError> {
+        self.rebuild_at(false)
+    }
+
+    /// [`Simulation::rebuild`]; `setup`: at the setup of a run (LAMMPS sorts its atoms then).
+    fn rebuild_at(&mut self, setup: bool) -> Result<(), RunError> {
         let step = self.state.step;
         if self.state.special_dirty {
             self.state.rebuild_special().map_err(|e| RunError::new(step, e))?;
@@ -119,6 +124,7 @@ impl Simulation {
             crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
         }
         crate::sim::stability::check_lost(self)?;
+        self.state.lammps_order.before_rebuild(&self.state.atoms);
         let domain = self.state.domain.as_ref().unwrap();
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
@@ -150,6 +156,8 @@ impl Simulation {
                     ),
                 ),
             })?;
+        let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
+        self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, setup);
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }
@@ -279,7 +287,7 @@ impl Simulation {
     pub fn setup(&mut self, pre: bool) -> Result<(), RunError> {
         if pre || !self.state.lists_valid {
             self.timers.stamp();
-            self.rebuild()?;
+            self.rebuild_at(true)?;
             self.timers.charge(Stage::Neigh);
         } else {
             let prd = self.state.domain.as_ref().unwrap().prd();

@@ -67,6 +67,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("compute", modify_cmds::compute),
     ("uncompute", modify_cmds::uncompute),
     ("compute_modify", modify_cmds::compute_modify),
+    ("fix_modify", modify_cmds::fix_modify),
     ("thermo", output_cmds::thermo),
     ("thermo_style", output_cmds::thermo_style),
     ("thermo_modify", output_cmds::thermo_modify),

@@ -74,6 +74,40 @@ pub fn uncompute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     Ok(())
 }
 
+/// `fix_modify ID temp CID`: a thermostat measures its temperature with compute CID (a plain
+/// `compute temp`; its extra/dof as set when fix_modify is given).
+pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    let mut a = Args::new(cmd, "fix_modify ID temp compute-ID");
+    let id = a.word("fix ID")?;
+    let k = sim.find_fix(&id.text).ok_or_else(|| a.error_at(id, format!("fix `{}` does not exist", id.text), "unknown fix"))?;
+    if a.is_empty() {
+        return Err(a.missing("a keyword (temp)"));
+    }
+    while let Some(kw) = a.peek() {
+        a.skip(1);
+        match kw.text.as_str() {
+            "temp" => {
+                let cw = a.word("temperature compute ID")?;
+                let c = sim.find_compute(&cw.text).ok_or_else(|| a.error_at(cw, format!("compute `{}` does not exist", cw.text), "unknown compute"))?;
+                let compute = &sim.computes[c];
+                let Some(extra) = compute.plain_temp_extra() else {
+                    return Err(a.error_at(cw, format!("compute `{}` ({}) is not a plain compute temp, the only temperature fix_modify temp takes in dmhs", cw.text, compute.style()), "not compute temp"));
+                };
+                let groupbit = compute.groupbit();
+                let fix_bit = sim.fixes[k].groupbit();
+                if groupbit != fix_bit {
+                    let name = |bit: u32| sim.state.groups.names().find(|&(i, _)| 1u32 << i == bit).map_or("?", |(_, n)| n).to_string();
+                    let text = format!("WARNING: Group for fix_modify temp != fix group: {} vs {}", name(fix_bit), name(groupbit));
+                    sim.out.print(&text);
+                }
+                sim.fixes[k].modify_temp(groupbit, extra).map_err(|e| a.error_at(kw, e, "no temperature"))?;
+            }
+            _ => return Err(a.unknown_keyword(kw, &["temp"])),
+        }
+    }
+    Ok(())
+}
+
 /// `compute_modify ID extra/dof N | dynamic/dof yes|no ...` (`extra` and `dynamic` are LAMMPS'
 /// older spellings).
 pub fn compute_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {

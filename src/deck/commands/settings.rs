@@ -188,7 +188,7 @@ pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     Ok(())
 }
 
-pub fn atom_modify(_sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+pub fn atom_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let syntax = "atom_modify keyword value ...  (map array|hash|yes, sort Nfreq binsize, id yes, first group)";
     let mut a = Args::new(cmd, syntax);
     if a.is_empty() {
@@ -200,10 +200,11 @@ pub fn atom_modify(_sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             "map" => {
                 a.choice("map style", &["array", "hash", "yes"])?;
             }
-            // dmhs sorts atoms spatially at every neighbour-list rebuild; the setting is accepted
+            // dmhs sorts its own atoms at every rebuild; the setting gives LAMMPS' order, which
+            // fixes that draw random numbers per atom follow (engine/lammps_order.rs)
             "sort" => {
-                a.i64_in("sort frequency", 0, i64::MAX)?;
-                a.non_negative_f64("sort bin size")?;
+                sim.state.lammps_order.sortfreq = a.i64_in("sort frequency", 0, i64::MAX)?;
+                sim.state.lammps_order.binsize = a.non_negative_f64("sort bin size")?;
             }
             "id" => {
                 if !a.yes_no("id")? {

@@ -142,6 +142,12 @@ pub trait Compute: Send + Sync {
     /// `compute_modify extra/dof` and `dynamic/dof` (only temperatures use them; LAMMPS accepts
     /// them for every compute).
     fn modify_dof(&mut self, _extra: Option<f64>, _dynamic: Option<bool>) {}
+    /// For a plain `compute temp` (no bias, no rotation): the extra degrees of freedom set by
+    /// `compute_modify extra/dof` (Some(None) when not set), so that a thermostat given it by
+    /// `fix_modify temp` counts the same degrees of freedom. None for other computes.
+    fn plain_temp_extra(&self) -> Option<Option<f64>> {
+        None
+    }
     fn describe(&self) -> String {
         format!("compute {} {}", self.id(), self.style())
     }

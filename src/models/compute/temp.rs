@@ -3,6 +3,7 @@
 //! yes`), as LAMMPS; extra is the dimension unless `compute_modify extra/dof` sets it.
 
 use super::{expect_no_args, Compute};
+use crate::engine::state::State;
 use crate::models::world::World;
 use dmhs_parser::{Command, DResult, Word};
 
@@ -78,15 +79,21 @@ impl ComputeTemp {
 
 /// T = sum(m v^2) mvv2e / (dof kB) of a group, 0 without degrees of freedom.
 pub fn temperature_with(w: &World, groupbit: u32, dof: f64) -> f64 {
-    let a = &w.state.atoms;
+    sum_mv2(w.state, groupbit) * tfactor(w, dof)
+}
+
+/// sum(m v^2) over the owned atoms of a group, added in LAMMPS' local order (so thermostats
+/// that scale by the temperature get LAMMPS' bits).
+pub fn sum_mv2(state: &State, groupbit: u32) -> f64 {
+    let a = &state.atoms;
     let mut t = 0.0;
-    for i in 0..a.nlocal {
+    for &i in state.lammps_order.indices(a.nlocal).iter() {
         if a.mask[i] & groupbit != 0 {
             let v = a.v[i];
-            t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * w.state.mass(i);
+            t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * state.mass(i);
         }
     }
-    t * tfactor(w, dof)
+    t
 }
 
 /// Kinetic energy tensor mvv2e * sum m v_a v_b (xx yy zz xy xz yz).
@@ -136,6 +143,9 @@ impl Compute for ComputeTemp {
     }
     fn setup(&mut self, w: &World) {
         self.dof.at_setup = Some(self.count_dof(w));
+    }
+    fn plain_temp_extra(&self) -> Option<Option<f64>> {
+        Some(self.dof.extra)
     }
     fn modify_dof(&mut self, extra: Option<f64>, dynamic: Option<bool>) {
         self.dof.modify(extra, dynamic);

@@ -18,10 +18,12 @@ pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
 pub mod indent;
+pub mod langevin;
 pub mod move_linear;
 pub mod nve;
 pub mod nve_bpm_sphere;
 pub mod nve_sphere;
+pub mod nvt;
 pub mod pour;
 pub mod sampling;
 pub mod print;
@@ -29,6 +31,8 @@ pub mod setforce;
 pub mod sph;
 pub mod spring;
 pub mod store_local;
+pub mod temp_scale;
+pub mod thermostat;
 pub mod viscous;
 pub mod wall_gran;
 pub mod wall_gran_region;
@@ -201,6 +205,11 @@ pub trait Fix: Send + Sync {
     fn phase_eos(&self) -> Option<crate::models::fix::dmhs_phase::PhaseEos> {
         None
     }
+    /// `fix_modify ID temp CID` with CID a plain `compute temp` of group `groupbit` (and extra
+    /// degrees of freedom `extra`, None: the dimension): measure the temperature as it does.
+    fn modify_temp(&mut self, _groupbit: u32, _extra: Option<f64>) -> Result<(), String> {
+        Err(format!("fix {} ({}) has no temperature to replace", self.id(), self.style()))
+    }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _state: &mut State) {}
     /// Wall planes drawn by `dump image ... fix ID`: (axis, coordinate) at the current step.
@@ -299,6 +308,10 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("dmhs/cooling", |d, state| Ok(Box::new(dmhs_cooling::FixDmhsCooling::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("dmhs/diffusion", |d, state| Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("dmhs/swell", |d, state| Ok(Box::new(dmhs_swell::FixSwell::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("langevin", |d, state| Ok(Box::new(langevin::FixLangevin::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("temp/rescale", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
+    ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
+    ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 
@@ -321,6 +334,9 @@ pub struct Defined<'a> {
 
 /// Build a fix from `fix ID group style args...`; `defined` are the fixes and computes so far.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], defined: Defined, state: &mut State) -> DResult<Box<dyn Fix>> {
+    if matches!(style.text.as_str(), "npt" | "nph") {
+        return Err(dmhs_parser::Args::from_words(&[], cmd.span, "").error_at(style, format!("fix {} (a barostat) is not supported: dmhs keeps the box fixed", style.text), "thermostats: nvt, langevin, temp/berendsen, temp/rescale"));
+    }
     match STYLES.iter().find(|(n, _)| *n == style.text) {
         Some((_, ctor)) => ctor(FixDef { cmd, fixes: defined.fixes, computes: defined.computes, base_dir: defined.base_dir, id: id.text.clone(), groupbit, style, args }, state),
         None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),

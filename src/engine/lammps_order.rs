@@ -1,0 +1,197 @@
+//! The order in which serial LAMMPS stores its owned atoms ("local order"), kept beside dmhs'
+//! own order. dmhs sorts its atoms into slab order at every list rebuild; LAMMPS keeps atoms
+//! where they were created and reorders them only in `Atom::sort` (at the setup of every run
+//! and then every `sortfreq` steps, 1000 by default, on a reneighbouring step), binning them on
+//! a grid of half the neighbour cutoff and keeping the previous order inside a bin. Models
+//! whose results depend on the atom order (random numbers drawn per atom, sums over atoms)
+//! walk the atoms in this order to give LAMMPS' bits.
+//!
+//! Atoms that appear (create_atoms, read_data, fix pour) are appended in dmhs' order at the
+//! time, which is their creation order; atoms that disappear are removed as LAMMPS'
+//! `Comm::exchange` removes lost atoms (the last atom moves into the hole). Triclinic boxes are
+//! binned as orthogonal ones (LAMMPS bins them over the bounding box of the tilted cell).
+
+use super::atoms::Atoms;
+use super::domain::Domain;
+
+#[derive(Clone, Debug)]
+pub struct LammpsOrder {
+    /// Atom IDs in LAMMPS' local order.
+    ids: Vec<i64>,
+    /// dmhs' local index of each atom of `ids`, valid after the last rebuild.
+    local: Vec<usize>,
+    /// `atom_modify sort Nfreq binsize`: 0 turns sorting off; binsize 0 means half the
+    /// neighbour cutoff.
+    pub sortfreq: i64,
+    pub binsize: f64,
+    nextsort: i64,
+}
+
+impl Default for LammpsOrder {
+    fn default() -> Self {
+        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, nextsort: 0 }
+    }
+}
+
+impl LammpsOrder {
+    /// dmhs' local indices of the owned atoms in LAMMPS' order (valid until dmhs reorders or
+    /// adds atoms, i.e. between list rebuilds).
+    pub fn local(&self) -> &[usize] {
+        &self.local
+    }
+
+    /// Owned atoms in LAMMPS' order if known for the current atoms, else in dmhs' order.
+    pub fn indices(&self, nlocal: usize) -> std::borrow::Cow<'_, [usize]> {
+        if self.local.len() == nlocal {
+            std::borrow::Cow::Borrowed(&self.local)
+        } else {
+            std::borrow::Cow::Owned((0..nlocal).collect())
+        }
+    }
+
+    /// Before dmhs reorders the atoms of a rebuild: drop atoms that are gone (LAMMPS' copy of
+    /// the last atom into the hole) and append new ones in their current order.
+    pub fn before_rebuild(&mut self, atoms: &Atoms) {
+        let owned = &atoms.tag[..atoms.nlocal];
+        let now = atoms.tag_map();
+        let mut i = 0;
+        while i < self.ids.len() {
+            if now.get(self.ids[i]).is_none() {
+                self.ids.swap_remove(i);
+            } else {
+                i += 1;
+            }
+        }
+        let known = super::atoms::TagMap::new(&self.ids);
+        for &t in owned {
+            if known.get(t).is_none() {
+                self.ids.push(t);
+            }
+        }
+    }
+
+    /// After dmhs' rebuild at `step`: LAMMPS' `Atom::sort` when it is due (always at the
+    /// setup of a run; then on rebuilds from `nextsort` on), then the map to dmhs' indices.
+    /// `cutneighmax` is the largest pair cutoff plus skin.
+    /// A box with more sort bins than LAMMPS allows (2^31 - 1; LAMMPS stops there) keeps the
+    /// order, where dmhs' own bins keep working.
+    pub fn after_rebuild(&mut self, atoms: &Atoms, domain: &Domain, cutneighmax: f64, step: i64, setup: bool) {
+        let map = atoms.tag_map();
+        let local = |ids: &[i64]| -> Vec<usize> { ids.iter().map(|&t| map.get(t).expect("every ordered atom is owned")).collect() };
+        if self.sortfreq > 0 && (setup || step >= self.nextsort) {
+            let binsize = if self.binsize > 0.0 { self.binsize } else { 0.5 * cutneighmax };
+            if binsize > 0.0 {
+                self.nextsort = (step / self.sortfreq) * self.sortfreq + self.sortfreq;
+                let idx = local(&self.ids);
+                let bins = sort_bins(domain, binsize);
+                let total = bins.total().filter(|&t| t <= i32::MAX as usize).unwrap_or(1);
+                if total > 1 {
+                    let key: Vec<usize> = idx.iter().map(|&i| bins.bin(&atoms.x[i])).collect();
+                    let mut perm: Vec<usize> = (0..self.ids.len()).collect();
+                    // stable: atoms of one bin keep their order (LAMMPS' linked lists)
+                    perm.sort_by_key(|&k| key[k]);
+                    self.ids = perm.iter().map(|&k| self.ids[k]).collect();
+                }
+            } else {
+                // LAMMPS turns sorting off when there is no cutoff and no bin size
+                self.sortfreq = 0;
+            }
+        }
+        self.local = local(&self.ids);
+    }
+}
+
+/// LAMMPS' `Atom::setup_sort_bins` for one process (its sub-domain is the box).
+struct SortBins {
+    lo: [f64; 3],
+    n: [usize; 3],
+    inv: [f64; 3],
+}
+
+fn sort_bins(domain: &Domain, binsize: f64) -> SortBins {
+    let bininv = 1.0 / binsize;
+    let mut n = [1usize; 3];
+    let mut inv = [0.0; 3];
+    for d in 0..3 {
+        let len = domain.hi[d] - domain.lo[d];
+        let mut nb = (len * bininv) as i64;
+        if d == 2 && domain.dimension == 2 {
+            nb = 1;
+        }
+        n[d] = nb.max(1) as usize;
+        inv[d] = n[d] as f64 / len;
+    }
+    SortBins { lo: domain.lo, n, inv }
+}
+
+impl SortBins {
+    /// Number of bins (None if it overflows).
+    fn total(&self) -> Option<usize> {
+        self.n[0].checked_mul(self.n[1])?.checked_mul(self.n[2])
+    }
+    fn bin(&self, x: &[f64; 3]) -> usize {
+        let mut c = [0usize; 3];
+        for d in 0..3 {
+            // C's truncating cast, then clamped into the grid
+            let k = ((x[d] - self.lo[d]) * self.inv[d]) as i64;
+            c[d] = k.clamp(0, self.n[d] as i64 - 1) as usize;
+        }
+        (c[2] * self.n[1] + c[1]) * self.n[0] + c[0]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::atoms::{AtomFeatures, NewAtom};
+    use crate::engine::domain::BoundaryKind;
+
+    fn domain(l: f64) -> Domain {
+        Domain { dimension: 3, lo: [0.0; 3], hi: [l; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] }
+    }
+
+    #[test]
+    fn sort_bins_by_z_then_y_then_x_and_keeps_the_order_inside_a_bin() {
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        // two bins per dimension (box 4, bin 2)
+        for (t, x) in [(1, [3.0, 0.5, 0.5]), (2, [0.5, 0.5, 3.0]), (3, [0.5, 0.5, 0.5]), (4, [1.0, 1.0, 1.0]), (5, [0.5, 3.0, 0.5])] {
+            atoms.push(&NewAtom::at(t, 1, x));
+        }
+        let mut o = LammpsOrder::default();
+        o.before_rebuild(&atoms);
+        o.after_rebuild(&atoms, &domain(4.0), 4.0, 0, true);
+        assert_eq!(o.ids, vec![3, 4, 1, 5, 2]);
+        assert_eq!(o.local(), &[2, 3, 0, 4, 1]);
+        // not due: the order is kept whatever dmhs does
+        o.after_rebuild(&atoms, &domain(4.0), 4.0, 10, false);
+        assert_eq!(o.ids, vec![3, 4, 1, 5, 2]);
+    }
+
+    #[test]
+    fn lost_atoms_are_replaced_by_the_last_and_new_atoms_appended() {
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        for t in 1..=4 {
+            atoms.push(&NewAtom::at(t, 1, [0.5; 3]));
+        }
+        let mut o = LammpsOrder { sortfreq: 0, ..LammpsOrder::default() };
+        o.before_rebuild(&atoms);
+        atoms.retain(&[false, true, false, false]);
+        atoms.push(&NewAtom::at(9, 1, [0.5; 3]));
+        o.before_rebuild(&atoms);
+        assert_eq!(o.ids, vec![1, 4, 3, 9]);
+    }
+
+    #[test]
+    fn a_box_with_too_many_sort_bins_keeps_the_order_instead_of_overflowing() {
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        atoms.push(&NewAtom::at(2, 1, [9e11; 3]));
+        atoms.push(&NewAtom::at(1, 1, [0.5; 3]));
+        let mut o = LammpsOrder::default();
+        o.before_rebuild(&atoms);
+        o.after_rebuild(&atoms, &domain(1e12), 1e-3, 0, true);
+        assert_eq!(o.ids, vec![2, 1]);
+        // with fewer bins the two atoms are sorted
+        o.after_rebuild(&atoms, &domain(1e12), 1e11, 0, true);
+        assert_eq!(o.ids, vec![1, 2]);
+    }
+}

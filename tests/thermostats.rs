@@ -1,0 +1,157 @@
+//! Thermostat fixes (langevin, temp/rescale, temp/berendsen, nvt) against LAMMPS, beyond the
+//! per-atom state that tests/lammps_parity.rs compares: every column of the thermo table of the
+//! lammps-refs decks thermo_* (temperature, energies and the fixes' own f_ID scalars) at every
+//! printed step, against lammps-refs/refs/NAME/thermo.txt (and LAMMPS run now, when present).
+//! And a validation: a long Langevin run of an LJ liquid holds the target temperature.
+
+use dmhs::deck::{run_file, run_text, DeckOptions};
+use std::path::{Path, PathBuf};
+
+const DECKS: [&str; 5] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega"];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Column names and rows of the last thermo table in `text`.
+fn table(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let lines: Vec<&str> = text.lines().collect();
+    let start = lines.iter().rposition(|l| l.trim_start().trim_start_matches("# ").starts_with("Step")).expect("a thermo header");
+    let names = lines[start].trim_start().trim_start_matches("# ").split_whitespace().map(String::from).collect();
+    let rows = lines[start + 1..].iter().map_while(|l| l.split_whitespace().map(|w| w.parse::<f64>().ok()).collect::<Option<Vec<f64>>>().filter(|r| !r.is_empty())).collect();
+    (names, rows)
+}
+
+fn dmhs_table(name: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let deck = root().join("lammps-refs/decks").join(format!("in.{name}"));
+    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(deck.parent().unwrap().to_path_buf()), ..Default::default() };
+    let run = run_file(&deck, &opts).unwrap_or_else(|f| panic!("{name}: {}", f.rendered));
+    table(run.sim.out.captured.as_deref().expect("captured screen text"))
+}
+
+/// Every column at every printed step within 1e-7 of the column's largest magnitude (thermo
+/// prints 8 digits; equal bits print equal text).
+fn compare(name: &str, reference: &Path) -> Option<String> {
+    let (their_names, theirs) = table(&std::fs::read_to_string(reference).unwrap());
+    let (our_names, ours) = dmhs_table(name);
+    assert_eq!(our_names, their_names, "{name}: thermo columns");
+    assert!(their_names.iter().any(|c| c.starts_with("f_")), "{name}: the deck prints no fix scalar");
+    if ours.len() != theirs.len() {
+        return Some(format!("{name}: {} thermo rows, LAMMPS {}", ours.len(), theirs.len()));
+    }
+    let mut bad = vec![];
+    for (c, col) in their_names.iter().enumerate() {
+        let scale = theirs.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+        assert!(col == "Step" || scale > 0.0, "{name}: column {col} is zero throughout; it tests nothing");
+        let worst = ours.iter().zip(&theirs).map(|(a, b)| (a[c] - b[c]).abs()).fold(0.0, f64::max);
+        println!("{name}: {col}: max |dmhs - LAMMPS| {worst:.3e} (scale {scale:.3e})");
+        if worst > 1e-7 * scale {
+            bad.push(format!("{name}: {col} differs by {worst:e} (scale {scale:e})"));
+        }
+    }
+    (!bad.is_empty()).then(|| bad.join("\n"))
+}
+
+/// Every deck against LAMMPS' thermo table: the stored one, or (`live`) LAMMPS run now.
+fn check_all(live: bool) {
+    let mut bad = vec![];
+    for name in DECKS {
+        let tmp = tempfile::tempdir().unwrap();
+        let reference = if live {
+            let deck = root().join("lammps-refs/decks").join(format!("in.{name}"));
+            dmhs::tools::lammps::run_driver(&deck, &[], tmp.path()).unwrap();
+            tmp.path().join("log.lammps")
+        } else {
+            root().join("lammps-refs/refs").join(name).join("thermo.txt")
+        };
+        bad.extend(compare(name, &reference));
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+#[test]
+fn stored_thermo_tables() {
+    check_all(false);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn live_thermo_tables() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
+        return;
+    }
+    check_all(true);
+}
+
+/// An LJ liquid (500 atoms, density 0.8442) started at T 0.5 under fix langevin at T 1.2,
+/// damp 0.5: after 1000 steps of equilibration the mean of 4000 steps (sampled every 20) must
+/// be within 4 standard errors of 1.2. The canonical spread of T is T sqrt(2/(3N)) = 0.044
+/// per sample; with the damping time of 100 steps about 40 samples are independent, so one
+/// standard error is 0.007.
+#[test]
+fn langevin_holds_the_target_temperature() {
+    let deck = "units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 5 0 5 0 5\ncreate_box 1 box\n\
+        create_atoms 1 box\nmass 1 1.0\nvelocity all create 0.5 4928459 loop geom\npair_style lj/cut 2.5\n\
+        pair_coeff 1 1 1.0 1.0 2.5\nneighbor 0.3 bin\nfix 1 all nve\nfix 2 all langevin 1.2 1.2 0.5 699483 zero yes\n\
+        timestep 0.005\nthermo 20\nrun 1000\nrun 4000\n";
+    let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let run = run_text("langevin_liquid", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let (names, rows) = table(run.sim.out.captured.as_deref().unwrap());
+    let t = names.iter().position(|c| c == "Temp").unwrap();
+    let temps: Vec<f64> = rows[1..].iter().map(|r| r[t]).collect();
+    assert_eq!(temps.len(), 200);
+    let mean = temps.iter().sum::<f64>() / temps.len() as f64;
+    let sd = (temps.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (temps.len() - 1) as f64).sqrt();
+    println!("langevin liquid: mean T {mean:.4} (target 1.2), sample spread {sd:.4} (canonical {:.4})", 1.2 * (2.0f64 / 1500.0).sqrt());
+    assert!((mean - 1.2).abs() < 4.0 * 0.007, "mean temperature {mean} is not the target 1.2");
+    // the spread is the canonical one within 30 % (Langevin samples the canonical ensemble)
+    assert!((sd / (1.2 * (2.0f64 / 1500.0).sqrt()) - 1.0).abs() < 0.3, "spread {sd}");
+}
+
+/// Bad thermostat commands give located errors (`dmhs check` on the langevin deck, edited).
+#[test]
+fn thermostat_errors_are_located() {
+    let base = std::fs::read_to_string(root().join("lammps-refs/decks/in.thermo_langevin")).unwrap();
+    let lang = "fix          2 all langevin v_tl 0.15 1.0 48279 scale 2 1.5 tally yes zero yes";
+    for (to, want) in [
+        ("fix 2 all langevin 0.1 0.1 1.0 0", "seed"),
+        ("fix 2 all langevin 0.1 0.1 1.0 900000001", "seed"),
+        ("fix 2 all langevin 0.1 0.1 0.0 5", "damp"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 gjf vhalf", "gjf"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 angmom 3.0", "angmom"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 scale 3 1.0", "atom type"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5 wobble yes", "unknown keyword `wobble`"),
+        ("fix 2 all temp/rescale 0 0.1 0.1 0.01 1.0", "N (steps between rescales)"),
+        ("fix 2 all temp/berendsen 0.1 0.1", "damp"),
+        ("fix 2 all nvt temp 0.1 0.1 0.0", "Tdamp"),
+        ("fix 2 all nvt temp 0.0 0.1 1.0", "must be > 0.0"),
+        ("fix 2 all nvt tchain 3", "needs temperature control"),
+        ("fix 2 all nvt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "pressure control"),
+        ("fix 2 all npt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "barostat"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 temp nothere", "compute `nothere` does not exist"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nfix_modify 2 temp ke", "not a plain compute temp"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 energy yes", "unknown keyword `energy`"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute t all temp\nfix_modify 1 temp t", "has no temperature"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 9 temp t", "fix `9` does not exist"),
+    ] {
+        let deck = base.replacen(lang, to, 1);
+        assert_ne!(deck, base);
+        let tmp = tempfile::tempdir().unwrap();
+        let path = tmp.path().join("in.th");
+        std::fs::write(&path, &deck).unwrap();
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).arg("check").arg(&path).current_dir(tmp.path()).output().unwrap();
+        let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert_eq!(o.status.code(), Some(2), "{to}: {out}");
+        assert!(out.contains(want) && out.contains("in.th:"), "{to}: expected `{want}`:\n{out}");
+    }
+}
+
+/// `fix langevin omega yes` needs finite-size particles: refused when the run starts.
+#[test]
+fn langevin_omega_needs_spheres() {
+    let base = std::fs::read_to_string(root().join("lammps-refs/decks/in.thermo_langevin")).unwrap();
+    let deck = base.replace("tally yes zero yes", "omega yes").replace("run          ${nsteps}", "run 10");
+    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(root().join("lammps-refs/decks")), ..Default::default() };
+    let err = run_text("in.omega", &deck, &opts).err().expect("a run error");
+    assert!(err.rendered.contains("omega requires atom style sphere"), "{}", err.rendered);
+}

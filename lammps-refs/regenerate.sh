@@ -50,7 +50,7 @@ for name in "${names[@]+"${names[@]}"}"; do
     # bond/break, bond/create and thermostat decks: the thermo table of the run (event counts
     # per step; the thermostats' f_ID energies, tests/thermostats.rs)
     case "$name" in
-        bond*|thermo_*) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
+        bond*|thermo_*|deposit_mol) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
                    "$out/log.lammps" > "$out/thermo.txt" ;;
         # the orientations at the end (tests/bpm.rs)
         bpm_sphere_nve) "$py" "$here/bpm_quat.py" "$here/decks/in.$name" "$out" ;;

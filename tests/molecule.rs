@@ -144,3 +144,22 @@ fn rotate_turns_every_copy_as_lammps_does() {
         assert_eq!(a.x[a.tag_map().get(i as i64 + 1).unwrap()], *w, "atom {}", i + 1);
     }
 }
+
+#[test]
+fn thermo_modify_temp_and_press_errors_are_located() {
+    let base = "units lj\nregion b block 0 4 0 4 0 4\ncreate_box 1 b\ncompute t all temp\ncompute ke all ke\nthermo_modify temp t\n";
+    let opts = DeckOptions { screen: false, ..Default::default() };
+    run_text("in.test", base, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    for (from, to, want) in [
+        ("temp t", "temp nope", "could not find thermo_modify temperature compute `nope`"),
+        ("temp t", "temp ke", "`ke` does not compute temperature"),
+        ("temp t", "press ke", "`ke` does not compute pressure"),
+        ("temp t", "press thermo_temp", "does not compute pressure"),
+    ] {
+        let e = match run_text("in.test", &base.replace(from, to), &opts) {
+            Ok(_) => panic!("{to}: no error"),
+            Err(f) => f.rendered,
+        };
+        assert!(e.contains(want) && e.contains("in.test:6:"), "{to}: expected `{want}`:\n{e}");
+    }
+}

@@ -7,7 +7,9 @@
 use dmhs::deck::{run_file, run_text, DeckOptions};
 use std::path::{Path, PathBuf};
 
-const DECKS: [&str; 5] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega"];
+/// The thermostat decks, and deposit_mol (langevin on a substrate, atoms inserted during the run,
+/// `thermo_modify temp` of the inserted atoms).
+const DECKS: [&str; 6] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "deposit_mol"];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -41,6 +41,10 @@ pub struct Thermo {
     pub lost_warn: bool,
     pub lost_warned: bool,
     pub flush: bool,
+    /// `thermo_modify temp ID`: the temperature compute of temp, ke, etotal (and of the
+    /// pressure compute thermo_press); `press ID`: the pressure compute of press and pxx...
+    pub temp_id: String,
+    pub press_id: String,
 }
 
 impl Default for Thermo {
@@ -58,6 +62,8 @@ impl Default for Thermo {
             lost_warn: false,
             lost_warned: false,
             flush: false,
+            temp_id: "thermo_temp".into(),
+            press_id: "thermo_press".into(),
         }
     }
 }
@@ -160,13 +166,13 @@ pub fn normalize(thermo: &Thermo, state: &State) -> bool {
     thermo.norm.unwrap_or(state.units.style == crate::engine::units::UnitStyle::Lj) && state.natoms() > 0
 }
 
-fn temp_compute(w: &World) -> Result<(f64, f64), String> {
-    let c = w.compute("thermo_temp").ok_or("compute thermo_temp is missing")?;
+fn temp_compute(w: &World, thermo: &Thermo) -> Result<(f64, f64), String> {
+    let c = w.compute(&thermo.temp_id).ok_or_else(|| format!("compute {} (the thermo temperature) is missing", thermo.temp_id))?;
     Ok((c.scalar(w)?, c.dof(w).unwrap_or(0.0)))
 }
 
-fn press_compute<'a>(w: &World<'a>) -> Result<&'a dyn crate::models::compute::Compute, String> {
-    w.compute("thermo_press").ok_or_else(|| "compute thermo_press is missing".to_string())
+fn press_compute<'a>(w: &World<'a>, thermo: &Thermo) -> Result<&'a dyn crate::models::compute::Compute, String> {
+    w.compute(&thermo.press_id).ok_or_else(|| format!("compute {} (the thermo pressure) is missing", thermo.press_id))
 }
 
 /// The value of a thermo keyword, with LAMMPS' normalisation of extensive quantities; `cpu` is
@@ -189,15 +195,15 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "time" => w.state.time(),
             "cpu" | "tpcpu" | "spcpu" => cpu,
             "atoms" => n,
-            "temp" => temp_compute(w)?.0,
-            "press" => press_compute(w)?.scalar(w)?,
+            "temp" => temp_compute(w, thermo)?.0,
+            "press" => press_compute(w, thermo)?.scalar(w)?,
             "pe" => ext(w.state.potential_energy()),
             "ke" => {
-                let (t, dof) = temp_compute(w)?;
+                let (t, dof) = temp_compute(w, thermo)?;
                 ext(t * 0.5 * dof * w.state.units.boltz)
             }
             "etotal" => {
-                let (t, dof) = temp_compute(w)?;
+                let (t, dof) = temp_compute(w, thermo)?;
                 ext(w.state.potential_energy()) + ext(t * 0.5 * dof * w.state.units.boltz)
             }
             "evdwl" => ext(e.pair.evdwl),
@@ -231,7 +237,7 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "dihedrals" => w.state.topo.dihedrals.len() as f64,
             "impropers" => 0.0,
             "pxx" | "pyy" | "pzz" | "pxy" | "pxz" | "pyz" => {
-                let v = press_compute(w)?.vector(w)?;
+                let v = press_compute(w, thermo)?.vector(w)?;
                 v[["pxx", "pyy", "pzz", "pxy", "pxz", "pyz"].iter().position(|k| *k == name).unwrap()]
             }
             "fmax" => w.state.atoms.f[..w.state.natoms()].iter().flat_map(|f| f.iter()).fold(0.0, |m: f64, v| m.max(v.abs())),

@@ -60,7 +60,7 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
 }
 
 pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "thermo_modify keyword value ...  (norm yes|no, format line|int|float|N|none str, lost error|warn|ignore, flush yes|no)");
+    let mut a = Args::new(cmd, "thermo_modify keyword value ...  (norm yes|no, format line|int|float|N|none str, lost error|warn|ignore, flush yes|no, temp ID, press ID)");
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }
@@ -99,10 +99,40 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
                     },
                 }
             }
-            "temp" | "press" | "warn" | "line" | "every" => {
+            "temp" => {
+                let idw = a.word("temperature compute ID")?;
+                let found = {
+                    let world = sim.world();
+                    world.compute(&idw.text).map(|c| (c.dof(&world).is_some(), c.groupbit() == 1))
+                };
+                let Some((is_temp, group_all)) = found else {
+                    return Err(a.error_at(idw, format!("could not find thermo_modify temperature compute `{}`", idw.text), "unknown compute"));
+                };
+                if !is_temp {
+                    return Err(a.error_at(idw, format!("thermo_modify temperature ID `{}` does not compute temperature", idw.text), "not a temperature"));
+                }
+                if !group_all {
+                    sim.out.print("WARNING: Temperature for thermo pressure is not for group all");
+                }
+                // the pressure thermo uses (or thermo_press) takes the same temperature, as LAMMPS
+                let press_id = sim.thermo.press_id.clone();
+                if let Some(p) = sim.computes.iter_mut().find(|c| c.id() == press_id) {
+                    p.reset_temperature(&idw.text);
+                }
+                sim.thermo.temp_id = idw.text.clone();
+            }
+            "press" => {
+                let idw = a.word("pressure compute ID")?;
+                match sim.computes.iter().find(|c| c.id() == idw.text) {
+                    None => return Err(a.error_at(idw, format!("could not find thermo_modify pressure compute `{}`", idw.text), "unknown compute")),
+                    Some(c) if c.style() != "pressure" => return Err(a.error_at(idw, format!("thermo_modify pressure ID `{}` does not compute pressure", idw.text), "not a pressure")),
+                    Some(_) => sim.thermo.press_id = idw.text.clone(),
+                }
+            }
+            "warn" | "line" | "every" => {
                 return Err(a.error_at(w, format!("thermo_modify {} is not supported yet", w.text), "not supported"));
             }
-            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush"])),
+            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush", "temp", "press"])),
         }
     }
     Ok(())

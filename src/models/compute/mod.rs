@@ -148,6 +148,11 @@ pub trait Compute: Send + Sync {
     fn plain_temp_extra(&self) -> Option<Option<f64>> {
         None
     }
+    /// A pressure compute's temperature compute becomes `temp_id` (LAMMPS
+    /// `reset_extra_compute_fix`, used by `thermo_modify temp`); false for other computes.
+    fn reset_temperature(&mut self, _temp_id: &str) -> bool {
+        false
+    }
     fn describe(&self) -> String {
         format!("compute {} {}", self.id(), self.style())
     }

@@ -45,6 +45,10 @@ impl Compute for ComputePressure {
     fn groupbit(&self) -> u32 {
         1
     }
+    fn reset_temperature(&mut self, temp_id: &str) -> bool {
+        self.temp_id = temp_id.to_string();
+        true
+    }
     fn scalar(&self, w: &World) -> Result<f64, String> {
         let tc = self.temp(w)?;
         let t = tc.scalar(w)?;

@@ -191,8 +191,8 @@ fn bench_repeats_rounds_and_reports_medians() {
         let (lo, hi) = r[10].split_once('-').map(|(a, b)| (a.parse::<f64>().unwrap(), b.parse::<f64>().unwrap())).unwrap();
         // the ratio of medians lies near the per-round ratios (to the printed digits; the
         // reference of a round may be another LAMMPS configuration than that of the medians,
-        // and on a loaded machine two rounds can differ by tens of percent: failed once at
-        // 0.8-1.25 under a load of 5)
+        // and on a loaded machine two rounds can differ by tens of percent; the test failed once
+        // with the bounds 0.8-1.25, right after a build)
         assert!(lo > 0.0 && lo * 0.5 - 0.01 <= ratio && ratio <= hi * 2.0 + 0.01, "{t}");
     }
 }

@@ -329,6 +329,24 @@ pub struct Neighbor {
     pub cutneighmax: f64,
     /// Largest pair cutoff (LAMMPS' `cutforce`), without the skin.
     pub cutforce: f64,
+    /// Per-bin counts and starts, kept between builds: a sparse system has millions of bins,
+    /// and arrays made afresh each build were paged in and out every time.
+    bins: BinScratch,
+}
+
+/// The per-bin arrays of a build (see [`Neighbor::build`]).
+#[derive(Clone, Debug, Default)]
+struct BinScratch {
+    start: Vec<u32>,
+    local_start: Vec<u32>,
+    ghost_start: Vec<u32>,
+    fill: Vec<u32>,
+}
+
+/// `v` as `n` zeros, reusing its allocation.
+fn zeroed(v: &mut Vec<u32>, n: usize) {
+    v.clear();
+    v.resize(n, 0);
 }
 
 /// Error raised while building lists (reported by the engine with the step number).
@@ -448,7 +466,8 @@ impl Neighbor {
         // sort owned atoms by bin: bins are numbered slab axis first, so this is slab order
         let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
         // counting sort (stable: atoms of one bin keep their order)
-        let mut start = vec![0u32; grid.total + 1];
+        let BinScratch { start, local_start, ghost_start, fill } = &mut self.bins;
+        zeroed(start, grid.total + 1);
         for &k in &keys {
             start[k as usize + 1] += 1;
         }
@@ -500,7 +519,7 @@ impl Neighbor {
         // owned atoms of bin b are the index range local_start[b]..local_start[b+1];
         // ghosts are counting-sorted into their own bins
         let nall = atoms.nall();
-        let mut local_start = vec![0u32; grid.total + 1];
+        zeroed(local_start, grid.total + 1);
         for &b in keys.iter() {
             local_start[b as usize + 1] += 1;
         }
@@ -508,14 +527,15 @@ impl Neighbor {
             local_start[b + 1] += local_start[b];
         }
         let ghost_bin: Vec<u32> = atoms.x[n..].iter().map(|x| grid.bin(x) as u32).collect();
-        let mut ghost_start = vec![0u32; grid.total + 1];
+        zeroed(ghost_start, grid.total + 1);
         for &b in &ghost_bin {
             ghost_start[b as usize + 1] += 1;
         }
         for b in 0..grid.total {
             ghost_start[b + 1] += ghost_start[b];
         }
-        let mut fill = ghost_start.clone();
+        fill.clear();
+        fill.extend_from_slice(ghost_start);
         let mut ghosts_by_bin = vec![0u32; nall - n];
         for (k, &b) in ghost_bin.iter().enumerate() {
             ghosts_by_bin[fill[b as usize] as usize] = (n + k) as u32;

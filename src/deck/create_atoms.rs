@@ -615,8 +615,7 @@ pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed
     m.check_types(state)?;
     let mut ran = crate::engine::random_mars::RanMars::new(seed as i32);
     let domain = state.domain.clone().ok_or("create_atoms before the box is defined")?;
-    let nlocal = state.atoms.nlocal;
-    let mut mol_offset = if state.atoms.features.molecule { state.atoms.molecule[..nlocal].iter().copied().max().unwrap_or(0).max(0) } else { 0 };
+    let mut mol_offset = state.atoms.max_molecule();
     let mut tag = state.atoms.max_tag();
     for c in centers {
         let rot = match rotate {

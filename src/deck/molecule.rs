@@ -69,25 +69,23 @@ pub fn molecule(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) ->
     let path = sim.path(&fw.text);
     let bytes = std::fs::read(&path).map_err(|e| a.error_at(fw, format!("cannot open molecule file `{}`: {e}", path.display()), "this file"))?;
     let text = String::from_utf8_lossy(&bytes).into_owned();
-    let file = sources.add(path.display().to_string(), text.clone());
-    let mf = parse_molecule_file(&text, file).map_err(|d| d.with_label(fw.span, "read by this molecule command"))?;
+    let file = sources.add(path.display().to_string(), text);
+    let mf = parse_molecule_file(&sources.file(file).text, file).map_err(|d| d.with_label(fw.span, "read by this molecule command"))?;
     let m = template(sim, &idw.text, &mf, o, cmd.span).map_err(|d| d.with_label(fw.span, "read by this molecule command"))?;
-    let max = |v: &[usize]| v.iter().copied().max().unwrap_or(0);
-    let nmol = m.molecule.as_ref().map(|v| v.iter().copied().max().unwrap_or(1)).unwrap_or(1);
     sim.out.print(&format!(
         "Read molecule template {}:\n{}\n  {} molecules\n  {} fragments\n  0 bodies\n  {} atoms with max type {}\n  {} bonds with max type {}\n  {} angles with max type {}\n  {} dihedrals with max type {}\n  0 impropers with max type 0",
         m.id,
         mf.title,
-        nmol,
+        m.nmolecules(),
         mf.nfragments,
         m.natoms(),
         m.max_type(),
         m.bonds.len(),
-        max(&m.bonds.iter().map(|b| b.0).collect::<Vec<_>>()),
+        m.bonds.iter().map(|b| b.0).max().unwrap_or(0),
         m.angles.len(),
-        max(&m.angles.iter().map(|b| b.0).collect::<Vec<_>>()),
+        m.angles.iter().map(|b| b.0).max().unwrap_or(0),
         m.dihedrals.len(),
-        max(&m.dihedrals.iter().map(|b| b.0).collect::<Vec<_>>()),
+        m.dihedrals.iter().map(|b| b.0).max().unwrap_or(0),
     ));
     sim.state.molecules.push(m);
     Ok(())

@@ -402,6 +402,15 @@ impl Atoms {
         self.tag[..self.nlocal].iter().copied().max().unwrap_or(0)
     }
 
+    /// The largest molecule ID of the owned atoms (0 without molecule IDs or atoms): new
+    /// molecules are numbered after it.
+    pub fn max_molecule(&self) -> i64 {
+        if !self.features.molecule {
+            return 0;
+        }
+        self.molecule[..self.nlocal].iter().copied().max().unwrap_or(0).max(0)
+    }
+
     /// Map from atom ID to local index of the owned atoms (IDs must be unique and positive).
     pub fn tag_map(&self) -> TagMap {
         TagMap::new(&self.tag[..self.nlocal])

@@ -43,7 +43,6 @@ pub struct Molecule {
 impl Molecule {
     /// A template from its parts; computes the centre as LAMMPS' `compute_center` does (sum in
     /// atom order, then one division per axis).
-    #[allow(clippy::too_many_arguments)]
     pub fn new(id: String, x: Vec<[f64; 3]>) -> Molecule {
         let n = x.len() as f64;
         let mut center = [0.0; 3];

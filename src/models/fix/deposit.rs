@@ -245,7 +245,7 @@ impl FixDeposit {
 /// The largest atom ID, and the largest molecule ID when molecules are inserted.
 fn max_ids(state: &State, molecules: bool) -> (i64, i64) {
     let a = &state.atoms;
-    let maxmol = if molecules && a.features.molecule { a.molecule[..a.nlocal].iter().copied().max().unwrap_or(0).max(0) } else { 0 };
+    let maxmol = if molecules { a.max_molecule() } else { 0 };
     (a.max_tag(), maxmol)
 }
 

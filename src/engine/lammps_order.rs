@@ -40,6 +40,11 @@ impl LammpsOrder {
         &self.local
     }
 
+    /// Atom IDs in LAMMPS' order as of the last rebuild (or [`LammpsOrder::before_rebuild`]).
+    pub fn ids(&self) -> &[i64] {
+        &self.ids
+    }
+
     /// Owned atoms in LAMMPS' order if known for the current atoms, else in dmhs' order.
     pub fn indices(&self, nlocal: usize) -> std::borrow::Cow<'_, [usize]> {
         if self.local.len() == nlocal {

@@ -9,6 +9,7 @@ mod displace;
 mod forcefield;
 mod modify_cmds;
 mod output_cmds;
+mod replicate;
 mod run_cmds;
 mod settings;
 mod topology_cmds;
@@ -45,6 +46,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("delete_atoms", box_cmds::delete_atoms),
     ("displace_atoms", displace::displace_atoms),
     ("change_box", change_box::change_box),
+    ("replicate", replicate::replicate),
     ("read_data", box_cmds::read_data),
     ("create_bonds", topology_cmds::create_bonds),
     ("molecule", crate::deck::molecule::molecule),

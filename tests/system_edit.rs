@@ -33,7 +33,8 @@ fn run(text: &str) -> (i32, String) {
 fn expect_error(text: &str, want: &str) {
     let (code, out) = run(text);
     assert_eq!(code, 2, "expected a deck error `{want}`:\n{out}");
-    assert!(out.contains(want) && out.contains("in.t:"), "expected `{want}` with its location:\n{out}");
+    // located in the deck, or in the data file for an error of its lines
+    assert!(out.contains(want) && (out.contains("in.t:") || out.contains(".data:")), "expected `{want}` with its location:\n{out}");
 }
 
 #[test]
@@ -60,4 +61,45 @@ fn replicate_errors_are_located() {
     // fixes that store atom quantities")
     expect_error(&lj.replace("replicate    1 3 2", "fix m all move linear 0 0 0\nrun 0\nreplicate    1 3 2"), "cannot replicate with fixes that store per-atom values");
     expect_error(&chains.replace("units        lj", "replicate 2 2 2\nunits        lj"), "replicate used before the simulation box is defined");
+}
+
+#[test]
+fn read_data_add_errors_are_located() {
+    let d = deck("in.read_data_add");
+    let second = "read_data    chains_walls.data add append offset 2 2 1 1 0 shift 13.5 0.0 0.0 group second";
+    let replace = |to: &str| {
+        let out = d.replace(second, to);
+        assert_ne!(out, d);
+        out
+    };
+    expect_error(&replace("read_data    chains_walls.data offset 2 2 1 1 0"), "needs the `add` keyword");
+    expect_error(&replace("read_data    chains_walls.data add merge"), "atom ID 1 exists already");
+    expect_error(&replace("read_data    chains_walls.data add append offset 3 0 0 0 0"), "the data file's 2 atom types, offset by 3, exceed the system's 4 atom types");
+    expect_error(&replace("read_data    chains_walls.data add append offset 2 2 1 1"), "missing ioff");
+    expect_error(&replace("read_data    chains_walls.data add 1000"), "molecule ID offset");
+    expect_error(&replace("read_data    chains_walls.data add append extra/atom/types 2"), "cannot be used with add");
+    expect_error(&replace("read_data    chains_walls.data add append fix f NULL Section"), "read_data fix");
+    expect_error(&replace("read_data    chains_walls.data add append bogus"), "unknown keyword `bogus`");
+    expect_error(&d.replace("read_data    chains_walls.data extra/atom/types 2", "read_data    chains_walls.data add append"), "needs a simulation box");
+    expect_error(&d.replace("read_data    chains_walls.data extra/atom/types 2", "read_data    chains_walls.data shift 1 0 0 extra/atom/types 2"), "read_data shift needs the `add` keyword");
+}
+
+#[test]
+fn read_data_add_gives_lammps_ids_and_types() {
+    // LAMMPS 22 Jul 2025 writes these Atoms lines (write_data) for the same deck: append puts IDs
+    // and molecule IDs (0 included) after the largest, an explicit offset adds to both, offset
+    // shifts types, shift moves atoms and grows the box
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("a.data"), "test\n\n3 atoms\n2 atom types\n\n0 10 xlo xhi\n0 10 ylo yhi\n0 10 zlo zhi\n\nMasses\n\n1 1.0\n2 2.0\n\nAtoms # bond\n\n1 5 1 1.0 1.0 1.0\n2 0 2 2.0 1.0 1.0\n3 7 1 3.0 1.0 1.0\n").unwrap();
+    let deck = "units lj\natom_style bond\nboundary p p f\nread_data a.data extra/atom/types 1\nread_data a.data add append offset 1 0 0 0 0 shift 0 0 20 group g2\nread_data a.data add 100 50 shift 0 5 0\nwrite_data out.data\nvariable n equal count(g2)\nprint \"g2 has ${n} atoms\"\n";
+    std::fs::write(tmp.path().join("in.t"), deck).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["-in", "in.t", "-log", "none"]).current_dir(tmp.path()).output().unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && out.contains("g2 has 3 atoms") && out.contains("orthogonal box = (0 0 0) to (10 15 30)"), "{out}{}", String::from_utf8_lossy(&o.stderr));
+    let data = std::fs::read_to_string(tmp.path().join("out.data")).unwrap();
+    let atoms: Vec<&str> = data.split("Atoms # bond\n\n").nth(1).unwrap().split("\n\n").next().unwrap().lines().collect();
+    assert_eq!(
+        atoms,
+        ["1 5 1 1 1 1 0 0 0", "2 0 2 2 1 1 0 0 0", "3 7 1 3 1 1 0 0 0", "4 12 2 1 1 21 0 0 0", "5 7 3 2 1 21 0 0 0", "6 14 2 3 1 21 0 0 0", "101 55 1 1 6 1 0 0 0", "102 50 2 2 6 1 0 0 0", "103 57 1 3 6 1 0 0 0"]
+    );
 }

@@ -111,7 +111,8 @@ pub fn parse_conversion(fmt: &str, start: usize) -> Result<(Conversion, usize), 
         }
         _ => Err(format!(
             "invalid conversion `{}` in format `{fmt}`; expected one of %f %e %E %g %G %d %i",
-            &fmt[start..(i + 1).min(fmt.len())]
+            // up to the end of the offending character (which may take several bytes)
+            &fmt[start..fmt[i..].chars().next().map_or(fmt.len(), |ch| i + ch.len_utf8())]
         )),
     }
 }
@@ -384,6 +385,9 @@ mod tests {
         assert!(format_printf("%.3f %.2f", pi).is_err());
         assert!(format_printf("%s", pi).is_err());
         assert!(format_printf("%", pi).is_err());
+        // a multi-byte character where the conversion should be is named whole, never split
+        let e = format_printf("%.700\u{20ac}00e", pi).unwrap_err();
+        assert!(e.contains("`%.700\u{20ac}`"), "{e}");
     }
 
     #[test]

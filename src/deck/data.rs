@@ -8,7 +8,117 @@ use crate::engine::topology::{Angle, Bond, Dihedral};
 use dmhs_parser::data_file::{parse_data_file, write_data_title, AtomLayout, AtomLine, CoeffKind, CoeffLine, CoeffSection, DataFile, MassLine, TopoLine, VelocityLine};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 
-pub const READ_SYNTAX: &str = "read_data file";
+pub const READ_SYNTAX: &str = "read_data file [add append|merge|IDoffset [MOLoffset]] [offset toff boff aoff doff ioff] [shift Sx Sy Sz] [extra/atom|bond|angle|dihedral|improper/types N] [extra/bond|angle|dihedral|improper|special/per/atom N] [group ID] [nocoeff]";
+
+/// How the atoms of a data file join a system that exists (`read_data ... add`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Add {
+    /// IDs after the largest atom and molecule IDs of the system.
+    Append,
+    /// IDs as in the file.
+    Merge,
+    /// IDs plus the given atom and molecule ID offsets.
+    Offset { id: i64, mol: i64 },
+}
+
+/// The keywords of `read_data`.
+struct ReadOptions {
+    add: Option<Add>,
+    /// Added to the atom, bond, angle, dihedral and improper types of the file.
+    offset: [usize; 5],
+    shift: [f64; 3],
+    /// Types beyond the file's (first read only).
+    extra_types: [usize; 5],
+    group: Option<u32>,
+    coeffs: bool,
+}
+
+fn read_options(sim: &mut Simulation, cmd: &Command, a: &mut Args) -> DResult<ReadOptions> {
+    let mut o = ReadOptions { add: None, offset: [0; 5], shift: [0.0; 3], extra_types: [0; 5], group: None, coeffs: true };
+    let (mut offset_w, mut shift_w, mut extra_w) = (None, None, None);
+    let ft = sim.state.atoms.features;
+    const KINDS: [&str; 5] = ["atom", "bond", "angle", "dihedral", "improper"];
+    let allowed = [true, ft.bonds, ft.angles, ft.dihedrals, false];
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        let kw = w.text.as_str();
+        match kw {
+            "add" => {
+                let v = a.peek().map(|w| w.text.as_str());
+                a.skip(usize::from(matches!(v, Some("append" | "merge"))));
+                o.add = Some(match v {
+                    Some("append") => Add::Append,
+                    Some("merge") => Add::Merge,
+                    _ => {
+                        let id = a.i64_in("atom ID offset", 0, i32::MAX as i64)?;
+                        // LAMMPS reads a molecule ID offset only where atoms have molecule IDs
+                        let mol = if ft.molecule { a.i64_in("molecule ID offset (the atom style has molecule IDs)", 0, i32::MAX as i64)? } else { 0 };
+                        Add::Offset { id, mol }
+                    }
+                });
+            }
+            "offset" => {
+                for (k, what) in ["toff", "boff", "aoff", "doff", "ioff"].iter().enumerate() {
+                    o.offset[k] = a.i64_in(what, 0, i32::MAX as i64)? as usize;
+                }
+                offset_w = Some(w);
+            }
+            "shift" => {
+                for (k, what) in ["Sx", "Sy", "Sz"].iter().enumerate() {
+                    o.shift[k] = a.f64(what)?;
+                }
+                if sim.state.dimension == 2 && o.shift[2] != 0.0 {
+                    return Err(a.error_at(a.last().unwrap(), "read_data shift in z must be 0 in a 2d simulation", "Sz must be 0"));
+                }
+                shift_w = Some(w);
+            }
+            "nocoeff" => o.coeffs = false,
+            "group" => {
+                let g = a.word("group ID")?;
+                let k = sim.state.groups.find_or_create(&g.text).map_err(|e| a.error_at(g, e, "group"))?;
+                o.group = Some(1 << k);
+            }
+            "fix" => return Err(a.error_at(w, "read_data fix (sections read by a fix such as property/atom) is not supported", "not supported")),
+            _ => {
+                let parts: Vec<&str> = kw.split('/').collect();
+                match parts[..] {
+                    ["extra", kind, "types"] if KINDS.contains(&kind) => {
+                        let k = KINDS.iter().position(|&x| x == kind).unwrap();
+                        if !allowed[k] {
+                            return Err(a.error_at(w, format!("no {kind}s are allowed with atom style {}", sim.state.atom_style.join(" ")), "not with this atom style"));
+                        }
+                        o.extra_types[k] = a.i64_in(&format!("number of extra {kind} types"), 0, i32::MAX as i64)? as usize;
+                        extra_w = Some(w);
+                    }
+                    ["extra", kind, "per", "atom"] if KINDS[1..].contains(&kind) || kind == "special" => {
+                        if !ft.molecular() {
+                            return Err(a.error_at(w, format!("no bonded interactions are allowed with atom style {}", sim.state.atom_style.join(" ")), "not with this atom style"));
+                        }
+                        // dmhs keeps no per-atom limit on bonds or special partners
+                        a.i64_in(&format!("extra {kind}s per atom"), 0, i32::MAX as i64)?;
+                    }
+                    _ => return Err(a.unknown_keyword(w, &["add", "offset", "shift", "extra/atom/types", "extra/bond/types", "extra/angle/types", "extra/dihedral/types", "extra/improper/types", "extra/bond/per/atom", "extra/angle/per/atom", "extra/dihedral/per/atom", "extra/improper/per/atom", "extra/special/per/atom", "group", "nocoeff", "fix"])),
+                }
+            }
+        }
+    }
+    let boxed = sim.state.domain.is_some();
+    let cmd_name = &cmd.name;
+    if boxed && o.add.is_none() {
+        return Err(a.error_at(cmd_name, "read_data after the box is defined needs the `add` keyword (add append, add merge or add IDoffset)", "box already defined"));
+    }
+    if !boxed && o.add.is_some() {
+        return Err(a.error_at(cmd_name, "read_data add needs a simulation box (the first read_data, or create_box, defines it)", "no box yet"));
+    }
+    if o.add.is_none() {
+        if let Some(w) = offset_w.or(shift_w) {
+            return Err(a.error_at(w, format!("read_data {} needs the `add` keyword", w.text), "only with add"));
+        }
+    } else if let Some(w) = extra_w {
+        return Err(a.error_at(w, "read_data extra/*/types cannot be used with add (the numbers of types are set by the first read_data or create_box)", "not with add"));
+    }
+    Ok(o)
+}
 
 /// The data-file column layout of the current atom style.
 pub fn layout(sim: &Simulation) -> Result<AtomLayout, Diagnostic> {
@@ -32,12 +142,7 @@ fn combine(mut diags: Vec<Diagnostic>, sources: &SourceMap) -> Diagnostic {
 pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, READ_SYNTAX);
     let fw = a.word("file name")?;
-    if let Some(kw) = a.peek() {
-        return Err(a.error_at(kw, format!("read_data keyword `{}` is not supported yet", kw.text), "supported: read_data file"));
-    }
-    if sim.state.domain.is_some() {
-        return Err(a.error_at(&cmd.name, "read_data after the box is defined (read_data ... add) is not supported yet", "box already defined"));
-    }
+    let opts = read_options(sim, cmd, &mut a)?;
     let path = sim.path(&fw.text);
     // the file is held whole while read: refuse one larger than the memory (a read would abort)
     if let Ok(meta) = std::fs::metadata(&path) {
@@ -51,64 +156,112 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
     for w in &data.warnings {
         sim.out.print(&w.render(sources));
     }
-    apply(sim, cmd, &data, &layout, sources)
+    apply(sim, cmd, &data, &opts, sources)
 }
 
-fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayout, sources: &mut SourceMap) -> DResult<()> {
+fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, sources: &mut SourceMap) -> DResult<()> {
     let h = &data.header;
     if h.tilt.is_some() {
         return Err(Diagnostic::at(cmd.span, "triclinic boxes (xy xz yz in the data file) are not supported", "triclinic data file"));
     }
-    if sim.state.dimension == 2 && (h.boxlo[2] >= 0.0 || h.boxhi[2] <= 0.0) {
-        return Err(Diagnostic::at(cmd.span, "a 2d data file must have zlo < 0 < zhi", "2d box"));
-    }
-    sim.out.print(&format!("Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})", h.boxlo[0], h.boxlo[1], h.boxlo[2], h.boxhi[0], h.boxhi[1], h.boxhi[2]));
-    let domain = Domain { dimension: sim.state.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.state.boundary };
-    sim.state.box_initial = Some(domain.clone());
-    sim.state.domain = Some(domain.clone());
-    crate::sim::memory::check_types(h.atom_types).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {} atom types: {e}", h.atom_types), "too many atom types"))?;
-    crate::sim::memory::check_atoms(h.atoms as f64, sim.state.atoms.features, 0, 0).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {} atoms: {e}", h.atoms), "too many atoms for this machine"))?;
-    sim.state.ntypes = h.atom_types;
-    sim.state.type_mass = vec![0.0; h.atom_types + 1];
-    sim.state.mass_set = vec![false; h.atom_types + 1];
-    let t = &mut sim.state.topo;
-    t.nbondtypes = h.bond_types;
-    t.nangletypes = h.angle_types;
-    t.ndihedraltypes = h.dihedral_types;
-    t.nimpropertypes = h.improper_types;
     if !data.impropers.is_empty() {
         return Err(Diagnostic::at(cmd.span, "impropers are not supported yet", "data file has Impropers"));
     }
+    let [toff, boff, aoff, doff, _] = o.offset;
+    let file_lo: [f64; 3] = std::array::from_fn(|d| h.boxlo[d] + o.shift[d]);
+    let file_hi: [f64; 3] = std::array::from_fn(|d| h.boxhi[d] + o.shift[d]);
+    let g8 = crate::output::format::g8;
+    let print_box = |sim: &mut Simulation, d: &Domain| sim.out.print(&format!("  orthogonal box = ({} {} {}) to ({} {} {})", g8(d.lo[0]), g8(d.lo[1]), g8(d.lo[2]), g8(d.hi[0]), g8(d.hi[1]), g8(d.hi[2])));
+    sim.out.print("Reading data file ...");
+    let (id_off, mol_off) = match o.add {
+        None | Some(Add::Merge) => (0, 0),
+        Some(Add::Append) => (sim.state.atoms.max_tag(), if sim.state.atoms.features.molecule { sim.state.atoms.max_molecule() } else { 0 }),
+        Some(Add::Offset { id, mol }) => (id, mol),
+    };
+    let t = &sim.state.topo;
+    let system_types = [sim.state.ntypes, t.nbondtypes, t.nangletypes, t.ndihedraltypes];
+    let domain = match o.add {
+        None => {
+            if sim.state.dimension == 2 && (h.boxlo[2] >= 0.0 || h.boxhi[2] <= 0.0) {
+                return Err(Diagnostic::at(cmd.span, "a 2d data file must have zlo < 0 < zhi", "2d box"));
+            }
+            let domain = Domain { dimension: sim.state.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.state.boundary };
+            let ntypes = h.atom_types + o.extra_types[0];
+            crate::sim::memory::check_types(ntypes).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {ntypes} atom types: {e}"), "too many atom types"))?;
+            sim.state.ntypes = ntypes;
+            sim.state.type_mass = vec![0.0; ntypes + 1];
+            sim.state.mass_set = vec![false; ntypes + 1];
+            let t = &mut sim.state.topo;
+            t.nbondtypes = h.bond_types + o.extra_types[1];
+            t.nangletypes = h.angle_types + o.extra_types[2];
+            t.ndihedraltypes = h.dihedral_types + o.extra_types[3];
+            t.nimpropertypes = h.improper_types + o.extra_types[4];
+            domain
+        }
+        Some(_) => {
+            // the file's types, offset, must be types of the system (LAMMPS sizes them once)
+            let file_types = [h.atom_types, h.bond_types, h.angle_types, h.dihedral_types];
+            for (k, kind) in ["atom", "bond", "angle", "dihedral"].iter().enumerate() {
+                let off = [toff, boff, aoff, doff][k];
+                if file_types[k] > 0 && file_types[k] + off > system_types[k] {
+                    return Err(Diagnostic::at(cmd.span, format!("the data file's {} {kind} types, offset by {off}, exceed the system's {} {kind} types", file_types[k], system_types[k]), "too many types")
+                        .with_help("reserve types with extra/*/types in the first read_data, or in create_box"));
+                }
+            }
+            // the box grows to hold the file's box, shifted
+            let mut d = sim.state.domain.clone().expect("add needs a box");
+            let old = d.clone();
+            for k in 0..3 {
+                d.lo[k] = d.lo[k].min(file_lo[k]);
+                d.hi[k] = d.hi[k].max(file_hi[k]);
+            }
+            if (d.lo != old.lo || d.hi != old.hi) && sim.state.atoms.image[..sim.state.atoms.nlocal].iter().any(|im| *im != [0; 3]) {
+                sim.out.print("WARNING: Non-zero image flags with growing box can produce bad coordinates");
+            }
+            d
+        }
+    };
+    print_box(sim, &domain);
+    sim.state.box_initial = Some(domain.clone());
+    sim.state.domain = Some(domain.clone());
+    let natoms = sim.state.atoms.nlocal + h.atoms;
+    crate::sim::memory::check_atoms(natoms as f64, sim.state.atoms.features, 0, 0).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {natoms} atoms: {e}"), "too many atoms for this machine"))?;
     for m in &data.masses {
         if m.mass <= 0.0 {
             return Err(Diagnostic::at(m.span, format!("mass of type {} must be > 0", m.atom_type), "invalid mass"));
         }
-        sim.state.type_mass[m.atom_type] = m.mass;
-        sim.state.mass_set[m.atom_type] = true;
+        sim.state.type_mass[m.atom_type + toff] = m.mass;
+        sim.state.mass_set[m.atom_type + toff] = true;
     }
-    // coefficients, through the same code as the *_coeff commands
-    for sec in &data.coeffs {
-        let name = match sec.kind {
-            CoeffKind::Pair | CoeffKind::PairIJ => "pair_coeff",
-            CoeffKind::Bond => "bond_coeff",
-            CoeffKind::Angle => "angle_coeff",
-            CoeffKind::Dihedral => "dihedral_coeff",
+    // coefficients, through the same code as the *_coeff commands (types offset)
+    for sec in data.coeffs.iter().filter(|_| o.coeffs) {
+        let (name, off) = match sec.kind {
+            CoeffKind::Pair | CoeffKind::PairIJ => ("pair_coeff", toff),
+            CoeffKind::Bond => ("bond_coeff", boff),
+            CoeffKind::Angle => ("angle_coeff", aoff),
+            CoeffKind::Dihedral => ("dihedral_coeff", doff),
             _ => return Err(Diagnostic::at(sec.span, format!("{} are not supported", sec.kind.section_name()), "unsupported section")),
         };
         for line in &sec.lines {
-            let c = Command { name: Word::new(name, line.span), args: line.command_args(sec.kind), span: line.span };
+            let shifted = CoeffLine { types: line.types.iter().map(|t| t + off).collect(), ..line.clone() };
+            let c = Command { name: Word::new(name, line.span), args: shifted.command_args(sec.kind), span: line.span };
             sim.execute_command(&c, sources).map_err(|d| d.with_note(format!("in the {} section of the data file", sec.kind.section_name())))?;
         }
     }
-    // atoms
+    // atoms (IDs, types and positions as the keywords say)
     let ft = sim.state.atoms.features;
     let two_pi_thirds = 4.0 * std::f64::consts::PI / 3.0;
+    let existing = sim.state.atoms.tag_map();
     let mut seen = std::collections::HashSet::with_capacity(data.atoms.len());
     for al in &data.atoms {
+        let id = al.id + id_off;
         if !seen.insert(al.id) {
             return Err(Diagnostic::at(al.span, format!("duplicate atom ID {}", al.id), "repeated ID"));
         }
-        let mut x = al.x;
+        if existing.get(id).is_some() {
+            return Err(Diagnostic::at(al.span, format!("atom ID {id} exists already in the system"), "repeated ID").with_help("read_data add append gives the file's atoms IDs after the system's"));
+        }
+        let mut x: [f64; 3] = std::array::from_fn(|d| al.x[d] + o.shift[d]);
         let mut image = if data.image_flags { al.image } else { [0; 3] };
         for d in 0..3 {
             if !domain.periodic(d) {
@@ -122,12 +275,13 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
         if sim.state.dimension == 2 && x[2] != 0.0 {
             return Err(Diagnostic::at(al.span, format!("atom {} has z = {} in a 2d simulation (must be 0)", al.id, x[2]), "z must be 0"));
         }
-        if al.atom_type < 1 || al.atom_type > sim.state.ntypes {
-            return Err(Diagnostic::at(al.span, format!("atom {} has type {} outside 1..{}", al.id, al.atom_type, sim.state.ntypes), "bad type"));
+        let typ = al.atom_type + toff;
+        if al.atom_type < 1 || typ > sim.state.ntypes {
+            return Err(Diagnostic::at(al.span, format!("atom {} has type {typ} outside 1..{}", al.id, sim.state.ntypes), "bad type"));
         }
-        let mut n = NewAtom::at(al.id, al.atom_type, x);
+        let mut n = NewAtom::at(id, typ, x);
         n.image = image;
-        n.molecule = al.molecule;
+        n.molecule = al.molecule + mol_off;
         n.q = al.q;
         if ft.sphere {
             // LAMMPS: radius = d/2; rmass = density * 4 pi/3 r^3 (density itself when r = 0)
@@ -142,12 +296,15 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
         n.esph = al.esph;
         n.cv = al.cv;
         sim.state.atoms.push(&n);
+        if let Some(bit) = o.group {
+            *sim.state.atoms.mask.last_mut().unwrap() |= bit;
+        }
     }
     if let Some(vels) = &data.velocities {
         let map = sim.state.atoms.tag_map();
         for vl in vels {
-            let Some(i) = map.get(vl.id) else {
-                return Err(Diagnostic::at(vl.span, format!("velocity for atom ID {} that does not exist", vl.id), "unknown atom"));
+            let Some(i) = map.get(vl.id + id_off).filter(|_| seen.contains(&vl.id)) else {
+                return Err(Diagnostic::at(vl.span, format!("velocity for atom ID {} that the file does not have", vl.id), "unknown atom"));
             };
             sim.state.atoms.v[i] = vl.v;
             if ft.sphere {
@@ -163,19 +320,20 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, layout: &AtomLayo
     };
     for b in &data.bonds {
         check_type(b.topo_type, h.bond_types, b.span, "bond")?;
-        sim.state.topo.bonds.push(Bond::new(b.topo_type, b.atoms));
+        sim.state.topo.bonds.push(Bond::new(b.topo_type + boff, b.atoms.map(|a| a + id_off)));
     }
     for b in &data.angles {
         check_type(b.topo_type, h.angle_types, b.span, "angle")?;
-        sim.state.topo.angles.push(Angle { typ: b.topo_type, atoms: b.atoms });
+        sim.state.topo.angles.push(Angle { typ: b.topo_type + aoff, atoms: b.atoms.map(|a| a + id_off) });
     }
     for b in &data.dihedrals {
         check_type(b.topo_type, h.dihedral_types, b.span, "dihedral")?;
-        sim.state.topo.dihedrals.push(Dihedral { typ: b.topo_type, atoms: b.atoms });
+        sim.state.topo.dihedrals.push(Dihedral { typ: b.topo_type + doff, atoms: b.atoms.map(|a| a + id_off) });
     }
-    let _ = layout;
-    let t = &sim.state.topo;
-    sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", sim.state.atoms.nlocal, t.bonds.len(), t.angles.len(), t.dihedrals.len()));
+    sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", data.atoms.len(), data.bonds.len(), data.angles.len(), data.dihedrals.len()));
+    if o.add.is_some() && !(data.bonds.is_empty() && data.angles.is_empty() && data.dihedrals.is_empty()) {
+        sim.state.topology_changed();
+    }
     sim.state.lists_valid = false;
     Ok(())
 }

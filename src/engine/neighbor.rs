@@ -23,6 +23,9 @@ static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(
 /// Bits of a neighbour entry that hold the special-bond level (as LAMMPS' SBBITS).
 pub const SPECIAL_SHIFT: u32 = INDEX_BITS;
 pub const NEIGH_MASK: u32 = INDEX_MASK;
+/// Bytes per atom that must still be free after a list is built (room for the copies of
+/// per-atom arrays that follow it in a rebuild and a step).
+const HEADROOM_PER_ATOM: usize = 256;
 
 /// Special level of a neighbour entry: 0 = ordinary pair, 1/2/3 = 1-2/1-3/1-4 neighbours.
 #[inline]
@@ -362,6 +365,9 @@ pub enum NeighError {
     /// The list does not fit in memory: `entries` were listed when the allocator refused more
     /// (a cutoff + skin that reaches most of the system).
     OutOfMemory { entries: usize, cut: f64 },
+    /// The list fits, with `entries` in all, but leaves too little memory for the rest of the
+    /// rebuild and the step.
+    NoRoomAfter { entries: usize, cut: f64 },
 }
 
 impl Neighbor {
@@ -678,6 +684,13 @@ impl Neighbor {
             })
             .collect();
         let chunks = chunks.map_err(|entries| NeighError::OutOfMemory { entries, cut: cutmax })?;
+        // the rest of the rebuild and of the step allocate per-atom arrays (copies of positions,
+        // LAMMPS' order, bonded lists): when the list took the last of the memory, say so here
+        // rather than abort on one of those allocations
+        let entries: usize = chunks.iter().map(|c| c.raw().len()).sum();
+        if Vec::<u8>::new().try_reserve_exact(nall.saturating_mul(HEADROOM_PER_ATOM)).is_err() {
+            return Err(NeighError::NoRoomAfter { entries, cut: cutmax });
+        }
 
         let has_special = use_special && chunks.iter().any(|c| c.raw().iter().any(|&j| j > NEIGH_MASK));
         // unique over the process, so no derived list can mistake a new build for its own

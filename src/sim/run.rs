@@ -155,6 +155,14 @@ impl Simulation {
                         crate::output::format::g(cut)
                     ),
                 ),
+                NeighError::NoRoomAfter { entries, cut } => RunError::new(
+                    step,
+                    format!(
+                        "the neighbour list ({entries} entries for {} atoms, neighbour cutoff {}) leaves too little memory for the rest of the step; use fewer atoms, a shorter cutoff or skin, or a machine with more memory",
+                        self.state.atoms.nall(),
+                        crate::output::format::g(cut)
+                    ),
+                ),
             })?;
         let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
         self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, setup);

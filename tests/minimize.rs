@@ -177,7 +177,8 @@ fn bad_input_is_a_located_error() {
         ("minimize 1e-4 1e-6 100 1000 5\n", "unexpected argument"),
         ("minimize -1 1e-6 100 1000\n", "etol"),
         ("minimize 0 0 ten 1000\n", "maxiter"),
-        ("fix a all addforce 1.0 0.0 0.0\nminimize 0 0 10 100\n", "addforce"),
+        ("fix a all gravity 1.0 vector 0 0 -1\nminimize 0 0 10 100\n", "gravity"),
+        ("variable f equal 1.0\nfix a all addforce v_f 0.0 0.0\nminimize 0 0 10 100\n", "variable force"),
         ("fix a all setforce 1.0 0.0 0.0\nminimize 0 0 10 100\n", "non-zero forces"),
         ("min_style fire\nmin_modify dtgrow 0.9\nminimize 0 0 10 100\n", "dtgrow"),
     ];

@@ -120,8 +120,8 @@ fn projection(sim: &Simulation, m: &Min) -> (f64, f64) {
     }
     let mut hmax: f64 = 0.0;
     for &i in &order {
-        for k in 0..3 {
-            let a = h[i][k].abs();
+        for c in h[i] {
+            let a = c.abs();
             hmax = if hmax > a { hmax } else { a };
         }
     }

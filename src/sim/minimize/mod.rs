@@ -193,8 +193,8 @@ impl Min {
         let f = &sim.state.atoms.f;
         let mut s = 0.0;
         for i in Self::order(sim) {
-            for k in 0..3 {
-                s += f[i][k] * f[i][k];
+            for c in f[i] {
+                s += c * c;
             }
         }
         s
@@ -205,8 +205,8 @@ impl Min {
         let f = &sim.state.atoms.f;
         let mut m: f64 = 0.0;
         for i in Self::order(sim) {
-            for k in 0..3 {
-                let v = f[i][k] * f[i][k];
+            for c in f[i] {
+                let v = c * c;
                 m = if v > m { v } else { m };
             }
         }
@@ -340,7 +340,9 @@ impl Simulation {
     /// the summary of Finish).
     pub fn minimize(&mut self, opts: &MinimizeOptions) -> Result<(), RunError> {
         let first = self.state.step;
-        let last = first + opts.maxiter;
+        let Some(last) = first.checked_add(opts.maxiter) else {
+            return Err(RunError::setup(first, format!("minimize: too many iterations: step {first} + {} is past the largest step", opts.maxiter).into()));
+        };
         self.state.run_window = Some((first, last));
         self.init_run().map_err(|e| RunError::setup(first, e))?;
         let fixes = self.min_fixes().map_err(|e| RunError::setup(first, e))?;

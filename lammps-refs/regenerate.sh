@@ -52,6 +52,9 @@ for name in "${names[@]+"${names[@]}"}"; do
     case "$name" in
         bond*|thermo_*|deposit_mol) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
                    "$out/log.lammps" > "$out/thermo.txt" ;;
+        # the minimization's thermo table and its summary (tests/minimize.rs)
+        min_*) awk '/^minimize /{m = 1} m && /^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p; /^Minimization stats/{q = 1} q && /^ *$/{q = 0} q {print "## " $0}' \
+                   "$out/log.lammps" > "$out/thermo.txt" ;;
         # the orientations at the end (tests/bpm.rs)
         bpm_sphere_nve) "$py" "$here/bpm_quat.py" "$here/decks/in.$name" "$out" ;;
     esac

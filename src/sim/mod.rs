@@ -2,6 +2,7 @@
 
 pub mod eval;
 pub mod memory;
+pub mod minimize;
 pub mod run;
 pub mod stability;
 
@@ -62,6 +63,10 @@ pub struct Simulation {
     /// Set from another thread (the Python module on Ctrl-C) to stop a run at the next step;
     /// the run ends with an error "run interrupted" and clears the flag.
     pub cancel: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    /// `min_style` and `min_modify`.
+    pub min: minimize::MinSettings,
+    /// What the last `minimize` did.
+    pub min_stats: Option<minimize::MinStats>,
 }
 
 impl Default for Simulation {
@@ -101,6 +106,8 @@ impl Simulation {
             checked_runs: 0,
             guard: Default::default(),
             cancel: Default::default(),
+            min: Default::default(),
+            min_stats: None,
         }
     }
 

@@ -37,7 +37,7 @@ type Hook = fn(&mut dyn Fix, &mut State, &mut FixCtx) -> Result<(), RunError>;
 impl Simulation {
     /// Run `work` on fix `k` with the state and a context in which expressions see every fix
     /// (the running one passes itself), every compute and every variable.
-    fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
+    pub(crate) fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
         let (before, rest) = self.fixes.split_at_mut(k);
         let (fix, after) = rest.split_first_mut().expect("fix index in range");
         let (before, after): (&[Box<dyn Fix>], &[Box<dyn Fix>]) = (before, after);
@@ -47,7 +47,7 @@ impl Simulation {
     }
 
     /// Call one hook of every fix that uses it, in definition order.
-    fn fix_hook(&mut self, wanted: fn(&FixHooks) -> bool, hook: Hook) -> Result<(), RunError> {
+    pub(crate) fn fix_hook(&mut self, wanted: fn(&FixHooks) -> bool, hook: Hook) -> Result<(), RunError> {
         for k in 0..self.fixes.len() {
             if !wanted(&self.fixes[k].hooks()) {
                 continue;
@@ -105,11 +105,13 @@ impl Simulation {
     /// Wrap periodic coordinates, resize shrink-wrapped boxes, remove atoms that left a fixed
     /// box, sort, make ghosts and build the lists.
     pub fn rebuild(&mut self) -> Result<(), RunError> {
-        self.rebuild_at(false)
+        self.rebuild_at(false).map(|_| ())
     }
 
     /// [`Simulation::rebuild`]; `setup`: at the setup of a run (LAMMPS sorts its atoms then).
-    fn rebuild_at(&mut self, setup: bool) -> Result<(), RunError> {
+    /// Returns the permutation applied to the owned atoms (`new k <- old order[k]`), for
+    /// per-atom vectors kept outside the atoms (the minimizer's).
+    pub(crate) fn rebuild_at(&mut self, setup: bool) -> Result<Vec<usize>, RunError> {
         let step = self.state.step;
         if self.state.special_dirty {
             self.state.rebuild_special().map_err(|e| RunError::new(step, e))?;
@@ -171,7 +173,7 @@ impl Simulation {
         }
         crate::models::bonded::pass::build_bonded_lists(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style))?;
         self.state.lists_valid = true;
-        Ok(())
+        Ok(order)
     }
 
     /// Call `work` with the pair style, its input and the per-atom outputs (taken out of the
@@ -401,7 +403,7 @@ impl Simulation {
     }
 
     /// Ghost atoms need fresh velocities and per-atom state only for styles that read them.
-    fn needs_ghost_state(&self) -> bool {
+    pub(crate) fn needs_ghost_state(&self) -> bool {
         self.state.comm_vel || self.state.atoms.features.sph || self.state.atoms.features.sphere || self.state.atoms.extra.iter().any(|e| e.ghosts)
     }
 
@@ -496,7 +498,7 @@ impl Simulation {
             self.state.atoms.nlocal
         ));
         if opts.post && result.is_ok() {
-            self.print_run_summary(loop_time, done);
+            self.print_run_summary(loop_time, done, None);
         }
         self.out.flush();
         // thermo keywords and variables refer to the current run window until the next run
@@ -513,7 +515,7 @@ impl Simulation {
 
     /// Energies are needed on thermo steps, the last step, dump steps and the steps on which a
     /// fix reads values (fix ave/time, fix print).
-    fn output_due(&self, step: i64, last: i64) -> bool {
+    pub(crate) fn output_due(&self, step: i64, last: i64) -> bool {
         step == last
             || (self.thermo.every > 0 && step % self.thermo.every == 0)
             || self.dumps.iter().any(|d| d.due(step, false))
@@ -522,6 +524,12 @@ impl Simulation {
 
     /// Thermo line and dumps for the current step.
     fn output_step(&mut self, setup: bool, last: i64) -> Result<(), RunError> {
+        self.output_now(setup, last, false)
+    }
+
+    /// [`Simulation::output_step`]; `all_dumps`: every dump writes now (the last step of a
+    /// minimization that stopped early, as LAMMPS' Min::run).
+    pub(crate) fn output_now(&mut self, setup: bool, last: i64, all_dumps: bool) -> Result<(), RunError> {
         let step = self.state.step;
         let thermo_now = setup || step == last || (self.thermo.every > 0 && step % self.thermo.every == 0);
         let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) };
@@ -535,14 +543,15 @@ impl Simulation {
             }
         }
         for d in self.dumps.iter_mut() {
-            if d.due(step, setup) {
+            if d.due(step, setup) || (all_dumps && d.last_written != Some(step)) {
                 d.write(&world, &mut |name| dmhs_parser::variables::compute_equal(&mut ev, name)).map_err(|e| RunError::new(step, e))?;
             }
         }
         Ok(())
     }
 
-    fn print_run_summary(&mut self, loop_time: f64, steps: i64) {
+    /// The summary after a run's loop; `stats`: printed after the CPU line (a minimization's).
+    pub(crate) fn print_run_summary(&mut self, loop_time: f64, steps: i64, stats: Option<&str>) {
         let n = self.state.atoms.nlocal as f64;
         if loop_time > 0.0 && steps > 0 {
             let tps = steps as f64 / loop_time;
@@ -555,6 +564,9 @@ impl Simulation {
         }
         let threads = rayon::current_num_threads();
         self.out.print(&format!("100.0% CPU use with 1 MPI tasks x {threads} threads\n"));
+        if let Some(stats) = stats {
+            self.out.print(stats);
+        }
         self.out.print(&self.timers.report(loop_time));
         self.out.print(&crate::engine::timing::model_report(&self.model_rows(), loop_time));
         self.out.print(&format!(

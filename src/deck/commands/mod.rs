@@ -7,6 +7,7 @@ mod box_cmds;
 mod change_box;
 mod displace;
 mod forcefield;
+mod min_cmds;
 mod modify_cmds;
 mod output_cmds;
 mod replicate;
@@ -78,6 +79,9 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("dump_modify", output_cmds::dump_modify),
     ("run", run_cmds::run),
     ("run_style", run_cmds::run_style),
+    ("minimize", min_cmds::minimize),
+    ("min_style", min_cmds::min_style),
+    ("min_modify", min_cmds::min_modify),
     ("reset_timestep", run_cmds::reset_timestep),
     ("write_restart", crate::deck::restart::write_restart),
     ("read_restart", crate::deck::restart::read_restart),

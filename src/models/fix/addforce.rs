@@ -53,6 +53,13 @@ impl Fix for FixAddForce {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
+    /// LAMMPS applies it while minimizing (its energy counts only with fix_modify energy).
+    fn min_role(&self) -> super::MinRole {
+        match self.value.iter().all(|v| matches!(v, FixValue::Const(_) | FixValue::Null)) {
+            true => super::MinRole::PostForce,
+            false => super::MinRole::Refused(format!("fix {} (addforce): a variable force needs LAMMPS' `energy` keyword in a minimization, which dmhs does not have", self.id)),
+        }
+    }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         if state.step % self.every != 0 {
             return Ok(());

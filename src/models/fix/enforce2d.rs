@@ -30,6 +30,9 @@ impl Fix for FixEnforce2d {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::PostForce
+    }
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
         if state.dimension == 3 {
             return Err("fix enforce2d cannot be used in a 3d simulation".into());

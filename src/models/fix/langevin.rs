@@ -210,6 +210,10 @@ impl Fix for FixLangevin {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, end_of_step: self.tally, ..FixHooks::default() }
     }
+    /// LAMMPS' fix langevin has no minimization hook.
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::Inert
+    }
     /// LAMMPS' fix langevin reads its temperature compute only to remove a bias; a plain
     /// compute temp has none, so the forces do not change.
     fn modify_temp(&mut self, _groupbit: u32, _extra: Option<f64>) -> Result<(), String> {

@@ -108,7 +108,28 @@ impl FixCtx<'_> {
     }
 }
 
+/// What a fix does during `minimize` (LAMMPS calls only a fix's min_* hooks there).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MinRole {
+    /// No minimization hook in LAMMPS: the fix does nothing while minimizing (integrators,
+    /// thermostats, output fixes).
+    Inert,
+    /// LAMMPS' min_setup and min_post_force are its setup and post_force: applied after each
+    /// force evaluation.
+    PostForce,
+    /// Refused, with the reason (acts on forces or energy in LAMMPS' minimizer, not here).
+    Refused(String),
+}
+
 pub trait Fix: Send + Sync {
+    /// The fix's part in `minimize`; by default a fix that changes forces is refused (LAMMPS
+    /// applies many of them and adds their energy, which dmhs' minimizer does not).
+    fn min_role(&self) -> MinRole {
+        match self.hooks().post_force {
+            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring and viscous", self.id(), self.style())),
+            false => MinRole::Inert,
+        }
+    }
     fn id(&self) -> &str;
     fn style(&self) -> &str;
     /// Bitmask of the fix group.

@@ -67,6 +67,13 @@ impl Fix for FixSetForce {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
+    /// LAMMPS refuses a non-zero or variable force in a minimization (no energy goes with it).
+    fn min_role(&self) -> super::MinRole {
+        match self.value.iter().all(|v| matches!(v, FixValue::Null | FixValue::Const(0.0))) {
+            true => super::MinRole::PostForce,
+            false => super::MinRole::Refused(format!("fix {} (setforce): cannot use non-zero forces in an energy minimization (LAMMPS' rule; use 0.0 or NULL)", self.id)),
+        }
+    }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         let mut fv = [None; 3];
         for k in 0..3 {

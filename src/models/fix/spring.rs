@@ -68,6 +68,10 @@ impl Fix for FixSpring {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
+    /// LAMMPS applies it while minimizing (its energy counts only with fix_modify energy).
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::PostForce
+    }
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
         if let Some((name, bit)) = self.group2.as_mut() {
             *bit = state.groups.bit(name).ok_or_else(|| format!("fix spring couple group `{name}` does not exist"))?;

@@ -47,6 +47,10 @@ impl Fix for FixViscous {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
+    /// LAMMPS applies it while minimizing (-gamma v with the velocities as they are).
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::PostForce
+    }
     fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         let a = &mut state.atoms;
         for i in 0..a.nlocal {

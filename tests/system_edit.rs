@@ -103,3 +103,73 @@ fn read_data_add_gives_lammps_ids_and_types() {
         ["1 5 1 1 1 1 0 0 0", "2 0 2 2 1 1 0 0 0", "3 7 1 3 1 1 0 0 0", "4 12 2 1 1 21 0 0 0", "5 7 3 2 1 21 0 0 0", "6 14 2 3 1 21 0 0 0", "101 55 1 1 6 1 0 0 0", "102 50 2 2 6 1 0 0 0", "103 57 1 3 6 1 0 0 0"]
     );
 }
+
+#[test]
+fn delete_bonds_counts_are_lammps() {
+    // the counts LAMMPS 22 Jul 2025 prints for the seven delete_bonds commands of this deck
+    let want = [
+        "  150 total bonds, 112 turned on, 38 turned off",
+        "  140 total angles, 104 turned on, 36 turned off",
+        "  130 total dihedrals, 96 turned on, 34 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off",
+        "  150 total bonds, 112 turned on, 38 turned off",
+        "  140 total angles, 138 turned on, 2 turned off",
+        "  130 total dihedrals, 96 turned on, 34 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off",
+        "  113 total bonds, 112 turned on, 1 turned off",
+        "  140 total angles, 138 turned on, 2 turned off",
+        "  99 total dihedrals, 96 turned on, 3 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off",
+        "  113 total bonds, 107 turned on, 6 turned off",
+        "  140 total angles, 133 turned on, 7 turned off",
+        "  99 total dihedrals, 91 turned on, 8 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off",
+        "  113 total bonds, 107 turned on, 6 turned off",
+        "  140 total angles, 133 turned on, 7 turned off",
+        "  99 total dihedrals, 65 turned on, 34 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off",
+        "  113 total bonds, 107 turned on, 6 turned off",
+        "  140 total angles, 133 turned on, 7 turned off",
+        "  99 total dihedrals, 65 turned on, 34 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off",
+        "  85 total bonds, 79 turned on, 6 turned off",
+        "  140 total angles, 133 turned on, 7 turned off",
+        "  99 total dihedrals, 65 turned on, 34 turned off",
+        "  0 total impropers, 0 turned on, 0 turned off"
+    ];
+    let (code, out) = run(&deck("in.delete_bonds"));
+    assert_eq!(code, 0, "{out}");
+    let ours: Vec<&str> = out.lines().filter(|l| l.contains(" total ")).collect();
+    assert_eq!(ours, want, "{out}");
+}
+
+#[test]
+fn delete_bonds_errors_are_located() {
+    let d = deck("in.delete_bonds");
+    let line = "delete_bonds last dihedral 1*";
+    for (to, want) in [
+        ("delete_bonds nogroup multi", "group `nogroup` does not exist"),
+        ("delete_bonds last dihedral 2", "within 0..=1"),
+        ("delete_bonds last atom 0", "within 1..=2"),
+        ("delete_bonds last atom 2*1", "found `2*1`"),
+        ("delete_bonds last angles 1", "style"),
+        ("delete_bonds last multi now", "unknown keyword `now`"),
+        ("delete_bonds last bond", "missing bond type"),
+    ] {
+        expect_error(&d.replace(line, to), want);
+    }
+    expect_error(&deck("in.replicate_lj").replace("replicate    1 3 2", "delete_bonds all multi"), "delete_bonds needs an atom style with bonds");
+}
+
+#[test]
+fn turned_off_interactions_survive_a_restart() {
+    // LAMMPS stores a turned-off interaction with its type negated; so do dmhs' restart files
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("off.restart");
+    let (code, out) = run(&deck("in.delete_bonds").replace("run          ${nsteps}", &format!("run          ${{nsteps}}\nwrite_restart {}", file.display())));
+    assert_eq!(code, 0, "{out}");
+    let (code, out) = run(&format!("read_restart {}\ndelete_bonds all stats\n", file.display()));
+    assert_eq!(code, 0, "{out}");
+    let stats: Vec<&str> = out.lines().filter(|l| l.contains(" total ")).collect();
+    assert_eq!(stats[..3], ["  85 total bonds, 79 turned on, 6 turned off", "  140 total angles, 133 turned on, 7 turned off", "  99 total dihedrals, 65 turned on, 34 turned off"], "{out}");
+}

@@ -324,11 +324,11 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     }
     for b in &data.angles {
         check_type(b.topo_type, h.angle_types, b.span, "angle")?;
-        sim.state.topo.angles.push(Angle { typ: b.topo_type + aoff, atoms: b.atoms.map(|a| a + id_off) });
+        sim.state.topo.angles.push(Angle::new(b.topo_type + aoff, b.atoms.map(|a| a + id_off)));
     }
     for b in &data.dihedrals {
         check_type(b.topo_type, h.dihedral_types, b.span, "dihedral")?;
-        sim.state.topo.dihedrals.push(Dihedral { typ: b.topo_type + doff, atoms: b.atoms.map(|a| a + id_off) });
+        sim.state.topo.dihedrals.push(Dihedral::new(b.topo_type + doff, b.atoms.map(|a| a + id_off)));
     }
     sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", data.atoms.len(), data.bonds.len(), data.angles.len(), data.dihedrals.len()));
     if o.add.is_some() && !(data.bonds.is_empty() && data.angles.is_empty() && data.dihedrals.is_empty()) {

@@ -135,10 +135,10 @@ impl Molecule {
                 topo.bonds.push(Bond::new(t, at.map(id)));
             }
             for &(t, at) in self.angles.iter().filter(|b| b.1[1] == k) {
-                topo.angles.push(Angle { typ: t, atoms: at.map(id) });
+                topo.angles.push(Angle::new(t, at.map(id)));
             }
             for &(t, at) in self.dihedrals.iter().filter(|b| b.1[1] == k) {
-                topo.dihedrals.push(Dihedral { typ: t, atoms: at.map(id) });
+                topo.dihedrals.push(Dihedral::new(t, at.map(id)));
             }
         }
         first..state.atoms.nlocal

@@ -127,6 +127,10 @@ pub struct State {
     pub rebuild_requested: bool,
     /// The topology changed since the special lists were built.
     pub special_dirty: bool,
+    /// The special lists were kept when `delete_bonds ... remove` (without `special`) removed
+    /// interactions, as LAMMPS keeps them: runs do not rebuild them from the topology until a
+    /// command that rebuilds them does.
+    pub special_frozen: bool,
     /// Lines for the screen and the log from models (e.g. a fix's warnings during a run),
     /// printed and cleared by the command or step that produced them.
     pub messages: Vec<String>,
@@ -177,6 +181,7 @@ impl State {
             natoms_expected: 0,
             rebuild_requested: false,
             special_dirty: false,
+            special_frozen: false,
             messages: Vec::new(),
         }
     }
@@ -294,6 +299,7 @@ impl State {
             self.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);
         }
         self.special_dirty = false;
+        self.special_frozen = false;
         Ok(())
     }
 }

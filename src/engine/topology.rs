@@ -10,11 +10,14 @@ pub struct Bond {
     /// Per-bond history of the BPM bond styles (LAMMPS' fix bond/history): the reference
     /// length, 0 until the style stores it at its first force evaluation.
     pub r0: f64,
+    /// Turned off by `delete_bonds` (LAMMPS' negative type): kept, and counted in the special
+    /// lists, but not computed.
+    pub off: bool,
 }
 
 impl Bond {
     pub fn new(typ: usize, atoms: [i64; 2]) -> Bond {
-        Bond { typ, atoms, r0: 0.0 }
+        Bond { typ, atoms, r0: 0.0, off: false }
     }
 }
 
@@ -22,12 +25,28 @@ impl Bond {
 pub struct Angle {
     pub typ: usize,
     pub atoms: [i64; 3],
+    /// Turned off by `delete_bonds` (see [`Bond::off`]).
+    pub off: bool,
+}
+
+impl Angle {
+    pub fn new(typ: usize, atoms: [i64; 3]) -> Angle {
+        Angle { typ, atoms, off: false }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Dihedral {
     pub typ: usize,
     pub atoms: [i64; 4],
+    /// Turned off by `delete_bonds` (see [`Bond::off`]).
+    pub off: bool,
+}
+
+impl Dihedral {
+    pub fn new(typ: usize, atoms: [i64; 4]) -> Dihedral {
+        Dihedral { typ, atoms, off: false }
+    }
 }
 
 #[derive(Clone, Debug, Default)]

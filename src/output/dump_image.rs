@@ -711,7 +711,7 @@ impl ImageDump {
         }
         let prd = dom.prd();
         for b in &state.topo.bonds {
-            if b.typ == 0 {
+            if b.typ == 0 || b.off {
                 continue;
             }
             let (Some(&ka), Some(&kb)) = (slot.get(&b.atoms[0]), slot.get(&b.atoms[1])) else { continue };

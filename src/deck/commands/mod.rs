@@ -50,6 +50,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("replicate", replicate::replicate),
     ("read_data", box_cmds::read_data),
     ("create_bonds", topology_cmds::create_bonds),
+    ("delete_bonds", topology_cmds::delete_bonds),
     ("molecule", crate::deck::molecule::molecule),
     ("write_data", box_cmds::write_data),
     ("mass", atoms_cmds::mass),

@@ -391,6 +391,8 @@ pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
 pub fn special_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "");
     sim.state.special_bonds = SpecialBonds::parse(&mut a)?;
+    // LAMMPS rebuilds its special lists when the weights change
+    sim.state.special_frozen = false;
     sim.state.lists_valid = false;
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! Topology commands: create_bonds.
+//! Topology commands: create_bonds, delete_bonds.
 
 use super::need_box;
 use crate::engine::topology::{Angle, Bond, Dihedral};
@@ -86,8 +86,8 @@ pub fn create_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             sim.out.print(&format!("Added {added} bonds, new total = {total}"));
         }
         1 => sim.state.topo.bonds.push(Bond::new(typ, [ids[0], ids[1]])),
-        2 => sim.state.topo.angles.push(Angle { typ, atoms: [ids[0], ids[1], ids[2]] }),
-        _ => sim.state.topo.dihedrals.push(Dihedral { typ, atoms: [ids[0], ids[1], ids[2], ids[3]] }),
+        2 => sim.state.topo.angles.push(Angle::new(typ, [ids[0], ids[1], ids[2]])),
+        _ => sim.state.topo.dihedrals.push(Dihedral::new(typ, [ids[0], ids[1], ids[2], ids[3]])),
     }
     if special {
         sim.state.rebuild_special().map_err(|e| Diagnostic::at(cmd.span, e, "special lists"))?;
@@ -206,4 +206,165 @@ fn many(sim: &mut Simulation, cmd: &Command, groups: [u32; 2], typ: usize, range
     let added = new_bonds.len();
     sim.state.topo.bonds.extend(new_bonds.into_iter().map(|(i, j)| Bond::new(typ, [i, j])));
     Ok(added)
+}
+
+/// What `delete_bonds` selects besides the group.
+#[derive(Clone, Copy, PartialEq)]
+enum Select {
+    /// Every interaction (`multi`), or none (`stats`).
+    All,
+    None,
+    /// An atom of the interaction has a type in the range.
+    AtomType(usize, usize),
+    Bond(usize, usize),
+    Angle(usize, usize),
+    Dihedral(usize, usize),
+}
+
+/// A type range as `delete_bonds` takes it: `n`, `*`, `*n`, `n*`, `m*n`, within `lo..=hi`.
+fn type_range(a: &mut Args, what: &str, lo: usize, hi: usize) -> DResult<(usize, usize)> {
+    let w = a.word(what)?;
+    let bad = || a.error_at(w, format!("expected a {what} or a range of them (n, *, *n, n*, m*n) within {lo}..={hi}, found `{}`", w.text), "bad type range");
+    let num = |s: &str, default: usize| if s.is_empty() { Some(default) } else { s.parse::<usize>().ok() };
+    let (l, h) = match w.text.split_once('*') {
+        None => {
+            let n = num(&w.text, usize::MAX).filter(|_| !w.text.is_empty()).ok_or_else(bad)?;
+            (n, n)
+        }
+        Some((l, h)) => (num(l, lo).ok_or_else(bad)?, num(h, hi).ok_or_else(bad)?),
+    };
+    if l < lo || h > hi || l > h {
+        return Err(bad());
+    }
+    Ok((l, h))
+}
+
+/// `delete_bonds group-ID multi|atom T|bond T|angle T|dihedral T|improper T|stats [any] [undo]
+/// [remove] [special]`, as LAMMPS: the interactions whose atoms are all in the group (any of
+/// them with `any`) and that the style selects are turned off (on with `undo`); `remove` then
+/// drops every turned-off interaction of the group (all kinds); `special` rebuilds the 1-2,
+/// 1-3, 1-4 lists, which otherwise stay as they were (turned-off and removed interactions keep
+/// their special weights). The counts LAMMPS prints follow.
+pub fn delete_bonds(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let syntax = "delete_bonds group-ID multi|atom T|bond T|angle T|dihedral T|improper T|stats [any] [undo] [remove] [special]";
+    let mut a = Args::new(cmd, syntax);
+    if !sim.state.atoms.features.molecular() {
+        return Err(a.error_at(&cmd.name, "delete_bonds needs an atom style with bonds (bond, angle, molecular, full, or a hybrid of them)", "atoms have no bonds"));
+    }
+    let gw = a.word("group ID")?;
+    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let t = &sim.state.topo;
+    let select = match a.choice("style", &["multi", "atom", "bond", "angle", "dihedral", "improper", "stats"])? {
+        0 => Select::All,
+        1 => {
+            let (l, h) = type_range(&mut a, "atom type", 1, sim.state.ntypes)?;
+            Select::AtomType(l, h)
+        }
+        2 => {
+            // type 0: bonds broken by a bond-breaking style (dmhs removes those when they break)
+            let (l, h) = type_range(&mut a, "bond type", 0, t.nbondtypes)?;
+            Select::Bond(l, h)
+        }
+        3 => {
+            let (l, h) = type_range(&mut a, "angle type", 0, t.nangletypes)?;
+            Select::Angle(l, h)
+        }
+        4 => {
+            let (l, h) = type_range(&mut a, "dihedral type", 0, t.ndihedraltypes)?;
+            Select::Dihedral(l, h)
+        }
+        5 => {
+            // dmhs keeps no impropers: nothing to select
+            type_range(&mut a, "improper type", 0, t.nimpropertypes)?;
+            Select::None
+        }
+        _ => Select::None,
+    };
+    let (mut any, mut undo, mut remove, mut special) = (false, false, false, false);
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "any" => any = true,
+            "undo" => undo = true,
+            "remove" => remove = true,
+            "special" => special = true,
+            _ => return Err(a.unknown_keyword(w, &["any", "undo", "remove", "special"])),
+        }
+    }
+    let st = &mut sim.state;
+    if remove && !special && !st.special_frozen {
+        // the lists LAMMPS holds now are those of the current topology; they stay after removal
+        st.rebuild_special().map_err(|e| Diagnostic::at(cmd.span, e, "special lists"))?;
+    }
+    let map = st.atoms.tag_map();
+    let (mask, typ) = (&st.atoms.mask, &st.atoms.typ);
+    let mut missing = None;
+    let mut atom_of = |id: i64| -> Option<usize> {
+        let i = map.get(id);
+        if i.is_none() {
+            missing = Some(id);
+        }
+        i
+    };
+    // the atoms' indices if the interaction is in the group; None otherwise
+    let mut in_group = |ids: &[i64]| -> Option<Vec<usize>> {
+        let idx: Option<Vec<usize>> = ids.iter().map(|&id| atom_of(id)).collect();
+        let idx = idx?;
+        let inside = |i: &usize| mask[*i] & bit != 0;
+        (if any { idx.iter().any(inside) } else { idx.iter().all(inside) }).then_some(idx)
+    };
+    let of_atom_type = |idx: &[usize]| matches!(select, Select::AtomType(l, h) if idx.iter().any(|&i| (l..=h).contains(&typ[i])));
+    let t = &mut st.topo;
+    for b in t.bonds.iter_mut() {
+        if let Some(idx) = in_group(&b.atoms) {
+            if select == Select::All || of_atom_type(&idx) || matches!(select, Select::Bond(l, h) if (l..=h).contains(&b.typ)) {
+                b.off = !undo;
+            }
+        }
+    }
+    for g in t.angles.iter_mut() {
+        if let Some(idx) = in_group(&g.atoms) {
+            if select == Select::All || of_atom_type(&idx) || matches!(select, Select::Angle(l, h) if (l..=h).contains(&g.typ)) {
+                g.off = !undo;
+            }
+        }
+    }
+    for d in t.dihedrals.iter_mut() {
+        if let Some(idx) = in_group(&d.atoms) {
+            if select == Select::All || of_atom_type(&idx) || matches!(select, Select::Dihedral(l, h) if (l..=h).contains(&d.typ)) {
+                d.off = !undo;
+            }
+        }
+    }
+    if remove {
+        let nbefore = t.bonds.len() + t.angles.len() + t.dihedrals.len();
+        t.bonds.retain(|b| !(b.off && in_group(&b.atoms).is_some()));
+        t.angles.retain(|g| !(g.off && in_group(&g.atoms).is_some()));
+        t.dihedrals.retain(|d| !(d.off && in_group(&d.atoms).is_some()));
+        // the special lists stay as they were (LAMMPS), unless `special` rebuilds them below
+        st.special_frozen |= nbefore != t.bonds.len() + t.angles.len() + t.dihedrals.len();
+    }
+    if let Some(id) = missing {
+        return Err(Diagnostic::at(cmd.span, format!("an interaction names atom {id}, which does not exist"), "bond atom missing"));
+    }
+    sim.out.print("Deleting bonds ...");
+    let t = &sim.state.topo;
+    let count = |offs: &mut dyn Iterator<Item = bool>| offs.fold((0, 0), |(on, off), o| if o { (on, off + 1) } else { (on + 1, off) });
+    let ft = sim.state.atoms.features;
+    for (allowed, (on, off), what) in [
+        (ft.bonds, count(&mut t.bonds.iter().map(|b| b.off)), "bonds"),
+        (ft.angles, count(&mut t.angles.iter().map(|g| g.off)), "angles"),
+        (ft.dihedrals, count(&mut t.dihedrals.iter().map(|d| d.off)), "dihedrals"),
+        (ft.dihedrals, (0, 0), "impropers"),
+    ] {
+        if allowed {
+            sim.out.print(&format!("  {} total {what}, {on} turned on, {off} turned off", on + off));
+        }
+    }
+    if special {
+        sim.state.rebuild_special().map_err(|e| Diagnostic::at(cmd.span, e, "special lists"))?;
+    }
+    sim.state.lists_valid = false;
+    Ok(())
 }

@@ -70,6 +70,11 @@ const OLD_MAGIC: &[u8] = b"DMHS restart 1";
 const LAMMPS_MAGIC: &[u8] = b"LammpS RestartT";
 const LAMMPS_BINARY: &str = "dmhs does not read LAMMPS binary restart files; convert it with LAMMPS (`lmp -restart2data FILE data.file`, or read_restart then write_data) and use read_data";
 
+/// A type as a restart file stores it: negative when turned off by delete_bonds.
+fn signed_type(typ: usize, off: bool) -> i64 {
+    if off { -(typ as i64) } else { typ as i64 }
+}
+
 /// `write_restart file`: written to a temporary name, then renamed (no half-written files).
 pub fn write_restart(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, WRITE_SYNTAX);
@@ -179,9 +184,10 @@ fn snapshot(sim: &mut Simulation) -> Result<Restart, String> {
             angle_types: t.nangletypes,
             dihedral_types: t.ndihedraltypes,
             improper_types: t.nimpropertypes,
-            bonds: t.bonds.iter().map(|b| [b.typ as i64, b.atoms[0], b.atoms[1]]).collect(),
-            angles: t.angles.iter().map(|b| [b.typ as i64, b.atoms[0], b.atoms[1], b.atoms[2]]).collect(),
-            dihedrals: t.dihedrals.iter().map(|b| [b.typ as i64, b.atoms[0], b.atoms[1], b.atoms[2], b.atoms[3]]).collect(),
+            // a turned-off interaction has its type negated, as LAMMPS stores it
+            bonds: t.bonds.iter().map(|b| [signed_type(b.typ, b.off), b.atoms[0], b.atoms[1]]).collect(),
+            angles: t.angles.iter().map(|b| [signed_type(b.typ, b.off), b.atoms[0], b.atoms[1], b.atoms[2]]).collect(),
+            dihedrals: t.dihedrals.iter().map(|b| [signed_type(b.typ, b.off), b.atoms[0], b.atoms[1], b.atoms[2], b.atoms[3]]).collect(),
         },
         force_field: sim.ff_commands.clone(),
         contact_histories,
@@ -357,9 +363,9 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
         nangletypes: t.angle_types,
         ndihedraltypes: t.dihedral_types,
         nimpropertypes: t.improper_types,
-        bonds: t.bonds.iter().map(|b| Bond::new(b[0] as usize, [b[1], b[2]])).collect(),
-        angles: t.angles.iter().map(|b| Angle { typ: b[0] as usize, atoms: [b[1], b[2], b[3]] }).collect(),
-        dihedrals: t.dihedrals.iter().map(|b| Dihedral { typ: b[0] as usize, atoms: [b[1], b[2], b[3], b[4]] }).collect(),
+        bonds: t.bonds.iter().map(|b| Bond { off: b[0] < 0, ..Bond::new(b[0].unsigned_abs() as usize, [b[1], b[2]]) }).collect(),
+        angles: t.angles.iter().map(|b| Angle { off: b[0] < 0, ..Angle::new(b[0].unsigned_abs() as usize, [b[1], b[2], b[3]]) }).collect(),
+        dihedrals: t.dihedrals.iter().map(|b| Dihedral { off: b[0] < 0, ..Dihedral::new(b[0].unsigned_abs() as usize, [b[1], b[2], b[3], b[4]]) }).collect(),
     };
     st.lists_valid = false;
     Ok((r.force_field, r.contact_histories))

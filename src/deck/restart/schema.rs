@@ -479,7 +479,8 @@ fn check_records<const N: usize>(kind: &str, records: &[[i64; N]], ntypes: usize
         return Err(format!("topology.{kind}s: the atom style has no {kind}s"));
     }
     for (k, r) in records.iter().enumerate() {
-        in_types(r[0], ntypes, &format!("topology.{kind}_types")).map_err(|e| format!("topology.{kind}s[{k}]: the type {e}"))?;
+        // negative: turned off by delete_bonds
+        in_types(r[0].checked_abs().unwrap_or(0), ntypes, &format!("topology.{kind}_types")).map_err(|e| format!("topology.{kind}s[{k}]: the type {e}"))?;
         if let Some(id) = r[1..].iter().find(|id| !ids.contains(id)) {
             return Err(format!("topology.{kind}s[{k}] refers to atom {id}, which does not exist"));
         }

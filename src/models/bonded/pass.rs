@@ -66,7 +66,9 @@ pub fn init_bonded(state: &mut State, bond: Option<&mut Box<dyn BondStyle>>, ang
         .into_iter()
         .flatten()
         .collect();
-        state.rebuild_special()?;
+        if !state.special_frozen {
+            state.rebuild_special()?;
+        }
         Ok(warnings)
 }
 
@@ -103,20 +105,20 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
         };
         let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
         if styles.bond.is_some() {
-            for (rec, b) in t.bonds.iter().enumerate() {
+            for (rec, b) in t.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
                 let i = [find(b.atoms[0], "bond")?, find(b.atoms[1], "bond")?];
                 bonds.push(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ, rec: rec as u32 });
             }
         }
         if styles.angle.is_some() {
-            for (rec, a) in t.angles.iter().enumerate() {
+            for (rec, a) in t.angles.iter().enumerate().filter(|(_, a)| !a.off) {
                 let i = [find(a.atoms[0], "angle")?, find(a.atoms[1], "angle")?, find(a.atoms[2], "angle")?];
                 let r = i[1] as usize;
                 angles.push(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ, rec: rec as u32 });
             }
         }
         if styles.dihedral.is_some() {
-            for (rec, d) in t.dihedrals.iter().enumerate() {
+            for (rec, d) in t.dihedrals.iter().enumerate().filter(|(_, d)| !d.off) {
                 let i = [find(d.atoms[0], "dihedral")?, find(d.atoms[1], "dihedral")?, find(d.atoms[2], "dihedral")?, find(d.atoms[3], "dihedral")?];
                 let r = i[1] as usize;
                 let shift = [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize), closest(r, i[3] as usize)];

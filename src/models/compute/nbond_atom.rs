@@ -53,7 +53,7 @@ impl Compute for ComputeNBondAtom {
         let map = a.tag_map();
         let mut data = vec![0.0; a.nlocal];
         for b in &w.state.topo.bonds {
-            if b.typ == 0 || self.btype.is_some_and(|t| t != b.typ) {
+            if b.typ == 0 || b.off || self.btype.is_some_and(|t| t != b.typ) {
                 continue;
             }
             if let (Some(i), Some(j)) = (map.get(b.atoms[0]), map.get(b.atoms[1])) {

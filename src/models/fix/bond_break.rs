@@ -278,8 +278,8 @@ mod tests {
         let mut state = State::new();
         let t = &mut state.topo;
         t.bonds = (1..5).map(|k| Bond::new(1, [k, k + 1])).collect();
-        t.angles = (1..4).map(|k| Angle { typ: 1, atoms: [k, k + 1, k + 2] }).collect();
-        t.dihedrals = (1..3).map(|k| Dihedral { typ: 1, atoms: [k, k + 1, k + 2, k + 3] }).collect();
+        t.angles = (1..4).map(|k| Angle::new(1, [k, k + 1, k + 2])).collect();
+        t.dihedrals = (1..3).map(|k| Dihedral::new(1, [k, k + 1, k + 2, k + 3])).collect();
         // bond 4-3 given in the other order: 3-4 goes, with angles 2-3-4 and 3-4-5 and both dihedrals
         remove_bond(&mut state, 4, 3, true, true);
         let bonds: Vec<[i64; 2]> = state.topo.bonds.iter().map(|b| b.atoms).collect();

@@ -272,7 +272,7 @@ impl Fix for FixBondCreate {
                 for x in 0..list.len() {
                     for y in x + 1..list.len() {
                         if is_new(list[x], c) || is_new(c, list[y]) {
-                            state.topo.angles.push(Angle { typ: self.atype, atoms: [list[x], c, list[y]] });
+                            state.topo.angles.push(Angle::new(self.atype, [list[x], c, list[y]]));
                         }
                     }
                 }

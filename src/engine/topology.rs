@@ -8,13 +8,17 @@ pub struct Bond {
     pub typ: usize,
     pub atoms: [i64; 2],
     /// Per-bond history of the BPM bond styles (LAMMPS' fix bond/history): the reference
-    /// length, 0 until the style stores it at its first force evaluation.
-    pub r0: f64,
+    /// length (0 until the style stores it at its first force evaluation), then what else the
+    /// style keeps (bpm/rotational: the reference direction).
+    pub history: [f64; BOND_HISTORY],
 }
+
+/// Values of [`Bond::history`] (LAMMPS' largest `nhistory` of a BPM style, bpm/rotational's).
+pub const BOND_HISTORY: usize = 4;
 
 impl Bond {
     pub fn new(typ: usize, atoms: [i64; 2]) -> Bond {
-        Bond { typ, atoms, r0: 0.0 }
+        Bond { typ, atoms, history: [0.0; BOND_HISTORY] }
     }
 }
 

@@ -14,7 +14,7 @@
 //!
 //!   B = max(0, Fr/Fcr + |Fs|/Fcs + |Tb|/Tcb + |Tt|/Tct) >= 1
 //!
-//! (an error with `break no`). Dampers on the relative normal and sliding velocities (gnorm,
+//! (never with `break no`, which needs `smooth no`). Dampers on the relative normal and sliding velocities (gnorm,
 //! gslide) and on rolling and twisting spins (groll, gtwist) are added, and everything is scaled
 //! by 1 - B^4 with `smooth yes` (the default). LAMMPS tallies no energy for this style (0) and
 //! the virial of the force on atom 2 (`ev_tally_xyz`).
@@ -247,7 +247,7 @@ impl BpmStyle for BondBpmRotational {
         let r_mag_inv = 1.0 / r_mag;
         let rhat = scale3(r_mag_inv, &r);
         let mut e = self.elastic(p, &atoms.quat[i1], &atoms.quat[i2], r_mag, r0_mag, r_mag_inv, &r, &r0);
-        if e.breaking >= 1.0 {
+        if e.breaking >= 1.0 && self.bpm.break_bonds {
             return None;
         }
         Self::damping(p, &mut e, &rhat, &r, &atoms.v[i1], &atoms.v[i2], &atoms.omega[i1], &atoms.omega[i2]);
@@ -270,6 +270,7 @@ impl BondStyle for BondBpmRotational {
     }
     fn settings(&mut self, a: &mut Args) -> DResult<()> {
         a.syntax = SETTINGS_SYNTAX;
+        let words = a.remaining();
         while let Some(w) = a.peek() {
             a.skip(1);
             if self.bpm.keyword(w, a)? {
@@ -284,7 +285,7 @@ impl BondStyle for BondBpmRotational {
                 }
             }
         }
-        Ok(())
+        self.bpm.check_smooth(self.smooth, words, a)
     }
     fn set_types(&mut self, n: usize) {
         self.types.resize(n);

@@ -103,11 +103,7 @@ impl BondStyle for BondBpmSpring {
                 _ => return Err(a.unknown_keyword(w, &["store/local", "overlay/pair", "break", "smooth", "normalize", "volume/factor"])),
             }
         }
-        if self.smooth && !self.bpm.break_bonds {
-            let w = words.iter().rev().find(|w| w.text == "break").expect("break no was given");
-            return Err(a.error_at(w, "Illegal bond bpm command, must turn off smoothing with break no option", "add smooth no"));
-        }
-        Ok(())
+        self.bpm.check_smooth(self.smooth, words, a)
     }
     fn set_types(&mut self, n: usize) {
         self.types.resize(n);

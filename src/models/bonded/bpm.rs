@@ -15,9 +15,9 @@
 //! `crate::models::fix::store_local`), created by the `bond_style` command.
 
 use super::{Vec3, Virial};
-use crate::engine::bonded_lists::{chunk, Entry};
+use crate::engine::bonded_lists::{Entry, Listed};
 use crate::engine::fields::Field;
-use crate::engine::par::{slab_phase, AtomsMut};
+use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use crate::engine::topology::BOND_HISTORY;
 use crate::models::bonded::pass::BondedTally;
@@ -115,6 +115,15 @@ impl Bpm {
         Ok(true)
     }
 
+    /// After the keywords `words` of `bond_style`: both styles refuse smoothing without breaking.
+    pub fn check_smooth(&self, smooth: bool, words: &[Word], a: &Args) -> DResult<()> {
+        if smooth && !self.break_bonds {
+            let w = words.iter().rev().find(|w| w.text == "break").expect("break no was given");
+            return Err(a.error_at(w, "Illegal bond bpm command, must turn off smoothing with break no option", "add smooth no"));
+        }
+        Ok(())
+    }
+
     /// LAMMPS' BondBPM::init_style checks.
     pub fn check(&self, state: &State, many_body: bool) -> Result<(), String> {
         let (lj, coul) = (state.special_bonds.lj, state.special_bonds.coul);
@@ -171,7 +180,7 @@ pub trait BpmStyle: Sync {
     /// the reference length.
     fn reference(&self, del: Vec3) -> [f64; BOND_HISTORY];
     /// One bond of type `btype` with reference state `hist`, atoms `i1` (the lower ID) and
-    /// `i2`, `del = x1 - x2`. `None`: the bond breaks.
+    /// `i2`, `del = x1 - x2`. `None`: the bond breaks (never with `break no`).
     fn bond(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms) -> Option<BondOut>;
 }
 
@@ -201,133 +210,159 @@ pub struct Broken {
     pub x: [Vec3; 2],
 }
 
-/// Position of atom `i` at periodic shift `s` (LAMMPS' ghost copy `x + s L`); chunk entries
-/// have no shifts.
-#[inline(always)]
-fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Vec3, shifts: bool) -> Vec3 {
-    if shifts { crate::models::fix::bond_break::image(x[i as usize], s, prd) } else { x[i as usize] }
-}
-
-/// Atom order of a bond as LAMMPS computes it: the lower ID first.
-#[inline(always)]
-fn ordered(e: &Entry<2>, tag: &[i64]) -> [(u32, [i8; 3]); 2] {
-    let (a, b) = ((e.atoms[0], e.shift[0]), (e.atoms[1], e.shift[1]));
-    if tag[b.0 as usize] < tag[a.0 as usize] {
-        [b, a]
-    } else {
-        [a, b]
+/// Serial LAMMPS' bond list (Neighbor::bond_all): the owned atoms in LAMMPS' local order, each
+/// atom's bonds in its own list's order ([`Bond::slots`]); with `newton_bond off` a bond is
+/// listed by its atom of lower local index (a bond to a periodic image by both atoms), with
+/// `newton_bond on` by its first atom, the only one that stores it. The
+/// forces of the BPM styles are summed in this order: their shear angle is an `acos` near 1,
+/// which turns a last-bit difference of a sum into a difference of 1e-8 at the next step.
+///
+/// [`Bond::slots`]: crate::engine::topology::Bond::slots
+pub fn lammps_bond_list(state: &State, bonds: &[Entry<2>]) -> Vec<Listed> {
+    let nlocal = state.atoms.nlocal;
+    let mut lidx = vec![0u32; nlocal];
+    for (k, &i) in state.lammps_order.indices(nlocal).iter().enumerate() {
+        lidx[i] = k as u32;
     }
-}
-
-struct Inputs<'a> {
-    x: &'a [Vec3],
-    atoms: BpmAtoms<'a>,
-    tag: &'a [i64],
-    bonds: &'a [crate::engine::topology::Bond],
-    prd: Vec3,
-    eflag: bool,
-}
-
-/// What a pass over some bonds found besides forces: bonds that broke, and reference states
-/// stored now (LAMMPS' store_bond for bonds created since the first evaluation).
-#[derive(Clone, Debug, Default)]
-struct Found {
-    broken: Vec<Broken>,
-    stored: Vec<(u32, [f64; BOND_HISTORY])>,
-}
-
-fn run_bonds<S: BpmStyle>(style: &S, inp: &Inputs, entries: &[Entry<2>], shifts: bool, (f, t): &mut (AtomsMut<Vec3>, AtomsMut<Vec3>), tally: &mut BondedTally, found: &mut Found) {
-    for e in entries {
-        let [(i1, s1), (i2, s2)] = ordered(e, inp.tag);
-        let (p1, p2) = (image(inp.x, i1, s1, inp.prd, shifts), image(inp.x, i2, s2, inp.prd, shifts));
-        let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
-        let mut hist = inp.bonds[e.rec as usize].history;
-        if hist[0] < EPSILON || hist[0].is_nan() {
-            hist = style.reference(del);
-            found.stored.push((e.rec, hist));
-        }
-        let Some(out) = style.bond(e.typ, &hist, i1 as usize, i2 as usize, del, &inp.atoms) else {
-            found.broken.push(Broken { rec: e.rec, atoms: [i1, i2], x: [p1, p2] });
-            continue;
-        };
-        let fa = &mut f[i1 as usize];
-        for d in 0..3 {
-            fa[d] += out.f1[d];
-        }
-        let fb = &mut f[i2 as usize];
-        for d in 0..3 {
-            fb[d] -= out.f1[d];
-        }
-        if S::TORQUES {
-            let ta = &mut t[i1 as usize];
-            for d in 0..3 {
-                ta[d] += out.t1[d];
-            }
-            let tb = &mut t[i2 as usize];
-            for d in 0..3 {
-                tb[d] += out.t2[d];
-            }
-        }
-        if inp.eflag {
-            tally.ebond += out.energy;
-            for k in 0..6 {
-                tally.virial[k] += out.virial[k];
-            }
+    let mut keyed: Vec<((u32, u32), Listed)> = Vec::with_capacity(bonds.len());
+    for e in bonds {
+        let slots = state.topo.bonds[e.rec as usize].slots;
+        let [a, b] = e.atoms.map(|i| i as usize);
+        if state.newton_bond {
+            // each bond lives on its first atom only, which lists it
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, true] }));
+        } else if e.shifted() {
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, false] }));
+            let back = e.shift[1].map(|c| -c);
+            keyed.push(((lidx[b], slots[1]), Listed { entry: Entry { shift: [back, [0; 3]], ..*e }, apply: [false, true] }));
+        } else {
+            let key = if lidx[a] < lidx[b] { (lidx[a], slots[0]) } else { (lidx[b], slots[1]) };
+            keyed.push((key, Listed { entry: *e, apply: [true, true] }));
         }
     }
+    keyed.sort_unstable_by_key(|k| k.0);
+    keyed.into_iter().map(|k| k.1).collect()
 }
 
-/// The bond pass of a BPM style: stores unset reference states, adds the forces (and torques)
-/// of the intact bonds (chunks on the slab schedule, then the leftovers) and returns the bonds
-/// that broke, in list order. The caller removes them ([`remove_broken`]).
+/// Position of atom `i` at periodic shift `s` (LAMMPS' ghost copy `x + s L`).
+#[inline(always)]
+fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Vec3) -> Vec3 {
+    crate::models::fix::bond_break::image(x[i as usize], s, prd)
+}
+
+/// A listed bond's atoms as LAMMPS computes it, the lower ID first, their positions and
+/// `del = x1 - x2`; `swapped`: atom 1 is the entry's second atom.
+#[inline(always)]
+fn ordered(e: &Entry<2>, x: &[Vec3], tag: &[i64], prd: Vec3) -> ([u32; 2], [Vec3; 2], Vec3, bool) {
+    let swapped = tag[e.atoms[1] as usize] < tag[e.atoms[0] as usize];
+    let (a, b) = if swapped { (1, 0) } else { (0, 1) };
+    let (p1, p2) = (image(x, e.atoms[a], e.shift[a], prd), image(x, e.atoms[b], e.shift[b], prd));
+    ([e.atoms[a], e.atoms[b]], [p1, p2], [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]], swapped)
+}
+
+/// One listed bond evaluated: its atoms (lower ID first) and their positions, the reference
+/// state stored now if it was unset (LAMMPS' store_bond for bonds created since the first
+/// evaluation), and what it adds (`None`: it breaks).
+#[derive(Clone, Copy, Default)]
+struct Done {
+    atoms: [u32; 2],
+    x: [Vec3; 2],
+    swapped: bool,
+    stored: Option<[f64; BOND_HISTORY]>,
+    out: Option<BondOut>,
+}
+
+/// Bonds evaluated per parallel task.
+const CHUNK: usize = 1024;
+
+/// The bond pass of a BPM style: stores unset reference states, evaluates the bonds (in
+/// parallel) and adds their forces, torques, energies and virials in serial LAMMPS' order
+/// ([`lammps_bond_list`]), so the sums have LAMMPS' bits. Returns the bonds that broke, in that
+/// order; the caller removes them ([`remove_broken`]).
 pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError> {
-    let lists = &state.bonded_lists.bonds;
-    if lists.is_empty() {
+    let list = &state.bonded_lists.lammps_bonds;
+    if list.is_empty() {
         return Ok((BondedTally::default(), vec![]));
     }
     let prd = state.domain.as_ref().unwrap().prd();
     let (x, tag) = (&state.atoms.x, &state.atoms.tag);
-    // LAMMPS' store_data: every bond's reference at the first evaluation of the style; later,
-    // bonds whose reference is unset store it when computed (run_bonds)
+    // LAMMPS' store_data: every bond's reference at the first evaluation of the style
     if !style.bpm().stored.swap(true, Ordering::Relaxed) {
-        for (e, shifts) in lists.entries.iter().map(|e| (e, false)).chain(lists.leftover.iter().map(|e| (e, true))) {
-            let [(i1, s1), (i2, s2)] = ordered(e, tag);
-            let (p1, p2) = (image(x, i1, s1, prd, shifts), image(x, i2, s2, prd, shifts));
-            let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
-            state.topo.bonds[e.rec as usize].history = style.reference(del);
+        for l in list {
+            let (_, _, del, _) = ordered(&l.entry, x, tag, prd);
+            state.topo.bonds[l.entry.rec as usize].history = style.reference(del);
         }
     }
+    let a = &state.atoms;
+    let atoms = BpmAtoms { v: &a.v, omega: &a.omega, quat: &a.quat };
+    let bonds = &state.topo.bonds;
+    let mut done = vec![Done::default(); list.len()];
+    ranges(list.len(), CHUNK, AtomsMut::new(&mut done), |r, mut w| {
+        for k in r {
+            let e = &list[k].entry;
+            let (i, p, del, swapped) = ordered(e, x, tag, prd);
+            let mut hist = bonds[e.rec as usize].history;
+            let mut stored = None;
+            if hist[0] < EPSILON || hist[0].is_nan() {
+                hist = style.reference(del);
+                stored = Some(hist);
+            }
+            let out = style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms);
+            w[k] = Done { atoms: i, x: p, swapped, stored, out };
+        }
+    });
     let mut f = std::mem::take(&mut state.atoms.f);
     let mut torque = std::mem::take(&mut state.atoms.torque);
-    let a = &state.atoms;
-    let inp = Inputs { x, atoms: BpmAtoms { v: &a.v, omega: &a.omega, quat: &a.quat }, tag, bonds: &state.topo.bonds, prd, eflag };
-    let bounds = state.neighbor.list.bounds();
-    assert!(lists.nchunks() + 1 <= bounds.len(), "bonded lists built on another neighbour list");
-    let mut parts: Vec<(BondedTally, Found)> = vec![Default::default(); bounds.len() - 1];
-    for parity in 0..2 {
-        slab_phase(&bounds, parity, (AtomsMut::new(&mut f), AtomsMut::new(&mut torque)), &mut parts, |c, mut w| {
-            let mut out = (BondedTally::default(), Found::default());
-            run_bonds(style, &inp, chunk(lists, c), false, &mut w, &mut out.0, &mut out.1);
-            out
-        });
-    }
     let mut tally = BondedTally::default();
-    let mut found = Found::default();
-    for (t, p) in parts {
-        tally.add(&t);
-        found.broken.extend(p.broken);
-        found.stored.extend(p.stored);
-    }
-    run_bonds(style, &inp, &lists.leftover, true, &mut (AtomsMut::new(&mut f), AtomsMut::new(&mut torque)), &mut tally, &mut found);
-    for (rec, hist) in found.stored {
-        state.topo.bonds[rec as usize].history = hist;
+    let mut broken: Vec<Broken> = vec![];
+    // LAMMPS' ev_tally: with newton_bond off, half to each owned atom
+    let part = if state.newton_bond { 1.0 } else { 0.5 };
+    for (l, d) in list.iter().zip(&done) {
+        let rec = l.entry.rec;
+        if let Some(h) = d.stored {
+            state.topo.bonds[rec as usize].history = h;
+        }
+        let Some(out) = d.out else {
+            if !broken.iter().any(|b| b.rec == rec) {
+                broken.push(Broken { rec, atoms: d.atoms, x: d.x });
+            }
+            continue;
+        };
+        let apply = if d.swapped { [l.apply[1], l.apply[0]] } else { l.apply };
+        let [i1, i2] = d.atoms.map(|i| i as usize);
+        if apply[0] {
+            for c in 0..3 {
+                f[i1][c] += out.f1[c];
+            }
+            if S::TORQUES {
+                for c in 0..3 {
+                    torque[i1][c] += out.t1[c];
+                }
+            }
+        }
+        if apply[1] {
+            for c in 0..3 {
+                f[i2][c] -= out.f1[c];
+            }
+            if S::TORQUES {
+                for c in 0..3 {
+                    torque[i2][c] += out.t2[c];
+                }
+            }
+        }
+        if eflag {
+            let sides = if state.newton_bond { 1 } else { apply.iter().filter(|&&a| a).count() };
+            for _ in 0..sides {
+                tally.ebond += part * out.energy;
+                for k in 0..6 {
+                    tally.virial[k] += part * out.virial[k];
+                }
+            }
+        }
     }
     state.atoms.f = f;
     state.atoms.torque = torque;
-    if !found.broken.is_empty() && !style.bpm().break_bonds {
-        return Err(RunError::new(state.step, "BPM bond broke with break no option"));
-    }
-    Ok((tally, found.broken))
+    Ok((tally, broken))
 }
 
 /// The values of a broken-bond record (LAMMPS BondBPM::pack_*), at step `step`.
@@ -370,6 +405,14 @@ pub fn remove_broken(state: &mut State, broken: &[Broken]) {
         next += 1;
     }
     state.bonded_lists.bonds.retain_records(|rec| index[rec as usize]);
+    state.bonded_lists.lammps_bonds.retain_mut(|l| match index[l.entry.rec as usize] {
+        Some(rec) => {
+            l.entry.rec = rec;
+            true
+        }
+        None => false,
+    });
+    state.topo.release_bond_slots(&recs);
     state.topo.remove_bond_records(&recs);
     for &[p, q] in &pairs {
         state.special_table.remove_one_two(p, q);

@@ -68,13 +68,10 @@ fn compare(name: &str, theirs: &str, ours: &str) {
     }
 }
 
-/// Column names and rows of the last thermo table in `text` (a log or thermo.txt).
+/// Column names and rows of the thermo table in `text` (a log, or thermo.txt: `# Step ...`).
 fn thermo(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
-    let lines: Vec<&str> = text.lines().collect();
-    let start = lines.iter().rposition(|l| l.trim_start().trim_start_matches("# ").starts_with("Step")).expect("a thermo header");
-    let names = lines[start].trim_start().trim_start_matches("# ").split_whitespace().map(String::from).collect();
-    let rows = lines[start + 1..].iter().map_while(|l| l.split_whitespace().map(|w| w.parse::<f64>().ok()).collect::<Option<Vec<f64>>>().filter(|r| !r.is_empty())).collect();
-    (names, rows)
+    let t = dmhs::tools::validate::parse_thermo(&text.replace("# Step", "Step"));
+    (t.columns, t.rows)
 }
 
 /// The same thermo columns and rows; every value within 1e-7 of its column's largest magnitude
@@ -183,26 +180,24 @@ fn a_stretched_bond_breaks_once_and_the_pair_turns_on() {
 
 #[test]
 fn rotational_bad_input_is_located() {
-    let at = |line: usize| format!("in.test:{line}:");
-    let e = error_of(&format!("{TWO}bond_style bpm/rotational smooth maybe\n"));
-    assert!(e.contains("maybe") && e.contains(&at(12)), "{e}");
-    let e = error_of(&format!("{TWO}bond_style bpm/rotational volume/factor no\n"));
-    assert!(e.contains("volume/factor") && e.contains(&at(12)), "{e}");
-    let e = error_of(&format!("{TWO}bond_style bpm/rotational store/local brk 10\n"));
-    assert!(e.contains("at least one value") && e.contains(&at(12)), "{e}");
-    let e = error_of(&format!("{TWO}bond_style bpm/rotational\nbond_coeff 1 1 1 1 1 1 1 1 1 1 1 1\n"));
-    assert!(e.contains("gtwist") && e.contains(&at(13)), "{e}");
-    // LAMMPS' init checks, at the run
-    let coeff = "bond_coeff 1 1 1 1 1 1 1 1 1 1 1 1 1\n";
-    let e = error_of(&format!("{TWO}bond_style bpm/rotational\n{coeff}run 0\n"));
-    assert!(e.contains("requires atom style bpm/sphere"), "{e}");
     let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere");
-    let e = error_of(&format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("comm_modify vel yes\n", "")));
-    assert!(e.contains("ghost atoms store velocity"), "{e}");
-    let e = error_of(&format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("newton on off", "newton on")));
-    assert!(e.contains("require Newton bond off"), "{e}");
-    let e = error_of(&format!("{sphere}bond_style bpm/rotational break no\n"));
-    assert!(e.contains("must turn off smoothing with break no") && e.contains(&at(12)), "{e}");
+    let coeff = "bond_coeff 1 1 1 1 1 1 1 1 1 1 1 1 1\n";
+    // (deck, what the message says, the line it points at; 0: an error of the run, unlocated)
+    let cases = [
+        (format!("{sphere}bond_style bpm/rotational smooth maybe\n"), "maybe", 12),
+        (format!("{sphere}bond_style bpm/rotational volume/factor no\n"), "volume/factor", 12),
+        (format!("{sphere}bond_style bpm/rotational store/local brk 10\n"), "at least one value", 12),
+        (format!("{sphere}bond_style bpm/rotational break no\n"), "must turn off smoothing with break no", 12),
+        (format!("{sphere}bond_style bpm/rotational\nbond_coeff 1 1 1 1 1 1 1 1 1 1 1 1\n"), "gtwist", 13),
+        // LAMMPS' init checks, at the run
+        (format!("{TWO}bond_style bpm/rotational\n{coeff}run 0\n"), "requires atom style bpm/sphere", 0),
+        (format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("comm_modify vel yes\n", "")), "ghost atoms store velocity", 0),
+        (format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("newton on off", "newton on")), "require Newton bond off", 0),
+    ];
+    for (deck, says, line) in cases {
+        let e = error_of(&deck);
+        assert!(e.contains(says) && (line == 0 || e.contains(&format!("in.test:{line}:"))), "{e}");
+    }
 }
 
 #[test]

@@ -19,7 +19,7 @@
 //! by 1 - B^4 with `smooth yes` (the default). LAMMPS tallies no energy for this style (0) and
 //! the virial of the force on atom 2 (`ev_tally_xyz`).
 
-use super::bpm::{logical, Bpm, BondOut, BpmAtoms, BpmPass, BpmStyle, KEYWORDS};
+use super::bpm::{Bpm, BondOut, BpmAtoms, BpmStyle};
 use super::{fmt_g, BondStyle, TypeTable, Vec3};
 use crate::engine::quat::{cross3, norm3, qconjugate, quatquat, quatrotvec, Quat};
 use crate::engine::state::State;
@@ -52,13 +52,11 @@ struct Params {
 pub struct BondBpmRotational {
     types: TypeTable<Params>,
     pub bpm: Bpm,
-    pub smooth: bool,
-    pub normalize: bool,
 }
 
 impl Default for BondBpmRotational {
     fn default() -> Self {
-        BondBpmRotational { types: TypeTable::default(), bpm: Bpm::default(), smooth: true, normalize: false }
+        BondBpmRotational { types: TypeTable::default(), bpm: Bpm::default() }
     }
 }
 
@@ -103,7 +101,7 @@ impl BondBpmRotational {
     fn elastic(&self, p: &Params, q1: &Quat, q2: &Quat, r_mag: f64, r0_mag: f64, r_mag_inv: f64, r: &Vec3, r0: &Vec3) -> Elastic {
         let r0_mag_inv = 1.0 / r0_mag;
         let (mut kr, mut ks) = (p.kr, p.ks);
-        if self.normalize {
+        if self.bpm.normalize {
             kr *= r0_mag_inv;
             ks *= r0_mag_inv;
         }
@@ -251,7 +249,7 @@ impl BpmStyle for BondBpmRotational {
             return None;
         }
         Self::damping(p, &mut e, &rhat, &r, &atoms.v[i1], &atoms.v[i2], &atoms.omega[i1], &atoms.omega[i2]);
-        let smooth = if self.smooth {
+        let smooth = if self.bpm.smooth {
             let s = e.breaking * e.breaking;
             1.0 - s * s
         } else {
@@ -265,30 +263,13 @@ impl BpmStyle for BondBpmRotational {
 }
 
 impl BondStyle for BondBpmRotational {
+    crate::bpm_bond_style_common!();
     fn name(&self) -> &'static str {
         "bpm/rotational"
     }
     fn settings(&mut self, a: &mut Args) -> DResult<()> {
         a.syntax = SETTINGS_SYNTAX;
-        let words = a.remaining();
-        while let Some(w) = a.peek() {
-            a.skip(1);
-            if self.bpm.keyword(w, a)? {
-                continue;
-            }
-            match w.text.as_str() {
-                "smooth" => self.smooth = logical(a, "smooth")?,
-                "normalize" => self.normalize = logical(a, "normalize")?,
-                _ => {
-                    let known: Vec<&str> = KEYWORDS.iter().copied().chain(["smooth", "normalize"]).collect();
-                    return Err(a.unknown_keyword(w, &known));
-                }
-            }
-        }
-        self.bpm.check_smooth(self.smooth, words, a)
-    }
-    fn set_types(&mut self, n: usize) {
-        self.types.resize(n);
+        self.bpm.settings(a, &[], |_, _| Ok(false))
     }
     fn coeff(&mut self, lo: usize, hi: usize, args: &mut Args) -> DResult<()> {
         args.syntax = SYNTAX;
@@ -301,27 +282,11 @@ impl BondStyle for BondBpmRotational {
         self.types.set(lo, hi, Params { kr, ks, kt, kb, fcr, fcs, tct, tcb, gnorm, gslide, groll, gtwist });
         Ok(())
     }
-    fn check_all_set(&self) -> Result<(), String> {
-        self.types.check_all_set("Bond")
-    }
-    fn compute(&self, _btype: usize, _del: Vec3, _rsq: f64) -> (f64, f64) {
-        unreachable!("bpm/rotational runs the BPM pass (bpm::compute)")
-    }
-    fn equilibrium_distance(&self, _btype: usize) -> f64 {
-        // as bpm/spring: bonds take the closest image, so this only feeds the stability checks
-        0.0
-    }
     fn stiffness(&self, btype: usize) -> f64 {
         self.types.try_get(btype).map(|p| 0.5 * p.kr).unwrap_or(0.0)
     }
     fn coeff_words(&self, btype: usize) -> String {
         let p = self.types.get(btype);
         [p.kr, p.ks, p.kt, p.kb, p.fcr, p.fcs, p.tct, p.tcb, p.gnorm, p.gslide, p.groll, p.gtwist].map(fmt_g).join(" ")
-    }
-    fn init(&self, state: &State, many_body: bool) -> Result<(), String> {
-        self.check(state, many_body)
-    }
-    fn as_bpm(&self) -> Option<&dyn BpmPass> {
-        Some(self)
     }
 }

@@ -10,7 +10,7 @@
 //! (`normalize yes` uses -k e for the spring term) and the energy is 1/2 k (r - r0)^2 (divided by
 //! r0 with `normalize yes`; the damping and the smoothing carry none).
 
-use super::bpm::{logical, Bpm, BpmAtoms, BpmPass, BpmStyle, BondOut};
+use super::bpm::{logical, Bpm, BondOut, BpmAtoms, BpmStyle};
 use super::{bond_virial, fmt_g, BondStyle, TypeTable, Vec3};
 use crate::engine::state::State;
 use crate::engine::topology::BOND_HISTORY;
@@ -30,13 +30,11 @@ struct Params {
 pub struct BondBpmSpring {
     types: TypeTable<Params>,
     pub bpm: Bpm,
-    pub smooth: bool,
-    pub normalize: bool,
 }
 
 impl Default for BondBpmSpring {
     fn default() -> Self {
-        BondBpmSpring { types: TypeTable::default(), bpm: Bpm::default(), smooth: true, normalize: false }
+        BondBpmSpring { types: TypeTable::default(), bpm: Bpm::default() }
     }
 }
 
@@ -54,12 +52,12 @@ impl BondBpmSpring {
             return None;
         }
         let rinv = 1.0 / r;
-        let mut fbond = if self.normalize { -p.k * e } else { p.k * (r0 - r) };
-        let energy = if self.normalize { 0.5 * p.k * e * (r - r0) } else { 0.5 * p.k * (r - r0) * (r - r0) };
+        let mut fbond = if self.bpm.normalize { -p.k * e } else { p.k * (r0 - r) };
+        let energy = if self.bpm.normalize { 0.5 * p.k * e * (r - r0) } else { 0.5 * p.k * (r - r0) * (r - r0) };
         let dot = del[0] * dv[0] + del[1] * dv[1] + del[2] * dv[2];
         fbond -= p.gamma * dot * rinv;
         fbond *= rinv;
-        if self.smooth {
+        if self.bpm.smooth {
             let mut s = (r - r0) / (r0 * p.ecrit);
             s *= s;
             s *= s;
@@ -80,33 +78,22 @@ impl BondBpmSpring {
 }
 
 impl BondStyle for BondBpmSpring {
+    crate::bpm_bond_style_common!();
     fn name(&self) -> &'static str {
         "bpm/spring"
     }
     fn settings(&mut self, a: &mut Args) -> DResult<()> {
         a.syntax = SETTINGS_SYNTAX;
-        let words = a.remaining();
-        while let Some(w) = a.peek() {
-            a.skip(1);
-            if self.bpm.keyword(w, a)? {
-                continue;
+        self.bpm.settings(a, &["volume/factor"], |w, a| {
+            if w.text != "volume/factor" {
+                return Ok(false);
             }
-            match w.text.as_str() {
-                "smooth" => self.smooth = logical(a, "smooth")?,
-                "normalize" => self.normalize = logical(a, "normalize")?,
-                "volume/factor" => {
-                    if logical(a, "volume/factor")? {
-                        let last = a.last().unwrap_or(w);
-                        return Err(a.error_at(last, "bond_style bpm/spring volume/factor yes is not supported yet", "only volume/factor no"));
-                    }
-                }
-                _ => return Err(a.unknown_keyword(w, &["store/local", "overlay/pair", "break", "smooth", "normalize", "volume/factor"])),
+            if logical(a, "volume/factor")? {
+                let last = a.last().unwrap_or(w);
+                return Err(a.error_at(last, "bond_style bpm/spring volume/factor yes is not supported yet", "only volume/factor no"));
             }
-        }
-        self.bpm.check_smooth(self.smooth, words, a)
-    }
-    fn set_types(&mut self, n: usize) {
-        self.types.resize(n);
+            Ok(true)
+        })
     }
     fn coeff(&mut self, lo: usize, hi: usize, args: &mut Args) -> DResult<()> {
         args.syntax = SYNTAX;
@@ -117,29 +104,12 @@ impl BondStyle for BondBpmSpring {
         self.types.set(lo, hi, Params { k, ecrit, gamma });
         Ok(())
     }
-    fn check_all_set(&self) -> Result<(), String> {
-        self.types.check_all_set("Bond")
-    }
-    fn compute(&self, _btype: usize, _del: Vec3, _rsq: f64) -> (f64, f64) {
-        unreachable!("bpm/spring runs its own pass (bond_bpm_spring::compute)")
-    }
-    fn equilibrium_distance(&self, _btype: usize) -> f64 {
-        // LAMMPS estimates the longest stored r0 times the largest 1 + ecrit; dmhs bonds take
-        // the closest image, so the estimate only matters for the stability checks
-        0.0
-    }
     fn stiffness(&self, btype: usize) -> f64 {
         self.types.try_get(btype).map(|p| 0.5 * p.k).unwrap_or(0.0)
     }
     fn coeff_words(&self, btype: usize) -> String {
         let p = self.types.get(btype);
         format!("{} {} {}", fmt_g(p.k), fmt_g(p.ecrit), fmt_g(p.gamma))
-    }
-    fn init(&self, state: &State, many_body: bool) -> Result<(), String> {
-        self.check(state, many_body)
-    }
-    fn as_bpm(&self) -> Option<&dyn BpmPass> {
-        Some(self)
     }
 }
 

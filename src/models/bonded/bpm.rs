@@ -58,6 +58,9 @@ pub struct StoreLocal {
 pub struct Bpm {
     pub overlay: bool,
     pub break_bonds: bool,
+    /// `smooth` and `normalize` (each style reads them its own way).
+    pub smooth: bool,
+    pub normalize: bool,
     pub store_local: Option<StoreLocal>,
     /// LAMMPS' `stored_flag` of the style's bond history: every bond's reference state is
     /// (re)stored at the first force evaluation after the style was defined.
@@ -66,7 +69,7 @@ pub struct Bpm {
 
 impl Default for Bpm {
     fn default() -> Self {
-        Bpm { overlay: false, break_bonds: true, store_local: None, stored: AtomicBool::new(false) }
+        Bpm { overlay: false, break_bonds: true, smooth: true, normalize: false, store_local: None, stored: AtomicBool::new(false) }
     }
 }
 
@@ -76,12 +79,31 @@ pub fn logical(a: &mut Args, what: &str) -> DResult<bool> {
 }
 
 /// The keywords of [`Bpm::keyword`], for "did you mean" lists.
-pub const KEYWORDS: [&str; 3] = ["store/local", "overlay/pair", "break"];
+const KEYWORDS: [&str; 5] = ["store/local", "overlay/pair", "break", "smooth", "normalize"];
 
 impl Bpm {
-    /// A keyword of LAMMPS' BondBPM::settings, `w` already taken from `a`: `Ok(false)` when `w`
-    /// is not one (the style's own keywords).
-    pub fn keyword(&mut self, w: &Word, a: &mut Args) -> DResult<bool> {
+    /// The arguments of `bond_style`: LAMMPS' BondBPM::settings, `smooth` and `normalize`, and
+    /// the style's own keywords `own` (`own(w, a)`, `w` taken from `a`: `Ok(false)` when `w` is
+    /// not one of `own_names`). Smoothing without breaking is refused, as both styles do.
+    pub fn settings(&mut self, a: &mut Args, own_names: &[&str], mut own: impl FnMut(&Word, &mut Args) -> DResult<bool>) -> DResult<()> {
+        let words = a.remaining();
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            if !self.keyword(w, a)? && !own(w, a)? {
+                let known: Vec<&str> = KEYWORDS.iter().chain(own_names).copied().collect();
+                return Err(a.unknown_keyword(w, &known));
+            }
+        }
+        if self.smooth && !self.break_bonds {
+            let w = words.iter().rev().find(|w| w.text == "break").expect("break no was given");
+            return Err(a.error_at(w, "Illegal bond bpm command, must turn off smoothing with break no option", "add smooth no"));
+        }
+        Ok(())
+    }
+
+    /// One keyword of [`Bpm::settings`], `w` already taken from `a`: `Ok(false)` when `w` is
+    /// not one.
+    fn keyword(&mut self, w: &Word, a: &mut Args) -> DResult<bool> {
         match w.text.as_str() {
             "store/local" => {
                 let id = a.word("store/local fix ID")?.text.clone();
@@ -110,18 +132,11 @@ impl Bpm {
             }
             "overlay/pair" => self.overlay = logical(a, "overlay/pair")?,
             "break" => self.break_bonds = logical(a, "break")?,
+            "smooth" => self.smooth = logical(a, "smooth")?,
+            "normalize" => self.normalize = logical(a, "normalize")?,
             _ => return Ok(false),
         }
         Ok(true)
-    }
-
-    /// After the keywords `words` of `bond_style`: both styles refuse smoothing without breaking.
-    pub fn check_smooth(&self, smooth: bool, words: &[Word], a: &Args) -> DResult<()> {
-        if smooth && !self.break_bonds {
-            let w = words.iter().rev().find(|w| w.text == "break").expect("break no was given");
-            return Err(a.error_at(w, "Illegal bond bpm command, must turn off smoothing with break no option", "add smooth no"));
-        }
-        Ok(())
     }
 
     /// LAMMPS' BondBPM::init_style checks.
@@ -169,6 +184,35 @@ pub struct BondOut {
     pub t2: Vec3,
     pub energy: f64,
     pub virial: Virial,
+}
+
+/// The `BondStyle` methods every BPM style spells the same way (in its `impl BondStyle`): the
+/// coefficient table is `self.types`, the checks before a run `self.check`; the forces come
+/// from the BPM pass, not from `compute`.
+#[macro_export]
+macro_rules! bpm_bond_style_common {
+    () => {
+        fn set_types(&mut self, n: usize) {
+            self.types.resize(n);
+        }
+        fn check_all_set(&self) -> Result<(), String> {
+            self.types.check_all_set("Bond")
+        }
+        fn compute(&self, _btype: usize, _del: $crate::models::bonded::Vec3, _rsq: f64) -> (f64, f64) {
+            unreachable!("a BPM style runs the BPM pass (bpm::compute)")
+        }
+        fn equilibrium_distance(&self, _btype: usize) -> f64 {
+            // LAMMPS estimates the longest stored r0 times the largest stretch; dmhs bonds take
+            // the closest image, so the estimate would only feed the stability checks
+            0.0
+        }
+        fn init(&self, state: &$crate::engine::state::State, many_body: bool) -> Result<(), String> {
+            self.check(state, many_body)
+        }
+        fn as_bpm(&self) -> Option<&dyn $crate::models::bonded::bpm::BpmPass> {
+            Some(self)
+        }
+    };
 }
 
 /// A BPM bond style: the shared settings and its kernel.

@@ -48,16 +48,10 @@ struct Params {
     gtwist: f64,
 }
 
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub struct BondBpmRotational {
     types: TypeTable<Params>,
     pub bpm: Bpm,
-}
-
-impl Default for BondBpmRotational {
-    fn default() -> Self {
-        BondBpmRotational { types: TypeTable::default(), bpm: Bpm::default() }
-    }
 }
 
 /// `acos` of a cosine clamped to [-1, 1].

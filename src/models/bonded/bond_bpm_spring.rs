@@ -26,16 +26,10 @@ struct Params {
     gamma: f64,
 }
 
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub struct BondBpmSpring {
     types: TypeTable<Params>,
     pub bpm: Bpm,
-}
-
-impl Default for BondBpmSpring {
-    fn default() -> Self {
-        BondBpmSpring { types: TypeTable::default(), bpm: Bpm::default() }
-    }
 }
 
 impl BondBpmSpring {

@@ -375,23 +375,15 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool) -> Result
         let apply = if d.swapped { [l.apply[1], l.apply[0]] } else { l.apply };
         let [i1, i2] = d.atoms.map(|i| i as usize);
         if apply[0] {
-            for c in 0..3 {
-                f[i1][c] += out.f1[c];
-            }
+            f[i1].iter_mut().zip(out.f1).for_each(|(a, b)| *a += b);
             if S::TORQUES {
-                for c in 0..3 {
-                    torque[i1][c] += out.t1[c];
-                }
+                torque[i1].iter_mut().zip(out.t1).for_each(|(a, b)| *a += b);
             }
         }
         if apply[1] {
-            for c in 0..3 {
-                f[i2][c] -= out.f1[c];
-            }
+            f[i2].iter_mut().zip(out.f1).for_each(|(a, b)| *a -= b);
             if S::TORQUES {
-                for c in 0..3 {
-                    torque[i2][c] += out.t2[c];
-                }
+                torque[i2].iter_mut().zip(out.t2).for_each(|(a, b)| *a += b);
             }
         }
         if eflag {
@@ -443,10 +435,8 @@ pub fn remove_broken(state: &mut State, broken: &[Broken]) {
     for &k in &recs {
         index[k] = None;
     }
-    let mut next = 0;
-    for slot in index.iter_mut().flatten() {
-        *slot = next;
-        next += 1;
+    for (next, slot) in index.iter_mut().flatten().enumerate() {
+        *slot = next as u32;
     }
     state.bonded_lists.bonds.retain_records(|rec| index[rec as usize]);
     state.bonded_lists.lammps_bonds.retain_mut(|l| match index[l.entry.rec as usize] {

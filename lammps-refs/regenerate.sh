@@ -43,9 +43,11 @@ for name in "${names[@]+"${names[@]}"}"; do
     echo "== $name"
     out="$here/refs/$name"
     rm -rf "$out"
-    # bond_bpm_spring: its dump local of the broken bonds (tests/bpm.rs)
+    # the breaking BPM decks: their dump local of the broken bonds (tests/bpm_bonds.rs)
     extra=()
-    [ "$name" = bond_bpm_spring ] && extra=(--var brkfile "$out/broken.txt")
+    case "$name" in
+        bond_bpm_spring|bond_bpm_rotational) extra=(--var brkfile "$out/broken.txt") ;;
+    esac
     "$py" "$here/lammps_driver.py" "$here/decks/in.$name" --out "$out" "${extra[@]+"${extra[@]}"}"
     # bond/break, bond/create and thermostat decks: the thermo table of the run (event counts
     # per step; the thermostats' f_ID energies, tests/thermostats.rs)

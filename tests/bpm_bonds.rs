@@ -1,10 +1,10 @@
-//! bond_style bpm/spring against LAMMPS beyond what lammps_parity.rs compares (forces at step 0,
-//! the state after the run of lammps-refs/decks/in.bond_bpm_spring): the bonds that break, and
-//! when. The deck writes them with `bond_style ... store/local brk 10 time id1 id2 x y z x/ref
-//! y/ref z/ref` and `dump local` (`header no`) to the file of its variable `brkfile`. Also the
-//! located errors of bad bpm/spring input.
+//! The BPM bond styles (bpm/spring, bpm/rotational) against LAMMPS beyond what lammps_parity.rs
+//! compares (forces at step 0, the state after the run of lammps-refs/decks/in.bond_bpm_*): the
+//! bonds that break, and when, and the thermo table. The breaking decks write the broken bonds
+//! with `bond_style ... store/local brk 10 time id1 id2 x y z x/ref y/ref z/ref` and `dump local`
+//! (`header no`) to the file of their variable `brkfile`. Also the located errors of bad input.
 //!
-//! * `stored_broken_bonds`: against lammps-refs/refs/bond_bpm_spring/broken.txt.
+//! * `stored_broken_bonds`: against lammps-refs/refs/NAME/broken.txt and thermo.txt.
 //! * `live_broken_bonds`: against LAMMPS run now (skipped without LAMMPS unless
 //!   DMHS_REQUIRE_LAMMPS=1).
 
@@ -15,8 +15,13 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn deck() -> PathBuf {
-    root().join("lammps-refs/decks/in.bond_bpm_spring")
+/// The decks whose bonds break (with a `brkfile` variable).
+const BREAKING: [&str; 2] = ["bond_bpm_spring", "bond_bpm_rotational"];
+/// Every BPM deck, for the thermo tables.
+const DECKS: [&str; 3] = ["bond_bpm_spring", "bond_bpm_rotational", "bond_bpm_rotational_nobreak"];
+
+fn deck(name: &str) -> PathBuf {
+    root().join("lammps-refs/decks").join(format!("in.{name}"))
 }
 
 /// The rows of a dump local file: (step, id1, id2) and the other columns, sorted (the rows of
@@ -33,39 +38,68 @@ fn read_rows(text: &str) -> Vec<((i64, i64, i64), Vec<f64>)> {
     rows
 }
 
-fn dmhs_rows(dir: &Path) -> String {
+/// dmhs on deck `name`: the broken-bond rows (with a `brkfile`, else "") and the screen text.
+fn dmhs_run(name: &str, dir: &Path) -> (String, String) {
     let file = dir.join("broken.txt");
     let opts = DeckOptions {
         screen: false,
-        base_dir: Some(deck().parent().unwrap().to_path_buf()),
+        capture_text: true,
+        base_dir: Some(deck(name).parent().unwrap().to_path_buf()),
         vars: vec![("brkfile".into(), vec![file.to_string_lossy().into_owned()])],
         ..Default::default()
     };
-    run_file(&deck(), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
-    std::fs::read_to_string(file).unwrap()
+    let run = run_file(&deck(name), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    (std::fs::read_to_string(file).unwrap_or_default(), run.sim.out.captured.clone().expect("captured screen text"))
 }
 
 /// Same bonds at the same steps; midpoints (printed with %g, 6 digits) within 1e-5.
-fn compare(theirs: &str, ours: &str) {
+fn compare(name: &str, theirs: &str, ours: &str) {
     let (theirs, ours) = (read_rows(theirs), read_rows(ours));
     let steps: std::collections::BTreeSet<i64> = theirs.iter().map(|r| r.0 .0).collect();
-    println!("LAMMPS: {} bonds broke at {} distinct steps ({:?}..{:?})", theirs.len(), steps.len(), steps.first(), steps.last());
-    assert!(theirs.len() >= 20, "the reference breaks too few bonds to test anything");
+    println!("{name}: LAMMPS: {} bonds broke at {} distinct steps ({:?}..{:?})", theirs.len(), steps.len(), steps.first(), steps.last());
+    assert!(theirs.len() >= 20, "{name}: the reference breaks too few bonds to test anything");
     let keys = |r: &[((i64, i64, i64), Vec<f64>)]| r.iter().map(|x| x.0).collect::<Vec<_>>();
-    assert_eq!(keys(&ours), keys(&theirs), "broken bonds (step, id1, id2) differ");
+    assert_eq!(keys(&ours), keys(&theirs), "{name}: broken bonds (step, id1, id2) differ");
     for (a, b) in ours.iter().zip(&theirs) {
         assert_eq!(a.1.len(), 6);
         for (p, q) in a.1.iter().zip(&b.1) {
-            assert!((p - q).abs() <= 1e-5 * q.abs().max(1.0), "bond {:?}: {:?} vs LAMMPS {:?}", a.0, a.1, b.1);
+            assert!((p - q).abs() <= 1e-5 * q.abs().max(1.0), "{name}: bond {:?}: {:?} vs LAMMPS {:?}", a.0, a.1, b.1);
         }
+    }
+}
+
+/// Column names and rows of the thermo table in `text` (a log, or thermo.txt: `# Step ...`).
+fn thermo(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let t = dmhs::tools::validate::parse_thermo(&text.replace("# Step", "Step"));
+    (t.columns, t.rows)
+}
+
+/// The same thermo columns and rows; every value within 1e-7 of its column's largest magnitude
+/// (thermo prints 8 digits), the bond counts equal.
+fn compare_thermo(name: &str, theirs: &str, ours: &str) {
+    let ((their_names, theirs), (our_names, ours)) = (thermo(theirs), thermo(ours));
+    assert_eq!(our_names, their_names, "{name}: thermo columns");
+    assert_eq!(ours.len(), theirs.len(), "{name}: thermo rows");
+    for (c, col) in their_names.iter().enumerate() {
+        let scale = theirs.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+        let worst = ours.iter().zip(&theirs).map(|(a, b)| (a[c] - b[c]).abs()).fold(0.0, f64::max);
+        println!("{name}: {col}: max |dmhs - LAMMPS| {worst:.3e} (scale {scale:.3e})");
+        let tol = if col.starts_with("c_t") || col == "Step" { 0.0 } else { 1e-7 * scale };
+        assert!(worst <= tol, "{name}: thermo column {col} differs by {worst:e} (scale {scale:e})");
     }
 }
 
 #[test]
 fn stored_broken_bonds() {
-    let tmp = tempfile::tempdir().unwrap();
-    let theirs = std::fs::read_to_string(root().join("lammps-refs/refs/bond_bpm_spring/broken.txt")).unwrap();
-    compare(&theirs, &dmhs_rows(tmp.path()));
+    for name in DECKS {
+        let tmp = tempfile::tempdir().unwrap();
+        let refs = root().join("lammps-refs/refs").join(name);
+        let (rows, screen) = dmhs_run(name, tmp.path());
+        if BREAKING.contains(&name) {
+            compare(name, &std::fs::read_to_string(refs.join("broken.txt")).unwrap(), &rows);
+        }
+        compare_thermo(name, &std::fs::read_to_string(refs.join("thermo.txt")).unwrap(), &screen);
+    }
 }
 
 #[test]
@@ -74,10 +108,16 @@ fn live_broken_bonds() {
     if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
-    let tmp = tempfile::tempdir().unwrap();
-    let file = tmp.path().join("lammps_broken.txt");
-    dmhs::tools::lammps::run_driver(&deck(), &[("brkfile".into(), vec![file.to_string_lossy().into_owned()])], tmp.path()).unwrap();
-    compare(&std::fs::read_to_string(file).unwrap(), &dmhs_rows(tmp.path()));
+    for name in DECKS {
+        let tmp = tempfile::tempdir().unwrap();
+        let file = tmp.path().join("lammps_broken.txt");
+        dmhs::tools::lammps::run_driver(&deck(name), &[("brkfile".into(), vec![file.to_string_lossy().into_owned()])], tmp.path()).unwrap();
+        let (rows, screen) = dmhs_run(name, tmp.path());
+        if BREAKING.contains(&name) {
+            compare(name, &std::fs::read_to_string(file).unwrap(), &rows);
+        }
+        compare_thermo(name, &std::fs::read_to_string(tmp.path().join("log.lammps")).unwrap(), &screen);
+    }
 }
 
 fn error_of(deck: &str) -> String {
@@ -136,4 +176,43 @@ fn a_stretched_bond_breaks_once_and_the_pair_turns_on() {
     let rows: Vec<&str> = text.lines().collect();
     assert_eq!(rows.len(), 1, "{text}");
     assert_eq!(rows[0], "11 1 2 ");
+}
+
+#[test]
+fn rotational_bad_input_is_located() {
+    let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere");
+    let coeff = "bond_coeff 1 1 1 1 1 1 1 1 1 1 1 1 1\n";
+    // (deck, what the message says, the line it points at; 0: an error of the run, unlocated)
+    let cases = [
+        (format!("{sphere}bond_style bpm/rotational smooth maybe\n"), "maybe", 12),
+        (format!("{sphere}bond_style bpm/rotational volume/factor no\n"), "volume/factor", 12),
+        (format!("{sphere}bond_style bpm/rotational store/local brk 10\n"), "at least one value", 12),
+        (format!("{sphere}bond_style bpm/rotational break no\n"), "must turn off smoothing with break no", 12),
+        (format!("{sphere}bond_style bpm/rotational\nbond_coeff 1 1 1 1 1 1 1 1 1 1 1 1\n"), "gtwist", 13),
+        // LAMMPS' init checks, at the run
+        (format!("{TWO}bond_style bpm/rotational\n{coeff}run 0\n"), "requires atom style bpm/sphere", 0),
+        (format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("comm_modify vel yes\n", "")), "ghost atoms store velocity", 0),
+        (format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("newton on off", "newton on")), "require Newton bond off", 0),
+    ];
+    for (deck, says, line) in cases {
+        let e = error_of(&deck);
+        assert!(e.contains(says) && (line == 0 || e.contains(&format!("in.test:{line}:"))), "{e}");
+    }
+}
+
+#[test]
+fn rotational_bond_breaks_only_with_break_yes() {
+    // atom 2 leaves at speed 1 (time step 0.005): B = Kr (r - r0) / Fcr reaches 1 at r - r0 =
+    // 0.01. LAMMPS 22 Jul 2025 breaks the bond at step 3 with `break yes`, and keeps it (nbond 1
+    // at step 20, no error) with `break no smooth no`
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("b.txt");
+    let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere");
+    for (settings, nbonds) in [("break no smooth no", 1), ("store/local brk 1 time id1 id2", 0)] {
+        let dump = if nbonds == 0 { format!("dump d all local 1 {} f_brk[1] f_brk[2] f_brk[3]\ndump_modify d header no\n", file.display()) } else { String::new() };
+        let deck = format!("{sphere}pair_style zero 1.0\npair_coeff * *\nbond_style bpm/rotational {settings}\nbond_coeff 1 1 1 1 1 0.01 1 1 1 0 0 0 0\nset atom 2 vx 1.0\nfix 1 all nve/bpm/sphere\n{dump}run 20\n");
+        let run = run_text("in.test", &deck, &DeckOptions { screen: false, ..Default::default() }).unwrap_or_else(|f| panic!("{}", f.rendered));
+        assert_eq!(run.sim.state.topo.bonds.len(), nbonds, "{settings}");
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap().trim_end(), "3 1 2");
 }

@@ -139,5 +139,18 @@ pub struct BondedLists {
     pub bonds: Slabbed<Entry<2>>,
     pub angles: Slabbed<Entry<3>>,
     pub dihedrals: Slabbed<Entry<4>>,
+    /// The bonds in serial LAMMPS' bond-list order (`newton_bond off`), for the styles whose
+    /// results hang on the order of the sums (the BPM styles); empty for the others.
+    pub lammps_bonds: Vec<Listed>,
+}
+
+/// A bond as serial LAMMPS lists it with `newton_bond off`: once, by the atom of lower local
+/// index, or (a bond to a periodic image) once by each atom, the force going to that atom only.
+#[derive(Clone, Copy, Debug)]
+pub struct Listed {
+    /// Atoms and shifts; the listing atom has no shift.
+    pub entry: Entry<2>,
+    /// Which of the two atoms receive the bond's force.
+    pub apply: [bool; 2],
 }
 

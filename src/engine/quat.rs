@@ -82,12 +82,55 @@ pub fn matvec(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
     ]
 }
 
-/// `norm3`: scale a vector to unit length (one reciprocal, three products).
+/// `norm3`: scale a vector to unit length (one reciprocal, three products); a zero vector
+/// stays zero.
 pub fn norm3(v: &mut [f64; 3]) {
-    let scale = 1.0 / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    for c in v.iter_mut() {
-        *c *= scale;
+    let val = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if val > 0.0 {
+        let scale = 1.0 / val.sqrt();
+        for c in v.iter_mut() {
+            *c *= scale;
+        }
     }
+}
+
+/// `cross3`: a x b.
+#[inline]
+pub fn cross3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// `qconjugate`: the inverse of a unit quaternion.
+#[inline]
+pub fn qconjugate(q: &Quat) -> Quat {
+    [q[0], -q[1], -q[2], -q[3]]
+}
+
+/// `quatquat`: the product a * b.
+#[inline]
+pub fn quatquat(a: &Quat, b: &Quat) -> Quat {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + b[0] * a[1] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] + b[0] * a[2] + a[3] * b[1] - a[1] * b[3],
+        a[0] * b[3] + b[0] * a[3] + a[1] * b[2] - a[2] * b[1],
+    ]
+}
+
+/// `quatrotvec`: the vector v rotated by q, q (0, v) q* (the product with (0, v) first).
+#[inline]
+pub fn quatrotvec(q: &Quat, v: &[f64; 3]) -> [f64; 3] {
+    let t = [
+        -q[1] * v[0] - q[2] * v[1] - q[3] * v[2],
+        q[0] * v[0] + q[2] * v[2] - q[3] * v[1],
+        q[0] * v[1] + q[3] * v[0] - q[1] * v[2],
+        q[0] * v[2] + q[1] * v[1] - q[2] * v[0],
+    ];
+    [
+        -q[1] * t[0] + q[0] * t[1] - q[3] * t[2] + q[2] * t[3],
+        -q[2] * t[0] + q[3] * t[1] + q[0] * t[2] - q[1] * t[3],
+        -q[3] * t[0] - q[2] * t[1] + q[1] * t[2] + q[0] * t[3],
+    ]
 }
 
 #[cfg(test)]

@@ -8,16 +8,24 @@ pub struct Bond {
     pub typ: usize,
     pub atoms: [i64; 2],
     /// Per-bond history of the BPM bond styles (LAMMPS' fix bond/history): the reference
-    /// length, 0 until the style stores it at its first force evaluation.
-    pub r0: f64,
+    /// length (0 until the style stores it at its first force evaluation), then what else the
+    /// style keeps (bpm/rotational: the reference direction).
+    pub history: [f64; BOND_HISTORY],
+    /// The bond's place in each of its atoms' own bond lists (LAMMPS' `bond_atom[i][m]`, m
+    /// here; `u32::MAX` until [`Topology::assign_bond_slots`]). Only the order of an atom's
+    /// slots matters: it is the order in which LAMMPS lists the atom's bonds.
+    pub slots: [u32; 2],
     /// Turned off by `delete_bonds` (LAMMPS' negative type): kept, and counted in the special
     /// lists, but not computed.
     pub off: bool,
 }
 
+/// Values of [`Bond::history`] (LAMMPS' largest `nhistory` of a BPM style, bpm/rotational's).
+pub const BOND_HISTORY: usize = 4;
+
 impl Bond {
     pub fn new(typ: usize, atoms: [i64; 2]) -> Bond {
-        Bond { typ, atoms, r0: 0.0, off: false }
+        Bond { typ, atoms, history: [0.0; BOND_HISTORY], slots: [u32::MAX; 2], off: false }
     }
 }
 
@@ -79,6 +87,65 @@ impl Topology {
             !gone[k - 1]
         });
     }
+    /// Give each bond without one a slot after the others of its atom, in record order (LAMMPS
+    /// appends a new bond to each atom's list, `newton_bond off`).
+    pub fn assign_bond_slots(&mut self) {
+        if self.bonds.iter().all(|b| b.slots[0] != u32::MAX && b.slots[1] != u32::MAX) {
+            return;
+        }
+        let mut next: std::collections::HashMap<i64, u32> = std::collections::HashMap::new();
+        for b in &self.bonds {
+            for k in 0..2 {
+                if b.slots[k] != u32::MAX {
+                    let n = next.entry(b.atoms[k]).or_insert(0);
+                    *n = (*n).max(b.slots[k] + 1);
+                }
+            }
+        }
+        for b in &mut self.bonds {
+            for k in 0..2 {
+                if b.slots[k] == u32::MAX {
+                    let n = next.entry(b.atoms[k]).or_insert(0);
+                    b.slots[k] = *n;
+                    *n += 1;
+                }
+            }
+        }
+    }
+
+    /// Bond records `recs` leave their atoms' lists, one after the other as LAMMPS' BPM styles
+    /// remove a broken bond: the atom's last bond takes the removed one's slot. The records
+    /// themselves stay (see [`Topology::remove_bond_records`]).
+    pub fn release_bond_slots(&mut self, recs: &[usize]) {
+        let involved: std::collections::HashSet<i64> = recs.iter().flat_map(|&k| self.bonds[k].atoms).collect();
+        // each involved atom's (slot, record, side) of its live bonds
+        let mut lists: std::collections::HashMap<i64, Vec<(u32, usize, usize)>> = std::collections::HashMap::new();
+        for (k, b) in self.bonds.iter().enumerate() {
+            for side in 0..2 {
+                if involved.contains(&b.atoms[side]) {
+                    lists.entry(b.atoms[side]).or_default().push((b.slots[side], k, side));
+                }
+            }
+        }
+        let mut removed: std::collections::HashSet<usize> = std::collections::HashSet::new();
+        for &k in recs {
+            for side in 0..2 {
+                let (tag, m) = (self.bonds[k].atoms[side], self.bonds[k].slots[side]);
+                let list = lists.get_mut(&tag).expect("listed above");
+                list.retain(|&(_, r, _)| !removed.contains(&r));
+                if let Some(&(_, last, lside)) = list.iter().filter(|e| e.1 != k).max_by_key(|e| e.0) {
+                    if self.bonds[last].slots[lside] > m {
+                        self.bonds[last].slots[lside] = m;
+                        for e in list.iter_mut().filter(|e| e.1 == last && e.2 == lside) {
+                            e.0 = m;
+                        }
+                    }
+                }
+            }
+            removed.insert(k);
+        }
+    }
+
     pub fn is_empty(&self) -> bool {
         self.bonds.is_empty() && self.angles.is_empty() && self.dihedrals.is_empty()
     }

@@ -249,9 +249,9 @@ impl Simulation {
             pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
         }
         self.timers.charge(Stage::Pair);
-        let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm_spring()) {
+        let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
             Some(bpm) => {
-                let (tally, broken) = crate::models::bonded::bond_bpm_spring::compute(&mut self.state, bpm, eflag)?;
+                let (tally, broken) = bpm.compute(&mut self.state, eflag)?;
                 if !broken.is_empty() {
                     self.bonds_broken(&broken)?;
                 }
@@ -280,16 +280,16 @@ impl Simulation {
     /// Bonds of a BPM style broke in this force evaluation: their records go to the style's
     /// fix store/local, then they leave the topology, the special table, the neighbour list and
     /// the bonded lists.
-    fn bonds_broken(&mut self, broken: &[crate::models::bonded::bond_bpm_spring::Broken]) -> Result<(), RunError> {
-        let bpm = self.bond_style.as_deref().and_then(|b| b.as_bpm_spring()).expect("a BPM bond style");
-        if let Some(sl) = &bpm.store_local {
-            let rows: Vec<Vec<f64>> = broken.iter().map(|b| crate::models::bonded::bond_bpm_spring::record(&sl.values, &self.state, b)).collect();
+    fn bonds_broken(&mut self, broken: &[crate::models::bonded::bpm::Broken]) -> Result<(), RunError> {
+        let bpm = self.bond_style.as_deref().and_then(|b| b.as_bpm()).expect("a BPM bond style");
+        if let Some(sl) = &bpm.shared().store_local {
+            let rows: Vec<Vec<f64>> = broken.iter().map(|b| crate::models::bonded::bpm::record(&sl.values, &self.state, b)).collect();
             let masks: Vec<[u32; 2]> = broken.iter().map(|b| b.atoms.map(|i| self.state.atoms.mask[i as usize])).collect();
             let fix = self.fixes.iter_mut().find(|f| f.id() == sl.fix_id).and_then(|f| f.as_store_local());
             let Some(fix) = fix else { return Err(RunError::new(self.state.step, format!("Cannot find fix STORE/LOCAL id {}", sl.fix_id))) };
             fix.add_rows(rows, &masks);
         }
-        crate::models::bonded::bond_bpm_spring::remove_broken(&mut self.state, broken);
+        crate::models::bonded::bpm::remove_broken(&mut self.state, broken);
         Ok(())
     }
 

@@ -108,7 +108,7 @@ pub fn bond_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         Some(w) => {
             let mut s = crate::models::bonded::new_bond_style(&w.text).unwrap();
             s.settings(&mut Args::from_words(&cmd.args[1..], cmd.span, "bond_style style args"))?;
-            if let Some(sl) = s.as_bpm_spring().and_then(|b| b.store_local.as_ref()) {
+            if let Some(sl) = s.as_bpm().and_then(|b| b.shared().store_local.as_ref()) {
                 bpm_store_local(sim, sl)?;
             }
             sim.bond_style = Some(s);
@@ -120,8 +120,8 @@ pub fn bond_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
 /// `store/local FIXID N values...` of a BPM bond style: the fix STORE/LOCAL that collects the
 /// broken bonds (LAMMPS creates it unless a fix of that ID exists), and the reference positions
 /// for x/ref, y/ref, z/ref (the positions now).
-fn bpm_store_local(sim: &mut Simulation, sl: &crate::models::bonded::bond_bpm_spring::StoreLocal) -> DResult<()> {
-    use crate::models::bonded::bond_bpm_spring::{LocalValue, X_REF};
+fn bpm_store_local(sim: &mut Simulation, sl: &crate::models::bonded::bpm::StoreLocal) -> DResult<()> {
+    use crate::models::bonded::bpm::{LocalValue, X_REF};
     match sim.fixes.iter_mut().find(|f| f.id() == sl.fix_id) {
         Some(f) => {
             if f.as_store_local().is_none() {

@@ -124,7 +124,7 @@ fn refuse_stored_values(sim: &mut Simulation, cmd: &Command) -> DResult<()> {
     if let Some(e) = sim.state.atoms.extra.iter().find(|e| !e.name.starts_with("dmhs/")) {
         return refuse(format!("per-atom array `{}`", e.name));
     }
-    if sim.state.topo.bonds.iter().any(|b| b.r0 != 0.0) {
+    if sim.state.topo.bonds.iter().any(|b| b.history[0] != 0.0) {
         return refuse("the reference lengths of the BPM bonds".into());
     }
     if let Some(p) = sim.pair.as_deref_mut() {

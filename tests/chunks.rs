@@ -43,12 +43,7 @@ fn files_match_lammps_now() {
     let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
-    let lmp = common::run_lammps(&python, &deck_dir(), "in.chunks");
-    let tmp = common::run_dmhs(&deck_dir(), "in.chunks");
-    let bad = common::compare_dirs(&FILES, lmp.path(), tmp.path());
-    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
-    let stale = common::compare_dirs(&FILES, lmp.path(), &deck_dir().join("expected"));
-    assert!(stale.is_empty(), "tests/chunks/expected is not what LAMMPS writes now:\n{}", stale.join("\n"));
+    common::check_live(&python, &deck_dir(), "in.chunks", &FILES, 1e-5);
 }
 
 /// Bad input is a located error (deck:line:col and what was expected), never a panic.
@@ -76,9 +71,5 @@ fn bad_input_is_a_located_error() {
         ("fix a all ave/chunk 1 1 10 c vx overwrite\n", "ave running"),
         ("fix a all ave/chunk 1 1 10 c vx norm maybe\n", "maybe"),
     ];
-    for (extra, want) in cases {
-        let deck = format!("{base}{extra}run 0\n");
-        let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
-        assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
-    }
+    common::assert_located_errors(base, cases);
 }

@@ -69,9 +69,7 @@ impl Compute for ComputeStressAtom {
                 continue;
             }
             for k in (0..4).filter(|&k| self.terms[k]) {
-                for m in 0..6 {
-                    st[m] += t.virial[k][i][m];
-                }
+                st.iter_mut().zip(&t.virial[k][i]).for_each(|(s, v)| *s += v);
             }
             if self.ke {
                 let onemass = mvv2e * s.mass(i);

@@ -26,7 +26,9 @@ pub fn central_peratom<K: CentralKernel>(kernel: &K, input: &PairInput, out: &mu
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let p = &row[tj];
-                if !(rsq < K::cutsq(p, &sites[i], &sites[j])) {
+                // as the force loop: only pairs inside the cutoff (never a NaN distance)
+                let inside = rsq < K::cutsq(p, &sites[i], &sites[j]);
+                if !inside {
                     continue;
                 }
                 let factor = if special { input.special_lj[special_level(jraw)] } else { 1.0 };

@@ -10,7 +10,7 @@
 //! those of its first sample, as LAMMPS locks the compute; with `ids nfreq` the atoms' chunk IDs
 //! are also those of the first sample.
 
-use super::sampling::{format_value, Ave, AveFile, Combine, Sampling};
+use super::sampling::{format_value, Ave, AveFile, Combine, FileOptions, Sampling};
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::state::{RunError, State};
 use crate::models::compute::chunk_atom::{Chunks, Ids};
@@ -111,7 +111,7 @@ impl FixAveChunk {
         }
         let dimension = state.domain.as_ref().map_or(3, |d| d.dimension);
         let (mut norm_sample, mut noscale, mut ave, mut adof, mut cdof) = (false, false, Ave::One, dimension as f64, 0.0);
-        let (mut format, mut file, mut overwrite, mut titles) = (None, None, false, [None, None, None]);
+        let mut out = FileOptions::default();
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
@@ -119,21 +119,13 @@ impl FixAveChunk {
                 "ave" => ave = Ave::parse(&mut a)?,
                 "adof" => adof = a.f64("adof")?,
                 "cdof" => cdof = a.f64("cdof")?,
-                "overwrite" => overwrite = true,
-                "format" => format = Some(a.printf_format("format")?.to_string()),
-                "file" => file = Some(a.word("file name")?),
-                "title1" | "title2" | "title3" => {
-                    let k = (w.text.as_bytes()[5] - b'1') as usize;
-                    titles[k] = Some(a.str("title")?.to_string());
-                }
+                _ if out.keyword(w, &mut a)? => {}
                 "bias" => return Err(a.error_at(w, "fix ave/chunk bias is not supported: dmhs has no temperature compute with a velocity bias", "not supported")),
                 "discard" | "scale" => return Err(a.error_at(w, format!("fix ave/chunk `{}` is not a keyword of LAMMPS 22 Jul 2025 (use norm, or discard of compute chunk/atom)", w.text), "unknown keyword")),
-                _ => return Err(a.unknown_keyword(w, &["norm", "ave", "adof", "cdof", "file", "overwrite", "format", "title1", "title2", "title3"])),
+                _ => return Err(a.unknown_keyword(w, &[&["norm", "ave", "adof", "cdof"][..], &FileOptions::KEYWORDS].concat())),
             }
         }
-        if overwrite && ave != Ave::Running {
-            return Err(a.missing("`ave running` (the overwrite keyword requires it)"));
-        }
+        out.check(ave, &a)?;
         let mut fix = FixAveChunk {
             id: d.id.clone(),
             groupbit: d.groupbit,
@@ -144,7 +136,7 @@ impl FixAveChunk {
             noscale,
             adof,
             cdof,
-            format,
+            format: out.format.clone(),
             file: None,
             chunks: None,
             lock_forever: false,
@@ -159,18 +151,18 @@ impl FixAveChunk {
             values_total: Vec::new(),
             combine: Combine::new(ave),
         };
-        if let Some(w) = file {
+        if let Some(w) = out.file {
             let path = d.path(&w.text);
             let group = d.cmd.args.get(1).map_or("all", |g| g.text.as_str());
-            let mut head = match &titles[0] {
+            let mut head = match &out.titles[0] {
                 Some(t) => format!("{t}\n"),
                 None => format!("# Chunk-averaged data for fix {} and group {group}\n", fix.id),
             };
-            head += &match &titles[1] {
+            head += &match &out.titles[1] {
                 Some(t) => format!("{t}\n"),
                 None => "# Timestep Number-of-chunks Total-count\n".to_string(),
             };
-            head += &match &titles[2] {
+            head += &match &out.titles[2] {
                 Some(t) => format!("{t}\n"),
                 None => {
                     let mut s = "# Chunk".to_string();
@@ -181,7 +173,7 @@ impl FixAveChunk {
                     format!("{s} Ncount {}\n", names.join(" "))
                 }
             };
-            fix.file = Some(AveFile::create(&path, &head, overwrite).map_err(|e| a.error_at(w, format!("cannot open fix ave/chunk file {}: {e}", path.display()), "cannot open"))?);
+            fix.file = Some(AveFile::create(&path, &head, out.overwrite).map_err(|e| a.error_at(w, format!("cannot open fix ave/chunk file {}: {e}", path.display()), "cannot open"))?);
         }
         fix.sampling.begin(state.step);
         Ok(fix)

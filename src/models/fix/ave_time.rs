@@ -7,7 +7,7 @@
 //! Its result is `f_ID` (one value in scalar mode), `f_ID[i]` (several values, or the rows of one
 //! vector in vector mode).
 
-use super::sampling::{format_value, Ave, AveFile, Combine, Sampling};
+use super::sampling::{format_value, Ave, AveFile, Combine, FileOptions, Sampling};
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::state::{RunError, State};
 use crate::models::world::World;
@@ -88,8 +88,7 @@ impl FixAveTime {
         if raw.is_empty() {
             return Err(a.missing("a value (c_ID, c_ID[i], f_ID, f_ID[i] or v_name)"));
         }
-        let (mut vector_mode, mut ave, mut format, mut file, mut overwrite) = (false, Ave::One, None, None, false);
-        let (mut titles, mut offs) = ([None, None, None], Vec::new());
+        let (mut vector_mode, mut ave, mut out, mut offs) = (false, Ave::One, FileOptions::default(), Vec::new());
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
@@ -97,19 +96,11 @@ impl FixAveTime {
                 "ave" => ave = Ave::parse(&mut a)?,
                 "start" => sampling.start = a.i64("start step")?,
                 "off" => offs.push((a.peek(), a.i64("off column")?)),
-                "overwrite" => overwrite = true,
-                "format" => format = Some(a.printf_format("format")?.to_string()),
-                "file" => file = Some(a.word("file name")?),
-                "title1" | "title2" | "title3" => {
-                    let k = (w.text.as_bytes()[5] - b'1') as usize;
-                    titles[k] = Some(a.str("title")?.to_string());
-                }
-                _ => return Err(a.unknown_keyword(w, &["mode", "ave", "start", "off", "overwrite", "format", "file", "title1", "title2", "title3"])),
+                _ if out.keyword(w, &mut a)? => {}
+                _ => return Err(a.unknown_keyword(w, &[&["mode", "ave", "start", "off"][..], &FileOptions::KEYWORDS].concat())),
             }
         }
-        if overwrite && ave != Ave::Running {
-            return Err(a.missing("`ave running` (the overwrite keyword requires it)"));
-        }
+        out.check(ave, &a)?;
 
         // each value, wildcards expanded, checked against what its producer offers
         let mut values = Vec::new();
@@ -181,19 +172,19 @@ impl FixAveTime {
             sampling,
             values,
             vector_mode,
-            format,
+            format: out.format.clone(),
             file: None,
             sum: Vec::new(),
             total: Vec::new(),
             combine: Combine::new(ave),
         };
-        if let Some(w) = file {
+        if let Some(w) = out.file {
             if w.text.ends_with(".yaml") || w.text.ends_with(".yml") {
                 return Err(a.error_at(w, "fix ave/time YAML output is not supported; use a plain file name", "YAML file"));
             }
             let path = d.path(&w.text);
-            let head = fix.header(&names, &titles);
-            fix.file = Some(AveFile::create(&path, &head, overwrite).map_err(|e| a.error_at(w, format!("cannot open fix ave/time file {}: {e}", path.display()), "cannot open"))?);
+            let head = fix.header(&names, &out.titles);
+            fix.file = Some(AveFile::create(&path, &head, out.overwrite).map_err(|e| a.error_at(w, format!("cannot open fix ave/time file {}: {e}", path.display()), "cannot open"))?);
         }
         fix.sampling.begin(state.step);
         Ok(fix)

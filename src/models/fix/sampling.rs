@@ -196,3 +196,41 @@ pub fn format_value(format: Option<&str>, x: f64) -> String {
         None => format!(" {}", dmhs_parser::numfmt::format_g(x, 6)),
     }
 }
+
+/// The output keywords of the averaging fixes: `overwrite`, `format F`, `file F`,
+/// `title1 T`, `title2 T`, `title3 T`.
+#[derive(Default)]
+pub struct FileOptions<'a> {
+    pub overwrite: bool,
+    pub format: Option<String>,
+    pub file: Option<&'a dmhs_parser::Word>,
+    pub titles: [Option<String>; 3],
+}
+
+impl<'a> FileOptions<'a> {
+    pub const KEYWORDS: [&'static str; 6] = ["overwrite", "format", "file", "title1", "title2", "title3"];
+
+    /// Read keyword `w` (already taken from `a`) and its value if it is one of these; false if
+    /// it is another keyword.
+    pub fn keyword(&mut self, w: &dmhs_parser::Word, a: &mut Args<'a>) -> DResult<bool> {
+        match w.text.as_str() {
+            "overwrite" => self.overwrite = true,
+            "format" => self.format = Some(a.printf_format("format")?.to_string()),
+            "file" => self.file = Some(a.word("file name")?),
+            "title1" | "title2" | "title3" => {
+                let k = (w.text.as_bytes()[5] - b'1') as usize;
+                self.titles[k] = Some(a.str("title")?.to_string());
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+
+    /// `overwrite` needs `ave running`, as LAMMPS says.
+    pub fn check(&self, ave: Ave, a: &Args) -> DResult<()> {
+        if self.overwrite && ave != Ave::Running {
+            return Err(a.missing("`ave running` (the overwrite keyword requires it)"));
+        }
+        Ok(())
+    }
+}

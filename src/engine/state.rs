@@ -119,6 +119,9 @@ pub struct State {
     /// First and last step of the current run.
     pub run_window: Option<(i64, i64)>,
     pub energies: Energies,
+    /// Per-atom energies and virials of the last force evaluation that made them (for compute
+    /// pe/atom and stress/atom).
+    pub peratom: Option<crate::engine::tally::PerAtomTally>,
     /// Lists and ghosts are valid for the current atoms.
     pub lists_valid: bool,
     /// Number of atoms at the start of the run (lost-atom check).
@@ -177,6 +180,7 @@ impl State {
             atimestep: 0,
             run_window: None,
             energies: Energies { step: -1, ..Energies::default() },
+            peratom: None,
             lists_valid: false,
             natoms_expected: 0,
             rebuild_requested: false,

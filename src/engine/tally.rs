@@ -51,3 +51,39 @@ pub fn sum_tallies(parts: &[Tally]) -> Tally {
     t
 }
 
+
+/// Per-atom energies and virials of one force evaluation (LAMMPS' eatom and vatom), by source:
+/// made only on steps that tally energies, and only when a compute pe/atom or stress/atom
+/// exists. Every value belongs to an owned atom: a pair with a ghost is listed from both
+/// sides, so each owner takes its half itself (LAMMPS takes it by reverse communication).
+#[derive(Clone, Debug, Default)]
+pub struct PerAtomTally {
+    /// The step they belong to.
+    pub step: i64,
+    /// Energies: pair, bond, angle, dihedral.
+    pub energy: [Vec<f64>; 4],
+    /// Virials (xx, yy, zz, xy, xz, yz): pair, bond, angle, dihedral.
+    pub virial: [Vec<[f64; 6]>; 4],
+}
+
+impl PerAtomTally {
+    pub const PAIR: usize = 0;
+    pub const BOND: usize = 1;
+    pub const ANGLE: usize = 2;
+    pub const DIHEDRAL: usize = 3;
+
+    /// Zero tallies for `n` owned atoms at `step`.
+    pub fn new(n: usize, step: i64) -> PerAtomTally {
+        PerAtomTally { step, energy: std::array::from_fn(|_| vec![0.0; n]), virial: std::array::from_fn(|_| vec![[0.0; 6]; n]) }
+    }
+
+    /// Add a share `w` of energy `e` and virial `v` to atom `i` of source `k`.
+    #[inline]
+    pub fn add(&mut self, k: usize, i: usize, w: f64, e: f64, v: &[f64; 6]) {
+        self.energy[k][i] += w * e;
+        let va = &mut self.virial[k][i];
+        for m in 0..6 {
+            va[m] += w * v[m];
+        }
+    }
+}

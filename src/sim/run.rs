@@ -260,6 +260,9 @@ impl Simulation {
             None => crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?,
         };
         self.timers.charge(Stage::Bond);
+        if eflag && self.computes.iter().any(|c| c.uses_peratom_tally()) {
+            self.tally_peratom()?;
+        }
         if eflag {
             let mut virial = pair_tally.virial;
             for k in 0..6 {
@@ -274,6 +277,22 @@ impl Simulation {
                 step: self.state.step,
             };
         }
+        Ok(())
+    }
+
+    /// Per-atom energies and virials of the current forces, for compute pe/atom and
+    /// stress/atom (LAMMPS' eatom and vatom, made on the steps that tally energies).
+    fn tally_peratom(&mut self) -> Result<(), RunError> {
+        let step = self.state.step;
+        let mut t = crate::engine::tally::PerAtomTally::new(self.state.atoms.nlocal, step);
+        if self.pair.is_some() {
+            self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false).map_err(|e| RunError::new(step, e))?;
+        }
+        if self.bond_style.as_deref().is_some_and(|b| b.as_bpm_spring().is_some()) {
+            return Err(RunError::new(step, "bond style bpm/spring does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)"));
+        }
+        crate::models::bonded::pass::bonded_peratom(&self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), &mut t);
+        self.state.peratom = Some(t);
         Ok(())
     }
 

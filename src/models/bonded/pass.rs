@@ -297,3 +297,46 @@ pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>
         }
     }
 }
+
+/// Per-atom energies and virials of the bonded interactions into `out` (compute pe/atom and
+/// stress/atom): a separate pass, run only on steps that need them. As LAMMPS' `ev_tally` of
+/// bonds, angles and dihedrals: each atom of an interaction takes 1/2, 1/3 or 1/4 of it.
+pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engine::tally::PerAtomTally) {
+    use crate::engine::tally::PerAtomTally;
+    let lists = &state.bonded_lists;
+    let Some(dom) = state.domain.as_ref() else { return };
+    // every entry at its shifts (chunk entries have none)
+    let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+    let all = |n: usize| 0..=n;
+    if let Some(style) = styles.bond {
+        let n = lists.bonds.nchunks();
+        for e in all(n).flat_map(|c| if c < n { chunk(&lists.bonds, c) } else { &lists.bonds.leftover[..] }) {
+            let del = sub(k.pos(e.atoms[0], e.shift[0]), k.pos(e.atoms[1], e.shift[1]));
+            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            let (fbond, energy) = style.compute(e.typ, del, rsq);
+            let v = bond_virial(del, fbond);
+            e.atoms.iter().for_each(|&i| out.add(PerAtomTally::BOND, i as usize, 0.5, energy, &v));
+        }
+    }
+    if let Some(style) = styles.angle {
+        let n = lists.angles.nchunks();
+        for e in all(n).flat_map(|c| if c < n { chunk(&lists.angles, c) } else { &lists.angles.leftover[..] }) {
+            let x2 = k.pos(e.atoms[1], e.shift[1]);
+            let del1 = sub(k.pos(e.atoms[0], e.shift[0]), x2);
+            let del2 = sub(k.pos(e.atoms[2], e.shift[2]), x2);
+            let r = style.compute(e.typ, del1, del2);
+            let v = angle_virial(del1, del2, r.f1, r.f3);
+            e.atoms.iter().for_each(|&i| out.add(PerAtomTally::ANGLE, i as usize, 1.0 / 3.0, r.energy, &v));
+        }
+    }
+    if let Some(style) = styles.dihedral {
+        let n = lists.dihedrals.nchunks();
+        for e in all(n).flat_map(|c| if c < n { chunk(&lists.dihedrals, c) } else { &lists.dihedrals.leftover[..] }) {
+            let p: [[f64; 3]; 4] = std::array::from_fn(|m| k.pos(e.atoms[m], e.shift[m]));
+            let (vb1, vb2, vb3) = (sub(p[0], p[1]), sub(p[2], p[1]), sub(p[3], p[2]));
+            let r = style.compute(e.typ, vb1, vb2, vb3);
+            let v = dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4);
+            e.atoms.iter().for_each(|&i| out.add(PerAtomTally::DIHEDRAL, i as usize, 0.25, r.energy, &v));
+        }
+    }
+}

@@ -2,6 +2,7 @@
 //! output, variables and dumps. Each style lives in its own file; [`new_compute`] is the
 //! registry. Computes only read the simulation.
 
+pub mod chunk_atom;
 pub mod com;
 pub mod displace_atom;
 pub mod dmhs_phase_atom;
@@ -12,12 +13,14 @@ pub mod ke_atom;
 pub mod msd;
 pub mod nbond_atom;
 pub mod pe;
+pub mod pe_atom;
 pub mod pressure;
 pub mod property;
 pub mod property_atom;
 pub mod rdf;
 pub mod reduce;
 pub mod sph_atom;
+pub mod stress_atom;
 pub mod temp;
 pub mod temp_sphere;
 
@@ -153,6 +156,15 @@ pub trait Compute: Send + Sync {
     fn reset_temperature(&mut self, _temp_id: &str) -> bool {
         false
     }
+    /// Whether the compute reads per-atom energies or virials (pe/atom, stress/atom): the
+    /// force evaluations that tally energies then also tally them per atom.
+    fn uses_peratom_tally(&self) -> bool {
+        false
+    }
+    /// A compute chunk/atom (read by fix ave/chunk); None for other computes.
+    fn as_chunk(&self) -> Option<&chunk_atom::ComputeChunkAtom> {
+        None
+    }
     fn describe(&self) -> String {
         format!("compute {} {}", self.id(), self.style())
     }
@@ -179,10 +191,13 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("nbond/atom", |d, w| Ok(Box::new(nbond_atom::ComputeNBondAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("erotate/sphere/atom", |d, w| Ok(Box::new(erotate_sphere_atom::ComputeErotateSphereAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("pe/atom", |d, _| Ok(Box::new(pe_atom::ComputePeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("stress/atom", |d, w| Ok(Box::new(stress_atom::ComputeStressAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("chunk/atom", |d, w| Ok(Box::new(chunk_atom::ComputeChunkAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("reduce", |d, w| Ok(Box::new(reduce::ComputeReduce::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

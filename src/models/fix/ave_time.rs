@@ -7,12 +7,11 @@
 //! Its result is `f_ID` (one value in scalar mode), `f_ID[i]` (several values, or the rows of one
 //! vector in vector mode).
 
-use super::sampling::Sampling;
+use super::sampling::{format_value, Ave, AveFile, Combine, FileOptions, Sampling};
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::state::{RunError, State};
 use crate::models::world::World;
 use dmhs_parser::{Args, DResult, EvalContext, Word};
-use std::io::{Seek, Write};
 
 pub const SYNTAX: &str = "fix ID group ave/time Nevery Nrepeat Nfreq value ... [mode scalar|vector] [ave one|running|window M] [start S] [off col] [overwrite] [format F] [file F] [title1 T] [title2 T] [title3 T]";
 
@@ -36,34 +35,19 @@ struct Value {
     extensive: bool,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Ave {
-    One,
-    Running,
-    Window(usize),
-}
-
 pub struct FixAveTime {
     id: String,
     groupbit: u32,
     sampling: Sampling,
     values: Vec<Value>,
     vector_mode: bool,
-    ave: Ave,
     format: Option<String>,
-    file: Option<std::fs::File>,
-    /// Where the data start, for `overwrite`.
-    filepos: u64,
-    overwrite: bool,
+    file: Option<AveFile>,
     /// Sums of this Nfreq period: rows x values (one row in scalar mode).
     sum: Vec<Vec<f64>>,
-    /// Accumulated over periods (ave running/window), divided by `norm` when read.
+    /// Accumulated over periods (ave running/window), divided by `combine.norm` when read.
     total: Vec<Vec<f64>>,
-    /// Last `ave window` periods, oldest replaced first.
-    window: Vec<Vec<Vec<f64>>>,
-    iwindow: usize,
-    window_full: bool,
-    norm: usize,
+    combine: Combine,
 }
 
 /// Expand `c_ID[*]`, `c_ID[n*]`, `c_ID[*m]`, `c_ID[n*m]` into `c_ID[k]` for k in the range
@@ -104,34 +88,19 @@ impl FixAveTime {
         if raw.is_empty() {
             return Err(a.missing("a value (c_ID, c_ID[i], f_ID, f_ID[i] or v_name)"));
         }
-        let (mut vector_mode, mut ave, mut format, mut file, mut overwrite) = (false, Ave::One, None, None, false);
-        let (mut titles, mut offs) = ([None, None, None], Vec::new());
+        let (mut vector_mode, mut ave, mut out, mut offs) = (false, Ave::One, FileOptions::default(), Vec::new());
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
                 "mode" => vector_mode = a.choice("mode", &["scalar", "vector"])? == 1,
-                "ave" => {
-                    ave = match a.choice("ave", &["one", "running", "window"])? {
-                        0 => Ave::One,
-                        1 => Ave::Running,
-                        _ => Ave::Window(a.usize_min("window length M", 1)?),
-                    }
-                }
+                "ave" => ave = Ave::parse(&mut a)?,
                 "start" => sampling.start = a.i64("start step")?,
                 "off" => offs.push((a.peek(), a.i64("off column")?)),
-                "overwrite" => overwrite = true,
-                "format" => format = Some(a.printf_format("format")?.to_string()),
-                "file" => file = Some(a.word("file name")?),
-                "title1" | "title2" | "title3" => {
-                    let k = (w.text.as_bytes()[5] - b'1') as usize;
-                    titles[k] = Some(a.str("title")?.to_string());
-                }
-                _ => return Err(a.unknown_keyword(w, &["mode", "ave", "start", "off", "overwrite", "format", "file", "title1", "title2", "title3"])),
+                _ if out.keyword(w, &mut a)? => {}
+                _ => return Err(a.unknown_keyword(w, &[&["mode", "ave", "start", "off"][..], &FileOptions::KEYWORDS].concat())),
             }
         }
-        if overwrite && ave != Ave::Running {
-            return Err(a.missing("`ave running` (the overwrite keyword requires it)"));
-        }
+        out.check(ave, &a)?;
 
         // each value, wildcards expanded, checked against what its producer offers
         let mut values = Vec::new();
@@ -203,28 +172,19 @@ impl FixAveTime {
             sampling,
             values,
             vector_mode,
-            ave,
-            format,
+            format: out.format.clone(),
             file: None,
-            filepos: 0,
-            overwrite,
             sum: Vec::new(),
             total: Vec::new(),
-            window: Vec::new(),
-            iwindow: 0,
-            window_full: false,
-            norm: 0,
+            combine: Combine::new(ave),
         };
-        if let Some(w) = file {
+        if let Some(w) = out.file {
             if w.text.ends_with(".yaml") || w.text.ends_with(".yml") {
                 return Err(a.error_at(w, "fix ave/time YAML output is not supported; use a plain file name", "YAML file"));
             }
             let path = d.path(&w.text);
-            let mut f = std::fs::File::create(&path).map_err(|e| a.error_at(w, format!("cannot open fix ave/time file {}: {e}", path.display()), "cannot open"))?;
-            let head = fix.header(&names, &titles);
-            f.write_all(head.as_bytes()).map_err(|e| a.error_at(w, format!("cannot write {}: {e}", path.display()), "cannot write"))?;
-            fix.filepos = head.len() as u64;
-            fix.file = Some(f);
+            let head = fix.header(&names, &out.titles);
+            fix.file = Some(AveFile::create(&path, &head, out.overwrite).map_err(|e| a.error_at(w, format!("cannot open fix ave/time file {}: {e}", path.display()), "cannot open"))?);
         }
         fix.sampling.begin(state.step);
         Ok(fix)
@@ -325,39 +285,11 @@ impl FixAveTime {
                 }
             }
         }
-        match self.ave {
-            Ave::One => {
-                self.total.clone_from(&self.sum);
-                self.norm = 1;
-            }
-            Ave::Running => {
-                for (t, s) in self.total.iter_mut().zip(&self.sum) {
-                    t.iter_mut().zip(s).for_each(|(t, s)| *t += s);
-                }
-                self.norm += 1;
-            }
-            Ave::Window(m) => {
-                if self.window.len() < m {
-                    self.window = vec![vec![vec![0.0; nvalues]; nrows]; m];
-                }
-                for i in 0..nrows {
-                    for j in 0..nvalues {
-                        self.total[i][j] += self.sum[i][j];
-                        if self.window_full {
-                            self.total[i][j] -= self.window[self.iwindow][i][j];
-                        }
-                        self.window[self.iwindow][i][j] = self.sum[i][j];
-                    }
-                }
-                self.iwindow += 1;
-                if self.iwindow == m {
-                    self.iwindow = 0;
-                    self.window_full = true;
-                }
-                self.norm = if self.window_full { m } else { self.iwindow };
-            }
+        for (i, (t, s)) in self.total.iter_mut().zip(&self.sum).enumerate() {
+            self.combine.row(i, t, s);
         }
-        let norm = self.norm as f64;
+        self.combine.end_period();
+        let norm = self.combine.norm as f64;
         for (t, s) in self.total.iter_mut().zip(&self.sum) {
             for j in 0..nvalues {
                 if self.values[j].off {
@@ -369,10 +301,7 @@ impl FixAveTime {
     }
 
     fn fmt(&self, x: f64) -> String {
-        match &self.format {
-            Some(f) => dmhs_parser::numfmt::format_printf(f, x).unwrap_or_default(),
-            None => format!(" {}", dmhs_parser::numfmt::format_g(x, 6)),
-        }
+        format_value(self.format.as_deref(), x)
     }
 
     /// The period's line(s) in the file.
@@ -380,7 +309,7 @@ impl FixAveTime {
         if self.file.is_none() {
             return Ok(());
         }
-        let norm = self.norm as f64;
+        let norm = self.combine.norm as f64;
         let mut s = String::new();
         if self.vector_mode {
             s += &format!("{step} {}\n", self.total.len());
@@ -394,25 +323,13 @@ impl FixAveTime {
             self.total[0].iter().for_each(|x| s += &self.fmt(x / norm));
             s.push('\n');
         }
-        let (overwrite, pos) = (self.overwrite, self.filepos);
         let f = self.file.as_mut().expect("checked above");
-        let r = (|| {
-            if overwrite {
-                f.seek(std::io::SeekFrom::Start(pos))?;
-            }
-            f.write_all(s.as_bytes())?;
-            if overwrite {
-                let end = f.stream_position()?;
-                f.set_len(end)?;
-            }
-            f.flush()
-        })();
-        r.map_err(|e| format!("fix ave/time {}: error writing the file: {e}", self.id))
+        f.write(&s).map_err(|e| format!("fix ave/time {}: error writing the file: {e}", self.id))
     }
 
     fn value_out(&self, row: usize, col: usize) -> f64 {
         match self.total.get(row).and_then(|r| r.get(col)) {
-            Some(x) if self.norm > 0 => x / self.norm as f64,
+            Some(x) if self.combine.norm > 0 => x / self.combine.norm as f64,
             _ => 0.0,
         }
     }

@@ -3,6 +3,7 @@
 
 pub mod addforce;
 pub mod ave_atom;
+pub mod ave_chunk;
 pub mod ave_time;
 pub mod balance;
 pub mod bond_break;
@@ -312,6 +313,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("wall/gran/region", |d, state| Ok(Box::new(wall_gran_region::FixWallGranRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("balance", |d, state| Ok(Box::new(balance::FixBalance::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("ave/atom", |d, state| Ok(Box::new(ave_atom::FixAveAtom::from_lammps(d, state)?))),
+    ("ave/chunk", |d, state| Ok(Box::new(ave_chunk::FixAveChunk::from_lammps(d, state)?))),
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

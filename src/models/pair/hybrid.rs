@@ -257,6 +257,14 @@ impl PairStyle for Hybrid {
         total
     }
 
+    fn tally_peratom(&mut self, input: &PairInput, out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
+        self.refresh_between_builds(input);
+        for (k, style) in self.styles.iter_mut().enumerate() {
+            style.tally_peratom(&Self::sub_input(&self.sublists, k, input), out)?;
+        }
+        Ok(())
+    }
+
     fn rebuilt(&mut self, input: &PairInput, order: &[usize]) {
         self.refresh_sublists(input);
         for (k, style) in self.styles.iter_mut().enumerate() {

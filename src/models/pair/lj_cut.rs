@@ -164,6 +164,11 @@ impl PairStyle for LjCut {
         compute_central(self, input, out.f)
     }
 
+    fn tally_peratom(&mut self, input: &PairInput, out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
+        super::peratom::central_peratom(self, input, out);
+        Ok(())
+    }
+
     fn well_stiffness(&self) -> Option<f64> {
         let n = self.coeff.n;
         (1..=n).flat_map(|i| (i..=n).map(move |j| (i, j))).map(|(i, j)| self.coeff.get(i, j)).map(|c| well_stiffness(c.epsilon, c.sigma, c.cut)).filter(|k| *k > 0.0).reduce(f64::max)

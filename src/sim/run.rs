@@ -288,8 +288,8 @@ impl Simulation {
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false).map_err(|e| RunError::new(step, e))?;
         }
-        if self.bond_style.as_deref().is_some_and(|b| b.as_bpm_spring().is_some()) {
-            return Err(RunError::new(step, "bond style bpm/spring does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)"));
+        if let Some(b) = self.bond_style.as_deref().filter(|b| b.as_bpm().is_some()) {
+            return Err(RunError::new(step, format!("bond style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)", b.name())));
         }
         crate::models::bonded::pass::bonded_peratom(&self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), &mut t);
         self.state.peratom = Some(t);

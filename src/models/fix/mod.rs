@@ -35,8 +35,15 @@ pub mod temp_scale;
 pub mod thermostat;
 pub mod viscous;
 pub mod wall_gran;
+pub mod wall_colloid;
+pub mod wall_flat;
 pub mod wall_gran_region;
+pub mod wall_harmonic;
+pub mod wall_lj1043;
+pub mod wall_lj126;
 pub mod wall_lj93;
+pub mod wall_morse;
+pub mod wall_region;
 pub mod wall_reflect;
 
 use crate::engine::state::{RunError, State};
@@ -315,7 +322,12 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
-    ("wall/lj93", |d, state| Ok(Box::new(wall_lj93::FixWallLj93::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("wall/lj93", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/lj126", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/lj1043", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/harmonic", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/morse", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/region", |d, state| Ok(Box::new(wall_region::FixWallRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("indent", |d, state| Ok(Box::new(indent::FixIndent::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
     ("deposit", |d, state| Ok(Box::new(deposit::FixDeposit::from_lammps(d, state)?))),

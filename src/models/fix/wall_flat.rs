@@ -108,6 +108,9 @@ pub struct FixWall {
     style: String,
     groupbit: u32,
     walls: Vec<Wall>,
+    /// Scale of v_ coordinates: the lattice spacings unless `units box` (LAMMPS scales
+    /// variable walls too).
+    vscale: [f64; 3],
     /// Energy, then the force on each wall.
     ewall: Vec<f64>,
 }
@@ -151,8 +154,9 @@ impl FixWall {
         }
         let mut coords: Vec<(usize, &mut FixValue, Option<&Word>)> = walls.iter_mut().map(|(w, c, _)| (w.dim, &mut w.coord, *c)).collect();
         scale_constants(&a, lattice_units, &mut coords, state)?;
+        let vscale = if lattice_units { state.lattice_scale().map_err(|e| a.error_at(&cmd.name, e, "needs a lattice (or `units box`)"))? } else { [1.0; 3] };
         let n = walls.len();
-        Ok(FixWall { id, style: style.text.clone(), groupbit, walls: walls.into_iter().map(|(w, _, _)| w).collect(), ewall: vec![0.0; n + 1] })
+        Ok(FixWall { id, style: style.text.clone(), groupbit, walls: walls.into_iter().map(|(w, _, _)| w).collect(), vscale, ewall: vec![0.0; n + 1] })
     }
 }
 
@@ -172,8 +176,11 @@ impl Fix for FixWall {
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.ewall.fill(0.0);
         for m in 0..self.walls.len() {
-            let coord = ctx.value(state, self, &self.walls[m].coord)?.unwrap_or(0.0);
+            let mut coord = ctx.value(state, self, &self.walls[m].coord)?.unwrap_or(0.0);
             let w = &self.walls[m];
+            if matches!(w.coord, FixValue::Variable(_)) {
+                coord *= self.vscale[w.dim];
+            }
             let (dim, side) = (w.dim, if w.hi { 1.0 } else { -1.0 });
             let skips = w.pot.skips_behind();
             let a = &mut state.atoms;

@@ -1,5 +1,5 @@
-//! The 10-4-3 wall of Magda et al. E = 2 pi eps [2/5 (sigma/r)^10 - (sigma/r)^4
-//! - sqrt2 sigma^3 / (3 (r + 0.61/sqrt2 sigma)^3)], shifted to zero at the cutoff:
+//! The 10-4-3 wall of Magda et al.: E = 2 pi eps [2/5 (sigma/r)^10 - (sigma/r)^4 minus
+//! sqrt2 sigma^3 / (3 (r + 0.61/sqrt2 sigma)^3)], shifted to zero at the cutoff:
 //! `fix wall/lj1043` (wall_flat.rs; it ignores particles behind the wall) and
 //! `fix wall/region ... lj1043`.
 

@@ -59,7 +59,7 @@ impl FixWallRegion {
             (Potential::Colloid(Colloid::new(epsilon, sigma, cutoff)), cutoff)
         } else {
             let Some(st) = STYLES.iter().find(|s| s.name == sw.text) else {
-                return Err(a.unknown_keyword(sw, &["lj93", "lj126", "lj1043", "colloid", "harmonic", "morse"]));
+                return Err(a.error_at(sw, format!("unknown fix wall/region style `{}`", sw.text), "expected one of: lj93, lj126, lj1043, colloid, harmonic, morse"));
             };
             let p = parse_params(&mut a, st, powint)?;
             (Potential::Point((st.build)(&p)), p.cutoff)

@@ -92,3 +92,27 @@ thermo_style custom step f_a f_b f_a[1] f_a[2] f_a[3] f_a[4] f_a[5] f_a[6] f_b[1
         assert!(r[9..12].iter().any(|f| *f != 0.0), "{style}: no force");
     }
 }
+
+/// The walls act while minimizing, as LAMMPS' min_post_force (their energy not in pe): the CG
+/// relaxation of lammps-refs' min_cluster_cg deck inside a fix wall/region sphere and above a
+/// fix wall/lj93 floor stops as LAMMPS 22 Jul 2025 does (same criterion, 10 iterations, 61
+/// force evaluations, final pe -4.37811033299797 and wall energy -0.384589004876596).
+#[test]
+fn walls_act_while_minimizing() {
+    let base = std::fs::read_to_string(root().join("lammps-refs/decks/in.min_cluster_cg")).unwrap();
+    let deck = base
+        .replace("min_modify   norm inf", "region       cage sphere 0 0 0 3.0 units box\nfix          w all wall/region cage lj126 1.0 1.0 1.5\nfix          z all wall/lj93 zlo -3.0 1.0 1.0 2.5 units box\nmin_modify   norm inf")
+        .replace("thermo_style custom step pe fnorm fmax", "thermo_style custom step pe fnorm fmax f_w f_z");
+    let run = run_text("min_walls", &deck, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let text = run.sim.out.captured.as_deref().unwrap();
+    assert!(text.contains("Stopping criterion = linesearch alpha is zero") && text.contains("Iterations, force evaluations = 10 61"), "{text}");
+    // the minimization's table: the last row of the table before the summary
+    let min_table = &text[..text.find("Minimization stats").unwrap()];
+    let (names, rows) = table(min_table);
+    let last = rows.last().unwrap();
+    let col = |n: &str| last[names.iter().position(|c| c == n).unwrap()];
+    assert_eq!(col("Step"), 10.0);
+    assert!((col("PotEng") - -4.37811033299797).abs() < 1e-13, "{}", col("PotEng"));
+    assert!((col("f_w") - -0.384589004876596).abs() < 1e-14, "{}", col("f_w"));
+    assert!((col("f_z") - -0.0394712739038538).abs() < 1e-14, "{}", col("f_z"));
+}

@@ -133,7 +133,7 @@ pub trait Fix: Send + Sync {
     /// applies many of them and adds their energy, which dmhs' minimizer does not).
     fn min_role(&self) -> MinRole {
         match self.hooks().post_force {
-            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring and viscous", self.id(), self.style())),
+            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring, viscous, wall/* and wall/region", self.id(), self.style())),
             false => MinRole::Inert,
         }
     }

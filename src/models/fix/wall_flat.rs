@@ -161,6 +161,10 @@ impl FixWall {
 }
 
 impl Fix for FixWall {
+    /// LAMMPS applies it while minimizing (its energy counts only with fix_modify energy).
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::PostForce
+    }
     fn id(&self) -> &str {
         &self.id
     }

@@ -70,6 +70,10 @@ impl FixWallRegion {
 }
 
 impl Fix for FixWallRegion {
+    /// LAMMPS applies it while minimizing (its energy counts only with fix_modify energy).
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::PostForce
+    }
     fn id(&self) -> &str {
         &self.id
     }

@@ -1,6 +1,6 @@
 //! `region ID sphere x y z r`: a ball (the radius scales with the x lattice spacing, as LAMMPS).
 
-use super::{fixed, Shape, ShapeArgs, Style, Vec3};
+use super::{fixed, Shape, ShapeArgs, Style, Vec3, WallContact};
 use dmhs_parser::DResult;
 
 pub const STYLE: Style = Style { syntax: "sphere x y z r", nargs: fixed::<4>, parse };
@@ -21,6 +21,22 @@ fn parse(s: &ShapeArgs) -> DResult<Box<dyn Shape>> {
     Ok(Box::new(Sphere { center, radius }))
 }
 
+impl Sphere {
+    /// The point minus the centre, and its length (summed x, y, z as LAMMPS).
+    fn offset(&self, x: &Vec3) -> ([f64; 3], f64) {
+        let del = [x[0] - self.center[0], x[1] - self.center[1], x[2] - self.center[2]];
+        (del, (del[0] * del[0] + del[1] * del[1] + del[2] * del[2]).sqrt())
+    }
+
+    /// The contact `delta` from the surface along `del` (LAMMPS scales del by 1 - R/r).
+    fn contact(&self, del: [f64; 3], r: f64, delta: f64, cutoff: f64, radius: f64, out: &mut Vec<WallContact>) {
+        if delta < cutoff {
+            let s = 1.0 - self.radius / r;
+            out.push(WallContact { r: delta, del: [del[0] * s, del[1] * s, del[2] * s], radius, iwall: 0, vwall: [0.0; 3] });
+        }
+    }
+}
+
 impl Shape for Sphere {
     fn inside(&self, x: &Vec3) -> bool {
         // |x - c| summed x, y, z as LAMMPS' RegSphere (nalgebra's norm keeps that order)
@@ -30,6 +46,31 @@ impl Shape for Sphere {
     fn extent(&self) -> Option<(Vec3, Vec3)> {
         let r = Vec3::repeat(self.radius);
         Some((self.center - r, self.center + r))
+    }
+
+    fn has_surface(&self) -> bool {
+        true
+    }
+
+    /// The one wall from inside (radius of curvature -R); none at the centre.
+    fn surface_interior(&self, x: &Vec3, cutoff: f64, _open: &[bool; 6], out: &mut Vec<WallContact>) {
+        let (del, r) = self.offset(x);
+        if r > self.radius || r == 0.0 {
+            return;
+        }
+        self.contact(del, r, self.radius - r, cutoff, -self.radius, out);
+    }
+
+    fn surface_exterior(&self, x: &Vec3, cutoff: f64, _open: &[bool; 6], out: &mut Vec<WallContact>) {
+        let (del, r) = self.offset(x);
+        if r < self.radius {
+            return;
+        }
+        self.contact(del, r, r - self.radius, cutoff, self.radius, out);
+    }
+
+    fn contact_counts(&self, _interior: bool) -> (usize, usize) {
+        (1, 1)
     }
 }
 

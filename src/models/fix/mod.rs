@@ -36,8 +36,15 @@ pub mod temp_scale;
 pub mod thermostat;
 pub mod viscous;
 pub mod wall_gran;
+pub mod wall_colloid;
+pub mod wall_flat;
 pub mod wall_gran_region;
+pub mod wall_harmonic;
+pub mod wall_lj1043;
+pub mod wall_lj126;
 pub mod wall_lj93;
+pub mod wall_morse;
+pub mod wall_region;
 pub mod wall_reflect;
 
 use crate::engine::state::{RunError, State};
@@ -127,7 +134,7 @@ pub trait Fix: Send + Sync {
     /// applies many of them and adds their energy, which dmhs' minimizer does not).
     fn min_role(&self) -> MinRole {
         match self.hooks().post_force {
-            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring and viscous", self.id(), self.style())),
+            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring, viscous, wall/* and wall/region", self.id(), self.style())),
             false => MinRole::Inert,
         }
     }
@@ -317,7 +324,12 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
-    ("wall/lj93", |d, state| Ok(Box::new(wall_lj93::FixWallLj93::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("wall/lj93", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/lj126", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/lj1043", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/harmonic", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/morse", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("wall/region", |d, state| Ok(Box::new(wall_region::FixWallRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("indent", |d, state| Ok(Box::new(indent::FixIndent::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
     ("deposit", |d, state| Ok(Box::new(deposit::FixDeposit::from_lammps(d, state)?))),

@@ -72,7 +72,7 @@ impl FixWallGranRegion {
             return Err(a.error_at(rw, format!("region {} for fix wall/gran/region does not exist", rw.text), "unknown region"));
         };
         if let Some(style) = region.without_surface() {
-            return Err(a.error_at(rw, format!("fix wall/gran/region does not support region style {style} yet (block, cylinder, cone, union and intersect)"), "not supported"));
+            return Err(a.error_at(rw, format!("fix wall/gran/region does not support region style {style} yet (block, cylinder, cone, sphere, union and intersect)"), "not supported"));
         }
         if let Some(k) = a.peek() {
             return Err(match k.text.as_str() {
@@ -239,7 +239,7 @@ fn update_contacts(h: &mut [f64], slots: usize, w: usize, contacts: &[WallContac
 
 /// The fix as the `running` fix of an expression (only its ID is read), while its region is
 /// borrowed mutably.
-struct NameOnly<'a>(&'a str);
+pub(super) struct NameOnly<'a>(pub(super) &'a str);
 
 impl Fix for NameOnly<'_> {
     fn id(&self) -> &str {

@@ -47,7 +47,6 @@ fn bad_input_is_located() {
         ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region nowhere\n", "region nowhere for fix wall/gran/region does not exist"),
         ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 container\n", "expected `region region-ID`"),
         ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region container contacts\n", "keyword `contacts` is not supported"),
-        ("region s sphere 0 0 0 5 units box\nfix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region s\n", "does not support region style sphere"),
         ("fix w all wall/gran xplane -1 1 region container\n", "unknown"),
         ("region r block 0 1 0 1 0 1 move x NULL NULL\n", "v_name or NULL"),
         ("region c cone z 0 0 1 2 0 1 open 5\n", "no open face 5"),

@@ -170,8 +170,6 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     let [toff, boff, aoff, doff, _] = o.offset;
     let file_lo: [f64; 3] = std::array::from_fn(|d| h.boxlo[d] + o.shift[d]);
     let file_hi: [f64; 3] = std::array::from_fn(|d| h.boxhi[d] + o.shift[d]);
-    let g8 = crate::output::format::g8;
-    let print_box = |sim: &mut Simulation, d: &Domain| sim.out.print(&format!("  orthogonal box = ({} {} {}) to ({} {} {})", g8(d.lo[0]), g8(d.lo[1]), g8(d.lo[2]), g8(d.hi[0]), g8(d.hi[1]), g8(d.hi[2])));
     sim.out.print("Reading data file ...");
     let (id_off, mol_off) = match o.add {
         None | Some(Add::Merge) => (0, 0),
@@ -221,7 +219,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
             d
         }
     };
-    print_box(sim, &domain);
+    sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
     sim.state.box_initial = Some(domain.clone());
     sim.state.domain = Some(domain.clone());
     let natoms = sim.state.atoms.nlocal + h.atoms;

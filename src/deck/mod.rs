@@ -129,3 +129,9 @@ fn finish(
         }
     }
 }
+
+/// `orthogonal box = (xlo ylo zlo) to (xhi yhi zhi)` as LAMMPS prints a box (8 significant digits).
+pub(crate) fn box_text(d: &crate::engine::domain::Domain) -> String {
+    let g8 = crate::output::format::g8;
+    format!("orthogonal box = ({} {} {}) to ({} {} {})", g8(d.lo[0]), g8(d.lo[1]), g8(d.lo[2]), g8(d.hi[0]), g8(d.hi[1]), g8(d.hi[2]))
+}

@@ -45,15 +45,7 @@ pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     t.ndihedraltypes = b.dihedral_types;
     t.nimpropertypes = b.improper_types;
     let d = &b.domain;
-    sim.out.print(&format!(
-        "Created orthogonal box = ({} {} {}) to ({} {} {})",
-        crate::output::format::g8(d.lo[0]),
-        crate::output::format::g8(d.lo[1]),
-        crate::output::format::g8(d.lo[2]),
-        crate::output::format::g8(d.hi[0]),
-        crate::output::format::g8(d.hi[1]),
-        crate::output::format::g8(d.hi[2])
-    ));
+    sim.out.print(&format!("Created {}", crate::deck::box_text(d)));
     sim.state.box_initial = Some(b.domain.clone());
     sim.state.domain = Some(b.domain);
     Ok(())

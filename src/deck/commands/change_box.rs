@@ -8,7 +8,6 @@
 use super::need_box;
 use crate::engine::boundary::reset_shrink_wrap;
 use crate::engine::domain::Domain;
-use crate::output::format::g8;
 use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 
@@ -114,15 +113,7 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                     return Err(Diagnostic::at(cmd.span, format!("change_box makes the box empty or inverted in {}: {} to {}", ["x", "y", "z"][d], domain.lo[d], domain.hi[d]), "bad box"));
                 }
                 st.box_initial = Some(domain.clone());
-                sim.out.print(&format!(
-                    "  orthogonal box = ({} {} {}) to ({} {} {})",
-                    g8(domain.lo[0]),
-                    g8(domain.lo[1]),
-                    g8(domain.lo[2]),
-                    g8(domain.hi[0]),
-                    g8(domain.hi[1]),
-                    g8(domain.hi[2])
-                ));
+                sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
             }
             Op::Boundary(words) => {
                 domain.boundary = super::settings::parse_boundary(words, dim)?;

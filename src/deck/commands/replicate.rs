@@ -94,8 +94,7 @@ pub fn replicate(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     replicate_topology(&mut st.topo, &reps, n, maxtag);
     st.box_initial = Some(big.clone());
     st.domain = Some(big.clone());
-    let g8 = crate::output::format::g8;
-    sim.out.print(&format!("  orthogonal box = ({} {} {}) to ({} {} {})", g8(big.lo[0]), g8(big.lo[1]), g8(big.lo[2]), g8(big.hi[0]), g8(big.hi[1]), g8(big.hi[2])));
+    sim.out.print(&format!("  {}", crate::deck::box_text(&big)));
     sim.out.print(&format!("  {} atoms", sim.state.atoms.nlocal));
     let t = &sim.state.topo;
     for (count, what) in [(t.bonds.len(), "bonds"), (t.angles.len(), "angles"), (t.dihedrals.len(), "dihedrals")] {

@@ -91,7 +91,18 @@ pub fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> 
 
 /// Run a deck given as text (`name` is shown in error locations).
 pub fn run_text(name: &str, text: &str, opts: &DeckOptions) -> Result<DeckRun, DeckFailure> {
+    run_text_on(name, text, opts, None)
+}
+
+/// [`run_text`] as one rank of the ranks `comm` connects (None: alone).
+pub fn run_text_on(name: &str, text: &str, opts: &DeckOptions, comm: Option<std::sync::Arc<dyn crate::engine::comm::Comm>>) -> Result<DeckRun, DeckFailure> {
+    // the log and the screen are rank 0's
+    let quiet = DeckOptions { log: None, screen: false, ..opts.clone() };
+    let opts = if comm.as_ref().is_some_and(|c| c.rank() > 0) { &quiet } else { opts };
     let (mut sim, mut interp) = prepare(opts).map_err(|e| DeckFailure { rendered: format!("error: {e}\n"), diagnostics: vec![Diagnostic::error(e)], runtime: true })?;
+    if let Some(c) = comm {
+        sim.set_comm(c);
+    }
     sim.out.print(&format!("dmhs {} (LAMMPS-compatible input)", env!("CARGO_PKG_VERSION")));
     let result = interp.run_source(name, text, &mut sim);
     finish(sim, interp, result)
@@ -99,11 +110,16 @@ pub fn run_text(name: &str, text: &str, opts: &DeckOptions) -> Result<DeckRun, D
 
 /// Run a deck file.
 pub fn run_file(path: &Path, opts: &DeckOptions) -> Result<DeckRun, DeckFailure> {
+    run_file_on(path, opts, None)
+}
+
+/// [`run_file`] as one rank of the ranks `comm` connects (None: alone).
+pub fn run_file_on(path: &Path, opts: &DeckOptions, comm: Option<std::sync::Arc<dyn crate::engine::comm::Comm>>) -> Result<DeckRun, DeckFailure> {
     let text = std::fs::read(path).map_err(|e| {
         let msg = format!("cannot read input script {}: {e}", path.display());
         DeckFailure { rendered: format!("error: {msg}\n"), diagnostics: vec![Diagnostic::error(msg)], runtime: false }
     })?;
-    run_text(&path.to_string_lossy(), &String::from_utf8_lossy(&text), opts)
+    run_text_on(&path.to_string_lossy(), &String::from_utf8_lossy(&text), opts, comm)
 }
 
 fn finish(

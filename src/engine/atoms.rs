@@ -319,6 +319,124 @@ impl Atoms {
         }
     }
 
+    /// Append atom `i`'s values to `out` as doubles (a rank sends atoms this way): all of them
+    /// for an owned atom that moves to another rank; for a ghost (`owned` false) what ghosts
+    /// carry. Forces, torques and rates are not sent: they are computed again after the move.
+    pub fn pack(&self, i: usize, out: &mut Vec<f64>, owned: bool) {
+        self.pack_at(i, self.x[i], out, owned);
+    }
+
+    /// [`Atoms::pack`] of a ghost image of atom `i` at `x`.
+    pub fn pack_ghost(&self, i: usize, x: [f64; 3], out: &mut Vec<f64>) {
+        self.pack_at(i, x, out, false);
+    }
+
+    fn pack_at(&self, i: usize, x: [f64; 3], out: &mut Vec<f64>, owned: bool) {
+        let ft = self.features;
+        // IDs, types, masks and image flags are exact in a double (IDs up to 2^53)
+        out.extend_from_slice(&[self.tag[i] as f64, self.typ[i] as f64, self.mask[i] as f64]);
+        out.extend_from_slice(&x);
+        out.extend_from_slice(&self.v[i]);
+        out.extend(self.image[i].iter().map(|&m| m as f64));
+        if ft.molecule {
+            out.push(self.molecule[i] as f64);
+        }
+        if ft.charge {
+            out.push(self.q[i]);
+        }
+        if ft.sphere {
+            out.extend_from_slice(&[self.radius[i], self.rmass[i]]);
+            out.extend_from_slice(&self.omega[i]);
+        }
+        if ft.quat {
+            out.extend_from_slice(&self.quat[i]);
+        }
+        if ft.sph {
+            out.extend_from_slice(&[self.rho[i], self.esph[i], self.cv[i]]);
+            out.extend_from_slice(&self.vest[i]);
+        }
+        for e in self.extra.iter().filter(|e| owned || e.ghosts) {
+            out.extend_from_slice(&e.data[i * e.stride..(i + 1) * e.stride]);
+        }
+    }
+
+    /// Read one atom packed by [`Atoms::pack_at`] from the front of `buf` and append it with
+    /// `push` (owned: every extra array; ghost: those ghosts carry); returns the rest of `buf`.
+    fn unpack_one<'b>(&mut self, buf: &'b [f64], owned: bool) -> &'b [f64] {
+        let ft = self.features;
+        let mut k = 0;
+        let mut take = |n: usize| {
+            let s = &buf[k..k + n];
+            k += n;
+            s
+        };
+        let head = take(3);
+        let (tag, typ, mask) = (head[0] as i64, head[1] as usize, head[2] as u32);
+        let t = take(3);
+        let x = [t[0], t[1], t[2]];
+        let t = take(3);
+        let v = [t[0], t[1], t[2]];
+        let t = take(3);
+        let image = [t[0] as i32, t[1] as i32, t[2] as i32];
+        self.tag.push(tag);
+        self.typ.push(typ);
+        self.mask.push(mask);
+        self.x.push(x);
+        self.v.push(v);
+        self.f.push([0.0; 3]);
+        self.image.push(image);
+        if ft.molecule {
+            self.molecule.push(take(1)[0] as i64);
+        }
+        if ft.charge {
+            self.q.push(take(1)[0]);
+        }
+        if ft.sphere {
+            let t = take(5);
+            self.radius.push(t[0]);
+            self.rmass.push(t[1]);
+            self.omega.push([t[2], t[3], t[4]]);
+            self.torque.push([0.0; 3]);
+        }
+        if ft.quat {
+            let t = take(4);
+            self.quat.push([t[0], t[1], t[2], t[3]]);
+        }
+        if ft.sph {
+            let t = take(6);
+            self.rho.push(t[0]);
+            self.drho.push(0.0);
+            self.esph.push(t[1]);
+            self.desph.push(0.0);
+            self.cv.push(t[2]);
+            self.vest.push([t[3], t[4], t[5]]);
+        }
+        for e in self.extra.iter_mut().filter(|e| owned || e.ghosts) {
+            e.data.extend_from_slice(take(e.stride));
+        }
+        &buf[k..]
+    }
+
+    /// Append the owned atoms packed in `buf` (no ghosts may be present).
+    pub fn unpack_owned(&mut self, mut buf: &[f64]) {
+        debug_assert_eq!(self.nghost(), 0);
+        while !buf.is_empty() {
+            buf = self.unpack_one(buf, true);
+            self.nlocal += 1;
+        }
+    }
+
+    /// Append the ghosts packed in `buf` (they have no owner here: `ghost_owner` is not kept
+    /// for them); returns how many.
+    pub fn unpack_ghosts(&mut self, mut buf: &[f64]) -> usize {
+        let mut n = 0;
+        while !buf.is_empty() {
+            buf = self.unpack_one(buf, false);
+            n += 1;
+        }
+        n
+    }
+
     /// Reorder owned atoms: new position `k` takes old atom `order[k]`. No ghosts allowed.
     pub fn permute(&mut self, order: &[usize]) {
         debug_assert_eq!(self.nghost(), 0);

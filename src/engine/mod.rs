@@ -3,7 +3,9 @@
 pub mod atoms;
 pub mod bonded_lists;
 pub mod boundary;
+pub mod comm;
 pub mod contact_history;
+pub mod decomp;
 pub mod domain;
 pub mod fields;
 pub mod groups;

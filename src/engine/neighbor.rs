@@ -352,6 +352,15 @@ fn zeroed(v: &mut Vec<u32>, n: usize) {
     v.resize(n, 0);
 }
 
+/// Where the ghosts of a build come from.
+pub enum Ghosts<'a> {
+    /// Periodic images of the owned atoms, made by the build (one rank).
+    Periodic,
+    /// Made by `make(atoms, ghost cutoff)` once the owned atoms are sorted (the ranks of a
+    /// decomposed run exchange them); `sub` is this rank's sub-domain, which the bins cover.
+    Given { sub: ([f64; 3], [f64; 3]), make: &'a mut dyn FnMut(&mut Atoms, f64) },
+}
+
 /// Error raised while building lists (reported by the engine with the step number).
 #[derive(Debug, Clone, PartialEq)]
 pub enum NeighError {
@@ -412,6 +421,21 @@ impl Neighbor {
         cut_pair: &dyn Fn(usize, usize) -> f64,
         special: &SpecialTable,
     ) -> Result<Vec<usize>, NeighError> {
+        self.build_with(atoms, domain, settings, ntypes, cut_pair, special, Ghosts::Periodic)
+    }
+
+    /// [`Neighbor::build`] with the ghosts made as `ghosts` says.
+    #[allow(clippy::too_many_arguments)]
+    pub fn build_with(
+        &mut self,
+        atoms: &mut Atoms,
+        domain: &Domain,
+        settings: &NeighborSettings,
+        ntypes: usize,
+        cut_pair: &dyn Fn(usize, usize) -> f64,
+        special: &SpecialTable,
+        mut ghosts: Ghosts,
+    ) -> Result<Vec<usize>, NeighError> {
         atoms.clear_ghosts();
         let n = atoms.nlocal;
         for (i, x) in atoms.x.iter().enumerate() {
@@ -463,6 +487,10 @@ impl Neighbor {
                 lo[d] = lo[d].min(domain.lo[d]);
                 hi[d] = hi[d].max(domain.hi[d]);
             }
+            if let Ghosts::Given { sub, .. } = &ghosts {
+                lo[d] = lo[d].min(sub.0[d]);
+                hi[d] = hi[d].max(sub.1[d]);
+            }
             lo[d] -= cutmax;
             hi[d] += cutmax;
         }
@@ -490,7 +518,9 @@ impl Neighbor {
         let bin_of: Vec<u32> = order.iter().map(|&o| keys[o]).collect();
 
         // ghosts, dimension by dimension so edges and corners get images too (LAMMPS borders())
-        if cutmax > 0.0 {
+        if let Ghosts::Given { make, .. } = &mut ghosts {
+            make(atoms, cutmax);
+        } else if cutmax > 0.0 {
             for d in 0..dim {
                 if !domain.periodic(d) {
                     continue;
@@ -571,6 +601,12 @@ impl Neighbor {
             bounds = vec![0, 0];
         }
 
+        // the faces ghosts lie beyond: the periodic ones of the box, or every face of the
+        // sub-domain of a rank of a decomposed run
+        let ghost_faces: Vec<(usize, f64, f64)> = match &ghosts {
+            Ghosts::Periodic => (0..dim).filter(|&d| domain.periodic(d)).map(|d| (d, domain.lo[d], domain.hi[d])).collect(),
+            Ghosts::Given { sub, .. } => (0..dim).map(|d| (d, sub.0[d], sub.1[d])).collect(),
+        };
         let a: &Atoms = atoms;
         let excl = &settings.exclusions;
         let use_special = !special.is_empty();
@@ -664,9 +700,9 @@ impl Neighbor {
                     for &(r0, r1) in &forward {
                         range(local_start[(bi + r0) as usize] as usize, local_start[(bi + r1) as usize + 1] as usize, &mut neigh);
                     }
-                    // ghost partners: every bin in reach (ghosts are images of atoms within
-                    // cutmax of a periodic face, so only atoms that near a face can see one)
-                    let near_face = (0..dim).any(|d| domain.periodic(d) && (xi[d] < domain.lo[d] + cutmax || xi[d] >= domain.hi[d] - cutmax));
+                    // ghost partners: every bin in reach (ghosts lie within cutmax outside a
+                    // face, so only atoms that near a face can see one)
+                    let near_face = ghost_faces.iter().any(|&(d, lo, hi)| xi[d] < lo + cutmax || xi[d] >= hi - cutmax);
                     if near_face {
                         for &(r0, r1) in &rows {
                             let (b0, b1) = ((bi + r0) as usize, (bi + r1) as usize);

@@ -137,6 +137,13 @@ pub struct State {
     /// Lines for the screen and the log from models (e.g. a fix's warnings during a run),
     /// printed and cleared by the command or step that produced them.
     pub messages: Vec<String>,
+    /// The ranks of a distributed run (None: one rank). Between runs every rank holds every
+    /// atom, as a serial run does; during a run each holds its sub-domain's (`distributed`).
+    pub decomp: Option<crate::engine::decomp::Decomp>,
+    /// The `processors` command's Px Py Pz (None: `*`, chosen by the decomposition).
+    pub procs_user: [Option<usize>; 3],
+    /// The atoms are spread over the ranks now, each holding its own (the total in `natoms`).
+    pub distributed: Option<usize>,
 }
 
 impl Default for State {
@@ -187,12 +194,30 @@ impl State {
             special_dirty: false,
             special_frozen: false,
             messages: Vec::new(),
+            decomp: None,
+            procs_user: [None; 3],
+            distributed: None,
         }
     }
 
     /// Number of owned atoms.
+    /// Atoms in the system (on every rank of a distributed run).
     pub fn natoms(&self) -> usize {
-        self.atoms.nlocal
+        self.distributed.unwrap_or(self.atoms.nlocal)
+    }
+    /// Sum `v` over the ranks of a distributed run (every rank calls this at the same point).
+    pub fn sum_ranks(&self, v: &mut [f64]) {
+        if let (Some(d), Some(_)) = (&self.decomp, self.distributed) {
+            d.comm.sum(v);
+        }
+    }
+    /// A per-rank quantity needed whole (group functions, per-atom lookups) that dmhs does not
+    /// gather during a distributed run yet.
+    pub fn whole_system(&self, what: &str) -> Result<(), String> {
+        match self.distributed {
+            Some(_) => Err(format!("{what} is not available during a run on several ranks yet")),
+            None => Ok(()),
+        }
     }
     pub fn time(&self) -> f64 {
         self.atime + (self.step - self.atimestep) as f64 * self.dt
@@ -210,7 +235,10 @@ impl State {
     }
     /// Owned atoms in a group.
     pub fn group_count(&self, bit: u32) -> usize {
-        self.atoms.mask[..self.atoms.nlocal].iter().filter(|&&m| m & bit != 0).count()
+        let n = self.atoms.mask[..self.atoms.nlocal].iter().filter(|&&m| m & bit != 0).count();
+        let mut v = [n as f64];
+        self.sum_ranks(&mut v);
+        v[0] as usize
     }
     /// Kinetic energy of a group, 0.5 * mvv2e * sum m v^2.
     pub fn kinetic_energy(&self, bit: u32) -> f64 {
@@ -222,7 +250,9 @@ impl State {
                 t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * self.mass(i);
             }
         }
-        0.5 * self.units.mvv2e * t
+        let mut v = [t];
+        self.sum_ranks(&mut v);
+        0.5 * self.units.mvv2e * v[0]
     }
 
     /// Total potential energy of the last tallied evaluation.

@@ -11,16 +11,22 @@ pub struct Output {
     log: Option<(PathBuf, BufWriter<File>)>,
     /// Captured text (for tests and the library API), when enabled.
     pub captured: Option<String>,
+    /// A rank other than 0 of a distributed run: it writes no screen text and no log (rank 0
+    /// writes them, as LAMMPS' rank 0 does).
+    pub muted: bool,
 }
 
 impl Output {
     pub fn new(screen: bool) -> Output {
-        Output { screen, log: None, captured: None }
+        Output { screen, log: None, captured: None, muted: false }
     }
     /// Open (or append to) a log file; `None` closes the current log.
     pub fn set_log(&mut self, path: Option<&Path>, append: bool) -> std::io::Result<()> {
         if let Some((_, mut w)) = self.log.take() {
             let _ = w.flush();
+        }
+        if self.muted {
+            return Ok(());
         }
         if let Some(p) = path {
             let f = if append { OpenOptions::new().create(true).append(true).open(p)? } else { File::create(p)? };
@@ -36,6 +42,9 @@ impl Output {
         self.print_to(text, true, true);
     }
     pub fn print_to(&mut self, text: &str, screen: bool, log: bool) {
+        if self.muted {
+            return;
+        }
         if screen && self.screen {
             let mut out = std::io::stdout().lock();
             let _ = out.write_all(text.as_bytes());

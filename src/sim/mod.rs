@@ -1,5 +1,6 @@
 //! The simulation state: everything a deck sets up, and what expressions can read from it.
 
+pub mod distributed;
 pub mod eval;
 pub mod memory;
 pub mod minimize;

@@ -125,14 +125,33 @@ impl Simulation {
         if let Some(initial) = self.state.box_initial.as_ref() {
             crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
         }
-        crate::sim::stability::check_lost(self)?;
-        self.state.lammps_order.before_rebuild(&self.state.atoms);
+        let lost = crate::sim::stability::check_lost(self);
+        if self.any_rank(lost.is_err()) {
+            return Err(lost.err().unwrap_or_else(|| RunError::new(step, "another rank lost atoms")));
+        }
         let domain = self.state.domain.as_ref().unwrap();
+        if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
+            d.migrate(&mut self.state.atoms, domain).map_err(|e| RunError::new(step, e))?;
+        }
+        self.state.lammps_order.before_rebuild(&self.state.atoms);
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
-        let order = self
-            .state.neighbor
-            .build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table)
+        let ghosts = match (&mut self.state.decomp, self.state.distributed) {
+            (Some(d), Some(_)) => Some((d.subdomain(domain, d.rank()), d)),
+            _ => None,
+        };
+        let built = match ghosts {
+            Some((sub, d)) => {
+                let mut make = |atoms: &mut crate::engine::atoms::Atoms, cut: f64| d.borders(atoms, domain, cut);
+                let given = crate::engine::neighbor::Ghosts::Given { sub, make: &mut make };
+                self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table, given)
+            }
+            None => self.state.neighbor.build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table),
+        };
+        if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
+            d.check_thickness(domain, self.state.neighbor.cutneighmax).map_err(|e| RunError::new(step, e))?;
+        }
+        let order = built
             .map_err(|e| match e {
                 NeighError::BoxTooSmall { dim, cut, length } => RunError::new(
                     step,
@@ -268,14 +287,18 @@ impl Simulation {
             for k in 0..6 {
                 virial[k] += bonded.virial[k];
             }
-            self.state.energies = Energies {
-                pair: pair_tally,
-                ebond: bonded.ebond,
-                eangle: bonded.eangle,
-                edihed: bonded.edihed,
-                virial,
-                step: self.state.step,
-            };
+            let mut e = Energies { pair: pair_tally, ebond: bonded.ebond, eangle: bonded.eangle, edihed: bonded.edihed, virial, step: self.state.step };
+            if self.state.distributed.is_some() {
+                let p = &e.pair;
+                let mut v = [p.evdwl, p.ecoul, p.virial[0], p.virial[1], p.virial[2], p.virial[3], p.virial[4], p.virial[5], e.ebond, e.eangle, e.edihed, virial[0], virial[1], virial[2], virial[3], virial[4], virial[5]];
+                self.state.sum_ranks(&mut v);
+                e.pair.evdwl = v[0];
+                e.pair.ecoul = v[1];
+                e.pair.virial.copy_from_slice(&v[2..8]);
+                (e.ebond, e.eangle, e.edihed) = (v[8], v[9], v[10]);
+                e.virial.copy_from_slice(&v[11..17]);
+            }
+            self.state.energies = e;
         }
         Ok(())
     }
@@ -319,9 +342,7 @@ impl Simulation {
             self.rebuild_at(true)?;
             self.timers.charge(Stage::Neigh);
         } else {
-            let prd = self.state.domain.as_ref().unwrap().prd();
-            self.state.atoms.forward_positions(prd);
-            self.state.atoms.forward_state();
+            self.forward_ghosts(true);
         }
         self.state.natoms_expected = self.state.atoms.nlocal;
         self.timers.stamp();
@@ -354,7 +375,9 @@ impl Simulation {
         // (LAMMPS' Neighbor::decide checks fixes' next_reneighbor before counting steps)
         let step = self.state.step;
         let requested = std::mem::take(&mut self.state.rebuild_requested) || self.fixes.iter().any(|f| f.next_reneighbor() == Some(step));
-        if requested || self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms) {
+        let moved = self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms);
+        // the ranks of a distributed run rebuild together when any of them must
+        if requested || self.any_rank(moved) {
             self.timers.stamp();
             self.fix_hook(|h| h.pre_exchange, |f, s, c| f.pre_exchange(s, c))?;
             self.timers.charge(Stage::Modify);
@@ -362,11 +385,8 @@ impl Simulation {
             self.rebuild()?;
             self.timers.charge(Stage::Neigh);
         } else {
-            let prd = self.state.domain.as_ref().unwrap().prd();
-            self.state.atoms.forward_positions(prd);
-            if self.needs_ghost_state() {
-                self.state.atoms.forward_state();
-            }
+            let with_state = self.needs_ghost_state();
+            self.forward_ghosts(with_state);
             self.timers.charge(Stage::Comm);
         }
 
@@ -381,6 +401,27 @@ impl Simulation {
             self.flush_messages();
         }
         Ok(())
+    }
+
+    /// Fresh ghost positions (and, `with_state`, velocities and per-atom state) from their
+    /// owners: on this rank, or on the others of a distributed run.
+    fn forward_ghosts(&mut self, with_state: bool) {
+        let domain = self.state.domain.as_ref().expect("a box");
+        match (&self.state.decomp, self.state.distributed) {
+            (Some(d), Some(_)) => {
+                if with_state {
+                    d.forward_state(&mut self.state.atoms, domain);
+                } else {
+                    d.forward_positions(&mut self.state.atoms, domain);
+                }
+            }
+            _ => {
+                self.state.atoms.forward_positions(domain.prd());
+                if with_state {
+                    self.state.atoms.forward_state();
+                }
+            }
+        }
     }
 
     /// Print the lines models left for the screen and the log.
@@ -441,7 +482,34 @@ impl Simulation {
         }
         self.state.run_window = Some((start, stop));
         self.init_run().map_err(|e| RunError::setup(self.state.step, e))?;
+        if self.state.decomp.is_some() {
+            self.distribute()?;
+        }
+        let outcome = self.run_steps(opts, first, last);
+        let counts = self.rank_counts();
+        self.gather_ranks();
+        // a setup that failed prints no loop line
+        let result = outcome?;
+        let (loop_time, done) = (self.last_loop_seconds, self.last_loop_steps);
+        self.out.print(&format!(
+            "Loop time of {} on {} procs for {} steps with {} atoms\n",
+            crate::output::format::g6(loop_time),
+            self.nranks(),
+            done,
+            self.state.atoms.nlocal
+        ));
+        if opts.post && result.is_ok() {
+            self.print_run_summary(loop_time, done, None, counts);
+        }
+        self.out.flush();
+        // thermo keywords and variables refer to the current run window until the next run
+        result
+    }
 
+    /// The setup (its error: the outer one) and the steps of a run, until `last` or the first
+    /// error (on any rank).
+    fn run_steps(&mut self, opts: &RunOptions, first: i64, last: i64) -> Result<Result<(), RunError>, RunError> {
+        let nsteps = last - first;
         self.out.print(&format!(
             "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",
             self.state.units.name(),
@@ -480,8 +548,10 @@ impl Simulation {
             }
             let next = self.state.step + 1;
             let eflag = self.output_due(next, last);
-            if let Err(e) = self.step_once(eflag).and_then(|_| crate::sim::stability::check_state(self)) {
-                result = Err(e);
+            let stepped = self.step_once(eflag).and_then(|_| crate::sim::stability::check_state(self));
+            // the ranks of a distributed run stop together
+            if self.any_rank(stepped.is_err()) {
+                result = Err(stepped.err().unwrap_or_else(|| RunError::new(self.state.step, "another rank stopped the run (its error is above)")));
                 break;
             }
             if eflag {
@@ -510,18 +580,7 @@ impl Simulation {
         (self.state.atime, self.state.atimestep) = (self.state.time(), self.state.step);
         self.last_loop_seconds = loop_time;
         self.last_loop_steps = done;
-        self.out.print(&format!(
-            "Loop time of {} on 1 procs for {} steps with {} atoms\n",
-            crate::output::format::g6(loop_time),
-            done,
-            self.state.atoms.nlocal
-        ));
-        if opts.post && result.is_ok() {
-            self.print_run_summary(loop_time, done, None);
-        }
-        self.out.flush();
-        // thermo keywords and variables refer to the current run window until the next run
-        result
+        Ok(result)
     }
 
     /// A crosscheck checkpoint now (once per step number).
@@ -570,7 +629,7 @@ impl Simulation {
     }
 
     /// The summary after a run's loop; `stats`: printed after the CPU line (a minimization's).
-    pub(crate) fn print_run_summary(&mut self, loop_time: f64, steps: i64, stats: Option<&str>) {
+    pub(crate) fn print_run_summary(&mut self, loop_time: f64, steps: i64, stats: Option<&str>, counts: Option<crate::sim::distributed::RankCounts>) {
         let n = self.state.atoms.nlocal as f64;
         if loop_time > 0.0 && steps > 0 {
             let tps = steps as f64 / loop_time;
@@ -582,7 +641,7 @@ impl Simulation {
             ));
         }
         let threads = rayon::current_num_threads();
-        self.out.print(&format!("100.0% CPU use with 1 MPI tasks x {threads} threads\n"));
+        self.out.print(&format!("100.0% CPU use with {} MPI tasks x {threads} threads\n", self.nranks()));
         if let Some(stats) = stats {
             self.out.print(stats);
         }
@@ -593,14 +652,22 @@ impl Simulation {
             crate::sim::memory::bytes_per_particle(self),
             crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0)
         ));
-        let npairs = self.state.neighbor.list.npairs();
+        // per rank: the sum, the least and the most (one rank: its own count three times)
+        let counts = counts.unwrap_or_else(|| {
+            let one = |x: usize| [x as f64; 3];
+            crate::sim::distributed::RankCounts { nlocal: one(self.state.atoms.nlocal), nghost: one(self.state.atoms.nghost()), neighs: one(self.state.neighbor.list.npairs()) }
+        });
+        let ranks = self.nranks() as f64;
+        let g = crate::output::format::g;
+        let ave = |c: [f64; 3]| if ranks == 1.0 { c[0].to_string() } else { g(c[0] / ranks) };
+        let row = |c: [f64; 3]| format!("{} ave {} max {} min", ave(c), c[2], c[1]);
         self.out.print(&format!(
-            "Nlocal:    {} ave {} max {} min\nNghost:    {} ave {} max {} min\nNeighs:    {} ave {} max {} min\n\nTotal # of neighbors = {}\nAve neighs/atom = {:.7}\nNeighbor list builds = {}\nDangerous builds = {}\n",
-            self.state.atoms.nlocal, self.state.atoms.nlocal, self.state.atoms.nlocal,
-            self.state.atoms.nghost(), self.state.atoms.nghost(), self.state.atoms.nghost(),
-            npairs, npairs, npairs,
-            npairs,
-            if n > 0.0 { npairs as f64 / n } else { 0.0 },
+            "Nlocal:    {}\nNghost:    {}\nNeighs:    {}\n\nTotal # of neighbors = {}\nAve neighs/atom = {:.7}\nNeighbor list builds = {}\nDangerous builds = {}\n",
+            row(counts.nlocal),
+            row(counts.nghost),
+            row(counts.neighs),
+            counts.neighs[0],
+            if n > 0.0 { counts.neighs[0] / n } else { 0.0 },
             self.state.neighbor.nbuilds,
             self.state.neighbor.ndanger
         ));

@@ -235,15 +235,22 @@ pub fn newton(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 }
 
 pub fn processors(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "processors Px Py Pz  (dmhs runs one process: each must be * or 1)");
-    for what in ["Px", "Py", "Pz"] {
+    let ranks = sim.nranks();
+    let mut a = Args::new(cmd, "processors Px Py Pz  (each * or a count; their product the number of ranks)");
+    let mut user = [None; 3];
+    for (d, what) in ["Px", "Py", "Pz"].into_iter().enumerate() {
         let w = a.word(what)?;
-        if w.text != "*" && w.text != "1" {
-            return Err(a.error_at(w, format!("dmhs runs in one process (with threads): {what} must be * or 1"), "expected * or 1"));
+        if w.text != "*" {
+            let n: usize = w.text.parse().ok().filter(|&n| n > 0).ok_or_else(|| a.error_at(w, format!("{what} must be * or a positive count, not `{}`", w.text), "expected * or a count"))?;
+            user[d] = Some(n);
         }
     }
-    let _ = sim;
-    // further keywords (grid, map, part, file) only concern MPI layouts
+    let dimension = sim.state.dimension;
+    if let Err(e) = crate::engine::decomp::choose_grid(ranks, user, [1.0; 3], dimension) {
+        return Err(a.error_at(&cmd.args[0], format!("{e} (dmhs runs on {ranks} rank{})", if ranks == 1 { "" } else { "s" }), "a grid of the ranks"));
+    }
+    sim.state.procs_user = user;
+    // further keywords (grid, map, part, file) shape MPI layouts dmhs does not offer yet
     Ok(())
 }
 

@@ -237,6 +237,7 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
         return None;
     }
     Some((|| {
+        state.whole_system(&format!("the group function {name}()"))?;
         let g = args.first().ok_or_else(|| format!("{name}() needs a group ID"))?;
         let bit = state.group_bit(g)?;
         let a = &state.atoms;
@@ -307,6 +308,7 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
 pub fn atom_value(state: &State, keyword: &str, id: i64) -> Option<Result<f64, String>> {
     let field = property::Field::parse(keyword)?;
     Some((|| {
+        state.whole_system(&format!("the atom value {keyword}[ID]"))?;
         field.check(state)?;
         let i = (0..state.atoms.nlocal).find(|&i| state.atoms.tag[i] == id).ok_or_else(|| format!("atom ID {id} does not exist"))?;
         Ok(field.value(state, i))

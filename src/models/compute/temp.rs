@@ -93,7 +93,9 @@ pub fn sum_mv2(state: &State, groupbit: u32) -> f64 {
             t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * state.mass(i);
         }
     }
-    t
+    let mut v = [t];
+    state.sum_ranks(&mut v);
+    v[0]
 }
 
 /// Kinetic energy tensor mvv2e * sum m v_a v_b (xx yy zz xy xz yz).
@@ -112,6 +114,7 @@ pub fn ke_tensor(w: &World, groupbit: u32) -> [f64; 6] {
             t[5] += m * v[1] * v[2];
         }
     }
+    w.state.sum_ranks(&mut t);
     for x in &mut t {
         *x *= w.state.units.mvv2e;
     }

@@ -431,7 +431,7 @@ impl Simulation {
             m.niter,
             m.neval
         );
-        self.print_run_summary(loop_time, 0, Some(&stats));
+        self.print_run_summary(loop_time, 0, Some(&stats), None);
         self.min_stats = Some(MinStats { stop, niter: m.niter, neval: m.neval, einitial: m.einitial, efinal });
         Ok(())
     }

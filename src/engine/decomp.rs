@@ -1,0 +1,341 @@
+//! Spatial decomposition of the box over ranks (LAMMPS' `comm_style brick`): a grid of Px x Py
+//! x Pz sub-domains of equal size, each rank owning the atoms inside its own; ghosts are the
+//! images of other ranks' atoms (and of its own across periodic faces) within the ghost cutoff
+//! of the sub-domain. A pair with a ghost is listed by both owners, each taking its half (as in
+//! a serial run), so forces never travel back: only positions and per-atom state go forward.
+//!
+//! Ranks are numbered as MPI's Cartesian topology numbers them (z fastest).
+
+use crate::engine::atoms::Atoms;
+use crate::engine::comm::Comm;
+use crate::engine::domain::Domain;
+use std::sync::Arc;
+
+/// LAMMPS' choice of the processor grid (`ProcMap::onelevel_grid`): among the factorings
+/// Px Py Pz = n that agree with the user's fixed counts (and Pz = 1 in 2D), the first with the
+/// least sub-domain surface, factorings enumerated with Px outermost and Pz innermost.
+pub fn choose_grid(n: usize, user: [Option<usize>; 3], prd: [f64; 3], dimension: usize) -> Result<[usize; 3], String> {
+    let area = [prd[0] * prd[1], prd[0] * prd[2], prd[1] * prd[2]];
+    let mut best: Option<([usize; 3], f64)> = None;
+    for px in (1..=n).filter(|i| n % i == 0) {
+        let rest = n / px;
+        for py in (1..=rest).filter(|j| rest % j == 0) {
+            let pz = rest / py;
+            let p = [px, py, pz];
+            if dimension == 2 && pz != 1 {
+                continue;
+            }
+            if (0..3).any(|d| user[d].is_some_and(|u| u != p[d])) {
+                continue;
+            }
+            let surf = area[0] / px as f64 / py as f64 + area[1] / px as f64 / pz as f64 + area[2] / py as f64 / pz as f64;
+            let bound = best.map_or(2.0 * (area[0] + area[1] + area[2]), |b| b.1);
+            if surf < bound || best.is_none() {
+                best = Some((p, surf));
+            }
+        }
+    }
+    let fixed = |d: usize| user[d].map_or("*".to_string(), |u| u.to_string());
+    best.map(|b| b.0).ok_or_else(|| format!("processors {} {} {} cannot be arranged for {n} ranks{}", fixed(0), fixed(1), fixed(2), if dimension == 2 { " (Pz must be 1 in 2D)" } else { "" }))
+}
+
+/// The grid and this rank's place in it, the sub-domains, and the ghost exchange plan made at
+/// the last rebuild.
+pub struct Decomp {
+    pub comm: Arc<dyn Comm>,
+    pub procs: [usize; 3],
+    /// Ghosts: for each rank that receives some of this rank's atoms (itself included, for
+    /// periodic images), the owned atoms sent and their periodic shifts, in the order sent.
+    sends: Vec<(usize, Vec<(u32, [i8; 3])>)>,
+    /// Ghost counts received from each rank, in the order ghosts are stored.
+    recvs: Vec<(usize, usize)>,
+}
+
+impl Decomp {
+    pub fn new(comm: Arc<dyn Comm>, procs: [usize; 3]) -> Decomp {
+        Decomp { comm, procs, sends: Vec::new(), recvs: Vec::new() }
+    }
+    pub fn rank(&self) -> usize {
+        self.comm.rank()
+    }
+    pub fn coords(&self, rank: usize) -> [usize; 3] {
+        let [_, py, pz] = self.procs;
+        [rank / (py * pz), (rank / pz) % py, rank % pz]
+    }
+    pub fn rank_at(&self, c: [usize; 3]) -> usize {
+        (c[0] * self.procs[1] + c[1]) * self.procs[2] + c[2]
+    }
+    /// Lower and upper bound of sub-domain `c` along `d` (LAMMPS: lo + prd * c/P, the last one
+    /// ending exactly at the box's upper bound).
+    fn bounds(&self, domain: &Domain, d: usize, c: usize) -> (f64, f64) {
+        let p = self.procs[d];
+        let prd = domain.hi[d] - domain.lo[d];
+        let split = |k: usize| domain.lo[d] + prd * (k as f64 / p as f64);
+        let hi = if c + 1 == p { domain.hi[d] } else { split(c + 1) };
+        (split(c), hi)
+    }
+    /// The sub-domain of a rank.
+    pub fn subdomain(&self, domain: &Domain, rank: usize) -> ([f64; 3], [f64; 3]) {
+        let c = self.coords(rank);
+        let mut lo = domain.lo;
+        let mut hi = domain.hi;
+        for d in 0..3 {
+            (lo[d], hi[d]) = self.bounds(domain, d, c[d]);
+        }
+        (lo, hi)
+    }
+    /// The rank whose sub-domain holds `x` (outside the box: the nearest edge rank).
+    pub fn owner(&self, domain: &Domain, x: &[f64; 3]) -> usize {
+        let mut c = [0usize; 3];
+        for d in 0..3 {
+            let p = self.procs[d];
+            let prd = domain.hi[d] - domain.lo[d];
+            let guess = if prd > 0.0 { ((x[d] - domain.lo[d]) / prd * p as f64).floor() } else { 0.0 };
+            let mut k = if guess.is_nan() || guess < 0.0 { 0 } else { (guess as usize).min(p - 1) };
+            // the guess can be one off at a boundary: settle it with the bounds themselves
+            while k > 0 && x[d] < self.bounds(domain, d, k).0 {
+                k -= 1;
+            }
+            while k + 1 < p && x[d] >= self.bounds(domain, d, k).1 {
+                k += 1;
+            }
+            c[d] = k;
+        }
+        self.rank_at(c)
+    }
+    /// The ranks next to this one in the grid (26 neighbours at most, across periodic faces
+    /// too), without itself, in rank order.
+    pub fn peers(&self, domain: &Domain) -> Vec<usize> {
+        let me = self.rank();
+        let c = self.coords(me);
+        let mut out = Vec::new();
+        for dx in -1i64..=1 {
+            for dy in -1i64..=1 {
+                for dz in -1i64..=1 {
+                    let mut n = [0usize; 3];
+                    let mut ok = true;
+                    for (d, off) in [dx, dy, dz].into_iter().enumerate() {
+                        let p = self.procs[d] as i64;
+                        let k = c[d] as i64 + off;
+                        if (0..p).contains(&k) {
+                            n[d] = k as usize;
+                        } else if domain.periodic(d) {
+                            n[d] = k.rem_euclid(p) as usize;
+                        } else {
+                            ok = false;
+                        }
+                    }
+                    if ok {
+                        out.push(self.rank_at(n));
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out.retain(|&r| r != me);
+        out
+    }
+
+    /// A sub-domain must be at least as thick as the ghost cutoff (ghosts come from the next
+    /// ranks only).
+    pub fn check_thickness(&self, domain: &Domain, cut: f64) -> Result<(), String> {
+        for d in 0..domain.dimension {
+            let p = self.procs[d];
+            let width = (domain.hi[d] - domain.lo[d]) / p as f64;
+            if p > 1 && width < cut {
+                return Err(format!(
+                    "the sub-domains of the {}x{}x{} processor grid are {} thick along {}, less than the ghost cutoff {} (pair cutoff + skin): use fewer ranks along {} (processors command)",
+                    self.procs[0], self.procs[1], self.procs[2],
+                    crate::output::format::g(width), ["x", "y", "z"][d], crate::output::format::g(cut), ["x", "y", "z"][d]
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Keep only the owned atoms inside this rank's sub-domain (every rank held them all).
+    pub fn distribute(&self, atoms: &mut Atoms, domain: &Domain) {
+        let me = self.rank();
+        let remove: Vec<bool> = atoms.x[..atoms.nlocal].iter().map(|x| self.owner(domain, x) != me).collect();
+        atoms.retain(&remove);
+    }
+
+    /// Send the owned atoms that left this sub-domain to the ranks that now own them (LAMMPS'
+    /// `Comm::exchange`). Positions are wrapped; no ghosts are present.
+    pub fn migrate(&self, atoms: &mut Atoms, domain: &Domain) -> Result<(), String> {
+        let me = self.rank();
+        let peers = self.peers(domain);
+        let mut bufs: Vec<Vec<f64>> = vec![Vec::new(); peers.len()];
+        let mut remove = vec![false; atoms.nlocal];
+        let mut stray = None;
+        for i in 0..atoms.nlocal {
+            let r = self.owner(domain, &atoms.x[i]);
+            if r == me {
+                continue;
+            }
+            match peers.iter().position(|&p| p == r) {
+                Some(k) => {
+                    atoms.pack(i, &mut bufs[k], true);
+                    remove[i] = true;
+                }
+                None => stray = Some(i),
+            }
+        }
+        // every rank must take part in the exchange before one reports a stray atom
+        let got = self.comm.exchange(peers.iter().copied().zip(bufs).collect(), &peers);
+        if self.comm.any(stray.is_some()) {
+            return Err(match stray {
+                Some(i) => format!("atom {} moved past the next sub-domain since the last neighbour build", atoms.tag[i]),
+                None => "an atom of another rank moved past the next sub-domain since the last neighbour build".to_string(),
+            });
+        }
+        atoms.retain(&remove);
+        for buf in got {
+            atoms.unpack_owned(&buf);
+        }
+        Ok(())
+    }
+
+    /// Make the ghosts within `cut` of this sub-domain (LAMMPS' `Comm::borders`): every rank
+    /// sends each rank next to it (and itself, across periodic faces) the images of its atoms
+    /// that lie within `cut` of that rank's sub-domain.
+    pub fn borders(&mut self, atoms: &mut Atoms, domain: &Domain, cut: f64) {
+        let me = self.rank();
+        let mut targets = self.peers(domain);
+        targets.push(me);
+        targets.sort_unstable();
+        let prd = domain.prd();
+        let shifts: Vec<[i8; 3]> = {
+            let range = |d: usize| if d < domain.dimension && domain.periodic(d) { vec![-1i8, 0, 1] } else { vec![0i8] };
+            let mut s = Vec::new();
+            for a in range(0) {
+                for b in range(1) {
+                    for c in range(2) {
+                        s.push([a, b, c]);
+                    }
+                }
+            }
+            s
+        };
+        self.sends.clear();
+        for &q in &targets {
+            let (lo, hi) = self.subdomain(domain, q);
+            let mut list = Vec::new();
+            for i in 0..atoms.nlocal {
+                for s in &shifts {
+                    if q == me && *s == [0, 0, 0] {
+                        continue;
+                    }
+                    let x = shifted(atoms.x[i], *s, prd);
+                    if (0..domain.dimension).all(|d| x[d] >= lo[d] - cut && x[d] < hi[d] + cut) {
+                        list.push((i as u32, *s));
+                    }
+                }
+            }
+            self.sends.push((q, list));
+        }
+        let bufs = self.pack_sends(atoms, prd, |a, i, x, out| a.pack_ghost(i, x, out));
+        self.recvs.clear();
+        for (from, buf) in targets.iter().zip(bufs) {
+            let n = atoms.unpack_ghosts(&buf);
+            self.recvs.push((*from, n));
+        }
+    }
+
+    /// Fresh ghost positions from their owners (LAMMPS' forward communication of `x`).
+    pub fn forward_positions(&self, atoms: &mut Atoms, domain: &Domain) {
+        let bufs = self.pack_sends(atoms, domain.prd(), |_, _, x, out| out.extend_from_slice(&x));
+        let mut k = atoms.nlocal;
+        for buf in bufs {
+            for x in buf.chunks_exact(3) {
+                atoms.x[k] = [x[0], x[1], x[2]];
+                k += 1;
+            }
+        }
+    }
+
+    /// Fresh ghost positions and per-atom state (velocities, SPH/DEM values, ghost fields).
+    pub fn forward_state(&self, atoms: &mut Atoms, domain: &Domain) {
+        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, x, out| a.pack_ghost(i, x, out));
+        let nlocal = atoms.nlocal;
+        atoms.clear_ghosts();
+        for buf in bufs {
+            atoms.unpack_ghosts(&buf);
+        }
+        debug_assert_eq!(atoms.nlocal, nlocal);
+    }
+
+    /// Pack each send list with `pack(atoms, i, shifted x, out)` and exchange: the buffers
+    /// received, in ghost order (by sending rank).
+    fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {
+        let me = self.rank();
+        let mut own = Vec::new();
+        let mut sends = Vec::new();
+        for (q, list) in &self.sends {
+            let mut buf = Vec::new();
+            for &(i, s) in list {
+                pack(atoms, i as usize, shifted(atoms.x[i as usize], s, prd), &mut buf);
+            }
+            if *q == me {
+                own = buf;
+            } else {
+                sends.push((*q, buf));
+            }
+        }
+        let from: Vec<usize> = self.recvs_order().into_iter().filter(|&r| r != me).collect();
+        let mut got = self.comm.exchange(sends, &from).into_iter();
+        self.recvs_order().into_iter().map(|r| if r == me { std::mem::take(&mut own) } else { got.next().unwrap_or_default() }).collect()
+    }
+
+    /// The ranks ghosts come from, in ghost order (the same ranks this one sends to).
+    fn recvs_order(&self) -> Vec<usize> {
+        self.sends.iter().map(|s| s.0).collect()
+    }
+
+    /// Ghost counts by sending rank (for `dmhs check` and the run summary).
+    pub fn ghost_counts(&self) -> &[(usize, usize)] {
+        &self.recvs
+    }
+
+    /// Every rank's owned atoms, on every rank, in rank order (at the end of a run, so that the
+    /// commands between runs see the whole system as in a serial run).
+    pub fn gather(&self, atoms: &mut Atoms) {
+        atoms.clear_ghosts();
+        let mut buf = Vec::new();
+        for i in 0..atoms.nlocal {
+            atoms.pack(i, &mut buf, true);
+        }
+        let all = self.comm.allgather(buf);
+        atoms.retain(&vec![true; atoms.nlocal]);
+        for b in all {
+            atoms.unpack_owned(&b);
+        }
+    }
+}
+
+/// `x + s * prd`, per component where the shift is not zero (as a serial ghost is made).
+fn shifted(mut x: [f64; 3], s: [i8; 3], prd: [f64; 3]) -> [f64; 3] {
+    for d in 0..3 {
+        if s[d] != 0 {
+            x[d] += s[d] as f64 * prd[d];
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grids_minimise_the_surface_as_lammps() {
+        assert_eq!(choose_grid(4, [None; 3], [10.0, 10.0, 10.0], 3).unwrap(), [1, 2, 2]);
+        assert_eq!(choose_grid(2, [None; 3], [10.0, 10.0, 10.0], 3).unwrap(), [1, 1, 2]);
+        assert_eq!(choose_grid(2, [None; 3], [40.0, 10.0, 10.0], 3).unwrap(), [2, 1, 1]);
+        assert_eq!(choose_grid(4, [None; 3], [10.0, 10.0, 1.0], 2).unwrap(), [2, 2, 1]);
+        assert_eq!(choose_grid(8, [Some(8), None, None], [10.0, 10.0, 10.0], 3).unwrap(), [8, 1, 1]);
+        assert!(choose_grid(4, [Some(3), None, None], [10.0; 3], 3).is_err());
+        assert!(choose_grid(2, [Some(1), Some(1), None], [10.0, 10.0, 1.0], 2).is_err());
+    }
+}

@@ -1,0 +1,118 @@
+//! A run over several ranks (`State::decomp`): what such a run supports so far, handing the
+//! atoms out at its start and back at its end, and agreeing on what every rank must know.
+//!
+//! Between runs every rank holds the whole system, so the deck's commands work as in a serial
+//! run; a run spreads the atoms over the sub-domains, and its end gathers them again.
+
+use crate::engine::comm::Comm;
+use crate::engine::decomp::{choose_grid, Decomp};
+use crate::sim::{RunError, Simulation};
+use std::sync::Arc;
+
+/// What a distributed run supports so far: atomic systems with central pair forces, the
+/// integrators and forces that act atom by atom, and the thermo computes that are sums.
+const PAIRS: &[&str] = &["lj/cut", "soft"];
+const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke"];
+
+/// Per-rank counts at the end of a distributed run, for the run summary (sum, min, max).
+pub struct RankCounts {
+    pub nlocal: [f64; 3],
+    pub nghost: [f64; 3],
+    pub neighs: [f64; 3],
+}
+
+impl Simulation {
+    /// Run as one of the ranks `comm` connects (before the deck's first command). Ranks other
+    /// than 0 write neither the screen nor the log.
+    pub fn set_comm(&mut self, comm: Arc<dyn Comm>) {
+        if comm.size() > 1 {
+            self.out.muted = comm.rank() != 0;
+            self.state.decomp = Some(Decomp::new(comm, [1, 1, 1]));
+        }
+    }
+
+    /// The number of ranks (1 for an ordinary run).
+    pub fn nranks(&self) -> usize {
+        self.state.decomp.as_ref().map_or(1, |d| d.comm.size())
+    }
+
+    /// Why this deck cannot run on several ranks yet (None: it can).
+    pub fn distributed_refusal(&self) -> Option<String> {
+        let ft = self.state.atoms.features;
+        let what = if ft.molecular() {
+            Some("bonded atoms (atom styles with bonds, angles or dihedrals)".to_string())
+        } else if ft.sph {
+            Some("SPH atoms".to_string())
+        } else if ft.sphere {
+            Some("finite-size spheres (atom_style sphere and granular styles)".to_string())
+        } else if let Some(p) = self.pair.as_ref().filter(|p| !PAIRS.contains(&p.style())) {
+            Some(format!("pair_style {}", p.style()))
+        } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
+            Some(format!("fix {} ({})", f.id(), f.style()))
+        } else if let Some(c) = self.computes.iter().find(|c| !COMPUTES.contains(&c.style())) {
+            Some(format!("compute {} ({})", c.id(), c.style()))
+        } else if !self.dumps.is_empty() {
+            Some("dumps".to_string())
+        } else if self.state.boundary.iter().flatten().any(|b| !matches!(b, crate::engine::domain::BoundaryKind::Periodic | crate::engine::domain::BoundaryKind::Fixed)) {
+            Some("shrink-wrapped boundaries (s, m)".to_string())
+        } else {
+            None
+        };
+        let supported = format!("pair styles {}; fixes {}; computes {}", PAIRS.join(", "), FIXES.join(", "), COMPUTES.join(", "));
+        what.map(|w| format!("{w} cannot run on {} ranks yet; a run on several ranks supports atomic systems with {supported}, and no dumps (run on one rank)", self.nranks()))
+    }
+
+    /// The start of a distributed run: the processor grid for the box now, and each rank keeps
+    /// the atoms in its sub-domain.
+    pub(crate) fn distribute(&mut self) -> Result<(), RunError> {
+        let step = self.state.step;
+        if let Some(why) = self.distributed_refusal() {
+            return Err(RunError::new(step, why));
+        }
+        let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
+        let d = self.state.decomp.as_mut().expect("a decomposition");
+        d.procs = choose_grid(d.comm.size(), self.state.procs_user, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?;
+        let natoms = self.state.atoms.nlocal;
+        self.state.atoms.clear_ghosts();
+        d.distribute(&mut self.state.atoms, domain);
+        self.state.distributed = Some(natoms);
+        self.state.lists_valid = false;
+        // the per-atom order LAMMPS would keep is a serial notion: start afresh on each rank
+        self.state.lammps_order = Default::default();
+        let p = d.procs;
+        self.out.print(&format!("  {} by {} by {} MPI processor grid", p[0], p[1], p[2]));
+        Ok(())
+    }
+
+    /// The end of a distributed run: every rank holds the whole system again.
+    pub(crate) fn gather_ranks(&mut self) {
+        if self.state.distributed.take().is_none() {
+            return;
+        }
+        let d = self.state.decomp.as_ref().expect("a decomposition");
+        d.gather(&mut self.state.atoms);
+        self.state.lists_valid = false;
+        self.state.lammps_order = Default::default();
+    }
+
+    /// Whether any rank says yes (a rank alone: itself).
+    pub(crate) fn any_rank(&self, yes: bool) -> bool {
+        match (&self.state.decomp, self.state.distributed) {
+            (Some(d), Some(_)) => d.comm.any(yes),
+            _ => yes,
+        }
+    }
+
+    /// The sum, minimum and maximum over the ranks of each count.
+    pub(crate) fn rank_counts(&self) -> Option<RankCounts> {
+        let d = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some())?;
+        let local = [self.state.atoms.nlocal as f64, self.state.atoms.nghost() as f64, self.state.neighbor.list.npairs() as f64];
+        let (mut sum, mut max, mut min) = (local, local, local);
+        d.comm.sum(&mut sum);
+        d.comm.max(&mut max);
+        d.comm.min(&mut min);
+        let k = |i: usize| [sum[i], min[i], max[i]];
+        Some(RankCounts { nlocal: k(0), nghost: k(1), neighs: k(2) })
+    }
+}

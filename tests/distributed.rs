@@ -1,0 +1,185 @@
+//! A deck run over several ranks (spatial decomposition; ranks as threads of this process,
+//! connected as MPI ranks are) gives the serial run's numbers: the thermo table and the final
+//! positions and velocities, within round-off of the different order of the force sums.
+
+use dmhs::deck::{run_text_on, DeckOptions};
+use dmhs::engine::comm::{Comm, Threads};
+use std::sync::Arc;
+
+/// The screen text, and (ID, x, v) of every atom sorted by ID, of rank 0 after the deck.
+type Outcome = (String, Vec<(i64, [f64; 3], [f64; 3])>);
+
+fn outcome(run: &dmhs::deck::DeckRun) -> Outcome {
+    let a = &run.sim.state.atoms;
+    let mut atoms: Vec<_> = (0..a.nlocal).map(|i| (a.tag[i], a.x[i], a.v[i])).collect();
+    atoms.sort_by_key(|t| t.0);
+    (run.sim.out.captured.clone().unwrap_or_default(), atoms)
+}
+
+fn options() -> DeckOptions {
+    DeckOptions { screen: false, capture_text: true, ..Default::default() }
+}
+
+/// Run `deck` on `n` ranks; every rank's outcome (or its error), by rank.
+fn on_ranks(deck: &str, n: usize) -> Vec<Result<Outcome, String>> {
+    let world = Threads::world(n);
+    let handles: Vec<_> = world
+        .into_iter()
+        .map(|c| {
+            let deck = deck.to_string();
+            std::thread::spawn(move || {
+                let comm: Arc<dyn Comm> = Arc::new(c);
+                match run_text_on("deck", &deck, &options(), Some(comm)) {
+                    Ok(run) => Ok(outcome(&run)),
+                    Err(f) => Err(f.rendered),
+                }
+            })
+        })
+        .collect();
+    handles.into_iter().map(|h| h.join().unwrap_or_else(|_| Err("rank panicked".into()))).collect()
+}
+
+fn serial(deck: &str) -> Outcome {
+    outcome(&dmhs::deck::run_text("deck", deck, &options()).unwrap_or_else(|f| panic!("{}", f.rendered)))
+}
+
+/// The numbers of the thermo rows (lines that start with a step number).
+fn thermo_rows(text: &str) -> Vec<Vec<f64>> {
+    let mut rows = Vec::new();
+    let mut in_table = false;
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.first() == Some(&"Step") {
+            in_table = true;
+            continue;
+        }
+        if line.starts_with("Loop time") {
+            in_table = false;
+        }
+        if in_table {
+            if let Ok(v) = words.iter().map(|w| w.parse::<f64>()).collect::<Result<Vec<_>, _>>() {
+                rows.push(v);
+            }
+        }
+    }
+    rows
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
+}
+
+const MELT: &str = "
+units        lj
+atom_style   atomic
+lattice      fcc 0.8442
+region       box block 0 6 0 6 0 6
+create_box   1 box
+create_atoms 1 box
+mass         1 1.0
+velocity     all create 3.0 87287 loop geom
+pair_style   lj/cut 2.5
+pair_coeff   1 1 1.0 1.0 2.5
+neighbor     0.3 bin
+neigh_modify every 20 delay 0 check no
+fix          1 all nve
+thermo_style custom step temp epair emol etotal press atoms
+thermo       50
+run          150
+run          100
+";
+
+fn compare(deck: &str, ranks: usize) {
+    let (text0, atoms0) = serial(deck);
+    let rows0 = thermo_rows(&text0);
+    assert!(rows0.len() >= 7, "serial thermo rows: {text0}");
+    let results = on_ranks(deck, ranks);
+    let errors: Vec<String> = results.iter().enumerate().filter_map(|(k, r)| r.as_ref().err().map(|e| format!("rank {k}: {e}"))).collect();
+    assert!(errors.is_empty(), "{ranks} ranks:\n{}", errors.join("\n"));
+    for (rank, r) in results.into_iter().enumerate() {
+        let (text, atoms) = r.unwrap();
+        assert_eq!(atoms.len(), atoms0.len(), "rank {rank} of {ranks} holds every atom after the runs");
+        for (a, b) in atoms.iter().zip(&atoms0) {
+            assert_eq!(a.0, b.0);
+            for d in 0..3 {
+                assert!(close(a.1[d], b.1[d], 1e-9) && close(a.2[d], b.2[d], 1e-9), "{ranks} ranks, atom {}: x {:?} v {:?} against serial {:?} {:?}", a.0, a.1, a.2, b.1, b.2);
+            }
+        }
+        if rank == 0 {
+            let rows = thermo_rows(&text);
+            assert_eq!(rows.len(), rows0.len(), "{text}");
+            for (r, r0) in rows.iter().zip(&rows0) {
+                for (x, y) in r.iter().zip(r0) {
+                    assert!(close(*x, *y, 1e-9), "{ranks} ranks: thermo row {r:?} against serial {r0:?}");
+                }
+            }
+            assert!(text.contains(&format!("on {ranks} procs for 100 steps with 864 atoms")), "{text}");
+            assert!(text.contains("MPI processor grid"), "{text}");
+        } else {
+            assert!(text.is_empty(), "rank {rank} writes nothing: {text}");
+        }
+    }
+}
+
+#[test]
+fn lj_melt_on_two_ranks_is_the_serial_run() {
+    compare(MELT, 2);
+}
+
+#[test]
+fn lj_melt_on_three_and_four_ranks_is_the_serial_run() {
+    compare(MELT, 3);
+    compare(MELT, 4);
+}
+
+#[test]
+fn a_2d_deck_with_fixed_walls_on_four_ranks() {
+    let deck = "
+units        lj
+dimension    2
+atom_style   atomic
+boundary     p f p
+lattice      sq2 0.8
+region       box block 0 16 0 10 -0.5 0.5
+create_box   1 box
+region       gas block 0 16 1 9 -0.5 0.5
+create_atoms 1 region gas
+mass         1 1.0
+velocity     all create 0.2 4928 loop geom
+pair_style   lj/cut 2.5
+pair_coeff   1 1 1.0 1.0 2.5
+fix          1 all nve
+fix          2 all enforce2d
+thermo_style custom step temp epair etotal press
+thermo       100
+run          200
+";
+    let (text0, atoms0) = serial(deck);
+    for r in on_ranks(deck, 4) {
+        let (_, atoms) = r.unwrap();
+        assert_eq!(atoms.len(), atoms0.len(), "{text0}");
+        for (a, b) in atoms.iter().zip(&atoms0) {
+            for d in 0..2 {
+                assert!(close(a.1[d], b.1[d], 1e-9), "atom {}: {:?} against serial {:?}", a.0, a.1, b.1);
+            }
+        }
+    }
+}
+
+#[test]
+fn what_is_not_distributed_yet_is_refused_on_every_rank() {
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all langevin 1.0 1.0 1.0 48279\n");
+    for r in on_ranks(&deck, 2) {
+        let e = r.err().expect("refused");
+        assert!(e.contains("fix 2 (langevin) cannot run on 2 ranks yet"), "{e}");
+    }
+}
+
+#[test]
+fn sub_domains_thinner_than_the_cutoff_are_refused() {
+    let deck = MELT.replace("block 0 6 0 6 0 6", "block 0 6 0 6 0 2");
+    for r in on_ranks(&deck.replace("run          150\nrun          100\n", "processors 1 1 2\nrun 10\n"), 2) {
+        let e = r.err().expect("refused");
+        assert!(e.contains("less than the ghost cutoff"), "{e}");
+    }
+}

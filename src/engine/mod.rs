@@ -12,6 +12,8 @@ pub mod groups;
 pub mod lammps_order;
 pub mod lattice;
 pub mod molecule;
+#[cfg(feature = "mpi")]
+pub mod mpi_comm;
 pub mod neighbor;
 pub mod par;
 pub mod quat;

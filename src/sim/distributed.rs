@@ -104,6 +104,23 @@ impl Simulation {
         }
     }
 
+    /// The ranks of a distributed run agree on a step's outcome: if any failed, every rank
+    /// fails with the error of the first rank that did (its message names the rank).
+    pub(crate) fn agree(&self, outcome: Result<(), RunError>) -> Result<(), RunError> {
+        let Some(d) = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some()) else { return outcome };
+        if !d.comm.any(outcome.is_err()) {
+            return Ok(());
+        }
+        let mine: Vec<f64> = outcome.as_ref().err().map_or(Vec::new(), |e| e.message.bytes().map(f64::from).collect());
+        let all = d.comm.allgather(mine);
+        let (rank, text) = all.iter().enumerate().find(|(_, m)| !m.is_empty()).map(|(k, m)| (k, String::from_utf8_lossy(&m.iter().map(|&b| b as u8).collect::<Vec<u8>>()).into_owned())).unwrap_or_default();
+        let message = format!("on rank {rank} of {}: {text}", d.comm.size());
+        Err(match outcome {
+            Err(e) => RunError { message, ..e },
+            Ok(()) => RunError::new(self.state.step, message),
+        })
+    }
+
     /// The sum, minimum and maximum over the ranks of each count.
     pub(crate) fn rank_counts(&self) -> Option<RankCounts> {
         let d = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some())?;

@@ -550,8 +550,8 @@ impl Simulation {
             let eflag = self.output_due(next, last);
             let stepped = self.step_once(eflag).and_then(|_| crate::sim::stability::check_state(self));
             // the ranks of a distributed run stop together
-            if self.any_rank(stepped.is_err()) {
-                result = Err(stepped.err().unwrap_or_else(|| RunError::new(self.state.step, "another rank stopped the run (its error is above)")));
+            if let Err(e) = self.agree(stepped) {
+                result = Err(e);
                 break;
             }
             if eflag {

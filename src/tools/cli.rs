@@ -2,7 +2,7 @@
 //! the subcommands run, check, crosscheck and bench. Exit codes: 0 ok, 2 deck error,
 //! 1 any other failure.
 
-use crate::deck::{run_file, run_text, DeckOptions};
+use crate::deck::{run_file, DeckOptions};
 use std::path::{Path, PathBuf};
 
 /// The deck `dmhs` runs when given none.
@@ -250,7 +250,29 @@ pub fn main_with_args(args: &[String]) -> i32 {
             return 1;
         }
     };
+    // under mpiexec (the `mpi` build) every rank runs the command, as a rank of the others
+    // (MPI is finalized when the guard drops, at the end of this function)
+    #[cfg(feature = "mpi")]
+    let _mpi_guard = crate::engine::mpi_comm::Mpi::start().map(|(comm, universe)| {
+        use crate::engine::comm::Comm;
+        if comm.size() > 1 {
+            let _ = RANKS.set(std::sync::Arc::new(comm));
+        }
+        universe
+    });
     pool.install(|| dispatch(&cli))
+}
+
+/// The ranks this process runs with (`mpiexec` of the `mpi` build); unset: alone.
+static RANKS: std::sync::OnceLock<std::sync::Arc<dyn crate::engine::comm::Comm>> = std::sync::OnceLock::new();
+
+fn ranks() -> Option<std::sync::Arc<dyn crate::engine::comm::Comm>> {
+    RANKS.get().cloned()
+}
+
+/// Rank 0 of several, or a process alone: it reports errors (the others ran the same deck).
+fn reports() -> bool {
+    ranks().map_or(true, |c| c.rank() == 0)
 }
 
 fn dispatch(cli: &Cli) -> i32 {
@@ -274,8 +296,8 @@ fn dispatch(cli: &Cli) -> i32 {
 
 fn run_cmd(cli: &Cli) -> i32 {
     let result = match cli.decks.as_slice() {
-        [] => run_text("<built-in example: examples/capsules/in.capsules>", BUILTIN_EXAMPLE, &cli.opts),
-        [deck] => run_file(deck, &cli.opts),
+        [] => crate::deck::run_text_on("<built-in example: examples/capsules/in.capsules>", BUILTIN_EXAMPLE, &cli.opts, ranks()),
+        [deck] => crate::deck::run_file_on(deck, &cli.opts, ranks()),
         _ => {
             eprintln!("dmhs run: give one deck");
             return 2;
@@ -284,7 +306,9 @@ fn run_cmd(cli: &Cli) -> i32 {
     match result {
         Ok(r) => r.quit.unwrap_or(0),
         Err(f) => {
-            eprint!("{}", f.rendered);
+            if reports() {
+                eprint!("{}", f.rendered);
+            }
             if f.runtime { 1 } else { 2 }
         }
     }

@@ -153,3 +153,16 @@ fn bad_input_is_located() {
     let e = run_text("in.test", &format!("{LATTICE}compute b all bond/local dist\n"), &DeckOptions { screen: false, ..Default::default() }).err().unwrap().rendered;
     assert!(e.contains("bonds are not allowed") && e.contains("in.test:9:"), "{e}");
 }
+
+/// lammps-refs/decks/in.bond_local_chain (1000 steps): the thermo table with its compute
+/// reduce columns of bond/local against the stored LAMMPS table (8 printed digits).
+#[test]
+fn parity_deck_thermo_matches_stored_lammps() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lammps-refs");
+    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(root.join("decks")), ..Default::default() };
+    let run = dmhs::deck::run_file(&root.join("decks/in.bond_local_chain"), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let ours = thermo(&run.sim.out.captured.clone().unwrap());
+    let want = std::fs::read_to_string(root.join("refs/bond_local_chain/thermo.txt")).unwrap();
+    let bad = common::compare_tol("thermo", &thermo(&want.replace("# Step", "Step")), &ours, 1e-7);
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}

@@ -100,6 +100,51 @@ impl RanMars {
         self.save = true;
         first
     }
+
+    /// Mark `ntarget` of `n` items at random (LAMMPS' `RanMars::select_subset`, one process):
+    /// passes over an active set, each item flipping with probability `thresh`, adding while too
+    /// few are marked and removing while too many, until exactly `ntarget` are. An item that
+    /// does not flip in a pass leaves the active sets, as in LAMMPS. `ntarget <= n`.
+    pub fn select_subset(&mut self, ntarget: usize, n: usize) -> Vec<bool> {
+        let mut mark = vec![false; n];
+        // the active sets as linked lists through `next` (index 0: unmarked, 1: marked)
+        let mut next: Vec<Option<usize>> = (1..=n).map(|k| (k < n).then_some(k)).collect();
+        let mut first: [Option<usize>; 2] = [(n > 0).then_some(0), None];
+        let mut active = [n, 0];
+        let mut nmark = 0usize;
+        while nmark != ntarget {
+            let add = ntarget > nmark;
+            let mode = if add { 0 } else { 1 };
+            let want = if add { ntarget - nmark } else { nmark - ntarget };
+            let thresh = (1.0 * want as f64 / active[mode] as f64).clamp(0.01, 0.99);
+            let mut new_active = [0usize; 2];
+            let mut new_first: [Option<usize>; 2] = [None, None];
+            let mut new_last: [Option<usize>; 2] = [None, None];
+            let mut index = first[mode];
+            let mut nflip = 0;
+            while let Some(k) = index {
+                if self.uniform() < thresh {
+                    mark[k] = add;
+                    nflip += 1;
+                }
+                index = next[k];
+                let which = mark[k] as usize;
+                new_active[which] += 1;
+                if new_first[which].is_none() {
+                    new_first[which] = Some(k);
+                }
+                if let Some(l) = new_last[which] {
+                    next[l] = Some(k);
+                }
+                new_last[which] = Some(k);
+                next[k] = None;
+                active = new_active;
+                first = new_first;
+            }
+            if add { nmark += nflip } else { nmark -= nflip }
+        }
+        mark
+    }
 }
 
 #[cfg(test)]

@@ -1,11 +1,12 @@
 //! The read-only view that computes, fix values and expressions evaluate against: the state,
-//! every compute and every fix. While a fix's hook runs, that fix is borrowed mutably; it
+//! every compute and every fix (and the bond style). While a fix's hook runs, that fix is borrowed mutably; it
 //! passes itself (`running`) when it evaluates an expression, so the view still shows every fix
 //! in definition order, as LAMMPS does.
 
 use crate::engine::state::State;
 use crate::models::compute::Compute;
 use crate::models::fix::Fix;
+use crate::models::bonded::BondStyle;
 
 /// Every fix, in definition order: those before the running one, the running one (if its
 /// hook is evaluating an expression), and those after it.
@@ -34,6 +35,9 @@ pub struct World<'a> {
     pub state: &'a State,
     pub computes: &'a [Box<dyn Compute>],
     pub fixes: FixesView<'a>,
+    /// The bond style (compute bond/local's energies and forces); None where a view is made
+    /// without the force field (inside a fix's hook, while a fix is built).
+    pub bond: Option<&'a dyn BondStyle>,
 }
 
 impl<'a> World<'a> {

@@ -12,15 +12,15 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::PathBuf;
 
-pub const SYNTAX: &str = "dump ID group atom|custom|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index f_ID f_ID[N]]";
+pub const SYNTAX: &str = "dump ID group atom|custom|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index c_ID c_ID[N] f_ID f_ID[N]]";
 
 #[derive(Clone, Debug)]
 pub(crate) enum Column {
     Attr(Field),
     /// a per-atom compute or fix column
     PerAtom(crate::models::compute::PerAtomRef),
-    /// dump local: a fix's local vector (None) or array column (0-based)
-    LocalFix(String, Option<usize>),
+    /// dump local: a compute's or fix's local vector or array column
+    Local(crate::models::compute::LocalRef),
     /// dump local: the row number, from 1
     Index,
 }
@@ -116,12 +116,26 @@ impl Dump {
             }
             while let Some(word) = a.peek() {
                 a.skip(1);
-                let col = parse_local_column(&word.text, every, w).map_err(|e| a.error_at(word, e, "bad dump local field"))?;
-                d.names.push(word.text.clone());
-                d.columns.push(col);
+                if word.text == "index" {
+                    d.names.push(word.text.clone());
+                    d.columns.push(Column::Index);
+                    continue;
+                }
+                let refs = match crate::models::compute::LocalRef::parse(&word.text, w, Some(every)) {
+                    Some(r) => r.map_err(|e| a.error_at(word, e, "bad dump local field"))?,
+                    None => return Err(a.error_at(word, format!("Invalid attribute `{}` in dump local command (expected index, c_ID, c_ID[N], f_ID or f_ID[N])", word.text), "bad dump local field")),
+                };
+                for r in refs {
+                    // `[*]` is written as its columns, as LAMMPS expands it
+                    d.names.push(match (word.text.ends_with("[*]"), r.col) {
+                        (true, Some(c)) => format!("{}[{}]", &word.text[..word.text.len() - 3], c + 1),
+                        _ => word.text.clone(),
+                    });
+                    d.columns.push(Column::Local(r));
+                }
             }
-            if !d.columns.iter().any(|c| matches!(c, Column::LocalFix(..))) {
-                return Err(a.error_at(style_w, "Dump local attributes contain no compute or fix", "needs an f_ID field"));
+            if !d.columns.iter().any(|c| matches!(c, Column::Local(..))) {
+                return Err(a.error_at(style_w, "Dump local attributes contain no compute or fix", "needs a c_ID or f_ID field"));
             }
         } else if style == "atom" {
             a.finish()?;
@@ -255,17 +269,27 @@ impl Dump {
 
     /// A `dump local` snapshot: one line per row of the fixes' local data, each value followed
     /// by a space (LAMMPS' DumpLocal).
-    fn snapshot_local(&self, w: &World) -> Result<String, String> {
-        let mut data: Vec<(&[Vec<f64>], Option<usize>)> = vec![];
+    fn snapshot_local(&self, w: &World, mut ev: Option<&mut dyn dmhs_parser::EvalContext>) -> Result<String, String> {
+        // each compute or fix's rows once, however many of its columns are written
+        let mut fetched: Vec<((bool, &str), Vec<Vec<f64>>)> = vec![];
+        let mut data: Vec<(usize, &crate::models::compute::LocalRef)> = vec![];
         let mut rows: Option<usize> = None;
         for c in &self.columns {
-            if let Column::LocalFix(id, col) = c {
-                let (r, _, _) = w.fix(id).and_then(|f| f.local()).ok_or_else(|| format!("dump {}: fix `{id}` has no local data", self.id))?;
-                if rows.is_some_and(|n| n != r.len()) {
+            if let Column::Local(r) = c {
+                let key = (r.fix, r.id.as_str());
+                let k = match fetched.iter().position(|(f, _)| *f == key) {
+                    Some(k) => k,
+                    None => {
+                        fetched.push((key, r.rows(w, ev.as_mut().map(|e| &mut **e as &mut dyn dmhs_parser::EvalContext)).map_err(|e| format!("dump {}: {e}", self.id))?));
+                        fetched.len() - 1
+                    }
+                };
+                let n = fetched[k].1.len();
+                if rows.is_some_and(|m| m != n) {
                     return Err(format!("dump {}: Dump local count is not consistent across input fields", self.id));
                 }
-                rows = Some(r.len());
-                data.push((r, *col));
+                rows = Some(n);
+                data.push((k, r));
             }
         }
         let n = rows.unwrap_or(0);
@@ -277,9 +301,9 @@ impl Dump {
                 let v = match c {
                     Column::Index => (r + 1) as f64,
                     _ => {
-                        let (rows, col) = data[fixcol];
+                        let (k, lr) = data[fixcol];
                         fixcol += 1;
-                        rows[r][col.unwrap_or(0)]
+                        lr.get(&fetched[k].1[r])
                     }
                 };
                 s += &format_printf(&fmts[k], v).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
@@ -292,8 +316,13 @@ impl Dump {
 
     /// Format a snapshot of the current state.
     pub fn snapshot(&self, w: &World) -> Result<String, String> {
+        self.snapshot_with(w, None)
+    }
+
+    /// [`Dump::snapshot`]; `ev` evaluates the variables of local computes.
+    fn snapshot_with(&self, w: &World, ev: Option<&mut dyn dmhs_parser::EvalContext>) -> Result<String, String> {
         if self.style == "local" {
-            return self.snapshot_local(w);
+            return self.snapshot_local(w, ev);
         }
         let a = &w.state.atoms;
         let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
@@ -318,7 +347,7 @@ impl Dump {
                 let v = match c {
                     Column::Attr(f) => f.value(w.state, i),
                     Column::PerAtom(r) => r.get(peratom[k].as_ref().unwrap(), i),
-                    Column::LocalFix(..) | Column::Index => unreachable!("local columns only in dump local"),
+                    Column::Local(..) | Column::Index => unreachable!("local columns only in dump local"),
                 };
                 let text = format_printf(&fmts[k], if ints[k] { v.round() } else { v }).map_err(|e| format!("dump {} format `{}`: {e}", self.id, fmts[k]))?;
                 s += &text;
@@ -373,10 +402,10 @@ impl Dump {
         self.path.with_file_name(format!("{stem}.pvd"))
     }
 
-    /// Write a snapshot now; `equal` evaluates equal-style variables (pictures' view settings).
-    pub fn write(&mut self, w: &World, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<(), String> {
+    /// Write a snapshot now; `ev` evaluates variables (pictures' view settings, local computes).
+    pub fn write(&mut self, w: &World, ev: &mut dyn dmhs_parser::EvalContext) -> Result<(), String> {
         if let Some(p) = &self.picture {
-            p.write(w, equal, self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;
+            p.write(w, &mut |name| dmhs_parser::variables::compute_equal(ev, name), self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;
             self.last_written = Some(w.state.step);
             return Ok(());
         }
@@ -385,7 +414,7 @@ impl Dump {
             self.last_written = Some(w.state.step);
             return Ok(());
         }
-        let text = self.snapshot(w)?;
+        let text = self.snapshot_with(w, Some(ev))?;
         let name = self.path.to_string_lossy().to_string();
         if name.contains('*') {
             let p = PathBuf::from(name.replace('*', &w.state.step.to_string()));
@@ -415,41 +444,8 @@ pub(crate) fn column_values(c: &Column, w: &World, idx: &[usize]) -> Result<Vec<
             let p = r.values(w)?;
             idx.iter().map(|&i| r.get(&p, i)).collect()
         }
-        Column::LocalFix(..) | Column::Index => return Err("local fields are for dump local only".into()),
+        Column::Local(..) | Column::Index => return Err("local fields are for dump local only".into()),
     })
-}
-
-/// A field of `dump local`: `index`, `f_ID` (a local vector) or `f_ID[N]` (a column of a local
-/// array), checked as LAMMPS does (the fix's local data, its shape, its frequency).
-fn parse_local_column(name: &str, every: i64, w: &World) -> Result<Column, String> {
-    if name == "index" {
-        return Ok(Column::Index);
-    }
-    let Some(rest) = name.strip_prefix("f_") else {
-        return Err(if name.starts_with("c_") {
-            format!("dump local field `{name}`: local computes are not supported yet (fix local data f_ID is)")
-        } else {
-            format!("Invalid attribute `{name}` in dump local command (expected index, f_ID or f_ID[N])")
-        });
-    };
-    let (id, col) = match rest.find('[') {
-        Some(k) if rest.ends_with(']') => (&rest[..k], Some(rest[k + 1..rest.len() - 1].parse::<usize>().map_err(|_| format!("bad column in `{name}`"))?)),
-        Some(_) => return Err(format!("Invalid attribute `{name}` in dump local command")),
-        None => (rest, None),
-    };
-    let fix = w.fix(id).ok_or_else(|| format!("Could not find dump local fix ID `{id}`"))?;
-    let (_, cols, freq) = fix.local().ok_or_else(|| format!("Dump local fix `{id}` does not compute local info"))?;
-    let col = match col {
-        None if cols > 0 => return Err(format!("Dump local fix `{id}` does not compute a local vector (use f_{id}[N], N in 1..{cols})")),
-        None => None,
-        Some(_) if cols == 0 => return Err(format!("Dump local fix `{id}` does not compute a local array")),
-        Some(n) if n >= 1 && n <= cols => Some(n - 1),
-        Some(n) => return Err(format!("Dump local fix vector is accessed out-of-range: column {n} of 1..{cols}")),
-    };
-    if every % freq != 0 {
-        return Err(format!("Dump local and fix not computed at compatible times (dump every {every}, fix `{id}` every {freq})"));
-    }
-    Ok(Column::LocalFix(id.to_string(), col))
 }
 
 /// LAMMPS' `%-1.16e` for box bounds.

@@ -128,7 +128,7 @@ impl Simulation {
     /// degrees of freedom (LAMMPS' compute setup; a compute's setup reads no other compute).
     pub fn setup_computes(&mut self, which: Option<usize>) {
         let mut computes = std::mem::take(&mut self.computes);
-        let world = World { state: &self.state, computes: &[], fixes: FixesView::all(&self.fixes) };
+        let world = World { state: &self.state, computes: &[], fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
         for (k, c) in computes.iter_mut().enumerate() {
             if which.map_or(true, |w| w == k) {
                 c.setup(&world);
@@ -139,20 +139,20 @@ impl Simulation {
 
     /// The read-only view of the whole simulation.
     pub fn world(&self) -> World<'_> {
-        World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) }
+        World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() }
     }
 
     /// The values of the thermo columns now.
     pub fn thermo_values(&mut self) -> Result<Vec<f64>, String> {
         let thermo = &self.thermo;
-        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) };
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
         crate::output::thermo::values(thermo, &world, &mut Eval { world, thermo, variables: &mut self.variables, cpu: self.last_loop_seconds })
     }
 
     /// The evaluation context of expressions, and the view it reads.
     pub fn eval(&mut self) -> Eval<'_> {
         Eval {
-            world: World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) },
+            world: World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() },
             thermo: &self.thermo,
             variables: &mut self.variables,
             cpu: self.last_loop_seconds,

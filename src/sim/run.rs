@@ -610,7 +610,7 @@ impl Simulation {
     pub(crate) fn output_now(&mut self, setup: bool, last: i64, all_dumps: bool) -> Result<(), RunError> {
         let step = self.state.step;
         let thermo_now = setup || step == last || (self.thermo.every > 0 && step % self.thermo.every == 0);
-        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes) };
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
         let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
         if thermo_now {
             let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
@@ -622,7 +622,7 @@ impl Simulation {
         }
         for d in self.dumps.iter_mut() {
             if d.due(step, setup) || (all_dumps && d.last_written != Some(step)) {
-                d.write(&world, &mut |name| dmhs_parser::variables::compute_equal(&mut ev, name)).map_err(|e| RunError::new(step, e))?;
+                d.write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
             }
         }
         Ok(())

@@ -196,7 +196,7 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
 
 pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water)";
+    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water)";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();
     let n = sim.state.atoms.nlocal;
@@ -253,10 +253,29 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 }
             }
         };
+        let mut made = count;
         match kw.text.as_str() {
             "type" => {
                 let t = a.i64_in("atom type", 1, sim.state.ntypes as i64)? as usize;
                 apply(at, &mut |at, i| at.typ[i] = t);
+            }
+            "type/fraction" | "type/ratio" | "type/subset" => {
+                let t = a.i64_in("atom type", 1, sim.state.ntypes as i64)? as usize;
+                let how = match kw.text.as_str() {
+                    "type/fraction" => TypeRandom::Fraction(a.f64_where("fraction", "between 0 and 1", |f| (0.0..=1.0).contains(&f))?),
+                    "type/ratio" => TypeRandom::Ratio(a.f64_where("ratio", "between 0 and 1", |f| (0.0..=1.0).contains(&f))?),
+                    _ => {
+                        let nw = a.word("number of atoms")?;
+                        let m = word_i64(nw, "number of atoms")?;
+                        if m < 0 || m as usize > count {
+                            return Err(a.error_at(nw, format!("Set type/subset value {m} exceeds eligible atoms ({count} selected)"), format!("expected 0..={count}")));
+                        }
+                        TypeRandom::Subset(m as usize)
+                    }
+                };
+                let seed = a.i64_in("random seed", 1, if matches!(how, TypeRandom::Fraction(_)) { i32::MAX as i64 } else { 900_000_000 })? as i32;
+                let order = sim.state.lammps_order.indices(n);
+                made = set_type_random(at, &order, &sel, t, how, seed);
             }
             "mass" => {
                 need(ft.per_atom_mass(), "per-atom masses (sphere)")?;
@@ -340,7 +359,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 crate::engine::water::set(at, &sim.state.type_mass, &sim.state.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
             }
             other => {
-                let known = ["type", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water"];
+                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water"];
                 let mut d = a.error_at(kw, format!("set keyword `{other}` is not supported"), "unknown or unsupported keyword");
                 if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
                     d = d.with_help(h);
@@ -348,10 +367,55 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 return Err(d);
             }
         }
-        sim.out.print(&format!("Setting atom values ...\n  {count} settings made for {}", kw.text));
+        sim.out.print(&format!("Setting atom values ...\n  {made} settings made for {}", kw.text));
     }
     sim.state.lists_valid = false;
     Ok(())
+}
+
+/// How `set ... type/fraction|type/ratio|type/subset` picks the atoms that change type.
+#[derive(Clone, Copy)]
+enum TypeRandom {
+    /// each atom with probability f, from a generator reseeded by the seed and its position
+    Fraction(f64),
+    /// floor(f * eligible) atoms exactly
+    Ratio(f64),
+    /// N atoms exactly
+    Subset(usize),
+}
+
+/// Change the type of the atoms `how` picks among the selected ones (`sel`) to `t`, as LAMMPS'
+/// set does: the exact counts by `RanMars::select_subset` over the selected atoms in LAMMPS'
+/// local order (`order`). Returns the number changed.
+fn set_type_random(at: &mut crate::engine::atoms::Atoms, order: &[usize], sel: &[bool], t: usize, how: TypeRandom, seed: i32) -> usize {
+    let eligible: Vec<usize> = order.iter().copied().filter(|&i| sel[i]).collect();
+    let pick: Vec<bool> = match how {
+        TypeRandom::Fraction(f) => {
+            let mut r = crate::engine::random_park::RanPark::new(1);
+            eligible
+                .iter()
+                .map(|&i| {
+                    r.reset_coord(seed, at.x[i]);
+                    r.uniform() < f
+                })
+                .collect()
+        }
+        TypeRandom::Ratio(_) | TypeRandom::Subset(_) => {
+            let target = match how {
+                // LAMMPS truncates fraction * count to an integer
+                TypeRandom::Ratio(f) => (f * eligible.len() as f64) as usize,
+                TypeRandom::Subset(m) => m,
+                TypeRandom::Fraction(_) => unreachable!(),
+            };
+            crate::engine::random_mars::RanMars::new(seed).select_subset(target, eligible.len())
+        }
+    };
+    let mut made = 0;
+    for (&i, _) in eligible.iter().zip(&pick).filter(|(_, &p)| p) {
+        at.typ[i] = t;
+        made += 1;
+    }
+    made
 }
 
 pub fn velocity(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {

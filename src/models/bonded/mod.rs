@@ -62,6 +62,11 @@ pub trait BondStyle: Send + Sync {
     /// One bond of type `btype`: `del = x1 - x2`, `rsq = |del|^2` summed as x, y, z.
     /// Returns `(fbond, energy)`: the force on atom 1 is `del * fbond`, on atom 2 its negative.
     fn compute(&self, btype: usize, del: Vec3, rsq: f64) -> (f64, f64);
+    /// LAMMPS' `Bond::single` (compute bond/local): `(fbond, energy)` of one bond as
+    /// [`BondStyle::compute`] gives them; Err with the reason where the style has none.
+    fn single(&self, btype: usize, del: Vec3, rsq: f64) -> Result<(f64, f64), String> {
+        Ok(self.compute(btype, del, rsq))
+    }
     /// Apply a batch of bonds (monomorphised per style, so `compute` inlines).
     fn apply(&self, entries: &[Entry<2>], k: &Kernels, f: &mut AtomsMut<Vec3>, t: &mut BondedTally) {
         crate::models::bonded::pass::apply_bonds(self, entries, k, f, t)

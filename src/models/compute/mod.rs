@@ -2,6 +2,7 @@
 //! output, variables and dumps. Each style lives in its own file; [`new_compute`] is the
 //! registry. Computes only read the simulation.
 
+pub mod bond_local;
 pub mod chunk_atom;
 pub mod com;
 pub mod displace_atom;
@@ -52,14 +53,19 @@ pub struct PerAtomRef {
     pub col: Option<usize>,
 }
 
+/// `c_REST` or `f_REST`: (is a fix, REST); None for other names.
+fn split_ref(name: &str) -> Option<(bool, &str)> {
+    match (name.strip_prefix("c_"), name.strip_prefix("f_")) {
+        (Some(r), _) => Some((false, r)),
+        (_, Some(r)) => Some((true, r)),
+        _ => None,
+    }
+}
+
 impl PerAtomRef {
     /// `name` as a per-atom reference; None if it starts with neither `c_` nor `f_`.
     pub fn parse(name: &str, w: &World) -> Option<Result<PerAtomRef, String>> {
-        let (fix, rest) = match (name.strip_prefix("c_"), name.strip_prefix("f_")) {
-            (Some(r), _) => (false, r),
-            (_, Some(r)) => (true, r),
-            _ => return None,
-        };
+        let (fix, rest) = split_ref(name)?;
         Some((|| {
             let (id, col) = match rest.find('[') {
                 Some(k) if rest.ends_with(']') => (&rest[..k], Some(rest[k + 1..rest.len() - 1].parse::<usize>().map_err(|_| format!("bad column index in `{name}`"))?)),
@@ -94,6 +100,68 @@ impl PerAtomRef {
     #[inline]
     pub fn get(&self, p: &PerAtom, i: usize) -> f64 {
         p.get(i, self.col.unwrap_or(0))
+    }
+}
+
+/// A local value that dump local and compute reduce read: `c_ID`, `c_ID[N]` of a local compute
+/// (bond/local) or `f_ID`, `f_ID[N]` of a fix with local data; `[*]` stands for every column.
+#[derive(Clone, Debug)]
+pub struct LocalRef {
+    pub fix: bool,
+    pub id: String,
+    /// Column (0-based); None for a local vector.
+    pub col: Option<usize>,
+}
+
+impl LocalRef {
+    /// `name` as local references (several for `[*]`); None if it starts with neither `c_` nor
+    /// `f_`. `every`: the dump's interval, checked against a fix's (LAMMPS' compatible times).
+    pub fn parse(name: &str, w: &World, every: Option<i64>) -> Option<Result<Vec<LocalRef>, String>> {
+        let (fix, rest) = split_ref(name)?;
+        Some((|| {
+            let (id, col) = match rest.find('[') {
+                Some(k) if rest.ends_with(']') => (&rest[..k], Some(&rest[k + 1..rest.len() - 1])),
+                Some(_) => return Err(format!("Invalid local value `{name}`")),
+                None => (rest, None),
+            };
+            let cols = if fix {
+                let f = w.fix(id).ok_or_else(|| format!("Could not find local fix ID `{id}`"))?;
+                let (_, cols, freq) = f.local().ok_or_else(|| format!("fix `{id}` does not compute local info"))?;
+                if let Some(every) = every.filter(|e| e % freq != 0) {
+                    return Err(format!("Dump local and fix not computed at compatible times (dump every {every}, fix `{id}` every {freq})"));
+                }
+                cols
+            } else {
+                let c = w.compute(id).ok_or_else(|| format!("Could not find local compute ID `{id}`"))?;
+                c.local_cols().ok_or_else(|| format!("compute `{id}` ({}) does not compute local info", c.style()))?
+            };
+            let kind = if fix { "fix" } else { "compute" };
+            let one = |col| LocalRef { fix, id: id.to_string(), col };
+            Ok(match col {
+                None if cols > 0 => return Err(format!("{kind} `{id}` does not compute a local vector (use {}{id}[N], N in 1..{cols}, or [*])", &name[..2])),
+                None => vec![one(None)],
+                Some(_) if cols == 0 => return Err(format!("{kind} `{id}` does not compute a local array")),
+                Some("*") => (0..cols).map(|c| one(Some(c))).collect(),
+                Some(n) => match n.parse::<usize>() {
+                    Ok(n) if n >= 1 && n <= cols => vec![one(Some(n - 1))],
+                    Ok(n) => return Err(format!("{kind} `{id}` local array is accessed out-of-range: column {n} of 1..{cols}")),
+                    Err(_) => return Err(format!("bad column in `{name}`")),
+                },
+            })
+        })())
+    }
+    /// The rows now; `ev` evaluates a compute's variables.
+    pub fn rows(&self, w: &World, ev: Option<&mut dyn dmhs_parser::EvalContext>) -> Result<Vec<Vec<f64>>, String> {
+        if self.fix {
+            let f = w.fix(&self.id).ok_or_else(|| format!("fix `{}` does not exist", self.id))?;
+            Ok(f.local().ok_or_else(|| format!("fix `{}` has no local data", self.id))?.0.to_vec())
+        } else {
+            w.compute(&self.id).ok_or_else(|| format!("compute `{}` does not exist", self.id))?.local(w, ev)
+        }
+    }
+    /// This reference's value in `row` (from [`LocalRef::rows`]).
+    pub fn get(&self, row: &[f64]) -> f64 {
+        row[self.col.unwrap_or(0)]
     }
 }
 
@@ -133,6 +201,21 @@ pub trait Compute: Send + Sync {
     }
     /// Columns of per-atom output (None: not per-atom).
     fn peratom_cols(&self) -> Option<usize> {
+        None
+    }
+    /// Local rows (compute bond/local): one row of `local_cols` values per bond (one value for
+    /// a local vector), in LAMMPS' order. `ev` evaluates variables (None where there is none:
+    /// then values that need one are an error).
+    fn local(&self, _w: &World, _ev: Option<&mut dyn dmhs_parser::EvalContext>) -> Result<Vec<Vec<f64>>, String> {
+        Err(format!("compute {} ({}) does not compute local values", self.id(), self.style()))
+    }
+    /// Whether local column `col` (0-based) is a variable's value, which only dump local
+    /// evaluates (compute reduce reads local data without variables).
+    fn local_needs_variables(&self, _col: usize) -> bool {
+        false
+    }
+    /// Columns of the local array (Some(0): a local vector; None: no local output).
+    fn local_cols(&self) -> Option<usize> {
         None
     }
     /// Degrees of freedom (temperature computes only).
@@ -197,6 +280,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("bond/local", |d, w| Ok(Box::new(bond_local::ComputeBondLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("chunk/atom", |d, w| Ok(Box::new(chunk_atom::ComputeChunkAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

@@ -5,7 +5,7 @@ use super::{property::Field, Compute};
 use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "compute ID group reduce sum|min|max|ave|sumsq|avesq|sumabs|aveabs input1 input2 ...  (x vx fx ... c_ID c_ID[N])";
+pub const SYNTAX: &str = "compute ID group reduce sum|min|max|ave|sumsq|avesq|sumabs|aveabs input1 input2 ...  (x vx fx ... c_ID c_ID[N] c_ID[*]) [inputs peratom|local]";
 
 /// LAMMPS' initial value for min/max reductions (also the result for an empty group).
 const BIG: f64 = 1.0e20;
@@ -27,6 +27,8 @@ enum Input {
     Attr(Field),
     /// a per-atom compute or fix column
     PerAtom(super::PerAtomRef),
+    /// a local compute or fix column (compute bond/local): every row, the group ignored
+    Local(super::LocalRef),
 }
 
 pub struct ComputeReduce {
@@ -49,11 +51,35 @@ impl ComputeReduce {
             6 => Mode::SumAbs,
             _ => Mode::AveAbs,
         };
-        let mut inputs = Vec::new();
-        while let Some(w) = a.peek() {
+        // the inputs, then the keywords (`inputs local` decides how c_ID and f_ID are read)
+        let mut words = Vec::new();
+        while let Some(w) = a.peek().filter(|w| w.text != "inputs" && w.text != "replace") {
             a.skip(1);
+            words.push(w);
+        }
+        let mut local = false;
+        while let Some(kw) = a.peek() {
+            a.skip(1);
+            match kw.text.as_str() {
+                "inputs" => local = a.choice("inputs", &["peratom", "local"])? == 1,
+                "replace" => return Err(a.error_at(kw, "compute reduce replace is not supported yet", "not supported")),
+                _ => return Err(a.unknown_keyword(kw, &["inputs", "replace"])),
+            }
+        }
+        let mut inputs = Vec::new();
+        for w in words {
             let t = w.text.as_str();
-            if let Some(r) = super::PerAtomRef::parse(t, world) {
+            if local {
+                let refs = super::LocalRef::parse(t, world, None)
+                    .ok_or_else(|| a.error_at(w, format!("compute reduce inputs local reads c_ID or f_ID, not `{t}`"), "expected a local compute or fix"))?
+                    .map_err(|e| a.error_at(w, e, "not a local value"))?;
+                if refs.iter().any(|r| !r.fix && world.compute(&r.id).is_some_and(|c| c.local_needs_variables(r.col.unwrap_or(0)))) {
+                    return Err(a.error_at(w, format!("compute reduce of a v_NAME column of a local compute (`{t}`) is not supported yet"), "a variable's column"));
+                }
+                inputs.extend(refs.into_iter().map(Input::Local));
+            } else if is_local(t, world) {
+                return Err(a.error_at(w, format!("Compute reduce input `{t}` is local data: add `inputs local`"), "does not calculate per-atom values"));
+            } else if let Some(r) = super::PerAtomRef::parse(t, world) {
                 inputs.push(Input::PerAtom(r.map_err(|e| a.error_at(w, e, "not a per-atom value"))?));
             } else if t.starts_with("v_") || t.starts_with("d_") || t.starts_with("i_") {
                 return Err(a.error_at(w, format!("reduce input `{t}` is not supported yet (only attributes, per-atom computes and fixes)"), "not supported"));
@@ -79,6 +105,7 @@ impl ComputeReduce {
                 let p = r.values(w)?;
                 (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| r.get(&p, i)).collect()
             }
+            Input::Local(r) => r.rows(w, None)?.iter().map(|row| r.get(row)).collect(),
         };
         let n = values.len() as f64;
         let sum = |g: fn(f64) -> f64| values.iter().fold(0.0, |s, &v| s + g(v));
@@ -125,5 +152,18 @@ impl Compute for ComputeReduce {
     /// Sums are extensive, minima, maxima and averages are not (as LAMMPS).
     fn extensive(&self, _index: Option<usize>) -> bool {
         matches!(self.mode, Mode::Sum | Mode::SumSq | Mode::SumAbs)
+    }
+}
+
+/// Whether `name` (c_ID, f_ID, with or without a column) names local data rather than per-atom
+/// values: a compute or fix that has local output and no per-atom output.
+fn is_local(name: &str, w: &World) -> bool {
+    let id = |rest: &str| rest.split('[').next().unwrap_or(rest).to_string();
+    if let Some(rest) = name.strip_prefix("c_") {
+        w.compute(&id(rest)).is_some_and(|c| c.local_cols().is_some() && c.peratom_cols().is_none())
+    } else if let Some(rest) = name.strip_prefix("f_") {
+        w.fix(&id(rest)).is_some_and(|f| f.local().is_some() && f.peratom_cols().is_none())
+    } else {
+        false
     }
 }

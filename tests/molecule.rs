@@ -89,12 +89,51 @@ fn bad_templates_and_uses_are_located() {
         (&ok.replace("molecule m t.mol", "molecule m nofile.mol"), DIMER, "cannot open molecule file|in.test:5:"),
         (&ok.replace("molecule m t.mol", "molecule m t.mol scale -1"), DIMER, "scale factor|in.test:5:"),
         (&ok.replace("atom_style bond", "atom_style atomic").replace(" bond/types 1 extra/bond/per/atom 2 extra/special/per/atom 4", ""), DIMER, "has no bonds|in.test:5:"),
-        (&ok.replace("single 2 2 2", "random 3 99 NULL"), DIMER, "random with mol is not supported|in.test:6:"),
+        (&ok.replace("single 2 2 2", "random 3 99 NULL"), DIMER, "overlap and maxtry|ok"),
+        (&ok.replace("single 2 2 2", "random 3 99 NULL").replace("mol m 1234", "mol m 1234 overlap -1"), DIMER, "overlap distance|in.test:6:"),
+        (&ok.replace("single 2 2 2", "random 3 99 nowhere"), DIMER, "nowhere|in.test:6:"),
     ];
     for (deck, mol, want) in cases {
+        if want.ends_with("|ok") {
+            // accepted: create_atoms random with mol
+            let tmp = tempfile::tempdir().unwrap();
+            std::fs::write(tmp.path().join("t.mol"), mol).unwrap();
+            run_text("in.test", deck, &opts(tmp.path().to_path_buf())).unwrap_or_else(|f| panic!("{}", f.rendered));
+            continue;
+        }
         let e = error_of(deck, mol);
         for part in want.split('|') {
             assert!(e.contains(part), "expected `{part}`:\n{e}");
+        }
+    }
+}
+
+/// create_atoms random with mol (lammps-refs/decks/in.molecule_random, positions compared in
+/// tests/lammps_parity.rs): 12 trimers without an overlap test, then 28 of 30 with `overlap
+/// 1.2` (LAMMPS' count), each of those with every atom at least 1.2 from the atoms made before.
+#[test]
+fn random_molecules_keep_their_overlap_distance() {
+    let run = run_file(&decks().join("in.molecule_random"), &opts(decks())).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let text = run.sim.out.captured.as_deref().unwrap();
+    assert!(text.contains("only inserted 28 particles out of 30"), "{text}");
+    let st = &run.sim.state;
+    let a = &st.atoms;
+    assert_eq!(a.nlocal, 120);
+    let prd = st.domain.as_ref().unwrap().prd();
+    let mut by_tag: Vec<usize> = (0..a.nlocal).collect();
+    by_tag.sort_by_key(|&i| a.tag[i]);
+    for (k, &i) in by_tag.iter().enumerate() {
+        assert_eq!(a.molecule[i], k as i64 / 3 + 1);
+        if k < 36 {
+            continue;
+        }
+        for &j in &by_tag[..k - k % 3] {
+            let d2: f64 = (0..3).map(|c| {
+                let mut d = a.x[i][c] - a.x[j][c];
+                d -= prd[c] * (d / prd[c]).round();
+                d * d
+            }).sum();
+            assert!(d2 >= 1.2 * 1.2 * (1.0 - 1e-12), "atoms {} and {}: {}", a.tag[i], a.tag[j], d2.sqrt());
         }
     }
 }

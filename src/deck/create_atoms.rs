@@ -193,6 +193,9 @@ pub struct CreateAtoms {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Created {
     pub atoms: Vec<([f64; 3], usize)>,
+    /// The orientation of each molecule, where the overlap test chose them (random with mol
+    /// and overlap); empty: add_molecules draws them.
+    pub rotations: Vec<[[f64; 3]; 3]>,
     pub warnings: Vec<Diagnostic>,
 }
 
@@ -288,9 +291,6 @@ impl CreateAtoms {
                         return Err(a.error_at(w, "create_atoms molecule must have atom types (a Types section)", "template without types"));
                     }
                     let seed = a.i64_in("molecule random seed", 1, *crate::engine::random_mars::SEED_RANGE.end())?;
-                    if is_random {
-                        return Err(a.error_at(kw, "create_atoms random with mol is not supported yet", "supported with single, box and region"));
-                    }
                     mol_word = Some(w);
                     mol = Some((w.text.clone(), seed));
                 }
@@ -374,12 +374,13 @@ impl CreateAtoms {
         domain: &Domain,
         lattice: Option<&Lattice>,
         regions: &[Region],
+        molecules: &[Molecule],
         existing: &[[f64; 3]],
     ) -> DResult<Created> {
         let none = Lattice::none(1.0);
         let lattice = lattice.unwrap_or(&none);
         let region = |id: &String| regions.iter().find(|r| &r.id == id);
-        let mut out = Created { atoms: vec![], warnings: vec![] };
+        let mut out = Created { atoms: vec![], rotations: vec![], warnings: vec![] };
 
         // Insertion bounds: the sub-domain, for lattice styles shifted at periodic faces
         // (lower face down by eps, upper face down by 2 eps) so that of two periodic images
@@ -410,7 +411,8 @@ impl CreateAtoms {
             }
             CreateStyle::Random { n, seed, region: rid } => {
                 let reg = rid.as_ref().and_then(region);
-                self.add_random(domain, *n, *seed, reg, existing, &in_sub, &mut out)?;
+                let template = self.mol.as_ref().and_then(|(id, seed)| Some((molecules.iter().find(|m| &m.id == id)?, *seed)));
+                self.add_random(domain, *n, *seed, reg, template, existing, &in_sub, &mut out)?;
             }
             CreateStyle::Box | CreateStyle::Region(_) => {
                 let reg = match &self.style {
@@ -439,10 +441,13 @@ impl CreateAtoms {
         n: usize,
         seed: i32,
         region: Option<&Region>,
+        template: Option<(&Molecule, i64)>,
         existing: &[[f64; 3]],
         in_sub: &dyn Fn([f64; 3]) -> bool,
         out: &mut Created,
     ) -> DResult<()> {
+        // 2d points sit mid-box in z (the box's, not the region's)
+        let zmid = domain.lo[2] + 0.5 * (domain.hi[2] - domain.lo[2]);
         let mut random = RanPark::new(seed);
         // LAMMPS warms up the generator to decorrelate consecutive seeds.
         for _ in 0..30 {
@@ -464,7 +469,14 @@ impl CreateAtoms {
             ));
         }
         self.fits(n as f64)?;
+        // a molecule is tested atom by atom, in the orientation drawn for the trial (LAMMPS 22
+        // Jul 2025 inserts as many trimers as this, not as a test of the centre alone, widened
+        // by the molecule's radius); the accepted trial's orientation is the copy's
         let odistsq = self.overlap.map(|d| d * d);
+        // what the overlap test sees: the atoms there before, then each insertion (a
+        // molecule's atoms as LAMMPS has them until the end of the command: not yet wrapped)
+        let mut placed: Vec<[f64; 3]> = if odistsq.is_some() { existing.to_vec() } else { vec![] };
+        let mut ranmol = template.map(|(_, seed)| crate::engine::random_mars::RanMars::new(seed as i32));
         let mut ninsert = 0;
         for _ in 0..n {
             let mut found = None;
@@ -475,30 +487,50 @@ impl CreateAtoms {
                     lo[2] + random.uniform() * (hi[2] - lo[2]),
                 ];
                 if domain.dimension == 2 {
-                    x[2] = 0.0;
+                    x[2] = zmid;
                 }
                 if let Some(r) = region {
                     if !r.matches(x) {
                         continue;
                     }
                 }
+                let mut rot = None;
                 if let Some(od2) = odistsq {
-                    let close = existing.iter().chain(out.atoms.iter().map(|(p, _)| p)).any(|p| {
-                        let mut dx = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
-                        domain.minimum_image(&mut dx);
-                        dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2] < od2
-                    });
-                    if close {
+                    let close = |y: [f64; 3]| {
+                        placed.iter().any(|p| {
+                            let mut dx = [y[0] - p[0], y[1] - p[1], y[2] - p[2]];
+                            domain.minimum_image(&mut dx);
+                            dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2] < od2
+                        })
+                    };
+                    let reject = match (template, ranmol.as_mut()) {
+                        (Some((m, _)), Some(ran)) => {
+                            let r = copy_rotation(ran, domain.dimension, self.rotate);
+                            rot = Some(r);
+                            let hit = m.unwrapped(&r, x).any(close);
+                            hit
+                        }
+                        _ => close(x),
+                    };
+                    if reject {
                         continue;
                     }
                 }
-                found = Some(x);
+                found = Some((x, rot));
                 break;
             }
-            let Some(x) = found else { continue };
+            let Some((x, rot)) = found else { continue };
             ninsert += 1;
             if in_sub(x) {
                 out.atoms.push((x, self.atom_type));
+                match (template, rot) {
+                    (Some((m, _)), Some(rot)) => {
+                        out.rotations.push(rot);
+                        placed.extend(m.unwrapped(&rot, x));
+                    }
+                    _ if odistsq.is_some() => placed.push(x),
+                    _ => {}
+                }
             }
         }
         if ninsert < n {
@@ -611,19 +643,16 @@ impl CreateAtoms {
 /// random rotation from LAMMPS' molecule stream (`RanMars(seed + rank)`, rank 0): a random axis
 /// (3d; z in 2d) and angle, or the fixed rotation `rotate`. Atom and molecule IDs follow the
 /// largest present ones.
-pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed: i64, rotate: Option<[[f64; 3]; 3]>, type_offset: usize, centers: &[[f64; 3]]) -> Result<(), String> {
+pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed: i64, rotate: Option<[[f64; 3]; 3]>, type_offset: usize, centers: &[[f64; 3]], rotations: &[[[f64; 3]; 3]]) -> Result<(), String> {
     m.check_types(state)?;
     let mut ran = crate::engine::random_mars::RanMars::new(seed as i32);
     let domain = state.domain.clone().ok_or("create_atoms before the box is defined")?;
     let mut mol_offset = state.atoms.max_molecule();
     let mut tag = state.atoms.max_tag();
-    for c in centers {
-        let rot = match rotate {
-            Some(rot) => rot,
-            None => {
-                let r = if domain.dimension == 3 { [ran.uniform() - 0.5, ran.uniform() - 0.5, ran.uniform() - 0.5] } else { [0.0, 0.0, 1.0] };
-                crate::engine::molecule::rotation(r, ran.uniform() * std::f64::consts::TAU)
-            }
+    for (k, c) in centers.iter().enumerate() {
+        let rot = match rotations.get(k) {
+            Some(r) => *r,
+            None => copy_rotation(&mut ran, domain.dimension, rotate),
         };
         let placed = m.place(&rot, *c, &domain);
         m.push_copy(state, &placed, tag, mol_offset, type_offset, [0.0; 3]);
@@ -634,6 +663,16 @@ pub fn add_molecules(state: &mut crate::engine::state::State, m: &Molecule, seed
         state.rebuild_special()?;
     }
     Ok(())
+}
+
+/// The orientation of the next copy: `rotate`, or LAMMPS' random one from the molecule
+/// stream `ran` (a random axis, z in 2d, and angle; add_molecule).
+fn copy_rotation(ran: &mut crate::engine::random_mars::RanMars, dimension: usize, rotate: Option<[[f64; 3]; 3]>) -> [[f64; 3]; 3] {
+    if let Some(rot) = rotate {
+        return rot;
+    }
+    let r = if dimension == 3 { [ran.uniform() - 0.5, ran.uniform() - 0.5, ran.uniform() - 0.5] } else { [0.0, 0.0, 1.0] };
+    crate::engine::molecule::rotation(r, ran.uniform() * std::f64::consts::TAU)
 }
 
 /// Parse a LAMMPS logical (`yes/no`, `on/off`, `true/false`, `1/0`).
@@ -654,7 +693,7 @@ pub fn create_atoms(
     existing: &[[f64; 3]],
 ) -> DResult<Created> {
     CreateAtoms::from_lammps(cmd, ntypes, domain.dimension, lattice, regions, molecules)?
-        .generate(domain, lattice, regions, existing)
+        .generate(domain, lattice, regions, molecules, existing)
 }
 
 #[cfg(test)]

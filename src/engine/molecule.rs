@@ -86,14 +86,20 @@ impl Molecule {
         self
     }
 
+    /// The atoms of a copy turned by `rot` and centred at `center`, not yet wrapped into the
+    /// box (LAMMPS: `matvec`, `add3`).
+    pub fn unwrapped<'a>(&'a self, rot: &'a [[f64; 3]; 3], center: [f64; 3]) -> impl Iterator<Item = [f64; 3]> + 'a {
+        self.dx.iter().map(move |dx| {
+            let d = matvec(rot, dx);
+            [d[0] + center[0], d[1] + center[1], d[2] + center[2]]
+        })
+    }
+
     /// The atoms of a copy turned by `rot` and centred at `center`, each wrapped into the
     /// periodic box, with its image flags (LAMMPS: `matvec`, `add3`, `remap`).
     pub fn place(&self, rot: &[[f64; 3]; 3], center: [f64; 3], domain: &Domain) -> Vec<([f64; 3], [i32; 3])> {
-        self.dx
-            .iter()
-            .map(|dx| {
-                let d = matvec(rot, dx);
-                let mut x = [d[0] + center[0], d[1] + center[1], d[2] + center[2]];
+        self.unwrapped(rot, center)
+            .map(|mut x| {
                 let mut image = [0; 3];
                 domain.remap(&mut x, &mut image);
                 (x, image)

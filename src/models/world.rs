@@ -47,6 +47,29 @@ impl<'a> World<'a> {
     pub fn fix(&self, id: &str) -> Option<&'a dyn Fix> {
         self.fixes.find(id)
     }
+    /// The energy of the fixes under `fix_modify energy yes`, summed in definition order
+    /// (LAMMPS' Modify::energy_global); None when no fix has it on.
+    pub fn fix_energy(&self) -> Option<f64> {
+        let mut on = self.fixes.iter().filter(|f| f.thermo_tally().is_some_and(|t| t.energy)).peekable();
+        on.peek()?;
+        Some(on.fold(0.0, |e, f| e + f.scalar(self.state).unwrap_or(0.0)))
+    }
+    /// thermo's pe (LAMMPS' compute thermo_pe): the force field's energy, then the fixes'.
+    pub fn pe(&self) -> f64 {
+        let e = self.state.potential_energy();
+        self.fix_energy().map_or(e, |f| e + f)
+    }
+    /// The virial of compute pressure: the force field's, then each fix's under `fix_modify
+    /// virial yes`, in definition order (LAMMPS' ComputePressure::virial_compute).
+    pub fn virial(&self) -> [f64; 6] {
+        let mut v = self.state.energies.virial;
+        for t in self.fixes.iter().filter_map(|f| f.thermo_tally()).filter(|t| t.virial_on) {
+            for k in 0..6 {
+                v[k] += t.virial[k];
+            }
+        }
+        v
+    }
     /// Degrees of freedom that fixes remove from atoms of a group (for temperatures).
     pub fn fix_dof(&self, bit: u32) -> f64 {
         self.fixes.iter().map(|f| f.dof_removed(self.state, bit)).sum()

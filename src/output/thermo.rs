@@ -197,14 +197,14 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "atoms" => n,
             "temp" => temp_compute(w, thermo)?.0,
             "press" => press_compute(w, thermo)?.scalar(w)?,
-            "pe" => ext(w.state.potential_energy()),
+            "pe" => ext(w.pe()),
             "ke" => {
                 let (t, dof) = temp_compute(w, thermo)?;
                 ext(t * 0.5 * dof * w.state.units.boltz)
             }
             "etotal" => {
                 let (t, dof) = temp_compute(w, thermo)?;
-                ext(w.state.potential_energy()) + ext(t * 0.5 * dof * w.state.units.boltz)
+                ext(w.pe()) + ext(t * 0.5 * dof * w.state.units.boltz)
             }
             "evdwl" => ext(e.pair.evdwl),
             "ecoul" => ext(e.pair.ecoul),

@@ -58,7 +58,7 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     let domain = sim.state.domain.clone().unwrap();
     let st = &sim.state;
     let spec = crate::deck::create_atoms::CreateAtoms::from_lammps(cmd, st.ntypes, domain.dimension, st.lattice.as_ref(), &st.regions, &st.molecules)?;
-    let made = spec.generate(&domain, st.lattice.as_ref(), &st.regions, &existing)?;
+    let made = spec.generate(&domain, st.lattice.as_ref(), &st.regions, &st.molecules, &existing)?;
     for w in made.warnings {
         sim.out.print(&format!("WARNING: {}", w.message));
     }
@@ -82,7 +82,7 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         }
         Some((m, seed)) => {
             let centers: Vec<[f64; 3]> = made.atoms.iter().map(|(x, _)| *x).collect();
-            crate::deck::create_atoms::add_molecules(&mut sim.state, &m, seed, spec.rotate, spec.atom_type, &centers).map_err(|e| Diagnostic::at(cmd.span, e, "create_atoms mol"))?;
+            crate::deck::create_atoms::add_molecules(&mut sim.state, &m, seed, spec.rotate, spec.atom_type, &centers, &made.rotations).map_err(|e| Diagnostic::at(cmd.span, e, "create_atoms mol"))?;
         }
     }
     sim.state.lists_valid = false;

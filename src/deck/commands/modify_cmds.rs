@@ -74,14 +74,21 @@ pub fn uncompute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     Ok(())
 }
 
-/// `fix_modify ID temp CID`: a thermostat measures its temperature with compute CID (a plain
-/// `compute temp`; its extra/dof as set when fix_modify is given).
+/// The fix styles that tally an energy (and a virial) for `fix_modify energy`/`virial`.
+const WITH_ENERGY: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce, spring, indent and gravity";
+const WITH_VIRIAL: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region and addforce";
+
+/// `fix_modify ID keyword value ...` (LAMMPS' Fix::modify_params): `temp CID` (a thermostat
+/// measures its temperature with compute CID, a plain `compute temp`, its extra/dof as set
+/// when fix_modify is given), `energy yes|no` (the fix's energy counts in pe and in the
+/// minimizer's objective), `virial yes|no` (its virial counts in the pressure),
+/// `dynamic/dof yes|no`; `respa` and `bodyforces` are refused.
 pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "fix_modify ID temp compute-ID");
+    let mut a = Args::new(cmd, "fix_modify ID keyword value ... (temp compute-ID, energy yes|no, virial yes|no, dynamic/dof yes|no)");
     let id = a.word("fix ID")?;
     let k = sim.find_fix(&id.text).ok_or_else(|| a.error_at(id, format!("fix `{}` does not exist", id.text), "unknown fix"))?;
     if a.is_empty() {
-        return Err(a.missing("a keyword (temp)"));
+        return Err(a.missing("a keyword (temp, energy, virial or dynamic/dof)"));
     }
     while let Some(kw) = a.peek() {
         a.skip(1);
@@ -102,7 +109,32 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 }
                 sim.fixes[k].modify_temp(groupbit, extra).map_err(|e| a.error_at(kw, e, "no temperature"))?;
             }
-            _ => return Err(a.unknown_keyword(kw, &["temp"])),
+            "energy" | "virial" => {
+                let energy = kw.text == "energy";
+                let on = a.yes_no(&kw.text)?;
+                let f = &mut sim.fixes[k];
+                let (fid, style) = (f.id().to_string(), f.style().to_string());
+                // LAMMPS checks the fix only when the tally is switched on
+                match f.thermo_tally_mut() {
+                    Some(t) if energy => t.energy = on,
+                    Some(t) if t.has_virial => t.virial_on = on,
+                    _ if !on => {}
+                    _ => {
+                        let list = if energy { WITH_ENERGY } else { WITH_VIRIAL };
+                        return Err(a.error_at(kw, format!("fix {fid} ({style}) does not support fix_modify {0}: it tallies no {0}", kw.text), format!("fixes with one: {list}")));
+                    }
+                }
+            }
+            "dynamic/dof" => {
+                // dmhs' fixes count no degrees of freedom of their own: the setting changes nothing
+                a.yes_no("dynamic/dof")?;
+            }
+            "respa" => return Err(a.error_at(kw, "fix_modify respa: dmhs has no rRESPA integrator (run_style respa)", "not supported")),
+            "bodyforces" => {
+                let f = &sim.fixes[k];
+                return Err(a.error_at(kw, format!("fix {} ({}) does not support fix_modify bodyforces (a fix rigid keyword; dmhs has no fix rigid)", f.id(), f.style()), "not supported"));
+            }
+            _ => return Err(a.unknown_keyword(kw, &["temp", "energy", "virial", "dynamic/dof", "respa", "bodyforces"])),
         }
     }
     Ok(())

@@ -13,11 +13,13 @@ pub struct ComputePe {
     bond: bool,
     angle: bool,
     dihedral: bool,
+    /// Fix energies under `fix_modify energy yes`.
+    fix: bool,
 }
 
 impl ComputePe {
     pub fn new(id: String) -> Self {
-        ComputePe { id, pair: true, bond: true, angle: true, dihedral: true }
+        ComputePe { id, pair: true, bond: true, angle: true, dihedral: true, fix: true }
     }
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
@@ -27,13 +29,14 @@ impl ComputePe {
         if a.is_empty() {
             return Ok(Self::new(id));
         }
-        let mut c = ComputePe { id, pair: false, bond: false, angle: false, dihedral: false };
+        let mut c = ComputePe { id, pair: false, bond: false, angle: false, dihedral: false, fix: false };
         while !a.is_empty() {
             match a.choice("energy term", &["pair", "bond", "angle", "dihedral", "improper", "kspace", "fix"])? {
                 0 => c.pair = true,
                 1 => c.bond = true,
                 2 => c.angle = true,
                 3 => c.dihedral = true,
+                6 => c.fix = true,
                 _ => {}
             }
         }
@@ -65,6 +68,11 @@ impl Compute for ComputePe {
         }
         if self.dihedral {
             s += e.edihed;
+        }
+        if self.fix {
+            if let Some(f) = w.fix_energy() {
+                s += f;
+            }
         }
         Ok(s)
     }

@@ -53,7 +53,7 @@ impl Compute for ComputePressure {
         let tc = self.temp(w)?;
         let t = tc.scalar(w)?;
         let dof = tc.dof(w).unwrap_or(0.0);
-        let v = &w.state.energies.virial;
+        let v = &w.virial();
         let vol = w.state.domain()?.volume();
         let inv = 1.0 / vol;
         let u = &w.state.units;
@@ -66,7 +66,7 @@ impl Compute for ComputePressure {
     fn vector(&self, w: &World) -> Result<Vec<f64>, String> {
         let tc = self.temp(w)?;
         let k = ke_tensor(w, tc.groupbit());
-        let v = &w.state.energies.virial;
+        let v = &w.virial();
         let inv = 1.0 / w.state.domain()?.volume();
         let n = w.state.units.nktv2p;
         Ok((0..6).map(|c| (k[c] + v[c]) * inv * n).collect())

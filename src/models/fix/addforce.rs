@@ -2,7 +2,7 @@
 //! variable) force; f_ID is minus the work term, f_ID[1..3] the force before the addition.
 
 use super::value::FixValue;
-use super::{Fix, FixCtx, FixHooks};
+use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -16,6 +16,7 @@ pub struct FixAddForce {
     region: Option<String>,
     /// -sum(F . x_unwrapped), then the original force sum.
     foriginal: [f64; 4],
+    tally: ThermoTally,
 }
 
 impl FixAddForce {
@@ -36,7 +37,7 @@ impl FixAddForce {
                 _ => return Err(a.unknown_keyword(w, &["every", "region"])),
             }
         }
-        Ok(FixAddForce { id, groupbit, value, every, region, foriginal: [0.0; 4] })
+        Ok(FixAddForce { id, groupbit, value, every, region, foriginal: [0.0; 4], tally: ThermoTally::new(true) })
     }
 }
 
@@ -72,6 +73,7 @@ impl Fix for FixAddForce {
         let region = super::setforce::region_now(&state.regions, state.step, &self.id, &self.region)?;
         let a = &mut state.atoms;
         self.foriginal = [0.0; 4];
+        self.tally.v_init();
         for i in 0..a.nlocal {
             if a.mask[i] & self.groupbit == 0 {
                 continue;
@@ -90,6 +92,7 @@ impl Fix for FixAddForce {
             f[0] += fv[0];
             f[1] += fv[1];
             f[2] += fv[2];
+            self.tally.v_tally([fv[0] * u[0], fv[1] * u[1], fv[2] * u[2], fv[0] * u[1], fv[0] * u[2], fv[1] * u[2]]);
         }
         Ok(())
     }
@@ -101,5 +104,11 @@ impl Fix for FixAddForce {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
 }

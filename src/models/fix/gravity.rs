@@ -2,7 +2,7 @@
 //! f += m * g (acceleration `magnitude` along the normalised direction, LAMMPS' arithmetic).
 
 use super::value::FixValue;
-use super::{Fix, FixCtx, FixHooks};
+use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -24,6 +24,8 @@ pub struct FixGravity {
     dir: [f64; 3],
     /// The acceleration vector of the last force step.
     acc: [f64; 3],
+    /// Energy only (LAMMPS: no virial).
+    tally: ThermoTally,
 }
 
 impl FixGravity {
@@ -58,7 +60,7 @@ impl FixGravity {
             return Err(a.error_at(&args[1], "gravity direction has zero length", "zero vector"));
         }
         a.finish()?;
-        Ok(FixGravity { id, groupbit, magnitude, dir, acc: [0.0; 3] })
+        Ok(FixGravity { id, groupbit, magnitude, dir, acc: [0.0; 3], tally: ThermoTally::default() })
     }
 }
 
@@ -125,6 +127,12 @@ impl Fix for FixGravity {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
     fn gravity(&self) -> Option<Gravity> {
         let magnitude = match self.magnitude {

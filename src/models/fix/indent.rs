@@ -5,7 +5,7 @@
 //! f_ID[1..3] the force on the indenter.
 
 use super::value::FixValue;
-use super::{Fix, FixCtx, FixHooks};
+use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -28,6 +28,8 @@ pub struct FixIndent {
     outside: bool,
     /// Energy, then the force on the indenter.
     indenter: [f64; 4],
+    /// Energy only (LAMMPS: no virial).
+    tally: ThermoTally,
 }
 
 fn dim_of(a: &mut Args) -> DResult<usize> {
@@ -90,7 +92,7 @@ impl FixIndent {
             }
             Shape::Plane { dim, pos, .. } => scale(pos, s[*dim]),
         }
-        Ok(FixIndent { id, groupbit, k, k3: k / 3.0, shape, outside, indenter: [0.0; 4] })
+        Ok(FixIndent { id, groupbit, k, k3: k / 3.0, shape, outside, indenter: [0.0; 4], tally: ThermoTally::default() })
     }
 
     /// Force on atoms around a centre (sphere) or an axis (cylinder: `axis` is zeroed).
@@ -201,5 +203,11 @@ impl Fix for FixIndent {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
 }

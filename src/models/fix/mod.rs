@@ -129,9 +129,52 @@ pub enum MinRole {
     Refused(String),
 }
 
+/// What a fix may add to thermo's energy and pressure (LAMMPS' energy_global_flag and
+/// virial_global_flag; `fix_modify energy yes` and `virial yes` switch them on, both off by
+/// default for every fix dmhs has). Only fixes that own one accept `fix_modify energy`.
+#[derive(Clone, Debug, Default)]
+pub struct ThermoTally {
+    /// The fix tallies a virial (LAMMPS' virial_global_flag).
+    pub has_virial: bool,
+    /// `fix_modify energy yes`: the fix's scalar counts in pe (LAMMPS' thermo_energy).
+    pub energy: bool,
+    /// `fix_modify virial yes`: [`ThermoTally::virial`] counts in the pressure.
+    pub virial_on: bool,
+    /// The virial of the fix's last force application (xx yy zz xy xz yz).
+    pub virial: [f64; 6],
+}
+
+impl ThermoTally {
+    pub fn new(has_virial: bool) -> ThermoTally {
+        ThermoTally { has_virial, ..ThermoTally::default() }
+    }
+    /// A force application starts (LAMMPS' v_init): the virial restarts if it is used.
+    pub fn v_init(&mut self) {
+        if self.virial_on {
+            self.virial = [0.0; 6];
+        }
+    }
+    /// One diagonal term `n` (LAMMPS' v_tally(n, i, vn), flat walls).
+    #[inline]
+    pub fn v_tally_n(&mut self, n: usize, vn: f64) {
+        if self.virial_on {
+            self.virial[n] += vn;
+        }
+    }
+    /// A whole virial term (LAMMPS' v_tally(i, v)).
+    #[inline]
+    pub fn v_tally(&mut self, v: [f64; 6]) {
+        if self.virial_on {
+            for k in 0..6 {
+                self.virial[k] += v[k];
+            }
+        }
+    }
+}
+
 pub trait Fix: Send + Sync {
     /// The fix's part in `minimize`; by default a fix that changes forces is refused (LAMMPS
-    /// applies many of them and adds their energy, which dmhs' minimizer does not).
+    /// applies many of them through hooks dmhs' fixes do not have).
     fn min_role(&self) -> MinRole {
         match self.hooks().post_force {
             true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring, viscous, wall/* and wall/region", self.id(), self.style())),
@@ -238,6 +281,14 @@ pub trait Fix: Send + Sync {
     /// degrees of freedom `extra`, None: the dimension): measure the temperature as it does.
     fn modify_temp(&mut self, _groupbit: u32, _extra: Option<f64>) -> Result<(), String> {
         Err(format!("fix {} ({}) has no temperature to replace", self.id(), self.style()))
+    }
+    /// The fix's energy and virial for thermo (None: it tallies neither, and `fix_modify
+    /// energy`/`virial` refuse it). Its energy is its scalar.
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        None
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        None
     }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _state: &mut State) {}

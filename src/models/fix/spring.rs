@@ -4,7 +4,7 @@
 //! The force is spread over the atoms by mass. f_ID is the spring energy, f_ID[1..4] the force
 //! on the group and its signed magnitude.
 
-use super::{Fix, FixCtx, FixHooks};
+use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -23,6 +23,8 @@ pub struct FixSpring {
     r0: f64,
     espring: f64,
     ftotal: [f64; 4],
+    /// Energy only (LAMMPS: no virial).
+    tally: ThermoTally,
 }
 
 impl FixSpring {
@@ -51,7 +53,7 @@ impl FixSpring {
         }
         let r0 = a.f64_where("R0", ">= 0", |r| r >= 0.0)?;
         a.finish()?;
-        Ok(FixSpring { id, groupbit, group2, k, c, r0, espring: 0.0, ftotal: [0.0; 4] })
+        Ok(FixSpring { id, groupbit, group2, k, c, r0, espring: 0.0, ftotal: [0.0; 4], tally: ThermoTally::default() })
     }
 }
 
@@ -144,5 +146,11 @@ impl Fix for FixSpring {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
 }

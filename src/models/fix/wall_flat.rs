@@ -6,7 +6,7 @@
 
 use super::value::FixValue;
 use super::wall_reflect::{parse_face, scale_constants};
-use super::{Fix, FixCtx, FixHooks};
+use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -113,6 +113,7 @@ pub struct FixWall {
     vscale: [f64; 3],
     /// Energy, then the force on each wall.
     ewall: Vec<f64>,
+    tally: ThermoTally,
 }
 
 impl FixWall {
@@ -156,7 +157,7 @@ impl FixWall {
         scale_constants(&a, lattice_units, &mut coords, state)?;
         let vscale = if lattice_units { state.lattice_scale().map_err(|e| a.error_at(&cmd.name, e, "needs a lattice (or `units box`)"))? } else { [1.0; 3] };
         let n = walls.len();
-        Ok(FixWall { id, style: style.text.clone(), groupbit, walls: walls.into_iter().map(|(w, _, _)| w).collect(), vscale, ewall: vec![0.0; n + 1] })
+        Ok(FixWall { id, style: style.text.clone(), groupbit, walls: walls.into_iter().map(|(w, _, _)| w).collect(), vscale, ewall: vec![0.0; n + 1], tally: ThermoTally::new(true) })
     }
 }
 
@@ -179,6 +180,7 @@ impl Fix for FixWall {
     }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.ewall.fill(0.0);
+        self.tally.v_init();
         for m in 0..self.walls.len() {
             let mut coord = ctx.value(state, self, &self.walls[m].coord)?.unwrap_or(0.0);
             let w = &self.walls[m];
@@ -212,6 +214,7 @@ impl Fix for FixWall {
                 a.f[i][dim] -= fwall;
                 self.ewall[0] += e;
                 self.ewall[m + 1] += fwall;
+                self.tally.v_tally_n(dim, if w.hi { fwall * delta } else { -fwall * delta });
             }
             if let Some(tag) = on {
                 return Err(RunError::new(state.step, format!("fix {} {}: particle {tag} is on or inside the wall surface", self.style, self.id)));
@@ -230,5 +233,11 @@ impl Fix for FixWall {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
 }

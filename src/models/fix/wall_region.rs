@@ -12,7 +12,7 @@
 use super::wall_colloid::Colloid;
 use super::wall_flat::{parse_params, powint, WallPotential, STYLES};
 use super::wall_gran_region::NameOnly;
-use super::{Fix, FixCtx, FixHooks};
+use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::region::{Region, WallContact};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -36,6 +36,7 @@ pub struct FixWallRegion {
     /// Energy, then the force on the wall (x, y, z).
     ewall: [f64; 4],
     contacts: Vec<WallContact>,
+    tally: ThermoTally,
 }
 
 impl FixWallRegion {
@@ -65,7 +66,7 @@ impl FixWallRegion {
             (Potential::Point((st.build)(&p)), p.cutoff)
         };
         a.finish()?;
-        Ok(FixWallRegion { id, groupbit, style: sw.text.clone(), region_id: rw.text.clone(), region: region.clone(), pot, cutoff, ewall: [0.0; 4], contacts: vec![] })
+        Ok(FixWallRegion { id, groupbit, style: sw.text.clone(), region_id: rw.text.clone(), region: region.clone(), pot, cutoff, ewall: [0.0; 4], contacts: vec![], tally: ThermoTally::new(true) })
     }
 }
 
@@ -110,6 +111,7 @@ impl Fix for FixWallRegion {
             self.region.prematch(&mut |name| ctx.equal(state, me, name)).map_err(|e| RunError::new(step, format!("fix {} region {}: {e}", self.id, self.region_id)))?;
         }
         self.ewall = [0.0; 4];
+        self.tally.v_init();
         let a = &mut state.atoms;
         let mut outside = None;
         for i in 0..a.nlocal {
@@ -142,6 +144,8 @@ impl Fix for FixWallRegion {
                 self.ewall[2] -= fy;
                 self.ewall[3] -= fz;
                 self.ewall[0] += eng;
+                let d = c.del;
+                self.tally.v_tally([fx * d[0], fy * d[1], fz * d[2], fx * d[1], fx * d[2], fy * d[2]]);
             }
         }
         match outside {
@@ -160,6 +164,12 @@ impl Fix for FixWallRegion {
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
     fn describe(&self) -> String {
         format!("fix {} wall/region {} {}", self.id, self.region_id, self.style)

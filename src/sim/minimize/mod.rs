@@ -238,9 +238,10 @@ impl Min {
         fdotf < self.opts.ftol * self.opts.ftol
     }
 
-    /// The potential energy of the last evaluation, normalised as thermo's.
+    /// The potential energy of the last evaluation (with the fixes' under `fix_modify energy
+    /// yes`, as LAMMPS' thermo_pe), normalised as thermo's.
     fn energy(&self, sim: &Simulation) -> f64 {
-        let e = sim.state.potential_energy();
+        let e = sim.world().pe();
         if self.normflag {
             e / self.natoms
         } else {

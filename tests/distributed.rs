@@ -183,3 +183,41 @@ fn sub_domains_thinner_than_the_cutoff_are_refused() {
         assert!(e.contains("less than the ghost cutoff"), "{e}");
     }
 }
+
+/// `mpiexec -np 2|4 dmhs -in DECK` (the `--features mpi` build named by DMHS_MPI_BIN, started by
+/// DMHS_MPIEXEC, default `mpiexec`) writes the serial run's thermo table and final data file.
+#[test]
+#[cfg_attr(not(live_mpi), ignore = "live MPI comparison: DMHS_MPI_BIN (a dmhs built with --features mpi) not set")]
+fn mpiexec_ranks_give_the_serial_run() {
+    let bin = std::env::var("DMHS_MPI_BIN").expect("DMHS_MPI_BIN: a dmhs built with `cargo build --release --features mpi`");
+    assert!(std::path::Path::new(&bin).is_file(), "DMHS_MPI_BIN={bin} is not a file");
+    let mpiexec = std::env::var("DMHS_MPIEXEC").unwrap_or_else(|_| "mpiexec".into());
+    let dir = tempfile::tempdir().unwrap();
+    let deck = format!("{MELT}write_data final.data\n");
+    std::fs::write(dir.path().join("in.melt"), &deck).unwrap();
+    let run = |np: usize| {
+        let mut cmd = if np == 1 { std::process::Command::new(&bin) } else { std::process::Command::new(&mpiexec) };
+        if np > 1 {
+            cmd.args(["-np", &np.to_string(), &bin]);
+        }
+        let out = cmd.args(["-threads", "1", "-in", "in.melt", "-log", "none"]).current_dir(dir.path()).output().unwrap_or_else(|e| panic!("{mpiexec}: {e}"));
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(out.status.success(), "{np} ranks: {text}\n{}", String::from_utf8_lossy(&out.stderr));
+        let data = std::fs::read_to_string(dir.path().join("final.data")).unwrap();
+        (text, data)
+    };
+    let numbers = |data: &str| -> Vec<f64> { data.lines().skip(1).flat_map(|l| l.split_whitespace().map(|w| w.parse::<f64>().unwrap_or(0.0)).collect::<Vec<_>>()).collect() };
+    let (text1, data1) = run(1);
+    for np in [2, 4] {
+        let (text, data) = run(np);
+        assert!(text.contains(&format!("on {np} procs for 100 steps with 864 atoms")), "{text}");
+        let (rows, rows1) = (thermo_rows(&text), thermo_rows(&text1));
+        assert_eq!(rows.len(), rows1.len(), "{text}");
+        for (r, r1) in rows.iter().zip(&rows1) {
+            assert!(r.iter().zip(r1).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: {r:?} against serial {r1:?}");
+        }
+        let (n, n1) = (numbers(&data), numbers(&data1));
+        assert_eq!(n.len(), n1.len());
+        assert!(n.iter().zip(&n1).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: the data file differs from the serial one");
+    }
+}

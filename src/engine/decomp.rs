@@ -218,12 +218,24 @@ impl Decomp {
             }
             s
         };
+        // the images of each atom that can reach any sub-domain: itself, and across a periodic
+        // face only when it lies within `cut` of the opposite face
+        let images: Vec<Vec<[i8; 3]>> = atoms.x[..atoms.nlocal]
+            .iter()
+            .map(|x| {
+                shifts
+                    .iter()
+                    .copied()
+                    .filter(|s| (0..3).all(|d| s[d] == 0 || (s[d] > 0 && x[d] < domain.lo[d] + cut) || (s[d] < 0 && x[d] >= domain.hi[d] - cut)))
+                    .collect()
+            })
+            .collect();
         self.sends.clear();
         for &q in &targets {
             let (lo, hi) = self.subdomain(domain, q);
             let mut list = Vec::new();
-            for i in 0..atoms.nlocal {
-                for s in &shifts {
+            for (i, images) in images.iter().enumerate() {
+                for s in images {
                     if q == me && *s == [0, 0, 0] {
                         continue;
                     }

@@ -290,6 +290,20 @@ impl Fix for FixDeposit {
     fn next_reneighbor(&self) -> Option<i64> {
         self.next
     }
+    /// LAMMPS `extract("radius")`: 0.5 for the inserted type (one atom), else the largest
+    /// radius of the template's atoms of that type (0.5 without Diameters), so that granular
+    /// cutoffs, and with them the neighbour cutoff and LAMMPS' sort bins, cover molecules that
+    /// do not exist yet.
+    fn insert_radius(&self, itype: usize) -> f64 {
+        let Some(m) = &self.mol else { return if itype == self.ntype { 0.5 } else { 0.0 } };
+        let Some(types) = &m.typ else { return 0.0 };
+        types
+            .iter()
+            .enumerate()
+            .filter(|&(_, &t)| t + self.ntype == itype)
+            .map(|(k, _)| m.radius.as_ref().map_or(0.5, |r| r[k]))
+            .fold(0.0, f64::max)
+    }
     fn scalar(&self, _state: &State) -> Option<f64> {
         Some(self.ninserted as f64)
     }

@@ -1,7 +1,8 @@
 //! fix wall/gran/region and the region keywords it brought (cone, open, move, rotate, delete):
 //! the errors of bad input, located and named; LAMMPS' behaviour when a region a fix uses is
 //! deleted. Their numbers are compared with LAMMPS in tests/lammps_parity.rs (lammps-refs decks
-//! gran_region_box, gran_region_funnel, gran_region_rotate, gran_region_move, gran_region_mixer).
+//! gran_region_box, gran_region_funnel, gran_region_rotate, gran_region_move, gran_region_mixer,
+//! gran_region_plane, gran_region_prism, gran_region_boolean).
 
 use std::process::Command;
 

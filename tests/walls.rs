@@ -42,7 +42,6 @@ fn bad_wall_commands_are_located_errors() {
         ("fix w all wall/region ball lj93 1.0 1.0 -1", "> 0"),
         ("fix w all wall/region ball harmonic 1.0 1.0 1.0 extra", "extra"),
         ("fix w all wall/region ball colloid 1.0 1.0 2.0", "atom_style sphere"),
-        ("fix w all wall/region slab lj93 1.0 1.0 2.0", "region style plane"),
         ("fix w all wall/region", "region ID"),
     ] {
         let deck = format!("{BASE}{cmd}\nrun 0\n");

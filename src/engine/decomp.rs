@@ -278,6 +278,17 @@ impl Decomp {
         debug_assert_eq!(atoms.nlocal, nlocal);
     }
 
+    /// Fresh ghost values of one per-atom field, read with `get` and written with `set` (the
+    /// densities after a summation pass: LAMMPS' pair sph/rhosum forwards only them).
+    pub fn forward_field(&self, atoms: &mut Atoms, domain: &Domain, get: fn(&Atoms) -> &[f64], set: fn(&mut Atoms) -> &mut [f64]) {
+        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, _, out| out.push(get(a)[i]));
+        let n = atoms.nlocal;
+        let values = set(atoms);
+        for (k, v) in bufs.into_iter().flatten().enumerate() {
+            values[n + k] = v;
+        }
+    }
+
     /// Pack each send list with `pack(atoms, i, shifted x, out)` and exchange: the buffers
     /// received, in ghost order (by sending rank).
     fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {

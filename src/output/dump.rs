@@ -403,6 +403,11 @@ impl Dump {
     }
 
     /// Write a snapshot now; `ev` evaluates variables (pictures' view settings, local computes).
+    /// The dump writes values of computes or fixes (per-atom or local), not only atom values.
+    pub fn reads_models(&self) -> bool {
+        self.columns.iter().any(|c| matches!(c, Column::PerAtom(_) | Column::Local(_)))
+    }
+
     pub fn write(&mut self, w: &World, ev: &mut dyn dmhs_parser::EvalContext) -> Result<(), String> {
         if let Some(p) = &self.picture {
             p.write(w, &mut |name| dmhs_parser::variables::compute_equal(ev, name), self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;

@@ -9,10 +9,11 @@ use crate::engine::decomp::{choose_grid, Decomp};
 use crate::sim::{RunError, Simulation};
 use std::sync::Arc;
 
-/// What a distributed run supports so far: atomic systems with central pair forces, the
-/// integrators and forces that act atom by atom, and the thermo computes that are sums.
-const PAIRS: &[&str] = &["lj/cut", "soft"];
-const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity"];
+/// What a distributed run supports so far: atomic and SPH systems with pair forces that need
+/// no per-pair history, the integrators and forces that act atom by atom, and the thermo
+/// computes that are sums.
+const PAIRS: &[&str] = &["lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction"];
+const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity", "sph", "sph/stationary"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke"];
 
 /// Per-rank counts at the end of a distributed run, for the run summary (sum, min, max).
@@ -42,27 +43,25 @@ impl Simulation {
         let ft = self.state.atoms.features;
         let what = if ft.molecular() {
             Some("bonded atoms (atom styles with bonds, angles or dihedrals)".to_string())
-        } else if ft.sph {
-            Some("SPH atoms".to_string())
         } else if ft.sphere {
             Some("finite-size spheres (atom_style sphere and granular styles)".to_string())
-        } else if let Some(p) = self.pair.as_ref().filter(|p| !PAIRS.contains(&p.style())) {
-            Some(format!("pair_style {}", p.style()))
+        } else if let Some(p) = self.pair.as_ref().and_then(|p| p.sub_styles().into_iter().find(|s| !PAIRS.contains(s))) {
+            Some(format!("pair_style {p}"))
         } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
             Some(format!("fix {} ({})", f.id(), f.style()))
         } else if let Some(f) = self.fixes.iter().find(|f| f.thermo_tally().is_some_and(|t| t.energy || t.virial_on)) {
             Some(format!("fix_modify energy/virial yes (fix {})", f.id()))
         } else if let Some(c) = self.computes.iter().find(|c| !COMPUTES.contains(&c.style())) {
             Some(format!("compute {} ({})", c.id(), c.style()))
-        } else if !self.dumps.is_empty() {
-            Some("dumps".to_string())
+        } else if let Some(d) = self.dumps.iter().find(|d| d.reads_models()) {
+            Some(format!("dump {} (it writes values of computes or fixes)", d.id))
         } else if self.state.boundary.iter().flatten().any(|b| !matches!(b, crate::engine::domain::BoundaryKind::Periodic | crate::engine::domain::BoundaryKind::Fixed)) {
             Some("shrink-wrapped boundaries (s, m)".to_string())
         } else {
             None
         };
         let supported = format!("pair styles {}; fixes {}; computes {}", PAIRS.join(", "), FIXES.join(", "), COMPUTES.join(", "));
-        what.map(|w| format!("{w} cannot run on {} ranks yet; a run on several ranks supports atomic systems with {supported}, and no dumps (run on one rank)", self.nranks()))
+        what.map(|w| format!("{w} cannot run on {} ranks yet; a run on several ranks supports atomic systems with {supported}, and dumps of atom values (run on one rank)", self.nranks()))
     }
 
     /// The start of a distributed run: the processor grid for the box now, and each rank keeps

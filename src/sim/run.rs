@@ -260,8 +260,13 @@ impl Simulation {
             let changed = self.with_pair(|p, input, _| p.density_pass(input, &mut rho), false, advance);
             self.state.atoms.rho = rho;
             if changed {
-                let n = self.state.atoms.nlocal;
-                crate::engine::atoms::Atoms::forward_field(&mut self.state.atoms.rho, n, &self.state.atoms.ghost_owner);
+                match (&self.state.decomp, self.state.distributed, self.state.domain.as_ref()) {
+                    (Some(d), Some(_), Some(domain)) => d.forward_field(&mut self.state.atoms, domain, |a| &a.rho, |a| &mut a.rho),
+                    _ => {
+                        let n = self.state.atoms.nlocal;
+                        crate::engine::atoms::Atoms::forward_field(&mut self.state.atoms.rho, n, &self.state.atoms.ghost_owner);
+                    }
+                }
             }
         }
         if self.pair.is_some() {
@@ -530,7 +535,8 @@ impl Simulation {
         let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
         self.out.print(&self.thermo.header());
-        self.output_step(true, last)?;
+        let first_output = self.output_step(true, last);
+        self.agree(first_output)?;
 
         // the breakdown covers the loop only, as LAMMPS' (its timers start after setup): with
         // the setup's neighbour build and forces in it, the stages added up to more than the loop
@@ -556,7 +562,8 @@ impl Simulation {
             }
             if eflag {
                 self.timers.stamp();
-                if let Err(e) = self.output_step(false, last) {
+                let written = self.output_step(false, last);
+                if let Err(e) = self.agree(written) {
                     result = Err(e);
                     break;
                 }
@@ -620,12 +627,47 @@ impl Simulation {
                 self.out.flush();
             }
         }
-        for d in self.dumps.iter_mut() {
-            if d.due(step, setup) || (all_dumps && d.last_written != Some(step)) {
-                d.write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
-            }
+        let due: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].due(step, setup) || (all_dumps && self.dumps[k].last_written != Some(step))).collect();
+        if due.is_empty() {
+            return Ok(());
+        }
+        if self.state.distributed.is_some() {
+            return self.write_dumps_gathered(&due);
+        }
+        for k in due {
+            self.dumps[k].write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
         }
         Ok(())
+    }
+
+    /// Dumps of a distributed run: rank 0 writes them from the whole system, gathered for the
+    /// moment (the others only note the step as written).
+    fn write_dumps_gathered(&mut self, due: &[usize]) -> Result<(), RunError> {
+        let step = self.state.step;
+        let d = self.state.decomp.as_ref().expect("a decomposition");
+        let mut whole = self.state.atoms.clone();
+        d.gather(&mut whole);
+        let rank0 = d.rank() == 0;
+        std::mem::swap(&mut self.state.atoms, &mut whole);
+        let natoms = self.state.distributed.take();
+        let mut result = Ok(());
+        {
+            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+            let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
+            for &k in due {
+                if rank0 {
+                    if let Err(e) = self.dumps[k].write(&world, &mut ev) {
+                        result = Err(RunError::new(step, e));
+                        break;
+                    }
+                } else {
+                    self.dumps[k].last_written = Some(step);
+                }
+            }
+        }
+        self.state.distributed = natoms;
+        std::mem::swap(&mut self.state.atoms, &mut whole);
+        result
     }
 
     /// The summary after a run's loop; `stats`: printed after the CPU line (a minimization's).

@@ -166,6 +166,9 @@ impl PairStyle for Hybrid {
     fn style(&self) -> &str {
         if self.overlay { "hybrid/overlay" } else { "hybrid" }
     }
+    fn sub_styles(&self) -> Vec<&str> {
+        self.styles.iter().flat_map(|s| s.sub_styles()).collect()
+    }
 
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         self.grow(ihi.max(jhi));

@@ -174,6 +174,10 @@ impl PairSetup<'_> {
 /// A pair style as the engine drives it.
 pub trait PairStyle: Send + Sync {
     fn style(&self) -> &str;
+    /// The styles that compute forces: this one, or a hybrid's sub-styles.
+    fn sub_styles(&self) -> Vec<&str> {
+        vec![self.style()]
+    }
     /// `pair_coeff I J args...` with the type ranges already parsed (`args` starts after them).
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()>;
     /// Checks against the atoms before a run (called before `init`); an error stops the run.

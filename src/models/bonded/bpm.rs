@@ -201,11 +201,6 @@ macro_rules! bpm_bond_style_common {
         fn compute(&self, _btype: usize, _del: $crate::models::bonded::Vec3, _rsq: f64) -> (f64, f64) {
             unreachable!("a BPM style runs the BPM pass (bpm::compute)")
         }
-        // LAMMPS' single() of a BPM bond reads the bond's reference state and the atoms'
-        // velocities, which this call does not get
-        fn single(&self, _btype: usize, _del: $crate::models::bonded::Vec3, _rsq: f64) -> Result<(f64, f64), String> {
-            Err(format!("bond_style {}: the energy and force of one bond (engpot, force, fx, fy, fz) are not supported yet", self.name()))
-        }
         fn equilibrium_distance(&self, _btype: usize) -> f64 {
             // LAMMPS estimates the longest stored r0 times the largest stretch; dmhs bonds take
             // the closest image, so the estimate would only feed the stability checks

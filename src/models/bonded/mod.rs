@@ -18,7 +18,10 @@
 pub mod angle_harmonic;
 pub mod bond_bpm_rotational;
 pub mod bond_bpm_spring;
+pub mod bond_fene;
+pub mod bond_fene_expand;
 pub mod bond_harmonic;
+pub mod bond_morse;
 pub mod dihedral_harmonic;
 pub mod dihedral_quadratic;
 pub mod pass;
@@ -62,10 +65,10 @@ pub trait BondStyle: Send + Sync {
     /// One bond of type `btype`: `del = x1 - x2`, `rsq = |del|^2` summed as x, y, z.
     /// Returns `(fbond, energy)`: the force on atom 1 is `del * fbond`, on atom 2 its negative.
     fn compute(&self, btype: usize, del: Vec3, rsq: f64) -> (f64, f64);
-    /// LAMMPS' `Bond::single` (compute bond/local): `(fbond, energy)` of one bond as
-    /// [`BondStyle::compute`] gives them; Err with the reason where the style has none.
-    fn single(&self, btype: usize, del: Vec3, rsq: f64) -> Result<(f64, f64), String> {
-        Ok(self.compute(btype, del, rsq))
+    /// LAMMPS' `Bond::single` (compute bond/local): `(fbond, energy)` of one bond, by default
+    /// as [`BondStyle::compute`] gives them; Err with LAMMPS' message where it stops the run.
+    fn single(&self, b: &SingleBond) -> Result<(f64, f64), String> {
+        Ok(self.compute(b.typ, b.del, b.rsq))
     }
     /// Apply a batch of bonds (monomorphised per style, so `compute` inlines).
     fn apply(&self, entries: &[Entry<2>], k: &Kernels, f: &mut AtomsMut<Vec3>, t: &mut BondedTally) {
@@ -89,6 +92,21 @@ pub trait BondStyle: Send + Sync {
     fn as_bpm(&self) -> Option<&dyn bpm::BpmPass> {
         None
     }
+}
+
+/// One bond as `BondStyle::single` sees it: LAMMPS' `single(type, rsq, i, j)`, with the
+/// state for the styles that read more (a BPM bond's reference state, the atoms' velocities).
+pub struct SingleBond<'a> {
+    pub state: &'a crate::engine::state::State,
+    /// Its topology record (`state.topo.bonds[rec]`).
+    pub rec: usize,
+    pub typ: usize,
+    /// Local indices: `i` the atom that lists the bond, `j` its partner.
+    pub i: usize,
+    pub j: usize,
+    /// `del = x_i - x_j` (closest image), `rsq = |del|^2`.
+    pub del: Vec3,
+    pub rsq: f64,
 }
 
 /// What one angle contributes. The middle atom gets `-(f1 + f3)` (see [`AngleForces::f2`]).
@@ -196,6 +214,9 @@ type DihedralCtor = fn() -> Box<dyn DihedralStyle>;
 
 const BOND_STYLES: &[(&str, BondCtor)] = &[
     ("harmonic", || Box::new(bond_harmonic::BondHarmonic::default())),
+    ("fene", || Box::new(bond_fene::BondFene::default())),
+    ("fene/expand", || Box::new(bond_fene_expand::BondFeneExpand::default())),
+    ("morse", || Box::new(bond_morse::BondMorse::default())),
     ("bpm/spring", || Box::new(bond_bpm_spring::BondBpmSpring::default())),
     ("bpm/rotational", || Box::new(bond_bpm_rotational::BondBpmRotational::default())),
 ];
@@ -373,7 +394,8 @@ mod tests {
         assert_eq!(new_bond_style("harmonic").unwrap().name(), "harmonic");
         assert_eq!(new_angle_style("harmonic").unwrap().name(), "harmonic");
         assert_eq!(new_dihedral_style("quadratic").unwrap().name(), "quadratic");
-        assert!(new_bond_style("fene").is_none());
+        assert_eq!(new_bond_style("fene/expand").unwrap().name(), "fene/expand");
+        assert!(new_bond_style("fene/nm").is_none());
         assert_eq!(dihedral_style_names().collect::<Vec<_>>(), vec!["harmonic", "quadratic"]);
     }
 

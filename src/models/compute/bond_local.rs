@@ -163,7 +163,10 @@ impl Compute for ComputeBondLocal {
             dom.minimum_image(&mut d);
             let rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             let (fbond, engpot) = match bond {
-                Some(st) if single && !b.off => st.single(b.typ, d, rsq).map_err(|e| format!("compute {}: {e}", self.id))?,
+                Some(st) if single && !b.off => {
+                    let sb = crate::models::bonded::SingleBond { state: s, rec, typ: b.typ, i, j, del: d, rsq };
+                    st.single(&sb).map_err(|e| format!("compute {}: {e}", self.id))?
+                }
                 _ => (0.0, 0.0),
             };
             let (mut engvib, mut engrot, mut engtrans, mut omegasq, mut vvib) = (0.0, 0.0, 0.0, 0.0, 0.0);

@@ -96,11 +96,17 @@ impl Fix for FixAddForce {
         }
         Ok(())
     }
-    fn scalar(&self, _state: &State) -> Option<f64> {
-        Some(self.foriginal[0])
+    fn scalar(&self, state: &State) -> Option<f64> {
+        let mut v = [self.foriginal[0]];
+        state.sum_ranks(&mut v);
+        Some(v[0])
     }
-    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
-        (1..=3).contains(&i).then(|| self.foriginal[i])
+    fn vector(&self, state: &State, i: usize) -> Option<f64> {
+        (1..=3).contains(&i).then(|| {
+            let mut v = [self.foriginal[i]];
+            state.sum_ranks(&mut v);
+            v[0]
+        })
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

@@ -380,9 +380,9 @@ impl Simulation {
         // (LAMMPS' Neighbor::decide checks fixes' next_reneighbor before counting steps)
         let step = self.state.step;
         let requested = std::mem::take(&mut self.state.rebuild_requested) || self.fixes.iter().any(|f| f.next_reneighbor() == Some(step));
-        let moved = self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms);
+        let moved = !requested && self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms);
         // the ranks of a distributed run rebuild together when any of them must
-        if requested || self.any_rank(moved) {
+        if self.any_rank(moved) || requested {
             self.timers.stamp();
             self.fix_hook(|h| h.pre_exchange, |f, s, c| f.pre_exchange(s, c))?;
             self.timers.charge(Stage::Modify);

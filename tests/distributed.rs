@@ -296,6 +296,10 @@ fn mpiexec_ranks_give_the_serial_run() {
         assert_eq!(n.len(), n1.len());
         assert!(n.iter().zip(&n1).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: the data file differs from the serial one");
     }
+    // the benchmark times the ranks too
+    let out = std::process::Command::new(&bin).args(["bench", "--threads-list", "1", "--ranks", "2", "in.melt"]).env("DMHS_MPIEXEC", &mpiexec).current_dir(dir.path()).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && text.contains("dmhs 2r") && text.contains("dmhs 1t"), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
 }
 
 #[test]

@@ -27,9 +27,25 @@ impl Timing {
 
 /// Time a deck in dmhs with `threads` worker threads, as a child process (this executable).
 pub fn time_dmhs(deck: &Path, vars: &[(String, Vec<String>)], threads: usize) -> Result<RunTiming, String> {
+    time_dmhs_on(deck, vars, threads, 1)
+}
+
+/// [`time_dmhs`] on `ranks` ranks of `mpiexec` (DMHS_MPIEXEC, default `mpiexec`) when more than
+/// one: this executable must be the `mpi` build.
+pub fn time_dmhs_on(deck: &Path, vars: &[(String, Vec<String>)], threads: usize, ranks: usize) -> Result<RunTiming, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find the dmhs executable: {e}"))?;
     let dir = deck.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let mut cmd = std::process::Command::new(&exe);
+    let mut cmd = if ranks > 1 {
+        if !cfg!(feature = "mpi") {
+            return Err("--ranks needs the MPI build of dmhs (cargo build --release --features mpi)".into());
+        }
+        let mpiexec = std::env::var("DMHS_MPIEXEC").unwrap_or_else(|_| "mpiexec".into());
+        let mut c = std::process::Command::new(mpiexec);
+        c.arg("-np").arg(ranks.to_string()).arg(&exe);
+        c
+    } else {
+        std::process::Command::new(&exe)
+    };
     cmd.current_dir(dir).arg("-in").arg(deck.file_name().unwrap_or_default()).arg("-log").arg("none").arg("-threads").arg(threads.to_string());
     for (name, values) in vars {
         cmd.arg("-var").arg(name).args(values);
@@ -49,6 +65,8 @@ enum Engine {
     Lammps(LmpConfig),
     Liggghts,
     Dmhs(usize),
+    /// dmhs on N ranks of one thread each
+    DmhsRanks(usize),
 }
 
 impl Engine {
@@ -56,12 +74,12 @@ impl Engine {
         match self {
             Engine::Lammps(c) => c.cores(),
             Engine::Liggghts => 1,
-            Engine::Dmhs(n) => n,
+            Engine::Dmhs(n) | Engine::DmhsRanks(n) => n,
         }
     }
 
     fn is_reference(self) -> bool {
-        !matches!(self, Engine::Dmhs(_))
+        !matches!(self, Engine::Dmhs(_) | Engine::DmhsRanks(_))
     }
 
     fn label(self) -> String {
@@ -69,6 +87,7 @@ impl Engine {
             Engine::Lammps(c) => format!("lammps {}", c.label()),
             Engine::Liggghts => "liggghts 1t".into(),
             Engine::Dmhs(n) => format!("dmhs {n}t"),
+            Engine::DmhsRanks(n) => format!("dmhs {n}r"),
         }
     }
 
@@ -77,6 +96,7 @@ impl Engine {
             Engine::Lammps(config) => crate::tools::lammps::time_lmp(deck, vars, config)?,
             Engine::Liggghts => crate::tools::liggghts::time_liggghts(deck, vars)?,
             Engine::Dmhs(n) => time_dmhs(deck, vars, n)?,
+            Engine::DmhsRanks(n) => time_dmhs_on(deck, vars, 1, n)?,
         };
         Ok(Timing { engine: self.label(), seconds: t.seconds, steps: t.steps, atoms: t.atoms, peak_bytes: t.peak_bytes })
     }
@@ -93,7 +113,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// machine hits all engines of a round alike); each engine's row gives its median time, its ratio
 /// to the fastest reference engine on as many cores (medians), and with more than one round the
 /// lowest and highest of the per-round ratios.
-pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[String], threads: Vec<usize>, repeat: usize) -> i32 {
+/// `ranks`: also dmhs on that many ranks of one thread (the `mpi` build), against the reference
+/// engines on as many cores.
+pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[String], threads: Vec<usize>, repeat: usize, ranks: Option<usize>) -> i32 {
     if decks.is_empty() {
         eprintln!("dmhs bench: give at least one deck");
         return 2;
@@ -104,9 +126,13 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
             return 2;
         }
     }
+    let cores_of_ranks = ranks.filter(|r| !threads.contains(r));
     let mut engines: Vec<Engine> = vec![];
+    // the reference engines run on every core count dmhs runs on
+    let mut reference_cores = threads.clone();
+    reference_cores.extend(cores_of_ranks);
     if against.iter().any(|a| a == "lammps") {
-        for &n in &threads {
+        for &n in &reference_cores {
             if n == 1 {
                 engines.push(Engine::Lammps(LmpConfig::Serial));
             } else {
@@ -119,6 +145,7 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
         engines.push(Engine::Liggghts);
     }
     engines.extend(threads.iter().map(|&n| Engine::Dmhs(n)));
+    engines.extend(ranks.map(Engine::DmhsRanks));
     let rounds_col = if repeat > 1 { format!(" {:>13}", "round ratios") } else { String::new() };
     println!("{:<40} {:<12} {:>10} {:>8} {:>9} {:>14} {:>8} {:>9} {:>10}{}", "deck", "engine", "atoms", "steps", "seconds", "particle-st/s", "ratio", "peak MiB", "bytes/part", rounds_col);
     let mut status = 0;

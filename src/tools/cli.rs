@@ -54,6 +54,8 @@ options:
                         mpiexec -np N and -sf omp -pk omp N on N; default 1,2)
          --repeat N    (N interleaved rounds of all engines; medians and the
                         range of the per-round ratios; default 1)
+         --ranks N     (also dmhs on N ranks of one thread, `dmhs Nr`: the
+                        build with --features mpi, run by DMHS_MPIEXEC or mpiexec)
   validate: --quick (the fast variants the tests run), --engine dmhs|lammps,
             --json FILE (default out/validate/CASE.json), --img DIR (also draw the charts)
 ";
@@ -245,7 +247,7 @@ pub fn main_with_args(args: &[String]) -> i32 {
     };
     if cli.sub == "bench" {
         // the benchmark makes its own pool per thread count
-        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1));
+        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1), cli.ranks);
     }
     // The whole command runs on a worker of its pool: each parallel loop is then started from
     // inside the pool (work is pushed to the local queue and stolen) instead of being sent in

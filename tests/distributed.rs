@@ -244,10 +244,10 @@ fn an_sph_fluid_and_its_dump_on_four_ranks() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all langevin 1.0 1.0 1.0 48279\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all temp/berendsen 1.0 1.0 0.5\n");
     for r in on_ranks(&deck, 2) {
         let e = r.err().expect("refused");
-        assert!(e.contains("fix 2 (langevin) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("fix 2 (temp/berendsen) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -311,8 +311,28 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
     assert!(out.status.success(), "{text}");
     // 864 fcc atoms in a cube on a 1 x 2 x 2 grid: 216 each
     assert!(text.contains("on 4 ranks: 1 by 2 by 2 processor grid; atoms per rank 216 to 216 (216, 216, 216, 216)"), "{text}");
-    std::fs::write(dir.path().join("in.lang"), MELT.replace("fix          1 all nve\n", "fix          1 all langevin 1.0 1.0 1.0 48279\n")).unwrap();
+    std::fs::write(dir.path().join("in.lang"), MELT.replace("fix          1 all nve\n", "fix          1 all temp/berendsen 1.0 1.0 0.5\n")).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.lang", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("on 2 ranks: fix 1 (langevin) cannot run on 2 ranks yet"), "{text}");
+    assert!(text.contains("on 2 ranks: fix 1 (temp/berendsen) cannot run on 2 ranks yet"), "{text}");
+}
+
+#[test]
+fn a_langevin_fluid_on_two_ranks_keeps_its_temperature() {
+    // each rank draws its own stream (seed + rank, as LAMMPS): not the serial numbers, but
+    // the same statistics
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all langevin 1.0 1.0 0.5 48279 zero yes tally yes\n")
+        .replace("thermo_style custom step temp epair emol etotal press atoms", "thermo_style custom step temp epair f_2")
+        .replace("run          150\nrun          100\n", "run          2000\n");
+    for r in on_ranks(&deck, 2) {
+        let (text, atoms) = r.unwrap();
+        assert_eq!(atoms.len(), 864);
+        if !text.is_empty() {
+            let rows = thermo_rows(&text);
+            let late: Vec<f64> = rows.iter().filter(|r| r[0] >= 1000.0).map(|r| r[1]).collect();
+            let mean = late.iter().sum::<f64>() / late.len() as f64;
+            assert!((mean - 1.0).abs() < 0.1, "mean temperature {mean} over steps 1000-2000:\n{text}");
+            assert!(rows.last().unwrap()[3] != 0.0, "the tallied energy is reduced over ranks: {text}");
+        }
+    }
 }

@@ -13,7 +13,7 @@ use std::sync::Arc;
 /// no per-pair history, the integrators and forces that act atom by atom, and the thermo
 /// computes that are sums.
 const PAIRS: &[&str] = &["lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction"];
-const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce"];
+const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke"];
 
 /// Per-rank counts at the end of a distributed run, for the run summary (sum, min, max).

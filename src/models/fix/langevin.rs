@@ -80,8 +80,8 @@ impl FixLangevin {
             tally,
             zero,
             omega,
-            // serial LAMMPS: seed + comm->me with me = 0
-            random: RanMars::new(seed as i32),
+            // LAMMPS: seed + comm->me, each rank its own stream
+            random: RanMars::new(seed as i32 + state.decomp.as_ref().map_or(0, |d| d.rank()) as i32),
             gfactor1: Vec::new(),
             gfactor2: Vec::new(),
             flangevin: Vec::new(),
@@ -101,7 +101,9 @@ impl FixLangevin {
                 e += fl[0] * v[0] + fl[1] * v[1] + fl[2] * v[2];
             }
         }
-        e
+        let mut e = [e];
+        state.sum_ranks(&mut e);
+        e[0]
     }
 
     fn apply(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -154,6 +156,8 @@ impl FixLangevin {
             }
         }
         if self.zero {
+            state.sum_ranks(&mut fsum);
+            let a = &mut state.atoms;
             for s in &mut fsum {
                 *s /= count as f64;
             }
@@ -173,6 +177,7 @@ impl FixLangevin {
         if self.omega {
             // rotational drag and noise, gamma scaled by 10/3 for spheres (LAMMPS' omega_thermostat)
             let tendivthree = 10.0 / 3.0;
+            let a = &mut state.atoms;
             for &i in &order {
                 if a.mask[i] & self.groupbit == 0 || a.radius[i] <= 0.0 {
                     continue;

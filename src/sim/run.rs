@@ -132,6 +132,8 @@ impl Simulation {
         let domain = self.state.domain.as_ref().unwrap();
         if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
             d.migrate(&mut self.state.atoms, domain).map_err(|e| RunError::new(step, e))?;
+            // atoms lost through fixed faces (thermo_modify lost ignore) leave the count
+            self.state.distributed = Some(d.comm.sum1(self.state.atoms.nlocal as f64) as usize);
         }
         self.state.lammps_order.before_rebuild(&self.state.atoms);
         let pair = self.pair.as_deref();

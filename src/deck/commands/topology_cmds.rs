@@ -204,8 +204,90 @@ fn many(sim: &mut Simulation, cmd: &Command, groups: [u32; 2], typ: usize, range
     new_bonds.sort_unstable();
     new_bonds.dedup();
     let added = new_bonds.len();
-    sim.state.topo.bonds.extend(new_bonds.into_iter().map(|(i, j)| Bond::new(typ, [i, j])));
+    // the bonds already there keep their places; the new ones follow them in each atom's list
+    sim.state.topo.assign_bond_slots();
+    let slots = many_slots(&sim.state, &new_bonds, cutmax);
+    sim.state.topo.bonds.extend(new_bonds.into_iter().zip(slots).map(|((i, j), slots)| Bond { slots, ..Bond::new(typ, [i, j]) }));
     Ok(added)
+}
+
+/// Each new bond's place in its two atoms' bond lists, as LAMMPS' create_bonds many appends
+/// them: every owned atom walks its full neighbour list (built for the command, cutoff
+/// `cutneighmax`) and appends a bond per partner in range. A full binned list runs over the
+/// stencil bins in increasing bin index (z, then y, then x of LAMMPS' neighbour bins) and
+/// inside a bin over increasing local index (owned atoms in LAMMPS' local order, then ghosts).
+/// Ghosts of different atoms in one bin are ordered by their owner's local index here
+/// (LAMMPS orders them by Comm::borders' swaps; only periodic decks can see the difference).
+fn many_slots(state: &crate::engine::state::State, bonds: &[(i64, i64)], cutneighmax: f64) -> Vec<[u32; 2]> {
+    let at = &state.atoms;
+    let domain = state.domain.as_ref().unwrap();
+    let map = at.tag_map();
+    // LAMMPS' local order now: create_bonds does not sort, new atoms come last
+    let mut order = state.lammps_order.clone();
+    order.before_rebuild(at);
+    let lpos: std::collections::HashMap<i64, usize> = order.ids().iter().enumerate().map(|(k, &t)| (t, k)).collect();
+    // Neighbor's bins (NBinStandard::setup_bins, one process: the box is the bin box)
+    let binsize = if state.neigh_settings.binsize > 0.0 { state.neigh_settings.binsize } else { 0.5 * cutneighmax };
+    let mut nbin = [1i64; 3];
+    let mut inv = [0.0; 3];
+    for d in 0..3 {
+        let len = domain.hi[d] - domain.lo[d];
+        let n = if d == 2 && domain.dimension == 2 { 1 } else { (len * (1.0 / binsize)) as i64 };
+        nbin[d] = n.max(1);
+        inv[d] = 1.0 / (len / nbin[d] as f64);
+    }
+    // NBin::coord2bin, per axis (C's truncating casts)
+    let coord = |x: f64, d: usize| -> i64 {
+        let (lo, hi) = (domain.lo[d], domain.hi[d]);
+        if x >= hi {
+            ((x - hi) * inv[d]) as i64 + nbin[d]
+        } else if x >= lo {
+            (((x - lo) * inv[d]) as i64).min(nbin[d] - 1)
+        } else {
+            ((x - lo) * inv[d]) as i64 - 1
+        }
+    };
+    let prd = domain.prd();
+    // per atom: (list key of the partner, bond, side)
+    type Key = ([i64; 3], bool, usize);
+    let mut lists: std::collections::HashMap<i64, Vec<(Key, usize, usize)>> = std::collections::HashMap::new();
+    for (k, &(ti, tj)) in bonds.iter().enumerate() {
+        for (side, (a, b)) in [(ti, tj), (tj, ti)].into_iter().enumerate() {
+            let (Some(i), Some(j)) = (map.get(a), map.get(b)) else { continue };
+            // the partner as atom a sees it: itself, or the ghost image closest to a
+            let raw = [at.x[i][0] - at.x[j][0], at.x[i][1] - at.x[j][1], at.x[i][2] - at.x[j][2]];
+            let mut del = raw;
+            domain.minimum_image(&mut del);
+            let mut xj = at.x[j];
+            let mut ghost = false;
+            for d in 0..3 {
+                if del[d] != raw[d] {
+                    ghost = true;
+                    xj[d] += if raw[d] > del[d] { prd[d] } else { -prd[d] };
+                }
+            }
+            let key = ([coord(xj[2], 2), coord(xj[1], 1), coord(xj[0], 0)], ghost, lpos.get(&b).copied().unwrap_or(usize::MAX));
+            lists.entry(a).or_default().push((key, k, side));
+        }
+    }
+    // the places the atoms' existing bonds hold
+    let mut next: std::collections::HashMap<i64, u32> = std::collections::HashMap::new();
+    for b in &state.topo.bonds {
+        for k in 0..2 {
+            let n = next.entry(b.atoms[k]).or_insert(0);
+            *n = (*n).max(b.slots[k].wrapping_add(1));
+        }
+    }
+    let mut slots = vec![[u32::MAX; 2]; bonds.len()];
+    for (tag, mut list) in lists {
+        list.sort_unstable_by_key(|e| e.0);
+        let mut n = next.get(&tag).copied().unwrap_or(0);
+        for (_, k, side) in list {
+            slots[k][side] = n;
+            n += 1;
+        }
+    }
+    slots
 }
 
 /// What `delete_bonds` selects besides the group.

@@ -22,14 +22,25 @@
 //!   `image`, and as the atom style has them `molecule`, `q`, `radius`, `rmass`, `omega`
 //!   (sphere), `rho`, `drho`, `esph`, `desph`, `cv`, `vest` (sph); `fix_arrays`: the per-atom
 //!   arrays of fixes ({`name`, `stride`, `ghosts`, `values`: `stride` numbers per atom}, e.g. the
-//!   wall spring of fix wall/gran), restored to a fix defined again with the same ID;
+//!   wall spring of fix wall/gran), restored to a fix defined again with the same ID (and kept
+//!   over what the replayed force field sets, e.g. x/ref of a BPM style's store/local);
+//!   `lammps_order` {`ids`, `sortfreq`, `binsize`}: LAMMPS' local order of the atoms and its
+//!   `atom_modify sort` (sums and random numbers over atoms follow it);
 //! * `topology`: `bond_types`, `angle_types`, `dihedral_types`, `improper_types`; `bonds`
-//!   [type, id, id], `angles` [type, 3 ids], `dihedrals` [type, 4 ids];
+//!   [type, id, id], `angles` [type, 3 ids], `dihedrals` [type, 4 ids]; with a BPM bond style
+//!   `bond_history` (per bond its reference state, LAMMPS' fix bond/history) and
+//!   `bond_history_stored` (its stored_flag); `bond_slots` (per bond its place in each atom's
+//!   bond list, which broken bonds reorder as LAMMPS does);
 //! * `force_field`: the force-field commands (pair_style, pair_coeff, pair_modify,
 //!   bond/angle/dihedral styles and coefficients, special_bonds) as words, in the order given;
 //!   read_restart replays them;
 //! * `contact_histories`: per history store of the pair style, {`size`, `contacts`: [owner ID,
-//!   partner ID, [image difference], [`size` values]]} (the key of `engine::contact_history`).
+//!   partner ID, [image difference], [`size` values]]} (the key of `engine::contact_history`);
+//! * `fixes`: [{`id`, `style`, `values`}], the global state of fixes as LAMMPS' write_restart
+//!   of the style stores it (fix nvt: 1, chain length, eta, eta_dot, 0; temp/berendsen and
+//!   temp/rescale: the energy), given to a fix of the same ID and style defined after
+//!   read_restart and dropped at the next run if none is (LAMMPS' Modify). fix langevin
+//!   stores nothing, as in LAMMPS (its generator is seeded again when it is defined).
 //!
 //! The layout (layout.rs) puts one atom's triple, one bond, one contact per line. read_restart
 //! checks every field as read_data checks a data file (types in range, IDs positive, unique and
@@ -40,7 +51,7 @@
 //! version 2 ("DMHS restart 1") and LAMMPS binary restarts are recognised and refused with a
 //! message saying what to do.
 //!
-//! As with LAMMPS, fixes, computes, outputs, variables, regions and the neighbour settings
+//! As with LAMMPS, fixes (but for their stored state), computes, outputs, variables, regions and the neighbour settings
 //! (`neighbor`, `neigh_modify`) are not stored: the continuing deck defines them again.
 //! A continuation is bit-identical when it does so with the same values and runs with
 //! `pre yes` (the default), like the `run` that would have followed `write_restart`.

@@ -34,6 +34,12 @@ impl Default for LammpsOrder {
 }
 
 impl LammpsOrder {
+    /// The order read from a restart file (the map to dmhs' indices follows at the next
+    /// rebuild).
+    pub fn restored(ids: Vec<i64>, sortfreq: i64, binsize: f64) -> LammpsOrder {
+        LammpsOrder { ids, sortfreq, binsize, ..LammpsOrder::default() }
+    }
+
     /// dmhs' local indices of the owned atoms in LAMMPS' order (valid until dmhs reorders or
     /// adds atoms, i.e. between list rebuilds).
     pub fn local(&self) -> &[usize] {

@@ -68,6 +68,9 @@ pub struct Simulation {
     pub min: minimize::MinSettings,
     /// What the last `minimize` did.
     pub min_stats: Option<minimize::MinStats>,
+    /// Global fix states read by read_restart, for fixes defined later with the same ID and
+    /// style; dropped at the next run, as LAMMPS drops what no fix took.
+    pub restart_fixes: Vec<crate::deck::restart::schema::FixState>,
 }
 
 impl Default for Simulation {
@@ -109,6 +112,7 @@ impl Simulation {
             cancel: Default::default(),
             min: Default::default(),
             min_stats: None,
+            restart_fixes: Vec::new(),
         }
     }
 

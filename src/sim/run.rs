@@ -344,6 +344,10 @@ impl Simulation {
 
     /// LAMMPS `Verlet::setup`: lists, forces of the current state, fix setup, first output.
     pub fn setup(&mut self, pre: bool) -> Result<(), RunError> {
+        // LAMMPS' Modify::init drops the restart file's fix states no fix took
+        for s in std::mem::take(&mut self.restart_fixes) {
+            self.out.print(&format!("WARNING: fix {} {} of the restart file was not defined again: its stored state is dropped", s.id, s.style));
+        }
         if pre || !self.state.lists_valid {
             self.timers.stamp();
             self.rebuild_at(true)?;

@@ -25,7 +25,13 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             return Err(a.error_at(id, format!("fix `{}` already exists with style {}; replacing it needs the same style", id.text, sim.fixes[k].style()), "ID in use"));
         }
     }
-    let f = crate::models::fix::new_fix(cmd, id, bit, style, rest, crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref() }, &mut sim.state)?;
+    let mut f = crate::models::fix::new_fix(cmd, id, bit, style, rest, crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref() }, &mut sim.state)?;
+    // LAMMPS' Modify::add_fix: the state a restart file holds for this ID and style
+    if let Some(k) = sim.restart_fixes.iter().position(|s| s.id == id.text && s.style == style.text) {
+        let s = sim.restart_fixes.remove(k);
+        f.restart(&s.values);
+        sim.out.print(&format!("Resetting global fix info from restart file:\n  fix style: {}, fix ID: {}", s.style, s.id));
+    }
     match existing {
         Some(k) => {
             let mut old = std::mem::replace(&mut sim.fixes[k], f);

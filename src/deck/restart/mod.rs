@@ -22,14 +22,25 @@
 //!   `image`, and as the atom style has them `molecule`, `q`, `radius`, `rmass`, `omega`
 //!   (sphere), `rho`, `drho`, `esph`, `desph`, `cv`, `vest` (sph); `fix_arrays`: the per-atom
 //!   arrays of fixes ({`name`, `stride`, `ghosts`, `values`: `stride` numbers per atom}, e.g. the
-//!   wall spring of fix wall/gran), restored to a fix defined again with the same ID;
+//!   wall spring of fix wall/gran), restored to a fix defined again with the same ID (and kept
+//!   over what the replayed force field sets, e.g. x/ref of a BPM style's store/local);
+//!   `lammps_order` {`ids`, `sortfreq`, `binsize`}: LAMMPS' local order of the atoms and its
+//!   `atom_modify sort` (sums and random numbers over atoms follow it);
 //! * `topology`: `bond_types`, `angle_types`, `dihedral_types`, `improper_types`; `bonds`
-//!   [type, id, id], `angles` [type, 3 ids], `dihedrals` [type, 4 ids];
+//!   [type, id, id], `angles` [type, 3 ids], `dihedrals` [type, 4 ids]; with a BPM bond style
+//!   `bond_history` (per bond its reference state, LAMMPS' fix bond/history) and
+//!   `bond_history_stored` (its stored_flag); `bond_slots` (per bond its place in each atom's
+//!   bond list, which broken bonds reorder as LAMMPS does);
 //! * `force_field`: the force-field commands (pair_style, pair_coeff, pair_modify,
 //!   bond/angle/dihedral styles and coefficients, special_bonds) as words, in the order given;
 //!   read_restart replays them;
 //! * `contact_histories`: per history store of the pair style, {`size`, `contacts`: [owner ID,
-//!   partner ID, [image difference], [`size` values]]} (the key of `engine::contact_history`).
+//!   partner ID, [image difference], [`size` values]]} (the key of `engine::contact_history`);
+//! * `fixes`: [{`id`, `style`, `values`}], the global state of fixes as LAMMPS' write_restart
+//!   of the style stores it (fix nvt: 1, chain length, eta, eta_dot, 0; temp/berendsen and
+//!   temp/rescale: the energy), given to a fix of the same ID and style defined after
+//!   read_restart and dropped at the next run if none is (LAMMPS' Modify). fix langevin
+//!   stores nothing, as in LAMMPS (its generator is seeded again when it is defined).
 //!
 //! The layout (layout.rs) puts one atom's triple, one bond, one contact per line. read_restart
 //! checks every field as read_data checks a data file (types in range, IDs positive, unique and
@@ -40,7 +51,7 @@
 //! version 2 ("DMHS restart 1") and LAMMPS binary restarts are recognised and refused with a
 //! message saying what to do.
 //!
-//! As with LAMMPS, fixes, computes, outputs, variables, regions and the neighbour settings
+//! As with LAMMPS, fixes (but for their stored state), computes, outputs, variables, regions and the neighbour settings
 //! (`neighbor`, `neigh_modify`) are not stored: the continuing deck defines them again.
 //! A continuation is bit-identical when it does so with the same values and runs with
 //! `pre yes` (the default), like the `run` that would have followed `write_restart`.
@@ -131,6 +142,12 @@ fn snapshot(sim: &mut Simulation) -> Result<Restart, String> {
         None => Vec::new(),
     };
     let t = &st.topo;
+    let bpm = sim.bond_style.as_ref().and_then(|b| b.as_bpm()).map(|b| b.shared().is_stored());
+    let any_slot = t.bonds.iter().any(|b| b.slots != [u32::MAX; 2]);
+    let any_history = t.bonds.iter().any(|b| b.history.iter().any(|&h| h != 0.0));
+    // LAMMPS' order as of now: atoms gone or added since the last rebuild accounted for
+    let mut order = st.lammps_order.clone();
+    order.before_rebuild(a);
     Ok(Restart {
         format: FORMAT.to_string(),
         version: VERSION,
@@ -178,6 +195,7 @@ fn snapshot(sim: &mut Simulation) -> Result<Restart, String> {
             cv: rows(ft.sph, &a.cv, n),
             vest: rows(ft.sph, &a.vest, n),
             fix_arrays: a.extra.iter().map(|e| FixArray { name: e.name.clone(), stride: e.stride, ghosts: e.ghosts, values: e.data[..n * e.stride].chunks(e.stride).map(<[f64]>::to_vec).collect() }).collect(),
+            lammps_order: Some(OrderSection { ids: order.ids().to_vec(), sortfreq: order.sortfreq, binsize: order.binsize }),
         },
         topology: TopologySection {
             bond_types: t.nbondtypes,
@@ -188,9 +206,13 @@ fn snapshot(sim: &mut Simulation) -> Result<Restart, String> {
             bonds: t.bonds.iter().map(|b| [signed_type(b.typ, b.off), b.atoms[0], b.atoms[1]]).collect(),
             angles: t.angles.iter().map(|b| [signed_type(b.typ, b.off), b.atoms[0], b.atoms[1], b.atoms[2]]).collect(),
             dihedrals: t.dihedrals.iter().map(|b| [signed_type(b.typ, b.off), b.atoms[0], b.atoms[1], b.atoms[2], b.atoms[3]]).collect(),
+            bond_history: (bpm.is_some() || any_history).then(|| t.bonds.iter().map(|b| b.history).collect()),
+            bond_slots: any_slot.then(|| t.bonds.iter().map(|b| b.slots).collect()),
+            bond_history_stored: bpm == Some(true),
         },
         force_field: sim.ff_commands.clone(),
         contact_histories,
+        fixes: sim.fixes.iter().filter_map(|f| f.write_restart().map(|values| FixState { id: f.id().to_string(), style: f.style().to_string(), values })).collect(),
     })
 }
 
@@ -216,7 +238,10 @@ pub fn read_restart(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap
         let at = std::str::from_utf8(&bytes).ok().and_then(|text| locate::locate(text, locate::leading_path(&e)));
         in_file(sources, e, at)
     })?;
-    let (commands, histories) = restore(sim, restart, checked).map_err(fail)?;
+    let Stored { commands, histories, stored_flag, fixes } = restore(sim, restart, checked).map_err(fail)?;
+    // the replayed commands must not change the stored per-atom arrays (bond_style store/local
+    // sets x/ref to the current positions): put them back afterwards
+    let arrays = sim.state.atoms.extra.clone();
     for words in commands {
         let line = words.join(" ");
         let id = sources.add(format!("{} (force field)", path.display()), line.clone());
@@ -231,6 +256,20 @@ pub fn read_restart(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap
         let c = Command { name, args: ws, span };
         sim.execute_command(&c, sources).map_err(|d| d.with_note(format!("while replaying the force field stored in restart file {}", path.display())))?;
     }
+    let atoms = &mut sim.state.atoms;
+    let nlocal = atoms.nlocal;
+    for e in &arrays {
+        if let Some(k) = atoms.find_extra(&e.name).filter(|&k| atoms.extra[k].stride == e.stride) {
+            atoms.extra[k].data[..nlocal * e.stride].copy_from_slice(&e.data[..nlocal * e.stride]);
+        }
+    }
+    if stored_flag {
+        match sim.bond_style.as_ref().and_then(|b| b.as_bpm()) {
+            Some(b) => b.shared().set_stored(),
+            None => return Err(fail("topology.bond_history_stored is true, but the bond style of the file's force field is not a BPM style".into())),
+        }
+    }
+    sim.restart_fixes = fixes;
     let mut stores = sim.pair.as_mut().map(|p| p.histories()).unwrap_or_default();
     if stores.len() != histories.len() {
         return Err(fail(format!("contact_histories has {} stores; the pair style of the file's force field has {}", histories.len(), stores.len())));
@@ -291,10 +330,19 @@ fn parse_whole(bytes: &[u8]) -> Result<Restart, ParseError> {
     })
 }
 
-type Stored = (Vec<Vec<String>>, Vec<History>);
+/// What read_restart gives the models after the state is set.
+struct Stored {
+    /// The force-field commands to replay.
+    commands: Vec<Vec<String>>,
+    /// The contact histories for the pair style they define.
+    histories: Vec<History>,
+    /// The BPM bond style has stored its reference states.
+    stored_flag: bool,
+    /// For fixes defined later with the same ID and style.
+    fixes: Vec<FixState>,
+}
 
-/// Set the state from a checked file; returns the force-field commands to replay and the
-/// contact histories to give the pair style they define.
+/// Set the state from a checked file; returns what the models it defines get.
 fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, String> {
     let s = r.settings;
     let st = &mut sim.state;
@@ -358,17 +406,22 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
         ..Atoms::default()
     };
     let t = r.topology;
+    if let Some(o) = a.lammps_order {
+        st.lammps_order = crate::engine::lammps_order::LammpsOrder::restored(o.ids, o.sortfreq, o.binsize);
+    }
+    let history = t.bond_history.unwrap_or_else(|| vec![[0.0; crate::engine::topology::BOND_HISTORY]; t.bonds.len()]);
+    let slots = t.bond_slots.unwrap_or_else(|| vec![[u32::MAX; 2]; t.bonds.len()]);
     st.topo = Topology {
         nbondtypes: t.bond_types,
         nangletypes: t.angle_types,
         ndihedraltypes: t.dihedral_types,
         nimpropertypes: t.improper_types,
-        bonds: t.bonds.iter().map(|b| Bond { off: b[0] < 0, ..Bond::new(b[0].unsigned_abs() as usize, [b[1], b[2]]) }).collect(),
+        bonds: t.bonds.iter().zip(history).zip(slots).map(|((b, history), slots)| Bond { off: b[0] < 0, history, slots, ..Bond::new(b[0].unsigned_abs() as usize, [b[1], b[2]]) }).collect(),
         angles: t.angles.iter().map(|b| Angle { off: b[0] < 0, ..Angle::new(b[0].unsigned_abs() as usize, [b[1], b[2], b[3]]) }).collect(),
         dihedrals: t.dihedrals.iter().map(|b| Dihedral { off: b[0] < 0, ..Dihedral::new(b[0].unsigned_abs() as usize, [b[1], b[2], b[3], b[4]]) }).collect(),
     };
     st.lists_valid = false;
-    Ok((r.force_field, r.contact_histories))
+    Ok(Stored { commands: r.force_field, histories: r.contact_histories, stored_flag: t.bond_history_stored, fixes: r.fixes })
 }
 
 #[cfg(test)]

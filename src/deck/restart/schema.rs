@@ -5,6 +5,7 @@
 use crate::engine::atoms::AtomFeatures;
 use crate::engine::domain::BoundaryKind;
 use crate::engine::groups::MAX_GROUPS;
+use crate::engine::topology::BOND_HISTORY;
 use crate::engine::units::UnitStyle;
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
@@ -36,6 +37,29 @@ pub struct Restart {
     pub force_field: Vec<Vec<String>>,
     /// The contact-history stores of the pair style, in the style's order.
     pub contact_histories: Vec<History>,
+    /// The global state of fixes (LAMMPS' Fix::write_restart), restored to a fix of the same
+    /// ID and style defined after read_restart.
+    #[serde(default)]
+    pub fixes: Vec<FixState>,
+}
+
+/// One fix's global state: the numbers of LAMMPS' write_restart of that style.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixState {
+    pub id: String,
+    pub style: String,
+    pub values: Vec<f64>,
+}
+
+/// LAMMPS' local order of the owned atoms and its `atom_modify sort` settings (see
+/// `engine::lammps_order`).
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OrderSection {
+    pub ids: Vec<i64>,
+    pub sortfreq: i64,
+    pub binsize: f64,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -130,6 +154,9 @@ pub struct AtomSection {
     pub vest: Option<Vec<[f64; 3]>>,
     /// Per-atom arrays of fixes, in the order they were registered.
     pub fix_arrays: Vec<FixArray>,
+    /// LAMMPS' order of these atoms (sums and random numbers over atoms follow it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lammps_order: Option<OrderSection>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -156,6 +183,18 @@ pub struct TopologySection {
     pub angles: Vec<[i64; 4]>,
     /// [type, 4 atom IDs]
     pub dihedrals: Vec<[i64; 5]>,
+    /// Per bond (as `bonds`), when a BPM style keeps a reference state: the values of
+    /// `Bond::history` (LAMMPS' fix bond/history per-atom array).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bond_history: Option<Vec<[f64; BOND_HISTORY]>>,
+    /// Per bond: its place in each of its atoms' bond lists (LAMMPS' bond_atom order, which a
+    /// broken bond changes; 4294967295 for none yet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bond_slots: Option<Vec<[u32; 2]>>,
+    /// The BPM style has stored every bond's reference state (LAMMPS' fix bond/history
+    /// `stored_flag`, its write_restart).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub bond_history_stored: bool,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -273,6 +312,10 @@ impl Restart {
         let group_bits = self.check_groups()?;
         let ids = self.check_atoms(features, group_bits)?;
         self.check_topology(features, &ids)?;
+        self.check_order(&ids)?;
+        for (k, f) in self.fixes.iter().enumerate() {
+            finite(&f.values).map_err(|e| format!("fixes[{k}] (fix {} {}) values {e}", f.id, f.style))?;
+        }
         for (k, words) in self.force_field.iter().enumerate() {
             match words.first() {
                 Some(w) if FORCE_FIELD.contains(&w.as_str()) => {}
@@ -442,7 +485,44 @@ impl Restart {
         }
         check_records("bond", &t.bonds, t.bond_types, ft.bonds, ids)?;
         check_records("angle", &t.angles, t.angle_types, ft.angles, ids)?;
-        check_records("dihedral", &t.dihedrals, t.dihedral_types, ft.dihedrals, ids)
+        check_records("dihedral", &t.dihedrals, t.dihedral_types, ft.dihedrals, ids)?;
+        let n = t.bonds.len();
+        if let Some(h) = &t.bond_history {
+            if h.len() != n {
+                return Err(format!("topology.bond_history has {} entries for {n} bonds", h.len()));
+            }
+            if let Some(k) = h.iter().position(|v| finite(v).is_err()) {
+                return Err(format!("topology.bond_history[{k}] {}", finite(&h[k]).unwrap_err()));
+            }
+        }
+        if let Some(s) = &t.bond_slots {
+            if s.len() != n {
+                return Err(format!("topology.bond_slots has {} entries for {n} bonds", s.len()));
+            }
+            // an atom's slots are distinct (its bond list has one bond per place)
+            let mut seen = HashSet::new();
+            for (k, (b, slots)) in t.bonds.iter().zip(s).enumerate() {
+                for side in 0..2 {
+                    if slots[side] != u32::MAX && !seen.insert((b[side + 1], slots[side])) {
+                        return Err(format!("topology.bond_slots[{k}]: atom {} has two bonds at place {}", b[side + 1], slots[side]));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// LAMMPS' order: a permutation of the atom IDs.
+    fn check_order(&self, ids: &HashSet<i64>) -> Result<(), String> {
+        let Some(o) = &self.atoms.lammps_order else { return Ok(()) };
+        let distinct: HashSet<i64> = o.ids.iter().copied().collect();
+        if o.ids.len() != ids.len() || distinct != *ids {
+            return Err(format!("atoms.lammps_order.ids is not an order of the {} atom IDs of atoms.id", ids.len()));
+        }
+        if o.sortfreq < 0 || !(o.binsize.is_finite() && o.binsize >= 0.0) {
+            return Err(format!("atoms.lammps_order: sortfreq {} and binsize {} must be >= 0", o.sortfreq, o.binsize));
+        }
+        Ok(())
     }
 }
 

@@ -82,6 +82,16 @@ pub fn logical(a: &mut Args, what: &str) -> DResult<bool> {
 const KEYWORDS: [&str; 5] = ["store/local", "overlay/pair", "break", "smooth", "normalize"];
 
 impl Bpm {
+    /// Every bond's reference state has been stored (LAMMPS' `stored_flag`).
+    pub fn is_stored(&self) -> bool {
+        self.stored.load(Ordering::Relaxed)
+    }
+
+    /// The reference states came from a restart file (LAMMPS' FixBondHistory::restart).
+    pub fn set_stored(&self) {
+        self.stored.store(true, Ordering::Relaxed);
+    }
+
     /// The arguments of `bond_style`: LAMMPS' BondBPM::settings, `smooth` and `normalize`, and
     /// the style's own keywords `own` (`own(w, a)`, `w` taken from `a`: `Ok(false)` when `w` is
     /// not one of `own_names`). Smoothing without breaking is refused, as both styles do.

@@ -292,6 +292,14 @@ pub trait Fix: Send + Sync {
     }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _state: &mut State) {}
+    /// The fix's global state for a restart file (LAMMPS' write_restart of the style, same
+    /// numbers); None when the style stores none.
+    fn write_restart(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// Take the state of [`Fix::write_restart`] from a restart file (LAMMPS' restart), given
+    /// to a fix of the same ID and style defined after read_restart.
+    fn restart(&mut self, _values: &[f64]) {}
     /// Wall planes drawn by `dump image ... fix ID`: (axis, coordinate) at the current step.
     /// `equal` evaluates an equal-style variable by name.
     fn image_planes(&self, _state: &State, _equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {

@@ -237,4 +237,24 @@ impl Fix for FixNvt {
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
     }
+    /// LAMMPS' FixNH::pack_restart_data without a barostat: tstat_flag, the chain length,
+    /// eta, eta_dot, pstat_flag.
+    fn write_restart(&self) -> Option<Vec<f64>> {
+        let m = self.mtchain;
+        let mut list = vec![1.0, m as f64];
+        list.extend_from_slice(&self.eta[..m]);
+        list.extend_from_slice(&self.eta_dot[..m]);
+        list.push(0.0);
+        Some(list)
+    }
+    /// LAMMPS' FixNH::restart: the chain only when its length is this fix's.
+    fn restart(&mut self, list: &[f64]) {
+        let m = self.mtchain;
+        if let [tstat, len, rest @ ..] = list {
+            if *tstat != 0.0 && *len == m as f64 && rest.len() >= 2 * m {
+                self.eta[..m].copy_from_slice(&rest[..m]);
+                self.eta_dot[..m].copy_from_slice(&rest[m..2 * m]);
+            }
+        }
+    }
 }

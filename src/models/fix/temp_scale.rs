@@ -108,6 +108,15 @@ impl Fix for FixTempScale {
     fn extensive(&self, _index: Option<usize>) -> bool {
         true
     }
+    /// LAMMPS' write_restart of both styles: the energy removed so far.
+    fn write_restart(&self) -> Option<Vec<f64>> {
+        Some(vec![self.energy])
+    }
+    fn restart(&mut self, list: &[f64]) {
+        if let Some(&e) = list.first() {
+            self.energy = e;
+        }
+    }
 }
 
 /// v *= factor for the owned atoms of a group.

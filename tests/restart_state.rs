@@ -1,0 +1,110 @@
+//! State a restart file must carry besides atoms and contacts (issue 17): a run continued with
+//! read_restart and the same fix definitions ends in exactly the state (every bit) of the run
+//! that went on after write_restart, for
+//! * BPM bonds: each bond's reference state (r0, and the reference directions of
+//!   bpm/rotational), the style's stored flag, each atom's bond-list order after bonds broke,
+//!   and LAMMPS' atom order (the order of the bond sums);
+//! * thermostats: fix nvt's chain (eta, eta_dot), the energy of temp/berendsen and
+//!   temp/rescale.
+//!
+//! Each case also drops the state from the file and checks that the continuation then differs,
+//! so the test sees what it claims to.
+
+use dmhs::deck::{run_file, DeckOptions};
+use dmhs::tools::crosscheck::capture_state;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Run a deck file; the final state as text and the thermo log.
+fn run(deck: &Path) -> (String, String) {
+    let opts = DeckOptions { base_dir: Some(deck.parent().unwrap().to_path_buf()), screen: false, ..Default::default() };
+    let mut r = run_file(deck, &opts).map_err(|f| f.rendered).unwrap();
+    (capture_state(&r.sim).to_text(), r.sim.thermo_values().map(|v| format!("{v:?}")).unwrap_or_default())
+}
+
+/// The reference deck's lines before its `run`, with `${nsteps}`-style index variables kept.
+fn setup_part(name: &str) -> String {
+    let text = std::fs::read_to_string(root().join("lammps-refs/decks").join(name)).unwrap();
+    text.lines().take_while(|l| !l.starts_with("run")).filter(|l| !l.starts_with("dump")).collect::<Vec<_>>().join("\n") + "\n"
+}
+
+/// The lines of the reference deck a continuation repeats: those starting with one of `keys`.
+fn redefinitions(name: &str, keys: &[&str]) -> String {
+    let text = std::fs::read_to_string(root().join("lammps-refs/decks").join(name)).unwrap();
+    text.lines().filter(|l| keys.iter().any(|k| l.starts_with(k))).collect::<Vec<_>>().join("\n") + "\n"
+}
+
+/// Uninterrupted (run n; write_restart; run m) against restarted (read_restart; the
+/// redefinitions; run m): equal to the bit. Then `drop` takes the state under test out of the
+/// file, and the continuation must differ.
+fn check(deck: &str, data: Option<&str>, n: u32, m: u32, keys: &[&str], drop: impl Fn(&mut Value)) {
+    let dir = tempfile::tempdir().unwrap();
+    if let Some(d) = data {
+        std::fs::copy(root().join("lammps-refs/decks").join(d), dir.path().join(d)).unwrap();
+    }
+    let a = dir.path().join("in.a");
+    std::fs::write(&a, format!("{}run {n}\nwrite_restart state.restart\nrun {m}\n", setup_part(deck))).unwrap();
+    let whole = run(&a);
+    let c = dir.path().join("in.c");
+    std::fs::write(&c, format!("read_restart state.restart\n{}run {m}\n", redefinitions(deck, keys))).unwrap();
+    let restarted = run(&c);
+    assert!(whole.0 == restarted.0, "{deck}: the restarted run's atoms differ from the uninterrupted run's");
+    assert_eq!(whole.1, restarted.1, "{deck}: the thermo values differ");
+
+    let path = dir.path().join("state.restart");
+    let mut file: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    drop(&mut file);
+    std::fs::write(&path, serde_json::to_string(&file).unwrap()).unwrap();
+    assert!(run(&c) != whole, "{deck}: without the state under test the continuation should differ");
+}
+
+const FIXES: &[&str] = &["variable", "fix", "compute", "neighbor", "neigh_modify", "comm_modify", "thermo"];
+
+#[test]
+fn bpm_rotational_bonds_continue_bit_for_bit() {
+    // bonds break between steps 0 and 1200 (slots reordered); r0 and reference directions kept
+    check("in.bond_bpm_rotational", Some("bpm_ball_plate.data"), 600, 600, FIXES, |f| {
+        let t = f["topology"].as_object_mut().unwrap();
+        t.remove("bond_history");
+        t.remove("bond_history_stored");
+    });
+}
+
+#[test]
+fn bpm_bond_order_after_breaking_is_kept() {
+    // the reference states kept, but each atom's bond list in record order: the sums change
+    check("in.bond_bpm_rotational", Some("bpm_ball_plate.data"), 600, 300, FIXES, |f| {
+        f["topology"].as_object_mut().unwrap().remove("bond_slots");
+        f["atoms"].as_object_mut().unwrap().remove("lammps_order");
+    });
+}
+
+#[test]
+fn bpm_spring_bonds_continue_bit_for_bit() {
+    check("in.bond_bpm_spring", None, 500, 500, FIXES, |f| {
+        f["topology"].as_object_mut().unwrap().remove("bond_history");
+    });
+}
+
+fn drop_fixes(f: &mut Value) {
+    f["fixes"] = Value::Array(vec![]);
+}
+
+#[test]
+fn nose_hoover_chains_continue_bit_for_bit() {
+    check("in.thermo_nvt", None, 300, 300, FIXES, drop_fixes);
+}
+
+#[test]
+fn berendsen_energy_continues() {
+    check("in.thermo_berendsen", None, 300, 300, FIXES, drop_fixes);
+}
+
+#[test]
+fn rescale_energy_continues() {
+    check("in.thermo_rescale", None, 300, 300, FIXES, drop_fixes);
+}

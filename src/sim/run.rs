@@ -352,14 +352,16 @@ impl Simulation {
         self.state.natoms_expected = self.state.atoms.nlocal;
         self.timers.stamp();
         // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and
-        // not refreshed after it, so at the first setup a ghost keeps the velocity estimate it
-        // had when it was made (fix sph sets vest = v on owned atoms only). Step-0 forces of
-        // pairs across periodic faces see the old vest, exactly as in LAMMPS.
+        // not refreshed after it, so a ghost keeps the velocity estimate it had when it was
+        // made (fix sph sets vest = v on owned atoms only); the setup forces of pairs across
+        // periodic faces see the old vest on the side LAMMPS' newton list gives them
+        // (src/sim/stale_vest.rs).
+        let vest_before = self.vest_before_setup();
         self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
         self.timers.charge(Stage::Modify);
         // what fixes noticed when the run starts (e.g. a region defined again)
         self.flush_messages();
-        self.compute_forces(true, false)?;
+        self.setup_forces_stale_vest(vest_before)?;
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;
         self.timers.charge(Stage::Modify);

@@ -238,6 +238,12 @@ impl Simulation {
     /// Zero forces and rates, then pair and bonded forces. Tallies energies if `eflag`.
     /// `advance`: false during run setup (contact histories are not advanced, as in LAMMPS).
     pub fn compute_forces(&mut self, eflag: bool, advance: bool) -> Result<(), RunError> {
+        self.compute_forces_listed(eflag, advance, None)
+    }
+
+    /// [`Simulation::compute_forces`], the pair forces (not the density summation) over
+    /// `force_list` when given.
+    pub(crate) fn compute_forces_listed(&mut self, eflag: bool, advance: bool, force_list: Option<crate::engine::neighbor::NeighList>) -> Result<(), RunError> {
         let a = &mut self.state.atoms;
         clear(&mut a.f, [0.0; 3]);
         if a.features.sphere {
@@ -270,7 +276,11 @@ impl Simulation {
             }
         }
         if self.pair.is_some() {
+            let full = force_list.map(|l| std::mem::replace(&mut self.state.neighbor.list, l));
             pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
+            if let Some(full) = full {
+                self.state.neighbor.list = full;
+            }
         }
         self.timers.charge(Stage::Pair);
         let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {

@@ -17,6 +17,9 @@ use crate::sim::{RunError, Simulation};
 /// LAMMPS' global bins of a neighbour build (NBinStandard: half the largest list cutoff, or
 /// `neigh_modify binsize`, stretched to fit the box a whole number of times).
 struct LammpsBins {
+    /// The half list is made from a full one (a sub-style such as sph/rhosum asks for a full
+    /// list: LAMMPS' halffull/newton), which keeps a ghost partner by its coordinates alone.
+    from_full: bool,
     lo: [f64; 3],
     hi: [f64; 3],
     inv: [f64; 3],
@@ -24,7 +27,7 @@ struct LammpsBins {
 }
 
 impl LammpsBins {
-    fn new(domain: &Domain, cutneighmax: f64, binsize_user: f64) -> LammpsBins {
+    fn new(domain: &Domain, cutneighmax: f64, binsize_user: f64, from_full: bool) -> LammpsBins {
         let prd = domain.prd();
         let optimal = if binsize_user > 0.0 { binsize_user } else { 0.5 * cutneighmax };
         let optimal = if optimal == 0.0 { prd[0] } else { optimal };
@@ -37,7 +40,7 @@ impl LammpsBins {
             }
             inv[d] = 1.0 / (prd[d] / n[d] as f64);
         }
-        LammpsBins { lo: domain.lo, hi: domain.hi, inv, n }
+        LammpsBins { from_full, lo: domain.lo, hi: domain.hi, inv, n }
     }
 
     /// LAMMPS' `coord2bin`, as global bin coordinates.
@@ -55,10 +58,11 @@ impl LammpsBins {
 
     /// Whether LAMMPS' half/bin/newton list holds the pair of owned atom `xi` and ghost `xj`
     /// at the owned atom: the ghost's bin in the upper half stencil (z, then y, then x
-    /// positive), or the same bin and the ghost not below and left of the atom.
+    /// positive), or the same bin (any bin for a list made from a full one) and the ghost not
+    /// below and left of the atom.
     fn held_at_owned(&self, xi: &[f64; 3], xj: &[f64; 3]) -> bool {
         let (bi, bj) = (self.bin(xi), self.bin(xj));
-        for d in (0..3).rev() {
+        for d in (0..3).rev().filter(|_| !self.from_full) {
             if bj[d] != bi[d] {
                 return bj[d] > bi[d];
             }
@@ -99,18 +103,14 @@ impl Simulation {
             return Err(RunError::new(step, "per-atom energies and virials (compute pe/atom, stress/atom) of an SPH run setup whose ghosts hold old velocity estimates are not made yet (LAMMPS splits those pairs by its newton list)"));
         }
         let domain = self.state.domain.as_ref().expect("a box");
-        let bins = LammpsBins::new(domain, self.state.neighbor.cutneighmax, self.state.neigh_settings.binsize);
+        let from_full = self.pair.as_deref().is_some_and(|p| p.sub_styles().contains(&"sph/rhosum"));
+        let bins = LammpsBins::new(domain, self.state.neighbor.cutneighmax, self.state.neigh_settings.binsize, from_full);
         let x = &self.state.atoms.x;
         let here = |i: usize, j: usize| j < nlocal || bins.held_at_owned(&x[i], &x[j]);
-        let full = std::mem::take(&mut self.state.neighbor.list);
+        let full = &self.state.neighbor.list;
         let (near, far) = (full.retained(here), full.retained(|i, j| !here(i, j)));
-
-        self.state.neighbor.list = near;
-        let r = self.compute_forces(true, false);
-        if r.is_err() {
-            self.state.neighbor.list = full;
-            return r;
-        }
+        // the density summation (sph/rhosum) sees every pair
+        self.compute_forces_listed(true, false, Some(near))?;
         // the far pairs alone, on zeroed accumulators, with the estimates swapped
         let a = &mut self.state.atoms;
         let near_out = (std::mem::take(&mut a.f), std::mem::take(&mut a.drho), std::mem::take(&mut a.desph));
@@ -121,7 +121,7 @@ impl Simulation {
         for (g, &o) in a.vest[nlocal..].iter_mut().zip(&a.ghost_owner) {
             *g = fresh[o as usize];
         }
-        self.state.neighbor.list = far;
+        let full = std::mem::replace(&mut self.state.neighbor.list, far);
         let tally: Tally = self.with_pair(|p, input, out| p.compute(input, out), true, false);
         self.state.neighbor.list = full;
         let a = &mut self.state.atoms;

@@ -13,12 +13,6 @@ use std::path::{Path, PathBuf};
 
 const TOLS: [f64; 3] = [DEFAULT_FORCE_TOL, DEFAULT_POS_TOL, DEFAULT_VEL_TOL];
 
-/// Decks whose step-0 drho and desph are not compared: particles that start moving next to a
-/// periodic face, where dmhs' step 0 differs from LAMMPS with `newton on` (LAMMPS computes a pair
-/// across the face on one side only, with the ghost's old velocity estimate; docs/commands.md,
-/// SPH). From step 1 on both agree: forces at step 0 and the whole final state are compared.
-const STEP0_RATES_UNCHECKED: &[&str] = &["coupling_couette"];
-
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -49,7 +43,6 @@ fn check(name: &str, deck: &Path, refdir: &Path) -> Option<String> {
     match compare_runs(&ours0, &theirs0, &ours, &theirs, box_len) {
         Ok(diffs) => {
             println!("== {name}\n{}", report(&diffs));
-            let diffs: Vec<_> = diffs.into_iter().filter(|d| !(STEP0_RATES_UNCHECKED.contains(&name) && (d.quantity == "drho" || d.quantity == "desph"))).collect();
             let bad = within(&diffs, TOLS);
             (!bad.is_empty()).then(|| format!("{name}: {}", bad.join("; ")))
         }

@@ -293,6 +293,12 @@ impl NeighList {
     /// chunks and order (LAMMPS' skip lists for hybrid sub-styles).
     pub fn filtered(&self, typ: &[usize], keep: &[bool]) -> NeighList {
         let stride = self.ntypes + 1;
+        NeighList { generation: self.generation, ..self.retained(|i, j| keep[typ[i] * stride + typ[j]]) }
+    }
+
+    /// The entries (owned atom i, partner j) that `keep` accepts, in the same chunks and order,
+    /// as a list of its own (a new generation).
+    pub fn retained(&self, keep: impl Fn(usize, usize) -> bool) -> NeighList {
         let chunks = self
             .chunks
             .iter()
@@ -301,14 +307,13 @@ impl NeighList {
                 let mut neigh = Vec::with_capacity(c.len());
                 offsets.push(0);
                 for i in c.start..c.end {
-                    let row = &keep[typ[i] * stride..(typ[i] + 1) * stride];
-                    neigh.extend(c.neighbors(i).iter().filter(|&&j| row[typ[(j & NEIGH_MASK) as usize]]));
+                    neigh.extend(c.neighbors(i).iter().filter(|&&j| keep(i, (j & NEIGH_MASK) as usize)));
                     offsets.push(neigh.len() as u32);
                 }
                 ChunkList::new(c.start, c.end, offsets, neigh, c.neigh.bound())
             })
             .collect();
-        NeighList { chunks, ..self.clone_header() }
+        NeighList { chunks, generation: BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed), ..self.clone_header() }
     }
 
     /// Everything but the entries.

@@ -6,6 +6,7 @@ pub mod memory;
 pub mod minimize;
 pub mod run;
 pub mod stability;
+mod stale_vest;
 
 pub use crate::engine::state::{Energies, RunError, SetupError, State};
 use crate::models::bonded::{AngleStyle, BondStyle, DihedralStyle};

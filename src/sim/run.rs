@@ -240,6 +240,12 @@ impl Simulation {
     /// Zero forces and rates, then pair and bonded forces. Tallies energies if `eflag`.
     /// `advance`: false during run setup (contact histories are not advanced, as in LAMMPS).
     pub fn compute_forces(&mut self, eflag: bool, advance: bool) -> Result<(), RunError> {
+        self.compute_forces_listed(eflag, advance, None)
+    }
+
+    /// [`Simulation::compute_forces`], the pair forces (not the density summation) over
+    /// `force_list` when given.
+    pub(crate) fn compute_forces_listed(&mut self, eflag: bool, advance: bool, force_list: Option<crate::engine::neighbor::NeighList>) -> Result<(), RunError> {
         let a = &mut self.state.atoms;
         clear(&mut a.f, [0.0; 3]);
         if a.features.sphere {
@@ -272,7 +278,11 @@ impl Simulation {
             }
         }
         if self.pair.is_some() {
+            let full = force_list.map(|l| std::mem::replace(&mut self.state.neighbor.list, l));
             pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
+            if let Some(full) = full {
+                self.state.neighbor.list = full;
+            }
         }
         self.timers.charge(Stage::Pair);
         let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
@@ -358,14 +368,16 @@ impl Simulation {
         self.state.natoms_expected = self.state.atoms.nlocal;
         self.timers.stamp();
         // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and
-        // not refreshed after it, so at the first setup a ghost keeps the velocity estimate it
-        // had when it was made (fix sph sets vest = v on owned atoms only). Step-0 forces of
-        // pairs across periodic faces see the old vest, exactly as in LAMMPS.
+        // not refreshed after it, so a ghost keeps the velocity estimate it had when it was
+        // made (fix sph sets vest = v on owned atoms only); the setup forces of pairs across
+        // periodic faces see the old vest on the side LAMMPS' newton list gives them
+        // (src/sim/stale_vest.rs).
+        let vest_before = self.vest_before_setup();
         self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
         self.timers.charge(Stage::Modify);
         // what fixes noticed when the run starts (e.g. a region defined again)
         self.flush_messages();
-        self.compute_forces(true, false)?;
+        self.setup_forces_stale_vest(vest_before)?;
         self.timers.stamp();
         self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;
         self.timers.charge(Stage::Modify);

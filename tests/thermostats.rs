@@ -62,7 +62,7 @@ fn thermostat_errors_are_located() {
         ("fix 2 all npt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "barostat"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 temp nothere", "compute `nothere` does not exist"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nfix_modify 2 temp ke", "not a plain compute temp"),
-        ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 energy yes", "unknown keyword `energy`"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 energy yes", "fix_modify energy"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute t all temp\nfix_modify 1 temp t", "has no temperature"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 9 temp t", "fix `9` does not exist"),
     ] {

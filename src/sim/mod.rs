@@ -71,7 +71,7 @@ pub struct Simulation {
     pub min_stats: Option<minimize::MinStats>,
     /// Global fix states read by read_restart, for fixes defined later with the same ID and
     /// style; dropped at the next run, as LAMMPS drops what no fix took.
-    pub restart_fixes: Vec<crate::deck::restart::schema::FixState>,
+    pub restart_fixes: Vec<crate::models::fix::FixState>,
 }
 
 impl Default for Simulation {

@@ -43,14 +43,7 @@ pub struct Restart {
     pub fixes: Vec<FixState>,
 }
 
-/// One fix's global state: the numbers of LAMMPS' write_restart of that style.
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FixState {
-    pub id: String,
-    pub style: String,
-    pub values: Vec<f64>,
-}
+pub use crate::models::fix::FixState;
 
 /// LAMMPS' local order of the owned atoms and its `atom_modify sort` settings (see
 /// `engine::lammps_order`).

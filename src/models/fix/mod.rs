@@ -48,6 +48,16 @@ pub mod wall_region;
 pub mod wall_reflect;
 
 use crate::engine::state::{RunError, State};
+
+/// One fix's global state in a restart file: the numbers of LAMMPS' write_restart of that
+/// style, restored to a fix of the same ID and style defined after read_restart.
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixState {
+    pub id: String,
+    pub style: String,
+    pub values: Vec<f64>,
+}
 use crate::models::bonded::{AngleStyle, BondStyle};
 use crate::models::pair::PairStyle;
 use crate::models::compute::Compute;

@@ -427,14 +427,18 @@ impl Atoms {
     }
 
     /// Append the ghosts packed in `buf` (they have no owner here: `ghost_owner` is not kept
-    /// for them); returns how many.
-    pub fn unpack_ghosts(&mut self, mut buf: &[f64]) -> usize {
-        let mut n = 0;
+    /// for them).
+    pub fn unpack_ghosts(&mut self, mut buf: &[f64]) {
         while !buf.is_empty() {
             buf = self.unpack_one(buf, false);
-            n += 1;
         }
-        n
+    }
+
+    /// No atoms, with the same atom style and extra per-atom arrays (to be filled with
+    /// [`Atoms::unpack_owned`]).
+    pub fn empty_like(&self) -> Atoms {
+        let extra = self.extra.iter().map(|e| ExtraArray { name: e.name.clone(), stride: e.stride, data: Vec::new(), ghosts: e.ghosts }).collect();
+        Atoms { features: self.features, extra, ..Atoms::default() }
     }
 
     /// Reorder owned atoms: new position `k` takes old atom `order[k]`. No ghosts allowed.

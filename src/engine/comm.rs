@@ -59,8 +59,9 @@ impl Comm for Serial {
     fn sum(&self, _: &mut [f64]) {}
     fn max(&self, _: &mut [f64]) {}
     fn exchange(&self, sends: Vec<(usize, Vec<f64>)>, from: &[usize]) -> Vec<Vec<f64>> {
-        let mut sends = sends;
-        from.iter().map(|_| if sends.is_empty() { Vec::new() } else { sends.remove(0).1 }).collect()
+        // the only partner is this rank: what it sent, in order
+        let mut sent = sends.into_iter().map(|s| s.1);
+        from.iter().map(|_| sent.next().unwrap_or_default()).collect()
     }
     fn allgather(&self, data: Vec<f64>) -> Vec<Vec<f64>> {
         vec![data]

@@ -47,13 +47,11 @@ pub struct Decomp {
     /// Ghosts: for each rank that receives some of this rank's atoms (itself included, for
     /// periodic images), the owned atoms sent and their periodic shifts, in the order sent.
     sends: Vec<(usize, Vec<(u32, [i8; 3])>)>,
-    /// Ghost counts received from each rank, in the order ghosts are stored.
-    recvs: Vec<(usize, usize)>,
 }
 
 impl Decomp {
     pub fn new(comm: Arc<dyn Comm>, procs: [usize; 3]) -> Decomp {
-        Decomp { comm, procs, sends: Vec::new(), recvs: Vec::new() }
+        Decomp { comm, procs, sends: Vec::new() }
     }
     pub fn rank(&self) -> usize {
         self.comm.rank()
@@ -248,10 +246,8 @@ impl Decomp {
             self.sends.push((q, list));
         }
         let bufs = self.pack_sends(atoms, prd, |a, i, x, out| a.pack_ghost(i, x, out));
-        self.recvs.clear();
-        for (from, buf) in targets.iter().zip(bufs) {
-            let n = atoms.unpack_ghosts(&buf);
-            self.recvs.push((*from, n));
+        for buf in bufs {
+            atoms.unpack_ghosts(&buf);
         }
     }
 
@@ -316,24 +312,18 @@ impl Decomp {
         self.sends.iter().map(|s| s.0).collect()
     }
 
-    /// Ghost counts by sending rank (for `dmhs check` and the run summary).
-    pub fn ghost_counts(&self) -> &[(usize, usize)] {
-        &self.recvs
-    }
-
-    /// Every rank's owned atoms, on every rank, in rank order (at the end of a run, so that the
-    /// commands between runs see the whole system as in a serial run).
-    pub fn gather(&self, atoms: &mut Atoms) {
-        atoms.clear_ghosts();
+    /// Every rank's owned atoms, in rank order, on every rank (at the end of a run, so that the
+    /// commands between runs see the whole system as in a serial run; and for dumps).
+    pub fn gathered(&self, atoms: &Atoms) -> Atoms {
         let mut buf = Vec::new();
         for i in 0..atoms.nlocal {
             atoms.pack(i, &mut buf, true);
         }
-        let all = self.comm.allgather(buf);
-        atoms.retain(&vec![true; atoms.nlocal]);
-        for b in all {
-            atoms.unpack_owned(&b);
+        let mut whole = atoms.empty_like();
+        for b in self.comm.allgather(buf) {
+            whole.unpack_owned(&b);
         }
+        whole
     }
 }
 

@@ -121,7 +121,7 @@ impl Simulation {
             return;
         }
         let d = self.state.decomp.as_ref().expect("a decomposition");
-        d.gather(&mut self.state.atoms);
+        self.state.atoms = d.gathered(&self.state.atoms);
         self.state.lists_valid = false;
         self.state.lammps_order = Default::default();
     }

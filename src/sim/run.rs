@@ -663,8 +663,7 @@ impl Simulation {
     fn write_dumps_gathered(&mut self, due: &[usize]) -> Result<(), RunError> {
         let step = self.state.step;
         let d = self.state.decomp.as_ref().expect("a decomposition");
-        let mut whole = self.state.atoms.clone();
-        d.gather(&mut whole);
+        let mut whole = d.gathered(&self.state.atoms);
         let rank0 = d.rank() == 0;
         std::mem::swap(&mut self.state.atoms, &mut whole);
         let natoms = self.state.distributed.take();

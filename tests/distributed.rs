@@ -113,7 +113,7 @@ fn compare(deck: &str, ranks: usize) {
                     assert!(close(*x, *y, 1e-9), "{ranks} ranks: thermo row {r:?} against serial {r0:?}");
                 }
             }
-            assert!(text.contains(&format!("on {ranks} procs for 100 steps with 864 atoms")), "{text}");
+            assert!(text.contains(&format!("on {ranks} procs for")) && text.contains(&format!("steps with {} atoms", atoms0.len())), "{text}");
             assert!(text.contains("MPI processor grid"), "{text}");
         } else {
             assert!(text.is_empty(), "rank {rank} writes nothing: {text}");
@@ -130,6 +130,93 @@ fn lj_melt_on_two_ranks_is_the_serial_run() {
 fn lj_melt_on_three_and_four_ranks_is_the_serial_run() {
     compare(MELT, 3);
     compare(MELT, 4);
+}
+
+/// A data file of `n` x `n` zigzag bead-spring chains of 10 beads along x in a periodic cube
+/// of side 12 (chains cross the periodic face), with bonds, angles and dihedrals.
+fn chains_data(n: usize) -> String {
+    let (beads, side) = (10usize, 12.0);
+    let nchains = n * n;
+    let natoms = nchains * beads;
+    let mut atoms = String::new();
+    let (mut bonds, mut angles, mut dihedrals) = (String::new(), String::new(), String::new());
+    let (mut nb, mut na, mut nd) = (0, 0, 0);
+    for c in 0..nchains {
+        let (y0, z0) = (0.3 + side / n as f64 * (c % n) as f64, 0.3 + side / n as f64 * (c / n) as f64);
+        let x0 = 1.7 * c as f64 % side;
+        for k in 0..beads {
+            let id = c * beads + k + 1;
+            let x = (x0 + 0.9 * k as f64) % side;
+            let (y, z) = (y0 + 0.35 * (k % 2) as f64, z0 + 0.35 * ((k / 2) % 2) as f64);
+            atoms += &format!("{id} {} 1 {x} {y} {z}\n", c + 1);
+            if k >= 1 {
+                nb += 1;
+                bonds += &format!("{nb} 1 {} {id}\n", id - 1);
+            }
+            if k >= 2 {
+                na += 1;
+                angles += &format!("{na} 1 {} {} {id}\n", id - 2, id - 1);
+            }
+            if k >= 3 {
+                nd += 1;
+                dihedrals += &format!("{nd} 1 {} {} {} {id}\n", id - 3, id - 2, id - 1);
+            }
+        }
+    }
+    format!(
+        "chains\n\n{natoms} atoms\n{nb} bonds\n{na} angles\n{nd} dihedrals\n1 atom types\n1 bond types\n1 angle types\n1 dihedral types\n\n0 {side} xlo xhi\n0 {side} ylo yhi\n0 {side} zlo zhi\n\nMasses\n\n1 1.0\n\nAtoms # molecular\n\n{atoms}\nBonds\n\n{bonds}\nAngles\n\n{angles}\nDihedrals\n\n{dihedrals}"
+    )
+}
+
+/// Bead-spring chains whose bonds, angles and dihedrals cross rank boundaries and periodic
+/// faces (the bonded partners within the ghost cutoff: comm_modify cutoff for the dihedrals).
+fn chains_deck(dir: &std::path::Path, bond: &str) -> String {
+    std::fs::write(dir.join("chains.data"), chains_data(6)).unwrap();
+    format!(
+        "
+units        lj
+atom_style   molecular
+read_data    {}/chains.data
+{bond}
+angle_style  harmonic
+angle_coeff  1 3.0 150.0
+dihedral_style harmonic
+dihedral_coeff 1 0.5 1 2
+pair_style   lj/cut 1.122462048309373
+pair_coeff   1 1 1.0 1.0
+pair_modify  shift yes
+special_bonds lj 0.0 1.0 1.0
+comm_modify  cutoff 3.5
+neighbor     0.4 bin
+neigh_modify every 1 delay 0 check yes
+velocity     all create 1.0 4928459 loop geom
+fix          1 all nve
+thermo_style custom step temp epair ebond eangle edihed etotal press atoms
+thermo       50
+timestep     0.004
+run          150
+run          100
+",
+        dir.display()
+    )
+}
+
+#[test]
+fn bonded_chains_across_ranks_are_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    compare(&chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97"), 2);
+    let fene = chains_deck(dir.path(), "bond_style   fene\nbond_coeff   1 30.0 1.5 1.0 1.0").replace("special_bonds lj 0.0 1.0 1.0", "special_bonds fene");
+    compare(&fene, 4);
+}
+
+#[test]
+fn a_bond_longer_than_the_ghost_cutoff_stops_every_rank() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace("comm_modify  cutoff 3.5\n", "");
+    for r in on_ranks(&deck, 4) {
+        let e = r.err().expect("refused");
+        assert!(e.contains("is missing on this rank") && e.contains("longer than the ghost cutoff"), "{e}");
+    }
 }
 
 #[test]

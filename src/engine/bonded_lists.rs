@@ -86,7 +86,7 @@ pub fn chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
 }
 
 /// Group entries by chunk (`chunk_of[i]` = chunk of owned atom i); entries that need a periodic
-/// image go to the leftovers, so chunk entries read positions directly. Within a chunk, entries are
+/// image or a ghost go to the leftovers, so chunk entries read positions directly. Within a chunk, entries are
 /// taken with a stride of N (0, N, 2N, ..., then 1, N+1, ...): interactions along a chain
 /// (bond k and k+1 share an atom) would otherwise form one long dependency through the force
 /// accumulators and run at the latency of sqrt/acos instead of their throughput.
@@ -97,7 +97,8 @@ pub fn slab<E: Copy, const N: usize>(entries: &[E], atoms: impl Fn(&E) -> [u32; 
     for e in entries {
         let idx = atoms(e);
         let (lo, hi) = (*idx.iter().min().unwrap() as usize, *idx.iter().max().unwrap() as usize);
-        let (c, ch) = (chunk_of[lo], chunk_of[hi]);
+        // a ghost (a distributed run's) is in no chunk
+        let (c, ch) = (chunk_of[lo], chunk_of.get(hi).copied().unwrap_or(u32::MAX - 1));
         if ch <= c + 1 && !shifted(e) {
             target.push(c);
             counts[c as usize + 1] += 1;

@@ -143,7 +143,7 @@ impl Decomp {
             let width = (domain.hi[d] - domain.lo[d]) / p as f64;
             if p > 1 && width < cut {
                 return Err(format!(
-                    "the sub-domains of the {}x{}x{} processor grid are {width} thick along {}, less than the ghost cutoff {cut} (pair cutoff + skin): use fewer ranks along {} (processors command)",
+                    "the sub-domains of the {}x{}x{} processor grid are {width} thick along {}, less than the ghost cutoff {cut} (pair cutoff + skin, or comm_modify cutoff): use fewer ranks along {} (processors command)",
                     self.procs[0], self.procs[1], self.procs[2],
                     ["x", "y", "z"][d], ["x", "y", "z"][d]
                 ));

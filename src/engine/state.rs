@@ -105,6 +105,9 @@ pub struct State {
     /// LAMMPS' local order of the owned atoms (for models whose bits depend on atom order).
     pub lammps_order: super::lammps_order::LammpsOrder,
     pub comm_vel: bool,
+    /// `comm_modify cutoff`: the least ghost cutoff of a distributed run (bonded partners
+    /// farther than the pair cutoff + skin); a serial run's periodic ghosts need none.
+    pub comm_cutoff: f64,
     pub groups: Groups,
     pub lattice: Option<Lattice>,
     pub regions: Vec<Region>,
@@ -176,6 +179,7 @@ impl State {
             neighbor: Neighbor::default(),
             lammps_order: Default::default(),
             comm_vel: false,
+            comm_cutoff: 0.0,
             groups: Groups::default(),
             lattice: None,
             regions: Vec::new(),

@@ -9,12 +9,15 @@ use crate::engine::decomp::{choose_grid, Decomp};
 use crate::sim::{RunError, Simulation};
 use std::sync::Arc;
 
-/// What a distributed run supports so far: atomic and SPH systems with pair forces that need
-/// no per-pair history, the integrators and forces that act atom by atom, and the thermo
-/// computes that are sums.
+/// What a distributed run supports so far: atomic, bonded and SPH systems with pair forces
+/// that need no per-pair history and bonded styles that keep no per-bond state, the
+/// integrators and forces that act atom by atom, and the thermo computes that are sums.
 const PAIRS: &[&str] = &["lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction"];
 const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke"];
+const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
+const ANGLES: &[&str] = &["harmonic"];
+const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
 
 /// Per-rank counts at the end of a distributed run, for the run summary (sum, min, max).
 pub struct RankCounts {
@@ -45,8 +48,12 @@ impl Simulation {
 
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
         let ft = self.state.atoms.features;
-        let what = if ft.molecular() {
-            Some("bonded atoms (atom styles with bonds, angles or dihedrals)".to_string())
+        let what = if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
+            Some(format!("bond_style {}", b.name()))
+        } else if let Some(b) = self.angle_style.as_ref().filter(|b| !ANGLES.contains(&b.name())) {
+            Some(format!("angle_style {}", b.name()))
+        } else if let Some(b) = self.dihedral_style.as_ref().filter(|b| !DIHEDRALS.contains(&b.name())) {
+            Some(format!("dihedral_style {}", b.name()))
         } else if ft.sphere {
             Some("finite-size spheres (atom_style sphere and granular styles)".to_string())
         } else if let Some(p) = self.pair.as_ref().and_then(|p| p.sub_styles().into_iter().find(|s| !PAIRS.contains(s))) {
@@ -64,8 +71,11 @@ impl Simulation {
         } else {
             None
         };
-        let supported = format!("pair styles {}; fixes {}; computes {}", PAIRS.join(", "), FIXES.join(", "), COMPUTES.join(", "));
-        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
+        let supported = format!(
+            "pair styles {}; bond styles {}; angle styles {}; dihedral styles {}; fixes {}; computes {}",
+            PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
+        );
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
     }
 
     /// What a run on `n` ranks would do with the atoms there are now (`dmhs check --ranks N`):

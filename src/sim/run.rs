@@ -144,14 +144,15 @@ impl Simulation {
         };
         let built = match ghosts {
             Some((sub, d)) => {
-                let mut make = |atoms: &mut crate::engine::atoms::Atoms, cut: f64| d.borders(atoms, domain, cut);
+                let comm_cutoff = self.state.comm_cutoff;
+                let mut make = |atoms: &mut crate::engine::atoms::Atoms, cut: f64| d.borders(atoms, domain, cut.max(comm_cutoff));
                 let given = crate::engine::neighbor::Ghosts::Given { sub, make: &mut make };
                 self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table, given)
             }
             None => self.state.neighbor.build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table),
         };
         if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
-            d.check_thickness(domain, self.state.neighbor.cutneighmax).map_err(|e| RunError::new(step, e))?;
+            d.check_thickness(domain, self.state.neighbor.cutneighmax.max(self.state.comm_cutoff)).map_err(|e| RunError::new(step, e))?;
         }
         let order = built
             .map_err(|e| match e {

@@ -367,10 +367,9 @@ pub fn comm_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
         a.skip(1);
         match w.text.as_str() {
             "vel" => sim.state.comm_vel = a.yes_no("vel")?,
-            // ghost atoms are made for the list cutoff; a longer ghost cutoff changes nothing
-            "cutoff" => {
-                a.non_negative_f64("cutoff")?;
-            }
+            // a serial run's ghosts are made for the list cutoff; a distributed run's reach
+            // at least this far
+            "cutoff" => sim.state.comm_cutoff = a.non_negative_f64("cutoff")?,
             // ghost cutoffs by type and the ghost group only shape MPI communication: one
             // process makes the ghosts its lists need
             "mode" => {

@@ -84,6 +84,9 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
             state.bonded_lists = BondedLists::default();
             return Ok(());
         }
+        if state.distributed.is_some() {
+            return build_distributed(state, styles);
+        }
         let map = state.atoms.tag_map();
         let domain = state.domain.as_ref().unwrap();
         let prd = domain.prd();
@@ -129,21 +132,83 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
                 dihedrals.push(Entry { atoms: i, shift, typ: d.typ, rec: rec as u32 });
             }
         }
-        let chunks = &state.neighbor.list.chunks;
-        let mut chunk_of = vec![0u32; state.atoms.nlocal];
-        for (c, ch) in chunks.iter().enumerate() {
-            chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
-        }
-        let n = chunks.len();
         let lammps_bonds = if bpm { crate::models::bonded::bpm::lammps_bond_list(state, &bonds) } else { vec![] };
-        state.bonded_lists = BondedLists {
-            bonds: slab(&bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
-            angles: slab(&angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
-            dihedrals: slab(&dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
-            lammps_bonds,
-        };
+        state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, lammps_bonds);
         Ok(())
     }
+
+/// The entries grouped by the chunks of the neighbour list (see [`slab`]).
+fn slabbed(state: &State, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], lammps_bonds: Vec<crate::engine::bonded_lists::Listed>) -> BondedLists {
+    let chunks = &state.neighbor.list.chunks;
+    let mut chunk_of = vec![0u32; state.atoms.nlocal];
+    for (c, ch) in chunks.iter().enumerate() {
+        chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
+    }
+    let n = chunks.len();
+    BondedLists {
+        bonds: slab(bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
+        angles: slab(angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
+        dihedrals: slab(dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
+        lammps_bonds,
+    }
+}
+
+/// A distributed run's bonded lists, as LAMMPS lists them with `newton_bond off`: every
+/// interaction with an owned atom, seen from each of its owned atoms with the other atoms at
+/// their local copies (owned or ghost) closest to that atom, and listed once per distinct set
+/// of copies. An owned atom is in exactly one listed entry at its own index, so it receives the
+/// interaction's force once (forces on ghost copies are dropped) and the entries' owned shares
+/// of the energy add up to one over the ranks.
+fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunError> {
+    let (t, a) = (&state.topo, &state.atoms);
+    let step = state.step;
+    let owned = a.tag_map();
+    let mut ghosts: Vec<(i64, u32)> = (a.nlocal..a.nall()).map(|j| (a.tag[j], j as u32)).collect();
+    ghosts.sort_unstable();
+    // the copy of atom `tag` closest to `x` (None: this rank has no copy)
+    let closest = |tag: i64, x: [f64; 3]| -> Option<u32> {
+        let from = ghosts.partition_point(|g| g.0 < tag);
+        let copies = owned.get(tag).map(|i| i as u32).into_iter().chain(ghosts[from..].iter().take_while(|g| g.0 == tag).map(|g| g.1));
+        let d2 = |j: u32| {
+            let y = a.x[j as usize];
+            (0..3).map(|d| (y[d] - x[d]) * (y[d] - x[d])).sum::<f64>()
+        };
+        copies.min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
+    };
+    fn listed<const N: usize>(tags: [i64; N], typ: usize, rec: usize, what: &str, owned: &crate::engine::atoms::TagMap, x: &[[f64; 3]], closest: &impl Fn(i64, [f64; 3]) -> Option<u32>, out: &mut Vec<Entry<N>>, step: i64) -> Result<(), RunError> {
+        let first = out.len();
+        for anchor in tags.iter().filter_map(|&tag| owned.get(tag)) {
+            let mut atoms = [0u32; N];
+            for (m, &tag) in tags.iter().enumerate() {
+                atoms[m] = closest(tag, x[anchor]).ok_or_else(|| {
+                    RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} is longer than the ghost cutoff (pair cutoff + skin; comm_modify cutoff)"))
+                })?;
+            }
+            if !out[first..].iter().any(|e| e.atoms == atoms) {
+                out.push(Entry { atoms, shift: [[0; 3]; N], typ, rec: rec as u32 });
+            }
+        }
+        Ok(())
+    }
+    let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
+    if styles.bond.is_some() {
+        for (rec, b) in t.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
+            listed(b.atoms, b.typ, rec, "bond", &owned, &a.x, &closest, &mut bonds, step)?;
+        }
+    }
+    if styles.angle.is_some() {
+        for (rec, b) in t.angles.iter().enumerate().filter(|(_, b)| !b.off) {
+            listed(b.atoms, b.typ, rec, "angle", &owned, &a.x, &closest, &mut angles, step)?;
+        }
+    }
+    if styles.dihedral.is_some() {
+        for (rec, b) in t.dihedrals.iter().enumerate().filter(|(_, b)| !b.off) {
+            listed(b.atoms, b.typ, rec, "dihedral", &owned, &a.x, &closest, &mut dihedrals, step)?;
+        }
+    }
+    state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, vec![]);
+    Ok(())
+}
 
 /// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd
 /// schedule, then the leftovers, so results do not depend on the thread count.
@@ -154,7 +219,8 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
         }
         let prd = state.domain.as_ref().unwrap().prd();
         let mut f = std::mem::take(&mut state.atoms.f);
-        let ctx = Kernels { x: &state.atoms.x, prd, shifts: false, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+        let owned = if state.distributed.is_some() { state.atoms.nlocal as u32 } else { u32::MAX };
+        let ctx = Kernels { x: &state.atoms.x, prd, shifts: false, owned, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
         // the bonded lists are grouped by the chunks of the neighbour list (each chunk's
         // interactions touch only atoms of that chunk and the next)
         let bounds = state.neighbor.list.bounds();
@@ -195,6 +261,9 @@ pub struct Kernels<'a> {
     prd: [f64; 3],
     /// Entries may carry periodic shifts (the leftovers).
     shifts: bool,
+    /// Atoms below this index are owned (a distributed run: entries with ghosts tally only
+    /// their owned share; otherwise `u32::MAX`).
+    owned: u32,
     eflag: bool,
     bond: Option<&'a dyn BondStyle>,
     angle: Option<&'a dyn AngleStyle>,
@@ -205,9 +274,9 @@ fn sub(p: [f64; 3], q: [f64; 3]) -> [f64; 3] {
     [p[0] - q[0], p[1] - q[1], p[2] - q[2]]
 }
 
-fn add_virial(t: &mut [f64; 6], v: [f64; 6]) {
+fn add_virial(t: &mut [f64; 6], v: [f64; 6], share: f64) {
     for k in 0..6 {
-        t[k] += v[k];
+        t[k] += share * v[k];
     }
 }
 
@@ -225,6 +294,17 @@ impl Kernels<'_> {
             }
         }
         p
+    }
+
+    /// The share of an entry's energy and virial this rank tallies: its owned atoms' fraction
+    /// (LAMMPS' `ev_tally` with `newton_bond off`); 1 outside a distributed run.
+    #[inline(always)]
+    fn share<const N: usize>(&self, e: &Entry<N>) -> f64 {
+        if self.owned == u32::MAX {
+            1.0
+        } else {
+            e.atoms.iter().filter(|&&i| i < self.owned).count() as f64 / N as f64
+        }
     }
 
     fn run(&self, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
@@ -261,8 +341,9 @@ pub fn apply_bonds<S: BondStyle + ?Sized>(style: &S, entries: &[Entry<2>], k: &K
             fa[d] -= del[d] * fbond;
         }
         if k.eflag {
-            tally.ebond += energy;
-            add_virial(&mut tally.virial, bond_virial(del, fbond));
+            let w = k.share(e);
+            tally.ebond += w * energy;
+            add_virial(&mut tally.virial, bond_virial(del, fbond), w);
         }
     }
 }
@@ -277,8 +358,9 @@ pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: 
         add_force(f, e.atoms[1], r.f2());
         add_force(f, e.atoms[2], r.f3);
         if k.eflag {
-            tally.eangle += r.energy;
-            add_virial(&mut tally.virial, angle_virial(del1, del2, r.f1, r.f3));
+            let w = k.share(e);
+            tally.eangle += w * r.energy;
+            add_virial(&mut tally.virial, angle_virial(del1, del2, r.f1, r.f3), w);
         }
     }
 }
@@ -292,8 +374,9 @@ pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>
             add_force(f, e.atoms[m], fm);
         }
         if k.eflag {
-            tally.edihed += r.energy;
-            add_virial(&mut tally.virial, dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4));
+            let w = k.share(e);
+            tally.edihed += w * r.energy;
+            add_virial(&mut tally.virial, dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4), w);
         }
     }
 }
@@ -306,7 +389,7 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engi
     let lists = &state.bonded_lists;
     let Some(dom) = state.domain.as_ref() else { return };
     // every entry at its shifts (chunk entries have none)
-    let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+    let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, owned: u32::MAX, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
     let all = |n: usize| 0..=n;
     if let Some(style) = styles.bond {
         let n = lists.bonds.nchunks();

@@ -46,7 +46,8 @@ pub struct FixMove {
     /// 2 pi / period (wiggle, rotate, transrot)
     omega_rotate: f64,
     time_origin: i64,
-    /// name of the per-atom array holding the original unwrapped positions
+    /// name of the per-atom array holding the original unwrapped positions, and a 4th value
+    /// per atom, 1 once the fix has set them (0: an atom added since, see [`FixMove::adopt`])
     store: String,
     /// name of the per-atom array holding the original orientations (rotations of bpm/sphere)
     qstore: Option<String>,
@@ -176,12 +177,13 @@ impl FixMove {
         let store = format!("fix_move:{id}");
         state.atoms.clear_ghosts();
         state.lists_valid = false;
-        let k = state.atoms.extra_array(&store, 3);
+        let k = state.atoms.extra_array(&store, 4);
         for i in 0..state.atoms.nlocal {
             if state.atoms.mask[i] & groupbit != 0 {
                 let u = domain.unmap(state.atoms.x[i], state.atoms.image[i]);
-                state.atoms.extra[k].data[3 * i..3 * i + 3].copy_from_slice(&u);
+                state.atoms.extra[k].data[4 * i..4 * i + 3].copy_from_slice(&u);
             }
+            state.atoms.extra[k].data[4 * i + 3] = 1.0;
         }
         // the orientations a rotation turns (LAMMPS' qoriginal of atoms with a quat)
         let qstore = (rotates && state.atoms.features.quat).then(|| {
@@ -195,6 +197,51 @@ impl FixMove {
             name
         });
         Ok(FixMove { id, groupbit, motion, omega_rotate, time_origin: state.step, store, qstore })
+    }
+
+    /// Atoms added since the last step (fix pour, deposit, create_atoms): their original
+    /// positions are backed up from where they were made to the time origin, as LAMMPS'
+    /// set_arrays does when they are made. They were made on the step before this one (in the
+    /// previous step's pre_exchange, or by a command between runs) and have not moved since.
+    fn adopt(&self, state: &mut State, domain: &crate::engine::domain::Domain, k: usize, kq: Option<usize>) -> Result<(), RunError> {
+        let made = state.step - 1;
+        let delta = (made - self.time_origin) as f64 * state.dt;
+        let a = &mut state.atoms;
+        for i in 0..a.nlocal {
+            if a.extra[k].data[4 * i + 3] != 0.0 {
+                continue;
+            }
+            a.extra[k].data[4 * i + 3] = 1.0;
+            if a.mask[i] & self.groupbit == 0 {
+                continue;
+            }
+            let mut x0 = domain.unmap(a.x[i], a.image[i]);
+            let mut q0 = kq.map(|_| a.quat[i]);
+            if made != self.time_origin {
+                match &self.motion {
+                    Motion::Variable(..) => return Err(RunError::new(state.step, format!("fix {}: cannot add atoms to fix move variable (LAMMPS refuses it too)", self.id))),
+                    Motion::Linear(c) => (0..3).for_each(|d| x0[d] -= c[d].map_or(0.0, |v| v * delta)),
+                    Motion::Wiggle(c) => {
+                        let sine = (self.omega_rotate * delta).sin();
+                        (0..3).for_each(|d| x0[d] -= c[d].map_or(0.0, |am| am * sine));
+                    }
+                    // LAMMPS 22 Jul 2025 turns transrot's atoms back as rotate's (the
+                    // translation is not undone) and leaves the stored orientation of a
+                    // bpm/sphere atom 0 (so its quat becomes 0): both kept for parity
+                    Motion::Rotate(r) | Motion::Transrot(_, r) => {
+                        let arg = -self.omega_rotate * delta;
+                        let (c, disp) = rotate_about_axis(&r.point, &r.runit, &x0, arg.sin(), arg.cos());
+                        x0 = [r.point[0] + c[0] + disp[0], r.point[1] + c[1] + disp[1], r.point[2] + c[2] + disp[2]];
+                        q0 = q0.map(|_| [0.0; 4]);
+                    }
+                }
+            }
+            a.extra[k].data[4 * i..4 * i + 3].copy_from_slice(&x0);
+            if let (Some(kq), Some(q)) = (kq, q0) {
+                a.extra[kq].data[4 * i..4 * i + 4].copy_from_slice(&q);
+            }
+        }
+        Ok(())
     }
 
     /// Which components final_integrate leaves to fix nve (LAMMPS' x/y/zflag).
@@ -258,6 +305,7 @@ impl Fix for FixMove {
             Some(name) => Some(state.atoms.find_extra(name).ok_or_else(lost)?),
             None => None,
         };
+        self.adopt(state, &domain, k, kq)?;
         let arg = self.omega_rotate * delta;
         let (sine, cosine) = (arg.sin(), arg.cos());
         // the rotation of orientations, by the half angle
@@ -273,7 +321,7 @@ impl Fix for FixMove {
                 continue;
             }
             let xold = a.x[i];
-            let x0 = &a.extra[k].data[3 * i..3 * i + 3];
+            let x0 = &a.extra[k].data[4 * i..4 * i + 3];
             let m = if per_atom { a.rmass[i] } else { state.type_mass[a.typ[i]] };
             let dtfm = dtf / m;
             // fix nve on one component

@@ -94,6 +94,21 @@ fn rotation<'w>(a: &mut Args<'w>) -> DResult<(Rotation, &'w Word)> {
     Ok((Rotation { point, runit: [axis[0] / len, axis[1] / len, axis[2] / len] }, at))
 }
 
+/// The name of a per-atom array of the fix, and whether it holds values already. An array of
+/// this ID that is there when no fix of the ID exists comes from a restart file (an unfixed fix
+/// removes its own): kept, as LAMMPS restores its per-atom restart data. A fix replacing one of
+/// the same ID takes the other of two names, since the old one removes its array afterwards.
+fn store_name(state: &State, base: &str, replacing: bool) -> (String, bool) {
+    let alt = format!("{base}:next");
+    let found = |n: &str| state.atoms.find_extra(n).is_some();
+    match (replacing, found(base)) {
+        (true, true) => (alt, false),
+        (true, false) => (base.to_string(), false),
+        (false, _) if found(&alt) => (alt, true),
+        (false, restored) => (base.to_string(), restored),
+    }
+}
+
 /// `v_name` or NULL (variable style).
 fn variable(a: &mut Args, what: &str) -> DResult<Option<String>> {
     let w = a.word(what)?;
@@ -107,7 +122,8 @@ fn variable(a: &mut Args, what: &str) -> DResult<Option<String>> {
 }
 
 impl FixMove {
-    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
+    /// `replacing`: a fix move of this ID exists (LAMMPS deletes it first: this one starts afresh).
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, replacing: bool, state: &mut State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let style = a.word("move style")?;
         let two_d = state.dimension == 2;
@@ -174,11 +190,11 @@ impl FixMove {
         }
         let rotates = matches!(motion, Motion::Rotate(_) | Motion::Transrot(..));
         let domain = state.domain.clone().ok_or_else(|| a.error_at(&cmd.name, "fix move needs a simulation box", "no box yet"))?;
-        let store = format!("fix_move:{id}");
         state.atoms.clear_ghosts();
         state.lists_valid = false;
+        let (store, restored) = store_name(state, &format!("fix_move:{id}"), replacing);
         let k = state.atoms.extra_array(&store, 4);
-        for i in 0..state.atoms.nlocal {
+        for i in (0..state.atoms.nlocal).filter(|_| !restored) {
             if state.atoms.mask[i] & groupbit != 0 {
                 let u = domain.unmap(state.atoms.x[i], state.atoms.image[i]);
                 state.atoms.extra[k].data[4 * i..4 * i + 3].copy_from_slice(&u);
@@ -187,9 +203,9 @@ impl FixMove {
         }
         // the orientations a rotation turns (LAMMPS' qoriginal of atoms with a quat)
         let qstore = (rotates && state.atoms.features.quat).then(|| {
-            let name = format!("fix_move_quat:{id}");
+            let (name, restored) = store_name(state, &format!("fix_move_quat:{id}"), replacing);
             let k = state.atoms.extra_array(&name, 4);
-            for i in 0..state.atoms.nlocal {
+            for i in (0..state.atoms.nlocal).filter(|_| !restored) {
                 if state.atoms.mask[i] & groupbit != 0 {
                     state.atoms.extra[k].data[4 * i..4 * i + 4].copy_from_slice(&state.atoms.quat[i]);
                 }
@@ -414,6 +430,15 @@ impl Fix for FixMove {
             }
         }
         Ok(())
+    }
+    /// LAMMPS' global restart state: the time origin (the per-atom arrays travel with the atoms).
+    fn write_restart(&self) -> Option<Vec<f64>> {
+        Some(vec![self.time_origin as f64])
+    }
+    fn restart(&mut self, values: &[f64]) {
+        if let Some(&t) = values.first() {
+            self.time_origin = t as i64;
+        }
     }
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.remove_extra(&self.store);

@@ -64,6 +64,39 @@ fn replicate_errors_are_located() {
 }
 
 #[test]
+fn fix_move_errors_are_located() {
+    // every style of LAMMPS' fix move is parsed; bad arguments are located errors
+    let lj = deck("in.replicate_lj");
+    let with = |fix: &str| lj.replace("replicate    1 3 2", fix);
+    for (fix, want) in [
+        ("fix m all move", "missing move style"),
+        ("fix m all move spin 1 2 3", "unknown fix move style `spin`"),
+        ("fix m all move linear 1 0", "missing Vz"),
+        ("fix m all move linear 1 0 abc", "expected a number for Vz"),
+        ("fix m all move wiggle 1 0 0", "missing period"),
+        ("fix m all move wiggle 1 NULL 0 0", "illegal fix move wiggle period 0"),
+        ("fix m all move rotate 0 0 0 0 0 0 1", "zero length rotation vector with fix move"),
+        ("fix m all move rotate 0 0 0 0 0 1 -1.5", "illegal fix move rotate period -1.5"),
+        ("fix m all move transrot 1 0 0 0 0 0 0 0 1", "missing period"),
+        ("fix m all move transrot 1 0 NULL 0 0 0 0 0 1 2", "expected a number for Vz"),
+        ("fix m all move variable v_a NULL NULL NULL NULL", "missing v_vz"),
+        ("fix m all move variable a NULL NULL NULL NULL NULL", "expected v_name or NULL for v_dx, found `a`"),
+        ("fix m all move linear 1 0 0 units boxx", "unknown units `boxx`"),
+        ("fix m all move wiggle 1 NULL 0 2 extra", "unknown keyword `extra`"),
+    ] {
+        expect_error(&with(fix), want);
+    }
+    let flat = format!("dimension 2\n{}", lj.replace("fcc 0.8442", "sq 0.8442").replace("0 3 0 3", "0 3 -0.5 0.5").replace("0.05 0.05 0.05", "0.05 0.05 0.0"));
+    expect_error(&flat.replace("replicate    1 3 2", "fix m all move rotate 0 0 0 0 1 1 2"), "fix move cannot rotate around a non z-axis for a 2d problem");
+    expect_error(&flat.replace("replicate    1 3 2", "fix m all move wiggle 0 0 1 2"), "fix move cannot set wiggle z motion for a 2d problem");
+    expect_error(&flat.replace("replicate    1 3 2", "fix m all move variable NULL NULL NULL NULL NULL v_a"), "fix move cannot define a z or vz variable for a 2d problem");
+    // variables are evaluated each step: equal-style only
+    let (code, out) = run(&with("variable a atom x*0.01\nfix m all move variable v_a NULL NULL NULL NULL NULL").replace("${nsteps}", "2"));
+    assert_ne!(code, 0, "{out}");
+    assert!(out.contains("fix m move variable: v_a: Variable a is atom-style") && out.contains("equal-style variables only"), "{out}");
+}
+
+#[test]
 fn read_data_add_errors_are_located() {
     let d = deck("in.read_data_add");
     let second = "read_data    chains_walls.data add append offset 2 2 1 1 0 shift 13.5 0.0 0.0 group second";

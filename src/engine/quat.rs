@@ -161,3 +161,19 @@ mod tests {
         assert_eq!(vecquat(&[1.0, 0.0, 0.0], &[1.0, 0.0, 0.0, 0.0]), [0.0, 1.0, 0.0, 0.0]);
     }
 }
+
+/// A point `x` turned about the axis through `point` with unit direction `runit`, by the angle
+/// whose sine and cosine are given, in LAMMPS' order (fix move rotate, region rotate,
+/// displace_atoms rotate): returns `c`, the projection of x - point on the axis, and `disp`, the
+/// turned part perpendicular to it; the turned point is point + c + disp.
+#[inline]
+pub fn rotate_about_axis(point: &[f64; 3], runit: &[f64; 3], x: &[f64], sine: f64, cosine: f64) -> ([f64; 3], [f64; 3]) {
+    let (p, u) = (point, runit);
+    let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+    let ddotr = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    let c = [ddotr * u[0], ddotr * u[1], ddotr * u[2]];
+    let a = [d[0] - c[0], d[1] - c[1], d[2] - c[2]];
+    let b = [u[1] * a[2] - u[2] * a[1], u[2] * a[0] - u[0] * a[2], u[0] * a[1] - u[1] * a[0]];
+    let disp = [a[0] * cosine + b[0] * sine, a[1] * cosine + b[1] * sine, a[2] * cosine + b[2] * sine];
+    (c, disp)
+}

@@ -88,12 +88,7 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
                 // rotate the unwrapped position; its image flags restart at 0
                 let x = dom.unmap(at.x[i], at.image[i]);
                 at.image[i] = [0; 3];
-                let d = [x[0] - point[0], x[1] - point[1], x[2] - point[2]];
-                let ddotr = d[0] * r[0] + d[1] * r[1] + d[2] * r[2];
-                let c = [ddotr * r[0], ddotr * r[1], ddotr * r[2]];
-                let a = [d[0] - c[0], d[1] - c[1], d[2] - c[2]];
-                let b = [r[1] * a[2] - r[2] * a[1], r[2] * a[0] - r[0] * a[2], r[0] * a[1] - r[1] * a[0]];
-                let disp = [a[0] * cosine + b[0] * sine, a[1] * cosine + b[1] * sine, a[2] * cosine + b[2] * sine];
+                let (c, disp) = crate::engine::quat::rotate_about_axis(&point, &r, &x, sine, cosine);
                 at.x[i] = [point[0] + c[0] + disp[0], point[1] + c[1] + disp[1], x[2]];
                 if dim == 3 {
                     at.x[i][2] = point[2] + c[2] + disp[2];

@@ -97,13 +97,8 @@ impl Motion {
     /// LAMMPS `Region::rotate`: `x` turned by `angle` around the axis through P.
     fn rotate(r: &Rotation, x: [f64; 3], angle: f64) -> [f64; 3] {
         let (sine, cosine) = (angle.sin(), angle.cos());
-        let (p, u) = (r.point, r.runit);
-        let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
-        let x0dotr = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
-        let c = [x0dotr * u[0], x0dotr * u[1], x0dotr * u[2]];
-        let a = [d[0] - c[0], d[1] - c[1], d[2] - c[2]];
-        let b = [u[1] * a[2] - u[2] * a[1], u[2] * a[0] - u[0] * a[2], u[0] * a[1] - u[1] * a[0]];
-        let disp = [a[0] * cosine + b[0] * sine, a[1] * cosine + b[1] * sine, a[2] * cosine + b[2] * sine];
+        let (c, disp) = crate::engine::quat::rotate_about_axis(&r.point, &r.runit, &x, sine, cosine);
+        let p = r.point;
         [p[0] + c[0] + disp[0], p[1] + c[1] + disp[1], p[2] + c[2] + disp[2]]
     }
 

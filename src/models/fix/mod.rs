@@ -20,7 +20,8 @@ pub mod freeze;
 pub mod gravity;
 pub mod indent;
 pub mod langevin;
-pub mod move_linear;
+#[path = "move.rs"]
+pub mod moves;
 pub mod nve;
 pub mod nve_bpm_sphere;
 pub mod nve_sphere;
@@ -402,7 +403,10 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("indent", |d, state| Ok(Box::new(indent::FixIndent::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("pour", |d, state| Ok(Box::new(pour::FixPour::from_lammps(d, state)?))),
     ("deposit", |d, state| Ok(Box::new(deposit::FixDeposit::from_lammps(d, state)?))),
-    ("move", |d, state| Ok(Box::new(move_linear::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("move", |d, state| {
+        let replacing = d.fixes.iter().any(|f| f.id() == d.id);
+        Ok(Box::new(moves::FixMove::from_lammps(d.id, d.groupbit, d.args, d.cmd, replacing, state)?))
+    }),
     ("sph", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("sph/stationary", |d, state| Ok(Box::new(sph::FixSph::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("bond/break", |d, state| Ok(Box::new(bond_break::FixBondBreak::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),

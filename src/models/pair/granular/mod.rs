@@ -481,6 +481,27 @@ impl GranModel {
     }
 }
 
+/// R_i + R_j (a wall: R_i) and R_eff of a contact (a wall of radius `radj`, 0 for a plane).
+#[inline(always)]
+fn radsum_reff(radi: f64, radj: f64, wall: bool) -> (f64, f64) {
+    if wall {
+        (radi, if radj == 0.0 { radi } else { radi * radj / (radi + radj) })
+    } else {
+        let s = radi + radj;
+        (s, radi * radj / s)
+    }
+}
+
+/// The heat flow into sphere i of a touching contact (LAMMPS calculate_heat after
+/// calculate_forces), with the contact radius [`granular_contact`] computes; `tj` is the
+/// partner's (or the wall's) temperature.
+#[inline]
+pub fn contact_heat(m: &GranModel, heat: &Heat, rsq: f64, radi: f64, radj: f64, wall: bool, ti: f64, tj: f64) -> f64 {
+    let (radsum, reff) = radsum_reff(radi, radj, wall);
+    let delta = radsum - rsq.sqrt();
+    heat.flow(m.normal.contact_radius(delta * reff, reff), ti, tj)
+}
+
 /// LAMMPS GranularModel::calculate_forces. Returns the force on i, and the torques on i and j.
 /// Against a `wall` (fix wall/gran): `del` points from the wall to the sphere, `radj` is 0 for a
 /// plane, m_eff is the sphere's mass and the torque lever is its full radius.
@@ -488,12 +509,7 @@ impl GranModel {
 pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64) -> ContactForce {
     let (radi, radj) = (g.radi, g.radj);
     let meff = if wall { g.mi } else { g.mi * g.mj / (g.mi + g.mj) };
-    let (radsum, reff) = if wall {
-        (radi, if radj == 0.0 { radi } else { radi * radj / (radi + radj) })
-    } else {
-        let s = radi + radj;
-        (s, radi * radj / s)
-    };
+    let (radsum, reff) = radsum_reff(radi, radj, wall);
     let r = g.rsq.sqrt();
     let rinv = 1.0 / r;
     let delta = radsum - r;
@@ -659,10 +675,7 @@ impl Granular {
                     if !touching || input.type_filter.is_some_and(|f| !f[typ[i] * stride + typ[j]]) || input.special_lj[special_level(jraw)] == 0.0 {
                         continue;
                     }
-                    // the contact radius exactly as granular_contact computes it
-                    let reff = radi * radj / radsum;
-                    let delta = radsum - rsq.sqrt();
-                    let q = heat.flow(m.normal.contact_radius(delta * reff, reff), temp[i], temp[j]);
+                    let q = contact_heat(m, heat, rsq, radi, radj, false, temp[i], temp[j]);
                     flow[i] += q;
                     if j < nlocal {
                         flow[j] -= q;

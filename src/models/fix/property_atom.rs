@@ -3,8 +3,8 @@
 //!
 //! * `temperature`, `heatflow`: the granular heat conduction fields (pair granular `heat`
 //!   models, fix heat/flow); the temperature is the one DMHS' models use as well;
-//! * `d_NAME`, `i_NAME`: custom per-atom floating-point and integer values (`set ... d_NAME`,
-//!   `compute property/atom d_NAME`, `dump custom ... d_NAME`; integers are kept as doubles).
+//! * `d_NAME`, `i_NAME`: custom per-atom floating-point and integer values (integers kept as
+//!   doubles), 0 for now: `set`, compute property/atom and dumps do not read them yet.
 //!
 //! `ghost yes` makes ghost images carry the custom values (temperature always travels: the heat
 //! models read it on neighbours). mol, q, rmass, arrays (`d2_`, `i2_`) and `read_data ... fix`

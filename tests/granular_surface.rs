@@ -45,6 +45,37 @@ fn classic_wall_argument_errors_are_located() {
     }
 }
 
+/// Heat conduction input (lammps-refs deck gran_heat_area edited): every error located at the
+/// command (file:line) with what was expected.
+#[test]
+fn heat_input_errors_are_located() {
+    let base = std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks/in.gran_heat_area")).unwrap();
+    let without = |prefixes: &[&str]| base.lines().filter(|l| !prefixes.iter().any(|p| l.starts_with(p))).collect::<Vec<_>>().join("\n");
+    let cases: Vec<(String, &str)> = vec![
+        // a heat model without per-atom temperatures
+        (without(&["fix          props", "set          region", "set          type 1 temperature", "fix          heat", "compute      t", "thermo_style"]), "pair granular: a heat model needs per-atom temperature and heatflow"),
+        (without(&["fix          props"]), "set temperature needs per-atom temperatures"),
+        (base.replace("heat/flow constant 1.0", "heat/flow constant"), "missing cp (specific heat)"),
+        (base.replace("heat/flow constant 1.0", "heat/flow constant -1.0"), "cp (specific heat) must be >= 0"),
+        (base.replace("heat/flow constant 1.0", "heat/flow type 1.0 2.0"), "unexpected"),
+        (base.replace("heat/flow constant 1.0", "heat/flow linear 1.0"), "constant"),
+        (base.replace("heat area 100.0", "heat area -100.0"), "h (heat transfer coefficient) must be >= 0"),
+        (base.replace("heat area 100.0", "heat conduction 100.0"), "heat model `conduction` is not supported"),
+        (base.replace(" temperature v_twall", ""), "with a heat model needs the wall temperature"),
+        (base.replace("heat area 50.0 ", ""), "`temperature` needs a heat model"),
+        (base.replace("property/atom temperature heatflow", "property/atom temperature heatflow rmass"), "fix property/atom rmass is not supported"),
+        (base.replace("property/atom temperature heatflow", "property/atom temperature heatflow temperature"), "already exists"),
+    ];
+    for (deck, want) in cases {
+        let (code, out) = check(&deck);
+        assert_eq!(code, 2, "expected `{want}`:\n{out}");
+        assert!(out.contains(want) && out.contains("in.wall:"), "expected `{want}`:\n{out}");
+    }
+    // without a heat model nothing needs temperatures; d_/i_ values are accepted
+    let (code, out) = check(&base.replace("property/atom temperature heatflow", "property/atom temperature heatflow d_flag i_count ghost yes"));
+    assert_eq!(code, 0, "{out}");
+}
+
 /// Step-0 thermo of tests/decks/granular/in.temp_sphere: c_ts c_tr c_te c_ts[1] c_ts[4] c_tr[3]
 /// as LAMMPS 22 Jul 2025 prints them (`thermo_modify format float %.15g`), in 2D and 3D.
 #[test]

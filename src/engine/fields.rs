@@ -20,8 +20,14 @@ pub const WATER: Field = Field { name: "dmhs/water", ghosts: true };
 pub const WATER_RATE: Field = Field { name: "dmhs/dwater", ghosts: false };
 /// Swelling growth of the radius r_i - r0_i (`fix dmhs/swell`), read by `dmhs/lj/wet`.
 pub const GROWTH: Field = Field { name: "dmhs/growth", ghosts: true };
-/// Temperature published by `fix dmhs/phase`, read by `dmhs/heatconduction` and `fix dmhs/cooling`.
+/// Temperature published by `fix dmhs/phase`, read by `dmhs/heatconduction` and `fix dmhs/cooling`;
+/// also LAMMPS' per-atom `temperature` (`fix property/atom temperature`), read by the heat models
+/// of pair granular and integrated by `fix heat/flow`.
 pub const TEMPERATURE: Field = Field { name: "dmhs/T", ghosts: true };
+/// LAMMPS' per-atom `heatflow` (`fix property/atom heatflow`): the heat flowing into the particle,
+/// written by the heat models of pair granular (a rate: see [`RATES`]; LAMMPS' fix heat/flow
+/// zeroes it before each force computation, as the force stage zeroes every rate here).
+pub const HEATFLOW: Field = Field { name: "heatflow", ghosts: false };
 /// Phase label of `fix dmhs/phase` (solid or liquid).
 pub const PHASE: Field = Field { name: "dmhs/phase", ghosts: false };
 /// Heat capacity m c of the particle's current phase (`fix dmhs/phase`).
@@ -31,7 +37,7 @@ pub const LIQUID_WEIGHT: Field = Field { name: "dmhs/phi", ghosts: true };
 
 /// The fields that are rates of the pair pass: zeroed before it, written by it (taken out of the
 /// atoms for the pass, like the forces).
-pub const RATES: &[Field] = &[WATER_RATE];
+pub const RATES: &[Field] = &[WATER_RATE, HEATFLOW];
 
 impl Atoms {
     /// Index of the field's array, if some model registered it.

@@ -79,6 +79,11 @@ pub fn forces_table(state: &State) -> AtomTable {
         cols.extend(["tqx", "tqy", "tqz"]);
     }
     let a = &state.atoms;
+    // LAMMPS' heatflow (fix property/atom heatflow)
+    let heatflow = a.field_values(crate::engine::fields::HEATFLOW);
+    if heatflow.is_some() {
+        cols.push("heatflow");
+    }
     table(state, &cols, |i, c| match c {
         "fx" => a.f[i][0],
         "fy" => a.f[i][1],
@@ -87,6 +92,7 @@ pub fn forces_table(state: &State) -> AtomTable {
         "desph" => a.desph[i],
         "tqx" => a.torque[i][0],
         "tqy" => a.torque[i][1],
+        "heatflow" => heatflow.map_or(0.0, |q| q[i]),
         _ => a.torque[i][2],
     })
 }
@@ -102,6 +108,11 @@ pub fn state_table(state: &State) -> AtomTable {
         cols.extend(["omegax", "omegay", "omegaz"]);
     }
     let a = &state.atoms;
+    // per-atom temperature (LAMMPS' fix property/atom temperature; DMHS' fix dmhs/phase)
+    let temperature = a.field_values(crate::engine::fields::TEMPERATURE);
+    if temperature.is_some() {
+        cols.push("temperature");
+    }
     let prd = state.domain.as_ref().map(|d| d.prd()).unwrap_or([0.0; 3]);
     table(state, &cols, |i, c| match c {
         "xu" => a.x[i][0] + a.image[i][0] as f64 * prd[0],
@@ -114,6 +125,7 @@ pub fn state_table(state: &State) -> AtomTable {
         "esph" => a.esph[i],
         "omegax" => a.omega[i][0],
         "omegay" => a.omega[i][1],
+        "temperature" => temperature.map_or(0.0, |t| t[i]),
         _ => a.omega[i][2],
     })
 }

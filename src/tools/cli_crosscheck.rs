@@ -120,7 +120,7 @@ pub fn within(diffs: &[Difference], tols: [f64; 3]) -> Vec<String> {
     for d in diffs {
         let tol = match d.quantity.as_str() {
             "position" => tols[1],
-            "velocity" | "rho" | "esph" | "omega" => tols[2],
+            "velocity" | "rho" | "esph" | "omega" | "temperature" => tols[2],
             _ => tols[0],
         };
         if !(d.max_rel <= tol) {

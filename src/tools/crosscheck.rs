@@ -78,14 +78,14 @@ pub fn compare(ours: &AtomTable, reference: &AtomTable, quantity: &str, cols: &[
 /// The comparison of a whole run: forces at step 0 and the final state.
 pub fn compare_runs(ours0: &AtomTable, ref0: &AtomTable, ours: &AtomTable, reference: &AtomTable, box_len: f64) -> Result<Vec<Difference>, String> {
     let mut out = vec![compare(ours0, ref0, "force", &["fx", "fy", "fz"], Scale::MaxMagnitude)?];
-    for (q, cols) in [("drho", &["drho"][..]), ("desph", &["desph"][..]), ("torque", &["tqx", "tqy", "tqz"][..])] {
+    for (q, cols) in [("drho", &["drho"][..]), ("desph", &["desph"][..]), ("torque", &["tqx", "tqy", "tqz"][..]), ("heatflow", &["heatflow"][..])] {
         if ref0.column(cols[0]).is_some() {
             out.push(compare(ours0, ref0, q, cols, Scale::MaxMagnitude)?);
         }
     }
     out.push(compare(ours, reference, "position", &["xu", "yu", "zu"], Scale::Fixed(box_len))?);
     out.push(compare(ours, reference, "velocity", &["vx", "vy", "vz"], Scale::MaxMagnitude)?);
-    for (q, cols) in [("rho", &["rho"][..]), ("esph", &["esph"][..]), ("omega", &["omegax", "omegay", "omegaz"][..])] {
+    for (q, cols) in [("rho", &["rho"][..]), ("esph", &["esph"][..]), ("omega", &["omegax", "omegay", "omegaz"][..]), ("temperature", &["temperature"][..])] {
         if reference.column(cols[0]).is_some() {
             out.push(compare(ours, reference, q, cols, Scale::MaxMagnitude)?);
         }
@@ -113,7 +113,7 @@ pub struct Capture {
 
 /// The quantities compared, their columns, and which strict tolerance applies (0 force-like,
 /// 1 position, 2 velocity-like: `cli_crosscheck::within`'s grouping).
-pub const QUANTITIES: [(&str, &[&str], usize); 9] = [
+pub const QUANTITIES: [(&str, &[&str], usize); 11] = [
     ("force", &["fx", "fy", "fz"], 0),
     ("drho", &["drho"], 0),
     ("desph", &["desph"], 0),
@@ -123,6 +123,8 @@ pub const QUANTITIES: [(&str, &[&str], usize); 9] = [
     ("rho", &["rho"], 2),
     ("esph", &["esph"], 2),
     ("omega", &["omegax", "omegay", "omegaz"], 2),
+    ("heatflow", &["heatflow"], 0),
+    ("temperature", &["temperature"], 2),
 ];
 
 /// dmhs may be at most this many times further from LAMMPS than LAMMPS is from itself.

@@ -196,7 +196,7 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
 
 pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water)";
+    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water, temperature)";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();
     let n = sim.state.atoms.nlocal;
@@ -358,8 +358,15 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 let sel = &sel;
                 crate::engine::water::set(at, &sim.state.type_mass, &sim.state.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
             }
+            "temperature" => {
+                let Some(k) = at.field(crate::engine::fields::TEMPERATURE) else {
+                    return Err(Diagnostic::at(kw.span, "set temperature needs per-atom temperatures", "no temperature").with_help("define `fix ID all property/atom temperature` first"));
+                };
+                let t = value(&mut a, "temperature")?;
+                apply(at, &mut |at, i| at.extra[k].data[i] = t);
+            }
             other => {
-                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water"];
+                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water", "temperature"];
                 let mut d = a.error_at(kw, format!("set keyword `{other}` is not supported"), "unknown or unsupported keyword");
                 if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
                     d = d.with_help(h);

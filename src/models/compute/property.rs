@@ -33,6 +33,9 @@ pub enum Field {
     Conc,
     Water,
     DWater,
+    /// Per-atom temperature and heat flow (fix property/atom temperature heatflow).
+    Temperature,
+    HeatFlow,
 }
 
 impl Field {
@@ -74,6 +77,8 @@ impl Field {
             "conc" => Field::Conc,
             "water" => Field::Water,
             "dwater" => Field::DWater,
+            "temperature" => Field::Temperature,
+            "heatflow" => Field::HeatFlow,
             _ => return None,
         })
     }
@@ -88,6 +93,8 @@ impl Field {
             Field::Quat(_) => (ft.quat, "orientations (atom_style bpm/sphere)"),
             Field::Rho | Field::Drho | Field::Esph | Field::Desph | Field::Cv | Field::Vest(_) => (ft.sph, "SPH attributes (atom_style sph)"),
             Field::Conc | Field::Water | Field::DWater => (state.atoms.field(crate::engine::fields::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
+            Field::Temperature => (state.atoms.field(crate::engine::fields::TEMPERATURE).is_some(), "temperature (define fix property/atom temperature first)"),
+            Field::HeatFlow => (state.atoms.field(crate::engine::fields::HEATFLOW).is_some(), "heatflow (define fix property/atom heatflow first)"),
             _ => (true, ""),
         };
         if ok { Ok(()) } else { Err(format!("this atom style has no {what}")) }
@@ -135,6 +142,8 @@ impl Field {
             Field::Conc => crate::engine::water::conc(a, &state.type_mass, i),
             Field::Water => crate::engine::water::field_value(a, crate::engine::fields::WATER, i),
             Field::DWater => crate::engine::water::field_value(a, crate::engine::fields::WATER_RATE, i),
+            Field::Temperature => crate::engine::water::field_value(a, crate::engine::fields::TEMPERATURE, i),
+            Field::HeatFlow => crate::engine::water::field_value(a, crate::engine::fields::HEATFLOW, i),
         }
     }
 }

@@ -18,6 +18,7 @@ pub mod deposit;
 pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
+pub mod heat_flow;
 pub mod indent;
 pub mod langevin;
 #[path = "move.rs"]
@@ -29,6 +30,7 @@ pub mod nvt;
 pub mod pour;
 pub mod sampling;
 pub mod print;
+pub mod property_atom;
 pub mod setforce;
 pub mod sph;
 pub mod spring;
@@ -420,6 +422,8 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("temp/rescale", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 

@@ -20,7 +20,9 @@ use super::{Fix, FixCtx, FixHooks};
 use crate::models::pair::classic::Classic;
 use crate::models::pair::contact::Contact;
 use crate::models::pair::contact::MAX_HISTORY;
-use crate::models::pair::granular::{granular_contact, model_syntax, GranModel, GranSpec};
+use super::value::FixValue;
+use crate::engine::fields::{HEATFLOW, TEMPERATURE};
+use crate::models::pair::granular::{check_heat_fields, contact_heat, granular_contact, model_syntax, GranModel, GranSpec};
 use crate::engine::state::{RunError, State};
 use crate::engine::par::{ranges, AtomsMut};
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -29,7 +31,7 @@ pub(super) fn syntax() -> &'static str {
     static S: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     S.get_or_init(|| {
         format!(
-            "fix ID group wall/gran granular {} | hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]",
+            "fix ID group wall/gran granular {} | hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v] [temperature T]",
             model_syntax()
         )
     })
@@ -94,6 +96,31 @@ pub(super) fn parse_model(a: &mut Args, cmd: &Command, syntax: &str, state: &mut
     Ok(spec)
 }
 
+/// `temperature T` of a granular wall (a number or v_name): the wall's temperature for the heat
+/// models, which need it (LAMMPS); without a heat model it is refused.
+pub(super) fn parse_temperature(a: &mut Args, k: &Word, model: &GranModel, style: &str) -> DResult<FixValue> {
+    if model.heat.is_none() {
+        return Err(a.error_at(k, format!("fix {style} `temperature` needs a heat model (`heat radius|area ...` in the granular form)"), "no heat model"));
+    }
+    let w = a.word("wall temperature (a number or v_name)")?;
+    FixValue::parse(w, "wall temperature", false)
+}
+
+/// A heat model on a wall needs the wall's temperature.
+pub(super) fn check_heat(a: &Args, cmd: &Command, model: &GranModel, temperature: &Option<FixValue>, style: &str) -> DResult<()> {
+    if model.heat.is_some() && temperature.is_none() {
+        return Err(a.error_at(&cmd.name, format!("fix {style} with a heat model needs the wall temperature: add `temperature T`"), "no wall temperature"));
+    }
+    Ok(())
+}
+
+/// The wall temperature now (None without a heat model), and the atoms' fields checked.
+pub(super) fn wall_temperature(temperature: &Option<FixValue>, state: &State, ctx: &mut FixCtx, me: &dyn Fix) -> Result<Option<f64>, RunError> {
+    let Some(t) = temperature else { return Ok(None) };
+    check_heat_fields(&state.atoms, &format!("fix {} {}", me.id(), me.style())).map_err(|e| RunError::new(state.step, e))?;
+    ctx.value(state, me, t)
+}
+
 const BIG: f64 = 1.0e20;
 
 enum Motion {
@@ -115,6 +142,8 @@ pub struct FixWallGran {
     time_origin: i64,
     /// Name of the per-atom history array in `Atoms::extra`.
     array: String,
+    /// `temperature T` (heat models)
+    temperature: Option<FixValue>,
 }
 
 impl FixWallGran {
@@ -146,6 +175,7 @@ impl FixWallGran {
         let hi = bound(&mut a, "hi (or NULL)", BIG)?;
         let axis_of = |a: &mut Args| -> DResult<usize> { a.choice("axis", &["x", "y", "z"]) };
         let mut motion = Motion::None;
+        let mut temperature = None;
         while let Some(k) = a.peek() {
             a.skip(1);
             match k.text.as_str() {
@@ -162,17 +192,19 @@ impl FixWallGran {
                     }
                     motion = Motion::Shear { axis, v: a.f64("shear velocity")? };
                 }
-                "contacts" | "temperature" => return Err(a.error_at(k, format!("fix wall/gran `{}` is not supported", k.text), "not supported")),
-                _ => return Err(a.unknown_keyword(k, &["wiggle", "shear"])),
+                "temperature" => temperature = Some(parse_temperature(&mut a, k, &model, "wall/gran")?),
+                "contacts" => return Err(a.error_at(k, format!("fix wall/gran `{}` is not supported", k.text), "not supported")),
+                _ => return Err(a.unknown_keyword(k, &["wiggle", "shear", "temperature"])),
             }
         }
+        check_heat(&a, cmd, &model, &temperature, "wall/gran")?;
         let domain = state.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix wall/gran needs a simulation box", "no box yet"))?;
         if domain.periodic(dim) {
             return Err(a.error_at(w, "cannot use a wall in a periodic dimension", "periodic dimension"));
         }
         let array = format!("wall/gran:{id}");
         state.atoms.extra_array(&array, width(&model));
-        Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array })
+        Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array, temperature })
     }
 
     /// The planes' positions and the wall velocity at the current step.
@@ -194,16 +226,18 @@ impl FixWallGran {
         (wlo, whi, vwall)
     }
 
-    fn apply(&mut self, state: &mut State, update: bool) -> Result<(), RunError> {
+    fn apply(&mut self, state: &mut State, ctx: &mut FixCtx, update: bool) -> Result<(), RunError> {
+        let twall = wall_temperature(&self.temperature, state, ctx, self)?;
         if width(&self.model) == 3 {
-            self.apply_w::<3>(state, update)
+            self.apply_w::<3>(state, update, twall)
         } else {
-            self.apply_w::<MAX_HISTORY>(state, update)
+            self.apply_w::<MAX_HISTORY>(state, update, twall)
         }
     }
 
-    /// `W` history values per atom (the model's, padded with zeros).
-    fn apply_w<const W: usize>(&mut self, state: &mut State, update: bool) -> Result<(), RunError> {
+    /// `W` history values per atom (the model's, padded with zeros); `twall`: the wall's
+    /// temperature when the model conducts heat.
+    fn apply_w<const W: usize>(&mut self, state: &mut State, update: bool, twall: Option<f64>) -> Result<(), RunError> {
         let dt = state.dt;
         let (wlo, whi, vwall) = self.wall_now(state);
         let w0 = [0.0f64; 3];
@@ -211,12 +245,20 @@ impl FixWallGran {
         let a = &mut state.atoms;
         let n = a.nlocal;
         let mut hist = std::mem::take(&mut a.extra[k].data);
+        // heat: the atoms' temperatures (read) and heat flows (added to), when conducting
+        let heat = match (twall, a.field(TEMPERATURE), a.field(HEATFLOW)) {
+            (Some(tw), Some(kt), Some(kq)) => Some((tw, kt, kq)),
+            _ => None,
+        };
+        let mut flow = heat.map(|(_, _, kq)| std::mem::take(&mut a.extra[kq].data)).unwrap_or_default();
+        let temp: &[f64] = heat.map_or(&[], |(_, kt, _)| &a.extra[kt].data[..]);
         let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
         let (h3, _) = hist[..W * n].as_chunks_mut::<W>();
-        let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3));
+        let nq = if heat.is_some() { n } else { 0 };
+        let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3), AtomsMut::new(&mut flow[..nq]));
         let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
         // atoms are independent: ranges of them may run in parallel (same bits)
-        ranges(n, 1024, windows, |range, (mut f, mut torque, mut h3)| {
+        ranges(n, 1024, windows, |range, (mut f, mut torque, mut h3, mut flow)| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;
@@ -249,9 +291,15 @@ impl FixWallGran {
                     f[i][d] += r.f[d];
                     torque[i][d] += r.ti[d];
                 }
+                if let (Some((tw, _, _)), Some(hm)) = (heat, &model.heat) {
+                    flow[i] += contact_heat(model, hm, rsq, radi, 0.0, true, temp[i], tw);
+                }
             }
         });
         a.extra[k].data = hist;
+        if let Some((_, _, kq)) = heat {
+            a.extra[kq].data = flow;
+        }
         Ok(())
     }
 }
@@ -275,11 +323,11 @@ impl Fix for FixWallGran {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
     /// Forces of the current state; the spring is not advanced during setup.
-    fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
-        self.apply(state, false)
+    fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.apply(state, ctx, false)
     }
-    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
-        self.apply(state, true)
+    fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.apply(state, ctx, true)
     }
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.remove_extra(&self.array);

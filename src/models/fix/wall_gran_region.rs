@@ -19,17 +19,19 @@
 //! As in LAMMPS 2025, the fix acts on every atom whatever its group (its group test reads
 //! `(!mask[i]) & groupbit`); `dmhs check` warns when the group is not `all`.
 
-use super::wall_gran::{parse_model, syntax as wall_syntax};
+use super::value::FixValue;
+use super::wall_gran::{check_heat, parse_model, parse_temperature, syntax as wall_syntax, wall_temperature};
+use crate::engine::fields::{HEATFLOW, TEMPERATURE};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::region::{Region, WallContact};
 use crate::engine::state::{RunError, State};
 use crate::models::pair::contact::Contact;
 use crate::models::pair::granular::normal::Normal;
-use crate::models::pair::granular::{granular_contact, GranModel, GranSpec};
+use crate::models::pair::granular::{contact_heat, granular_contact, GranModel, GranSpec};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 fn syntax() -> String {
-    wall_syntax().replace("wall/gran ", "wall/gran/region ").replace(" xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]", " region region-ID")
+    wall_syntax().replace("wall/gran ", "wall/gran/region ").replace(" xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v] [temperature T]", " region region-ID [temperature T]")
 }
 
 pub struct FixWallGranRegion {
@@ -49,6 +51,8 @@ pub struct FixWallGranRegion {
     /// Scratch: the current atom's contacts, and LAMMPS' c2r.
     contacts: Vec<WallContact>,
     c2r: Vec<usize>,
+    /// `temperature T` (heat models)
+    temperature: Option<FixValue>,
 }
 
 impl FixWallGranRegion {
@@ -74,19 +78,23 @@ impl FixWallGranRegion {
         if let Some(style) = region.without_surface() {
             return Err(a.error_at(rw, format!("fix wall/gran/region does not support region style {style} yet (block, cylinder, cone, sphere, union and intersect)"), "not supported"));
         }
-        if let Some(k) = a.peek() {
-            return Err(match k.text.as_str() {
-                "contacts" | "temperature" => a.error_at(k, format!("fix wall/gran/region keyword `{}` is not supported", k.text), "not supported"),
-                _ => a.unknown_keyword(k, &[]),
-            });
+        let mut temperature = None;
+        while let Some(k) = a.peek() {
+            a.skip(1);
+            match k.text.as_str() {
+                "temperature" => temperature = Some(parse_temperature(&mut a, k, &model, "wall/gran/region")?),
+                "contacts" => return Err(a.error_at(k, format!("fix wall/gran/region keyword `{}` is not supported", k.text), "not supported")),
+                _ => return Err(a.unknown_keyword(k, &["temperature"])),
+            }
         }
+        check_heat(&a, cmd, &model, &temperature, "wall/gran/region")?;
         if groupbit != 1 {
             state.messages.push(format!("WARNING: fix {id} wall/gran/region acts on all atoms, not only group members: LAMMPS 2025 ignores its group (it tests `(!mask[i]) & groupbit`), and so does dmhs"));
         }
         let region = region.clone();
         let tmax = region.contact_counts().1;
         let array = format!("wall/gran/region:{id}");
-        let mut fix = FixWallGranRegion { id, groupbit, spec, model, region_id: rw.text.clone(), region, tmax, slots: 0, array, contacts: vec![], c2r: vec![] };
+        let mut fix = FixWallGranRegion { id, groupbit, spec, model, region_id: rw.text.clone(), region, tmax, slots: 0, array, contacts: vec![], c2r: vec![], temperature };
         fix.reserve(state, tmax);
         Ok(fix)
     }
@@ -139,6 +147,7 @@ impl FixWallGranRegion {
             region.prematch(&mut |name| ctx.equal(state, me, name)).map_err(|e| RunError::new(step, format!("fix {} region {}: {e}", self.id, self.region_id)))?;
             region.set_velocity(step, state.dt);
         }
+        let twall = wall_temperature(&self.temperature, state, ctx, &NameOnly(&self.id))?;
         let (w, slots, tmax) = (self.width(), self.slots, self.tmax);
         let stride = self.stride(slots);
         let dt = state.dt;
@@ -146,6 +155,12 @@ impl FixWallGranRegion {
         let a = &mut state.atoms;
         let n = a.nlocal;
         let mut hist = kx.map(|k| std::mem::take(&mut a.extra[k].data)).unwrap_or_default();
+        // heat: the atoms' temperatures (read) and heat flows (added to), when conducting
+        let heat = match (twall, a.field(TEMPERATURE), a.field(HEATFLOW)) {
+            (Some(tw), Some(kt), Some(kq)) => Some((tw, kt, kq)),
+            _ => None,
+        };
+        let mut flow = heat.map(|(_, _, kq)| std::mem::take(&mut a.extra[kq].data)).unwrap_or_default();
         let w0 = [0.0f64; 3];
         let mut result = Ok(());
         for i in 0..n {
@@ -195,10 +210,16 @@ impl FixWallGranRegion {
                     a.f[i][d] += r.f[d];
                     a.torque[i][d] += r.ti[d];
                 }
+                if let (Some((tw, kt, _)), Some(hm)) = (heat, &self.model.heat) {
+                    flow[i] += contact_heat(&self.model, hm, rsq, radi, c.radius, true, a.extra[kt].data[i], tw);
+                }
             }
         }
         if let Some(k) = kx {
             a.extra[k].data = hist;
+        }
+        if let Some((_, _, kq)) = heat {
+            a.extra[kq].data = flow;
         }
         result
     }

@@ -34,6 +34,9 @@ use super::contact::{compute_contacts, Contact, ContactForce, ContactModel, MAX_
 use super::gran_hooke_history::{check_setup, rebuild_history, GranTypes};
 use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, TypeTable};
 use crate::engine::contact_history::ContactHistory;
+use crate::engine::atoms::Atoms;
+use crate::engine::fields;
+use crate::engine::neighbor::{special_level, NEIGH_MASK};
 use damping::Damping;
 use dmhs_parser::suggest::did_you_mean_help;
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -251,12 +254,13 @@ pub fn model_syntax() -> &'static str {
     static S: OnceLock<String> = OnceLock::new();
     S.get_or_init(|| {
         format!(
-            "({}) [damping {}] tangential ({}) [rolling ({})] [twisting ({})] [limit_damping]",
+            "({}) [damping {}] tangential ({}) [rolling ({})] [twisting ({})] [heat ({})] [limit_damping]",
             table_syntax(normal::STYLES),
             names(damping::STYLES).join("|"),
             table_syntax(tangential::STYLES),
             table_syntax(rolling::STYLES),
-            table_syntax(twisting::STYLES)
+            table_syntax(twisting::STYLES),
+            table_syntax(heat::STYLES)
         )
     })
 }
@@ -398,6 +402,14 @@ impl GranSpec {
     }
 }
 
+/// Heat conduction needs per-atom temperatures and heat flows (LAMMPS' init_style checks).
+pub fn check_heat_fields(atoms: &Atoms, who: &str) -> Result<(), String> {
+    if atoms.field(fields::TEMPERATURE).is_none() || atoms.field(fields::HEATFLOW).is_none() {
+        return Err(format!("{who}: a heat model needs per-atom temperature and heatflow: add `fix ID all property/atom temperature heatflow` before the run"));
+    }
+    Ok(())
+}
+
 /// The kinds, in LAMMPS' order (also the order of their values in the contact history).
 const NORMAL: usize = 0;
 const DAMPING: usize = 1;
@@ -469,6 +481,27 @@ impl GranModel {
     }
 }
 
+/// R_i + R_j (a wall: R_i) and R_eff of a contact (a wall of radius `radj`, 0 for a plane).
+#[inline(always)]
+fn radsum_reff(radi: f64, radj: f64, wall: bool) -> (f64, f64) {
+    if wall {
+        (radi, if radj == 0.0 { radi } else { radi * radj / (radi + radj) })
+    } else {
+        let s = radi + radj;
+        (s, radi * radj / s)
+    }
+}
+
+/// The heat flow into sphere i of a touching contact (LAMMPS calculate_heat after
+/// calculate_forces), with the contact radius [`granular_contact`] computes; `tj` is the
+/// partner's (or the wall's) temperature.
+#[inline]
+pub fn contact_heat(m: &GranModel, heat: &Heat, rsq: f64, radi: f64, radj: f64, wall: bool, ti: f64, tj: f64) -> f64 {
+    let (radsum, reff) = radsum_reff(radi, radj, wall);
+    let delta = radsum - rsq.sqrt();
+    heat.flow(m.normal.contact_radius(delta * reff, reff), ti, tj)
+}
+
 /// LAMMPS GranularModel::calculate_forces. Returns the force on i, and the torques on i and j.
 /// Against a `wall` (fix wall/gran): `del` points from the wall to the sphere, `radj` is 0 for a
 /// plane, m_eff is the sphere's mass and the torque lever is its full radius.
@@ -476,12 +509,7 @@ impl GranModel {
 pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64) -> ContactForce {
     let (radi, radj) = (g.radi, g.radj);
     let meff = if wall { g.mi } else { g.mi * g.mj / (g.mi + g.mj) };
-    let (radsum, reff) = if wall {
-        (radi, if radj == 0.0 { radi } else { radi * radj / (radi + radj) })
-    } else {
-        let s = radi + radj;
-        (s, radi * radj / s)
-    };
+    let (radsum, reff) = radsum_reff(radi, radj, wall);
     let r = g.rsq.sqrt();
     let rinv = 1.0 / r;
     let delta = radsum - r;
@@ -601,6 +629,8 @@ pub struct Granular {
     models: GranularModels,
     types: GranTypes,
     history: ContactHistory,
+    /// some type pair conducts heat (a `heat` model)
+    heat: bool,
 }
 
 impl Granular {
@@ -614,7 +644,45 @@ impl Granular {
             models: GranularModels(TypeTable::new(0), 0, false),
             types: GranTypes::default(),
             history: ContactHistory::new(0),
+            heat: false,
         })
+    }
+
+    /// Heat conduction of every contact (LAMMPS' calculate_heat after calculate_forces): Q into
+    /// i and -Q into j (owned j only: a pair with a ghost is listed from both sides), in list
+    /// order on one thread. A contact is what the force loop counted as one: overlapping (or
+    /// flagged touching by a beyond-contact model), of this style's types, not excluded.
+    fn heat_pass(&self, input: &PairInput, out: &mut PairOutput) {
+        let a = input.atoms;
+        let (Some(temp), Some(flow)) = (a.field_values(fields::TEMPERATURE), out.fields.iter_mut().find(|(f, _)| *f == fields::HEATFLOW).map(|(_, v)| v)) else {
+            return;
+        };
+        let (x, radius, typ, nlocal) = (&a.x, &a.radius, &a.typ, a.nlocal);
+        let stride = input.ntypes + 1;
+        let beyond = self.models.2;
+        for (c, chunk) in input.list.chunks.iter().enumerate() {
+            for i in chunk.start..chunk.end {
+                let k0 = chunk.first_entry(i);
+                for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    let m = self.models.params(typ[i], typ[j]);
+                    let Some(heat) = &m.heat else { continue };
+                    let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
+                    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                    let (radi, radj) = (radius[i], radius[j]);
+                    let radsum = radi + radj;
+                    let touching = if beyond { self.history.chunks[c].touch[k0 + k] != 0 } else { rsq < radsum * radsum };
+                    if !touching || input.type_filter.is_some_and(|f| !f[typ[i] * stride + typ[j]]) || input.special_lj[special_level(jraw)] == 0.0 {
+                        continue;
+                    }
+                    let q = contact_heat(m, heat, rsq, radi, radj, false, temp[i], temp[j]);
+                    flow[i] += q;
+                    if j < nlocal {
+                        flow[j] -= q;
+                    }
+                }
+            }
+        }
     }
 
     fn grow(&mut self, n: usize) {
@@ -666,6 +734,9 @@ impl PairStyle for Granular {
     }
     fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
         check_setup(setup, self.style())?;
+        if self.coeff.data.iter().any(|s| s.set && s.heat.is_some()) {
+            check_heat_fields(setup.atoms, "pair granular")?;
+        }
         self.types.init_radii(setup);
         Ok(())
     }
@@ -674,6 +745,7 @@ impl PairStyle for Granular {
         self.types.check(ntypes, active, "granular")?;
         let mut models = TypeTable::new(ntypes);
         let (mut size, mut keep, mut beyond) = (0, 0u16, false);
+        self.heat = false;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if let Some(a) = active {
@@ -691,6 +763,7 @@ impl PairStyle for Granular {
                 let m = GranModel::build(&s, false);
                 (size, keep) = (size.max(m.history_size), keep | m.history_keep);
                 beyond |= s.normal.style.flags.beyond_contact;
+                self.heat |= m.heat.is_some();
                 models.set(i, j, m);
             }
         }
@@ -710,7 +783,11 @@ impl PairStyle for Granular {
         }
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        compute_contacts(&self.models, input, out, Some(&mut self.history))
+        let t = compute_contacts(&self.models, input, out, Some(&mut self.history));
+        if self.heat {
+            self.heat_pass(input, out);
+        }
+        t
     }
     fn rebuilt(&mut self, input: &PairInput, _order: &[usize]) {
         if !self.models.2 {
@@ -799,8 +876,14 @@ mod tests {
         assert!(e.contains("`tsuij`") && e.contains("coeff_restitution") && e.contains("did you mean `tsuji`"), "{e}");
         let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sdss 1 1 1");
         assert!(e.contains("rolling model `sdss` is not supported") && e.contains("supported: sds"), "{e}");
-        let e = err("hooke 1 1 tangential linear_history 1 1 1 heat area 1");
-        assert!(e.contains("heat model `area` is not supported") && e.contains("no heat models yet"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 heat areas 1");
+        assert!(e.contains("heat model `areas` is not supported") && e.contains("supported: radius, area") && e.contains("did you mean `area`"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 heat radius -1");
+        assert!(e.contains("k (conductivity) must be >= 0"), "{e}");
+        let e = err("hooke 1 1 tangential linear_history 1 1 1 heat area");
+        assert!(e.contains("h (heat transfer coefficient)"), "{e}");
+        let m = GranModel::build(&parse("hooke 1 1 tangential linear_history 1 1 1 heat area 2.5", false).unwrap(), false);
+        assert!(m.contact_radius && m.heat == Some(heat::Heat::Area { h: 2.5 }));
         // ranges: Poisson's ratio in (-1, 0.5]; Kt NULL only from material properties
         let e = err("hertz/material 1e6 0.5 0.6 tangential linear_history 1 1 1");
         assert!(e.contains("nu (Poisson's ratio) must be in (-1, 0.5], found 0.6"), "{e}");

@@ -1,0 +1,100 @@
+//! `fix ID group property/atom name1 name2 ... [ghost yes|no]`: adds per-atom values to the
+//! atoms (LAMMPS' fix property/atom), 0 until `set` gives them values:
+//!
+//! * `temperature`, `heatflow`: the granular heat conduction fields (pair granular `heat`
+//!   models, fix heat/flow); the temperature is the one DMHS' models use as well;
+//! * `d_NAME`, `i_NAME`: custom per-atom floating-point and integer values (integers kept as
+//!   doubles), 0 for now: `set`, compute property/atom and dumps do not read them yet.
+//!
+//! `ghost yes` makes ghost images carry the custom values (temperature always travels: the heat
+//! models read it on neighbours). mol, q, rmass, arrays (`d2_`, `i2_`) and `read_data ... fix`
+//! sections are refused. Unfixing removes the values.
+
+use super::{Fix, FixHooks};
+use crate::engine::fields::{HEATFLOW, TEMPERATURE};
+use crate::engine::state::State;
+use dmhs_parser::{Args, Command, DResult, Word};
+
+pub const SYNTAX: &str = "fix ID group property/atom name1 name2 ... [ghost yes|no]  (names: temperature heatflow d_NAME i_NAME)";
+
+pub struct FixPropertyAtom {
+    id: String,
+    groupbit: u32,
+    /// the extra arrays this fix made
+    names: Vec<String>,
+}
+
+impl FixPropertyAtom {
+    pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        // (word, extra array name, carried by ghosts unless `ghost no`)
+        let mut wanted: Vec<(&Word, String, bool)> = vec![];
+        let mut ghost = false;
+        while let Some(w) = a.peek() {
+            a.skip(1);
+            let t = w.text.as_str();
+            let (name, always_ghost) = match t {
+                "temperature" => (TEMPERATURE.name.to_string(), true),
+                "heatflow" => (HEATFLOW.name.to_string(), false),
+                "ghost" => {
+                    ghost = a.choice("ghost yes|no", &["yes", "no"])? == 0;
+                    continue;
+                }
+                "mol" | "q" | "rmass" => {
+                    return Err(a.error_at(w, format!("fix property/atom {t} is not supported by dmhs"), "not supported").with_help("use an atom style that has it (e.g. atom_style full for mol and q, sphere for rmass)"));
+                }
+                _ if t.starts_with("d2_") || t.starts_with("i2_") => {
+                    return Err(a.error_at(w, format!("per-atom arrays (`{t}`) of fix property/atom are not supported by dmhs"), "not supported").with_help("use one d_NAME or i_NAME per column"));
+                }
+                _ if (t.starts_with("d_") || t.starts_with("i_")) && t.len() > 2 => {
+                    if !t[2..].chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+                        return Err(a.error_at(w, format!("custom per-atom name `{t}` may hold only letters, digits and underscores"), "bad name"));
+                    }
+                    (t.to_string(), false)
+                }
+                _ => return Err(a.error_at(w, format!("unknown fix property/atom value `{t}`"), "expected temperature, heatflow, d_NAME or i_NAME")),
+            };
+            if state.atoms.find_extra(&name).is_some() || wanted.iter().any(|(_, n, _)| *n == name) {
+                return Err(a.error_at(w, format!("per-atom `{t}` already exists (another fix property/atom or a DMHS fix made it)"), "defined twice"));
+            }
+            wanted.push((w, name, always_ghost));
+        }
+        if wanted.is_empty() {
+            return Err(a.missing("a per-atom value name (temperature, heatflow, d_NAME or i_NAME)"));
+        }
+        // new arrays are added without ghosts; the next run makes them again
+        state.atoms.clear_ghosts();
+        state.lists_valid = false;
+        let mut names = vec![];
+        for (_, name, always_ghost) in wanted {
+            state.atoms.extra_field(&name, 1, always_ghost || ghost);
+            names.push(name);
+        }
+        Ok(FixPropertyAtom { id, groupbit, names })
+    }
+}
+
+impl Fix for FixPropertyAtom {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        "property/atom"
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks::default()
+    }
+    fn cleanup(&mut self, state: &mut State) {
+        state.atoms.clear_ghosts();
+        state.lists_valid = false;
+        for n in &self.names {
+            state.atoms.remove_extra(n);
+        }
+    }
+    fn describe(&self) -> String {
+        format!("fix {} property/atom {}", self.id, self.names.join(" "))
+    }
+}

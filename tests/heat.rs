@@ -333,8 +333,11 @@ fn solidifying_atoms_bond_to_solid_neighbours_and_melting_breaks_bonds() {
     assert_eq!((last[col(&h, "f_phase[2]")], last[col(&h, "f_phase[3]")], last[col(&h, "f_phase[4]")]), (3.0, 2.0, 2.0));
 }
 
-/// Two overlapping spheres inside the SPH support, moving; `PAIR` is replaced per case.
-const TWO: &str = "
+/// Two spheres of type `$ty` (diameter 1, mass 20), at the origin and at `$second` (x y).
+macro_rules! two_spheres {
+    ($ty:literal, $second:literal) => {
+        concat!(
+            "
 dimension 2
 units si
 atom_style hybrid sph sphere
@@ -343,12 +346,20 @@ comm_modify vel yes
 atom_modify map array
 region box block -3 4 -3 4 -0.5 0.5 units box
 create_box 2 box
-create_atoms 1 single 0.0 0.0 0.0 units box
-create_atoms 1 single 0.9 0.2 0.0 units box
+create_atoms ", $ty, " single 0.0 0.0 0.0 units box
+create_atoms ", $ty, " single ", $second, " 0.0 units box
 set group all diameter 1.0
 set group all mass 20.0
 mass * 20.0
-set group all sph/rho 1010.0
+"
+        )
+    };
+}
+
+/// Two overlapping spheres inside the SPH support, moving; `PAIR` is replaced per case.
+const TWO: &str = concat!(
+    two_spheres!("1", "0.9 0.2"),
+    "set group all sph/rho 1010.0
 set atom 2 sph/rho 990.0
 set atom 1 vx 0.3
 set atom 1 vy -0.1
@@ -358,7 +369,8 @@ set atom 2 sph/e 10000.0
 PAIR
 fix integ all sph
 run 0
-";
+"
+);
 
 fn forces(pair: &str) -> Vec<[f64; 3]> {
     let r = run("two", &TWO.replace("PAIR", pair));
@@ -386,6 +398,76 @@ fn blend_is_the_weighted_sum_of_sph_and_dem() {
         }
         // Newton's third law
         assert!((half[0][i] + half[1][i]).abs() < 1e-12);
+    }
+}
+
+/// Two solid spheres (T = 400 C below `mix 500 1000`: phi = 0, so the pair is all DEM) held in
+/// place with an overlap of 0.1 (diameters 1, centres 0.9 apart along y) while atom 2 slides
+/// along x at 0.2 m/s. No integrator moves them, so the contact's tangential displacement after
+/// n steps is exactly n dt v (the spring integrates v_tr dt, as gran/hooke/history) and the
+/// normal force stays Kn delta = 100 N. With `history` the tangential force on atom 2 is
+/// -Kt n dt v until it reaches the Coulomb cap xmu Kn delta = 50 N, then stays at the cap.
+const SLIDING: &str = concat!(
+    two_spheres!("2", "0.0 0.9"),
+    "set group all sph/rho 1000.0
+set group all sph/e 8000.0
+set atom 2 vx 0.2
+PAIR
+fix phase all dmhs/phase Tstar 500 cvs 1 cvl 1 latent 0 liquid 1 solid 2 mix 500 1000
+neighbor 1.0 bin
+timestep 0.01
+"
+);
+
+fn sliding_force(pair: &str, runs: &[usize]) -> Vec<[f64; 3]> {
+    let runs: String = runs.iter().map(|n| format!("run {n}\n")).collect();
+    let r = run("sliding", &format!("{}{runs}", SLIDING.replace("PAIR", pair)));
+    let s = &r.sim;
+    let map = s.state.atoms.tag_map();
+    (1..=2).map(|t| s.state.atoms.f[map.get(t).unwrap()]).collect()
+}
+
+#[test]
+fn blend_history_tangential_spring_until_the_coulomb_cap() {
+    // Kn 1000, Kt 100, gamma_n 0.3 (no normal velocity: no damping), xmu 0.5, dampflag 0
+    let (kn, kt, xmu, delta, v, dt) = (1000.0, 100.0, 0.5, 0.1, 0.2, 0.01);
+    let with = "pair_style dmhs/blend 1000.0 100.0 0.3 0.0 0.5 0 history\npair_coeff * * 1000.0 10.0 1.0 1.5";
+    let cap = xmu * kn * delta;
+    // 100 steps: below the cap (20 N); 100 + 140 steps in two runs (the contact is carried over
+    // the second run's setup): 48 N, still below; 100 + 300 steps: capped at 50 N
+    for (runs, expect_t) in [(vec![100], kt * 100.0 * dt * v), (vec![100, 140], kt * 240.0 * dt * v), (vec![100, 300], cap)] {
+        let f = sliding_force(with, &runs);
+        println!("runs {runs:?}: f1 {:?}, f2 {:?}", f[0], f[1]);
+        assert!((f[1][0] + expect_t).abs() <= 1e-9 * expect_t, "runs {runs:?}: tangential force on 2 {} against -{expect_t}", f[1][0]);
+        assert!((f[1][1] - kn * delta).abs() <= 1e-9 * kn * delta, "normal force {}", f[1][1]);
+        for k in 0..2 {
+            assert!((f[0][k] + f[1][k]).abs() <= 1e-12 * kn, "Newton's third law: {f:?}");
+        }
+    }
+    assert!(kt * 240.0 * dt * v < cap && kt * 400.0 * dt * v > cap);
+    // the DEM part is gran/hooke/history's contact, bit for bit
+    for runs in [vec![100], vec![100, 300]] {
+        assert_eq!(sliding_force(with, &runs), sliding_force("pair_style gran/hooke/history 1000.0 100.0 0.3 0.0 0.5 0\npair_coeff * *", &runs));
+    }
+    // without `history` (gran/hooke) the tangential force is damping only, 0 with dampflag 0
+    let f = sliding_force("pair_style dmhs/blend 1000.0 100.0 0.3 0.0 0.5 0\npair_coeff * * 1000.0 10.0 1.0 1.5", &[100]);
+    assert_eq!(f[1][0], 0.0);
+}
+
+#[test]
+fn bad_blend_history_is_a_located_error() {
+    let cases = [
+        ("pair_style dmhs/blend 1000.0 0.0 0.3 0.0 0.5 0 history", "Kt must be > 0"),
+        ("pair_style dmhs/blend 0.0 NULL 0.3 0.0 0.5 0 history", "Kt must be > 0"),
+        ("pair_style dmhs/blend 1000.0 100.0 0.3 0.0 0.5 0 history history", "given twice"),
+        ("pair_style dmhs/blend 1000.0 100.0 0.3 0.0 0.5 0 histroy", "unknown keyword `histroy`"),
+        ("pair_style dmhs/blend 1000.0 -100.0 0.3 0.0 0.5 0 history", "Kt"),
+    ];
+    for (line, expect) in cases {
+        let deck = SLIDING.replace("PAIR", &format!("{line}\npair_coeff * * 1000.0 10.0 1.0 1.5"));
+        let err = run_text("bad", &deck, &opts(&[])).err().unwrap_or_else(|| panic!("`{line}` was accepted"));
+        assert!(err.rendered.contains("bad:18:"), "{line}: no location in {}", err.rendered);
+        assert!(err.rendered.contains(expect), "{line}: expected `{expect}` in {}", err.rendered);
     }
 }
 

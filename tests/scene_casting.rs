@@ -33,7 +33,8 @@ fn check_drops_are_remelts(t: &Thermo) -> f64 {
     for k in 1..fs.len() {
         let drop = fs[k - 1] - fs[k];
         let remelts = melted[k] - melted[k - 1];
-        assert!(drop <= remelts / N + 1e-12, "solid fraction fell by {drop} at sample {k} with only {remelts} melting events");
+        // thermo prints 8 significant digits: a drop of 1/140 can read 0.00714286
+        assert!(drop <= remelts / N + 1e-7, "solid fraction fell by {drop} at sample {k} with only {remelts} melting events");
         worst = worst.max(drop);
     }
     worst
@@ -53,13 +54,15 @@ fn slow_casting_solidifies_from_the_mould_with_three_zones() {
     }
     let worst = check_drops_are_remelts(&t);
     println!("slow quick: solid fraction {} at t = {}, largest drop {worst}, melting events {}", fs[last], time[last], melted[last]);
-    assert!(fs[last] > 0.25, "solid fraction at 4 s: {}", fs[last]);
+    // measured 0.393 (55 of 140)
+    assert!(fs[last] > 0.3, "solid fraction at 4 s: {}", fs[last]);
     // re-melting is rare: at most 5 % of the charge (7 measured)
     assert!(melted[last] <= 0.05 * N, "melting events {}", melted[last]);
     // the three zones of Fig 9D coexist: liquid above e_liq, transition on the plateau, solid
     let both: Vec<usize> = (0..fs.len()).filter(|&k| liq[k] >= 10.0 && plateau[k] >= 5.0 && solid[k] >= 10.0).collect();
     println!("three zones (>= 10 liquid, >= 5 transition, >= 10 solid) at {} of {} samples, e.g. t = {}: {} / {} / {}", both.len(), fs.len(), time[both[0]], liq[both[0]], plateau[both[0]], solid[both[0]]);
-    assert!(both.len() >= 5);
+    // measured: 28 of 41 samples, from t = 1.3 s (120 / 9 / 11) to the end (71 / 14 / 55)
+    assert!(both.len() >= 20);
     // solid particles are bonded to their solid neighbours
     assert!(col(&t, "Bonds")[last] >= 0.8 * solid[last]);
 }
@@ -83,16 +86,19 @@ fn fast_casting_crust_breaks_and_partly_remelts() {
     assert!(plateau.iter().all(|&p| p == 0.0));
     assert!(fs[last] > 0.8, "solid fraction at 8 s: {}", fs[last]);
     // mechanical breakage: bonds made by solidification are pulled beyond r_max and break
-    // (53 measured; 38 to 53 when alpha, c0 or dt is changed by 5 to 10 %), while metal is
-    // poured (all but at most a quarter of them before 6 s; measured 53 of 53)
-    assert!(broken[last] >= 15.0, "bonds broken by stretching {}", broken[last]);
+    // (30 measured with K = k_b; 27 to 36 when alpha, c0 or dt is changed by 5 to 10 %), while
+    // metal is poured (all but at most a quarter of them before 6 s; measured 30 of 30)
+    assert!(broken[last] >= 20.0, "bonds broken by stretching {}", broken[last]);
     assert!(broken[k_poured] >= 0.75 * broken[last], "{} of {} breaks before t = 6 s", broken[k_poured], broken[last]);
     // the paper's literal r_max = 0.04 m is never reached (see README)
     assert!(longest[last] < 0.04, "longest bond {}", longest[last]);
     // the hot second pour re-melts part of the crust of the first: solid particles melt again
-    // and lose their bonds
-    assert!(melted[last] >= 20.0, "melting events {}", melted[last]);
-    assert!(deleted[last] >= 50.0, "bonds deleted by melting {}", deleted[last]);
+    // and lose their bonds (measured 155 melting events, 63 bonds deleted; 133 to 153 and 58 to
+    // 69 with the changes above)
+    assert!(melted[last] >= 100.0, "melting events {}", melted[last]);
+    assert!(deleted[last] >= 40.0, "bonds deleted by melting {}", deleted[last]);
+    // what is left is bonded fragments, not sand (measured 70 bonds; 51 to 58 with the changes)
+    assert!(col(&t, "Bonds")[last] >= 40.0, "bonds left {}", col(&t, "Bonds")[last]);
     // more solidification events than particles: re-melted particles solidify again
     assert!(frozen[last] > fs[last] * N + 20.0);
     assert_eq!(frozen[last] - melted[last], (fs[last] * N).round());
@@ -107,4 +113,6 @@ fn slow_casting_solidifies_completely() {
     let k1 = fs.iter().position(|&f| f == 1.0).expect("never fully solid");
     println!("slow full: fully solid at t = {}, largest drop {worst}, melting events {}", time[k1], col(&t, "f_phase[8]")[fs.len() - 1]);
     assert!(fs[k1..].iter().all(|&f| f == 1.0));
+    // measured: fully solid from 32.0 s (K = k_b)
+    assert!(time[k1] < 40.0, "fully solid only at {}", time[k1]);
 }

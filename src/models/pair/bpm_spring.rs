@@ -140,7 +140,7 @@ impl PairStyle for PairBpmSpring {
     }
 
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        compute_pairs(self, input, out)
+        compute_pairs(self, input, out, None)
     }
 
     fn contact_stiffness(&self) -> Option<f64> {

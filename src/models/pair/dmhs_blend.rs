@@ -1,4 +1,4 @@
-//! `pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]` with
+//! `pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [history]` with
 //! `pair_coeff I J rho0 c0 mu h` — gradual SPH-to-DEM mixing with temperature (Alexiadis 2015,
 //! lava flow, Fig 13B): each pair force is a weighted sum of an SPH force and a DEM contact force,
 //!   F_ij = w_ij F_SPH,ij + (1 - w_ij) F_DEM,ij,   w_ij = (phi_i + phi_j)/2,
@@ -9,24 +9,31 @@
 //! F_SPH is sph/taitwater/morris with the pair_coeff values (Tait EOS + Morris viscosity, per-type
 //! mass, velocity estimates; drho and de are weighted by w_ij too). F_DEM is gran/hooke with the
 //! pair_style values (Hookean normal spring-dashpot, tangential damping limited by friction,
-//! contact when r < R_i + R_j; per-atom rmass and radius), torques weighted by 1 - w_ij.
+//! contact when r < R_i + R_j; per-atom rmass and radius), torques weighted by 1 - w_ij. With
+//! `history` it is gran/hooke/history instead: a tangential spring Kt on the accumulated shear
+//! displacement, capped by Coulomb friction (the paper's Eq 17; the formula: [`super::classic`]),
+//! kept per contact while the pair overlaps and has a DEM part (w_ij < 1), forgotten when either
+//! ends. Kt must then be positive.
 //! Needs atom_style hybrid sph sphere. Pairs are evaluated one at a time (no lanes): this style
 //! is for the blended particles; pure-SPH and pure-DEM pairs run faster with their own styles
 //! under hybrid/overlay. No special-bond weights apply.
 
 use super::contact::{Contact, ContactModel};
-use super::gran_hooke::NoHistory;
 use super::classic::Classic;
+use super::gran_hooke_history::rebuild_history;
+use crate::engine::contact_history::ContactHistory;
 use super::sph::{Batch, SphKernel, L};
 use super::sph_taitwater_morris::SphTaitwaterMorris;
 use super::{compute_pairs, PairInput, PairKernel, PairModify, PairOutput, PairResult, PairSetup, PairStyle, Tally};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [kernel K] [pmin P]";
+pub const SYNTAX: &str = "pair_style dmhs/blend Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] [history] [kernel K] [pmin P]";
 
 pub struct DmhsBlend {
     sph: SphTaitwaterMorris,
-    dem: NoHistory,
+    dem: Classic,
+    /// The tangential springs of the contacts (`history`: gran/hooke/history's three values).
+    history: Option<ContactHistory>,
     /// Largest radius per type (index 0 unused), for the contact cutoff.
     maxrad: Vec<f64>,
     n: usize,
@@ -36,21 +43,39 @@ impl DmhsBlend {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         // `kernel K` and `pmin P` (dmhs extensions of the SPH part) may follow the DEM values
         let k = args.iter().position(|w| w.text == "kernel" || w.text == "pmin").unwrap_or(args.len());
-        let dem = NoHistory(Classic::from_lammps(&args[..k], cmd, SYNTAX, false)?);
+        // `history` (like limit_damping, after the six numbers) selects the tangential spring
+        let located = Args::from_words(args, cmd.span, SYNTAX);
+        if let Some(w) = args.get(6..k).into_iter().flatten().find(|w| w.text != "history" && w.text != "limit_damping") {
+            return Err(located.unknown_keyword(w, &["limit_damping", "history", "kernel", "pmin"]));
+        }
+        let hist_at: Vec<usize> = (6..k).filter(|&n| args[n].text == "history").collect();
+        if let Some(&second) = hist_at.get(1) {
+            return Err(located.error_at(&args[second], "`history` given twice", "second `history`"));
+        }
+        let words: Vec<Word> = args[..k].iter().enumerate().filter(|(n, _)| !hist_at.contains(n)).map(|(_, w)| w.clone()).collect();
+        let dem = Classic::from_lammps(&words, cmd, SYNTAX, false)?;
+        let history = (!hist_at.is_empty()).then(|| ContactHistory::new(3));
+        if history.is_some() && !(dem.kt > 0.0) {
+            // the Coulomb cap sets the spring back by dividing by Kt (LAMMPS' gran/hooke/history)
+            return Err(located.error_at(&args[1], format!("Kt must be > 0 with `history` (the tangential spring), got {}", dem.kt), "Kt"));
+        }
         let sph = SphTaitwaterMorris::from_lammps(&args[k..], cmd)?;
-        Ok(DmhsBlend { sph, dem, maxrad: vec![], n: 0 })
+        Ok(DmhsBlend { sph, dem, history, maxrad: vec![], n: 0 })
     }
 }
 
-/// The blended pair kernel of one force evaluation: the style and the liquid weights.
+/// The blended pair kernel of one force evaluation: the two models and the liquid weights.
 struct Blended<'a> {
-    style: &'a DmhsBlend,
+    sph: &'a SphTaitwaterMorris,
+    dem: &'a Classic,
     phi: Option<&'a [f64]>,
 }
 
-impl PairKernel for Blended<'_> {
-    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, _factor: f64) -> Option<PairResult> {
-        let (sph, dem) = (&self.style.sph, &self.style.dem);
+impl Blended<'_> {
+    /// The pair; `hist` (with `history`) is the contact's shear displacement, `touch` whether it
+    /// is in DEM contact.
+    fn blend(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, hist: Option<&mut [f64]>, touch: &mut bool) -> Option<PairResult> {
+        let (sph, dem) = (self.sph, self.dem);
         let a = input.atoms;
         let (ti, tj) = (a.typ[i], a.typ[j]);
         let weight = |k: usize| self.phi.map(|p| p[k]).unwrap_or(1.0);
@@ -58,6 +83,7 @@ impl PairKernel for Blended<'_> {
         let fluid = w > 0.0 && rsq < sph.cutsq_row(ti)[tj];
         let (ri, rj) = (a.radius[i], a.radius[j]);
         let solid = w < 1.0 && rsq < (ri + rj) * (ri + rj);
+        *touch = solid;
         if !fluid && !solid {
             return None;
         }
@@ -85,7 +111,10 @@ impl PairKernel for Blended<'_> {
         }
         if solid {
             let c = Contact { del, rsq, radi: ri, radj: rj, vi: &a.v[i], vj: &a.v[j], omegai: &a.omega[i], omegaj: &a.omega[j], mi: a.rmass[i], mj: a.rmass[j] };
-            let cf = NoHistory::contact(&dem.0, &c, &mut [], input.advance, input.dt);
+            let cf = match hist {
+                Some(h) => <Classic as ContactModel>::contact(dem, &c, h, input.advance, input.dt),
+                None => dem.without_history(&c),
+            };
             let u = 1.0 - w;
             for k in 0..3 {
                 r.f[k] += u * cf.f[k];
@@ -94,6 +123,15 @@ impl PairKernel for Blended<'_> {
             }
         }
         Some(r)
+    }
+}
+
+impl PairKernel for Blended<'_> {
+    fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, _factor: f64) -> Option<PairResult> {
+        self.blend(input, i, j, del, rsq, None, &mut false)
+    }
+    fn pair_with_history(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, _factor: f64, hist: &mut [f64], touch: &mut bool) -> Option<PairResult> {
+        self.blend(input, i, j, del, rsq, Some(hist), touch)
     }
 }
 
@@ -125,12 +163,21 @@ impl PairStyle for DmhsBlend {
         self.sph.set_dim3(input.dimension == 3);
         let a = input.atoms;
         let phi = a.field(crate::engine::fields::LIQUID_WEIGHT).map(|k| &a.extra[k].data[..]);
-        compute_pairs(&Blended { style: self, phi }, input, out)
+        compute_pairs(&Blended { sph: &self.sph, dem: &self.dem, phi }, input, out, self.history.as_mut())
+    }
+    fn rebuilt(&mut self, input: &PairInput, _order: &[usize]) {
+        if let Some(h) = &mut self.history {
+            rebuild_history(h, input);
+        }
+    }
+    fn histories(&mut self) -> Vec<&mut ContactHistory> {
+        self.history.iter_mut().collect()
     }
     fn needs_type_mass(&self) -> bool {
         true
     }
     fn describe(&self) -> String {
-        format!("dmhs/blend: w sph/taitwater/morris + (1 - w) {}", self.dem.0.describe("gran/hooke"))
+        let dem = if self.history.is_some() { "gran/hooke/history" } else { "gran/hooke" };
+        format!("dmhs/blend: w sph/taitwater/morris + (1 - w) {}", self.dem.describe(dem))
     }
 }

@@ -535,21 +535,35 @@ pub trait PairKernel: Sync {
     /// The pair (i, j) with `del` = x_i - x_j, or None if it does not interact; `factor` is
     /// the pair's special-bond lj weight (1 for a pair that is not special).
     fn pair(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, factor: f64) -> Option<PairResult>;
+    /// The pair with its contact history (a kernel whose style keeps a
+    /// [`ContactHistory`](crate::engine::contact_history::ContactHistory)): `hist` holds the
+    /// entry's values; the kernel sets `touch` to whether the pair is in contact now, and the
+    /// loop zeroes the values of a pair that is not (a contact that ends forgets its history).
+    fn pair_with_history(&self, input: &PairInput, i: usize, j: usize, del: [f64; 3], rsq: f64, factor: f64, _hist: &mut [f64], _touch: &mut bool) -> Option<PairResult> {
+        self.pair(input, i, j, del, rsq, factor)
+    }
 }
 
 /// Every listed pair through a [`PairKernel`], on one thread in list order (the order
 /// dmhs/blend's scenes were validated with; its pairs are few): results are added to i and, if
-/// owned, to j, pair by pair; the virial as LAMMPS' `ev_tally_xyz`.
-pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput) -> Tally {
+/// owned, to j, pair by pair; the virial as LAMMPS' `ev_tally_xyz`. With `history` (aligned
+/// with the list by [`ContactHistory::rebuilt`](crate::engine::contact_history::ContactHistory::rebuilt))
+/// each pair is evaluated by [`PairKernel::pair_with_history`] with its entry's values.
+pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut PairOutput, mut history: Option<&mut crate::engine::contact_history::ContactHistory>) -> Tally {
     let a = input.atoms;
     let (nlocal, stride) = (a.nlocal, input.ntypes + 1);
     let has_rates = !out.drho.is_empty();
     let (f, torque, drho, desph) = (&mut *out.f, &mut *out.torque, &mut *out.drho, &mut *out.desph);
+    let hsize = history.as_ref().map_or(0, |h| h.size());
+    if let Some(h) = &history {
+        assert!(h.chunks.len() == input.list.chunks.len(), "contact history not aligned with the neighbour list");
+    }
     let mut t = Tally::default();
-    for chunk in &input.list.chunks {
+    for (c, chunk) in input.list.chunks.iter().enumerate() {
         for i in chunk.start..chunk.end {
             let (ti, xi) = (a.typ[i], a.x[i]);
-            for &jraw in chunk.neighbors(i) {
+            let k0 = chunk.first_entry(i);
+            for (k, &jraw) in chunk.neighbors(i).iter().enumerate() {
                 let j = (jraw & NEIGH_MASK) as usize;
                 if input.type_filter.is_some_and(|fl| !fl[ti * stride + a.typ[j]]) {
                     continue;
@@ -558,7 +572,21 @@ pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut Pai
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let factor = if input.list.has_special { input.special_lj[special_level(jraw)] } else { 1.0 };
-                let Some(r) = kernel.pair(input, i, j, del, rsq, factor) else { continue };
+                let result = match history.as_deref_mut() {
+                    None => kernel.pair(input, i, j, del, rsq, factor),
+                    Some(h) => {
+                        let (e, hc) = (k0 + k, &mut h.chunks[c]);
+                        let values = &mut hc.values[e * hsize..(e + 1) * hsize];
+                        let mut touch = false;
+                        let r = kernel.pair_with_history(input, i, j, del, rsq, factor, values, &mut touch);
+                        if !touch {
+                            values.iter_mut().for_each(|v| *v = 0.0);
+                        }
+                        hc.touch[e] = touch as u8;
+                        r
+                    }
+                };
+                let Some(r) = result else { continue };
                 let owned = j < nlocal;
                 if has_rates {
                     drho[i] += r.rate_i[0];

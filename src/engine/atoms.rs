@@ -326,9 +326,11 @@ impl Atoms {
         self.pack_at(i, self.x[i], out, owned);
     }
 
-    /// [`Atoms::pack`] of a ghost image of atom `i` at `x`.
-    pub fn pack_ghost(&self, i: usize, x: [f64; 3], out: &mut Vec<f64>) {
+    /// [`Atoms::pack`] of a ghost image of atom `i` at `x`, the periodic image `shift` of it
+    /// (kept as the ghost's `ghost_shift`, which names contacts by image).
+    pub fn pack_ghost(&self, i: usize, x: [f64; 3], shift: [i8; 3], out: &mut Vec<f64>) {
         self.pack_at(i, x, out, false);
+        out.extend(shift.iter().map(|&s| s as f64));
     }
 
     fn pack_at(&self, i: usize, x: [f64; 3], out: &mut Vec<f64>, owned: bool) {
@@ -414,6 +416,10 @@ impl Atoms {
         for e in self.extra.iter_mut().filter(|e| owned || e.ghosts) {
             e.data.extend_from_slice(take(e.stride));
         }
+        if !owned {
+            let t = take(3);
+            self.ghost_shift.push([t[0] as i8, t[1] as i8, t[2] as i8]);
+        }
         &buf[k..]
     }
 
@@ -426,8 +432,8 @@ impl Atoms {
         }
     }
 
-    /// Append the ghosts packed in `buf` (they have no owner here: `ghost_owner` is not kept
-    /// for them).
+    /// Append the ghosts packed in `buf` with [`Atoms::pack_ghost`] (they have no owner here:
+    /// `ghost_owner` is not kept for them; `ghost_shift` is).
     pub fn unpack_ghosts(&mut self, mut buf: &[f64]) {
         while !buf.is_empty() {
             buf = self.unpack_one(buf, false);

@@ -18,7 +18,8 @@
 //! * Only contacts that touch after the rebuild are looked up: the pair loop zeroes the history of
 //!   every pair that does not touch, so carrying anything else would change nothing.
 //! * [`ContactHistory::records`] lists the contacts by key (for write_restart);
-//!   [`ContactHistory::restore`] takes them back and applies them at the next rebuild.
+//!   [`ContactHistory::restore`] takes them back and applies them at the next rebuild;
+//!   [`ContactHistory::adopt`] adds those that arrived with atoms from other ranks.
 
 use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::neighbor::{ChunkList, NeighList, NEIGH_MASK};
@@ -115,6 +116,17 @@ impl ContactHistory {
     /// Contacts to apply at the next rebuild (from a restart file), replacing the stored ones.
     pub fn restore(&mut self, records: Vec<ContactRecord>) {
         self.pending = Some(records);
+    }
+
+    /// Contacts that arrived with atoms from other ranks (a distributed run), applied with the
+    /// stored ones at the next rebuild.
+    pub fn adopt(&mut self, arrived: Vec<ContactRecord>) {
+        if arrived.is_empty() {
+            return;
+        }
+        let mut all = self.records();
+        all.extend(arrived);
+        self.pending = Some(all);
     }
 
     /// Number of contacts currently touching.

@@ -8,6 +8,7 @@
 
 use crate::engine::atoms::Atoms;
 use crate::engine::comm::Comm;
+use crate::engine::contact_history::{ContactHistory, ContactRecord};
 use crate::engine::domain::Domain;
 use std::sync::Arc;
 
@@ -160,12 +161,14 @@ impl Decomp {
     }
 
     /// Send the owned atoms that left this sub-domain to the ranks that now own them (LAMMPS'
-    /// `Comm::exchange`). Positions are wrapped; no ghosts are present.
-    pub fn migrate(&self, atoms: &mut Atoms, domain: &Domain) -> Result<(), String> {
+    /// `Comm::exchange`). Positions are wrapped; no ghosts are present. Returns the IDs of the
+    /// atoms that left and the ranks they went to.
+    pub fn migrate(&self, atoms: &mut Atoms, domain: &Domain) -> Result<Vec<(i64, usize)>, String> {
         let me = self.rank();
         let peers = self.peers(domain);
         let mut bufs: Vec<Vec<f64>> = vec![Vec::new(); peers.len()];
         let mut remove = vec![false; atoms.nlocal];
+        let mut departed = Vec::new();
         let mut stray = None;
         for i in 0..atoms.nlocal {
             let r = self.owner(domain, &atoms.x[i]);
@@ -176,6 +179,7 @@ impl Decomp {
                 Some(k) => {
                     atoms.pack(i, &mut bufs[k], true);
                     remove[i] = true;
+                    departed.push((atoms.tag[i], r));
                 }
                 None => stray = Some(i),
             }
@@ -192,7 +196,26 @@ impl Decomp {
         for buf in got {
             atoms.unpack_owned(&buf);
         }
-        Ok(())
+        Ok(departed)
+    }
+
+    /// Contact histories travel with their atoms (after [`Decomp::migrate`]): each rank an atom
+    /// went to gets every contact of this rank that involves the atom, from either side, so the
+    /// pairs it now lists find their history at the next alignment.
+    pub fn carry_contacts(&self, history: &mut ContactHistory, departed: &[(i64, usize)], domain: &Domain) {
+        let peers = self.peers(domain);
+        let to: std::collections::HashMap<i64, usize> = departed.iter().filter_map(|&(tag, r)| Some((tag, peers.iter().position(|&p| p == r)?))).collect();
+        let mut bufs: Vec<Vec<f64>> = vec![Vec::new(); peers.len()];
+        if !to.is_empty() {
+            for r in history.records() {
+                let (a, b) = (to.get(&r.owner).copied(), to.get(&r.partner).copied());
+                for k in [a, b.filter(|&k| Some(k) != a)].into_iter().flatten() {
+                    pack_contact(&r, &mut bufs[k]);
+                }
+            }
+        }
+        let got = self.comm.exchange(peers.iter().copied().zip(bufs).collect(), &peers);
+        history.adopt(got.iter().flat_map(|b| unpack_contacts(b)).collect());
     }
 
     /// Make the ghosts within `cut` of this sub-domain (LAMMPS' `Comm::borders`): every rank
@@ -245,7 +268,7 @@ impl Decomp {
             }
             self.sends.push((q, list));
         }
-        let bufs = self.pack_sends(atoms, prd, |a, i, x, out| a.pack_ghost(i, x, out));
+        let bufs = self.pack_sends(atoms, prd, |a, i, x, s, out| a.pack_ghost(i, x, s, out));
         for buf in bufs {
             atoms.unpack_ghosts(&buf);
         }
@@ -253,7 +276,7 @@ impl Decomp {
 
     /// Fresh ghost positions from their owners (LAMMPS' forward communication of `x`).
     pub fn forward_positions(&self, atoms: &mut Atoms, domain: &Domain) {
-        let bufs = self.pack_sends(atoms, domain.prd(), |_, _, x, out| out.extend_from_slice(&x));
+        let bufs = self.pack_sends(atoms, domain.prd(), |_, _, x, _, out| out.extend_from_slice(&x));
         let mut k = atoms.nlocal;
         for buf in bufs {
             for x in buf.chunks_exact(3) {
@@ -265,7 +288,7 @@ impl Decomp {
 
     /// Fresh ghost positions and per-atom state (velocities, SPH/DEM values, ghost fields).
     pub fn forward_state(&self, atoms: &mut Atoms, domain: &Domain) {
-        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, x, out| a.pack_ghost(i, x, out));
+        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, x, s, out| a.pack_ghost(i, x, s, out));
         let nlocal = atoms.nlocal;
         atoms.clear_ghosts();
         for buf in bufs {
@@ -277,7 +300,7 @@ impl Decomp {
     /// Fresh ghost values of one per-atom field, read with `get` and written with `set` (the
     /// densities after a summation pass: LAMMPS' pair sph/rhosum forwards only them).
     pub fn forward_field(&self, atoms: &mut Atoms, domain: &Domain, get: fn(&Atoms) -> &[f64], set: fn(&mut Atoms) -> &mut [f64]) {
-        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, _, out| out.push(get(a)[i]));
+        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, _, _, out| out.push(get(a)[i]));
         let n = atoms.nlocal;
         let values = set(atoms);
         for (k, v) in bufs.into_iter().flatten().enumerate() {
@@ -285,16 +308,16 @@ impl Decomp {
         }
     }
 
-    /// Pack each send list with `pack(atoms, i, shifted x, out)` and exchange: the buffers
+    /// Pack each send list with `pack(atoms, i, shifted x, shift, out)` and exchange: the buffers
     /// received, in ghost order (by sending rank).
-    fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {
+    fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], [i8; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {
         let me = self.rank();
         let mut own = Vec::new();
         let mut sends = Vec::new();
         for (q, list) in &self.sends {
             let mut buf = Vec::new();
             for &(i, s) in list {
-                pack(atoms, i as usize, shifted(atoms.x[i as usize], s, prd), &mut buf);
+                pack(atoms, i as usize, shifted(atoms.x[i as usize], s, prd), s, &mut buf);
             }
             if *q == me {
                 own = buf;
@@ -312,6 +335,26 @@ impl Decomp {
         self.sends.iter().map(|s| s.0).collect()
     }
 
+    /// Every rank's contacts on every rank (at the end of a run, with [`Decomp::gathered`]),
+    /// each once: a contact with a ghost is kept by both its owners, from either side.
+    pub fn gather_contacts(&self, history: &mut ContactHistory) {
+        let mut buf = Vec::new();
+        for r in history.records() {
+            pack_contact(&r, &mut buf);
+        }
+        let mut seen = std::collections::HashSet::new();
+        let mut all = Vec::new();
+        for b in self.comm.allgather(buf) {
+            for r in unpack_contacts(&b) {
+                let key = if r.owner <= r.partner { (r.owner, r.partner, r.image) } else { (r.partner, r.owner, r.image.map(|m| -m)) };
+                if seen.insert(key) {
+                    all.push(r);
+                }
+            }
+        }
+        history.restore(all);
+    }
+
     /// Every rank's owned atoms, in rank order, on every rank (at the end of a run, so that the
     /// commands between runs see the whole system as in a serial run; and for dumps).
     pub fn gathered(&self, atoms: &Atoms) -> Atoms {
@@ -325,6 +368,24 @@ impl Decomp {
         }
         whole
     }
+}
+
+/// A contact record as doubles: IDs, image, the number of values, the values.
+fn pack_contact(r: &ContactRecord, out: &mut Vec<f64>) {
+    out.extend_from_slice(&[r.owner as f64, r.partner as f64, r.image[0] as f64, r.image[1] as f64, r.image[2] as f64, r.values.len() as f64]);
+    out.extend_from_slice(&r.values);
+}
+
+/// The records packed by [`pack_contact`] in `buf`.
+fn unpack_contacts(mut buf: &[f64]) -> Vec<ContactRecord> {
+    let mut out = Vec::new();
+    while buf.len() >= 6 {
+        let n = buf[5] as usize;
+        let image = [buf[2] as i32, buf[3] as i32, buf[4] as i32];
+        out.push(ContactRecord { owner: buf[0] as i64, partner: buf[1] as i64, image, values: buf[6..6 + n].to_vec() });
+        buf = &buf[6 + n..];
+    }
+    out
 }
 
 /// `x + s * prd`, per component where the shift is not zero (as a serial ghost is made).

@@ -9,12 +9,15 @@ use crate::engine::decomp::{choose_grid, Decomp};
 use crate::sim::{RunError, Simulation};
 use std::sync::Arc;
 
-/// What a distributed run supports so far: atomic, bonded and SPH systems with pair forces
-/// that need no per-pair history and bonded styles that keep no per-bond state, the
+/// What a distributed run supports so far: atomic, bonded, granular and SPH systems (contact
+/// histories travel with their atoms; bonded styles that keep no per-bond state), the
 /// integrators and forces that act atom by atom, and the thermo computes that are sums.
-const PAIRS: &[&str] = &["lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction"];
-const FIXES: &[&str] = &["nve", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin"];
-const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke"];
+const PAIRS: &[&str] = &[
+    "lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction",
+    "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular",
+];
+const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere"];
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
@@ -47,15 +50,12 @@ impl Simulation {
     }
 
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
-        let ft = self.state.atoms.features;
         let what = if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
             Some(format!("bond_style {}", b.name()))
         } else if let Some(b) = self.angle_style.as_ref().filter(|b| !ANGLES.contains(&b.name())) {
             Some(format!("angle_style {}", b.name()))
         } else if let Some(b) = self.dihedral_style.as_ref().filter(|b| !DIHEDRALS.contains(&b.name())) {
             Some(format!("dihedral_style {}", b.name()))
-        } else if ft.sphere {
-            Some("finite-size spheres (atom_style sphere and granular styles)".to_string())
         } else if let Some(p) = self.pair.as_ref().and_then(|p| p.sub_styles().into_iter().find(|s| !PAIRS.contains(s))) {
             Some(format!("pair_style {p}"))
         } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
@@ -75,7 +75,7 @@ impl Simulation {
             "pair styles {}; bond styles {}; angle styles {}; dihedral styles {}; fixes {}; computes {}",
             PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
         );
-        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
     }
 
     /// What a run on `n` ranks would do with the atoms there are now (`dmhs check --ranks N`):
@@ -125,13 +125,20 @@ impl Simulation {
         Ok(())
     }
 
-    /// The end of a distributed run: every rank holds the whole system again.
+    /// The end of a distributed run: every rank holds the whole system again, contact
+    /// histories included (the next run may hand an atom to another rank; write_restart
+    /// writes them all).
     pub(crate) fn gather_ranks(&mut self) {
         if self.state.distributed.take().is_none() {
             return;
         }
         let d = self.state.decomp.as_ref().expect("a decomposition");
         self.state.atoms = d.gathered(&self.state.atoms);
+        if let Some(pair) = self.pair.as_mut() {
+            for h in pair.histories() {
+                d.gather_contacts(h);
+            }
+        }
         self.state.lists_valid = false;
         self.state.lammps_order = Default::default();
     }

@@ -131,7 +131,12 @@ impl Simulation {
         }
         let domain = self.state.domain.as_ref().unwrap();
         if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
-            d.migrate(&mut self.state.atoms, domain).map_err(|e| RunError::new(step, e))?;
+            let departed = d.migrate(&mut self.state.atoms, domain).map_err(|e| RunError::new(step, e))?;
+            if let Some(pair) = self.pair.as_mut() {
+                for h in pair.histories() {
+                    d.carry_contacts(h, &departed, domain);
+                }
+            }
             // atoms lost through fixed faces (thermo_modify lost ignore) leave the count
             self.state.distributed = Some(d.comm.sum1(self.state.atoms.nlocal as f64) as usize);
         }

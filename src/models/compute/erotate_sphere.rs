@@ -39,7 +39,9 @@ impl Compute for ComputeErotateSphere {
                 e += (o[0] * o[0] + o[1] * o[1] + o[2] * o[2]) * a.radius[i] * a.radius[i] * a.rmass[i];
             }
         }
-        Ok(e * (0.5 * w.state.units.mvv2e * 0.4))
+        let mut v = [e];
+        w.state.sum_ranks(&mut v);
+        Ok(v[0] * (0.5 * w.state.units.mvv2e * 0.4))
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

@@ -50,8 +50,10 @@ impl ComputeTempSphere {
             (false, true) => (1, 0),
         };
         let count: i64 = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| if a.radius[i] == 0.0 { point } else { sphere }).sum();
+        let mut count = [count as f64];
+        w.state.sum_ranks(&mut count);
         let default_extra = if self.rotate_only { 0.0 } else { w.state.dimension as f64 };
-        self.dof.total(w, self.groupbit, count as f64, default_extra)
+        self.dof.total(w, self.groupbit, count[0], default_extra)
     }
 }
 
@@ -87,6 +89,9 @@ impl Compute for ComputeTempSphere {
                 t += (o[0] * o[0] + o[1] * o[1] + o[2] * o[2]) * INERTIA * m * r * r;
             }
         }
+        let mut t = [t];
+        w.state.sum_ranks(&mut t);
+        let t = t[0];
         let dof = self.dof.current(|| self.count_dof(w));
         if dof < 0.0 && w.state.group_count(self.groupbit) > 0 {
             return Err(format!("compute {}: temperature degrees of freedom < 0", self.id));
@@ -105,6 +110,7 @@ impl Compute for ComputeTempSphere {
                 add_outer(&mut t, INERTIA * a.rmass[i] * a.radius[i] * a.radius[i], o);
             }
         }
+        w.state.sum_ranks(&mut t);
         Ok(t.map(|x| x * w.state.units.mvv2e).to_vec())
     }
     fn extensive(&self, index: Option<usize>) -> bool {

@@ -58,8 +58,12 @@ impl Fix for FixFreeze {
         }
         Ok(())
     }
-    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
-        (1..=3).contains(&i).then(|| self.foriginal[i - 1])
+    fn vector(&self, state: &State, i: usize) -> Option<f64> {
+        (1..=3).contains(&i).then(|| {
+            let mut v = [self.foriginal[i - 1]];
+            state.sum_ranks(&mut v);
+            v[0]
+        })
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

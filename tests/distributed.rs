@@ -263,6 +263,20 @@ fn granular_spheres_settling_across_ranks_are_the_serial_run() {
 }
 
 #[test]
+fn a_settled_pile_is_balanced_over_the_ranks() {
+    // the spheres settle into the lowest sixth of the box, which a uniform cut along z would
+    // leave to one rank
+    for r in on_ranks(&granular_deck("pair_style   gran/hertz/history 2000.0 NULL 50.0 NULL 0.5 1", "hertz/history 2000.0 NULL 50.0 NULL 0.5 1"), 2) {
+        let (text, _) = r.unwrap();
+        if let Some(line) = text.lines().filter(|l| l.starts_with("Nlocal:")).last() {
+            let w: Vec<f64> = line.split_whitespace().filter_map(|x| x.parse().ok()).collect();
+            let (ave, max, min) = (w[0], w[1], w[2]);
+            assert!(max <= 1.25 * ave && min >= 0.75 * ave, "atoms per rank: {line}");
+        }
+    }
+}
+
+#[test]
 fn a_2d_deck_with_fixed_walls_on_four_ranks() {
     let deck = "
 units        lj

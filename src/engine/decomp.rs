@@ -45,6 +45,9 @@ pub fn choose_grid(n: usize, user: [Option<usize>; 3], prd: [f64; 3], dimension:
 pub struct Decomp {
     pub comm: Arc<dyn Comm>,
     pub procs: [usize; 3],
+    /// Where the sub-domains are cut along each dimension, as fractions of the box (LAMMPS'
+    /// xsplit, ysplit, zsplit): `procs[d] + 1` values from 0 to 1; uniform until balanced.
+    splits: [Vec<f64>; 3],
     /// Ghosts: for each rank that receives some of this rank's atoms (itself included, for
     /// periodic images), the owned atoms sent and their periodic shifts, in the order sent.
     sends: Vec<(usize, Vec<(u32, [i8; 3])>)>,
@@ -52,7 +55,16 @@ pub struct Decomp {
 
 impl Decomp {
     pub fn new(comm: Arc<dyn Comm>, procs: [usize; 3]) -> Decomp {
-        Decomp { comm, procs, sends: Vec::new() }
+        Decomp { comm, procs, splits: procs.map(uniform), sends: Vec::new() }
+    }
+    /// A new processor grid, cut uniformly.
+    pub fn set_procs(&mut self, procs: [usize; 3]) {
+        self.procs = procs;
+        self.splits = procs.map(uniform);
+    }
+    /// The cuts along dimension `d` (fractions of the box).
+    pub fn splits(&self, d: usize) -> &[f64] {
+        &self.splits[d]
     }
     pub fn rank(&self) -> usize {
         self.comm.rank()
@@ -64,12 +76,12 @@ impl Decomp {
     pub fn rank_at(&self, c: [usize; 3]) -> usize {
         (c[0] * self.procs[1] + c[1]) * self.procs[2] + c[2]
     }
-    /// Lower and upper bound of sub-domain `c` along `d` (LAMMPS: lo + prd * c/P, the last one
-    /// ending exactly at the box's upper bound).
+    /// Lower and upper bound of sub-domain `c` along `d` (LAMMPS: lo + prd * split[c], the last
+    /// one ending exactly at the box's upper bound).
     fn bounds(&self, domain: &Domain, d: usize, c: usize) -> (f64, f64) {
         let p = self.procs[d];
         let prd = domain.hi[d] - domain.lo[d];
-        let split = |k: usize| domain.lo[d] + prd * (k as f64 / p as f64);
+        let split = |k: usize| domain.lo[d] + prd * self.splits[d][k];
         let hi = if c + 1 == p { domain.hi[d] } else { split(c + 1) };
         (split(c), hi)
     }
@@ -88,17 +100,8 @@ impl Decomp {
         let mut c = [0usize; 3];
         for d in 0..3 {
             let p = self.procs[d];
-            let prd = domain.hi[d] - domain.lo[d];
-            let guess = if prd > 0.0 { ((x[d] - domain.lo[d]) / prd * p as f64).floor() } else { 0.0 };
-            let mut k = if guess.is_nan() || guess < 0.0 { 0 } else { (guess as usize).min(p - 1) };
-            // the guess can be one off at a boundary: settle it with the bounds themselves
-            while k > 0 && x[d] < self.bounds(domain, d, k).0 {
-                k -= 1;
-            }
-            while k + 1 < p && x[d] >= self.bounds(domain, d, k).1 {
-                k += 1;
-            }
-            c[d] = k;
+            // the last sub-domain whose lower bound is at or below x (NaN: the first)
+            c[d] = (1..p).take_while(|&k| x[d] >= self.bounds(domain, d, k).0).last().unwrap_or(0);
         }
         self.rank_at(c)
     }
@@ -141,7 +144,7 @@ impl Decomp {
     pub fn check_thickness(&self, domain: &Domain, cut: f64) -> Result<(), String> {
         for d in 0..domain.dimension {
             let p = self.procs[d];
-            let width = (domain.hi[d] - domain.lo[d]) / p as f64;
+            let width = (0..p).map(|c| self.bounds(domain, d, c)).map(|(lo, hi)| hi - lo).fold(f64::INFINITY, f64::min);
             if p > 1 && width < cut {
                 return Err(format!(
                     "the sub-domains of the {}x{}x{} processor grid are {width} thick along {}, less than the ghost cutoff {cut} (pair cutoff + skin, or comm_modify cutoff): use fewer ranks along {} (processors command)",
@@ -153,6 +156,51 @@ impl Decomp {
         Ok(())
     }
 
+    /// Atom counts of the owned atoms in [`BALANCE_BINS`] equal bins across the box, per
+    /// dimension, summed over the ranks (`all`) or of this rank alone.
+    pub fn histograms(&self, atoms: &Atoms, domain: &Domain, all: bool) -> [Vec<f64>; 3] {
+        let mut h = [(); 3].map(|_| vec![0.0; BALANCE_BINS]);
+        for x in &atoms.x[..atoms.nlocal] {
+            for d in 0..domain.dimension {
+                let f = (x[d] - domain.lo[d]) / (domain.hi[d] - domain.lo[d]) * BALANCE_BINS as f64;
+                let b = if f.is_nan() || f < 0.0 { 0 } else { (f as usize).min(BALANCE_BINS - 1) };
+                h[d][b] += 1.0;
+            }
+        }
+        if all {
+            for v in &mut h {
+                self.comm.sum(v);
+            }
+        }
+        h
+    }
+
+    /// Move the cuts so that each slab of the grid holds the same share of the atoms counted
+    /// in `hist` (LAMMPS' `balance shift` on every dimension with more than one rank), no
+    /// sub-domain thinner than `cut`. Returns whether a cut moved.
+    pub fn balance(&mut self, domain: &Domain, hist: &[Vec<f64>; 3], cut: f64) -> bool {
+        let mut moved = false;
+        for d in 0..domain.dimension {
+            let p = self.procs[d];
+            if p < 2 {
+                continue;
+            }
+            if let Some(cuts) = balanced_cuts(&hist[d], p, cut / (domain.hi[d] - domain.lo[d])) {
+                moved |= cuts != self.splits[d];
+                self.splits[d] = cuts;
+            }
+        }
+        moved
+    }
+
+    /// The largest count of owned atoms on a rank over the mean (1: balanced).
+    pub fn imbalance(&self, nlocal: usize) -> f64 {
+        let (mut max, mut sum) = ([nlocal as f64], [nlocal as f64]);
+        self.comm.max(&mut max);
+        self.comm.sum(&mut sum);
+        if sum[0] > 0.0 { max[0] * self.comm.size() as f64 / sum[0] } else { 1.0 }
+    }
+
     /// Keep only the owned atoms inside this rank's sub-domain (every rank held them all).
     pub fn distribute(&self, atoms: &mut Atoms, domain: &Domain) {
         let me = self.rank();
@@ -160,12 +208,22 @@ impl Decomp {
         atoms.retain(&remove);
     }
 
+    /// The ranks atoms can go to: the neighbours in the grid, or (`anywhere`, after the cuts
+    /// moved) every other rank.
+    fn destinations(&self, domain: &Domain, anywhere: bool) -> Vec<usize> {
+        match anywhere {
+            true => (0..self.comm.size()).filter(|&r| r != self.rank()).collect(),
+            false => self.peers(domain),
+        }
+    }
+
     /// Send the owned atoms that left this sub-domain to the ranks that now own them (LAMMPS'
-    /// `Comm::exchange`). Positions are wrapped; no ghosts are present. Returns the IDs of the
-    /// atoms that left and the ranks they went to.
-    pub fn migrate(&self, atoms: &mut Atoms, domain: &Domain) -> Result<Vec<(i64, usize)>, String> {
+    /// `Comm::exchange`): the neighbouring ranks, or any rank (`anywhere`: after balancing).
+    /// Positions are wrapped; no ghosts are present. Returns the IDs of the atoms that left and
+    /// the ranks they went to.
+    pub fn migrate(&self, atoms: &mut Atoms, domain: &Domain, anywhere: bool) -> Result<Vec<(i64, usize)>, String> {
         let me = self.rank();
-        let peers = self.peers(domain);
+        let peers = self.destinations(domain, anywhere);
         let mut bufs: Vec<Vec<f64>> = vec![Vec::new(); peers.len()];
         let mut remove = vec![false; atoms.nlocal];
         let mut departed = Vec::new();
@@ -202,8 +260,8 @@ impl Decomp {
     /// Contact histories travel with their atoms (after [`Decomp::migrate`]): each rank an atom
     /// went to gets every contact of this rank that involves the atom, from either side, so the
     /// pairs it now lists find their history at the next alignment.
-    pub fn carry_contacts(&self, history: &mut ContactHistory, departed: &[(i64, usize)], domain: &Domain) {
-        let peers = self.peers(domain);
+    pub fn carry_contacts(&self, history: &mut ContactHistory, departed: &[(i64, usize)], domain: &Domain, anywhere: bool) {
+        let peers = self.destinations(domain, anywhere);
         let to: std::collections::HashMap<i64, usize> = departed.iter().filter_map(|&(tag, r)| Some((tag, peers.iter().position(|&p| p == r)?))).collect();
         let mut bufs: Vec<Vec<f64>> = vec![Vec::new(); peers.len()];
         if !to.is_empty() {
@@ -370,6 +428,49 @@ impl Decomp {
     }
 }
 
+/// Cuts at 0, 1/p, 2/p, ..., 1 (LAMMPS' uniform split: c/P, so sub-domains are bitwise those of
+/// LAMMPS).
+fn uniform(p: usize) -> Vec<f64> {
+    (0..=p).map(|k| k as f64 / p as f64).collect()
+}
+
+/// Bins of the atom-count histograms the balancer cuts at (per dimension).
+pub const BALANCE_BINS: usize = 1024;
+
+/// Cuts that give each of `p` slabs the same share of `hist` (atom counts in equal bins across
+/// the box), each slab at least `minw` (a fraction of the box) thick: LAMMPS' `balance shift`
+/// for one dimension, from a histogram. None when `p` slabs of `minw` do not fit.
+pub fn balanced_cuts(hist: &[f64], p: usize, minw: f64) -> Option<Vec<f64>> {
+    if minw * p as f64 > 1.0 {
+        return None;
+    }
+    let total: f64 = hist.iter().sum();
+    let nb = hist.len();
+    let mut cuts = uniform(p);
+    if total > 0.0 {
+        // the fraction of the box below which a share k/p of the atoms lies (linear in a bin)
+        let mut below = 0.0;
+        let mut b = 0;
+        for (k, cut) in cuts.iter_mut().enumerate().take(p).skip(1) {
+            let want = total * k as f64 / p as f64;
+            while b < nb && below + hist[b] < want {
+                below += hist[b];
+                b += 1;
+            }
+            let inside = if b < nb && hist[b] > 0.0 { (want - below) / hist[b] } else { 0.0 };
+            *cut = ((b as f64 + inside) / nb as f64).clamp(0.0, 1.0);
+        }
+    }
+    // every slab at least minw thick: push cuts up from the bottom, then down from the top
+    for k in 1..p {
+        cuts[k] = cuts[k].max(cuts[k - 1] + minw);
+    }
+    for k in (1..p).rev() {
+        cuts[k] = cuts[k].min(cuts[k + 1] - minw);
+    }
+    Some(cuts)
+}
+
 /// A contact record as doubles: IDs, image, the number of values, the values.
 fn pack_contact(r: &ContactRecord, out: &mut Vec<f64>) {
     out.extend_from_slice(&[r.owner as f64, r.partner as f64, r.image[0] as f64, r.image[1] as f64, r.image[2] as f64, r.values.len() as f64]);
@@ -411,5 +512,21 @@ mod tests {
         assert_eq!(choose_grid(8, [Some(8), None, None], [10.0, 10.0, 10.0], 3).unwrap(), [8, 1, 1]);
         assert!(choose_grid(4, [Some(3), None, None], [10.0; 3], 3).is_err());
         assert!(choose_grid(2, [Some(1), Some(1), None], [10.0, 10.0, 1.0], 2).is_err());
+    }
+
+    #[test]
+    fn balanced_cuts_split_the_counts_evenly_and_keep_the_least_thickness() {
+        // all atoms in the lowest quarter, evenly
+        let mut hist = vec![0.0; 8];
+        hist[0] = 10.0;
+        hist[1] = 10.0;
+        assert_eq!(balanced_cuts(&hist, 2, 0.0).unwrap(), vec![0.0, 0.125, 1.0]);
+        assert_eq!(balanced_cuts(&hist, 4, 0.0).unwrap(), vec![0.0, 0.0625, 0.125, 0.1875, 1.0]);
+        // slabs at least 0.1 thick
+        let c = balanced_cuts(&hist, 4, 0.1).unwrap();
+        assert!(c.windows(2).all(|w| w[1] - w[0] >= 0.1 - 1e-15), "{c:?}");
+        assert!(balanced_cuts(&hist, 4, 0.3).is_none());
+        // no atoms: uniform
+        assert_eq!(balanced_cuts(&[0.0; 8], 2, 0.0).unwrap(), vec![0.0, 0.5, 1.0]);
     }
 }

@@ -108,6 +108,9 @@ pub struct State {
     /// `comm_modify cutoff`: the least ghost cutoff of a distributed run (bonded partners
     /// farther than the pair cutoff + skin); a serial run's periodic ghosts need none.
     pub comm_cutoff: f64,
+    /// A distributed run cuts its sub-domains where they hold equal shares of the atoms, at its
+    /// start and whenever the load grows uneven (`balance`; LAMMPS cuts uniformly unless told).
+    pub balance: bool,
     pub groups: Groups,
     pub lattice: Option<Lattice>,
     pub regions: Vec<Region>,
@@ -180,6 +183,7 @@ impl State {
             lammps_order: Default::default(),
             comm_vel: false,
             comm_cutoff: 0.0,
+            balance: true,
             groups: Groups::default(),
             lattice: None,
             regions: Vec::new(),

@@ -22,6 +22,10 @@ const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
 
+/// A distributed run moves its cuts when the most loaded rank owns this much more than the
+/// mean (checked at each neighbour-list rebuild).
+pub const REBALANCE: f64 = 1.2;
+
 /// Per-rank counts at the end of a distributed run, for the run summary (sum, min, max).
 pub struct RankCounts {
     pub nlocal: [f64; 3],
@@ -42,6 +46,14 @@ impl Simulation {
     /// The number of ranks (1 for an ordinary run).
     pub fn nranks(&self) -> usize {
         self.state.decomp.as_ref().map_or(1, |d| d.comm.size())
+    }
+
+    /// The ghost cutoff of a distributed run: the longest pair cutoff plus the skin, or the
+    /// `comm_modify cutoff` if longer (the least thickness of a sub-domain).
+    pub(crate) fn ghost_cutoff(&self) -> f64 {
+        let n = self.state.ntypes;
+        let pair = self.pair.as_deref().map_or(0.0, |p| (1..=n).flat_map(|i| (i..=n).map(move |j| (i, j))).map(|(i, j)| p.cutoff(i, j)).fold(0.0, f64::max));
+        (pair + self.state.neigh_settings.skin).max(self.state.comm_cutoff)
     }
 
     /// Why this deck cannot run on several ranks yet (None: it can).
@@ -86,7 +98,11 @@ impl Simulation {
             Ok(p) => p,
             Err(e) => return format!("on {n} ranks: {e}\n"),
         };
-        let d = Decomp::new(Arc::new(crate::engine::comm::Serial), procs);
+        let mut d = Decomp::new(Arc::new(crate::engine::comm::Serial), procs);
+        if self.state.balance {
+            let hist = d.histograms(&self.state.atoms, domain, false);
+            d.balance(domain, &hist, self.ghost_cutoff());
+        }
         let mut owned = vec![0usize; n];
         for x in &self.state.atoms.x[..self.state.atoms.nlocal] {
             owned[d.owner(domain, x)] += 1;
@@ -111,8 +127,14 @@ impl Simulation {
             return Err(RunError::new(step, why));
         }
         let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
+        let ghost_cut = self.ghost_cutoff();
         let d = self.state.decomp.as_mut().expect("a decomposition");
-        d.procs = choose_grid(d.comm.size(), self.state.procs_user, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?;
+        d.set_procs(choose_grid(d.comm.size(), self.state.procs_user, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?);
+        if self.state.balance {
+            // every rank holds every atom here: the same counts, the same cuts
+            let hist = d.histograms(&self.state.atoms, domain, false);
+            d.balance(domain, &hist, ghost_cut);
+        }
         let natoms = self.state.atoms.nlocal;
         self.state.atoms.clear_ghosts();
         d.distribute(&mut self.state.atoms, domain);

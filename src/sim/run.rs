@@ -130,11 +130,24 @@ impl Simulation {
             return Err(lost.err().unwrap_or_else(|| RunError::new(step, "another rank lost atoms")));
         }
         let domain = self.state.domain.as_ref().unwrap();
-        if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
-            let departed = d.migrate(&mut self.state.atoms, domain).map_err(|e| RunError::new(step, e))?;
+        let ghost_cut = self.ghost_cutoff();
+        if let (Some(d), Some(_)) = (&mut self.state.decomp, self.state.distributed) {
+            let departed = d.migrate(&mut self.state.atoms, domain, false).map_err(|e| RunError::new(step, e))?;
             if let Some(pair) = self.pair.as_mut() {
                 for h in pair.histories() {
-                    d.carry_contacts(h, &departed, domain);
+                    d.carry_contacts(h, &departed, domain, false);
+                }
+            }
+            // an uneven load moves the cuts (every rank sees the same counts, so all agree)
+            if self.state.balance && d.imbalance(self.state.atoms.nlocal) > crate::sim::distributed::REBALANCE {
+                let hist = d.histograms(&self.state.atoms, domain, true);
+                if d.balance(domain, &hist, ghost_cut) {
+                    let departed = d.migrate(&mut self.state.atoms, domain, true).map_err(|e| RunError::new(step, e))?;
+                    if let Some(pair) = self.pair.as_mut() {
+                        for h in pair.histories() {
+                            d.carry_contacts(h, &departed, domain, true);
+                        }
+                    }
                 }
             }
             // atoms lost through fixed faces (thermo_modify lost ignore) leave the count

@@ -25,11 +25,14 @@ pub struct LammpsOrder {
     pub sortfreq: i64,
     pub binsize: f64,
     nextsort: i64,
+    /// Which atom of a pair LAMMPS' half list lists it from, as of the last rebuild (made on
+    /// request, see [`LammpsOrder::make_sides`]).
+    sides: Option<ListSides>,
 }
 
 impl Default for LammpsOrder {
     fn default() -> Self {
-        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, nextsort: 0 }
+        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, nextsort: 0, sides: None }
     }
 }
 
@@ -109,6 +112,87 @@ impl LammpsOrder {
             }
         }
         self.local = local(&self.ids);
+        self.sides = None;
+    }
+
+    /// After [`LammpsOrder::after_rebuild`]: LAMMPS' neighbour bins of this rebuild, for
+    /// [`ListSides::first`]. `binsize` is `neigh_modify binsize` (0: half of `cutneighmax`).
+    pub fn make_sides(&mut self, atoms: &Atoms, domain: &Domain, cutneighmax: f64, binsize: f64) {
+        let mut rank = vec![0u32; atoms.nlocal];
+        for (k, &i) in self.local.iter().enumerate() {
+            rank[i] = k as u32;
+        }
+        self.sides = Some(ListSides::new(domain, if binsize > 0.0 { binsize } else { 0.5 * cutneighmax }, rank));
+    }
+
+    /// The sides made at the last rebuild, if asked for.
+    pub fn sides(&self) -> Option<&ListSides> {
+        self.sides.as_ref()
+    }
+}
+
+/// Which atom of a pair lists it in LAMMPS' half neighbour list (newton on, LAMMPS' standard
+/// bins for one process: `NBinStandard::setup_bins`, `coord2bin`, the half stencil and
+/// `NPairBin`'s test within a bin). Results that depend on that side (a history value LAMMPS
+/// negates when the other atom lists the pair) follow it.
+#[derive(Clone, Debug)]
+pub struct ListSides {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    n: [i64; 3],
+    inv: [f64; 3],
+    /// LAMMPS' local index of each owned atom (by dmhs index)
+    rank: Vec<u32>,
+}
+
+impl ListSides {
+    fn new(domain: &Domain, binsize: f64, rank: Vec<u32>) -> ListSides {
+        let (lo, hi) = (domain.lo, domain.hi);
+        let mut n = [1i64; 3];
+        let mut inv = [1.0; 3];
+        let bininv = 1.0 / if binsize > 0.0 { binsize } else { hi[0] - lo[0] };
+        for d in 0..3 {
+            let len = hi[d] - lo[d];
+            let nb = if d == 2 && domain.dimension == 2 { 1 } else { (len * bininv) as i64 };
+            n[d] = nb.max(1);
+            inv[d] = 1.0 / (len / n[d] as f64);
+        }
+        ListSides { lo, hi, n, inv, rank }
+    }
+
+    /// LAMMPS' bin coordinate along `d` (ghosts beyond the box get bins outside it).
+    fn coord(&self, x: f64, d: usize) -> i64 {
+        if x >= self.hi[d] {
+            ((x - self.hi[d]) * self.inv[d]) as i64 + self.n[d]
+        } else if x >= self.lo[d] {
+            (((x - self.lo[d]) * self.inv[d]) as i64).min(self.n[d] - 1)
+        } else {
+            ((x - self.lo[d]) * self.inv[d]) as i64 - 1
+        }
+    }
+
+    /// Whether LAMMPS lists the pair of owned atom `i` and atom `j` (owned, or a ghost at
+    /// `x[j]`) from i: j's bin comes after i's (z, then y, then x: the half stencil); in one
+    /// bin, an owned j comes later in LAMMPS' order, a ghost j lies above (z, y, x).
+    pub fn first(&self, i: usize, j: usize, x: &[[f64; 3]]) -> bool {
+        let (xi, xj) = (&x[i], &x[j]);
+        for d in [2, 1, 0] {
+            let (bi, bj) = (self.coord(xi[d], d), self.coord(xj[d], d));
+            if bi != bj {
+                return bj > bi;
+            }
+        }
+        match (self.rank.get(i), self.rank.get(j)) {
+            (Some(ri), Some(rj)) => ri < rj,
+            _ => {
+                for d in [2, 1, 0] {
+                    if xj[d] != xi[d] {
+                        return xj[d] > xi[d];
+                    }
+                }
+                true
+            }
+        }
     }
 }
 

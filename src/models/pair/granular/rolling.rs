@@ -24,7 +24,7 @@ pub static STYLES: &[Style<Rolling>] = &[Style {
     name: "sds",
     coeffs: SDS,
     history: 3,
-    flags: Flags { keep: 0b111, ..Flags::NONE },
+    flags: Flags { keep: 0b111, flip: 0b111, ..Flags::NONE },
     build: |c, _| Rolling::Sds { k: c[0], gamma: c[1], mu: c[2] },
     mix: geometric,
 }];

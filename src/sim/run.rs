@@ -190,7 +190,7 @@ impl Simulation {
             })?;
         let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
         self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, setup);
-        self.state.lammps_order.make_sides(&self.state.atoms, domain, cutneighmax, self.state.neigh_settings.binsize);
+        self.state.lammps_order.make_sides(&self.state.atoms, domain, cutneighmax, self.state.neigh_settings.binsize, self.state.newton_pair);
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }

@@ -7,7 +7,9 @@
 //!   matters (|s.n| k_roll > 1e-10 mu_roll F_n,crit), then s += v_rl dt;
 //!   F_r = -k_roll s - gamma_roll v_rl, limited to mu_roll F_n,crit with s set back to match.
 //!   The spring is stored only when it is advanced (not during run setup). v_rl does not change
-//!   when i and j swap, so neither does s (LAMMPS transfer_history_factor +1).
+//!   when i and j swap, so neither does s; but LAMMPS 22 Jul 2025 negates s when its list moves
+//!   the contact to the other atom (transfer factor -1), and so does dmhs (`flip`,
+//!   engine/contact_history.rs).
 
 use super::tangential::{len3, rotate_rescale, FRAME_EPS};
 use super::{geometric, nn, Coeff, Flags, Style};

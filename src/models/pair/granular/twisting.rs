@@ -11,8 +11,9 @@
 //!   (Marshall 2009): k_t = Kt a^2/2, gamma_t = eta_t a^2/2 (eta_t the tangential damping
 //!   x_gt eta_n), mu_t = 2/3 mu a.
 //!
-//! omega_t does not change when i and j swap, so neither does phi (LAMMPS
-//! transfer_history_factor +1).
+//! omega_t does not change when i and j swap, so neither does phi; but LAMMPS 22 Jul 2025 negates
+//! phi when its list moves the contact to the other atom (transfer factor -1), and so does dmhs
+//! (`flip`, engine/contact_history.rs).
 
 use super::{geometric, nn, Coeff, Flags, Style};
 

@@ -230,19 +230,36 @@ impl ContactHistory {
                         let e = k0 + k;
                         let image = sub3i(eimg[i], eimg[j]);
                         let dst = &mut h.values[e * size..(e + 1) * size];
-                        // LAMMPS listed the pair from the record's owner: whether it moved
+                        // records are named from the atom LAMMPS listed the pair from; LAMMPS'
+                        // lister now takes its own record (a pair with a periodic image may have
+                        // one per atom), else the other's, which moved
                         let listed_by_i = h.side.get(e).copied();
-                        let moved = if let Some(r) = find(tags[i], tags[j], image) {
+                        let own = || find(tags[i], tags[j], image);
+                        let other = || find(tags[j], tags[i], neg3i(image));
+                        let (r, from_i) = match listed_by_i {
+                            Some(false) => match other() {
+                                Some(r) => (r, false),
+                                None => match own() {
+                                    Some(r) => (r, true),
+                                    None => continue,
+                                },
+                            },
+                            _ => match own() {
+                                Some(r) => (r, true),
+                                None => match other() {
+                                    Some(r) => (r, false),
+                                    None => continue,
+                                },
+                            },
+                        };
+                        if from_i {
                             dst.copy_from_slice(&r.values);
-                            listed_by_i == Some(false)
-                        } else if let Some(r) = find(tags[j], tags[i], neg3i(image)) {
+                        } else {
                             for ((d, s), &keep) in dst.iter_mut().zip(&r.values).zip(keep) {
                                 *d = if keep { *s } else { -*s };
                             }
-                            listed_by_i == Some(true)
-                        } else {
-                            continue;
-                        };
+                        }
+                        let moved = listed_by_i.is_some_and(|by_i| by_i != from_i);
                         h.touch[e] = 1;
                         if moved {
                             for (d, _) in dst.iter_mut().zip(flip).filter(|(_, &f)| f) {

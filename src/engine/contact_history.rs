@@ -15,6 +15,11 @@
 //!   transfer), except those the model marks as kept (LAMMPS' transfer_history_factor +1: a
 //!   contact radius, a rolling or twisting spring, which do not depend on the order of the pair). A pair with a periodic image is listed by both owned atoms (each keeps its
 //!   own record); a pair of owned atoms is listed once.
+//! * Values marked `flip` (see [`ContactHistory::set_flips`]) are negated when LAMMPS' own list
+//!   moves the pair to its other atom, whatever dmhs does: LAMMPS 22 Jul 2025 transfers rolling
+//!   and twisting springs with factor -1 although they do not depend on the order of the pair.
+//!   The store then remembers, per entry, which atom LAMMPS lists the pair from
+//!   ([`ListSides`]), and names its contacts from LAMMPS' listing atom.
 //! * Only contacts that touch after the rebuild are looked up: the pair loop zeroes the history of
 //!   every pair that does not touch, so carrying anything else would change nothing.
 //! * [`ContactHistory::records`] lists the contacts by key (for write_restart);
@@ -22,6 +27,7 @@
 //!   [`ContactHistory::adopt`] adds those that arrived with atoms from other ranks.
 
 use crate::engine::atoms::{Atoms, IdKeys};
+use crate::engine::lammps_order::ListSides;
 use crate::engine::neighbor::{ChunkList, NeighList, NEIGH_MASK};
 use rayon::prelude::*;
 
@@ -30,6 +36,8 @@ use rayon::prelude::*;
 pub struct HistoryChunk {
     pub touch: Vec<u8>,
     pub values: Vec<f64>,
+    /// per entry: LAMMPS lists the pair from its atom i (only with `flip` values)
+    pub side: Vec<bool>,
 }
 
 /// One contact by key, as written to restart files.
@@ -48,6 +56,8 @@ pub struct ContactHistory {
     size: usize,
     /// per value: the same from the other side (not negated)
     keep: Vec<bool>,
+    /// per value: negated when LAMMPS' list moves the pair to its other atom
+    flip: Vec<bool>,
     pub chunks: Vec<HistoryChunk>,
     /// Atom ID and effective image of every atom index (owned, then ghosts) at the last rebuild.
     tags: Vec<i64>,
@@ -81,17 +91,29 @@ impl ContactHistory {
         Ok(())
     }
 
+    /// The values (`flip.len()` of them, as the layout) that LAMMPS negates when its list moves
+    /// a pair to the other atom, although dmhs keeps them (see the module comment).
+    pub fn set_flips(&mut self, flip: Vec<bool>) {
+        self.flip = flip;
+    }
+
+    fn flips(&self) -> bool {
+        self.flip.iter().any(|&f| f)
+    }
+
     pub fn size(&self) -> usize {
         self.size
     }
 
     /// Every touching contact, by key, in list order (contacts restored from a restart file and
-    /// not yet applied are returned as they are).
+    /// not yet applied are returned as they are). With `flip` values a contact is named from
+    /// the atom LAMMPS lists it from (a record of the other atom is turned round, after them).
     pub fn records(&self) -> Vec<ContactRecord> {
         if let Some(p) = &self.pending {
             return p.clone();
         }
         let mut out = Vec::new();
+        let mut turned = Vec::new();
         for (chunk, hist) in self.list.iter().zip(&self.chunks) {
             for i in chunk.start..chunk.end {
                 let k0 = chunk.first_entry(i);
@@ -101,15 +123,22 @@ impl ContactHistory {
                         continue;
                     }
                     let j = (jraw & NEIGH_MASK) as usize;
-                    out.push(ContactRecord {
-                        owner: self.tags[i],
-                        partner: self.tags[j],
-                        image: sub3i(self.eimg[i], self.eimg[j]),
-                        values: hist.values[e * self.size..(e + 1) * self.size].to_vec(),
-                    });
+                    let values = &hist.values[e * self.size..(e + 1) * self.size];
+                    if hist.side.get(e) == Some(&false) {
+                        // a periodic pair's record of the listing atom, if any, comes first
+                        turned.push(ContactRecord {
+                            owner: self.tags[j],
+                            partner: self.tags[i],
+                            image: sub3i(self.eimg[j], self.eimg[i]),
+                            values: values.iter().zip(&self.keep).map(|(&v, &keep)| if keep { v } else { -v }).collect(),
+                        });
+                        continue;
+                    }
+                    out.push(ContactRecord { owner: self.tags[i], partner: self.tags[j], image: sub3i(self.eimg[i], self.eimg[j]), values: values.to_vec() });
                 }
             }
         }
+        out.append(&mut turned);
         out
     }
 
@@ -135,9 +164,11 @@ impl ContactHistory {
     }
 
     /// Carry the contacts over to a freshly built list. `touching(i, j)` says whether listed pair
-    /// (i, j) is in contact now (the same test as the pair loop's).
-    pub fn rebuilt(&mut self, atoms: &Atoms, list: &NeighList, touching: impl Fn(usize, usize) -> bool + Sync) {
+    /// (i, j) is in contact now (the same test as the pair loop's); `sides` are LAMMPS' (used
+    /// with `flip` values).
+    pub fn rebuilt(&mut self, atoms: &Atoms, list: &NeighList, sides: Option<&ListSides>, touching: impl Fn(usize, usize) -> bool + Sync) {
         let size = self.size;
+        let sides = sides.filter(|_| self.flips());
         let records = match self.pending.take() {
             Some(r) => r,
             None => self.records(),
@@ -185,12 +216,19 @@ impl ContactHistory {
         let tags = &self.tags;
         let eimg = &self.eimg;
         let keep = &self.keep;
+        let flip = &self.flip;
+        let x = &atoms.x;
         self.chunks = list
             .chunks
             .par_iter()
             .map(|chunk| {
                 let len = chunk.len();
-                let mut h = HistoryChunk { touch: vec![0; len], values: vec![0.0; len * size] };
+                let mut h = HistoryChunk { touch: vec![0; len], values: vec![0.0; len * size], side: vec![] };
+                if let Some(sides) = sides {
+                    for i in chunk.start..chunk.end {
+                        h.side.extend(chunk.neighbors(i).iter().map(|&jraw| sides.first(i, (jraw & NEIGH_MASK) as usize, x)));
+                    }
+                }
                 if records.is_empty() {
                     return h;
                 }
@@ -204,14 +242,41 @@ impl ContactHistory {
                         let e = k0 + k;
                         let image = sub3i(eimg[i], eimg[j]);
                         let dst = &mut h.values[e * size..(e + 1) * size];
-                        if let Some(r) = find(tags[i], tags[j], image) {
+                        // records are named from the atom LAMMPS listed the pair from; LAMMPS'
+                        // lister now takes its own record (a pair with a periodic image may have
+                        // one per atom), else the other's, which moved
+                        let listed_by_i = h.side.get(e).copied();
+                        let own = || find(tags[i], tags[j], image);
+                        let other = || find(tags[j], tags[i], neg3i(image));
+                        let (r, from_i) = match listed_by_i {
+                            Some(false) => match other() {
+                                Some(r) => (r, false),
+                                None => match own() {
+                                    Some(r) => (r, true),
+                                    None => continue,
+                                },
+                            },
+                            _ => match own() {
+                                Some(r) => (r, true),
+                                None => match other() {
+                                    Some(r) => (r, false),
+                                    None => continue,
+                                },
+                            },
+                        };
+                        if from_i {
                             dst.copy_from_slice(&r.values);
-                            h.touch[e] = 1;
-                        } else if let Some(r) = find(tags[j], tags[i], neg3i(image)) {
+                        } else {
                             for ((d, s), &keep) in dst.iter_mut().zip(&r.values).zip(keep) {
                                 *d = if keep { *s } else { -*s };
                             }
-                            h.touch[e] = 1;
+                        }
+                        let moved = listed_by_i.is_some_and(|by_i| by_i != from_i);
+                        h.touch[e] = 1;
+                        if moved {
+                            for (d, _) in dst.iter_mut().zip(flip).filter(|(_, &f)| f) {
+                                *d = -*d;
+                            }
                         }
                     }
                 }

@@ -25,11 +25,14 @@ pub struct LammpsOrder {
     pub sortfreq: i64,
     pub binsize: f64,
     nextsort: i64,
+    /// Which atom of a pair LAMMPS' half list lists it from, as of the last rebuild (made on
+    /// request, see [`LammpsOrder::make_sides`]).
+    sides: Option<ListSides>,
 }
 
 impl Default for LammpsOrder {
     fn default() -> Self {
-        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, nextsort: 0 }
+        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, nextsort: 0, sides: None }
     }
 }
 
@@ -109,6 +112,96 @@ impl LammpsOrder {
             }
         }
         self.local = local(&self.ids);
+        self.sides = None;
+    }
+
+    /// After [`LammpsOrder::after_rebuild`]: LAMMPS' neighbour bins of this rebuild, for
+    /// [`ListSides::first`]. `binsize` is `neigh_modify binsize` (0: half of `cutneighmax`);
+    /// `newton` is `newton_pair`.
+    pub fn make_sides(&mut self, atoms: &Atoms, domain: &Domain, cutneighmax: f64, binsize: f64, newton: bool) {
+        let mut rank = vec![0u32; atoms.nlocal];
+        for (k, &i) in self.local.iter().enumerate() {
+            rank[i] = k as u32;
+        }
+        self.sides = Some(ListSides::new(domain, if binsize > 0.0 { binsize } else { 0.5 * cutneighmax }, rank, newton));
+    }
+
+    /// The sides made at the last rebuild, if asked for.
+    pub fn sides(&self) -> Option<&ListSides> {
+        self.sides.as_ref()
+    }
+}
+
+/// Which atom of a pair lists it in LAMMPS' half neighbour list (LAMMPS' standard bins for one
+/// process: `NBinStandard::setup_bins`, `coord2bin`, the half stencil and `NPairBin`'s test
+/// within a bin; with `newton off` the earlier atom in LAMMPS' order, and each owner its pairs
+/// with ghosts). Results that depend on that side (a history value LAMMPS
+/// negates when the other atom lists the pair) follow it.
+#[derive(Clone, Debug)]
+pub struct ListSides {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    n: [i64; 3],
+    inv: [f64; 3],
+    /// LAMMPS' local index of each owned atom (by dmhs index)
+    rank: Vec<u32>,
+    newton: bool,
+}
+
+impl ListSides {
+    fn new(domain: &Domain, binsize: f64, rank: Vec<u32>, newton: bool) -> ListSides {
+        let (lo, hi) = (domain.lo, domain.hi);
+        let mut n = [1i64; 3];
+        let mut inv = [1.0; 3];
+        let bininv = 1.0 / if binsize > 0.0 { binsize } else { hi[0] - lo[0] };
+        for d in 0..3 {
+            let len = hi[d] - lo[d];
+            let nb = if d == 2 && domain.dimension == 2 { 1 } else { (len * bininv) as i64 };
+            n[d] = nb.max(1);
+            inv[d] = 1.0 / (len / n[d] as f64);
+        }
+        ListSides { lo, hi, n, inv, rank, newton }
+    }
+
+    /// LAMMPS' bin coordinate along `d` (ghosts beyond the box get bins outside it).
+    fn coord(&self, x: f64, d: usize) -> i64 {
+        if x >= self.hi[d] {
+            ((x - self.hi[d]) * self.inv[d]) as i64 + self.n[d]
+        } else if x >= self.lo[d] {
+            (((x - self.lo[d]) * self.inv[d]) as i64).min(self.n[d] - 1)
+        } else {
+            ((x - self.lo[d]) * self.inv[d]) as i64 - 1
+        }
+    }
+
+    /// Whether LAMMPS lists the pair of owned atom `i` and atom `j` (owned, or a ghost at
+    /// `x[j]`) from i: j's bin comes after i's (z, then y, then x: the half stencil); in one
+    /// bin, an owned j comes later in LAMMPS' order, a ghost j lies above (z, y, x).
+    pub fn first(&self, i: usize, j: usize, x: &[[f64; 3]]) -> bool {
+        let (xi, xj) = (&x[i], &x[j]);
+        if !self.newton {
+            return match (self.rank.get(i), self.rank.get(j)) {
+                (Some(ri), Some(rj)) => ri < rj,
+                _ => true,
+            };
+        }
+        for d in [2, 1, 0] {
+            let (bi, bj) = (self.coord(xi[d], d), self.coord(xj[d], d));
+            if bi != bj {
+                return bj > bi;
+            }
+        }
+        match (self.rank.get(i), self.rank.get(j)) {
+            (Some(ri), Some(rj)) => ri < rj,
+            _ => {
+                for d in [2, 1, 0] {
+                    if xj[d] != xi[d] {
+                        return xj[d] > xi[d];
+                    }
+                }
+                true
+            }
+        }
     }
 }
 
@@ -176,6 +269,28 @@ mod tests {
         // not due: the order is kept whatever dmhs does
         o.after_rebuild(&atoms, &domain(4.0), 4.0, 10, false);
         assert_eq!(o.ids, vec![3, 4, 1, 5, 2]);
+    }
+
+    #[test]
+    fn lammps_lists_a_pair_from_the_lower_bin_then_the_earlier_atom() {
+        // box 4, cutneighmax 2: bins of 1
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        for (t, x) in [(1, [0.5, 0.5, 1.5]), (2, [0.6, 0.5, 0.5]), (3, [1.5, 0.5, 0.5]), (4, [1.6, 0.6, 0.6])] {
+            atoms.push(&NewAtom::at(t, 1, x));
+        }
+        let mut o = LammpsOrder { sortfreq: 0, ..LammpsOrder::default() };
+        o.before_rebuild(&atoms);
+        o.after_rebuild(&atoms, &domain(4.0), 2.0, 0, true);
+        o.make_sides(&atoms, &domain(4.0), 2.0, 0.0, true);
+        let s = o.sides().unwrap();
+        // z first: 2 lists 1; then x: 2 lists 3
+        assert!(s.first(1, 0, &atoms.x) && !s.first(0, 1, &atoms.x));
+        assert!(s.first(1, 2, &atoms.x) && !s.first(2, 1, &atoms.x));
+        // one bin: LAMMPS' order (3 before 4)
+        assert!(s.first(2, 3, &atoms.x) && !s.first(3, 2, &atoms.x));
+        // newton off: always the earlier atom
+        o.make_sides(&atoms, &domain(4.0), 2.0, 0.0, false);
+        assert!(o.sides().unwrap().first(0, 1, &atoms.x));
     }
 
     #[test]

@@ -208,6 +208,7 @@ impl Simulation {
             })?;
         let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
         self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, setup);
+        self.state.lammps_order.make_sides(&self.state.atoms, domain, cutneighmax, self.state.neigh_settings.binsize, self.state.newton_pair);
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }
@@ -241,6 +242,7 @@ impl Simulation {
             step: self.state.step,
             advance,
             dimension: self.state.dimension,
+            sides: self.state.lammps_order.sides(),
         };
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields };

@@ -178,6 +178,7 @@ mod tests {
             step: 0,
             advance: true,
             dimension: 3,
+            sides: None,
         };
         let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![] };
         hc.compute(&input, &mut out);

@@ -189,7 +189,7 @@ impl PairStyle for GranHookeHistory {
 pub fn rebuild_history(history: &mut ContactHistory, input: &PairInput) {
     let a = input.atoms;
     let (x, radius) = (&a.x, &a.radius);
-    history.rebuilt(a, input.list, |i, j| {
+    history.rebuilt(a, input.list, input.sides, |i, j| {
         let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
         let radsum = radius[i] + radius[j];

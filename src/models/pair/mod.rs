@@ -142,6 +142,8 @@ pub struct PairInput<'a> {
     /// False during run setup (LAMMPS' `shearupdate`: contact histories are not advanced).
     pub advance: bool,
     pub dimension: usize,
+    /// Which atom of a pair LAMMPS lists it from, as of the last rebuild.
+    pub sides: Option<&'a crate::engine::lammps_order::ListSides>,
 }
 
 /// What a pair style may check and read before a run (granular styles need the atoms'

@@ -126,10 +126,14 @@ pub struct Flags {
     /// history values (bits, from the model's first) that keep their sign when the pair is
     /// seen from the other side (LAMMPS transfer_history_factor +1)
     pub keep: u16,
+    /// kept values that LAMMPS 22 Jul 2025 nevertheless negates when its list moves the pair
+    /// to the other atom (rolling and twisting springs: factor -1 there; later LAMMPS versions
+    /// keep them)
+    pub flip: u16,
 }
 
 impl Flags {
-    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false, material: false, keep: 0 };
+    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false, material: false, keep: 0, flip: 0 };
 }
 
 /// What constructors see besides their coefficients.
@@ -436,6 +440,8 @@ pub struct GranModel {
     pub history_size: usize,
     /// the history values that keep their sign from the other side (bits)
     pub history_keep: u16,
+    /// the history values LAMMPS negates when its list moves the pair (bits)
+    pub history_flip: u16,
     /// `cutoff` keyword (negative: from the radii)
     pub cutoff: f64,
 }
@@ -464,6 +470,7 @@ impl GranModel {
         }
         let flags = [Some(s.normal.style.flags), Some(s.damping.style.flags), Some(s.tangential.style.flags), s.rolling.map(|g| g.style.flags), s.twisting.map(|g| g.style.flags), s.heat.map(|g| g.style.flags)];
         let history_keep = flags.iter().zip(history_index).fold(0, |m, (f, at)| m | f.map_or(0, |f| f.keep << at));
+        let history_flip = flags.iter().zip(history_index).fold(0, |m, (f, at)| m | f.map_or(0, |f| f.flip << at));
         GranModel {
             normal,
             damping: s.damping.build(&ctx),
@@ -476,6 +483,7 @@ impl GranModel {
             history_index,
             history_size: history_index[HEAT] + sizes[HEAT],
             history_keep,
+            history_flip,
             cutoff: s.cutoff,
         }
     }
@@ -582,6 +590,11 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
         }
     }
     out
+}
+
+/// The first `n` bits of `m`, one flag per history value.
+fn bits(m: u16, n: usize) -> Vec<bool> {
+    (0..n).map(|d| m >> d & 1 != 0).collect()
 }
 
 /// A torque added to i and subtracted from j (a wall has no j).
@@ -719,12 +732,13 @@ impl PairStyle for Granular {
         self.types.set_range(ilo, ihi, jlo, jhi);
         // lay the history store out now (init does it again with the mixed pairs, which use the
         // same sub-models): read_restart checks a file's contacts against it before any run
-        let (mut size, mut keep) = (0, 0);
+        let (mut size, mut keep, mut flip) = (0, 0, 0);
         for s in self.coeff.data.iter().filter(|s| s.set) {
             let g = GranModel::build(s, false);
-            (size, keep) = (size.max(g.history_size), keep | g.history_keep);
+            (size, keep, flip) = (size.max(g.history_size), keep | g.history_keep, flip | g.history_flip);
         }
-        if let Err(e) = self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect()) {
+        self.history.set_flips(bits(flip, size));
+        if let Err(e) = self.history.set_layout(bits(keep, size)) {
             return Err(match args.last() {
                 Some(w) => args.error_at(w, e, "history size"),
                 None => args.missing(&e),
@@ -744,7 +758,7 @@ impl PairStyle for Granular {
         self.grow(ntypes);
         self.types.check(ntypes, active, "granular")?;
         let mut models = TypeTable::new(ntypes);
-        let (mut size, mut keep, mut beyond) = (0, 0u16, false);
+        let (mut size, mut keep, mut flip, mut beyond) = (0, 0u16, 0u16, false);
         self.heat = false;
         for i in 1..=ntypes {
             for j in i..=ntypes {
@@ -761,14 +775,15 @@ impl PairStyle for Granular {
                         .ok_or_else(|| format!("pair granular: types {i} and {j} use different models, so the {i} {j} pair cannot be mixed: set it with pair_coeff"))?
                 };
                 let m = GranModel::build(&s, false);
-                (size, keep) = (size.max(m.history_size), keep | m.history_keep);
+                (size, keep, flip) = (size.max(m.history_size), keep | m.history_keep, flip | m.history_flip);
                 beyond |= s.normal.style.flags.beyond_contact;
                 self.heat |= m.heat.is_some();
                 models.set(i, j, m);
             }
         }
         self.models = GranularModels(models, size, beyond);
-        self.history.set_layout((0..size).map(|d| keep >> d & 1 != 0).collect())
+        self.history.set_flips(bits(flip, size));
+        self.history.set_layout(bits(keep, size))
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         let m = self.models.0.get(it, jt);
@@ -796,7 +811,7 @@ impl PairStyle for Granular {
         // a contact kept over the rebuild was touching: JKR's test with its pull-off distance
         let a = input.atoms;
         let (x, radius, typ, models) = (&a.x, &a.radius, &a.typ, &self.models);
-        self.history.rebuilt(a, input.list, |i, j| {
+        self.history.rebuilt(a, input.list, input.sides, |i, j| {
             let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
             let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
             models.params(typ[i], typ[j]).normal.touch(rsq, radius[i], radius[j], true)

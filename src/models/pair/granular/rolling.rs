@@ -7,7 +7,9 @@
 //!   matters (|s.n| k_roll > 1e-10 mu_roll F_n,crit), then s += v_rl dt;
 //!   F_r = -k_roll s - gamma_roll v_rl, limited to mu_roll F_n,crit with s set back to match.
 //!   The spring is stored only when it is advanced (not during run setup). v_rl does not change
-//!   when i and j swap, so neither does s (LAMMPS transfer_history_factor +1).
+//!   when i and j swap, so neither does s; but LAMMPS 22 Jul 2025 negates s when its list moves
+//!   the contact to the other atom (transfer factor -1), and so does dmhs (`flip`,
+//!   engine/contact_history.rs).
 
 use super::tangential::{len3, rotate_rescale, FRAME_EPS};
 use super::{geometric, nn, Coeff, Flags, Style};
@@ -24,7 +26,7 @@ pub static STYLES: &[Style<Rolling>] = &[Style {
     name: "sds",
     coeffs: SDS,
     history: 3,
-    flags: Flags { keep: 0b111, ..Flags::NONE },
+    flags: Flags { keep: 0b111, flip: 0b111, ..Flags::NONE },
     build: |c, _| Rolling::Sds { k: c[0], gamma: c[1], mu: c[2] },
     mix: geometric,
 }];

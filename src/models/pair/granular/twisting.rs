@@ -11,8 +11,9 @@
 //!   (Marshall 2009): k_t = Kt a^2/2, gamma_t = eta_t a^2/2 (eta_t the tangential damping
 //!   x_gt eta_n), mu_t = 2/3 mu a.
 //!
-//! omega_t does not change when i and j swap, so neither does phi (LAMMPS
-//! transfer_history_factor +1).
+//! omega_t does not change when i and j swap, so neither does phi; but LAMMPS 22 Jul 2025 negates
+//! phi when its list moves the contact to the other atom (transfer factor -1), and so does dmhs
+//! (`flip`, engine/contact_history.rs).
 
 use super::{geometric, nn, Coeff, Flags, Style};
 
@@ -33,7 +34,7 @@ pub static STYLES: &[Style<Twisting>] = &[
         name: "marshall",
         coeffs: &[],
         history: 3,
-        flags: Flags { contact_radius: true, keep: 0b111, ..Flags::NONE },
+        flags: Flags { contact_radius: true, keep: 0b111, flip: 0b111, ..Flags::NONE },
         build: |_, ctx| Twisting::Marshall { k_tang: ctx.tangential_k_mu.0, mu_tang: ctx.tangential_k_mu.1 },
         mix: geometric,
     },
@@ -41,7 +42,7 @@ pub static STYLES: &[Style<Twisting>] = &[
         name: "sds",
         coeffs: SDS,
         history: 3,
-        flags: Flags { keep: 0b111, ..Flags::NONE },
+        flags: Flags { keep: 0b111, flip: 0b111, ..Flags::NONE },
         build: |c, _| Twisting::Sds { k: c[0], damp: c[1], mu: c[2] },
         mix: geometric,
     },

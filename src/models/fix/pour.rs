@@ -476,6 +476,9 @@ impl Fix for FixPour {
         Ok(())
     }
     fn describe(&self) -> String {
-        format!("fix {} pour: {} particles of type {}, {} every {} steps", self.id, self.ninsert, self.ntype, self.nper, self.nfreq)
+        match self.nfreq {
+            0 => format!("fix {} pour: {} particles of type {}, {} per batch (interval set when a run starts)", self.id, self.ninsert, self.ntype, self.nper),
+            n => format!("fix {} pour: {} particles of type {}, {} every {n} steps", self.id, self.ninsert, self.ntype, self.nper),
+        }
     }
 }

@@ -5,13 +5,15 @@ pub const MAX_GROUPS: usize = 32;
 #[derive(Clone, Debug)]
 pub struct Groups {
     names: Vec<Option<String>>,
+    /// Groups whose members an internal fix `GROUP_name` recomputes (`group ID dynamic`).
+    dynamic: u32,
 }
 
 impl Default for Groups {
     fn default() -> Self {
         let mut names = vec![None; MAX_GROUPS];
         names[0] = Some("all".to_string());
-        Groups { names }
+        Groups { names, dynamic: 0 }
     }
 }
 
@@ -47,6 +49,22 @@ impl Groups {
     pub fn delete(&mut self, k: usize) {
         if k > 0 {
             self.names[k] = None;
+            self.set_dynamic(k, false);
+        }
+    }
+    /// Whether group `k` is dynamic.
+    pub fn is_dynamic(&self, k: usize) -> bool {
+        k < MAX_GROUPS && self.dynamic & (1 << k) != 0
+    }
+    /// Whether any group of the bitmask `bit` is dynamic.
+    pub fn bit_is_dynamic(&self, bit: u32) -> bool {
+        self.dynamic & bit != 0
+    }
+    pub fn set_dynamic(&mut self, k: usize, on: bool) {
+        if on {
+            self.dynamic |= 1 << k;
+        } else {
+            self.dynamic &= !(1 << k);
         }
     }
     pub fn names(&self) -> impl Iterator<Item = (usize, &str)> {

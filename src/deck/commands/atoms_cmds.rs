@@ -104,10 +104,14 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
         for m in &mut sim.state.atoms.mask {
             *m &= !(1 << k);
         }
+        drop_dynamic(sim, k);
         sim.state.groups.delete(k);
         return Ok(());
     }
     need_box(sim, cmd)?;
+    if style.text == "dynamic" || style.text == "static" {
+        return group_dynamic(sim, &mut a, idw, style);
+    }
     if idw.text == "all" {
         return Err(a.error_at(idw, "group all cannot be changed", "reserved group"));
     }
@@ -144,7 +148,12 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
             let mut bits = vec![];
             while let Some(w) = a.peek() {
                 a.skip(1);
-                bits.push(sim.state.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?);
+                let b = sim.state.groups.bit(&w.text).ok_or_else(|| a.error_at(w, format!("group `{}` does not exist", w.text), "unknown group"))?;
+                // LAMMPS refuses: a dynamic group's members change during a run
+                if sim.state.groups.bit_is_dynamic(b) {
+                    return Err(a.error_at(w, format!("Cannot {} groups using a dynamic group (`{}`)", style.text, w.text), "dynamic group"));
+                }
+                bits.push(b);
             }
             let need = if style.text == "union" { 1 } else { 2 };
             if bits.len() < need {
@@ -171,8 +180,8 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
             vec![false; n]
         }
         other => {
-            let known = ["type", "id", "molecule", "region", "subtract", "union", "intersect", "delete", "clear", "empty"];
-            let msg = if ["variable", "include", "dynamic", "static"].contains(&other) {
+            let known = ["type", "id", "molecule", "region", "subtract", "union", "intersect", "delete", "clear", "empty", "dynamic", "static"];
+            let msg = if ["variable", "include"].contains(&other) {
                 format!("group style `{other}` is a LAMMPS style that dmhs does not support yet")
             } else {
                 format!("unknown group style `{other}`")
@@ -191,6 +200,79 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
     }
     let count = sim.state.group_count(bit);
     sim.out.print(&format!("{count} atoms in group {}", idw.text));
+    Ok(())
+}
+
+/// Remove the internal fix of dynamic group `k`, if it has one.
+fn drop_dynamic(sim: &mut Simulation, k: usize) {
+    if sim.state.groups.is_dynamic(k) {
+        let name = format!("GROUP_{}", sim.state.groups.names().find(|&(j, _)| j == k).map(|(_, n)| n).unwrap_or_default());
+        if let Some(j) = sim.find_fix(&name) {
+            let mut f = sim.fixes.remove(j);
+            f.cleanup(&mut sim.state);
+        }
+        sim.state.groups.set_dynamic(k, false);
+    }
+}
+
+/// `group ID dynamic parent [region R] [var V] [every N]` (an internal fix GROUP_ID, added
+/// last, recomputes the members at setup and every N steps) and `group ID static`.
+fn group_dynamic(sim: &mut Simulation, a: &mut Args, idw: &Word, style: &Word) -> DResult<()> {
+    if style.text == "static" {
+        a.finish()?;
+        let k = sim.state.groups.find_or_create(&idw.text).map_err(|e| a.error_at(idw, e, "too many groups"))?;
+        drop_dynamic(sim, k);
+        let count = sim.state.group_count(1 << k);
+        sim.out.print(&format!("{count} atoms in group {}", idw.text));
+        return Ok(());
+    }
+    let pw = a.word("parent group ID")?;
+    if a.is_empty() {
+        return Err(a.missing("a keyword (region, var, property or every): LAMMPS needs at least one"));
+    }
+    if pw.text == idw.text {
+        return Err(a.error_at(pw, "Group dynamic cannot reference itself", "the group itself"));
+    }
+    let parent = sim.state.groups.bit(&pw.text).ok_or_else(|| a.error_at(pw, format!("Group dynamic parent group `{}` does not exist", pw.text), "unknown group"))?;
+    if idw.text == "all" {
+        return Err(a.error_at(idw, "Group all cannot be made dynamic", "reserved group"));
+    }
+    let (mut region, mut var, mut every) = (None, None, 1);
+    while let Some(kw) = a.peek() {
+        a.skip(1);
+        match kw.text.as_str() {
+            "region" => {
+                let w = a.word("region ID")?;
+                if !sim.state.regions.iter().any(|r| r.id == w.text) {
+                    return Err(a.error_at(w, format!("Region {} for dynamic group {} does not exist", w.text, idw.text), "unknown region"));
+                }
+                region = Some(w.text.clone());
+            }
+            "var" => {
+                let w = a.word("variable name")?;
+                match sim.variables.style(&w.text) {
+                    None => return Err(a.error_at(w, format!("Variable '{}' for dynamic group {} does not exist", w.text, idw.text), "unknown variable")),
+                    Some("atom") => {}
+                    Some(s) => return Err(a.error_at(w, format!("Variable {} for dynamic group {} is invalid style ({s}; an atom-style variable is needed)", w.text, idw.text), "not atom-style")),
+                }
+                var = Some(w.text.clone());
+            }
+            "every" => {
+                let w = a.word("every N")?;
+                every = word_i64(w, "every N")?;
+                if every <= 0 {
+                    return Err(a.error_at(w, format!("Illegal every value {every} for dynamic group {}", idw.text), "must be > 0"));
+                }
+            }
+            "property" => return Err(a.error_at(kw, "group dynamic `property` is a LAMMPS keyword that dmhs does not support yet", "not supported")),
+            _ => return Err(a.unknown_keyword(kw, &["region", "var", "property", "every"])),
+        }
+    }
+    let k = sim.state.groups.find_or_create(&idw.text).map_err(|e| a.error_at(idw, e, "too many groups"))?;
+    drop_dynamic(sim, k);
+    sim.state.groups.set_dynamic(k, true);
+    sim.fixes.push(Box::new(crate::models::fix::group_dynamic::FixGroup::new(&idw.text, parent, 1 << k, region, var, every)));
+    sim.out.print(&format!("dynamic group {} defined", idw.text));
     Ok(())
 }
 

@@ -78,6 +78,7 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("dump", output_cmds::dump),
     ("undump", output_cmds::undump),
     ("dump_modify", output_cmds::dump_modify),
+    ("write_dump", output_cmds::write_dump),
     ("run", run_cmds::run),
     ("run_style", run_cmds::run_style),
     ("minimize", min_cmds::minimize),

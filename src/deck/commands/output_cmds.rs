@@ -169,3 +169,39 @@ pub fn dump_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
     }
     sim.dumps[k].modify(&mut a)
 }
+
+/// `write_dump group-ID style file args ... [modify keyword value ...]` (LAMMPS' WriteDump): a
+/// dump `WRITE_DUMP` of the same style with N = 1 is made, given the dump_modify keywords after
+/// `modify`, written once at the current step and dropped.
+pub fn write_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    need_box(sim, cmd)?;
+    let a = Args::new(cmd, "write_dump group-ID style file args ... [modify keyword value ...]");
+    if cmd.args.len() < 3 {
+        return Err(a.missing("group-ID, dump style and file name"));
+    }
+    let style = &cmd.args[1];
+    if style.text == "movie" {
+        return Err(a.error_at(style, "dump style movie cannot be used with write_dump", "not a one-shot style"));
+    }
+    let split = cmd.args.iter().position(|w| w.text == "modify").unwrap_or(cmd.args.len());
+    let word = |text: &str, at: &dmhs_parser::Word| dmhs_parser::Word { text: text.to_string(), span: at.span, quoted: false };
+    let mut args = vec![word("WRITE_DUMP", &cmd.name), cmd.args[0].clone(), style.clone(), word("1", style)];
+    // LAMMPS skips `noinit` (it only silences its warning about a write before the first run)
+    args.extend(cmd.args[2..split].iter().filter(|w| w.text != "noinit").cloned());
+    let dcmd = Command { name: word("dump", &cmd.name), args, span: cmd.span };
+    let mut d = Dump::from_lammps(&dcmd, &sim.world(), sim.base_dir.as_deref())?;
+    if split < cmd.args.len() {
+        let mut margs = vec![word("WRITE_DUMP", &cmd.args[split])];
+        margs.extend(cmd.args[split + 1..].iter().cloned());
+        let mcmd = Command { name: word("dump_modify", &cmd.args[split]), args: margs, span: cmd.span };
+        let mut m = Args::new(&mcmd, "write_dump ... modify keyword value ...  (dump_modify keywords)");
+        m.word("dump ID")?;
+        if m.is_empty() {
+            return Err(m.missing("a dump_modify keyword after `modify`"));
+        }
+        d.modify(&mut m)?;
+    }
+    let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref() };
+    let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
+    d.write(&world, &mut ev).map_err(|e| a.error_at(&cmd.args[2], e, "while writing"))
+}

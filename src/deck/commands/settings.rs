@@ -277,6 +277,9 @@ pub fn timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
     let mut a = Args::new(cmd, "timestep dt");
     let dt = a.f64("dt")?;
     a.finish()?;
+    for f in &sim.fixes {
+        f.reset_dt().map_err(|e| a.error_at(&cmd.name, e, "a fix depends on the timestep"))?;
+    }
     sim.state.atime = sim.state.time();
     sim.state.atimestep = sim.state.step;
     sim.state.dt = dt;

@@ -18,6 +18,7 @@ pub mod deposit;
 pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
+pub mod group_dynamic;
 pub mod heat_flow;
 pub mod indent;
 pub mod langevin;
@@ -302,6 +303,10 @@ pub trait Fix: Send + Sync {
     }
     fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
         None
+    }
+    /// `timestep` changes dt after a run (LAMMPS' reset_dt); an error refuses the change.
+    fn reset_dt(&self) -> Result<(), String> {
+        Ok(())
     }
     /// Free per-atom storage when the fix is deleted.
     fn cleanup(&mut self, _state: &mut State) {}

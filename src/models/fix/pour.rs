@@ -90,10 +90,15 @@ pub struct FixPour {
     random: RanPark,
     /// -g (negative), the acceleration along the insertion axis when the fix was made.
     grav: f64,
+    /// Time to fall through the region (LAMMPS' t at init).
+    fall_time: f64,
+    /// Steps between batches, set at init from the run's timestep (0 before the first run).
     nfreq: i64,
     nper: i64,
     nfirst: i64,
     next: Option<i64>,
+    /// The insertion line was printed (LAMMPS prints it at the first init only).
+    announced: bool,
     ninserted: i64,
     maxtag: i64,
     dimension: usize,
@@ -216,8 +221,9 @@ impl FixPour {
             Volume::Block { lo, hi } => (vel[4] - rate, hi[2] - lo[2]),
             Volume::Cylinder { zlo, zhi, .. } => (vel[4] - rate, zhi - zlo),
         };
-        let t = (-v_rel - (v_rel * v_rel - 2.0 * grav * delta).sqrt()) / grav;
-        let nfreq = (t / state.dt + 0.5) as i32 as i64;
+        // the fall time; nfreq follows from it at init, with the timestep of the run (LAMMPS
+        // computes it there, so a `timestep` after the fix counts)
+        let fall_time = (-v_rel - (v_rel * v_rel - 2.0 * grav * delta).sqrt()) / grav;
         let region_volume = match volume {
             Volume::Block { lo, hi } if dimension == 3 => (hi[0] - lo[0]) * (hi[1] - lo[1]).max(1.0) * (hi[2] - lo[2]),
             Volume::Block { lo, hi } => (hi[0] - lo[0]) * (hi[1] - lo[1]),
@@ -232,12 +238,7 @@ impl FixPour {
         if nper <= 0 {
             return Err(a.error_at(&cmd.name, "fix pour inserts 0 particles per batch: raise the volume fraction or the region, or lower the diameter", "insertion count 0"));
         }
-        if nfreq <= 0 {
-            return Err(a.error_at(&cmd.name, format!("fix pour: the fall time through the region ({t}) is below half a time step"), "insertion interval 0"));
-        }
         let nfirst = state.step + 1;
-        let nfinal = nfirst + (ninsert - 1).max(0) / nper * nfreq;
-        state.messages.push(format!("Particle insertion: {nper} every {nfreq} steps, {ninsert} by step {nfinal}"));
         let maxtag = if id_next { state.atoms.max_tag() } else { 0 };
         // LAMMPS discards the first 30 numbers (nearby seeds would give correlated first positions)
         let mut random = RanPark::new(seed);
@@ -259,10 +260,12 @@ impl FixPour {
             id_next,
             random,
             grav,
-            nfreq,
+            fall_time,
+            nfreq: 0,
             nper,
             nfirst,
-            next: (ninsert > 0).then_some(nfirst),
+            next: None,
+            announced: false,
             ninserted: 0,
             maxtag,
             dimension,
@@ -364,7 +367,30 @@ impl Fix for FixPour {
         if g.magnitude.map(|m| -m * state.units.ftm2v) != Some(self.grav) {
             return Err("the gravity changed since fix pour was defined".into());
         }
+        // as LAMMPS 22 Jul 2025's init: the interval from this run's timestep, and the next
+        // batch on the run's first step (every run restarts the schedule; nfirst, the origin
+        // of the region's motion, stays)
+        let nfreq = (self.fall_time / state.dt + 0.5) as i32 as i64;
+        if nfreq <= 0 {
+            return Err(format!("fix pour: the fall time through the region ({}) is below half a time step", self.fall_time));
+        }
+        self.nfreq = nfreq;
+        self.next = (self.ninserted < self.ninsert).then_some(state.step + 1);
         Ok(())
+    }
+    fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        if !self.announced {
+            self.announced = true;
+            let nfinal = state.step + 1 + (self.ninsert - 1).max(0) / self.nper * self.nfreq;
+            state.messages.push(format!("Particle insertion: {} every {} steps, {} by step {nfinal}", self.nper, self.nfreq, self.ninsert));
+        }
+        Ok(())
+    }
+    fn reset_dt(&self) -> Result<(), String> {
+        match self.announced {
+            true => Err("Cannot change timestep with fix pour".into()),
+            false => Ok(()),
+        }
     }
     fn next_reneighbor(&self) -> Option<i64> {
         self.next
@@ -450,6 +476,9 @@ impl Fix for FixPour {
         Ok(())
     }
     fn describe(&self) -> String {
-        format!("fix {} pour: {} particles of type {}, {} every {} steps", self.id, self.ninsert, self.ntype, self.nper, self.nfreq)
+        match self.nfreq {
+            0 => format!("fix {} pour: {} particles of type {}, {} per batch (interval set when a run starts)", self.id, self.ninsert, self.ntype, self.nper),
+            n => format!("fix {} pour: {} particles of type {}, {} every {n} steps", self.id, self.ninsert, self.ntype, self.nper),
+        }
     }
 }

@@ -1,0 +1,128 @@
+//! Atom-style variables evaluated over the owned atoms (LAMMPS' Variable::compute_atom), for
+//! `group ID dynamic ... var V`. A formula tree is walked once: a node is one number for every
+//! atom or a value per atom; per-atom operations are made atom by atom with the scalar
+//! evaluator on a node of numbers, so each atom gets the operations (and bits) of an
+//! equal-style formula.
+
+use crate::models::compute::{property::Field, PerAtomRef};
+use crate::models::world::World;
+use dmhs_parser::expr::{self, Expr, Index, MathFn, Node};
+use dmhs_parser::EvalContext;
+
+enum V {
+    Scalar(f64),
+    Atoms(Vec<f64>),
+}
+
+impl V {
+    fn at(&self, i: usize) -> f64 {
+        match self {
+            V::Scalar(x) => *x,
+            V::Atoms(v) => v[i],
+        }
+    }
+}
+
+/// The value of atom-style variable `name` for each owned atom, in local order.
+pub fn atom_variable(name: &str, w: &World, ctx: &mut dyn EvalContext) -> Result<Vec<f64>, String> {
+    let n = w.state.atoms.nlocal;
+    match eval_variable(name, w, ctx, 0)? {
+        V::Scalar(x) => Ok(vec![x; n]),
+        V::Atoms(v) => Ok(v),
+    }
+}
+
+fn eval_variable(name: &str, w: &World, ctx: &mut dyn EvalContext, depth: usize) -> Result<V, String> {
+    if depth > 32 {
+        return Err(format!("variable {name}: variables refer to each other in a loop"));
+    }
+    let vars = ctx.variables();
+    match vars.style(name) {
+        None => Err(format!("variable {name} does not exist")),
+        Some("atom") => {
+            let text = vars.formula(name).unwrap_or_default().to_string();
+            let tree = expr::parse(&text).map_err(|e| format!("variable {name}: {}", e.message))?;
+            eval_tree(&tree, w, ctx, depth + 1)
+        }
+        Some(_) => {
+            let tree = Expr { node: Node::Variable { name: name.to_string(), index: None }, offset: 0, len: 0 };
+            scalar(&tree, ctx)
+        }
+    }
+}
+
+fn scalar(e: &Expr, ctx: &mut dyn EvalContext) -> Result<V, String> {
+    expr::eval(e, ctx).map(V::Scalar).map_err(|e| e.message)
+}
+
+fn number(x: f64) -> Expr {
+    Expr { node: Node::Number(x), offset: 0, len: 0 }
+}
+
+/// `op` of the children's values, atom by atom where any of them is per-atom.
+fn per_atom(e: &Expr, kids: Vec<V>, n: usize, ctx: &mut dyn EvalContext, rebuild: impl Fn(Vec<Expr>) -> Node) -> Result<V, String> {
+    let any = kids.iter().any(|k| matches!(k, V::Atoms(_)));
+    let count = if any { n } else { 1 };
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let node = rebuild(kids.iter().map(|k| number(k.at(i))).collect());
+        out.push(expr::eval(&Expr { node, offset: e.offset, len: e.len }, ctx).map_err(|e| e.message)?);
+    }
+    Ok(if any { V::Atoms(out) } else { V::Scalar(out[0]) })
+}
+
+fn peratom_ref(prefix: &str, id: &str, indices: &[Index], w: &World) -> Option<Result<V, String>> {
+    let cols = if prefix == "c_" { w.compute(id)?.peratom_cols()? } else { w.fix(id)?.peratom_cols()? };
+    let _ = cols;
+    let name = match indices {
+        [] => format!("{prefix}{id}"),
+        [Index::Number(k)] => format!("{prefix}{id}[{k}]"),
+        _ => return Some(Err(format!("{prefix}{id}: only a number may index a per-atom value here"))),
+    };
+    Some((|| {
+        let r = PerAtomRef::parse(&name, w).expect("c_ or f_")?;
+        let p = r.values(w)?;
+        Ok(V::Atoms((0..w.state.atoms.nlocal).map(|i| r.get(&p, i)).collect()))
+    })())
+}
+
+fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize) -> Result<V, String> {
+    let n = w.state.atoms.nlocal;
+    match &e.node {
+        Node::Unary(op, a) => {
+            let k = vec![eval_tree(a, w, ctx, depth)?];
+            per_atom(e, k, n, ctx, |mut c| Node::Unary(*op, Box::new(c.remove(0))))
+        }
+        Node::Binary(op, a, b) => {
+            let k = vec![eval_tree(a, w, ctx, depth)?, eval_tree(b, w, ctx, depth)?];
+            per_atom(e, k, n, ctx, |mut c| {
+                let y = c.pop().expect("two");
+                Node::Binary(*op, Box::new(c.pop().expect("two")), Box::new(y))
+            })
+        }
+        Node::Math(f, args) => {
+            if *f == MathFn::Ternary && args.len() == 3 {
+                let c = eval_tree(&args[0], w, ctx, depth)?;
+                let (t, f) = (eval_tree(&args[1], w, ctx, depth)?, eval_tree(&args[2], w, ctx, depth)?);
+                return Ok(match c {
+                    V::Scalar(c) => if c != 0.0 { t } else { f },
+                    V::Atoms(c) => V::Atoms((0..n).map(|i| if c[i] != 0.0 { t.at(i) } else { f.at(i) }).collect()),
+                });
+            }
+            let mut k = Vec::with_capacity(args.len());
+            for a in args {
+                k.push(eval_tree(a, w, ctx, depth)?);
+            }
+            per_atom(e, k, n, ctx, |c| Node::Math(*f, c))
+        }
+        Node::Variable { name, index: None } => eval_variable(name, w, ctx, depth),
+        Node::Compute { id, indices } => peratom_ref("c_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
+        Node::Fix { id, indices } => peratom_ref("f_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
+        Node::AtomVector(name) => {
+            let f = Field::parse(name).ok_or_else(|| format!("`{name}` is not a per-atom value dmhs knows"))?;
+            f.check(w.state)?;
+            Ok(V::Atoms((0..n).map(|i| f.value(w.state, i)).collect()))
+        }
+        _ => scalar(e, ctx),
+    }
+}

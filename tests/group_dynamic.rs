@@ -1,0 +1,123 @@
+//! `group ID dynamic|static`, fix pour's insertion interval set at init, and `write_dump`.
+//! Trajectories are compared with LAMMPS by lammps-refs/decks/in.group_dynamic and
+//! in.pour_timestep (tests/lammps_parity.rs); here: what LAMMPS 22 Jul 2025 refuses (located
+//! errors), what it prints, and that write_dump writes what a dump of the same step writes.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn deck(name: &str) -> String {
+    std::fs::read_to_string(root().join("lammps-refs/decks").join(name)).unwrap()
+}
+
+/// `dmhs` on `text` in `dir` (as in.t): exit code and output.
+fn run_in(dir: &Path, text: &str, nsteps: &str) -> (i32, String) {
+    std::fs::write(dir.join("in.t"), text).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["-in", "in.t", "-var", "nsteps", nsteps, "-log", "none"]).current_dir(dir).output().unwrap();
+    (o.status.code().unwrap_or(-1), format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr)))
+}
+
+fn run(text: &str) -> (i32, String) {
+    let tmp = tempfile::tempdir().unwrap();
+    run_in(tmp.path(), text, "0")
+}
+
+fn expect_error(text: &str, want: &str) {
+    let (code, out) = run(text);
+    assert_ne!(code, 0, "expected an error `{want}`:\n{out}");
+    assert!(out.contains(want) && out.contains("in.t:"), "expected `{want}` with its location:\n{out}");
+}
+
+const GROUP_LINE: &str = "group        pushed dynamic all region band every 5";
+
+#[test]
+fn dynamic_group_prints_and_counts_at_setup() {
+    // LAMMPS: "dynamic group pushed defined"; the members are set at the run's setup
+    let (code, out) = run(&deck("in.group_dynamic"));
+    assert_eq!(code, 0, "{out}");
+    assert!(out.lines().any(|l| l == "dynamic group pushed defined"), "{out}");
+    // step 0 of LAMMPS' thermo: count(pushed) 160, count(damped) 140
+    let row = out.lines().skip_while(|l| !l.trim_start().starts_with("Step")).nth(1).expect("thermo row of step 0");
+    let v: Vec<&str> = row.split_whitespace().collect();
+    assert_eq!((v[4], v[5]), ("160", "140"), "{row}");
+}
+
+#[test]
+fn dynamic_group_refusals_are_lammps() {
+    let d = deck("in.group_dynamic");
+    let with = |extra: &str| d.replace(GROUP_LINE, &format!("{GROUP_LINE}\n{extra}"));
+    expect_error(&with("group g2 union all pushed"), "Cannot union groups using a dynamic group");
+    expect_error(&with("group g2 subtract all pushed"), "Cannot subtract groups using a dynamic group");
+    expect_error(&with("group g2 intersect all pushed"), "Cannot intersect groups using a dynamic group");
+    expect_error(&with("fix p pushed property/atom i_flag"), "Fix property/atom does not allow use with a dynamic group");
+    expect_error(&with("compute m pushed msd"), "Compute msd is not compatible with dynamic groups");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all"), "LAMMPS needs at least one");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic pushed region band"), "Group dynamic cannot reference itself");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic nope region band"), "parent group `nope` does not exist");
+    expect_error(&d.replace(GROUP_LINE, "group        all dynamic left region band"), "Group all cannot be made dynamic");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all region nope"), "Region nope for dynamic group pushed does not exist");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all var nope"), "Variable 'nope' for dynamic group pushed does not exist");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all region band every 0"), "Illegal every value 0");
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all foo 1"), "unknown keyword `foo`");
+    // the parent of a dynamic group cannot be dynamic (LAMMPS checks at init)
+    let (code, out) = run(&with("group sub dynamic pushed region lhalf"));
+    assert_ne!(code, 0, "{out}");
+    assert!(out.contains("Dynamic group parent group pushed cannot be dynamic"), "{out}");
+}
+
+#[test]
+fn group_static_and_delete_drop_the_internal_fix() {
+    let d = deck("in.group_dynamic");
+    // after `static`, union is allowed again; after delete, the name can be reused as a plain group
+    let d = d.replace(GROUP_LINE, &format!("{GROUP_LINE}\ngroup pushed static\ngroup g2 union all pushed"));
+    let d = d.replace("group        damped dynamic left var fast", "group        damped dynamic left var fast\ngroup damped delete\ngroup damped region band");
+    let (code, out) = run(&d.replace("fix          3 damped viscous 0.5\n", ""));
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("0 atoms in group pushed"), "{out}");
+    // a static group is no longer recomputed: still empty at the run's setup, so c_tp is 0
+    let row = out.lines().skip_while(|l| !l.trim_start().starts_with("Step")).nth(1).expect("thermo row of step 0");
+    assert_eq!(row.split_whitespace().nth(4), Some("0"), "{row}");
+    assert!(out.contains("atoms in group damped"), "{out}");
+}
+
+#[test]
+fn pour_interval_uses_the_run_timestep_and_refuses_a_later_change() {
+    // LAMMPS 22 Jul 2025 on in.pour_timestep: "Particle insertion: 37 every 1105 steps, 300 by
+    // step 8841" (dt 0.002, set after the fix), printed once although the deck has two runs
+    let (code, out) = run(&deck("in.pour_timestep"));
+    assert_eq!(code, 0, "{out}");
+    let lines: Vec<&str> = out.lines().filter(|l| l.starts_with("Particle insertion:")).collect();
+    assert_eq!(lines, ["Particle insertion: 37 every 1105 steps, 300 by step 8841"], "{out}");
+    let d = deck("in.pour_timestep");
+    expect_error(&d.replace("run          300", "timestep 0.001\nrun          300"), "Cannot change timestep with fix pour");
+}
+
+#[test]
+fn write_dump_equals_a_dump_of_the_same_step() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = deck("in.group_dynamic").replace("run          100", "run          10\nwrite_dump   left custom wd.txt id type x y z vx modify sort id format float %20.15g");
+    let d = d.replace("thermo       50", "thermo       50\ndump         1 left custom 10 ref.txt id type x y z vx\ndump_modify  1 sort id format float %20.15g");
+    let (code, out) = run_in(tmp.path(), &d, "20");
+    assert_eq!(code, 0, "{out}");
+    let reference = std::fs::read_to_string(tmp.path().join("ref.txt")).unwrap();
+    let last = &reference[reference.rfind("ITEM: TIMESTEP").unwrap()..];
+    assert!(last.starts_with("ITEM: TIMESTEP\n30\n"), "{last}");
+    assert_eq!(std::fs::read_to_string(tmp.path().join("wd.txt")).unwrap(), last);
+}
+
+#[test]
+fn write_dump_errors_are_located() {
+    let d = deck("in.group_dynamic");
+    let with = |line: &str| d.replace("run          100", line);
+    expect_error(&with("write_dump nope custom x.txt id"), "group `nope` does not exist");
+    expect_error(&with("write_dump all bogus x.txt id"), "unknown dump style `bogus`");
+    expect_error(&with("write_dump all custom x.txt id zork"), "unknown dump field `zork`");
+    expect_error(&with("write_dump all custom x.txt id modify"), "a dump_modify keyword after `modify`");
+    expect_error(&with("write_dump all custom x.txt id modify sort foo"), "sorts dumps only by");
+    expect_error(&with("write_dump all"), "group-ID, dump style and file name");
+    expect_error(&with("write_dump all movie x.mp4 type type"), "movie cannot be used with write_dump");
+}

@@ -12,3 +12,4 @@ pub mod liggghts;
 pub mod measure;
 pub mod plot_cmd;
 pub mod validate;
+pub mod validate_convergence;

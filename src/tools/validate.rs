@@ -208,7 +208,7 @@ fn show_vars(vars: &[(String, String)]) -> String {
     vars.iter().map(|(k, v)| format!("-var {k} {v}")).collect::<Vec<_>>().join(" ")
 }
 
-fn var(name: &str, value: impl ToString) -> (String, String) {
+pub(crate) fn var(name: &str, value: impl ToString) -> (String, String) {
     (name.to_string(), value.to_string())
 }
 
@@ -232,7 +232,7 @@ pub fn orders(points: &[(f64, f64)]) -> Vec<f64> {
 }
 
 /// (column values) of the atoms of one type, from a state table.
-fn columns_of_type(t: &AtomTable, typ: usize, cols: &[&str]) -> Result<Vec<Vec<f64>>, String> {
+pub(crate) fn columns_of_type(t: &AtomTable, typ: usize, cols: &[&str]) -> Result<Vec<Vec<f64>>, String> {
     let idx: Vec<usize> = cols.iter().map(|c| t.column(c).ok_or_else(|| format!("state has no column `{c}`"))).collect::<Result<_, _>>()?;
     Ok(t.rows.values().filter(|(ty, _)| *ty == typ).map(|(_, v)| idx.iter().map(|&k| v[k]).collect()).collect())
 }
@@ -407,7 +407,7 @@ fn channel_case(
     Ok(rep)
 }
 
-fn title_case(s: &str) -> String {
+pub(crate) fn title_case(s: &str) -> String {
     let mut c = s.chars();
     c.next().map(|f| f.to_uppercase().collect::<String>() + c.as_str()).unwrap_or_default()
 }
@@ -417,18 +417,30 @@ fn fmt_time(t: f64) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
+/// The analytic start-up velocity u(y, t) of a channel case (poiseuille or couette), with the
+/// deck's parameters.
+pub fn channel_exact(case: &str) -> Result<Box<dyn Fn(f64, f64) -> f64 + Send + Sync>, String> {
+    let l = deck_constant(case, "L")?;
+    let nu = deck_constant(case, "mu")? / deck_constant(case, "rho0")?;
+    Ok(match case {
+        "poiseuille" => {
+            let f = deck_constant(case, "F")?;
+            Box::new(move |y, t| analytic::poiseuille_startup(y, t, l, f, nu))
+        }
+        "couette" => {
+            let u = deck_constant(case, "U")?;
+            Box::new(move |y, t| analytic::couette_startup(y, t, l, u, nu))
+        }
+        _ => return Err(format!("`{case}` is not a channel case (poiseuille, couette)")),
+    })
+}
+
 fn poiseuille(opts: &Options) -> Result<CaseReport, String> {
-    let (l, f) = (deck_constant("poiseuille", "L")?, deck_constant("poiseuille", "F")?);
-    let nu = deck_constant("poiseuille", "mu")? / deck_constant("poiseuille", "rho0")?;
-    let exact = move |y: f64, t: f64| analytic::poiseuille_startup(y, t, l, f, nu);
-    channel_case("poiseuille", opts, &exact, 0.01, 1.0)
+    channel_case("poiseuille", opts, &*channel_exact("poiseuille")?, 0.01, 1.0)
 }
 
 fn couette(opts: &Options) -> Result<CaseReport, String> {
-    let (l, u) = (deck_constant("couette", "L")?, deck_constant("couette", "U")?);
-    let nu = deck_constant("couette", "mu")? / deck_constant("couette", "rho0")?;
-    let exact = move |y: f64, t: f64| analytic::couette_startup(y, t, l, u, nu);
-    channel_case("couette", opts, &exact, 0.01, 0.8)
+    channel_case("couette", opts, &*channel_exact("couette")?, 0.01, 0.8)
 }
 
 fn heat(opts: &Options) -> Result<CaseReport, String> {
@@ -666,10 +678,9 @@ pub fn speed_configs(quick: bool) -> Vec<(&'static str, usize, f64, bool)> {
 }
 
 fn poiseuille_error(state: &AtomTable, t: f64) -> Result<f64, String> {
-    let (l, f) = (deck_constant("poiseuille", "L")?, deck_constant("poiseuille", "F")?);
-    let nu = deck_constant("poiseuille", "mu")? / deck_constant("poiseuille", "rho0")?;
+    let exact = channel_exact("poiseuille")?;
     let rows = columns_of_type(state, 1, &["yu", "vx"])?;
-    Ok(l2_relative(rows.iter().map(|r| (r[1], analytic::poiseuille_startup(r[0], t, l, f, nu)))))
+    Ok(l2_relative(rows.iter().map(|r| (r[1], exact(r[0], t)))))
 }
 
 /// Each timing of the speed sweep is the fastest of this many runs.
@@ -776,7 +787,7 @@ pub fn speed_charts(points: &[SpeedPoint]) -> Vec<(String, Chart)> {
 // Command line
 // ---------------------------------------------------------------------------------------------
 
-fn write_json(path: &Path, value: &Value) -> Result<(), String> {
+pub(crate) fn write_json(path: &Path, value: &Value) -> Result<(), String> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     }
@@ -784,7 +795,7 @@ fn write_json(path: &Path, value: &Value) -> Result<(), String> {
     std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
-fn save_charts(charts: &[(String, Chart)], dir: &Path) -> Result<(), String> {
+pub(crate) fn save_charts(charts: &[(String, Chart)], dir: &Path) -> Result<(), String> {
     for (stem, chart) in charts {
         for f in chart.save(&dir.join(stem))? {
             println!("  wrote {}", f.display());
@@ -796,7 +807,7 @@ fn save_charts(charts: &[(String, Chart)], dir: &Path) -> Result<(), String> {
 /// `dmhs validate CASE [--quick] [--engine dmhs|lammps] [--json FILE] [--img DIR]`.
 pub fn validate_cmd(args: &[PathBuf], quick: bool, engine: Option<&str>, json_path: Option<&Path>, img: Option<&Path>) -> i32 {
     let [case] = args else {
-        eprintln!("dmhs validate: give one case: {}, all or chart", CASES.join(", "));
+        eprintln!("dmhs validate: give one case: {}, all, chart or convergence", CASES.join(", "));
         return 2;
     };
     let case = case.to_string_lossy().to_string();
@@ -811,9 +822,12 @@ pub fn validate_cmd(args: &[PathBuf], quick: bool, engine: Option<&str>, json_pa
     if case == "chart" {
         return chart_cmd(quick, json_path, img);
     }
+    if case == "convergence" {
+        return crate::tools::validate_convergence::convergence_cmd(quick, json_path, img);
+    }
     let cases: Vec<&str> = if case == "all" { CASES.to_vec() } else { vec![case.as_str()] };
     if !cases.iter().all(|c| CASES.contains(c)) {
-        eprintln!("dmhs validate: unknown case `{case}` (cases: {}, all, chart)", CASES.join(", "));
+        eprintln!("dmhs validate: unknown case `{case}` (cases: {}, all, chart, convergence)", CASES.join(", "));
         return 2;
     }
     let opts = Options { quick, engine };

@@ -186,7 +186,8 @@ pair_style   lj/cut 1.122462048309373
 pair_coeff   1 1 1.0 1.0
 pair_modify  shift yes
 special_bonds lj 0.0 1.0 1.0
-comm_modify  cutoff 3.5
+comm_modify  cutoff 2.5
+processors   * 1 1
 neighbor     0.4 bin
 neigh_modify every 1 delay 0 check yes
 velocity     all create 1.0 4928459 loop geom
@@ -212,10 +213,10 @@ fn bonded_chains_across_ranks_are_the_serial_run() {
 #[test]
 fn a_bond_longer_than_the_ghost_cutoff_stops_every_rank() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace("comm_modify  cutoff 3.5\n", "");
+    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace("comm_modify  cutoff 2.5\n", "");
     for r in on_ranks(&deck, 4) {
         let e = r.err().expect("refused");
-        assert!(e.contains("is missing on this rank") && e.contains("longer than the ghost cutoff"), "{e}");
+        assert!(e.contains("is missing on this rank") && e.contains("beyond the ghost cutoff"), "{e}");
     }
 }
 

@@ -51,11 +51,13 @@ pub struct Decomp {
     /// Ghosts: for each rank that receives some of this rank's atoms (itself included, for
     /// periodic images), the owned atoms sent and their periodic shifts, in the order sent.
     sends: Vec<(usize, Vec<(u32, [i8; 3])>)>,
+    /// The number of ghosts received from each rank of `sends`, in ghost order.
+    recv_counts: Vec<usize>,
 }
 
 impl Decomp {
     pub fn new(comm: Arc<dyn Comm>, procs: [usize; 3]) -> Decomp {
-        Decomp { comm, procs, splits: procs.map(uniform), sends: Vec::new() }
+        Decomp { comm, procs, splits: procs.map(uniform), sends: Vec::new(), recv_counts: Vec::new() }
     }
     /// A new processor grid, cut uniformly.
     pub fn set_procs(&mut self, procs: [usize; 3]) {
@@ -327,8 +329,41 @@ impl Decomp {
             self.sends.push((q, list));
         }
         let bufs = self.pack_sends(atoms, prd, |a, i, x, s, out| a.pack_ghost(i, x, s, out));
+        self.recv_counts.clear();
         for buf in bufs {
+            let before = atoms.nall();
             atoms.unpack_ghosts(&buf);
+            self.recv_counts.push(atoms.nall() - before);
+        }
+    }
+
+    /// Forces on ghosts back to their owners, added to theirs (LAMMPS' reverse communication,
+    /// for the bonded interactions a rank computes with ghosts): each block of ghosts returns
+    /// to the rank that sent it, in the order of its send list.
+    pub fn reverse_forces(&self, atoms: &mut Atoms) {
+        let me = self.rank();
+        let mut own = Vec::new();
+        let mut sends = Vec::new();
+        let mut k = atoms.nlocal;
+        for ((q, _), &n) in self.sends.iter().zip(&self.recv_counts) {
+            let block: Vec<f64> = atoms.f[k..k + n].iter().flatten().copied().collect();
+            k += n;
+            if *q == me {
+                own = block;
+            } else {
+                sends.push((*q, block));
+            }
+        }
+        let from: Vec<usize> = self.recvs_order().into_iter().filter(|&r| r != me).collect();
+        let mut got = self.comm.exchange(sends, &from).into_iter();
+        for (q, list) in &self.sends {
+            let back = if *q == me { std::mem::take(&mut own) } else { got.next().unwrap_or_default() };
+            for (&(i, _), fg) in list.iter().zip(back.chunks_exact(3)) {
+                let fi = &mut atoms.f[i as usize];
+                for d in 0..3 {
+                    fi[d] += fg[d];
+                }
+            }
         }
     }
 

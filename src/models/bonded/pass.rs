@@ -153,12 +153,10 @@ fn slabbed(state: &State, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[
     }
 }
 
-/// A distributed run's bonded lists, as LAMMPS lists them with `newton_bond off`: every
-/// interaction with an owned atom, seen from each of its owned atoms with the other atoms at
-/// their local copies (owned or ghost) closest to that atom, and listed once per distinct set
-/// of copies. An owned atom is in exactly one listed entry at its own index, so it receives the
-/// interaction's force once (forces on ghost copies are dropped) and the entries' owned shares
-/// of the energy add up to one over the ranks.
+/// A distributed run's bonded lists, as LAMMPS lists them with `newton_bond on`: each
+/// interaction once, on the rank that owns the atom it is stored on (atom 1 of a bond, atom 2 of
+/// an angle or dihedral), its other atoms at their local copies (owned or ghost) closest to
+/// that atom. Forces on ghosts go back to their owners after the pass.
 fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunError> {
     let (t, a) = (&state.topo, &state.atoms);
     let step = state.step;
@@ -175,35 +173,37 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
         };
         copies.min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
     };
-    fn listed<const N: usize>(tags: [i64; N], typ: usize, rec: usize, what: &str, owned: &crate::engine::atoms::TagMap, x: &[[f64; 3]], closest: &impl Fn(i64, [f64; 3]) -> Option<u32>, out: &mut Vec<Entry<N>>, step: i64) -> Result<(), RunError> {
-        let first = out.len();
-        for anchor in tags.iter().filter_map(|&tag| owned.get(tag)) {
-            let mut atoms = [0u32; N];
-            for (m, &tag) in tags.iter().enumerate() {
-                atoms[m] = closest(tag, x[anchor]).ok_or_else(|| {
-                    RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} is longer than the ghost cutoff (pair cutoff + skin; comm_modify cutoff)"))
-                })?;
-            }
-            if !out[first..].iter().any(|e| e.atoms == atoms) {
-                out.push(Entry { atoms, shift: [[0; 3]; N], typ, rec: rec as u32 });
-            }
-        }
-        Ok(())
-    }
+    let listed = |tags: &[i64], reference: usize, what: &str| -> Result<Option<Vec<u32>>, RunError> {
+        let Some(r) = owned.get(tags[reference]) else { return Ok(None) };
+        let x = a.x[r];
+        let atoms: Result<Vec<u32>, RunError> = tags
+            .iter()
+            .map(|&tag| {
+                closest(tag, x).ok_or_else(|| RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} reaches beyond the ghost cutoff (pair cutoff + skin; comm_modify cutoff)")))
+            })
+            .collect();
+        atoms.map(Some)
+    };
     let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
     if styles.bond.is_some() {
         for (rec, b) in t.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
-            listed(b.atoms, b.typ, rec, "bond", &owned, &a.x, &closest, &mut bonds, step)?;
+            if let Some(i) = listed(&b.atoms, 0, "bond")? {
+                bonds.push(Entry { atoms: [i[0], i[1]], shift: [[0; 3]; 2], typ: b.typ, rec: rec as u32 });
+            }
         }
     }
     if styles.angle.is_some() {
         for (rec, b) in t.angles.iter().enumerate().filter(|(_, b)| !b.off) {
-            listed(b.atoms, b.typ, rec, "angle", &owned, &a.x, &closest, &mut angles, step)?;
+            if let Some(i) = listed(&b.atoms, 1, "angle")? {
+                angles.push(Entry { atoms: [i[0], i[1], i[2]], shift: [[0; 3]; 3], typ: b.typ, rec: rec as u32 });
+            }
         }
     }
     if styles.dihedral.is_some() {
         for (rec, b) in t.dihedrals.iter().enumerate().filter(|(_, b)| !b.off) {
-            listed(b.atoms, b.typ, rec, "dihedral", &owned, &a.x, &closest, &mut dihedrals, step)?;
+            if let Some(i) = listed(&b.atoms, 1, "dihedral")? {
+                dihedrals.push(Entry { atoms: [i[0], i[1], i[2], i[3]], shift: [[0; 3]; 4], typ: b.typ, rec: rec as u32 });
+            }
         }
     }
     state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, vec![]);
@@ -214,13 +214,18 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
 /// schedule, then the leftovers, so results do not depend on the thread count.
 pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> Result<BondedTally, RunError> {
         let lists = &state.bonded_lists;
-        if lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty() {
+        let distributed = state.distributed.is_some();
+        // the ranks of a distributed run all take part in the reverse communication
+        if lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty() && !distributed {
             return Ok(BondedTally::default());
         }
         let prd = state.domain.as_ref().unwrap().prd();
         let mut f = std::mem::take(&mut state.atoms.f);
-        let owned = if state.distributed.is_some() { state.atoms.nlocal as u32 } else { u32::MAX };
-        let ctx = Kernels { x: &state.atoms.x, prd, shifts: false, owned, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+        if distributed {
+            // ghost forces of this pass alone go back to their owners
+            f[state.atoms.nlocal..].iter_mut().for_each(|g| *g = [0.0; 3]);
+        }
+        let ctx = Kernels { x: &state.atoms.x, prd, shifts: false, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
         // the bonded lists are grouped by the chunks of the neighbour list (each chunk's
         // interactions touch only atoms of that chunk and the next)
         let bounds = state.neighbor.list.bounds();
@@ -241,6 +246,9 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
         let ctx = Kernels { shifts: true, ..ctx };
         ctx.run(&lists.bonds.leftover, &lists.angles.leftover, &lists.dihedrals.leftover, &mut AtomsMut::new(&mut f), &mut tally);
         state.atoms.f = f;
+        if let (Some(d), true) = (&state.decomp, distributed) {
+            d.reverse_forces(&mut state.atoms);
+        }
         Ok(tally)
 }
 
@@ -261,9 +269,6 @@ pub struct Kernels<'a> {
     prd: [f64; 3],
     /// Entries may carry periodic shifts (the leftovers).
     shifts: bool,
-    /// Atoms below this index are owned (a distributed run: entries with ghosts tally only
-    /// their owned share; otherwise `u32::MAX`).
-    owned: u32,
     eflag: bool,
     bond: Option<&'a dyn BondStyle>,
     angle: Option<&'a dyn AngleStyle>,
@@ -274,9 +279,9 @@ fn sub(p: [f64; 3], q: [f64; 3]) -> [f64; 3] {
     [p[0] - q[0], p[1] - q[1], p[2] - q[2]]
 }
 
-fn add_virial(t: &mut [f64; 6], v: [f64; 6], share: f64) {
+fn add_virial(t: &mut [f64; 6], v: [f64; 6]) {
     for k in 0..6 {
-        t[k] += share * v[k];
+        t[k] += v[k];
     }
 }
 
@@ -294,17 +299,6 @@ impl Kernels<'_> {
             }
         }
         p
-    }
-
-    /// The share of an entry's energy and virial this rank tallies: its owned atoms' fraction
-    /// (LAMMPS' `ev_tally` with `newton_bond off`); 1 outside a distributed run.
-    #[inline(always)]
-    fn share<const N: usize>(&self, e: &Entry<N>) -> f64 {
-        if self.owned == u32::MAX {
-            1.0
-        } else {
-            e.atoms.iter().filter(|&&i| i < self.owned).count() as f64 / N as f64
-        }
     }
 
     fn run(&self, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
@@ -341,9 +335,8 @@ pub fn apply_bonds<S: BondStyle + ?Sized>(style: &S, entries: &[Entry<2>], k: &K
             fa[d] -= del[d] * fbond;
         }
         if k.eflag {
-            let w = k.share(e);
-            tally.ebond += w * energy;
-            add_virial(&mut tally.virial, bond_virial(del, fbond), w);
+            tally.ebond += energy;
+            add_virial(&mut tally.virial, bond_virial(del, fbond));
         }
     }
 }
@@ -358,9 +351,8 @@ pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: 
         add_force(f, e.atoms[1], r.f2());
         add_force(f, e.atoms[2], r.f3);
         if k.eflag {
-            let w = k.share(e);
-            tally.eangle += w * r.energy;
-            add_virial(&mut tally.virial, angle_virial(del1, del2, r.f1, r.f3), w);
+            tally.eangle += r.energy;
+            add_virial(&mut tally.virial, angle_virial(del1, del2, r.f1, r.f3));
         }
     }
 }
@@ -374,9 +366,8 @@ pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>
             add_force(f, e.atoms[m], fm);
         }
         if k.eflag {
-            let w = k.share(e);
-            tally.edihed += w * r.energy;
-            add_virial(&mut tally.virial, dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4), w);
+            tally.edihed += r.energy;
+            add_virial(&mut tally.virial, dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4));
         }
     }
 }
@@ -389,7 +380,7 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engi
     let lists = &state.bonded_lists;
     let Some(dom) = state.domain.as_ref() else { return };
     // every entry at its shifts (chunk entries have none)
-    let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, owned: u32::MAX, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+    let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
     let all = |n: usize| 0..=n;
     if let Some(style) = styles.bond {
         let n = lists.bonds.nchunks();

@@ -341,23 +341,17 @@ impl Decomp {
     /// for the bonded interactions a rank computes with ghosts): each block of ghosts returns
     /// to the rank that sent it, in the order of its send list.
     pub fn reverse_forces(&self, atoms: &mut Atoms) {
-        let me = self.rank();
-        let mut own = Vec::new();
-        let mut sends = Vec::new();
         let mut k = atoms.nlocal;
-        for ((q, _), &n) in self.sends.iter().zip(&self.recv_counts) {
-            let block: Vec<f64> = atoms.f[k..k + n].iter().flatten().copied().collect();
-            k += n;
-            if *q == me {
-                own = block;
-            } else {
-                sends.push((*q, block));
-            }
-        }
-        let from: Vec<usize> = self.recvs_order().into_iter().filter(|&r| r != me).collect();
-        let mut got = self.comm.exchange(sends, &from).into_iter();
-        for (q, list) in &self.sends {
-            let back = if *q == me { std::mem::take(&mut own) } else { got.next().unwrap_or_default() };
+        let blocks = self
+            .recv_counts
+            .iter()
+            .map(|&n| {
+                k += n;
+                atoms.f[k - n..k].iter().flatten().copied().collect()
+            })
+            .collect();
+        let back = self.swap(blocks);
+        for ((_, list), back) in self.sends.iter().zip(back) {
             for (&(i, _), fg) in list.iter().zip(back.chunks_exact(3)) {
                 let fi = &mut atoms.f[i as usize];
                 for d in 0..3 {
@@ -404,23 +398,29 @@ impl Decomp {
     /// Pack each send list with `pack(atoms, i, shifted x, shift, out)` and exchange: the buffers
     /// received, in ghost order (by sending rank).
     fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], [i8; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {
+        let bufs = self
+            .sends
+            .iter()
+            .map(|(_, list)| {
+                let mut buf = Vec::new();
+                for &(i, s) in list {
+                    pack(atoms, i as usize, shifted(atoms.x[i as usize], s, prd), s, &mut buf);
+                }
+                buf
+            })
+            .collect();
+        self.swap(bufs)
+    }
+
+    /// One buffer for each rank of the send lists (in their order) sent to it, and the one it
+    /// sent back received in its place (this rank's own buffer stays).
+    fn swap(&self, mut bufs: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
         let me = self.rank();
-        let mut own = Vec::new();
-        let mut sends = Vec::new();
-        for (q, list) in &self.sends {
-            let mut buf = Vec::new();
-            for &(i, s) in list {
-                pack(atoms, i as usize, shifted(atoms.x[i as usize], s, prd), s, &mut buf);
-            }
-            if *q == me {
-                own = buf;
-            } else {
-                sends.push((*q, buf));
-            }
-        }
-        let from: Vec<usize> = self.recvs_order().into_iter().filter(|&r| r != me).collect();
+        let ranks = self.recvs_order();
+        let sends = ranks.iter().zip(&mut bufs).filter(|(&q, _)| q != me).map(|(&q, b)| (q, std::mem::take(b))).collect();
+        let from: Vec<usize> = ranks.iter().copied().filter(|&r| r != me).collect();
         let mut got = self.comm.exchange(sends, &from).into_iter();
-        self.recvs_order().into_iter().map(|r| if r == me { std::mem::take(&mut own) } else { got.next().unwrap_or_default() }).collect()
+        ranks.iter().zip(bufs).map(|(&r, own)| if r == me { own } else { got.next().unwrap_or_default() }).collect()
     }
 
     /// The ranks ghosts come from, in ghost order (the same ranks this one sends to).

@@ -264,6 +264,24 @@ fn granular_spheres_settling_across_ranks_are_the_serial_run() {
 }
 
 #[test]
+fn an_error_on_one_rank_stops_every_rank_without_hanging() {
+    // the bond is stored on atom 1 (rank 0), whose partner lies beyond rank 0's ghosts; rank 1
+    // owns the partner and has nothing to fail on
+    let dir = tempfile::tempdir().unwrap();
+    let data = "one bond\n\n3 atoms\n1 bonds\n1 atom types\n1 bond types\n\n0 12 xlo xhi\n0 12 ylo yhi\n0 12 zlo zhi\n\nMasses\n\n1 1.0\n\nAtoms # bond\n\n1 1 1 5.5 6 6\n2 1 1 8.5 6 6\n3 2 1 1.0 1.0 1.0\n\nBonds\n\n1 1 1 2\n";
+    std::fs::write(dir.path().join("bond.data"), data).unwrap();
+    let deck = format!(
+        "units lj\natom_style bond\nread_data {}/bond.data\nbond_style harmonic\nbond_coeff 1 10.0 3.0\npair_style lj/cut 1.12\npair_coeff 1 1 1.0 1.0\nprocessors 2 1 1\nfix 1 all nve\nrun 10\n",
+        dir.path().display()
+    );
+    let results = on_ranks(&deck, 2);
+    for r in &results {
+        let e = r.as_ref().err().expect("refused");
+        assert!(e.contains("on rank 0 of 2") && e.contains("bond atom 2 is missing"), "{e}");
+    }
+}
+
+#[test]
 fn a_settled_pile_is_balanced_over_the_ranks() {
     // the spheres settle into the lowest sixth of the box, which a uniform cut along z would
     // leave to one rank

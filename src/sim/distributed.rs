@@ -190,6 +190,17 @@ impl Simulation {
         })
     }
 
+    /// [`Simulation::agree`] on a result with a value: the value where every rank succeeded.
+    pub(crate) fn agreed<T>(&self, outcome: Result<T, RunError>) -> Result<T, RunError> {
+        match outcome {
+            Ok(v) => self.agree(Ok(())).map(|_| v),
+            Err(e) => {
+                let step = e.step;
+                Err(self.agree(Err(e)).err().unwrap_or_else(|| RunError::new(step, "a rank failed")))
+            }
+        }
+    }
+
     /// The sum, minimum and maximum over the ranks of each count.
     pub(crate) fn rank_counts(&self) -> Option<RankCounts> {
         let d = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some())?;

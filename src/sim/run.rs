@@ -169,9 +169,11 @@ impl Simulation {
             }
             None => self.state.neighbor.build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table),
         };
-        if let (Some(d), Some(_)) = (&self.state.decomp, self.state.distributed) {
-            d.check_thickness(domain, self.state.neighbor.cutneighmax.max(self.state.comm_cutoff)).map_err(|e| RunError::new(step, e))?;
-        }
+        let thick = match (&self.state.decomp, self.state.distributed) {
+            (Some(d), Some(_)) => d.check_thickness(domain, self.state.neighbor.cutneighmax.max(self.state.comm_cutoff)).map_err(|e| RunError::new(step, e)),
+            _ => Ok(()),
+        };
+        thick?;
         let order = built
             .map_err(|e| match e {
                 NeighError::BoxTooSmall { dim, cut, length } => RunError::new(
@@ -205,14 +207,17 @@ impl Simulation {
                         crate::output::format::g(cut)
                     ),
                 ),
-            })?;
+            });
+        // one rank's failure stops every rank here, before the next exchange
+        let order = self.agreed(order)?;
         let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
         self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, setup);
         self.state.lammps_order.make_sides(&self.state.atoms, domain, cutneighmax, self.state.neigh_settings.binsize, self.state.newton_pair);
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }
-        crate::models::bonded::pass::build_bonded_lists(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style))?;
+        let bonded = crate::models::bonded::pass::build_bonded_lists(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style));
+        self.agreed(bonded)?;
         self.state.lists_valid = true;
         Ok(order)
     }

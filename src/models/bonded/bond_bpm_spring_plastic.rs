@@ -171,7 +171,7 @@ mod tests {
         let mut s = BondBpmSpringPlastic::default();
         let w = words("break no smooth no volume/factor yes");
         let e = s.settings(&mut Args::from_words(&w, Span::default(), "")).unwrap_err();
-        assert_eq!(e.primary_span().unwrap().lo, 20, "{e}");
+        assert_eq!(e.primary_span().unwrap().lo, 19, "{e}");
         let mut s = BondBpmSpringPlastic::default();
         s.set_types(1);
         let w = words("1.0 0.1 1.0");

@@ -257,7 +257,7 @@ impl BpmStyle for BondBpmRotational {
         // atom 1 gets minus the force on atom 2; the virial is that of the force on atom 1
         let f1 = e.f12.map(|c| -(c * smooth));
         let virial = [r[0] * f1[0], r[1] * f1[1], r[2] * f1[2], r[0] * f1[1], r[0] * f1[2], r[1] * f1[2]];
-        Some(BondOut { f1, t1: e.t21.map(|c| c * smooth), t2: e.t12.map(|c| c * smooth), energy: 0.0, virial })
+        Some(BondOut { f1, t1: e.t21.map(|c| c * smooth), t2: e.t12.map(|c| c * smooth), energy: 0.0, virial, history: None })
     }
 }
 

@@ -50,21 +50,9 @@ impl BondBpmSpring {
         Some((self.damped(p, r, r0, fbond, del, dv), energy))
     }
 
-    /// The spring force `fbond` (k (r0 - r) or -k e) with the damping and smoothing, over r.
     #[inline(always)]
-    fn damped(&self, p: &Params, r: f64, r0: f64, mut fbond: f64, del: Vec3, dv: Vec3) -> f64 {
-        let rinv = 1.0 / r;
-        let dot = del[0] * dv[0] + del[1] * dv[1] + del[2] * dv[2];
-        fbond -= p.gamma * dot * rinv;
-        fbond *= rinv;
-        if self.bpm.smooth {
-            let mut s = (r - r0) / (r0 * p.ecrit);
-            s *= s;
-            s *= s;
-            s *= s;
-            fbond *= 1.0 - s;
-        }
-        fbond
+    fn damped(&self, p: &Params, r: f64, r0: f64, fbond: f64, del: Vec3, dv: Vec3) -> f64 {
+        damped(p.gamma, p.ecrit, self.bpm.smooth, r, r0, fbond, del, dv)
     }
 
     /// LAMMPS' BondBPM::init_style and BondBPMSpring::init_style checks.
@@ -75,6 +63,25 @@ impl BondBpmSpring {
         }
         Ok(())
     }
+}
+
+/// The spring force `fbond` (k (r0 - r) or -k e) with the damping and smoothing, over r (LAMMPS'
+/// order, shared with bpm/spring/plastic).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn damped(gamma: f64, ecrit: f64, smooth: bool, r: f64, r0: f64, mut fbond: f64, del: Vec3, dv: Vec3) -> f64 {
+    let rinv = 1.0 / r;
+    let dot = del[0] * dv[0] + del[1] * dv[1] + del[2] * dv[2];
+    fbond -= gamma * dot * rinv;
+    fbond *= rinv;
+    if smooth {
+        let mut s = (r - r0) / (r0 * ecrit);
+        s *= s;
+        s *= s;
+        s *= s;
+        fbond *= 1.0 - s;
+    }
+    fbond
 }
 
 impl BondStyle for BondBpmSpring {

@@ -194,6 +194,9 @@ pub struct BondOut {
     pub t2: Vec3,
     pub energy: f64,
     pub virial: Virial,
+    /// A new reference state the bond keeps (bpm/spring/plastic's plastic strain), written
+    /// after the pass.
+    pub history: Option<[f64; BOND_HISTORY]>,
 }
 
 /// The `BondStyle` methods every BPM style spells the same way (in its `impl BondStyle`): the
@@ -374,6 +377,9 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool) -> Result
     for (l, d) in list.iter().zip(&done) {
         let rec = l.entry.rec;
         if let Some(h) = d.stored {
+            state.topo.bonds[rec as usize].history = h;
+        }
+        if let Some(h) = d.out.and_then(|o| o.history) {
             state.topo.bonds[rec as usize].history = h;
         }
         let Some(out) = d.out else {

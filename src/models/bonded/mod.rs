@@ -18,6 +18,7 @@
 pub mod angle_harmonic;
 pub mod bond_bpm_rotational;
 pub mod bond_bpm_spring;
+pub mod bond_bpm_spring_plastic;
 pub mod bond_fene;
 pub mod bond_fene_expand;
 pub mod bond_harmonic;
@@ -218,6 +219,7 @@ const BOND_STYLES: &[(&str, BondCtor)] = &[
     ("fene/expand", || Box::new(bond_fene_expand::BondFeneExpand::default())),
     ("morse", || Box::new(bond_morse::BondMorse::default())),
     ("bpm/spring", || Box::new(bond_bpm_spring::BondBpmSpring::default())),
+    ("bpm/spring/plastic", || Box::new(bond_bpm_spring_plastic::BondBpmSpringPlastic::default())),
     ("bpm/rotational", || Box::new(bond_bpm_rotational::BondBpmRotational::default())),
 ];
 const ANGLE_STYLES: &[(&str, AngleCtor)] = &[("harmonic", || Box::new(angle_harmonic::AngleHarmonic::default()))];

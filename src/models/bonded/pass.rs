@@ -215,8 +215,10 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
 pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> Result<BondedTally, RunError> {
         let lists = &state.bonded_lists;
         let distributed = state.distributed.is_some();
-        // the ranks of a distributed run all take part in the reverse communication
-        if lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty() && !distributed {
+        // the ranks of a distributed run all take part in the reverse communication, unless no
+        // rank has anything to compute (the topology and styles are the same on every rank)
+        let nothing = state.topo.is_empty() || (styles.bond.is_none() && styles.angle.is_none() && styles.dihedral.is_none());
+        if nothing || (!distributed && lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty()) {
             return Ok(BondedTally::default());
         }
         let prd = state.domain.as_ref().unwrap().prd();

@@ -30,6 +30,9 @@ const SMALL: f64 = 1.0e-4;
 pub struct CreateBox {
     pub ntypes: usize,
     pub domain: Domain,
+    /// The box before the shrink-wrap padding: LAMMPS' `small` margins (1e-4 of its lengths)
+    /// come from it, not from the padded box.
+    pub unpadded: Domain,
     pub bond_types: usize,
     pub angle_types: usize,
     pub dihedral_types: usize,
@@ -99,6 +102,7 @@ pub fn create_box(
     }
     // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
     // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
+    let unpadded = Domain { dimension, lo, hi, boundary };
     let (mut lo, mut hi) = (lo, hi);
     for d in 0..3 {
         let small = SMALL * (hi[d] - lo[d]);
@@ -112,6 +116,7 @@ pub fn create_box(
     let mut out = CreateBox {
         ntypes,
         domain: Domain { dimension, lo, hi, boundary },
+        unpadded,
         bond_types: 0,
         angle_types: 0,
         dihedral_types: 0,

@@ -88,7 +88,8 @@ pub struct State {
     pub newton_pair: bool,
     pub newton_bond: bool,
     pub domain: Option<Domain>,
-    /// The box as created (shrink-wrap margins and `m` bounds come from it).
+    /// The box as created, before the shrink-wrap padding (LAMMPS `set_initial_box`: the `small`
+    /// margins and the `m` bounds come from it).
     pub box_initial: Option<Domain>,
     pub atoms: Atoms,
     pub ntypes: usize,

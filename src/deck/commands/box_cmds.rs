@@ -46,7 +46,7 @@ pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     t.nimpropertypes = b.improper_types;
     let d = &b.domain;
     sim.out.print(&format!("Created {}", crate::deck::box_text(d)));
-    sim.state.box_initial = Some(b.domain.clone());
+    sim.state.box_initial = Some(b.unpadded);
     sim.state.domain = Some(b.domain);
     Ok(())
 }

@@ -76,6 +76,20 @@ fn heat_input_errors_are_located() {
     assert_eq!(code, 0, "{out}");
 }
 
+/// LAMMPS lets fix property/atom (only it) come before the box, as examples/pour's
+/// in.pour.2d.molecule does; other fixes there stay a located error.
+#[test]
+fn property_atom_may_precede_the_box() {
+    let base = std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks/in.gran_heat_area")).unwrap();
+    let props = base.lines().find(|l| l.starts_with("fix          props")).unwrap().to_string();
+    let early = base.replace(&format!("{props}\n"), "").replace("create_box   1 box", &format!("{props}\ncreate_box   1 box"));
+    let (code, out) = check(&early);
+    assert_eq!(code, 0, "{out}");
+    let (code, out) = check(&early.replace(&props, "fix          early all nve/sphere"));
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("fix used before the simulation box is defined") && out.contains("in.wall:16:"), "{out}");
+}
+
 /// Step-0 thermo of tests/decks/granular/in.temp_sphere: c_ts c_tr c_te c_ts[1] c_ts[4] c_tr[3]
 /// as LAMMPS 22 Jul 2025 prints them (`thermo_modify format float %.15g`), in 2D and 3D.
 #[test]

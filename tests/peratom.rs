@@ -74,3 +74,14 @@ fn unsupported_input_is_an_error() {
     let f = dmhs::deck::run_text("gran.deck", deck, &Default::default()).err().expect("pe/atom with gran/hooke");
     assert!(f.rendered.contains("pair style gran/hooke does not tally per-atom energies"), "{}", f.rendered);
 }
+
+/// A compute stress/atom that no output reads costs nothing and is no error, whatever the pair
+/// style (LAMMPS tallies per-atom virials only for a compute that is evaluated; its
+/// examples/granular/in.restitution defines one with pair granular and never uses it).
+#[test]
+fn unread_peratom_compute_is_no_error() {
+    let deck = "units lj\natom_style sphere\nlattice sc 1.0\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\n\
+                comm_modify vel yes\npair_style granular\npair_coeff * * hertz/material 1e6 0.8 0.4 tangential mindlin NULL 0.0 0.5 damping coeff_restitution\n\
+                fix 1 all nve/sphere\ncompute s all stress/atom NULL pair\nthermo_style custom step ke\nthermo 5\nrun 10\n";
+    dmhs::deck::run_text("gran.deck", deck, &Default::default()).expect("an unread stress/atom compute is no error");
+}

@@ -129,6 +129,9 @@ pub struct State {
     /// Per-atom energies and virials of the last force evaluation that made them (for compute
     /// pe/atom and stress/atom).
     pub peratom: Option<crate::engine::tally::PerAtomTally>,
+    /// Why the styles could not make `peratom` on that step: LAMMPS tallies per-atom energies
+    /// only when a compute that needs them is evaluated, so the refusal waits for that.
+    pub peratom_missing: Option<(i64, String)>,
     /// Lists and ghosts are valid for the current atoms.
     pub lists_valid: bool,
     /// Number of atoms at the start of the run (lost-atom check).
@@ -197,6 +200,7 @@ impl State {
             run_window: None,
             energies: Energies { step: -1, ..Energies::default() },
             peratom: None,
+            peratom_missing: None,
             lists_valid: false,
             natoms_expected: 0,
             rebuild_requested: false,

@@ -351,11 +351,19 @@ impl Simulation {
     fn tally_peratom(&mut self) -> Result<(), RunError> {
         let step = self.state.step;
         let mut t = crate::engine::tally::PerAtomTally::new(self.state.atoms.nlocal, step);
-        if self.pair.is_some() {
-            self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false).map_err(|e| RunError::new(step, e))?;
+        self.state.peratom_missing = None;
+        let mut missing = match self.pair.is_some() {
+            true => self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false).err(),
+            false => None,
+        };
+        if let Some(b) = self.bond_style.as_deref().filter(|b| b.as_bpm().is_some() && missing.is_none()) {
+            missing = Some(format!("bond style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)", b.name()));
         }
-        if let Some(b) = self.bond_style.as_deref().filter(|b| b.as_bpm().is_some()) {
-            return Err(RunError::new(step, format!("bond style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)", b.name())));
+        if let Some(why) = missing {
+            // a compute pe/atom or stress/atom that no output reads is no error (as in LAMMPS)
+            self.state.peratom = None;
+            self.state.peratom_missing = Some((step, why));
+            return Ok(());
         }
         crate::models::bonded::pass::bonded_peratom(&self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), &mut t);
         self.state.peratom = Some(t);

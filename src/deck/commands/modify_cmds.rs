@@ -9,7 +9,11 @@ fn valid_id(id: &str) -> bool {
 }
 
 pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    need_box(sim, cmd)?;
+    // LAMMPS' Modify::add_fix lets fix property/atom come before the box (its custom
+    // properties then exist when read_data or create_box makes the atoms)
+    if cmd.args.get(2).map(|w| w.text.as_str()) != Some("property/atom") {
+        need_box(sim, cmd)?;
+    }
     let mut a = Args::new(cmd, "fix ID group-ID style args");
     let id = a.word("fix ID")?;
     if !valid_id(&id.text) {

@@ -42,7 +42,10 @@ pub fn terms(a: &mut Args, extra: &[&str]) -> DResult<([bool; 4], Vec<usize>)> {
 pub fn tallies<'a>(state: &'a State, id: &str, style: &str) -> Result<&'a PerAtomTally, String> {
     match &state.peratom {
         Some(t) if t.step == state.step && t.energy[0].len() == state.atoms.nlocal => Ok(t),
-        _ => Err(format!("compute {id} ({style}): per-atom energies and virials are tallied on the steps of thermo output, dumps and averaging-fix samples; step {} is none of them", state.step)),
+        _ => match &state.peratom_missing {
+            Some((step, why)) if *step == state.step => Err(format!("compute {id} ({style}): {why}")),
+            _ => Err(format!("compute {id} ({style}): per-atom energies and virials are tallied on the steps of thermo output, dumps and averaging-fix samples; step {} is none of them", state.step)),
+        },
     }
 }
 

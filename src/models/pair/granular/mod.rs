@@ -332,7 +332,10 @@ impl GranSpec {
                 "heat" => named[HEAT] = Some(parse_sub(a, heat::STYLES, kind, |g| m.heat = Some(g))?),
                 "limit_damping" => (m.limit_damping, limit_word) = (true, Some(w)),
                 "cutoff" if !wall => m.cutoff = a.f64("cutoff")?,
-                "synchronized" => return Err(a.error_at(w, "granular `synchronized` is not supported by dmhs", "not supported")),
+                // LAMMPS' half-step contact normal and history rotation (examples/granular/in.sync_verlet)
+                "synchronized" | "synchronized_verlet" => {
+                    return Err(a.error_at(w, format!("granular `{kind}` (half-step normal, LAMMPS 2025) is not supported by dmhs"), "not supported"))
+                }
                 _ => {
                     let mut known = KINDS.to_vec();
                     known.push("limit_damping");
@@ -878,6 +881,8 @@ mod tests {
 
     #[test]
     fn errors_name_what_the_tables_support() {
+        let e = err("hooke 1e4 0.5 tangential linear_history 8235 0 0.5 damping coeff_restitution synchronized_verlet");
+        assert!(e.contains("`synchronized_verlet` (half-step normal, LAMMPS 2025) is not supported"), "{e}");
         let e = err("mdr 1 2 3 4 5 6 tangential linear_history 1 1 1");
         assert!(e.contains("normal model `mdr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt, jkr"), "{e}");
         // JKR: cohesive, and not on dmhs' walls

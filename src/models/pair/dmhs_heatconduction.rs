@@ -180,7 +180,7 @@ mod tests {
             dimension: 3,
             sides: None,
         };
-        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![] };
+        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![], peratom: None };
         hc.compute(&input, &mut out);
         // T1 = 150, T2 = 50; wfd for Lucy 3D at r = 0.3, h = 0.8
         let wfd = Kernel::Lucy.wfd(0.09, 0.8, true);

@@ -322,7 +322,7 @@ impl Simulation {
         self.timers.charge(Stage::Pair);
         let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
             Some(bpm) => {
-                let (tally, broken) = bpm.compute(&mut self.state, eflag)?;
+                let (tally, broken) = bpm.compute(&mut self.state, eflag, peratom.as_mut())?;
                 if !broken.is_empty() {
                     self.bonds_broken(&broken)?;
                 }
@@ -362,10 +362,12 @@ impl Simulation {
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false).map_err(|e| RunError::new(step, e))?;
         }
-        if let Some(b) = self.bond_style.as_deref().filter(|b| b.as_bpm().is_some()) {
-            return Err(RunError::new(step, format!("bond style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)", b.name())));
+        // a BPM bond style added its bonds while computing them
+        let mut styles = BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style);
+        if self.bond_style.as_deref().is_some_and(|b| b.as_bpm().is_some()) {
+            styles.bond = None;
         }
-        crate::models::bonded::pass::bonded_peratom(&self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), &mut t);
+        crate::models::bonded::pass::bonded_peratom(&self.state, styles, &mut t);
         self.state.peratom = Some(t);
         Ok(())
     }

@@ -628,6 +628,9 @@ pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut Pai
                     let w = if owned { 1.0 } else { 0.5 };
                     t.evdwl += w * r.energy;
                     t.xyz(w, del, r.f);
+                    if let Some(pa) = out.peratom.as_deref_mut() {
+                        pa.add_pairs(&[crate::engine::tally::PairShare::xyz(i, j, r.energy, del, r.f)]);
+                    }
                 }
             }
         }

@@ -87,3 +87,40 @@ impl PerAtomTally {
         }
     }
 }
+
+/// One pair's energy and virial as a force loop that tallies per atom in its own pass records
+/// them (loops with contact histories cannot evaluate a pair twice): atom `i` is owned, `j`
+/// takes its half only when owned.
+#[derive(Clone, Copy, Debug)]
+pub struct PairShare {
+    pub i: usize,
+    pub j: usize,
+    pub e: f64,
+    pub v: [f64; 6],
+}
+
+impl PairShare {
+    /// A central force `fpair (x_i - x_j)` (LAMMPS' `ev_tally`).
+    #[inline]
+    pub fn central(i: usize, j: usize, e: f64, del: [f64; 3], fpair: f64) -> PairShare {
+        PairShare { i, j, e, v: [del[0] * del[0] * fpair, del[1] * del[1] * fpair, del[2] * del[2] * fpair, del[0] * del[1] * fpair, del[0] * del[2] * fpair, del[1] * del[2] * fpair] }
+    }
+    /// A force `f` on i in any direction (LAMMPS' `ev_tally_xyz`).
+    #[inline]
+    pub fn xyz(i: usize, j: usize, e: f64, del: [f64; 3], f: [f64; 3]) -> PairShare {
+        PairShare { i, j, e, v: [del[0] * f[0], del[1] * f[1], del[2] * f[2], del[0] * f[1], del[0] * f[2], del[1] * f[2]] }
+    }
+}
+
+impl PerAtomTally {
+    /// Half of each recorded pair to each owned atom, in record order.
+    pub fn add_pairs(&mut self, shares: &[PairShare]) {
+        let nlocal = self.energy[Self::PAIR].len();
+        for s in shares {
+            self.add(Self::PAIR, s.i, 0.5, s.e, &s.v);
+            if s.j < nlocal {
+                self.add(Self::PAIR, s.j, 0.5, s.e, &s.v);
+            }
+        }
+    }
+}

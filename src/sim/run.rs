@@ -225,6 +225,17 @@ impl Simulation {
     /// Call `work` with the pair style, its input and the per-atom outputs (taken out of the
     /// atoms for the duration, so the style can read the atoms while writing forces).
     pub fn with_pair<R>(&mut self, work: impl FnOnce(&mut dyn crate::models::pair::PairStyle, &PairInput, &mut PairOutput) -> R, eflag: bool, advance: bool) -> R {
+        self.with_pair_peratom(work, eflag, advance, None)
+    }
+
+    /// [`Simulation::with_pair`] that also hands the style the per-atom tallies to add to.
+    pub fn with_pair_peratom<R>(
+        &mut self,
+        work: impl FnOnce(&mut dyn crate::models::pair::PairStyle, &PairInput, &mut PairOutput) -> R,
+        eflag: bool,
+        advance: bool,
+        peratom: Option<&mut crate::engine::tally::PerAtomTally>,
+    ) -> R {
         let mut pair = self.pair.take().expect("pair style");
         let (mut f, mut torque, mut drho, mut desph) = (
             std::mem::take(&mut self.state.atoms.f),
@@ -250,7 +261,7 @@ impl Simulation {
             sides: self.state.lammps_order.sides(),
         };
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
-        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields };
+        let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields, peratom };
         let r = work(pair.as_mut(), &input, &mut out);
         self.state.atoms.f = f;
         self.state.atoms.torque = torque;
@@ -288,6 +299,9 @@ impl Simulation {
         }
         self.timers.stamp();
         let mut pair_tally = Tally::default();
+        // per-atom tallies (compute pe/atom, stress/atom): loops with contact histories add
+        // to them while computing the forces
+        let mut peratom = (eflag && self.computes.iter().any(|c| c.uses_peratom_tally())).then(|| crate::engine::tally::PerAtomTally::new(self.state.atoms.nlocal, self.state.step));
         if self.pair.is_some() && self.state.atoms.features.sph {
             // density summation (sph/rhosum) before the forces that read the densities
             let mut rho = std::mem::take(&mut self.state.atoms.rho);
@@ -305,7 +319,7 @@ impl Simulation {
         }
         if self.pair.is_some() {
             let full = force_list.map(|l| std::mem::replace(&mut self.state.neighbor.list, l));
-            pair_tally = self.with_pair(|p, input, out| p.compute(input, out), eflag, advance);
+            pair_tally = self.with_pair_peratom(|p, input, out| p.compute(input, out), eflag, advance, peratom.as_mut());
             if let Some(full) = full {
                 self.state.neighbor.list = full;
             }
@@ -313,7 +327,7 @@ impl Simulation {
         self.timers.charge(Stage::Pair);
         let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
             Some(bpm) => {
-                let (tally, broken) = bpm.compute(&mut self.state, eflag)?;
+                let (tally, broken) = bpm.compute(&mut self.state, eflag, peratom.as_mut())?;
                 if !broken.is_empty() {
                     self.bonds_broken(&broken)?;
                 }
@@ -322,8 +336,8 @@ impl Simulation {
             None => crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?,
         };
         self.timers.charge(Stage::Bond);
-        if eflag && self.computes.iter().any(|c| c.uses_peratom_tally()) {
-            self.tally_peratom()?;
+        if let Some(t) = peratom {
+            self.tally_peratom(t)?;
         }
         if eflag {
             let mut virial = pair_tally.virial;
@@ -348,24 +362,23 @@ impl Simulation {
 
     /// Per-atom energies and virials of the current forces, for compute pe/atom and
     /// stress/atom (LAMMPS' eatom and vatom, made on the steps that tally energies).
-    fn tally_peratom(&mut self) -> Result<(), RunError> {
+    fn tally_peratom(&mut self, mut t: crate::engine::tally::PerAtomTally) -> Result<(), RunError> {
         let step = self.state.step;
-        let mut t = crate::engine::tally::PerAtomTally::new(self.state.atoms.nlocal, step);
         self.state.peratom_missing = None;
-        let mut missing = match self.pair.is_some() {
-            true => self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false).err(),
-            false => None,
-        };
-        if let Some(b) = self.bond_style.as_deref().filter(|b| b.as_bpm().is_some() && missing.is_none()) {
-            missing = Some(format!("bond style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them)", b.name()));
+        if self.pair.is_some() {
+            if let Err(why) = self.with_pair(|p, input, _| p.tally_peratom(input, &mut t), true, false) {
+                // a compute pe/atom or stress/atom that no output reads is no error (as in LAMMPS)
+                self.state.peratom = None;
+                self.state.peratom_missing = Some((step, why));
+                return Ok(());
+            }
         }
-        if let Some(why) = missing {
-            // a compute pe/atom or stress/atom that no output reads is no error (as in LAMMPS)
-            self.state.peratom = None;
-            self.state.peratom_missing = Some((step, why));
-            return Ok(());
+        // a BPM bond style added its bonds while computing them
+        let mut styles = BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style);
+        if self.bond_style.as_deref().is_some_and(|b| b.as_bpm().is_some()) {
+            styles.bond = None;
         }
-        crate::models::bonded::pass::bonded_peratom(&self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), &mut t);
+        crate::models::bonded::pass::bonded_peratom(&self.state, styles, &mut t);
         self.state.peratom = Some(t);
         Ok(())
     }

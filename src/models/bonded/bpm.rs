@@ -21,6 +21,7 @@ use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use crate::engine::topology::BOND_HISTORY;
 use crate::models::bonded::pass::BondedTally;
+use crate::engine::tally::PerAtomTally;
 use dmhs_parser::{Args, DResult, Span, Word};
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -245,15 +246,16 @@ pub trait BpmStyle: Sync {
 /// (`BondStyle::as_bpm`): one monomorphised pass per style.
 pub trait BpmPass: Sync {
     fn shared(&self) -> &Bpm;
-    fn compute(&self, state: &mut State, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError>;
+    /// `peratom`: the per-atom tallies to add each bond's halves to (compute pe/atom, stress/atom).
+    fn compute(&self, state: &mut State, eflag: bool, peratom: Option<&mut PerAtomTally>) -> Result<(BondedTally, Vec<Broken>), RunError>;
 }
 
 impl<S: BpmStyle> BpmPass for S {
     fn shared(&self) -> &Bpm {
         BpmStyle::bpm(self)
     }
-    fn compute(&self, state: &mut State, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError> {
-        compute(state, self, eflag)
+    fn compute(&self, state: &mut State, eflag: bool, peratom: Option<&mut PerAtomTally>) -> Result<(BondedTally, Vec<Broken>), RunError> {
+        compute(state, self, eflag, peratom)
     }
 }
 
@@ -336,7 +338,7 @@ const CHUNK: usize = 1024;
 /// parallel) and adds their forces, torques, energies and virials in serial LAMMPS' order
 /// ([`lammps_bond_list`]), so the sums have LAMMPS' bits. Returns the bonds that broke, in that
 /// order; the caller removes them ([`remove_broken`]).
-pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool) -> Result<(BondedTally, Vec<Broken>), RunError> {
+pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut peratom: Option<&mut PerAtomTally>) -> Result<(BondedTally, Vec<Broken>), RunError> {
     let list = &state.bonded_lists.lammps_bonds;
     if list.is_empty() {
         return Ok((BondedTally::default(), vec![]));
@@ -408,6 +410,13 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool) -> Result
                 tally.ebond += part * out.energy;
                 for k in 0..6 {
                     tally.virial[k] += part * out.virial[k];
+                }
+            }
+            // LAMMPS' eatom and vatom: half to each atom of the bond (owned here)
+            if let Some(pa) = peratom.as_deref_mut() {
+                let nlocal = pa.energy[PerAtomTally::BOND].len();
+                for (i, _) in [i1, i2].into_iter().zip(apply).filter(|&(i, a)| a && i < nlocal) {
+                    pa.add(PerAtomTally::BOND, i, 0.5, out.energy, &out.virial);
                 }
             }
         }

@@ -139,6 +139,9 @@ impl PairStyle for PairBpmSpring {
         self.pairs.get(it, jt).cut
     }
 
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         compute_pairs(self, input, out, None)
     }

@@ -15,6 +15,7 @@ use crate::engine::par::bounded::scope;
 use crate::engine::par::{slab_phase, AtomsMut, ChunksMut};
 use crate::engine::contact_history::{ContactHistory, HistoryChunk};
 use crate::engine::neighbor::special_level;
+use crate::engine::tally::PairShare;
 
 /// What a contact model sees of one overlapping pair (i is the atom that lists the pair), or of
 /// a batch of pairs with `T` = [`L`].
@@ -233,7 +234,9 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let dt = input.dt;
     let list = input.list;
     let bounds = list.bounds();
-    let mut parts = vec![Tally::default(); list.chunks.len()];
+    // each chunk's tallies and, for compute pe/atom and stress/atom, its pairs' virials
+    let record = EFLAG && out.peratom.is_some();
+    let mut parts = vec![(Tally::default(), Vec::new()); list.chunks.len()];
     // neighbour entries read positions, radii and types unchecked (all hold every atom)
     scope(nall, |s| {
     let (x_of, radius_of, typ_of) = (s.reader(x), s.reader(radius), s.reader(typ));
@@ -242,12 +245,13 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         slab_phase(&bounds, parity, windows, &mut parts, |c, (mut fo, mut to, mut hist)| {
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
+        let mut shares: Vec<PairShare> = Vec::new();
         let mut empty = HistoryChunk::default();
         let h = if hsize > 0 || beyond { &mut hist[c] } else { &mut empty };
         let (touch, values): (&mut [u8], &mut [f64]) = (&mut h.touch[..], &mut h.values[..]);
         let mut b = Batch::default();
         // evaluate the batch and apply its results in list order
-        let mut flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally| {
+        let mut flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally, shares: &mut Vec<PairShare>| {
             if n == 0 {
                 return;
             }
@@ -291,6 +295,9 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 if EFLAG {
                     let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
                     t.xyz(w, del, [r.f[0][l], r.f[1][l], r.f[2][l]]);
+                    if record {
+                        shares.push(PairShare::xyz(i, j, 0.0, del, [r.f[0][l], r.f[1][l], r.f[2][l]]));
+                    }
                 }
             };
             crate::engine::par::lanes::for_each_lane(b.n, apply);
@@ -326,7 +333,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                         }
                     }
                     if n == LANES {
-                        flush(&mut b, n, values, &mut t);
+                        flush(&mut b, n, values, &mut t, &mut shares);
                         n = 0;
                     }
                     continue;
@@ -357,15 +364,19 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 b.factor[n] = factor;
                 n += 1;
                 if n == LANES {
-                    flush(&mut b, n, values, &mut t);
+                    flush(&mut b, n, values, &mut t, &mut shares);
                     n = 0;
                 }
             }
         }
-        flush(&mut b, n, values, &mut t);
-        t
+        flush(&mut b, n, values, &mut t, &mut shares);
+        (t, shares)
         });
     }
     });
-    sum_tallies(&parts)
+    if let Some(pa) = out.peratom.as_deref_mut() {
+        parts.iter().for_each(|(_, s)| pa.add_pairs(s));
+    }
+    let tallies: Vec<Tally> = parts.iter().map(|p| p.0).collect();
+    sum_tallies(&tallies)
 }

@@ -159,6 +159,9 @@ impl PairStyle for DmhsBlend {
         let contact = self.maxrad.get(it).copied().unwrap_or(0.0) + self.maxrad.get(jt).copied().unwrap_or(0.0);
         self.sph.cutoff(it, jt).max(contact)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.sph.set_dim3(input.dimension == 3);
         let a = input.atoms;

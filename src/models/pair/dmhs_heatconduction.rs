@@ -125,6 +125,9 @@ impl PairStyle for DmhsHeatConduction {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.dim3 = input.dimension == 3;
         compute_sph(self, input, out);
@@ -180,7 +183,7 @@ mod tests {
             dimension: 3,
             sides: None,
         };
-        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![] };
+        let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![], peratom: None };
         hc.compute(&input, &mut out);
         // T1 = 150, T2 = 50; wfd for Lucy 3D at r = 0.3, h = 0.8
         let wfd = Kernel::Lucy.wfd(0.09, 0.8, true);

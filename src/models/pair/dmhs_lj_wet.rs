@@ -217,6 +217,10 @@ impl PairStyle for LjWet {
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         compute_central(self, input, out.f)
     }
+    fn tally_peratom(&mut self, input: &PairInput, out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
+        super::peratom::central_peratom(self, input, out);
+        Ok(())
+    }
     fn needs_type_mass(&self) -> bool {
         // c = w rho / m uses the per-type mass, as the diffusion does
         true

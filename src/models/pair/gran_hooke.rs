@@ -65,6 +65,9 @@ impl PairStyle for GranHooke {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.types.cutoff(it, jt)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         compute_contacts(&self.model, input, out, None)
     }

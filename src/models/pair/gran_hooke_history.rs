@@ -171,6 +171,9 @@ impl PairStyle for GranHookeHistory {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.types.cutoff(it, jt)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         compute_contacts(&self.settings, input, out, Some(&mut self.history))
     }

@@ -86,6 +86,10 @@ pub struct PairOutput<'a> {
     pub desph: &'a mut [f64],
     /// The rate fields ([`crate::engine::fields::RATES`]) some model registered.
     pub fields: Vec<(Field, &'a mut [f64])>,
+    /// The per-atom tallies of this force evaluation, when compute pe/atom or stress/atom needs
+    /// them: styles whose loops cannot evaluate a pair again (contact histories) add their
+    /// pairs here as they go, and their [`PairStyle::tally_peratom`] adds nothing.
+    pub peratom: Option<&'a mut crate::engine::tally::PerAtomTally>,
 }
 
 /// A per-particle rate a pair style adds to.
@@ -195,10 +199,18 @@ pub trait PairStyle: Send + Sync {
     /// Add forces (and torques, density and energy rates) on owned atoms to `out`; return the
     /// tallies when `input.eflag`. `&mut self` lets a style keep state such as contact history.
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally;
+    /// Whether `compute` adds its pairs to [`PairOutput::peratom`] itself (then
+    /// `tally_peratom` has nothing left to add).
+    fn tallies_in_loop(&self) -> bool {
+        false
+    }
     /// Per-atom energies and virials of this style's pairs, into the pair tallies of `out`
     /// (compute pe/atom and stress/atom); an error for styles that do not tally them yet.
     fn tally_peratom(&mut self, _input: &PairInput, _out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
-        Err(format!("pair style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them; supported: lj/cut, soft, zero, hybrid of these)", self.style()))
+        if self.tallies_in_loop() {
+            return Ok(());
+        }
+        Err(format!("pair style {} does not tally per-atom energies and virials yet (compute pe/atom and stress/atom need them; supported: lj/cut, soft, zero, the granular, SPH and BPM styles, hybrid of these)", self.style()))
     }
     /// Called after every neighbour-list rebuild (before `compute`); `order` is the permutation
     /// applied to owned atoms (new k takes old `order[k]`).
@@ -616,6 +628,9 @@ pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut Pai
                     let w = if owned { 1.0 } else { 0.5 };
                     t.evdwl += w * r.energy;
                     t.xyz(w, del, r.f);
+                    if let Some(pa) = out.peratom.as_deref_mut() {
+                        pa.add_pairs(&[crate::engine::tally::PairShare::xyz(i, j, r.energy, del, r.f)]);
+                    }
                 }
             }
         }

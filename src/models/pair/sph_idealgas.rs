@@ -67,6 +67,9 @@ impl PairStyle for SphIdealGas {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.pairs.cutoff(it, jt)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.pairs.dim3 = input.dimension == 3;
         compute_sph(self, input, out)

@@ -95,6 +95,9 @@ impl PairStyle for SphLj {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.pairs.cutoff(it, jt)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.pairs.dim3 = input.dimension == 3;
         // the EOS once per particle (LAMMPS evaluates it again for every pair, with the same bits)

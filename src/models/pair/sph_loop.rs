@@ -14,6 +14,7 @@
 
 use super::sph::{Packed, SphKernel};
 use super::{sum_tallies, PairInput, PairOutput, Tally};
+use crate::engine::tally::PairShare;
 use crate::engine::par::bounded::{scope, Entry, Reader};
 use crate::engine::par::lanes::{for_each_lane, lanes, transpose4, L, LANES};
 use crate::engine::par::{completed_after, ranges, slab_phase, AtomsMut};
@@ -232,6 +233,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let mut acc = vec![L::default(); nlocal];
     let mut acc_e = vec![0.0f64; if D == 3 { nlocal } else { 0 }];
     let eflag = input.eflag;
+    let record = eflag && out.peratom.is_some();
     // types i whose cutoff is the same for every partner type, with no type filter (the common
     // case): their cutoff test needs no partner types
     let uniform_cut: Vec<Option<f64>> = (0..stride)
@@ -249,7 +251,8 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let list = input.list;
     let nchunks = list.chunks.len();
     let bounds = list.bounds();
-    let mut parts = vec![Tally::default(); nchunks];
+    // each chunk's tallies and, for compute pe/atom and stress/atom, its pairs' virials
+    let mut parts = vec![(Tally::default(), Vec::new()); nchunks];
     // neighbour entries read the records and types unchecked (both hold every atom)
     scope(a.nall(), |s| {
     let (recs_of, typ_of) = (s.reader(recs), s.reader(&typ));
@@ -258,6 +261,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
         slab_phase(&bounds, parity, windows, &mut parts, |c, (mut acc, mut acc_e, mut f, mut first, mut second)| {
         let chunk = &list.chunks[c];
         let mut t = Tally::default();
+        let mut shares: Vec<PairShare> = Vec::new();
         let mut inside: Vec<Entry> = Vec::new();
         for i in chunk.start..chunk.end {
             let pi = recs[i].packed::<D>();
@@ -333,6 +337,9 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                         let w = if js[l] < nlocal { 1.0 } else { 0.5 };
                         let d: [f64; 3] = std::array::from_fn(|k| if k < D { b.del[k][l] } else { 0.0 });
                         t.central(w, 0.0, d, c.fpair[l]);
+                        if record {
+                            shares.push(PairShare::central(i, js[l], 0.0, d, c.fpair[l]));
+                        }
                     }
                 }
             }
@@ -359,9 +366,13 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 }
             }
         }
-        t
+        (t, shares)
         });
     }
     });
-    sum_tallies(&parts)
+    if let Some(pa) = out.peratom.as_deref_mut() {
+        parts.iter().for_each(|(_, s)| pa.add_pairs(s));
+    }
+    let tallies: Vec<Tally> = parts.iter().map(|p| p.0).collect();
+    sum_tallies(&tallies)
 }

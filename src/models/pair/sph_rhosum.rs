@@ -69,6 +69,9 @@ impl PairStyle for SphRhoSum {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, _input: &PairInput, _out: &mut PairOutput) -> Tally {
         Tally::default()
     }

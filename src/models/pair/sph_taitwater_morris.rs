@@ -109,6 +109,9 @@ impl PairStyle for SphTaitwaterMorris {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.cutsq.get(it * (self.n + 1) + jt).map(|c| c.sqrt()).unwrap_or(0.0)
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.dim3 = input.dimension == 3;
         compute_sph(self, input, out)

@@ -800,6 +800,9 @@ impl PairStyle for Granular {
             self.types.cutoff(it, jt) + m.normal.pulloff_distance(r(it), r(jt))
         }
     }
+    fn tallies_in_loop(&self) -> bool {
+        true
+    }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         let t = compute_contacts(&self.models, input, out, Some(&mut self.history));
         if self.heat {

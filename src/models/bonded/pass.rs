@@ -173,36 +173,36 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
         };
         copies.min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
     };
-    let listed = |tags: &[i64], reference: usize, what: &str| -> Result<Option<Vec<u32>>, RunError> {
+    // the interaction's local atoms if this rank owns its reference atom
+    fn listed<const N: usize>(tags: [i64; N], reference: usize, what: &str, step: i64, owned: &crate::engine::atoms::TagMap, x: &[[f64; 3]], closest: &impl Fn(i64, [f64; 3]) -> Option<u32>) -> Result<Option<[u32; N]>, RunError> {
         let Some(r) = owned.get(tags[reference]) else { return Ok(None) };
-        let x = a.x[r];
-        let atoms: Result<Vec<u32>, RunError> = tags
-            .iter()
-            .map(|&tag| {
-                closest(tag, x).ok_or_else(|| RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} reaches beyond the ghost cutoff (pair cutoff + skin; comm_modify cutoff)")))
-            })
-            .collect();
-        atoms.map(Some)
-    };
+        let mut atoms = [0u32; N];
+        for (m, &tag) in tags.iter().enumerate() {
+            atoms[m] = closest(tag, x[r]).ok_or_else(|| {
+                RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} reaches beyond the ghost cutoff (pair cutoff + skin; comm_modify cutoff)"))
+            })?;
+        }
+        Ok(Some(atoms))
+    }
     let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
     if styles.bond.is_some() {
         for (rec, b) in t.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
-            if let Some(i) = listed(&b.atoms, 0, "bond")? {
-                bonds.push(Entry { atoms: [i[0], i[1]], shift: [[0; 3]; 2], typ: b.typ, rec: rec as u32 });
+            if let Some(atoms) = listed(b.atoms, 0, "bond", step, &owned, &a.x, &closest)? {
+                bonds.push(Entry { atoms, shift: [[0; 3]; 2], typ: b.typ, rec: rec as u32 });
             }
         }
     }
     if styles.angle.is_some() {
         for (rec, b) in t.angles.iter().enumerate().filter(|(_, b)| !b.off) {
-            if let Some(i) = listed(&b.atoms, 1, "angle")? {
-                angles.push(Entry { atoms: [i[0], i[1], i[2]], shift: [[0; 3]; 3], typ: b.typ, rec: rec as u32 });
+            if let Some(atoms) = listed(b.atoms, 1, "angle", step, &owned, &a.x, &closest)? {
+                angles.push(Entry { atoms, shift: [[0; 3]; 3], typ: b.typ, rec: rec as u32 });
             }
         }
     }
     if styles.dihedral.is_some() {
         for (rec, b) in t.dihedrals.iter().enumerate().filter(|(_, b)| !b.off) {
-            if let Some(i) = listed(&b.atoms, 1, "dihedral")? {
-                dihedrals.push(Entry { atoms: [i[0], i[1], i[2], i[3]], shift: [[0; 3]; 4], typ: b.typ, rec: rec as u32 });
+            if let Some(atoms) = listed(b.atoms, 1, "dihedral", step, &owned, &a.x, &closest)? {
+                dihedrals.push(Entry { atoms, shift: [[0; 3]; 4], typ: b.typ, rec: rec as u32 });
             }
         }
     }

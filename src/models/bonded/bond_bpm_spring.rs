@@ -157,13 +157,7 @@ mod tests {
     use dmhs_parser::Span;
 
     fn style(settings: &str, coeff: &str) -> BondBpmSpring {
-        let mut s = BondBpmSpring::default();
-        let w = words(settings);
-        s.settings(&mut Args::from_words(&w, Span::default(), "")).unwrap();
-        s.set_types(1);
-        let w = words(coeff);
-        s.coeff(1, 1, &mut Args::from_words(&w, Span::default(), "")).unwrap();
-        s
+        crate::models::bonded::test_util::configured(settings, coeff)
     }
 
     /// One bond in real LAMMPS 22 Jul 2025 (`newton on off`, pair_style zero): atoms at (0,0,0)

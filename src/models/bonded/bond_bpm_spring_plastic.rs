@@ -138,13 +138,7 @@ mod tests {
     use dmhs_parser::Span;
 
     fn style(settings: &str, coeff: &str) -> BondBpmSpringPlastic {
-        let mut s = BondBpmSpringPlastic::default();
-        let w = words(settings);
-        s.settings(&mut Args::from_words(&w, Span::default(), "")).unwrap();
-        s.set_types(1);
-        let w = words(coeff);
-        s.coeff(1, 1, &mut Args::from_words(&w, Span::default(), "")).unwrap();
-        s
+        crate::models::bonded::test_util::configured(settings, coeff)
     }
 
     /// Within the yield band the plastic strain stays; beyond it it trails e by eplastic, and

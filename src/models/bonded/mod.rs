@@ -355,6 +355,18 @@ pub(crate) mod test_util {
         out
     }
 
+    /// A bond style of one type, set up from the words of `bond_style NAME settings...` and
+    /// `bond_coeff 1 coeff...`.
+    pub fn configured<S: super::BondStyle + Default>(settings: &str, coeff: &str) -> S {
+        let mut s = S::default();
+        let w = words(settings);
+        s.settings(&mut dmhs_parser::Args::from_words(&w, Span::default(), "")).unwrap();
+        s.set_types(1);
+        let w = words(coeff);
+        s.coeff(1, 1, &mut dmhs_parser::Args::from_words(&w, Span::default(), "")).unwrap();
+        s
+    }
+
     pub fn bits3(v: [f64; 3]) -> [u64; 3] {
         v.map(f64::to_bits)
     }

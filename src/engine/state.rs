@@ -154,6 +154,9 @@ pub struct State {
     pub procs_user: [Option<usize>; 3],
     /// The atoms are spread over the ranks now, each holding its own (the total in `natoms`).
     pub distributed: Option<usize>,
+    /// The interactions by the atom each is stored on, for a distributed run's bonded lists
+    /// (made at its first list build, dropped when the run ends).
+    pub stored_on: Option<crate::engine::topology::StoredOn>,
 }
 
 impl Default for State {
@@ -210,6 +213,7 @@ impl State {
             decomp: None,
             procs_user: [None; 3],
             distributed: None,
+            stored_on: None,
         }
     }
 

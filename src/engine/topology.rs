@@ -57,6 +57,37 @@ impl Dihedral {
     }
 }
 
+/// Each interaction's record index under the ID of the atom LAMMPS stores it on with
+/// `newton_bond on` (atom 1 of a bond, atom 2 of an angle or dihedral), sorted by that ID: a
+/// rank of a distributed run finds its own atoms' interactions without walking the others'.
+#[derive(Clone, Debug, Default)]
+pub struct StoredOn {
+    pub bonds: Vec<(i64, u32)>,
+    pub angles: Vec<(i64, u32)>,
+    pub dihedrals: Vec<(i64, u32)>,
+}
+
+impl StoredOn {
+    /// The index of the interactions that are on (not turned off by `delete_bonds`).
+    pub fn new(t: &Topology) -> StoredOn {
+        fn sorted(on: impl Iterator<Item = (i64, bool)>) -> Vec<(i64, u32)> {
+            let mut v: Vec<(i64, u32)> = on.enumerate().filter(|(_, (_, off))| !off).map(|(k, (tag, _))| (tag, k as u32)).collect();
+            v.sort_unstable();
+            v
+        }
+        StoredOn {
+            bonds: sorted(t.bonds.iter().map(|b| (b.atoms[0], b.off))),
+            angles: sorted(t.angles.iter().map(|a| (a.atoms[1], a.off))),
+            dihedrals: sorted(t.dihedrals.iter().map(|d| (d.atoms[1], d.off))),
+        }
+    }
+    /// The records of `list` stored on atom `tag`, in record order.
+    pub fn on(list: &[(i64, u32)], tag: i64) -> impl Iterator<Item = u32> + '_ {
+        let from = list.partition_point(|e| e.0 < tag);
+        list[from..].iter().take_while(move |e| e.0 == tag).map(|e| e.1)
+    }
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct Topology {
     pub nbondtypes: usize,

@@ -139,6 +139,7 @@ impl Simulation {
         self.state.atoms.clear_ghosts();
         d.distribute(&mut self.state.atoms, domain);
         self.state.distributed = Some(natoms);
+        self.state.stored_on = None;
         self.state.lists_valid = false;
         // the per-atom order LAMMPS would keep is a serial notion: start afresh on each rank
         self.state.lammps_order = Default::default();
@@ -154,6 +155,7 @@ impl Simulation {
         if self.state.distributed.take().is_none() {
             return;
         }
+        self.state.stored_on = None;
         let d = self.state.decomp.as_ref().expect("a decomposition");
         self.state.atoms = d.gathered(&self.state.atoms);
         if let Some(pair) = self.pair.as_mut() {

@@ -7,6 +7,7 @@ use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleSty
 use crate::engine::par::{slab_phase, AtomsMut};
 use crate::engine::state::{RunError, State};
 use crate::engine::bonded_lists::{chunk, slab, BondedLists, Entry};
+use crate::engine::topology::StoredOn;
 
 /// Energies and virial of the bonded pass.
 #[derive(Clone, Copy, Debug, Default)]
@@ -158,52 +159,60 @@ fn slabbed(state: &State, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[
 /// an angle or dihedral), its other atoms at their local copies (owned or ghost) closest to
 /// that atom. Forces on ghosts go back to their owners after the pass.
 fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunError> {
-    let (t, a) = (&state.topo, &state.atoms);
+    if state.stored_on.is_none() {
+        state.stored_on = Some(StoredOn::new(&state.topo));
+    }
+    let (t, a, on) = (&state.topo, &state.atoms, state.stored_on.as_ref().unwrap());
     let step = state.step;
-    let owned = a.tag_map();
-    let mut ghosts: Vec<(i64, u32)> = (a.nlocal..a.nall()).map(|j| (a.tag[j], j as u32)).collect();
-    ghosts.sort_unstable();
-    // the copy of atom `tag` closest to `x` (None: this rank has no copy)
+    let mut copies: Vec<(i64, u32)> = (0..a.nall()).map(|j| (a.tag[j], j as u32)).collect();
+    copies.sort_unstable();
+    // the copy of atom `tag` closest to `x`, owned before ghosts on a tie (None: this rank has
+    // no copy)
     let closest = |tag: i64, x: [f64; 3]| -> Option<u32> {
-        let from = ghosts.partition_point(|g| g.0 < tag);
-        let copies = owned.get(tag).map(|i| i as u32).into_iter().chain(ghosts[from..].iter().take_while(|g| g.0 == tag).map(|g| g.1));
         let d2 = |j: u32| {
             let y = a.x[j as usize];
             (0..3).map(|d| (y[d] - x[d]) * (y[d] - x[d])).sum::<f64>()
         };
-        copies.min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
+        StoredOn::on(&copies, tag).min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
     };
-    // the interaction's local atoms if this rank owns its reference atom
-    fn listed<const N: usize>(tags: [i64; N], reference: usize, what: &str, step: i64, owned: &crate::engine::atoms::TagMap, x: &[[f64; 3]], closest: &impl Fn(i64, [f64; 3]) -> Option<u32>) -> Result<Option<[u32; N]>, RunError> {
-        let Some(r) = owned.get(tags[reference]) else { return Ok(None) };
-        let mut atoms = [0u32; N];
+    // the interactions stored on owned atoms, in record order: (record, reference atom)
+    let owned_records = |list: &[(i64, u32)]| -> Vec<(u32, usize)> {
+        let mut recs: Vec<(u32, usize)> = (0..a.nlocal).flat_map(|i| StoredOn::on(list, a.tag[i]).map(move |rec| (rec, i))).collect();
+        recs.sort_unstable();
+        recs
+    };
+    // the interaction's local atoms, each the copy closest to the reference atom `r`
+    let local = |tags: &[i64], r: usize, atoms: &mut [u32], what: &str| -> Result<(), RunError> {
         for (m, &tag) in tags.iter().enumerate() {
-            atoms[m] = closest(tag, x[r]).ok_or_else(|| {
+            atoms[m] = closest(tag, a.x[r]).ok_or_else(|| {
                 RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} reaches beyond the ghost cutoff (pair cutoff + skin; comm_modify cutoff)"))
             })?;
         }
-        Ok(Some(atoms))
-    }
+        Ok(())
+    };
     let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
     if styles.bond.is_some() {
-        for (rec, b) in t.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
-            if let Some(atoms) = listed(b.atoms, 0, "bond", step, &owned, &a.x, &closest)? {
-                bonds.push(Entry { atoms, shift: [[0; 3]; 2], typ: b.typ, rec: rec as u32 });
-            }
+        for (rec, r) in owned_records(&on.bonds) {
+            let b = &t.bonds[rec as usize];
+            let mut e = Entry { atoms: [0; 2], shift: [[0; 3]; 2], typ: b.typ, rec };
+            local(&b.atoms, r, &mut e.atoms, "bond")?;
+            bonds.push(e);
         }
     }
     if styles.angle.is_some() {
-        for (rec, b) in t.angles.iter().enumerate().filter(|(_, b)| !b.off) {
-            if let Some(atoms) = listed(b.atoms, 1, "angle", step, &owned, &a.x, &closest)? {
-                angles.push(Entry { atoms, shift: [[0; 3]; 3], typ: b.typ, rec: rec as u32 });
-            }
+        for (rec, r) in owned_records(&on.angles) {
+            let b = &t.angles[rec as usize];
+            let mut e = Entry { atoms: [0; 3], shift: [[0; 3]; 3], typ: b.typ, rec };
+            local(&b.atoms, r, &mut e.atoms, "angle")?;
+            angles.push(e);
         }
     }
     if styles.dihedral.is_some() {
-        for (rec, b) in t.dihedrals.iter().enumerate().filter(|(_, b)| !b.off) {
-            if let Some(atoms) = listed(b.atoms, 1, "dihedral", step, &owned, &a.x, &closest)? {
-                dihedrals.push(Entry { atoms, shift: [[0; 3]; 4], typ: b.typ, rec: rec as u32 });
-            }
+        for (rec, r) in owned_records(&on.dihedrals) {
+            let b = &t.dihedrals[rec as usize];
+            let mut e = Entry { atoms: [0; 4], shift: [[0; 3]; 4], typ: b.typ, rec };
+            local(&b.atoms, r, &mut e.atoms, "dihedral")?;
+            dihedrals.push(e);
         }
     }
     state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, vec![]);

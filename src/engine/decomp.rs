@@ -102,8 +102,18 @@ impl Decomp {
         let mut c = [0usize; 3];
         for d in 0..3 {
             let p = self.procs[d];
-            // the last sub-domain whose lower bound is at or below x (NaN: the first)
-            c[d] = (1..p).take_while(|&k| x[d] >= self.bounds(domain, d, k).0).last().unwrap_or(0);
+            // the last sub-domain whose lower bound is at or below x (NaN: the first), by
+            // bisection: the lower bounds rise with k
+            let (mut lo, mut hi) = (0, p);
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if x[d] >= self.bounds(domain, d, mid).0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            c[d] = lo;
         }
         self.rank_at(c)
     }
@@ -547,6 +557,22 @@ mod tests {
         assert_eq!(choose_grid(8, [Some(8), None, None], [10.0, 10.0, 10.0], 3).unwrap(), [8, 1, 1]);
         assert!(choose_grid(4, [Some(3), None, None], [10.0; 3], 3).is_err());
         assert!(choose_grid(2, [Some(1), Some(1), None], [10.0, 10.0, 1.0], 2).is_err());
+    }
+
+    #[test]
+    fn the_owner_is_the_last_sub_domain_starting_at_or_below_x() {
+        use crate::engine::domain::BoundaryKind;
+        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [10.0; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let mut d = Decomp::new(Arc::new(crate::engine::comm::Serial), [7, 1, 1]);
+        d.splits[0] = vec![0.0, 0.05, 0.05, 0.3, 0.31, 0.6, 0.9, 1.0];
+        let linear = |x: f64| (1..7).take_while(|&k| x >= d.bounds(&domain, 0, k).0).last().unwrap_or(0);
+        for k in 0..=1200 {
+            let x = -1.0 + k as f64 * 0.01;
+            assert_eq!(d.owner(&domain, &[x, 5.0, 5.0]), linear(x), "x = {x}");
+        }
+        for x in [0.5, 3.0, 3.1, 9.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(d.owner(&domain, &[x, 5.0, 5.0]), linear(x), "x = {x}");
+        }
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 use dmhs::deck::{run_file, DeckOptions};
 use dmhs::sim::Simulation;
+use dmhs::tools::plot_cmd::read_table;
 use std::path::PathBuf;
 
 const DL: f64 = 5.0e-6;
@@ -17,6 +18,15 @@ const NMEMBRANE: usize = 48;
 const RMAX: f64 = 3.6e-6;
 /// Radius of the undeformed membrane: 48 r0 / (2 pi).
 const RCELL: f64 = 48.0 * 3.3e-6 / (2.0 * std::f64::consts::PI);
+/// Case B (fast): transit through the constriction (front at the upstream face to tail past the
+/// downstream face) and the largest deformation index on the way, measured at dt = 1e-6 s
+/// (4.745e-3 s, 0.3952) and 8e-7 s (4.723e-3 s, 0.3960). The times are thermo samples
+/// (6.5e-5 s apart), so the transit is known to a sample at each end.
+const TRANSIT_FAST: f64 = 4.745e-3;
+const TRANSIT_TOL: f64 = 1.3e-4;
+const D_MAX_FAST: f64 = 0.395;
+/// The dt spread (8e-4) and the sampling of a peak that is flat over ~5 samples (D within 0.004).
+const D_TOL: f64 = 0.01;
 
 pub fn scene_dir(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/scenes").join(name)
@@ -35,6 +45,7 @@ pub fn run_scene(scene: &str, vars: &[(&str, &str)]) -> Simulation {
     let opts = DeckOptions {
         vars: vars.iter().map(|(k, v)| (k.to_string(), vec![v.to_string()])).collect(),
         base_dir: Some(tmp.path().to_path_buf()),
+        capture_text: true,
         ..Default::default()
     };
     run_file(&deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered)).sim
@@ -106,22 +117,70 @@ fn cell_state(sim: &Simulation) -> CellState {
     }
 }
 
+/// The passage through the constriction, read off the deck's thermo columns (every nsteps/100
+/// steps): c_lo[1] and c_hi[1] are the smallest and largest unwrapped x of a membrane particle,
+/// v_L and v_B the membrane's extents along and across the flow, v_D = (L - B)/(L + B).
+#[derive(Debug)]
+struct Passage {
+    /// Time at which the membrane's front reaches the obstacle's upstream face.
+    t_in: f64,
+    /// Time at which its tail has passed the downstream face.
+    t_out: f64,
+    /// Largest deformation index between the two, and the membrane's smallest width B then.
+    d_max: f64,
+    b_min: f64,
+}
+
+fn passage(sim: &Simulation) -> Passage {
+    let t = read_table(sim.out.captured.as_deref().unwrap()).unwrap();
+    let col = |name: &str| -> Vec<f64> {
+        let k = t.find(name).unwrap();
+        t.rows.iter().map(|r| r[k]).collect()
+    };
+    let (time, lo, hi, b, d) = (col("Time"), col("c_lo[1]"), col("c_hi[1]"), col("v_B"), col("v_D"));
+    let k_in = (0..time.len()).find(|&k| hi[k] >= OBSTACLE_UP).expect("the cell reaches the constriction");
+    let k_out = (0..time.len()).find(|&k| lo[k] >= OBSTACLE_DOWN).expect("the cell leaves the constriction");
+    let during = k_in..=k_out;
+    Passage {
+        t_in: time[k_in],
+        t_out: time[k_out],
+        d_max: d[during.clone()].iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        b_min: b[during].iter().copied().fold(f64::INFINITY, f64::min),
+    }
+}
+
 fn run_case(case: &str) -> CellState {
+    run_case_with_passage(case).0
+}
+
+fn run_case_with_passage(case: &str) -> (CellState, Simulation) {
     let sim = run_scene("cells", &[("case", case), ("fast", "1")]);
     let s = cell_state(&sim);
     println!("case {case}: {s:?}");
-    s
+    (s, sim)
 }
 
 #[test]
 fn b_unbreakable_cell_passes_the_constriction_intact() {
-    let s = run_case("B");
+    let (s, sim) = run_case_with_passage("B");
     assert_eq!(s.bonds, NMEMBRANE, "an unbreakable cell keeps all its bonds");
     assert_eq!(s.outside_polygon, 0, "the cytoplasm stays inside the membrane");
     assert!(s.membrane_min_x > OBSTACLE_DOWN, "the whole membrane is past the constriction: min x {} <= {}", s.membrane_min_x, OBSTACLE_DOWN);
     assert!(s.com_x > OBSTACLE_DOWN + 4.0 * DL, "centre of mass {} not downstream of the obstacle", s.com_x);
     // the passage stretched the membrane beyond the length at which C's bonds break
     assert!(s.longest_bond > RMAX, "longest bond {} <= rmax", s.longest_bond);
+    // the paper's Fig 6B, in numbers (README, "Measured against the paper"): the passage and the
+    // deformation it takes. Tolerances: the spread between dt = 1e-6 s and 8e-7 s plus a sample
+    // (6.5e-5 s) for the times
+    let p = passage(&sim);
+    let transit = p.t_out - p.t_in;
+    println!("case B: {p:?}, transit {transit} s");
+    assert!((transit - TRANSIT_FAST).abs() < TRANSIT_TOL, "transit {transit} s, measured {TRANSIT_FAST}");
+    assert!((p.d_max - D_MAX_FAST).abs() < D_TOL, "deformation index {}, measured {D_MAX_FAST}", p.d_max);
+    // an ellipse of the membrane's rest perimeter (48 r0) squeezed to the 30 um gap has D = 0.38
+    assert!(p.d_max > 0.3, "the cell must deform to pass: D = {}", p.d_max);
+    // squeezed across the flow to under 70% of its diameter (33.1 um of 50.4 um; 33.05 at 8e-7 s)
+    assert!(p.b_min < 0.7 * 2.0 * RCELL, "narrowest width {} m", p.b_min);
 }
 
 #[test]

@@ -56,6 +56,7 @@ fn a_neutrally_buoyant_cubes_stay_suspended() {
         assert!(*y > HALF + 2.0 * R0 && *y < H - HALF - 2.0 * R0, "cube at {y} touches a wall");
     }
     assert_eq!(sim.state.topo.bonds.len(), 3 * 84);
+    assert_eq!(deposited(&ys), 0, "7A: no neutrally buoyant cube deposits");
 }
 
 #[test]
@@ -83,6 +84,17 @@ fn bonds_per_cube(sim: &Simulation) -> Vec<usize> {
         *n.entry(mol[&b.atoms[0]]).or_insert(0) += 1;
     }
     n.values().copied().collect()
+}
+
+/// Fig 7C's numbers (README, "Measured against the paper"): cubes deposited (centre below
+/// HALF + 1.5 dL: on the bottom, with at most the one water layer that stays under a cube; the
+/// same height as strain.py's) and cubes fractured (at least one bond lost of 84).
+fn deposited(ys: &[f64]) -> usize {
+    ys.iter().filter(|&&y| y < HALF + 1.5 * DL).count()
+}
+
+fn fractured(bonds: &[usize]) -> usize {
+    bonds.iter().filter(|&&n| n < 84).count()
 }
 
 /// Centre-of-mass height of each cube, in molecule order.
@@ -114,6 +126,8 @@ fn c_heavy_brittle_cubes_sink_intact_and_deposit() {
     assert!(ys[0] < HALF + 1.5 * DL, "the lower cube is not on the bottom: {}", ys[0]);
     assert!(ys[1] < start_hi - DL, "the upper cube did not sink: {}", ys[1]);
     assert_eq!(bonds, vec![84, 84], "a sinking cube lost bonds");
+    // Fig 7C in numbers at 0.1 s: 1 of 2 deposited, none fractured (nothing has landed yet)
+    assert_eq!((deposited(&ys), fractured(&bonds)), (1, 0));
 }
 
 /// With delta-SPH (`-var delta 0.1`, dmhs/sph/delta fourtakas between water particles) the water
@@ -146,4 +160,8 @@ fn c_landing_breaks_bonds() {
     assert!(ys[1] < ys[0] + 7.0 * R0 + 0.5 * DL, "the landing cube bounced off: {}", ys[1]);
     let lost = 168 - bonds.iter().sum::<usize>();
     assert!(lost >= 30, "the landing broke only {lost} bonds");
+    // Fig 7C's "the cubes above hit ... those underneath and, in some cases, break them": the
+    // landing fractures both cubes (48 and 51 bonds left); the lower one stays deposited
+    assert_eq!(fractured(&bonds), 2, "cubes fractured: {bonds:?}");
+    assert_eq!(deposited(&ys), 1);
 }

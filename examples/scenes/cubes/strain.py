@@ -7,12 +7,19 @@ Per dump frame: the largest and smallest bond strain (r - r0)/r0 of all cube bon
 file (broken bonds included: a broken bond shows as a large strain), the largest kinetic energy of
 a cube relative to its own centre of mass (its lattice vibration, J per m of depth), and the
 kinetic energy of the water relative to the mean velocity of its layer (bins one spacing high:
-the acoustic noise; the mean shear flow is not counted). Python 3 standard library only.
+the acoustic noise; the mean shear flow is not counted), and Fig 7C's two numbers (README,
+"Measured against the paper"): the cubes deposited (centre below y = 3.5 r0 + 1.5 dL, where a cube
+touching the wall has its centre at 3.5 r0: on the bottom, with at most the one water layer that
+stays under a cube; tests/scene_cubes.rs uses the same height) and the
+cubes fractured (a bond of the data file longer than 1.001 r0, the breakage length of case C).
+Python 3 standard library only.
 """
 import math
 import sys
 
 R0 = 0.0023874672772626646  # bond length = water spacing (gen_cubes.py)
+DEPOSITED = 5.0 * R0  # y of a deposited cube's centre: 3.5 r0 touching the wall (top row at -dL/2) + 1.5 dL
+RMAXF = 1.001  # breakage length / r0 of case C
 
 
 def read_data(name):
@@ -59,22 +66,26 @@ def internal_ke(m, vs):
 
 def main():
     bonds, masses, lx = read_data(sys.argv[1])
-    print("step max_strain min_strain max_cube_internal_KE water_noise_KE")
+    print("step max_strain min_strain max_cube_internal_KE water_noise_KE deposited fractured cubes")
     for step, at in frames(sys.argv[2]):
-        strains = []
+        strains, broken = [], set()
         for a, b in bonds:
             dx = at[a][2] - at[b][2]
             dx -= lx * round(dx / lx)
             strains.append((math.hypot(dx, at[a][3] - at[b][3]) - R0) / R0)
-        cubes, layers = {}, {}
+            if strains[-1] > RMAXF - 1.0:
+                broken.add(at[a][0])
+        cubes, heights, layers = {}, {}, {}
         for mol, typ, x, y, vx, vy in at.values():
             if typ == 2:
                 cubes.setdefault(mol, []).append((vx, vy))
+                heights.setdefault(mol, []).append(y)
             elif typ == 1:
                 layers.setdefault(math.floor(y / R0), []).append((vx, vy))
         kc = max(internal_ke(masses[2], vs) for vs in cubes.values())
         kw = sum(internal_ke(masses[1], vs) for vs in layers.values())
-        print(f"{step} {max(strains):.3e} {min(strains):.3e} {kc:.2e} {kw:.2e}")
+        deposited = sum(1 for ys in heights.values() if sum(ys) / len(ys) < DEPOSITED)
+        print(f"{step} {max(strains):.3e} {min(strains):.3e} {kc:.2e} {kw:.2e} {deposited} {len(broken)} {len(cubes)}")
 
 
 if __name__ == "__main__":

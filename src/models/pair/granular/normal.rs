@@ -20,6 +20,8 @@
 //! (measured in LAMMPS 2025).
 
 use super::{geometric, nn, poisson, Coeff, Coeffs, Ctx, Flags, Style};
+// the C library's cube root, as LAMMPS' (f64::cbrt differs from glibc's in the last bit)
+use crate::engine::par::cmath::cbrt;
 use std::f64::consts::PI;
 
 /// The normal force law of one type pair (coefficients as the contact uses them).
@@ -148,7 +150,7 @@ impl Normal {
                 let t3 = 4.0 * dr2 * emix;
                 // the roots' arguments clamped at 0 against round-off, as LAMMPS
                 let sqrt1 = f64::max(0.0, t0 * (t1 + 2.0 * t2));
-                let t4 = (t1 + t2 + THREEROOT3 * PI * sqrt1.sqrt()).cbrt();
+                let t4 = cbrt(t1 + t2 + THREEROOT3 * PI * sqrt1.sqrt());
                 let t5 = t3 / t4 + t4 / emix;
                 let sqrt2 = f64::max(0.0, 2.0 * dr + t5);
                 let t6 = sqrt2.sqrt();
@@ -226,7 +228,7 @@ impl Normal {
 /// The JKR pull-off distance (beyond touching).
 #[inline(always)]
 fn jkr_pulloff(reff: f64, cohesion: f64, emix: f64) -> f64 {
-    JKRPREFIX * (reff * cohesion * cohesion / (emix * emix)).cbrt()
+    JKRPREFIX * cbrt(reff * cohesion * cohesion / (emix * emix))
 }
 
 /// DMT pull-off force 4 pi gamma R_eff.

@@ -113,3 +113,23 @@ fn unread_peratom_compute_is_no_error() {
                 fix 1 all nve/sphere\ncompute s all stress/atom NULL pair\nthermo_style custom step ke\nthermo 5\nrun 10\n";
     dmhs::deck::run_text("gran.deck", deck, &Default::default()).expect("an unread stress/atom compute is no error");
 }
+
+/// The `fix` term of stress/atom (asked by default, by `fix` and by `virial`): a fix whose
+/// virial counts (fix_modify virial yes) is refused by name, since dmhs tallies no fix virial per
+/// atom; with the term left out, or no such fix, the compute runs (LAMMPS' term is then zero).
+#[test]
+fn stress_atom_fix_term_with_a_fix_virial_is_refused() {
+    let base = "units lj\nboundary f p p\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+                pair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n\
+                fix w all wall/lj93 xlo -1.0 1.0 1.0 2.5 units box\n";
+    let run = |virial: &str, terms: &str| {
+        let deck = format!("{base}{virial}compute s all stress/atom NULL{terms}\ncompute p all reduce sum c_s[1]\nthermo_style custom step c_p\nrun 2\n");
+        dmhs::deck::run_text("stress.deck", &deck, &Default::default()).map(|_| ()).map_err(|f| f.rendered)
+    };
+    for terms in ["", " fix", " virial", " pair fix"] {
+        let e = run("fix_modify w virial yes\n", terms).expect_err(terms);
+        assert!(e.contains("fix w (wall/lj93)") && e.contains("per atom"), "{terms}: {e}");
+        run("", terms).unwrap_or_else(|e| panic!("{terms} without a fix virial: {e}"));
+    }
+    run("fix_modify w virial yes\n", " pair ke").unwrap();
+}

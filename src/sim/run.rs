@@ -258,6 +258,7 @@ impl Simulation {
             step: self.state.step,
             advance,
             dimension: self.state.dimension,
+            newton_pair: self.state.newton_pair,
             sides: self.state.lammps_order.sides(),
         };
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
@@ -426,10 +427,24 @@ impl Simulation {
         self.flush_messages();
         self.setup_forces_stale_vest(vest_before)?;
         self.timers.stamp();
+        let dt = self.state.dt;
         self.fix_hook(|_| true, |f, s, c| f.setup(s, c))?;
+        self.dt_changed(dt)?;
         self.timers.charge(Stage::Modify);
         // lines fixes printed in their setup (fix print)
         self.flush_messages();
+        Ok(())
+    }
+
+    /// A fix (dt/reset) changed dt from `before`: every fix renews what it made from dt (LAMMPS'
+    /// reset_dt calls), or the run stops with its refusal.
+    fn dt_changed(&mut self, before: f64) -> Result<(), RunError> {
+        if self.state.dt == before {
+            return Ok(());
+        }
+        for f in &mut self.fixes {
+            f.reset_dt(&self.state).map_err(|e| RunError::new(self.state.step, e))?;
+        }
         Ok(())
     }
 
@@ -465,7 +480,9 @@ impl Simulation {
         self.timers.stamp();
         self.fix_hook(|h| h.post_force, |f, s, c| f.post_force(s, c))?;
         self.fix_hook(|h| h.final_integrate, |f, s, c| f.final_integrate(s, c))?;
+        let dt = self.state.dt;
         self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
+        self.dt_changed(dt)?;
         self.timers.charge(Stage::Modify);
         if !self.state.messages.is_empty() {
             self.flush_messages();

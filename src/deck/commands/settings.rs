@@ -277,12 +277,16 @@ pub fn timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
     let mut a = Args::new(cmd, "timestep dt");
     let dt = a.f64("dt")?;
     a.finish()?;
-    for f in &sim.fixes {
-        f.reset_dt().map_err(|e| a.error_at(&cmd.name, e, "a fix depends on the timestep"))?;
-    }
+    let old = (sim.state.atime, sim.state.atimestep, sim.state.dt);
     sim.state.atime = sim.state.time();
     sim.state.atimestep = sim.state.step;
     sim.state.dt = dt;
+    for f in &mut sim.fixes {
+        if let Err(e) = f.reset_dt(&sim.state) {
+            (sim.state.atime, sim.state.atimestep, sim.state.dt) = old;
+            return Err(a.error_at(&cmd.name, e, "a fix depends on the timestep"));
+        }
+    }
     sim.state.dt_set = true;
     Ok(())
 }

@@ -4,7 +4,10 @@
 //! bonds, angles and dihedrals summed in that order, then the kinetic term, then the sign and
 //! units; 0 outside the group. Minus the sum of the first three columns over all atoms,
 //! divided by 3V (2V in 2d), is the pressure. dmhs' temperatures have no velocity bias, so a
-//! temp-ID gives the same kinetic term as NULL.
+//! temp-ID gives the same kinetic term as NULL. The `fix` term (also in `virial` and the
+//! default) is the per-atom virial of fixes whose virial counts (`fix_modify virial yes`):
+//! dmhs does not tally those per atom, so such a fix makes the compute an error rather than a
+//! silently smaller stress; with no such fix the term is zero, as in LAMMPS.
 
 use super::pe_atom::{tallies, terms};
 use super::{Compute, PerAtom};
@@ -19,6 +22,8 @@ pub struct ComputeStressAtom {
     /// Virial shares of pair, bond, angle, dihedral.
     terms: [bool; 4],
     ke: bool,
+    /// The fixes' per-atom virials were asked for (`fix`, `virial` or no keyword).
+    fix: bool,
 }
 
 impl ComputeStressAtom {
@@ -33,12 +38,14 @@ impl ComputeStressAtom {
             }
         }
         let any = !a.is_empty();
+        let fix_named = a.remaining().iter().any(|w| w.text == "fix");
         let (mut terms, others) = terms(&mut a, &["ke", "virial"])?;
         let ke = !any || others.contains(&0);
         if others.contains(&1) {
             terms = [true; 4];
         }
-        Ok(ComputeStressAtom { id, groupbit, terms, ke })
+        let fix = !any || fix_named || others.contains(&1);
+        Ok(ComputeStressAtom { id, groupbit, terms, ke, fix })
     }
 }
 
@@ -60,6 +67,14 @@ impl Compute for ComputeStressAtom {
     }
     fn peratom(&self, w: &World) -> Result<PerAtom, String> {
         let s = w.state;
+        if self.fix {
+            if let Some(f) = w.fixes.iter().find(|f| f.thermo_tally().is_some_and(|t| t.virial_on)) {
+                return Err(format!(
+                    "compute {} (stress/atom): fix {} ({}) adds its virial to the pressure (fix_modify virial yes), but dmhs does not tally fix virials per atom; leave `fix` out of the compute's terms (e.g. `pair bond angle dihedral ke`) or the fix's virial off",
+                    self.id, f.id(), f.style()
+                ));
+            }
+        }
         let t = tallies(s, &self.id, "stress/atom")?;
         let a = &s.atoms;
         let (mvv2e, nktv2p) = (s.units.mvv2e, -s.units.nktv2p);

@@ -200,6 +200,12 @@ impl FixLangevin {
         }
         Ok(())
     }
+    /// The random force's factor of type `t` (type masses), from the current dt.
+    fn gfactor2_of(&self, state: &State, t: usize) -> f64 {
+        let u = &state.units;
+        let g = state.type_mass[t].sqrt() * (24.0 * u.boltz / self.period / state.dt / u.mvv2e).sqrt() / u.ftm2v;
+        g * (1.0 / self.ratio[t].sqrt())
+    }
 }
 
 impl Fix for FixLangevin {
@@ -241,9 +247,17 @@ impl Fix for FixLangevin {
             for t in 1..n {
                 let m = state.type_mass[t];
                 self.gfactor1[t] = -m / self.period / u.ftm2v;
-                self.gfactor2[t] = m.sqrt() * (24.0 * u.boltz / self.period / state.dt / u.mvv2e).sqrt() / u.ftm2v;
                 self.gfactor1[t] *= 1.0 / self.ratio[t];
-                self.gfactor2[t] *= 1.0 / self.ratio[t].sqrt();
+                self.gfactor2[t] = self.gfactor2_of(state, t);
+            }
+        }
+        Ok(())
+    }
+    /// The random force's factor depends on dt (LAMMPS' reset_dt renews it).
+    fn reset_dt(&mut self, state: &State) -> Result<(), String> {
+        if !state.atoms.features.per_atom_mass() && self.gfactor2.len() == state.ntypes + 1 {
+            for t in 1..=state.ntypes {
+                self.gfactor2[t] = self.gfactor2_of(state, t);
             }
         }
         Ok(())

@@ -13,6 +13,7 @@ pub mod dmhs_phase;
 pub mod dmhs_diffusion;
 pub mod dmhs_stokes;
 pub mod dmhs_swell;
+pub mod dt_reset;
 pub mod value;
 pub mod deposit;
 pub mod enforce2d;
@@ -304,8 +305,9 @@ pub trait Fix: Send + Sync {
     fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
         None
     }
-    /// `timestep` changes dt after a run (LAMMPS' reset_dt); an error refuses the change.
-    fn reset_dt(&self) -> Result<(), String> {
+    /// dt changed (`timestep` between runs, fix dt/reset during one; LAMMPS' reset_dt): `state`
+    /// has the new dt; a fix renews what it made from dt, or refuses the change with an error.
+    fn reset_dt(&mut self, _state: &State) -> Result<(), String> {
         Ok(())
     }
     /// Free per-atom storage when the fix is deleted.
@@ -424,6 +426,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("dmhs/diffusion", |d, state| Ok(Box::new(dmhs_diffusion::FixDiffusion::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("dmhs/swell", |d, state| Ok(Box::new(dmhs_swell::FixSwell::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("langevin", |d, state| Ok(Box::new(langevin::FixLangevin::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("dt/reset", |d, state| Ok(Box::new(dt_reset::FixDtReset::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("temp/rescale", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

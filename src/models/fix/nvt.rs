@@ -198,6 +198,11 @@ impl Fix for FixNvt {
         self.tdrag_factor = 1.0 - (state.dt * self.t_freq * self.drag / self.nc_tchain as f64);
         Ok(())
     }
+    /// The drag factor depends on dt (LAMMPS' FixNH::reset_dt).
+    fn reset_dt(&mut self, state: &State) -> Result<(), String> {
+        self.tdrag_factor = 1.0 - (state.dt * self.t_freq * self.drag / self.nc_tchain as f64);
+        Ok(())
+    }
     fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         self.t_current = self.temp.compute(state);
         self.tdof = self.temp.dof;

@@ -386,7 +386,7 @@ impl Fix for FixPour {
         }
         Ok(())
     }
-    fn reset_dt(&self) -> Result<(), String> {
+    fn reset_dt(&mut self, _state: &State) -> Result<(), String> {
         match self.announced {
             true => Err("Cannot change timestep with fix pour".into()),
             false => Ok(()),

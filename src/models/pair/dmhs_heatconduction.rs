@@ -181,6 +181,7 @@ mod tests {
             step: 0,
             advance: true,
             dimension: 3,
+            newton_pair: true,
             sides: None,
         };
         let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![], peratom: None };

@@ -146,6 +146,9 @@ pub struct PairInput<'a> {
     /// False during run setup (LAMMPS' `shearupdate`: contact histories are not advanced).
     pub advance: bool,
     pub dimension: usize,
+    /// `newton_pair on`: LAMMPS' global virial is then F dot r of the forces (virial_fdotr),
+    /// which differs from the pairs' ev_tally for a force not along the pair (Morris viscosity).
+    pub newton_pair: bool,
     /// Which atom of a pair LAMMPS lists it from, as of the last rebuild.
     pub sides: Option<&'a crate::engine::lammps_order::ListSides>,
 }

@@ -551,6 +551,10 @@ pub trait SphKernel: Sync {
     fn rates(&self) -> [Option<Rate>; 2] {
         [Some(Rate::Density), Some(Rate::Energy)]
     }
+    /// Whether the force is along the pair (`f = fpair del`). A style whose force is not (Morris
+    /// viscosity, along v_ij) tallies the global virial from its whole force under newton on,
+    /// as LAMMPS' F dot r does; its per-atom virial stays ev_tally's fpair.
+    const CENTRAL: bool = true;
 }
 
 #[cfg(test)]

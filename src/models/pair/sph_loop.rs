@@ -336,7 +336,11 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                     for l in 0..n {
                         let w = if js[l] < nlocal { 1.0 } else { 0.5 };
                         let d: [f64; 3] = std::array::from_fn(|k| if k < D { b.del[k][l] } else { 0.0 });
-                        t.central(w, 0.0, d, c.fpair[l]);
+                        if K::CENTRAL || !input.newton_pair {
+                            t.central(w, 0.0, d, c.fpair[l]);
+                        } else {
+                            t.xyz(w, d, std::array::from_fn(|k| if k < D { c.f[k][l] } else { 0.0 }));
+                        }
                         if record {
                             shares.push(PairShare::central(i, js[l], 0.0, d, c.fpair[l]));
                         }

@@ -38,6 +38,8 @@ impl SphTaitwaterMorris {
 }
 
 impl SphKernel for SphTaitwaterMorris {
+    /// The viscous force is along v_ij.
+    const CENTRAL: bool = false;
     /// a = rho, b = the Tait P/rho^2.
     #[inline(always)]
     fn pack(&self, input: &PairInput, i: usize) -> Packed {

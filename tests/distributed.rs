@@ -510,3 +510,29 @@ fn a_langevin_fluid_on_two_ranks_keeps_its_temperature() {
         }
     }
 }
+
+/// The thermo values that sum or pick over the group's atoms: compute com, reduce (sum, ave,
+/// min, max of attributes and of property/atom), and the group functions; the melt's atoms
+/// cross the periodic faces and change rank, so com unwraps with image flags on every rank.
+#[test]
+fn centres_of_mass_reductions_and_group_functions_on_ranks_are_the_serial_ones() {
+    let deck = MELT
+        .replace(
+            "thermo_style custom step temp epair emol etotal press atoms\n",
+            "region       half block 0 3 INF INF INF INF units lattice\n\
+             group        half region half\n\
+             compute      cm half com\n\
+             compute      xu all property/atom xu vy\n\
+             compute      lo all reduce min c_xu[1] y\n\
+             compute      hi half reduce max c_xu[1] vz\n\
+             compute      av all reduce ave vx c_xu[2]\n\
+             compute      sq half reduce sumsq vx\n\
+             variable     bx equal bound(all,xmax)-bound(half,ymin)\n\
+             variable     g equal xcm(half,x)+vcm(half,y)+count(half)+mass(half)+fcm(all,z)+gyration(half)+ke(half)\n\
+             thermo_style custom step temp c_cm[1] c_cm[2] c_cm[3] c_lo[1] c_lo[2] c_hi[1] c_hi[2] c_av[1] c_av[2] c_sq v_bx v_g\n\
+             thermo_modify format float %.15g\n",
+        )
+        .replace("check no\n", "check yes\n");
+    compare(&deck, 2);
+    compare(&deck, 4);
+}

@@ -228,6 +228,18 @@ impl State {
             d.comm.sum(v);
         }
     }
+    /// The largest of `v` over the ranks of a distributed run, element by element.
+    pub fn max_ranks(&self, v: &mut [f64]) {
+        if let (Some(d), Some(_)) = (&self.decomp, self.distributed) {
+            d.comm.max(v);
+        }
+    }
+    /// The least of `v` over the ranks of a distributed run, element by element.
+    pub fn min_ranks(&self, v: &mut [f64]) {
+        if let (Some(d), Some(_)) = (&self.decomp, self.distributed) {
+            d.comm.min(v);
+        }
+    }
     /// A per-rank quantity needed whole (group functions, per-atom lookups) that dmhs does not
     /// gather during a distributed run yet.
     pub fn whole_system(&self, what: &str) -> Result<(), String> {
@@ -281,19 +293,21 @@ impl State {
     /// Center of mass (unwrapped) and total mass of a group.
     pub fn group_xcm(&self, bit: u32) -> ([f64; 3], f64) {
         let a = &self.atoms;
-        let mut c = [0.0; 3];
-        let mut m = 0.0;
-        let Some(d) = self.domain.as_ref() else { return (c, 0.0) };
+        let Some(d) = self.domain.as_ref() else { return ([0.0; 3], 0.0) };
+        // the moments and the mass, summed over the ranks before the division
+        let mut s = [0.0; 4];
         for i in 0..a.nlocal {
             if a.mask[i] & bit != 0 {
                 let mi = self.mass(i);
                 let u = d.unmap(a.x[i], a.image[i]);
                 for k in 0..3 {
-                    c[k] += u[k] * mi;
+                    s[k] += u[k] * mi;
                 }
-                m += mi;
+                s[3] += mi;
             }
         }
+        self.sum_ranks(&mut s);
+        let (mut c, m) = ([s[0], s[1], s[2]], s[3]);
         if m > 0.0 {
             for v in &mut c {
                 *v /= m;
@@ -304,17 +318,18 @@ impl State {
 
     pub fn group_vcm(&self, bit: u32) -> [f64; 3] {
         let a = &self.atoms;
-        let mut p = [0.0; 3];
-        let mut m = 0.0;
+        let mut s = [0.0; 4];
         for i in 0..a.nlocal {
             if a.mask[i] & bit != 0 {
                 let mi = self.mass(i);
                 for k in 0..3 {
-                    p[k] += a.v[i][k] * mi;
+                    s[k] += a.v[i][k] * mi;
                 }
-                m += mi;
+                s[3] += mi;
             }
         }
+        self.sum_ranks(&mut s);
+        let (mut p, m) = ([s[0], s[1], s[2]], s[3]);
         if m > 0.0 {
             for v in &mut p {
                 *v /= m;

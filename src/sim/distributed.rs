@@ -17,7 +17,7 @@ const PAIRS: &[&str] = &[
     "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular",
 ];
 const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran"];
-const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom"];
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
@@ -76,6 +76,8 @@ impl Simulation {
             Some(format!("fix_modify energy/virial yes (fix {})", f.id()))
         } else if let Some(c) = self.computes.iter().find(|c| !COMPUTES.contains(&c.style())) {
             Some(format!("compute {} ({})", c.id(), c.style()))
+        } else if let Some((c, (fix, id))) = self.computes.iter().find_map(|c| c.reads().into_iter().find(|r| !self.reads_on_ranks(r)).map(|r| (c, r))) {
+            Some(format!("compute {} ({}) of {} {id}", c.id(), c.style(), if fix { "fix" } else { "compute" }))
         } else if let Some(d) = self.dumps.iter().find(|d| d.reads_models()) {
             Some(format!("dump {} (it writes values of computes or fixes)", d.id))
         } else if self.state.boundary.iter().flatten().any(|b| !matches!(b, crate::engine::domain::BoundaryKind::Periodic | crate::engine::domain::BoundaryKind::Fixed)) {
@@ -88,6 +90,16 @@ impl Simulation {
             PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
         );
         what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
+    }
+
+    /// Whether a compute may read compute or fix `id` on ranks: one of the allowed computes
+    /// with per-atom values (local rows are per rank) or one of the allowed fixes.
+    fn reads_on_ranks(&self, (fix, id): &(bool, String)) -> bool {
+        if *fix {
+            self.fixes.iter().any(|f| f.id() == id && FIXES.contains(&f.style()) && f.local().is_none())
+        } else {
+            self.computes.iter().any(|c| c.id() == id && COMPUTES.contains(&c.style()) && c.local_cols().is_none())
+        }
     }
 
     /// What a run on `n` ranks would do with the atoms there are now (`dmhs check --ranks N`):

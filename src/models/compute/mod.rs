@@ -244,6 +244,10 @@ pub trait Compute: Send + Sync {
     fn uses_peratom_tally(&self) -> bool {
         false
     }
+    /// The computes and fixes whose values this one reads: (is a fix, ID).
+    fn reads(&self) -> Vec<(bool, String)> {
+        Vec::new()
+    }
     /// A compute chunk/atom (read by fix ave/chunk); None for other computes.
     fn as_chunk(&self) -> Option<&chunk_atom::ComputeChunkAtom> {
         None
@@ -321,7 +325,6 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
         return None;
     }
     Some((|| {
-        state.whole_system(&format!("the group function {name}()"))?;
         let g = args.first().ok_or_else(|| format!("{name}() needs a group ID"))?;
         let bit = state.group_bit(g)?;
         let a = &state.atoms;
@@ -331,6 +334,12 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
             _ => None,
         };
         let members = (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0);
+        // a sum over this rank's atoms, summed over the ranks of a distributed run
+        let summed = |x: f64| {
+            let mut v = [x];
+            state.sum_ranks(&mut v);
+            v[0]
+        };
         let dim_of = |k: usize| -> Result<usize, String> {
             match args.get(k).map(|s| s.as_str()) {
                 Some("x") => Ok(0),
@@ -341,21 +350,21 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
         };
         Ok(match name {
             "count" => match region {
-                Some(r) => members.filter(|&i| r.matches(a.x[i])).count() as f64,
+                Some(r) => summed(members.filter(|&i| r.matches(a.x[i])).count() as f64),
                 None => state.group_count(bit) as f64,
             },
-            "mass" => members.filter(|&i| region.is_none_or(|r| r.matches(a.x[i]))).map(|i| state.mass(i)).sum(),
+            "mass" => summed(members.filter(|&i| region.is_none_or(|r| r.matches(a.x[i]))).map(|i| state.mass(i)).sum()),
             "charge" => {
                 if !a.features.charge {
                     return Err("charge() needs an atom style with charges".into());
                 }
-                members.map(|i| a.q[i]).sum()
+                summed(members.map(|i| a.q[i]).sum())
             }
             "xcm" => state.group_xcm(bit).0[dim_of(1)?],
             "vcm" => state.group_vcm(bit)[dim_of(1)?],
             "fcm" => {
                 let d = dim_of(1)?;
-                members.map(|i| a.f[i][d]).sum()
+                summed(members.map(|i| a.f[i][d]).sum())
             }
             "ke" => state.kinetic_energy(bit),
             "gyration" => {
@@ -367,6 +376,7 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
                     let d = [u[0] - c[0], u[1] - c[1], u[2] - c[2]];
                     rg += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * state.mass(i);
                 }
+                let rg = summed(rg);
                 if m > 0.0 { (rg / m).sqrt() } else { 0.0 }
             }
             "bound" => {
@@ -381,7 +391,9 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
                     _ => return Err("bound() needs xmin, xmax, ymin, ymax, zmin or zmax".into()),
                 };
                 let vals = members.map(|i| a.x[i][d]);
-                if max { vals.fold(f64::NEG_INFINITY, f64::max) } else { vals.fold(f64::INFINITY, f64::min) }
+                let mut b = [if max { vals.fold(f64::NEG_INFINITY, f64::max) } else { vals.fold(f64::INFINITY, f64::min) }];
+                if max { state.max_ranks(&mut b) } else { state.min_ranks(&mut b) }
+                b[0]
             }
             _ => unreachable!(),
         })

@@ -2,6 +2,7 @@
 //! of per-atom quantities over a group; a scalar for one input, a vector for several.
 
 use super::{property::Field, Compute};
+use crate::engine::state::State;
 use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -107,20 +108,29 @@ impl ComputeReduce {
             }
             Input::Local(r) => r.rows(w, None)?.iter().map(|row| r.get(row)).collect(),
         };
-        let n = values.len() as f64;
+        // this rank's reduction, then the ranks' (a distributed run; local rows are whole)
+        let state = w.state;
+        let ranks = !matches!(input, Input::Local(_));
         let sum = |g: fn(f64) -> f64| values.iter().fold(0.0, |s, &v| s + g(v));
+        let across = |mut v: [f64; 2], f: fn(&State, &mut [f64])| {
+            if ranks {
+                f(state, &mut v);
+            }
+            v
+        };
         Ok(match self.mode {
-            Mode::Sum => sum(|v| v),
-            Mode::SumSq => sum(|v| v * v),
-            Mode::SumAbs => sum(f64::abs),
-            Mode::Min => values.iter().fold(BIG, |m, &v| if v < m { v } else { m }),
-            Mode::Max => values.iter().fold(-BIG, |m, &v| if v > m { v } else { m }),
+            Mode::Sum => across([sum(|v| v), 0.0], State::sum_ranks)[0],
+            Mode::SumSq => across([sum(|v| v * v), 0.0], State::sum_ranks)[0],
+            Mode::SumAbs => across([sum(f64::abs), 0.0], State::sum_ranks)[0],
+            Mode::Min => across([values.iter().fold(BIG, |m, &v| if v < m { v } else { m }), 0.0], State::min_ranks)[0],
+            Mode::Max => across([values.iter().fold(-BIG, |m, &v| if v > m { v } else { m }), 0.0], State::max_ranks)[0],
             Mode::Ave | Mode::AveSq | Mode::AveAbs => {
                 let s = match self.mode {
                     Mode::Ave => sum(|v| v),
                     Mode::AveSq => sum(|v| v * v),
                     _ => sum(f64::abs),
                 };
+                let [s, n] = across([s, values.len() as f64], State::sum_ranks);
                 if n > 0.0 { s / n } else { s }
             }
         })
@@ -148,6 +158,16 @@ impl Compute for ComputeReduce {
             return Err(format!("compute {} has a single input: it is a scalar, use c_{}", self.id, self.id));
         }
         self.inputs.iter().map(|inp| self.reduce_one(w, inp)).collect()
+    }
+    fn reads(&self) -> Vec<(bool, String)> {
+        self.inputs
+            .iter()
+            .filter_map(|inp| match inp {
+                Input::Attr(_) => None,
+                Input::PerAtom(r) => Some((r.fix, r.id.clone())),
+                Input::Local(r) => Some((r.fix, r.id.clone())),
+            })
+            .collect()
     }
     /// Sums are extensive, minima, maxima and averages are not (as LAMMPS).
     fn extensive(&self, _index: Option<usize>) -> bool {

@@ -9,8 +9,9 @@
 
 use dmhs::deck::{run_file, DeckOptions, DeckRun};
 use dmhs::tools::validate::parse_thermo;
-use std::collections::HashMap;
 use std::path::Path;
+
+mod scene_common;
 
 fn run_lava(vars: &[(&str, &str)]) -> DeckRun {
     let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/lava/in.lava");
@@ -45,32 +46,9 @@ fn surface_and_bulk(r: &DeckRun) -> (usize, usize, usize, usize) {
     out
 }
 
-/// Crust fragments: groups of solid particles held together by bonds (connected components of the
-/// bond graph) with at least `min` particles. Bonds form only between solid particles, so a
-/// fragment is a piece of crust; a crack that runs through the crust splits one into two.
+/// Crust fragments (bonded groups of solid lava) of at least `min` particles, largest first.
 fn fragments(r: &DeckRun, min: usize) -> Vec<usize> {
-    let a = &r.sim.state.atoms;
-    let index: HashMap<i64, usize> = (0..a.nlocal).map(|i| (a.tag[i], i)).collect();
-    let mut parent: Vec<usize> = (0..a.nlocal).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
-    for b in &r.sim.state.topo.bonds {
-        let (i, j) = (index[&b.atoms[0]], index[&b.atoms[1]]);
-        let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
-        parent[ri] = rj;
-    }
-    let mut size: HashMap<usize, usize> = HashMap::new();
-    for i in (0..a.nlocal).filter(|&i| a.typ[i] == SOLID) {
-        *size.entry(root(&mut parent, i)).or_default() += 1;
-    }
-    let mut s: Vec<usize> = size.into_values().filter(|&n| n >= min).collect();
-    s.sort_unstable_by(|x, y| y.cmp(x));
-    s
+    scene_common::fragments(r, SOLID, min)
 }
 
 struct Report {
@@ -82,6 +60,17 @@ struct Report {
     /// seconds after the gate opened when the flow front (the lava farthest down the slope,
     /// `c_front`) passed 2 m (1 m below the gate), interpolated between thermo samples
     front: Option<f64>,
+    /// (time, thermo column) pairs: `v_crust` (crust thickness of the deep end, m) and `c_front`
+    /// (the front's x, m)
+    crust: Vec<(f64, f64)>,
+    xfront: Vec<(f64, f64)>,
+}
+
+/// The value of `series` at time `at` (a thermo sample), checked against `want` within `tol`.
+fn check_at(series: &[(f64, f64)], what: &str, at: f64, want: f64, tol: f64) {
+    let v = series.iter().find(|(t, _)| (t - at).abs() < 1e-6).unwrap_or_else(|| panic!("no {what} sample at {at} s")).1;
+    println!("{what} at {at} s: {v} (measured {want} +- {tol})");
+    assert!((v - want).abs() <= tol, "{what} at {at} s: {v}, measured {want} +- {tol}");
 }
 
 /// The gate opens after this many seconds of rest (the deck's tcrust).
@@ -110,7 +99,8 @@ fn report(r: &DeckRun) -> Report {
         pieces,
         front
     );
-    Report { fsurf, fbulk, broken: last("f_brk[2]"), pieces, front }
+    let series = |c: &str| time.iter().copied().zip(column(c)).collect::<Vec<_>>();
+    Report { fsurf, fbulk, broken: last("f_brk[2]"), pieces, front, crust: series("v_crust"), xfront: series("c_front") }
 }
 
 #[test]
@@ -121,6 +111,14 @@ fn lava_crust_forms_at_the_free_surface() {
     assert!(rest.fsurf > rest.fbulk + 0.2, "crust: surface {} against bulk {}", rest.fsurf, rest.fbulk);
     assert_eq!(rest.broken, 0.0);
     assert!(rest.pieces.len() >= 2 && rest.pieces[0] >= 40, "crust fragments {:?}", rest.pieces);
+    // crust thickness of the deep end against time (Fig 12): solid area per surface length of
+    // the columns 0.05 to 0.30 m before the gate. Measured 0 up to 60 s, then 0.0022, 0.0043 and
+    // 0.026 m (one layer) at 80, 100 and 120 s, the same at half the heat time step (dth 0.025 s)
+    // and in the full variant (dth 0.01 s); tolerance one particle, dx^2 / 0.289 m = 0.0022 m
+    let dx2 = 0.025 * 0.025 / (0.25 / 0.8660254);
+    for (at, want) in [(60.0, 0.0), (80.0, 0.0022), (100.0, 0.0043), (120.0, 0.026)] {
+        check_at(&rest.crust, "crust thickness", at, want, dx2 + 1e-4);
+    }
 }
 
 /// The gate opens and the lava runs 1 s down the slope, carrying its crust. With the paper's
@@ -134,6 +132,12 @@ fn lava_flow_carries_the_crust_and_friction_slows_the_front() {
     assert!(flow.pieces.len() >= 2 && flow.pieces[0] >= 40, "crust fragments {:?}", flow.pieces);
     let front = flow.front.expect("the front never reached 2 m");
     assert!(front < 0.6, "front at 2 m only {front} s after the gate opened");
+    // the front against time after the gate opened: measured 1.252, 1.521, 1.863, 2.052 m at
+    // 0.22, 0.32, 0.42, 0.47 s (half the time step, dt 1e-4 s: 1.253, 1.522, 1.863, 2.074);
+    // tolerance 0.03 m, the largest difference plus 0.008 m
+    for (at, want) in [(0.22, 1.252), (0.32, 1.521), (0.42, 1.863), (0.47, 2.052)] {
+        check_at(&flow.xfront, "front", TCRUST + at, want, 0.03);
+    }
     // without the tangential spring (gran/hooke's damping only) the front is faster (measured
     // 0.42 s)
     let free = report(&run_lava(&[("quick", "1"), ("tspring", "0")]));

@@ -536,3 +536,20 @@ fn centres_of_mass_reductions_and_group_functions_on_ranks_are_the_serial_ones()
     compare(&deck, 2);
     compare(&deck, 4);
 }
+
+/// Bonds breaking across rank boundaries (fix bond/break, its angles and dihedrals taken along):
+/// every rank removes the same bonds at the same steps, so the special lists, the bonded
+/// lists and the thermo stay the serial run's.
+#[test]
+fn bonds_breaking_across_ranks_break_as_in_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97")
+        .replace("velocity     all create 1.0", "velocity     all create 2.5")
+        .replace("fix          1 all nve\n", "fix          1 all nve\nfix          brk all bond/break 5 1 1.1\n")
+        .replace("thermo_style custom step temp epair ebond eangle edihed etotal press atoms", "thermo_style custom step temp epair ebond eangle edihed etotal press f_brk[1] f_brk[2] bonds angles dihedrals");
+    let (text, _) = serial(&deck);
+    let broken = thermo_rows(&text).last().map(|r| r[9]).unwrap_or(0.0);
+    assert!((20.0..300.0).contains(&broken), "bonds broken in the serial run: {broken}\n{text}");
+    compare(&deck, 2);
+    compare(&deck, 4);
+}

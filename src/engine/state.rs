@@ -240,6 +240,20 @@ impl State {
             d.comm.min(v);
         }
     }
+    /// Every rank's `v`, joined in rank order (a distributed run; otherwise `v` itself).
+    pub fn allgather_ranks(&self, v: Vec<f64>) -> Vec<f64> {
+        match (&self.decomp, self.distributed) {
+            (Some(d), Some(_)) => d.comm.allgather(v).concat(),
+            _ => v,
+        }
+    }
+    /// Fresh ghost positions in a distributed run, where ghosts are copies sent by other ranks
+    /// (serial ghosts are not read between rebuilds: owned atoms are taken at a shift instead).
+    pub fn forward_positions_ranks(&mut self) {
+        if let (Some(d), Some(_), Some(domain)) = (&self.decomp, self.distributed, &self.domain) {
+            d.forward_positions(&mut self.atoms, domain);
+        }
+    }
     /// A per-rank quantity needed whole (group functions, per-atom lookups) that dmhs does not
     /// gather during a distributed run yet.
     pub fn whole_system(&self, what: &str) -> Result<(), String> {
@@ -359,7 +373,18 @@ impl State {
             let bonds: Vec<[i64; 2]> = self.topo.bonds.iter().map(|b| b.atoms).collect();
             let angles: Vec<[i64; 3]> = self.topo.angles.iter().map(|a| a.atoms).collect();
             let dihedrals: Vec<[i64; 4]> = self.topo.dihedrals.iter().map(|d| d.atoms).collect();
-            let ids = &self.atoms.tag[..self.atoms.nlocal];
+            // a rank of a distributed run holds only some atoms: the lists of every atom the
+            // topology names (the others have none), as every rank holds the whole topology
+            let named: Vec<i64>;
+            let ids = if self.distributed.is_some() {
+                let mut t: Vec<i64> = bonds.iter().flatten().chain(angles.iter().flatten()).chain(dihedrals.iter().flatten()).copied().collect();
+                t.sort_unstable();
+                t.dedup();
+                named = t;
+                &named[..]
+            } else {
+                &self.atoms.tag[..self.atoms.nlocal]
+            };
             let (lists, _stats) = build_special(&self.special_bonds, ids, SpecialTopology { bonds: &bonds, angles: &angles, dihedrals: &dihedrals })?;
             let symmetric = !self.special_bonds.angle && !self.special_bonds.dihedral;
             self.special_table = SpecialTable::from_lists(ids, lists, flags, symmetric);

@@ -114,7 +114,11 @@ impl Simulation {
     pub(crate) fn rebuild_at(&mut self, setup: bool) -> Result<Vec<usize>, RunError> {
         let step = self.state.step;
         if self.state.special_dirty {
-            self.state.rebuild_special().map_err(|e| RunError::new(step, e))?;
+            // every rank of a distributed run changed the same topology: they agree here
+            let special = self.state.rebuild_special().map_err(|e| RunError::new(step, e));
+            self.agree(special)?;
+            // the record indices of a distributed run's index moved with the topology
+            self.state.stored_on = None;
         }
         let Some(domain) = self.state.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
         self.state.atoms.clear_ghosts();

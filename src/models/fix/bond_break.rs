@@ -62,6 +62,20 @@ pub fn mutual_partners(a: &crate::engine::atoms::Atoms, partner: &[i64], fractio
     pairs
 }
 
+/// The pairs of atoms (lower ID first, in ID order) whose choices (`choice[t]` = (partner,
+/// r^2)) name each other, as [`mutual_partners`] pairs owned atoms; below `fraction` 1 each is
+/// kept when the random number of its lower-ID atom is below `fraction`, one number drawn per
+/// atom with a choice, in ID order.
+pub fn mutual_choices(choice: &std::collections::BTreeMap<i64, (i64, f64)>, fraction: f64, random: &mut RanPark) -> Vec<(i64, i64)> {
+    let probability: HashMap<i64, f64> = if fraction < 1.0 { choice.keys().map(|&t| (t, random.uniform())).collect() } else { HashMap::new() };
+    choice
+        .iter()
+        .filter(|&(&t, &(p, _))| t < p && choice.get(&p).is_some_and(|c| c.0 == t))
+        .filter(|&(t, _)| fraction >= 1.0 || probability[t] < fraction)
+        .map(|(&t, &(p, _))| (t, p))
+        .collect()
+}
+
 pub const SYNTAX: &str = "fix ID group bond/break Nevery bondtype Rmax [prob fraction seed]";
 pub const DMHS_SYNTAX: &str = "fix ID group dmhs/bond/break Nevery bondtype Rmax [temp Tmax] [prob fraction seed]";
 
@@ -199,16 +213,18 @@ impl Fix for FixBondBreak {
         if state.step % self.nevery != 0 {
             return Ok(());
         }
+        // the ghosts of a distributed run at this step's positions (LAMMPS forwards them here)
+        state.forward_positions_ranks();
         let prd = state.domain.as_ref().unwrap().prd();
         let a = &state.atoms;
-        let n = a.nlocal;
-        let mut partner = vec![0i64; n];
-        let mut distsq = vec![0.0f64; n];
         let mut hot_bonds: Vec<(i64, i64)> = vec![];
         let temp = |i: usize| a.esph[i] / a.cv[i];
         let lists = &state.bonded_lists.bonds;
         let mut longest_sq: f64 = 0.0;
-        // bonds in list order: chunk entries, then the ones across periodic faces
+        // the bonds longer than Rmax, as (tag, tag, r^2), in list order: chunk entries, then
+        // the ones across periodic faces; a distributed run's ranks each list the bonds they
+        // compute, and every rank then reads all of them in rank order
+        let mut candidates: Vec<f64> = vec![];
         for e in lists.entries.iter().chain(&lists.leftover) {
             if e.typ != self.btype {
                 continue;
@@ -228,22 +244,28 @@ impl Fix for FixBondBreak {
             let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
             let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
             longest_sq = longest_sq.max(rsq);
-            if rsq <= self.cutsq {
-                continue;
-            }
-            if rsq > distsq[i1] {
-                partner[i1] = a.tag[i2];
-                distsq[i1] = rsq;
-            }
-            if rsq > distsq[i2] {
-                partner[i2] = a.tag[i1];
-                distsq[i2] = rsq;
+            if rsq > self.cutsq {
+                candidates.extend([a.tag[i1] as f64, a.tag[i2] as f64, rsq]);
             }
         }
-        let mut broken: Vec<(i64, i64)> = mutual_partners(a, &partner, self.fraction, &mut self.random).into_iter().map(|(i, j)| (a.tag[i], a.tag[j])).collect();
+        let candidates = state.allgather_ranks(candidates);
+        // each atom's longest candidate (the first of equal lengths), by atom ID
+        let mut choice: std::collections::BTreeMap<i64, (i64, f64)> = Default::default();
+        for c in candidates.chunks_exact(3) {
+            let (t1, t2, rsq) = (c[0] as i64, c[1] as i64, c[2]);
+            for (t, other) in [(t1, t2), (t2, t1)] {
+                let e = choice.entry(t).or_insert((0, 0.0));
+                if rsq > e.1 {
+                    *e = (other, rsq);
+                }
+            }
+        }
+        let mut broken = mutual_choices(&choice, self.fraction, &mut self.random);
         broken.extend(hot_bonds);
         self.breakcount = broken.len();
-        self.longest = longest_sq.sqrt();
+        let mut longest = [longest_sq];
+        state.max_ranks(&mut longest);
+        self.longest = longest[0].sqrt();
         self.longest_ever = self.longest_ever.max(self.longest);
         self.breakcounttotal += broken.len();
         for &(p, q) in &broken {

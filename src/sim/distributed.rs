@@ -16,7 +16,7 @@ const PAIRS: &[&str] = &[
     "lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction",
     "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular",
 ];
-const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break"];
+const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom"];
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
 const ANGLES: &[&str] = &["harmonic"];

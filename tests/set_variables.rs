@@ -94,3 +94,34 @@ fn errors_are_located_with_lammps_words() {
     let e = error("variable d atom normal(1.0,0.1,-3)\nset group all diameter v_d\n");
     assert!(e.contains("Invalid math function in variable formula"), "{e}");
 }
+
+/// `fix wall/gran ... contacts` (LAMMPS' per-atom array: flag, force, contact point, radius;
+/// zero away from the wall) and `group ID variable V` selecting the atoms where V is not zero,
+/// as in.chute uses them (bit-identical to LAMMPS there: docs/validation.md).
+#[test]
+fn wall_contacts_feed_a_group_variable() {
+    let deck = "units lj\natom_style sphere\nboundary p f p\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\n\
+                create_atoms 1 single 1 0.45 1\ncreate_atoms 1 single 2 2 2\nset group all diameter 1.0\n\
+                fix wall all wall/gran granular hooke 10.0 0.5 tangential linear_history 1.0 0.5 0.1 yplane 0.0 NULL contacts\n\
+                run 0\nvariable touch atom f_wall[1]>0\ngroup floor variable touch\n";
+    let sim = run_text("contacts-test", deck, &DeckOptions::default()).map_err(|f| f.rendered).unwrap().sim;
+    let fix = sim.fixes.iter().find(|f| f.id() == "wall").unwrap();
+    assert_eq!(fix.peratom_cols(), Some(8));
+    let p = fix.peratom(&sim.state).unwrap();
+    let a = &sim.state.atoms;
+    let floor = sim.state.groups.bit("floor").unwrap();
+    for i in 0..a.nlocal {
+        let row: Vec<f64> = (0..8).map(|c| p.get(i, c)).collect();
+        if a.tag[i] == 1 {
+            // Hooke: k * overlap along +y, at the foot of the sphere on the plane
+            assert!((row[2] - 10.0 * (0.5 - 0.45)).abs() < 1e-12, "{row:?}");
+            assert_eq!([row[0], row[1], row[3], row[4], row[5], row[6], row[7]], [1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.5]);
+            assert!(a.mask[i] & floor != 0);
+        } else {
+            assert_eq!(row, vec![0.0; 8]);
+            assert!(a.mask[i] & floor == 0);
+        }
+    }
+    let e = error("variable t equal 1\ngroup g variable t\n");
+    assert!(e.contains("Variable t for group is invalid style"), "{e}");
+}

@@ -168,6 +168,12 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
                 })
                 .collect()
         }
+        "variable" => {
+            // the atoms whose value is not zero (LAMMPS)
+            let w = a.word("atom-style variable name")?;
+            a.finish()?;
+            atom_variable_values(sim, w, &w.text, "group")?.iter().map(|&v| v != 0.0).collect()
+        }
         "clear" => {
             a.finish()?;
             for m in &mut sim.state.atoms.mask {
@@ -180,8 +186,8 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
             vec![false; n]
         }
         other => {
-            let known = ["type", "id", "molecule", "region", "subtract", "union", "intersect", "delete", "clear", "empty", "dynamic", "static"];
-            let msg = if ["variable", "include"].contains(&other) {
+            let known = ["type", "id", "molecule", "region", "variable", "subtract", "union", "intersect", "delete", "clear", "empty", "dynamic", "static"];
+            let msg = if ["include"].contains(&other) {
                 format!("group style `{other}` is a LAMMPS style that dmhs does not support yet")
             } else {
                 format!("unknown group style `{other}`")
@@ -532,17 +538,23 @@ fn set_value<'c>(sim: &mut Simulation, a: &mut Args<'c>, what: &str, syntax: &st
     let Some(name) = w.text.strip_prefix("v_") else {
         return word_f64(w, what).map(|x| (w, SetValue::One(x))).map_err(|d| d.with_help(format!("syntax: {syntax}")));
     };
+    let v = atom_variable_values(sim, w, name, "set command")?;
+    Ok((w, SetValue::PerAtom(v)))
+}
+
+/// The values of atom-style variable `name` (named at `w`) over every owned atom, for command
+/// `what` (set, group): LAMMPS' errors for a missing variable or another style.
+fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, what: &str) -> DResult<Vec<f64>> {
     match sim.variables.style(name) {
         Some("atom") => {}
-        None => return Err(a.error_at(w, format!("Variable name {} for set command does not exist", w.text), "no such variable").with_help(format!("define it first: variable {name} atom FORMULA"))),
+        None => return Err(Diagnostic::at(w.span, format!("Variable name {} for {what} does not exist", w.text), "no such variable").with_help(format!("define it first: variable {name} atom FORMULA"))),
         Some(style) => {
-            return Err(a.error_at(w, format!("Variable {} for set command is invalid style", w.text), format!("an {style}-style variable")).with_help("set takes atom-style variables only (as LAMMPS); for one value for all atoms use $(v_name) or ${name}"))
+            return Err(Diagnostic::at(w.span, format!("Variable {} for {what} is invalid style", w.text), format!("an {style}-style variable")).with_help(format!("{what} takes atom-style variables only (as LAMMPS)")))
         }
     }
     let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
-    let v = crate::models::atom_formula::atom_variable_drawing(name, &world, &mut ev, Some(&mut sim.random_atom)).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))?;
-    Ok((w, SetValue::PerAtom(v)))
+    crate::models::atom_formula::atom_variable_drawing(name, &world, &mut ev, Some(&mut sim.random_atom)).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
 }
 
 /// LAMMPS' error for a value it refuses, at the value's word (and the atom, for a variable).

@@ -50,7 +50,7 @@ pub fn field_value(atoms: &Atoms, f: Field, i: usize) -> f64 {
 
 /// `set ... dmhs/conc c` (w = c m / rho, with the current density and type mass) or
 /// `set ... dmhs/water w`, on the selected owned atoms. Errors name the atom that cannot take it.
-pub fn set(atoms: &mut Atoms, type_mass: &[f64], mass_set: &[bool], selected: &[bool], keyword: &str, value: f64) -> Result<(), String> {
+pub fn set(atoms: &mut Atoms, type_mass: &[f64], mass_set: &[bool], selected: &[bool], keyword: &str, value: &dyn Fn(usize) -> f64) -> Result<(), String> {
     if !atoms.features.sph {
         return Err(format!("set {keyword} needs an atom style with SPH attributes (the concentration closure c = w rho/m uses the SPH density)"));
     }
@@ -65,9 +65,9 @@ pub fn set(atoms: &mut Atoms, type_mass: &[f64], mass_set: &[bool], selected: &[
             if atoms.rho[i] <= 0.0 {
                 return Err(format!("set dmhs/conc: atom {} has density {} (w = c m/rho needs rho > 0: set sph/rho first)", atoms.tag[i], atoms.rho[i]));
             }
-            value * type_mass[t] / atoms.rho[i]
+            value(i) * type_mass[t] / atoms.rho[i]
         } else {
-            value
+            value(i)
         };
         atoms.extra[k].data[i] = w;
     }
@@ -96,11 +96,11 @@ mod tests {
         n.rho = 1800.0;
         a.push(&n);
         let mass = [0.0, 2.0];
-        set(&mut a, &mass, &[false, true], &[true], "dmhs/conc", 0.3).unwrap();
+        set(&mut a, &mass, &[false, true], &[true], "dmhs/conc", &|_| 0.3).unwrap();
         assert_eq!(water(&a).unwrap()[0], 0.3 * 2.0 / 1800.0);
         assert!((conc(&a, &mass, 0) - 0.3).abs() < 1e-15);
-        assert!(set(&mut a, &mass, &[false, false], &[true], "dmhs/conc", 0.3).unwrap_err().contains("mass of atom type 1"));
-        set(&mut a, &mass, &[false, false], &[true], "dmhs/water", 5.0).unwrap();
+        assert!(set(&mut a, &mass, &[false, false], &[true], "dmhs/conc", &|_| 0.3).unwrap_err().contains("mass of atom type 1"));
+        set(&mut a, &mass, &[false, false], &[true], "dmhs/water", &|_| 5.0).unwrap();
         assert_eq!(water(&a).unwrap()[0], 5.0);
     }
 

@@ -1,9 +1,11 @@
 //! Atom-style variables evaluated over the owned atoms (LAMMPS' Variable::compute_atom), for
-//! `group ID dynamic ... var V`. A formula tree is walked once: a node is one number for every
-//! atom or a value per atom; per-atom operations are made atom by atom with the scalar
-//! evaluator on a node of numbers, so each atom gets the operations (and bits) of an
-//! equal-style formula.
+//! `group ID dynamic ... var V`, `set ... v_V` and `group ID variable V`. A formula tree is
+//! walked once: a node is one number for every atom or a value per atom; per-atom operations
+//! are made atom by atom with the scalar evaluator on a node of numbers, so each atom gets the
+//! operations (and bits) of an equal-style formula. `random()` and `normal()` draw one number
+//! per atom, in LAMMPS' local order, from the simulation's [`AtomRandom`].
 
+use crate::engine::random_mars::{RanMars, SEED_RANGE};
 use crate::models::compute::{property::Field, PerAtomRef};
 use crate::models::world::World;
 use dmhs_parser::expr::{self, Expr, Index, MathFn, Node};
@@ -23,16 +25,27 @@ impl V {
     }
 }
 
-/// The value of atom-style variable `name` for each owned atom, in local order.
+/// The generator of `random()` and `normal()` in atom-style formulas (LAMMPS'
+/// `Variable::randomatom`): one per simulation, made by the first such call with its seed
+/// (seed + rank 0) and kept for every later evaluation.
+pub type AtomRandom = Option<RanMars>;
+
+/// The value of atom-style variable `name` for each owned atom, in local order (formulas
+/// without random numbers; a fix hook has no generator to draw from).
 pub fn atom_variable(name: &str, w: &World, ctx: &mut dyn EvalContext) -> Result<Vec<f64>, String> {
+    atom_variable_drawing(name, w, ctx, None)
+}
+
+/// [`atom_variable`], drawing `random()` and `normal()` from `rng` (None: refused).
+pub fn atom_variable_drawing(name: &str, w: &World, ctx: &mut dyn EvalContext, rng: Option<&mut AtomRandom>) -> Result<Vec<f64>, String> {
     let n = w.state.atoms.nlocal;
-    match eval_variable(name, w, ctx, 0)? {
+    match eval_variable(name, w, ctx, 0, rng)? {
         V::Scalar(x) => Ok(vec![x; n]),
         V::Atoms(v) => Ok(v),
     }
 }
 
-fn eval_variable(name: &str, w: &World, ctx: &mut dyn EvalContext, depth: usize) -> Result<V, String> {
+fn eval_variable(name: &str, w: &World, ctx: &mut dyn EvalContext, depth: usize, rng: Option<&mut AtomRandom>) -> Result<V, String> {
     if depth > 32 {
         return Err(format!("variable {name}: variables refer to each other in a loop"));
     }
@@ -42,7 +55,12 @@ fn eval_variable(name: &str, w: &World, ctx: &mut dyn EvalContext, depth: usize)
         Some("atom") => {
             let text = vars.formula(name).unwrap_or_default().to_string();
             let tree = expr::parse(&text).map_err(|e| format!("variable {name}: {}", e.message))?;
-            eval_tree(&tree, w, ctx, depth + 1)
+            // LAMMPS draws per atom for the whole tree; dmhs walks node by node, which gives
+            // the same numbers only with one draw per formula
+            if count_draws(&tree) > 1 {
+                return Err(format!("variable {name}: dmhs supports one random() or normal() per atom-style formula"));
+            }
+            eval_tree(&tree, w, ctx, depth + 1, rng)
         }
         Some(_) => {
             let tree = Expr { node: Node::Variable { name: name.to_string(), index: None }, offset: 0, len: 0 };
@@ -86,24 +104,78 @@ fn peratom_ref(prefix: &str, id: &str, indices: &[Index], w: &World) -> Option<R
     })())
 }
 
-fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize) -> Result<V, String> {
+/// How many `random()` and `normal()` calls a formula tree makes itself.
+fn count_draws(e: &Expr) -> usize {
+    match &e.node {
+        Node::Unary(_, a) => count_draws(a),
+        Node::Binary(_, a, b) => count_draws(a) + count_draws(b),
+        Node::Math(f, args) => usize::from(matches!(f, MathFn::Random | MathFn::Normal)) + args.iter().map(count_draws).sum::<usize>(),
+        _ => 0,
+    }
+}
+
+/// `random(lo,hi,seed)` or `normal(mu,sigma,seed)` for every owned atom, drawn in LAMMPS' local
+/// order as Variable::compute_atom does (its error messages).
+fn draw(f: MathFn, args: &[Expr], w: &World, ctx: &mut dyn EvalContext, depth: usize, rng: Option<&mut AtomRandom>) -> Result<V, String> {
+    let name = if f == MathFn::Normal { "normal" } else { "random" };
+    let Some(rng) = rng else {
+        return Err(format!("{name}() in an atom-style variable is supported where set or group evaluates it, not during a run"));
+    };
+    let n = w.state.atoms.nlocal;
+    let a = eval_tree(&args[0], w, ctx, depth, Some(&mut *rng))?;
+    let b = eval_tree(&args[1], w, ctx, depth, Some(&mut *rng))?;
+    if rng.is_none() {
+        // the seed is read once, when the generator is made
+        let seed = match eval_tree(&args[2], w, ctx, depth, Some(&mut *rng))? {
+            V::Scalar(s) => s as i32,
+            V::Atoms(_) => 0,
+        };
+        if seed <= 0 {
+            return Err("Invalid math function in variable formula".into());
+        }
+        if !SEED_RANGE.contains(&(seed as i64)) {
+            return Err("Invalid seed for Marsaglia random # generator".into());
+        }
+        *rng = Some(RanMars::new(seed));
+    }
+    let r = rng.as_mut().expect("made above");
+    let mut out = vec![0.0; n];
+    for &i in w.state.lammps_order.indices(n).iter() {
+        let (x, y) = (a.at(i), b.at(i));
+        out[i] = if f == MathFn::Normal {
+            if y < 0.0 {
+                return Err("Invalid math function in variable formula".into());
+            }
+            x + y * r.gaussian()
+        } else {
+            if y < x {
+                return Err("Invalid math function in variable formula".into());
+            }
+            r.uniform() * (y - x) + x
+        };
+    }
+    Ok(V::Atoms(out))
+}
+
+fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut rng: Option<&mut AtomRandom>) -> Result<V, String> {
     let n = w.state.atoms.nlocal;
     match &e.node {
         Node::Unary(op, a) => {
-            let k = vec![eval_tree(a, w, ctx, depth)?];
+            let k = vec![eval_tree(a, w, ctx, depth, rng)?];
             per_atom(e, k, n, ctx, |mut c| Node::Unary(*op, Box::new(c.remove(0))))
         }
         Node::Binary(op, a, b) => {
-            let k = vec![eval_tree(a, w, ctx, depth)?, eval_tree(b, w, ctx, depth)?];
+            let k = vec![eval_tree(a, w, ctx, depth, rng.as_deref_mut())?, eval_tree(b, w, ctx, depth, rng)?];
             per_atom(e, k, n, ctx, |mut c| {
                 let y = c.pop().expect("two");
                 Node::Binary(*op, Box::new(c.pop().expect("two")), Box::new(y))
             })
         }
+        Node::Math(f @ (MathFn::Random | MathFn::Normal), args) if args.len() == 3 => draw(*f, args, w, ctx, depth, rng),
         Node::Math(f, args) => {
             if *f == MathFn::Ternary && args.len() == 3 {
-                let c = eval_tree(&args[0], w, ctx, depth)?;
-                let (t, f) = (eval_tree(&args[1], w, ctx, depth)?, eval_tree(&args[2], w, ctx, depth)?);
+                let c = eval_tree(&args[0], w, ctx, depth, rng.as_deref_mut())?;
+                let (t, f) = (eval_tree(&args[1], w, ctx, depth, rng.as_deref_mut())?, eval_tree(&args[2], w, ctx, depth, rng)?);
                 return Ok(match c {
                     V::Scalar(c) => if c != 0.0 { t } else { f },
                     V::Atoms(c) => V::Atoms((0..n).map(|i| if c[i] != 0.0 { t.at(i) } else { f.at(i) }).collect()),
@@ -111,11 +183,11 @@ fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize) -> Re
             }
             let mut k = Vec::with_capacity(args.len());
             for a in args {
-                k.push(eval_tree(a, w, ctx, depth)?);
+                k.push(eval_tree(a, w, ctx, depth, rng.as_deref_mut())?);
             }
             per_atom(e, k, n, ctx, |c| Node::Math(*f, c))
         }
-        Node::Variable { name, index: None } => eval_variable(name, w, ctx, depth),
+        Node::Variable { name, index: None } => eval_variable(name, w, ctx, depth, rng),
         Node::Compute { id, indices } => peratom_ref("c_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
         Node::Fix { id, indices } => peratom_ref("f_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
         Node::AtomVector(name) => {

@@ -72,6 +72,8 @@ pub struct Simulation {
     /// Global fix states read by read_restart, for fixes defined later with the same ID and
     /// style; dropped at the next run, as LAMMPS drops what no fix took.
     pub restart_fixes: Vec<crate::models::fix::FixState>,
+    /// The generator of random() and normal() in atom-style variables (made at first use).
+    pub random_atom: crate::models::atom_formula::AtomRandom,
 }
 
 impl Default for Simulation {
@@ -114,6 +116,7 @@ impl Simulation {
             min: Default::default(),
             min_stats: None,
             restart_fixes: Vec::new(),
+            random_atom: None,
         }
     }
 

@@ -168,6 +168,12 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
                 })
                 .collect()
         }
+        "variable" => {
+            // the atoms whose value is not zero (LAMMPS)
+            let w = a.word("atom-style variable name")?;
+            a.finish()?;
+            atom_variable_values(sim, w, &w.text, "group")?.iter().map(|&v| v != 0.0).collect()
+        }
         "clear" => {
             a.finish()?;
             for m in &mut sim.state.atoms.mask {
@@ -180,8 +186,8 @@ pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
             vec![false; n]
         }
         other => {
-            let known = ["type", "id", "molecule", "region", "subtract", "union", "intersect", "delete", "clear", "empty", "dynamic", "static"];
-            let msg = if ["variable", "include"].contains(&other) {
+            let known = ["type", "id", "molecule", "region", "variable", "subtract", "union", "intersect", "delete", "clear", "empty", "dynamic", "static"];
+            let msg = if ["include"].contains(&other) {
                 format!("group style `{other}` is a LAMMPS style that dmhs does not support yet")
             } else {
                 format!("unknown group style `{other}`")
@@ -278,7 +284,7 @@ fn group_dynamic(sim: &mut Simulation, a: &mut Args, idw: &Word, style: &Word) -
 
 pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water, temperature)";
+    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water, temperature; a number may be v_name of an atom-style variable)";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();
     let n = sim.state.atoms.nlocal;
@@ -314,32 +320,44 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         return Err(a.missing("a keyword"));
     }
     let count = sel.iter().filter(|&&s| s).count();
+    // each selected atom in local order, with LAMMPS' check of its value (error->one)
+    let each = |at: &mut crate::engine::atoms::Atoms, v: &SetValue, w: &Word, ok: &dyn Fn(f64) -> bool, why: &str, f: &mut dyn FnMut(&mut crate::engine::atoms::Atoms, usize, f64)| -> DResult<()> {
+        // a number is checked even when no atom is selected (LAMMPS checks it as it reads it)
+        if let SetValue::One(x) = v {
+            if !ok(*x) {
+                return Err(set_value_error(w, v, 0, *x, why));
+            }
+        }
+        for i in 0..n {
+            if sel[i] {
+                let x = v.at(i);
+                if !ok(x) {
+                    return Err(set_value_error(w, v, at.tag[i], x, why));
+                }
+                f(at, i, x);
+            }
+        }
+        Ok(())
+    };
+    let any = |_: f64| true;
     while let Some(kw) = a.peek() {
         a.skip(1);
         let ft = sim.state.atoms.features;
         let need = |ok: bool, what: &str| -> DResult<()> {
             if ok { Ok(()) } else { Err(Diagnostic::at(kw.span, format!("set {} needs an atom style with {what}", kw.text), "not available in this atom style")) }
         };
-        let value = |a: &mut Args, what: &str| -> DResult<f64> {
-            let w = a.word(what)?;
-            if w.text.starts_with("v_") {
-                return Err(a.error_at(w, "per-atom variables in set are not supported yet", "use a number"));
-            }
-            word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {syntax}")))
-        };
-        let at = &mut sim.state.atoms;
-        let apply = |at: &mut crate::engine::atoms::Atoms, f: &mut dyn FnMut(&mut crate::engine::atoms::Atoms, usize)| {
-            for i in 0..n {
-                if sel[i] {
-                    f(at, i);
-                }
-            }
-        };
         let mut made = count;
         match kw.text.as_str() {
             "type" => {
-                let t = a.i64_in("atom type", 1, sim.state.ntypes as i64)? as usize;
-                apply(at, &mut |at, i| at.typ[i] = t);
+                let ntypes = sim.state.ntypes;
+                let (w, v) = if is_var(&a) {
+                    set_value(sim, &mut a, "atom type", syntax)?
+                } else {
+                    let t = a.i64_in("atom type", 1, ntypes as i64)?;
+                    (a.last().unwrap(), SetValue::One(t as f64))
+                };
+                // LAMMPS truncates a variable's value to an integer type
+                each(&mut sim.state.atoms, &v, w, &|x| (1..=ntypes as i64).contains(&(x as i32 as i64)), "Invalid atom type in set command", &mut |at, i, x| at.typ[i] = x as i32 as usize)?;
             }
             "type/fraction" | "type/ratio" | "type/subset" => {
                 let t = a.i64_in("atom type", 1, sim.state.ntypes as i64)? as usize;
@@ -357,95 +375,122 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 };
                 let seed = a.i64_in("random seed", 1, if matches!(how, TypeRandom::Fraction(_)) { i32::MAX as i64 } else { 900_000_000 })? as i32;
                 let order = sim.state.lammps_order.indices(n);
-                made = set_type_random(at, &order, &sel, t, how, seed);
+                made = set_type_random(&mut sim.state.atoms, &order, &sel, t, how, seed);
             }
             "mass" => {
                 need(ft.per_atom_mass(), "per-atom masses (sphere)")?;
-                let m = value(&mut a, "mass")?;
-                if m <= 0.0 {
-                    return Err(a.error_at(a.last().unwrap(), "mass must be > 0", "must be > 0"));
-                }
-                apply(at, &mut |at, i| at.rmass[i] = m);
+                let (w, v) = set_value(sim, &mut a, "mass", syntax)?;
+                // LAMMPS: a number must be > 0, a variable's value >= 0
+                let ok: &dyn Fn(f64) -> bool = if v.is_var() { &|m| m >= 0.0 } else { &|m| m > 0.0 };
+                each(&mut sim.state.atoms, &v, w, ok, "Invalid mass in set command", &mut |at, i, m| at.rmass[i] = m)?;
             }
             "diameter" => {
                 need(ft.sphere, "radii (sphere)")?;
-                let d = value(&mut a, "diameter")?;
-                if d < 0.0 {
-                    return Err(a.error_at(a.last().unwrap(), "diameter must be >= 0", "must be >= 0"));
-                }
-                apply(at, &mut |at, i| at.radius[i] = 0.5 * d);
+                let (w, v) = set_value(sim, &mut a, "diameter", syntax)?;
+                // the mass stays: LAMMPS' set diameter changes only the radius
+                each(&mut sim.state.atoms, &v, w, &|d| d >= 0.0, "Invalid diameter in set command", &mut |at, i, d| at.radius[i] = 0.5 * d)?;
             }
             "density" | "density/disc" => {
                 need(ft.sphere, "radii (sphere)")?;
-                let rho = value(&mut a, "density")?;
                 let disc = kw.text == "density/disc";
-                apply(at, &mut |at, i| {
+                if disc && sim.state.dimension != 2 {
+                    return Err(a.error_at(kw, "Set density/disc requires 2d simulation", "3d simulation"));
+                }
+                let (w, v) = set_value(sim, &mut a, "density", syntax)?;
+                // a sphere (disc) of radius > 0 gets its volume (area) times the density; a point
+                // particle gets the density itself as its mass (LAMMPS)
+                each(&mut sim.state.atoms, &v, w, &|rho| rho > 0.0, "Invalid density in set command", &mut |at, i, rho| {
                     let r = at.radius[i];
-                    at.rmass[i] = if disc { std::f64::consts::PI * r * r * rho } else { 4.0 * std::f64::consts::PI / 3.0 * r * r * r * rho };
-                });
+                    at.rmass[i] = if r > 0.0 {
+                        if disc { std::f64::consts::PI * r * r * rho } else { 4.0 * std::f64::consts::PI / 3.0 * r * r * r * rho }
+                    } else {
+                        rho
+                    };
+                })?;
             }
             "charge" => {
                 need(ft.charge, "charges")?;
-                let q = value(&mut a, "charge")?;
-                apply(at, &mut |at, i| at.q[i] = q);
+                let (w, v) = set_value(sim, &mut a, "charge", syntax)?;
+                each(&mut sim.state.atoms, &v, w, &any, "", &mut |at, i, q| at.q[i] = q)?;
             }
             "mol" => {
                 need(ft.molecule, "molecule IDs")?;
-                let m = a.i64("molecule ID")?;
-                apply(at, &mut |at, i| at.molecule[i] = m);
+                let (w, v) = if is_var(&a) {
+                    set_value(sim, &mut a, "molecule ID", syntax)?
+                } else {
+                    let m = a.i64("molecule ID")?;
+                    (a.last().unwrap(), SetValue::One(m as f64))
+                };
+                each(&mut sim.state.atoms, &v, w, &|m| m as i64 >= 0, "Invalid molecule ID in set command", &mut |at, i, m| at.molecule[i] = m as i64)?;
             }
             "image" => {
-                let mut img = [None; 3];
-                for d in 0..3 {
-                    let w = a.word(["ix", "iy", "iz"][d])?;
-                    if w.text != "NULL" {
-                        img[d] = Some(word_i64(w, "image flag")? as i32);
-                    }
-                }
-                apply(at, &mut |at, i| {
-                    for d in 0..3 {
-                        if let Some(v) = img[d] {
-                            at.image[i][d] = v;
+                let mut img: [Option<(&Word, SetValue)>; 3] = [None, None, None];
+                for (d, slot) in img.iter_mut().enumerate() {
+                    let what = ["ix", "iy", "iz"][d];
+                    let periodic = sim.state.domain.as_ref().is_some_and(|dom| dom.periodic(d));
+                    match a.peek() {
+                        Some(w) if w.text == "NULL" => a.skip(1),
+                        Some(w) if w.text.starts_with("v_") => {
+                            if !periodic {
+                                return Err(a.error_at(w, "Cannot set variable image flag for non-periodic dimension", "non-periodic dimension"));
+                            }
+                            *slot = Some(set_value(sim, &mut a, what, syntax)?);
+                        }
+                        _ => {
+                            let w = a.word(what)?;
+                            let f = word_i64(w, "image flag")?;
+                            if f != 0 && !periodic {
+                                return Err(a.error_at(w, "Cannot set non-zero image flag for non-periodic dimension", "non-periodic dimension"));
+                            }
+                            *slot = Some((w, SetValue::One(f as f64)));
                         }
                     }
-                });
+                }
+                for (d, slot) in img.iter().enumerate() {
+                    if let Some((w, v)) = slot {
+                        // a variable's value is truncated to an integer flag
+                        each(&mut sim.state.atoms, v, w, &any, "", &mut |at, i, f| at.image[i][d] = f as i32)?;
+                    }
+                }
             }
             "x" | "y" | "z" | "vx" | "vy" | "vz" => {
-                let v = value(&mut a, &kw.text)?;
+                let (w, v) = set_value(sim, &mut a, &kw.text, syntax)?;
                 let d = match &kw.text[kw.text.len() - 1..] {
                     "x" => 0,
                     "y" => 1,
                     _ => 2,
                 };
                 let vel = kw.text.starts_with('v');
-                apply(at, &mut |at, i| if vel { at.v[i][d] = v } else { at.x[i][d] = v });
+                each(&mut sim.state.atoms, &v, w, &any, "", &mut |at, i, x| if vel { at.v[i][d] = x } else { at.x[i][d] = x })?;
             }
             "omega" => {
                 need(ft.sphere, "angular velocities (sphere)")?;
-                let w = [value(&mut a, "wx")?, value(&mut a, "wy")?, value(&mut a, "wz")?];
-                apply(at, &mut |at, i| at.omega[i] = w);
+                let vals = [set_value(sim, &mut a, "wx", syntax)?, set_value(sim, &mut a, "wy", syntax)?, set_value(sim, &mut a, "wz", syntax)?];
+                for (d, (w, v)) in vals.iter().enumerate() {
+                    each(&mut sim.state.atoms, v, w, &any, "", &mut |at, i, x| at.omega[i][d] = x)?;
+                }
             }
             "sph/rho" | "sph/e" | "sph/cv" => {
                 need(ft.sph, "SPH attributes (sph)")?;
-                let v = value(&mut a, &kw.text)?;
+                let (w, v) = set_value(sim, &mut a, &kw.text, syntax)?;
                 let which = kw.text.clone();
-                apply(at, &mut |at, i| match which.as_str() {
-                    "sph/rho" => at.rho[i] = v,
-                    "sph/e" => at.esph[i] = v,
-                    _ => at.cv[i] = v,
-                });
+                each(&mut sim.state.atoms, &v, w, &any, "", &mut |at, i, x| match which.as_str() {
+                    "sph/rho" => at.rho[i] = x,
+                    "sph/e" => at.esph[i] = x,
+                    _ => at.cv[i] = x,
+                })?;
             }
             "dmhs/conc" | "dmhs/water" => {
-                let v = value(&mut a, &kw.text)?;
-                let sel = &sel;
-                crate::engine::water::set(at, &sim.state.type_mass, &sim.state.mass_set, sel, &kw.text, v).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
+                let (_, v) = set_value(sim, &mut a, &kw.text, syntax)?;
+                let st = &mut sim.state;
+                crate::engine::water::set(&mut st.atoms, &st.type_mass, &st.mass_set, &sel, &kw.text, &|i| v.at(i)).map_err(|e| Diagnostic::at(kw.span, e, "cannot set the water field"))?;
             }
             "temperature" => {
-                let Some(k) = at.field(crate::engine::fields::TEMPERATURE) else {
+                let Some(k) = sim.state.atoms.field(crate::engine::fields::TEMPERATURE) else {
                     return Err(Diagnostic::at(kw.span, "set temperature needs per-atom temperatures", "no temperature").with_help("define `fix ID all property/atom temperature` first"));
                 };
-                let t = value(&mut a, "temperature")?;
-                apply(at, &mut |at, i| at.extra[k].data[i] = t);
+                let (w, v) = set_value(sim, &mut a, "temperature", syntax)?;
+                each(&mut sim.state.atoms, &v, w, &|t| t >= 0.0, "Invalid temperature in set command", &mut |at, i, t| at.extra[k].data[i] = t)?;
             }
             other => {
                 let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water", "temperature"];
@@ -460,6 +505,62 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     }
     sim.state.lists_valid = false;
     Ok(())
+}
+
+/// A numeric `set` value: one number, or an atom-style variable's value for each owned atom.
+enum SetValue {
+    One(f64),
+    PerAtom(Vec<f64>),
+}
+
+impl SetValue {
+    fn at(&self, i: usize) -> f64 {
+        match self {
+            SetValue::One(x) => *x,
+            SetValue::PerAtom(v) => v[i],
+        }
+    }
+    fn is_var(&self) -> bool {
+        matches!(self, SetValue::PerAtom(_))
+    }
+}
+
+/// Whether the next word is `v_name`.
+fn is_var(a: &Args) -> bool {
+    a.peek().is_some_and(|w| w.text.starts_with("v_"))
+}
+
+/// The next `set` value: a number, or `v_name` of an atom-style variable evaluated now over
+/// every owned atom (LAMMPS' Set::varparse, then compute_atom on group all, with the values
+/// the earlier keywords of the same command have set).
+fn set_value<'c>(sim: &mut Simulation, a: &mut Args<'c>, what: &str, syntax: &str) -> DResult<(&'c Word, SetValue)> {
+    let w = a.word(what)?;
+    let Some(name) = w.text.strip_prefix("v_") else {
+        return word_f64(w, what).map(|x| (w, SetValue::One(x))).map_err(|d| d.with_help(format!("syntax: {syntax}")));
+    };
+    let v = atom_variable_values(sim, w, name, "set command")?;
+    Ok((w, SetValue::PerAtom(v)))
+}
+
+/// The values of atom-style variable `name` (named at `w`) over every owned atom, for command
+/// `what` (set, group): LAMMPS' errors for a missing variable or another style.
+fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, what: &str) -> DResult<Vec<f64>> {
+    match sim.variables.style(name) {
+        Some("atom") => {}
+        None => return Err(Diagnostic::at(w.span, format!("Variable name {} for {what} does not exist", w.text), "no such variable").with_help(format!("define it first: variable {name} atom FORMULA"))),
+        Some(style) => {
+            return Err(Diagnostic::at(w.span, format!("Variable {} for {what} is invalid style", w.text), format!("an {style}-style variable")).with_help(format!("{what} takes atom-style variables only (as LAMMPS)")))
+        }
+    }
+    let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref() };
+    let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
+    crate::models::atom_formula::atom_variable_drawing(name, &world, &mut ev, Some(&mut sim.random_atom)).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
+}
+
+/// LAMMPS' error for a value it refuses, at the value's word (and the atom, for a variable).
+fn set_value_error(w: &Word, v: &SetValue, tag: i64, x: f64, why: &str) -> Diagnostic {
+    let label = if v.is_var() { format!("{x} for atom {tag}") } else { "out of range".into() };
+    Diagnostic::at(w.span, why, label)
 }
 
 /// How `set ... type/fraction|type/ratio|type/subset` picks the atoms that change type.

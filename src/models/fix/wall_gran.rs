@@ -10,6 +10,10 @@
 //! by write_restart. The wall has radius 0 and the sphere's full mass; the torque lever is the
 //! full radius.
 //!
+//! `contacts` gives the per-atom array of LAMMPS (8 columns, f_ID[1..8]): 1 where the atom
+//! touches the wall this step, the wall's force on it (3), the contact point x - dx (3) and its
+//! radius; zero for every other owned atom. It lives in the atoms' extra arrays too.
+//!
 //! LAMMPS' classic forms `hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag`
 //! are LAMMPS 2025's: sub-models of the granular form chosen as its GranularModel chooses them
 //! ([`classic_spec`]). So `hooke/history` uses linear_history_classic, whose spring creeps (a
@@ -144,7 +148,12 @@ pub struct FixWallGran {
     array: String,
     /// `temperature T` (heat models)
     temperature: Option<FixValue>,
+    /// `contacts`: name of the per-atom contact array in `Atoms::extra`.
+    contacts: Option<String>,
 }
+
+/// Columns of the `contacts` array: flag, force (3), contact point (3), radius.
+const CONTACT_COLS: usize = 8;
 
 impl FixWallGran {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
@@ -176,6 +185,7 @@ impl FixWallGran {
         let axis_of = |a: &mut Args| -> DResult<usize> { a.choice("axis", &["x", "y", "z"]) };
         let mut motion = Motion::None;
         let mut temperature = None;
+        let mut contacts = false;
         while let Some(k) = a.peek() {
             a.skip(1);
             match k.text.as_str() {
@@ -193,8 +203,8 @@ impl FixWallGran {
                     motion = Motion::Shear { axis, v: a.f64("shear velocity")? };
                 }
                 "temperature" => temperature = Some(parse_temperature(&mut a, k, &model, "wall/gran")?),
-                "contacts" => return Err(a.error_at(k, format!("fix wall/gran `{}` is not supported", k.text), "not supported")),
-                _ => return Err(a.unknown_keyword(k, &["wiggle", "shear", "temperature"])),
+                "contacts" => contacts = true,
+                _ => return Err(a.unknown_keyword(k, &["wiggle", "shear", "temperature", "contacts"])),
             }
         }
         check_heat(&a, cmd, &model, &temperature, "wall/gran")?;
@@ -204,7 +214,11 @@ impl FixWallGran {
         }
         let array = format!("wall/gran:{id}");
         state.atoms.extra_array(&array, width(&model));
-        Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array, temperature })
+        let contacts = contacts.then(|| format!("wall/gran:{id}:contacts"));
+        if let Some(c) = &contacts {
+            state.atoms.extra_array(c, CONTACT_COLS);
+        }
+        Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array, temperature, contacts })
     }
 
     /// The planes' positions and the wall velocity at the current step.
@@ -251,14 +265,20 @@ impl FixWallGran {
             _ => None,
         };
         let mut flow = heat.map(|(_, _, kq)| std::mem::take(&mut a.extra[kq].data)).unwrap_or_default();
+        // contacts: every owned atom's row is cleared, then the touching ones filled (LAMMPS)
+        let kc = self.contacts.as_ref().map(|c| a.extra_array(c, CONTACT_COLS));
+        let mut cdata = kc.map(|kc| std::mem::take(&mut a.extra[kc].data)).unwrap_or_default();
+        cdata.fill(0.0);
+        let nc = if kc.is_some() { n } else { 0 };
+        let (c8, _) = cdata[..CONTACT_COLS * nc].as_chunks_mut::<CONTACT_COLS>();
         let temp: &[f64] = heat.map_or(&[], |(_, kt, _)| &a.extra[kt].data[..]);
         let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
         let (h3, _) = hist[..W * n].as_chunks_mut::<W>();
         let nq = if heat.is_some() { n } else { 0 };
-        let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3), AtomsMut::new(&mut flow[..nq]));
+        let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3), AtomsMut::new(&mut flow[..nq]), AtomsMut::new(c8));
         let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
         // atoms are independent: ranges of them may run in parallel (same bits)
-        ranges(n, 1024, windows, |range, (mut f, mut torque, mut h3, mut flow)| {
+        ranges(n, 1024, windows, |range, (mut f, mut torque, mut h3, mut flow, mut c8)| {
             for i in range {
                 if mask[i] & groupbit == 0 {
                     continue;
@@ -294,9 +314,16 @@ impl FixWallGran {
                 if let (Some((tw, _, _)), Some(hm)) = (heat, &model.heat) {
                     flow[i] += contact_heat(model, hm, rsq, radi, 0.0, true, temp[i], tw);
                 }
+                if nc > 0 {
+                    let p = [x[i][0] - dx[0], x[i][1] - dx[1], x[i][2] - dx[2]];
+                    c8[i] = [1.0, r.f[0], r.f[1], r.f[2], p[0], p[1], p[2], radi];
+                }
             }
         });
         a.extra[k].data = hist;
+        if let Some(kc) = kc {
+            a.extra[kc].data = cdata;
+        }
         if let Some((_, _, kq)) = heat {
             a.extra[kq].data = flow;
         }
@@ -331,6 +358,19 @@ impl Fix for FixWallGran {
     }
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.remove_extra(&self.array);
+        if let Some(c) = &self.contacts {
+            state.atoms.remove_extra(c);
+        }
+    }
+    fn peratom(&self, state: &State) -> Result<crate::models::compute::PerAtom, String> {
+        let a = &state.atoms;
+        let Some(k) = self.contacts.as_ref().and_then(|c| a.find_extra(c)) else {
+            return Err(format!("fix {} (wall/gran) has per-atom values only with the `contacts` keyword", self.id));
+        };
+        Ok(crate::models::compute::PerAtom { cols: CONTACT_COLS, data: a.extra[k].data[..a.nlocal * CONTACT_COLS].to_vec() })
+    }
+    fn peratom_cols(&self) -> Option<usize> {
+        self.contacts.as_ref().map(|_| CONTACT_COLS)
     }
     fn image_planes(&self, state: &State, _equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {
         let (wlo, whi, _) = self.wall_now(state);

@@ -137,8 +137,11 @@ fn bad_input_is_located() {
     assert!(e.contains("must turn off smoothing with break no") && e.contains(&at(12)), "{e}");
     let e = error_of(&format!("{TWO}bond_style bpm/spring store/local brk 10 bogus\n"));
     assert!(e.contains("at least one value") && e.contains(&at(12)), "{e}");
-    let e = error_of(&format!("{TWO}bond_style bpm/spring volume/factor yes\n"));
-    assert!(e.contains("volume/factor yes is not supported") && e.contains(&at(12)), "{e}");
+    // volume/factor yes takes a fifth coefficient, av
+    let e = error_of(&format!("{TWO}bond_style bpm/spring volume/factor yes\nbond_coeff 1 1.0 0.1 0.0\n"));
+    assert!(e.contains("av") && e.contains(&at(13)), "{e}");
+    let e = error_of(&format!("{TWO}bond_style bpm/spring volume/factor maybe\n"));
+    assert!(e.contains("maybe") && e.contains(&at(12)), "{e}");
     let e = error_of(&format!("{TWO}bond_style bpm/spring normalize maybe\n"));
     assert!(e.contains("maybe") && e.contains(&at(12)), "{e}");
     let e = error_of(&format!("{TWO}bond_style bpm/spring\nbond_coeff 1 1.0 0.1\n"));

@@ -111,6 +111,12 @@ pub fn bond_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             if let Some(sl) = s.as_bpm().and_then(|b| b.shared().store_local.as_ref()) {
                 bpm_store_local(sim, sl)?;
             }
+            if s.as_bpm().is_some_and(|b| b.shared().volume) {
+                // registered now so that a restart file's volumes find their arrays
+                for field in crate::models::bonded::bpm::VOLUMES {
+                    sim.state.atoms.add_field(field);
+                }
+            }
             sim.bond_style = Some(s);
         }
     }

@@ -9,21 +9,29 @@
 //!
 //! (`normalize yes` uses -k e for the spring term) and the energy is 1/2 k (r - r0)^2 (divided by
 //! r0 with `normalize yes`; the damping and the smoothing carry none).
+//!
+//! `volume/factor yes` (Clemmer, Monti and Lechman, Soft Matter 20, 1702 (2024)) adds
+//! av ([(V_1 + V_2) / (V0_1 + V0_2)]^(1/dim) - 1 - e) to the spring term, where V_i sums the
+//! current lengths of atom i's bonds to the power dim and V0_i their reference lengths (see
+//! `bpm::VOL`); bond_coeff then takes a fifth coefficient av. The energy ignores it.
 
-use super::bpm::{logical, Bpm, BondOut, BpmAtoms, BpmStyle};
+use super::bpm::{logical, Bpm, BondOut, BpmAtoms, BpmStyle, VolSums, VOL, VOL0};
 use super::{bond_virial, fmt_g, BondStyle, SingleBond, TypeTable, Vec3};
 use crate::engine::state::State;
 use crate::engine::topology::BOND_HISTORY;
 use dmhs_parser::{Args, DResult};
 
 const SYNTAX: &str = "bond_coeff N k ecrit gamma";
+const SYNTAX_VOLUME: &str = "bond_coeff N k ecrit gamma av (with volume/factor yes)";
 pub const SETTINGS_SYNTAX: &str =
-    "bond_style bpm/spring [store/local fixID N id1|id2|time|x|y|z|x/ref|y/ref|z/ref ...] [overlay/pair yes/no] [break yes/no] [smooth yes/no] [normalize yes/no] [volume/factor no]";
+    "bond_style bpm/spring [store/local fixID N id1|id2|time|x|y|z|x/ref|y/ref|z/ref ...] [overlay/pair yes/no] [break yes/no] [smooth yes/no] [normalize yes/no] [volume/factor yes/no]";
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Params {
     k: f64,
     ecrit: f64,
     gamma: f64,
+    /// The volume factor's coefficient (0 without `volume/factor yes`).
+    av: f64,
 }
 
 #[derive(Debug, Default)]
@@ -37,7 +45,8 @@ impl BondBpmSpring {
     /// `del = x1 - x2`, `dv = v1 - v2` (atom 1 has the lower ID). `None`: the bond breaks.
     /// Otherwise `(fbond, energy)`: the force on atom 1 is `del * fbond`.
     #[inline(always)]
-    pub fn kernel(&self, btype: usize, r0: f64, del: Vec3, dv: Vec3) -> Option<(f64, f64)> {
+    /// `vol`: the volume sums of the bond's atoms with `volume/factor yes`.
+    pub fn kernel(&self, btype: usize, r0: f64, del: Vec3, dv: Vec3, vol: Option<VolSums>) -> Option<(f64, f64)> {
         let p = self.types.get(btype);
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
         let r = rsq.sqrt();
@@ -45,9 +54,20 @@ impl BondBpmSpring {
         if e.abs() > p.ecrit && self.bpm.break_bonds {
             return None;
         }
-        let fbond = if self.bpm.normalize { -p.k * e } else { p.k * (r0 - r) };
+        let mut fbond = if self.bpm.normalize { -p.k * e } else { p.k * (r0 - r) };
+        if let Some(v) = vol {
+            fbond += volume_term(p.av, v, e);
+        }
         let energy = if self.bpm.normalize { 0.5 * p.k * e * (r - r0) } else { 0.5 * p.k * (r - r0) * (r - r0) };
         Some((self.damped(p, r, r0, fbond, del, dv), energy))
+    }
+
+    #[inline(always)]
+    fn bond_out(&self, btype: usize, r0: f64, [i1, i2]: [usize; 2], del: Vec3, atoms: &BpmAtoms, vol: Option<VolSums>) -> Option<BondOut> {
+        let (v1, v2) = (atoms.v[i1], atoms.v[i2]);
+        let dv = [v1[0] - v2[0], v1[1] - v2[1], v1[2] - v2[2]];
+        let (fbond, energy) = self.kernel(btype, r0, del, dv, vol)?;
+        Some(BondOut { f1: del.map(|d| d * fbond), energy, virial: bond_virial(del, fbond), ..Default::default() })
     }
 
     #[inline(always)]
@@ -63,6 +83,12 @@ impl BondBpmSpring {
         }
         Ok(())
     }
+}
+
+/// The volume factor's addition to the spring term (LAMMPS' order).
+#[inline(always)]
+fn volume_term(av: f64, v: VolSums, e: f64) -> f64 {
+    av * ((v.vol / v.vol0).powf(v.invdim) - 1.0 - e)
 }
 
 /// The spring force `fbond` (k (r0 - r) or -k e) with the damping and smoothing, over r (LAMMPS'
@@ -91,33 +117,38 @@ impl BondStyle for BondBpmSpring {
     }
     fn settings(&mut self, a: &mut Args) -> DResult<()> {
         a.syntax = SETTINGS_SYNTAX;
+        let mut volume = false;
         self.bpm.settings(a, &["volume/factor"], |w, a| {
             if w.text != "volume/factor" {
                 return Ok(false);
             }
-            if logical(a, "volume/factor")? {
-                let last = a.last().unwrap_or(w);
-                return Err(a.error_at(last, "bond_style bpm/spring volume/factor yes is not supported yet", "only volume/factor no"));
-            }
+            volume = logical(a, "volume/factor")?;
             Ok(true)
-        })
+        })?;
+        self.bpm.volume = volume;
+        Ok(())
     }
     fn coeff(&mut self, lo: usize, hi: usize, args: &mut Args) -> DResult<()> {
-        args.syntax = SYNTAX;
+        args.syntax = if self.bpm.volume { SYNTAX_VOLUME } else { SYNTAX };
         let k = args.f64("k")?;
         let ecrit = args.f64("ecrit")?;
         let gamma = args.f64("gamma")?;
+        let av = if self.bpm.volume { args.f64("av")? } else { 0.0 };
         args.finish()?;
-        self.types.set(lo, hi, Params { k, ecrit, gamma });
+        self.types.set(lo, hi, Params { k, ecrit, gamma, av });
         Ok(())
     }
-    /// LAMMPS' single: the bond's stored r0 and the atoms' velocities, never breaking; its
-    /// normalized spring is k (r0 - r) / r0 (compute's -k e may differ in the last bit).
+    /// LAMMPS' single: the bond's stored r0, the atoms' velocities and volumes of the last
+    /// force evaluation, never breaking; its normalized spring is k (r0 - r) / r0 (compute's
+    /// -k e may differ in the last bit).
     fn single(&self, b: &SingleBond) -> Result<(f64, f64), String> {
         let p = self.types.get(b.typ);
         let r0 = b.state.topo.bonds[b.rec].history[0];
         let r = b.rsq.sqrt();
-        let fbond = if self.bpm.normalize { p.k * (r0 - r) / r0 } else { p.k * (r0 - r) };
+        let mut fbond = if self.bpm.normalize { p.k * (r0 - r) / r0 } else { p.k * (r0 - r) };
+        if self.bpm.volume {
+            fbond += volume_term(p.av, single_volumes(b)?, (r - r0) / r0);
+        }
         let v = &b.state.atoms.v;
         let dv = [v[b.i][0] - v[b.j][0], v[b.i][1] - v[b.j][1], v[b.i][2] - v[b.j][2]];
         let energy = if self.bpm.normalize { 0.5 * p.k * ((r - r0) / r0) * (r - r0) } else { 0.5 * p.k * (r - r0) * (r - r0) };
@@ -128,8 +159,20 @@ impl BondStyle for BondBpmSpring {
     }
     fn coeff_words(&self, btype: usize) -> String {
         let p = self.types.get(btype);
-        format!("{} {} {}", fmt_g(p.k), fmt_g(p.ecrit), fmt_g(p.gamma))
+        let av = if self.bpm.volume { format!(" {}", fmt_g(p.av)) } else { String::new() };
+        format!("{} {} {}{av}", fmt_g(p.k), fmt_g(p.ecrit), fmt_g(p.gamma))
     }
+}
+
+/// The volume sums of a bond's atoms for `single` (a ghost reads its owner's values).
+fn single_volumes(b: &SingleBond) -> Result<VolSums, String> {
+    let a = &b.state.atoms;
+    let (Some(vol), Some(vol0)) = (a.field_values(VOL), a.field_values(VOL0)) else {
+        return Err("bond bpm/spring volumes are made by the first force evaluation".into());
+    };
+    let owner = |i: usize| if i < a.nlocal { i } else { a.ghost_owner[i - a.nlocal] as usize };
+    let (i, j) = (owner(b.i), owner(b.j));
+    Ok(VolSums { vol: vol[i] + vol[j], vol0: vol0[i] + vol0[j], invdim: 1.0 / b.state.dimension as f64 })
 }
 
 impl BpmStyle for BondBpmSpring {
@@ -142,10 +185,11 @@ impl BpmStyle for BondBpmSpring {
     }
     #[inline(always)]
     fn bond(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms) -> Option<BondOut> {
-        let (v1, v2) = (atoms.v[i1], atoms.v[i2]);
-        let dv = [v1[0] - v2[0], v1[1] - v2[1], v1[2] - v2[2]];
-        let (fbond, energy) = self.kernel(btype, hist[0], del, dv)?;
-        Some(BondOut { f1: del.map(|d| d * fbond), energy, virial: bond_virial(del, fbond), ..Default::default() })
+        self.bond_out(btype, hist[0], [i1, i2], del, atoms, None)
+    }
+    #[inline(always)]
+    fn bond_volume(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms, vol: VolSums) -> Option<BondOut> {
+        self.bond_out(btype, hist[0], [i1, i2], del, atoms, Some(vol))
     }
 }
 
@@ -183,7 +227,7 @@ mod tests {
             let s = style(settings, "2.0 0.3 0.5");
             let del = [0.0 - x2[0], 0.0 - x2[1], 0.0 - x2[2]];
             let dv = [0.1 - 0.3, 0.2 - -0.1, -0.1 - 0.05];
-            let (fbond, energy) = s.kernel(1, r0, del, dv).unwrap();
+            let (fbond, energy) = s.kernel(1, r0, del, dv, None).unwrap();
             let f = del.map(|d| 0.0 + d * fbond);
             assert_eq!(f.map(f64::to_bits), f1.map(f64::to_bits), "{settings} {x2:?}: {f:?} vs {f1:?}");
             assert_eq!((energy / 2.0).to_bits(), e.to_bits(), "{settings} {x2:?}: energy {energy} vs 2 x {e}");
@@ -193,11 +237,11 @@ mod tests {
     #[test]
     fn breaks_beyond_the_critical_strain_only() {
         let s = style("", "2.0 0.3 0.5");
-        assert!(s.kernel(1, 1.0, [1.29, 0.0, 0.0], [0.0; 3]).is_some());
-        assert!(s.kernel(1, 1.0, [1.31, 0.0, 0.0], [0.0; 3]).is_none());
-        assert!(s.kernel(1, 1.0, [0.69, 0.0, 0.0], [0.0; 3]).is_none());
+        assert!(s.kernel(1, 1.0, [1.29, 0.0, 0.0], [0.0; 3], None).is_some());
+        assert!(s.kernel(1, 1.0, [1.31, 0.0, 0.0], [0.0; 3], None).is_none());
+        assert!(s.kernel(1, 1.0, [0.69, 0.0, 0.0], [0.0; 3], None).is_none());
         let s = style("break no smooth no", "2.0 0.3 0.5");
-        assert!(s.kernel(1, 1.0, [1.5, 0.0, 0.0], [0.0; 3]).is_some());
+        assert!(s.kernel(1, 1.0, [1.5, 0.0, 0.0], [0.0; 3], None).is_some());
     }
 
     #[test]

@@ -35,6 +35,22 @@ const EPSILON: f64 = 1e-10;
 pub const X_REF: [Field; 3] =
     [Field { name: "BPM_X_REF", ghosts: false }, Field { name: "BPM_Y_REF", ghosts: false }, Field { name: "BPM_Z_REF", ghosts: false }];
 
+/// The per-atom volumes of bpm/spring's `volume/factor yes` (LAMMPS' property/atom d_vol and
+/// d_vol0): the sum over an atom's bonds of the current (VOL) and reference (VOL0) lengths cubed
+/// (squared in 2D). A periodic image reads its atom's values (measured against LAMMPS: its ghosts
+/// see vol0 as soon as a broken bond left it).
+pub const VOL: Field = Field { name: "BPM_VOL", ghosts: false };
+pub const VOL0: Field = Field { name: "BPM_VOL0", ghosts: false };
+pub const VOLUMES: [Field; 2] = [VOL, VOL0];
+
+/// The volume sums of one bond's two atoms, `V_1 + V_2` and `V0_1 + V0_2`, and 1 / dimension.
+#[derive(Clone, Copy, Debug)]
+pub struct VolSums {
+    pub vol: f64,
+    pub vol0: f64,
+    pub invdim: f64,
+}
+
 /// One value of a broken-bond record.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LocalValue {
@@ -62,6 +78,8 @@ pub struct Bpm {
     /// `smooth` and `normalize` (each style reads them its own way).
     pub smooth: bool,
     pub normalize: bool,
+    /// bpm/spring's `volume/factor yes` (the per-atom volumes [`VOL`], [`VOL0`]).
+    pub volume: bool,
     pub store_local: Option<StoreLocal>,
     /// LAMMPS' `stored_flag` of the style's bond history: every bond's reference state is
     /// (re)stored at the first force evaluation after the style was defined.
@@ -70,7 +88,7 @@ pub struct Bpm {
 
 impl Default for Bpm {
     fn default() -> Self {
-        Bpm { overlay: false, break_bonds: true, smooth: true, normalize: false, store_local: None, stored: AtomicBool::new(false) }
+        Bpm { overlay: false, break_bonds: true, smooth: true, normalize: false, volume: false, store_local: None, stored: AtomicBool::new(false) }
     }
 }
 
@@ -240,6 +258,11 @@ pub trait BpmStyle: Sync {
     /// One bond of type `btype` with reference state `hist`, atoms `i1` (the lower ID) and
     /// `i2`, `del = x1 - x2`. `None`: the bond breaks (never with `break no`).
     fn bond(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms) -> Option<BondOut>;
+    /// [`BpmStyle::bond`] with the volume sums of its atoms (styles with `volume/factor yes`).
+    #[allow(clippy::too_many_arguments)]
+    fn bond_volume(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms, _vol: VolSums) -> Option<BondOut> {
+        self.bond(btype, hist, i1, i2, del, atoms)
+    }
 }
 
 /// The side of [`BpmStyle`] the engine calls through a `dyn BondStyle`
@@ -327,6 +350,8 @@ struct Done {
     atoms: [u32; 2],
     x: [Vec3; 2],
     swapped: bool,
+    /// The reference length the bond was computed with.
+    r0: f64,
     stored: Option<[f64; BOND_HISTORY]>,
     out: Option<BondOut>,
 }
@@ -346,12 +371,14 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let prd = state.domain.as_ref().unwrap().prd();
     let (x, tag) = (&state.atoms.x, &state.atoms.tag);
     // LAMMPS' store_data: every bond's reference at the first evaluation of the style
-    if !style.bpm().stored.swap(true, Ordering::Relaxed) {
+    let first = !style.bpm().stored.swap(true, Ordering::Relaxed);
+    if first {
         for l in list {
             let (_, _, del, _) = ordered(&l.entry, x, tag, prd);
             state.topo.bonds[l.entry.rec as usize].history = style.reference(del);
         }
     }
+    let mut vols = style.bpm().volume.then(|| volumes(state, list, prd, first));
     let a = &state.atoms;
     let atoms = BpmAtoms { v: &a.v, omega: &a.omega, quat: &a.quat };
     let bonds = &state.topo.bonds;
@@ -366,8 +393,15 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
                 hist = style.reference(del);
                 stored = Some(hist);
             }
-            let out = style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms);
-            w[k] = Done { atoms: i, x: p, swapped, stored, out };
+            let out = match &vols {
+                None => style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
+                Some(v) => {
+                    let [i1, i2] = i.map(|k| k as usize);
+                    let sums = VolSums { vol: v.vol[i1] + v.vol[i2], vol0: v.vol0[i1] + v.vol0[i2], invdim: v.invdim };
+                    style.bond_volume(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms, sums)
+                }
+            };
+            w[k] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out };
         }
     });
     let mut f = std::mem::take(&mut state.atoms.f);
@@ -376,6 +410,8 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let mut broken: Vec<Broken> = vec![];
     // LAMMPS' ev_tally: with newton_bond off, half to each owned atom
     let part = if state.newton_bond { 1.0 } else { 0.5 };
+    // LAMMPS' dvol0: a broken bond's reference volume leaves its atoms' vol0 after the pass
+    let mut dvol0 = SideSums::new(state.atoms.nlocal);
     for (l, d) in list.iter().zip(&done) {
         let rec = l.entry.rec;
         if let Some(h) = d.stored {
@@ -385,6 +421,10 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
             state.topo.bonds[rec as usize].history = h;
         }
         let Some(out) = d.out else {
+            if vols.is_some() {
+                // LAMMPS subtracts (x - v is x + (-v), bit for bit)
+                dvol0.add(l, -bond_volume(d.r0 * d.r0, state.dimension, d.r0));
+            }
             if !broken.iter().any(|b| b.rec == rec) {
                 broken.push(Broken { rec, atoms: d.atoms, x: d.x });
             }
@@ -423,7 +463,109 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     }
     state.atoms.f = f;
     state.atoms.torque = torque;
+    if let Some(v) = vols.as_mut() {
+        if !broken.is_empty() {
+            v.vol0.iter_mut().zip(dvol0.finish()).for_each(|(a, d)| *a += d);
+        }
+        v.store(&mut state.atoms);
+    }
     Ok((tally, broken))
+}
+
+/// The per-atom volumes of one evaluation, owned atoms ([`VOL`], [`VOL0`]).
+struct Volumes {
+    vol: Vec<f64>,
+    vol0: Vec<f64>,
+    invdim: f64,
+}
+
+impl Volumes {
+    fn store(&self, atoms: &mut crate::engine::atoms::Atoms) {
+        let n = atoms.nlocal;
+        for (field, values) in VOLUMES.into_iter().zip([&self.vol, &self.vol0]) {
+            let k = atoms.add_field(field);
+            atoms.extra[k].data[..n].copy_from_slice(&values[..n]);
+        }
+    }
+}
+
+/// A bond's share of an atom's volume from its squared length `rsq` and length `r` (LAMMPS:
+/// rsq, times the length in 3D).
+#[inline(always)]
+fn bond_volume(rsq: f64, dim: usize, r: f64) -> f64 {
+    if dim == 3 {
+        rsq * r
+    } else {
+        rsq
+    }
+}
+
+/// Sums over listed bonds onto their applied sides, in list order: owned sides directly,
+/// periodic images (listed with `newton_bond on` only) each into its own sum, added to its owner
+/// after all bonds (LAMMPS' reverse communication, images in the order first met).
+struct SideSums {
+    own: Vec<f64>,
+    images: Vec<(u32, f64)>,
+    index: std::collections::HashMap<(u32, [i8; 3]), usize>,
+}
+
+impl SideSums {
+    fn new(n: usize) -> Self {
+        SideSums { own: vec![0.0; n], images: vec![], index: Default::default() }
+    }
+    fn add(&mut self, l: &Listed, v: f64) {
+        for k in (0..2).filter(|&k| l.apply[k]) {
+            let (a, s) = (l.entry.atoms[k], l.entry.shift[k]);
+            if s == [0; 3] {
+                self.own[a as usize] += v;
+                continue;
+            }
+            let n = self.images.len();
+            let slot = *self.index.entry((a, s)).or_insert(n);
+            if slot == n {
+                self.images.push((a, 0.0));
+            }
+            self.images[slot].1 += v;
+        }
+    }
+    fn finish(mut self) -> Vec<f64> {
+        for (a, v) in self.images {
+            self.own[a as usize] += v;
+        }
+        self.own
+    }
+}
+
+/// LAMMPS' calculate_vol over the listed bonds at the current positions: each atom's volume,
+/// and the volumes of bonds whose reference is unset (created since), for vol0.
+fn bond_volumes(state: &State, list: &[Listed], prd: Vec3) -> (Vec<f64>, Option<Vec<f64>>) {
+    let n = state.atoms.nlocal;
+    let (mut vol, mut dvol0, mut created) = (SideSums::new(n), SideSums::new(n), false);
+    for l in list {
+        let (_, _, del, _) = ordered(&l.entry, &state.atoms.x, &state.atoms.tag, prd);
+        let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+        let v = bond_volume(rsq, state.dimension, rsq.sqrt());
+        vol.add(l, v);
+        let r0 = state.topo.bonds[l.entry.rec as usize].history[0];
+        if r0 < EPSILON || r0.is_nan() {
+            created = true;
+            dvol0.add(l, v);
+        }
+    }
+    (vol.finish(), created.then(|| dvol0.finish()))
+}
+
+/// The volumes of this evaluation: vol0 made at the first one, grown by bonds created since,
+/// and vol now.
+fn volumes(state: &State, list: &[Listed], prd: Vec3, first: bool) -> Volumes {
+    let a = &state.atoms;
+    let saved = |f: Field| a.field_values(f).map(|v| v[..a.nlocal].to_vec()).unwrap_or_else(|| vec![0.0; a.nlocal]);
+    let mut vol0 = if first { bond_volumes(state, list, prd).0 } else { saved(VOL0) };
+    let (vol, dvol0) = bond_volumes(state, list, prd);
+    if let Some(d) = dvol0 {
+        vol0.iter_mut().zip(d).for_each(|(a, d)| *a += d);
+    }
+    Volumes { vol, vol0, invdim: 1.0 / state.dimension as f64 }
 }
 
 /// The values of a broken-bond record (LAMMPS BondBPM::pack_*), at step `step`.

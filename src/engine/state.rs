@@ -254,6 +254,14 @@ impl State {
             d.forward_positions(&mut self.atoms, domain);
         }
     }
+    /// Fresh ghost state (positions, velocities and every per-atom value ghosts carry) from
+    /// the owners, serial or distributed.
+    pub fn forward_ghost_state(&mut self) {
+        match (&self.decomp, self.distributed, &self.domain) {
+            (Some(d), Some(_), Some(domain)) => d.forward_state(&mut self.atoms, domain),
+            _ => self.atoms.forward_state(),
+        }
+    }
     /// A per-rank quantity needed whole (group functions, per-atom lookups) that dmhs does not
     /// gather during a distributed run yet.
     pub fn whole_system(&self, what: &str) -> Result<(), String> {

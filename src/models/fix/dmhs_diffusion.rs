@@ -78,7 +78,9 @@ impl Fix for FixDiffusion {
     fn scalar(&self, state: &State) -> Option<f64> {
         let a = &state.atoms;
         let w = crate::engine::water::water(a)?;
-        Some((0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| w[i]).sum())
+        let mut total = [(0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).map(|i| w[i]).sum()];
+        state.sum_ranks(&mut total);
+        Some(total[0])
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

@@ -100,9 +100,7 @@ impl Fix for FixSwell {
     fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         self.apply(state)?;
         // ghosts were made before this hook: give them the new sizes
-        if state.atoms.nghost() > 0 {
-            state.atoms.forward_state();
-        }
+        state.forward_ghost_state();
         Ok(())
     }
     fn end_of_step(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {

@@ -45,11 +45,21 @@ pub struct SpecialTable {
     /// Every list is symmetric (true unless `special_bonds angle/dihedral yes` trimmed one
     /// side), so only atom i's list needs searching.
     pub symmetric: bool,
+    /// Unique in the process for each table made or edited: what a neighbour build derived
+    /// from a table ([`ActingCache`]) knows when it is stale.
+    generation: u64,
+}
+
+/// Tables made or edited: each table's `generation`.
+static SPECIAL_TABLES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+fn next_special_generation() -> u64 {
+    SPECIAL_TABLES.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 impl Default for SpecialTable {
     fn default() -> Self {
-        SpecialTable { keys: IdKeys::default(), offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true }
+        SpecialTable { keys: IdKeys::default(), offsets: vec![], partners: vec![], flags: [SpecialFlag::Normal; 4], symmetric: true, generation: next_special_generation() }
     }
 }
 
@@ -74,7 +84,7 @@ impl SpecialTable {
             }
             offsets.push(partners.len() as u32);
         }
-        SpecialTable { keys, offsets, partners, flags, symmetric }
+        SpecialTable { keys, offsets, partners, flags, symmetric, generation: next_special_generation() }
     }
     pub fn is_empty(&self) -> bool {
         self.partners.is_empty()
@@ -82,6 +92,7 @@ impl SpecialTable {
     /// Atoms `p` and `q` are no longer 1-2 partners (a bond between them broke; LAMMPS' fix
     /// update/special/bonds). Their other partners keep their levels.
     pub fn remove_one_two(&mut self, p: i64, q: i64) {
+        self.generation = next_special_generation();
         for (a, b) in [(p, q), (q, p)] {
             let Some(t) = self.keys.key(a) else { continue };
             if t + 1 >= self.offsets.len() {
@@ -101,6 +112,22 @@ impl SpecialTable {
         }
         self.partners[self.offsets[t] as usize..self.offsets[t + 1] as usize].iter().find(|p| p.0 == jtag).map(|p| p.1).unwrap_or(0)
     }
+    /// The partners of atom `itag` that change a pair (their level's flag excludes or weights
+    /// it), appended to `out`, each ID as `level` finds it (its first entry): a neighbour build
+    /// reads atom i's list once, then looks up only these for each of its pairs.
+    fn acting_partners(&self, itag: i64, out: &mut Vec<(i64, u8)>) {
+        let Some(t) = self.keys.key(itag) else { return };
+        if t + 1 >= self.offsets.len() {
+            return;
+        }
+        let list = &self.partners[self.offsets[t] as usize..self.offsets[t + 1] as usize];
+        for (m, &(tag, level)) in list.iter().enumerate() {
+            let acts = level != 0 && !matches!(self.flags[level as usize], SpecialFlag::Normal);
+            if acts && !list[..m].iter().any(|p| p.0 == tag) {
+                out.push((tag, level));
+            }
+        }
+    }
     /// The action for pair (i, j): atom i's list is searched first (LAMMPS `find_special`);
     /// dmhs also searches atom j's when lists can be one-sided (`special_bonds angle yes`),
     /// so the result does not depend on which atom of the pair owns the list entry.
@@ -110,12 +137,18 @@ impl SpecialTable {
         if level == 0 && !self.symmetric {
             level = self.level(jtag, itag);
         }
+        self.flag_action(level, || far_image)
+    }
+    /// The action for a pair of partners at `level`; `far_image()` is asked only when the
+    /// level excludes or weights the pair (a periodic image beyond half the box is kept).
+    #[inline]
+    fn flag_action(&self, level: u8, far_image: impl Fn() -> bool) -> PairAction {
         if level == 0 {
             return PairAction::Keep;
         }
         match self.flags[level as usize] {
             SpecialFlag::Normal => PairAction::Keep,
-            _ if far_image => PairAction::Keep,
+            _ if far_image() => PairAction::Keep,
             SpecialFlag::Exclude => PairAction::Exclude,
             SpecialFlag::Weighted => PairAction::Weighted(level),
         }
@@ -340,6 +373,57 @@ pub struct Neighbor {
     /// Per-bin counts and starts, kept between builds: a sparse system has millions of bins,
     /// and arrays made afresh each build were paged in and out every time.
     bins: BinScratch,
+    /// The acting special partners of the owned atoms.
+    acting: ActingCache,
+}
+
+/// The special partners that act on pairs ([`SpecialTable::acting_partners`]) of each owned
+/// atom of the last build, in that build's order, carried through the next build's sort: a
+/// build reads them in atom order, where the table by ID was read at random (a cache miss per
+/// atom, 10% of a rebuild of a bead-spring melt). A row is reused only for the same table and
+/// the same atom ID.
+#[derive(Clone, Debug, Default)]
+struct ActingCache {
+    /// The table's generation the rows come from.
+    generation: u64,
+    /// Owned atom `i` of the last build had ID `tags[i]` and the partners
+    /// `partners[at[i]..at[i + 1]]`.
+    tags: Vec<i64>,
+    at: Vec<u32>,
+    partners: Vec<(i64, u8)>,
+    /// The previous build's arrays, reused.
+    spare_at: Vec<u32>,
+    spare_partners: Vec<(i64, u8)>,
+}
+
+impl ActingCache {
+    /// Rows for the owned atoms with IDs `tag`, sorted by the build: new atom `k` was atom
+    /// `order[k]` before.
+    fn update(&mut self, special: &SpecialTable, order: &[usize], tag: &[i64]) {
+        let valid = self.generation == special.generation;
+        let (mut at, mut partners) = (std::mem::take(&mut self.spare_at), std::mem::take(&mut self.spare_partners));
+        at.clear();
+        partners.clear();
+        at.push(0);
+        for (k, &o) in order.iter().enumerate() {
+            if valid && self.tags.get(o) == Some(&tag[k]) {
+                partners.extend_from_slice(&self.partners[self.at[o] as usize..self.at[o + 1] as usize]);
+            } else {
+                special.acting_partners(tag[k], &mut partners);
+            }
+            at.push(partners.len() as u32);
+        }
+        self.spare_at = std::mem::replace(&mut self.at, at);
+        self.spare_partners = std::mem::replace(&mut self.partners, partners);
+        self.tags.clear();
+        self.tags.extend_from_slice(tag);
+        self.generation = special.generation;
+    }
+    /// The acting partners of owned atom `i`.
+    #[inline]
+    fn of(&self, i: usize) -> &[(i64, u8)] {
+        &self.partners[self.at[i] as usize..self.at[i + 1] as usize]
+    }
 }
 
 /// The per-bin arrays of a build (see [`Neighbor::build`]).
@@ -594,11 +678,17 @@ impl Neighbor {
 
         // slab chunks: consecutive planes along the slab axis, at least `reach` planes thick
         let thick = grid.reach[grid.axis].max(1) as usize;
-        let plane_of = |i: usize| grid.plane(bin_of[i]) / thick;
+        // atoms are sorted by bin: the chunk (two divisions) changes only where the bin does
         let mut bounds = vec![0usize];
-        for i in 1..n {
-            if plane_of(i) != plane_of(i - 1) {
-                bounds.push(i);
+        let mut last = bin_of.first().map(|&b| (b, grid.plane(b) / thick));
+        for (i, &b) in bin_of.iter().enumerate().skip(1) {
+            let Some((lb, lc)) = last else { break };
+            if b != lb {
+                let c = grid.plane(b) / thick;
+                if c != lc {
+                    bounds.push(i);
+                }
+                last = Some((b, c));
             }
         }
         bounds.push(n);
@@ -615,6 +705,14 @@ impl Neighbor {
         let a: &Atoms = atoms;
         let excl = &settings.exclusions;
         let use_special = !special.is_empty();
+        // symmetric special lists: a pair within the cutoff is looked up among the partners of
+        // atom i that act on pairs (read once per atom i, as LAMMPS reads its special list)
+        let by_acting = use_special && special.symmetric;
+        if by_acting {
+            self.acting.update(special, &order, &atoms.tag[..n]);
+        }
+        let acting_cache = &self.acting;
+        let plain = excl.is_empty() && !use_special;
         let chunks: Result<Vec<ChunkList>, usize> = bounds
             .windows(2)
             .collect::<Vec<_>>()
@@ -641,7 +739,7 @@ impl Neighbor {
                     let ti = a.typ[i];
                     let row = &cutneighsq[ti * stride..(ti + 1) * stride];
                     let bi = bin_of[i] as i64;
-                    let plain = !use_special && excl.is_empty();
+                    let acting: &[(i64, u8)] = if by_acting { acting_cache.of(i) } else { &[] };
                     let consider = |j: usize, neigh: &mut Vec<u32>| {
                         let xj = a.x[j];
                         let dx = xi[0] - xj[0];
@@ -655,13 +753,21 @@ impl Neighbor {
                             return;
                         }
                         let mut entry = j as u32;
-                        if use_special {
-                            let far = j >= n && minimum_image_check(domain, [dx, dy, dz]);
-                            match special.action(a.tag[i], a.tag[j], far) {
-                                PairAction::Keep => {}
-                                PairAction::Exclude => return,
-                                PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
+                        let action = if by_acting {
+                            // most atoms have no or few acting partners: the test is skipped or short
+                            match acting.iter().find(|p| p.0 == a.tag[j]) {
+                                Some(&(_, level)) => special.flag_action(level, || j >= n && minimum_image_check(domain, [dx, dy, dz])),
+                                None => PairAction::Keep,
                             }
+                        } else if use_special {
+                            special.action(a.tag[i], a.tag[j], j >= n && minimum_image_check(domain, [dx, dy, dz]))
+                        } else {
+                            PairAction::Keep
+                        };
+                        match action {
+                            PairAction::Keep => {}
+                            PairAction::Exclude => return,
+                            PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
                         }
                         if neigh.len() < neigh.capacity() || room(neigh, 1) {
                             neigh.push(entry);
@@ -887,6 +993,83 @@ mod tests {
             neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 1.2, &SpecialTable::default()).unwrap();
             assert!(neighbor.list.chunks.len() >= 2, "{len:?}: {} chunks", neighbor.list.chunks.len());
             assert_eq!(neighbor.list.check_slab_invariant(), Ok(()));
+        }
+    }
+
+    /// Special levels looked up among atom i's acting partners (read once per atom, carried
+    /// through the sort of the next build) give the entries of the per-pair search of both
+    /// atoms' lists, also after a build that reuses the rows and after a 1-2 pair is removed.
+    #[test]
+    fn acting_partners_give_the_entries_of_the_per_pair_search() {
+        let mut seed = 777u64;
+        let mut rand = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let len = [7.0, 6.0, 6.5];
+        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        // chains of 10 atoms, IDs in chain order, a random walk of steps near 1
+        let (nchain, clen) = (30, 10i64);
+        let mut atoms = Atoms::new(AtomFeatures::default());
+        for c in 0..nchain {
+            let mut x = [rand() * len[0], rand() * len[1], rand() * len[2]];
+            for k in 0..clen {
+                atoms.push(&NewAtom::at(c * clen + k + 1, 1, x));
+                for (d, v) in x.iter_mut().enumerate() {
+                    *v = (*v + rand() - 0.5).rem_euclid(len[d]);
+                }
+            }
+        }
+        let ids: Vec<i64> = atoms.tag.clone();
+        let lists: Vec<SpecialList> = ids
+            .iter()
+            .map(|&t| {
+                let (c0, k) = ((t - 1) / clen * clen + 1, (t - 1) % clen);
+                let mut l = SpecialList { ids: vec![], n: [0; 3] };
+                for lvl in 1..=3i64 {
+                    for p in [k - lvl, k + lvl] {
+                        if (0..clen).contains(&p) {
+                            l.ids.push(c0 + p);
+                        }
+                    }
+                    l.n[lvl as usize - 1] = l.ids.len();
+                }
+                l
+            })
+            .collect();
+        let flags = [SpecialFlag::Normal, SpecialFlag::Exclude, SpecialFlag::Weighted, SpecialFlag::Normal];
+        let mut by_acting = SpecialTable::from_lists(&ids, lists.clone(), flags, true);
+        let mut per_pair = SpecialTable::from_lists(&ids, lists, flags, false);
+        let settings = NeighborSettings::new(0.3);
+        let entries = |atoms: &mut Atoms, neighbor: &mut Neighbor, table: &SpecialTable| {
+            neighbor.build(atoms, &domain, &settings, 1, &|_, _| 1.2, table).unwrap();
+            let mut e: Vec<(i64, i64, usize)> = Vec::new();
+            for c in &neighbor.list.chunks {
+                for i in c.start..c.end {
+                    e.extend(c.neighbors(i).iter().map(|&j| (atoms.tag[i], atoms.tag[(j & NEIGH_MASK) as usize], special_level(j))));
+                }
+            }
+            e
+        };
+        let (mut a1, mut a2) = (atoms.clone(), atoms);
+        let (mut n1, mut n2) = (Neighbor::default(), Neighbor::default());
+        for round in 0..3 {
+            let (e1, e2) = (entries(&mut a1, &mut n1, &by_acting), entries(&mut a2, &mut n2, &per_pair));
+            assert_eq!(e1, e2, "round {round}");
+            assert!(e1.iter().any(|e| e.2 == 2) && !e1.iter().any(|e| e.2 == 1), "round {round}");
+            // atoms 4 and 5 (a 1-2 pair, excluded) are listed once their bond is gone
+            assert_eq!(e1.iter().any(|e| (e.0, e.1) == (4, 5) || (e.0, e.1) == (5, 4)), round == 2, "round {round}");
+            // move the atoms a little, so the next build sorts them anew
+            for a in [&mut a1, &mut a2] {
+                for x in a.x.iter_mut() {
+                    x[0] = (x[0] + 0.37).rem_euclid(len[0]);
+                }
+            }
+            if round == 1 {
+                let (p, q) = (4, 5);
+                by_acting.remove_one_two(p, q);
+                per_pair.remove_one_two(p, q);
+            }
         }
     }
 

@@ -376,7 +376,7 @@ impl State {
     pub fn rebuild_special(&mut self) -> Result<(), String> {
         let flags = self.special_bonds.flags(false);
         if self.topo.bonds.is_empty() {
-            self.special_table = SpecialTable { flags, ..SpecialTable::default() };
+            self.special_table = SpecialTable::from_lists(&[], vec![], flags, true);
         } else {
             let bonds: Vec<[i64; 2]> = self.topo.bonds.iter().map(|b| b.atoms).collect();
             let angles: Vec<[i64; 3]> = self.topo.angles.iter().map(|a| a.atoms).collect();

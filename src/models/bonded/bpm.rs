@@ -308,18 +308,19 @@ pub fn lammps_bond_list(state: &State, bonds: &[Entry<2>]) -> Vec<Listed> {
     }
     let mut keyed: Vec<((u32, u32), Listed)> = Vec::with_capacity(bonds.len());
     for e in bonds {
-        let slots = state.topo.bonds[e.rec as usize].slots;
+        let rec = &state.topo.bonds[e.rec as usize];
+        let (slots, history) = (rec.slots, rec.history);
         let [a, b] = e.atoms.map(|i| i as usize);
         if state.newton_bond {
             // each bond lives on its first atom only, which lists it
-            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, true] }));
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, true], history }));
         } else if e.shifted() {
-            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, false] }));
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, false], history }));
             let back = e.shift[1].map(|c| -c);
-            keyed.push(((lidx[b], slots[1]), Listed { entry: Entry { shift: [back, [0; 3]], ..*e }, apply: [false, true] }));
+            keyed.push(((lidx[b], slots[1]), Listed { entry: Entry { shift: [back, [0; 3]], ..*e }, apply: [false, true], history }));
         } else {
             let key = if lidx[a] < lidx[b] { (lidx[a], slots[0]) } else { (lidx[b], slots[1]) };
-            keyed.push((key, Listed { entry: *e, apply: [true, true] }));
+            keyed.push((key, Listed { entry: *e, apply: [true, true], history }));
         }
     }
     keyed.sort_unstable_by_key(|k| k.0);
@@ -364,30 +365,31 @@ const CHUNK: usize = 1024;
 /// ([`lammps_bond_list`]), so the sums have LAMMPS' bits. Returns the bonds that broke, in that
 /// order; the caller removes them ([`remove_broken`]).
 pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut peratom: Option<&mut PerAtomTally>) -> Result<(BondedTally, Vec<Broken>), RunError> {
-    let list = &state.bonded_lists.lammps_bonds;
-    if list.is_empty() {
+    if state.bonded_lists.lammps_bonds.is_empty() {
         return Ok((BondedTally::default(), vec![]));
     }
     let prd = state.domain.as_ref().unwrap().prd();
-    let (x, tag) = (&state.atoms.x, &state.atoms.tag);
     // LAMMPS' store_data: every bond's reference at the first evaluation of the style
     let first = !style.bpm().stored.swap(true, Ordering::Relaxed);
     if first {
-        for l in list {
-            let (_, _, del, _) = ordered(&l.entry, x, tag, prd);
+        for l in &state.bonded_lists.lammps_bonds {
+            let (_, _, del, _) = ordered(&l.entry, &state.atoms.x, &state.atoms.tag, prd);
             state.topo.bonds[l.entry.rec as usize].history = style.reference(del);
         }
+        // a bond to a periodic image is listed twice: the record keeps the last one's
+        sync_history(state, None);
     }
+    let list = &state.bonded_lists.lammps_bonds;
+    let (x, tag) = (&state.atoms.x, &state.atoms.tag);
     let mut vols = style.bpm().volume.then(|| volumes(state, list, prd, first));
     let a = &state.atoms;
     let atoms = BpmAtoms { v: &a.v, omega: &a.omega, quat: &a.quat };
-    let bonds = &state.topo.bonds;
     let mut done = vec![Done::default(); list.len()];
     ranges(list.len(), CHUNK, AtomsMut::new(&mut done), |r, mut w| {
         for k in r {
             let e = &list[k].entry;
             let (i, p, del, swapped) = ordered(e, x, tag, prd);
-            let mut hist = bonds[e.rec as usize].history;
+            let mut hist = list[k].history;
             let mut stored = None;
             if hist[0] < EPSILON || hist[0].is_nan() {
                 hist = style.reference(del);
@@ -412,13 +414,16 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let part = if state.newton_bond { 1.0 } else { 0.5 };
     // LAMMPS' dvol0: a broken bond's reference volume leaves its atoms' vol0 after the pass
     let mut dvol0 = SideSums::new(state.atoms.nlocal);
+    let mut rewritten = false;
     for (l, d) in list.iter().zip(&done) {
         let rec = l.entry.rec;
         if let Some(h) = d.stored {
             state.topo.bonds[rec as usize].history = h;
+            rewritten = true;
         }
         if let Some(h) = d.out.and_then(|o| o.history) {
             state.topo.bonds[rec as usize].history = h;
+            rewritten = true;
         }
         let Some(out) = d.out else {
             if vols.is_some() {
@@ -463,6 +468,13 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     }
     state.atoms.f = f;
     state.atoms.torque = torque;
+    if rewritten {
+        let mut changed = vec![false; state.topo.bonds.len()];
+        for (l, d) in state.bonded_lists.lammps_bonds.iter().zip(&done) {
+            changed[l.entry.rec as usize] |= d.stored.is_some() || d.out.is_some_and(|o| o.history.is_some());
+        }
+        sync_history(state, Some(&changed));
+    }
     if let Some(v) = vols.as_mut() {
         if !broken.is_empty() {
             v.vol0.iter_mut().zip(dvol0.finish()).for_each(|(a, d)| *a += d);
@@ -470,6 +482,18 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
         v.store(&mut state.atoms);
     }
     Ok((tally, broken))
+}
+
+/// Copy the records' reference states into the list's copies ([`Listed::history`]): all of
+/// them, or those of the records marked in `changed`.
+fn sync_history(state: &mut State, changed: Option<&[bool]>) {
+    let bonds = &state.topo.bonds;
+    for l in &mut state.bonded_lists.lammps_bonds {
+        let rec = l.entry.rec as usize;
+        if changed.is_none_or(|c| c[rec]) {
+            l.history = bonds[rec].history;
+        }
+    }
 }
 
 /// The per-atom volumes of one evaluation, owned atoms ([`VOL`], [`VOL0`]).
@@ -546,7 +570,7 @@ fn bond_volumes(state: &State, list: &[Listed], prd: Vec3) -> (Vec<f64>, Option<
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
         let v = bond_volume(rsq, state.dimension, rsq.sqrt());
         vol.add(l, v);
-        let r0 = state.topo.bonds[l.entry.rec as usize].history[0];
+        let r0 = l.history[0];
         if r0 < EPSILON || r0.is_nan() {
             created = true;
             dvol0.add(l, v);

@@ -6,7 +6,9 @@
 //!
 //! Each bond's reference state lives in its topology record (`Bond::history`, LAMMPS'
 //! bondstore): stored for every bond at the first evaluation after `bond_style`, and for a bond
-//! found unset later (created since) when it is first computed. A broken bond is removed from
+//! found unset later (created since) when it is first computed. The LAMMPS-order list keeps a
+//! copy next to each listed bond (`Listed::history`), which the pass reads in list order and
+//! refreshes when it rewrites a record. A broken bond is removed from
 //! the topology, and the pair between its atoms turns on from the next step: LAMMPS' fix
 //! update/special/bonds removes the 1-2 entry from both special lists and clears the special
 //! bits of the pair's neighbour entries; dmhs does the same to its special table and neighbour

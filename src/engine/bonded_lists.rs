@@ -153,5 +153,8 @@ pub struct Listed {
     pub entry: Entry<2>,
     /// Which of the two atoms receive the bond's force.
     pub apply: [bool; 2],
+    /// A copy of the record's `Bond::history`, kept in list order so the BPM pass reads it
+    /// without a scattered read of the topology record; the pass writes both.
+    pub history: [f64; crate::engine::topology::BOND_HISTORY],
 }
 

@@ -148,13 +148,20 @@ impl Topology {
     /// remove a broken bond: the atom's last bond takes the removed one's slot. The records
     /// themselves stay (see [`Topology::remove_bond_records`]).
     pub fn release_bond_slots(&mut self, recs: &[usize]) {
-        let involved: std::collections::HashSet<i64> = recs.iter().flat_map(|&k| self.bonds[k].atoms).collect();
+        // sorted, so the scan over every record below finds an atom with a short search
+        let mut involved: Vec<i64> = recs.iter().flat_map(|&k| self.bonds[k].atoms).collect();
+        involved.sort_unstable();
+        involved.dedup();
+        let (Some(&lo), Some(&hi)) = (involved.first(), involved.last()) else { return };
         // each involved atom's (slot, record, side) of its live bonds
-        let mut lists: std::collections::HashMap<i64, Vec<(u32, usize, usize)>> = std::collections::HashMap::new();
+        let mut lists: Vec<Vec<(u32, usize, usize)>> = vec![vec![]; involved.len()];
         for (k, b) in self.bonds.iter().enumerate() {
             for side in 0..2 {
-                if involved.contains(&b.atoms[side]) {
-                    lists.entry(b.atoms[side]).or_default().push((b.slots[side], k, side));
+                let t = b.atoms[side];
+                if (lo..=hi).contains(&t) {
+                    if let Ok(x) = involved.binary_search(&t) {
+                        lists[x].push((b.slots[side], k, side));
+                    }
                 }
             }
         }
@@ -162,7 +169,8 @@ impl Topology {
         for &k in recs {
             for side in 0..2 {
                 let (tag, m) = (self.bonds[k].atoms[side], self.bonds[k].slots[side]);
-                let list = lists.get_mut(&tag).expect("listed above");
+                let Ok(x) = involved.binary_search(&tag) else { continue };
+                let list = &mut lists[x];
                 list.retain(|&(_, r, _)| !removed.contains(&r));
                 if let Some(&(_, last, lside)) = list.iter().filter(|e| e.1 != k).max_by_key(|e| e.0) {
                     if self.bonds[last].slots[lside] > m {

@@ -6,7 +6,9 @@
 //!
 //! Each bond's reference state lives in its topology record (`Bond::history`, LAMMPS'
 //! bondstore): stored for every bond at the first evaluation after `bond_style`, and for a bond
-//! found unset later (created since) when it is first computed. A broken bond is removed from
+//! found unset later (created since) when it is first computed. The LAMMPS-order list keeps a
+//! copy next to each listed bond (`Listed::history`), which the pass reads in list order and
+//! refreshes when it rewrites a record. A broken bond is removed from
 //! the topology, and the pair between its atoms turns on from the next step: LAMMPS' fix
 //! update/special/bonds removes the 1-2 entry from both special lists and clears the special
 //! bits of the pair's neighbour entries; dmhs does the same to its special table and neighbour
@@ -308,18 +310,19 @@ pub fn lammps_bond_list(state: &State, bonds: &[Entry<2>]) -> Vec<Listed> {
     }
     let mut keyed: Vec<((u32, u32), Listed)> = Vec::with_capacity(bonds.len());
     for e in bonds {
-        let slots = state.topo.bonds[e.rec as usize].slots;
+        let rec = &state.topo.bonds[e.rec as usize];
+        let (slots, history) = (rec.slots, rec.history);
         let [a, b] = e.atoms.map(|i| i as usize);
         if state.newton_bond {
             // each bond lives on its first atom only, which lists it
-            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, true] }));
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, true], history }));
         } else if e.shifted() {
-            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, false] }));
+            keyed.push(((lidx[a], slots[0]), Listed { entry: *e, apply: [true, false], history }));
             let back = e.shift[1].map(|c| -c);
-            keyed.push(((lidx[b], slots[1]), Listed { entry: Entry { shift: [back, [0; 3]], ..*e }, apply: [false, true] }));
+            keyed.push(((lidx[b], slots[1]), Listed { entry: Entry { shift: [back, [0; 3]], ..*e }, apply: [false, true], history }));
         } else {
             let key = if lidx[a] < lidx[b] { (lidx[a], slots[0]) } else { (lidx[b], slots[1]) };
-            keyed.push((key, Listed { entry: *e, apply: [true, true] }));
+            keyed.push((key, Listed { entry: *e, apply: [true, true], history }));
         }
     }
     keyed.sort_unstable_by_key(|k| k.0);
@@ -364,46 +367,24 @@ const CHUNK: usize = 1024;
 /// ([`lammps_bond_list`]), so the sums have LAMMPS' bits. Returns the bonds that broke, in that
 /// order; the caller removes them ([`remove_broken`]).
 pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut peratom: Option<&mut PerAtomTally>) -> Result<(BondedTally, Vec<Broken>), RunError> {
-    let list = &state.bonded_lists.lammps_bonds;
-    if list.is_empty() {
+    if state.bonded_lists.lammps_bonds.is_empty() {
         return Ok((BondedTally::default(), vec![]));
     }
     let prd = state.domain.as_ref().unwrap().prd();
-    let (x, tag) = (&state.atoms.x, &state.atoms.tag);
     // LAMMPS' store_data: every bond's reference at the first evaluation of the style
     let first = !style.bpm().stored.swap(true, Ordering::Relaxed);
     if first {
-        for l in list {
-            let (_, _, del, _) = ordered(&l.entry, x, tag, prd);
+        for l in &state.bonded_lists.lammps_bonds {
+            let (_, _, del, _) = ordered(&l.entry, &state.atoms.x, &state.atoms.tag, prd);
             state.topo.bonds[l.entry.rec as usize].history = style.reference(del);
         }
+        // a bond to a periodic image is listed twice: the record keeps the last one's
+        sync_history(state, None);
     }
+    let list = &state.bonded_lists.lammps_bonds;
+    let (x, tag) = (&state.atoms.x, &state.atoms.tag);
     let mut vols = style.bpm().volume.then(|| volumes(state, list, prd, first));
-    let a = &state.atoms;
-    let atoms = BpmAtoms { v: &a.v, omega: &a.omega, quat: &a.quat };
-    let bonds = &state.topo.bonds;
-    let mut done = vec![Done::default(); list.len()];
-    ranges(list.len(), CHUNK, AtomsMut::new(&mut done), |r, mut w| {
-        for k in r {
-            let e = &list[k].entry;
-            let (i, p, del, swapped) = ordered(e, x, tag, prd);
-            let mut hist = bonds[e.rec as usize].history;
-            let mut stored = None;
-            if hist[0] < EPSILON || hist[0].is_nan() {
-                hist = style.reference(del);
-                stored = Some(hist);
-            }
-            let out = match &vols {
-                None => style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
-                Some(v) => {
-                    let [i1, i2] = i.map(|k| k as usize);
-                    let sums = VolSums { vol: v.vol[i1] + v.vol[i2], vol0: v.vol0[i1] + v.vol0[i2], invdim: v.invdim };
-                    style.bond_volume(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms, sums)
-                }
-            };
-            w[k] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out };
-        }
-    });
+    let atoms = BpmAtoms { v: &state.atoms.v, omega: &state.atoms.omega, quat: &state.atoms.quat };
     let mut f = std::mem::take(&mut state.atoms.f);
     let mut torque = std::mem::take(&mut state.atoms.torque);
     let mut tally = BondedTally::default();
@@ -412,57 +393,88 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let part = if state.newton_bond { 1.0 } else { 0.5 };
     // LAMMPS' dvol0: a broken bond's reference volume leaves its atoms' vol0 after the pass
     let mut dvol0 = SideSums::new(state.atoms.nlocal);
-    for (l, d) in list.iter().zip(&done) {
-        let rec = l.entry.rec;
-        if let Some(h) = d.stored {
-            state.topo.bonds[rec as usize].history = h;
-        }
-        if let Some(h) = d.out.and_then(|o| o.history) {
-            state.topo.bonds[rec as usize].history = h;
-        }
-        let Some(out) = d.out else {
-            if vols.is_some() {
-                // LAMMPS subtracts (x - v is x + (-v), bit for bit)
-                dvol0.add(l, -bond_volume(d.r0 * d.r0, state.dimension, d.r0));
+    // the records whose reference state the pass rewrote (their list copies follow after it)
+    let mut rewritten: Option<Vec<bool>> = None;
+    // the bonds are evaluated (in parallel) and added (in order) a block at a time, so the
+    // evaluated bonds are read back from cache, not from memory
+    let block = CHUNK * rayon::current_num_threads().max(1);
+    let mut buf = vec![Done::default(); block.min(list.len())];
+    for part_list in list.chunks(block) {
+        let done = &mut buf[..part_list.len()];
+        ranges(part_list.len(), CHUNK, AtomsMut::new(done), |r, mut w| {
+            for k in r {
+                let e = &part_list[k].entry;
+                let (i, p, del, swapped) = ordered(e, x, tag, prd);
+                let mut hist = part_list[k].history;
+                let mut stored = None;
+                if hist[0] < EPSILON || hist[0].is_nan() {
+                    hist = style.reference(del);
+                    stored = Some(hist);
+                }
+                let out = match &vols {
+                    None => style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
+                    Some(v) => {
+                        let [i1, i2] = i.map(|k| k as usize);
+                        let sums = VolSums { vol: v.vol[i1] + v.vol[i2], vol0: v.vol0[i1] + v.vol0[i2], invdim: v.invdim };
+                        style.bond_volume(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms, sums)
+                    }
+                };
+                w[k] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out };
             }
-            if !broken.iter().any(|b| b.rec == rec) {
-                broken.push(Broken { rec, atoms: d.atoms, x: d.x });
+        });
+        for (l, d) in part_list.iter().zip(done.iter()) {
+            let rec = l.entry.rec;
+            for h in [d.stored, d.out.and_then(|o| o.history)].into_iter().flatten() {
+                state.topo.bonds[rec as usize].history = h;
+                rewritten.get_or_insert_with(|| vec![false; state.topo.bonds.len()])[rec as usize] = true;
             }
-            continue;
-        };
-        let apply = if d.swapped { [l.apply[1], l.apply[0]] } else { l.apply };
-        let [i1, i2] = d.atoms.map(|i| i as usize);
-        if apply[0] {
-            f[i1].iter_mut().zip(out.f1).for_each(|(a, b)| *a += b);
-            if S::TORQUES {
-                torque[i1].iter_mut().zip(out.t1).for_each(|(a, b)| *a += b);
-            }
-        }
-        if apply[1] {
-            f[i2].iter_mut().zip(out.f1).for_each(|(a, b)| *a -= b);
-            if S::TORQUES {
-                torque[i2].iter_mut().zip(out.t2).for_each(|(a, b)| *a += b);
-            }
-        }
-        if eflag {
-            let sides = if state.newton_bond { 1 } else { apply.iter().filter(|&&a| a).count() };
-            for _ in 0..sides {
-                tally.ebond += part * out.energy;
-                for k in 0..6 {
-                    tally.virial[k] += part * out.virial[k];
+            let Some(out) = d.out else {
+                if vols.is_some() {
+                    // LAMMPS subtracts (x - v is x + (-v), bit for bit)
+                    dvol0.add(l, -bond_volume(d.r0 * d.r0, state.dimension, d.r0));
+                }
+                if !broken.iter().any(|b| b.rec == rec) {
+                    broken.push(Broken { rec, atoms: d.atoms, x: d.x });
+                }
+                continue;
+            };
+            let apply = if d.swapped { [l.apply[1], l.apply[0]] } else { l.apply };
+            let [i1, i2] = d.atoms.map(|i| i as usize);
+            if apply[0] {
+                f[i1].iter_mut().zip(out.f1).for_each(|(a, b)| *a += b);
+                if S::TORQUES {
+                    torque[i1].iter_mut().zip(out.t1).for_each(|(a, b)| *a += b);
                 }
             }
-            // LAMMPS' eatom and vatom: half to each atom of the bond (owned here)
-            if let Some(pa) = peratom.as_deref_mut() {
-                let nlocal = pa.energy[PerAtomTally::BOND].len();
-                for (i, _) in [i1, i2].into_iter().zip(apply).filter(|&(i, a)| a && i < nlocal) {
-                    pa.add(PerAtomTally::BOND, i, 0.5, out.energy, &out.virial);
+            if apply[1] {
+                f[i2].iter_mut().zip(out.f1).for_each(|(a, b)| *a -= b);
+                if S::TORQUES {
+                    torque[i2].iter_mut().zip(out.t2).for_each(|(a, b)| *a += b);
+                }
+            }
+            if eflag {
+                let sides = if state.newton_bond { 1 } else { apply.iter().filter(|&&a| a).count() };
+                for _ in 0..sides {
+                    tally.ebond += part * out.energy;
+                    for k in 0..6 {
+                        tally.virial[k] += part * out.virial[k];
+                    }
+                }
+                // LAMMPS' eatom and vatom: half to each atom of the bond (owned here)
+                if let Some(pa) = peratom.as_deref_mut() {
+                    let nlocal = pa.energy[PerAtomTally::BOND].len();
+                    for (i, _) in [i1, i2].into_iter().zip(apply).filter(|&(i, a)| a && i < nlocal) {
+                        pa.add(PerAtomTally::BOND, i, 0.5, out.energy, &out.virial);
+                    }
                 }
             }
         }
     }
     state.atoms.f = f;
     state.atoms.torque = torque;
+    if let Some(changed) = rewritten {
+        sync_history(state, Some(&changed));
+    }
     if let Some(v) = vols.as_mut() {
         if !broken.is_empty() {
             v.vol0.iter_mut().zip(dvol0.finish()).for_each(|(a, d)| *a += d);
@@ -470,6 +482,18 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
         v.store(&mut state.atoms);
     }
     Ok((tally, broken))
+}
+
+/// Copy the records' reference states into the list's copies ([`Listed::history`]): all of
+/// them, or those of the records marked in `changed`.
+fn sync_history(state: &mut State, changed: Option<&[bool]>) {
+    let bonds = &state.topo.bonds;
+    for l in &mut state.bonded_lists.lammps_bonds {
+        let rec = l.entry.rec as usize;
+        if changed.is_none_or(|c| c[rec]) {
+            l.history = bonds[rec].history;
+        }
+    }
 }
 
 /// The per-atom volumes of one evaluation, owned atoms ([`VOL`], [`VOL0`]).
@@ -513,20 +537,28 @@ impl SideSums {
     fn new(n: usize) -> Self {
         SideSums { own: vec![0.0; n], images: vec![], index: Default::default() }
     }
+    #[inline(always)]
     fn add(&mut self, l: &Listed, v: f64) {
-        for k in (0..2).filter(|&k| l.apply[k]) {
+        for k in 0..2 {
             let (a, s) = (l.entry.atoms[k], l.entry.shift[k]);
-            if s == [0; 3] {
-                self.own[a as usize] += v;
+            if !l.apply[k] {
                 continue;
             }
-            let n = self.images.len();
-            let slot = *self.index.entry((a, s)).or_insert(n);
-            if slot == n {
-                self.images.push((a, 0.0));
+            if s == [0; 3] {
+                self.own[a as usize] += v;
+            } else {
+                self.add_image(a, s, v);
             }
-            self.images[slot].1 += v;
         }
+    }
+    #[inline(never)]
+    fn add_image(&mut self, a: u32, s: [i8; 3], v: f64) {
+        let n = self.images.len();
+        let slot = *self.index.entry((a, s)).or_insert(n);
+        if slot == n {
+            self.images.push((a, 0.0));
+        }
+        self.images[slot].1 += v;
     }
     fn finish(mut self) -> Vec<f64> {
         for (a, v) in self.images {
@@ -542,11 +574,14 @@ fn bond_volumes(state: &State, list: &[Listed], prd: Vec3) -> (Vec<f64>, Option<
     let n = state.atoms.nlocal;
     let (mut vol, mut dvol0, mut created) = (SideSums::new(n), SideSums::new(n), false);
     for l in list {
-        let (_, _, del, _) = ordered(&l.entry, &state.atoms.x, &state.atoms.tag, prd);
+        // the entry's own order: the squares of x1 - x2 and x2 - x1 have the same bits
+        let (e, x) = (&l.entry, &state.atoms.x);
+        let (p1, p2) = (image(x, e.atoms[0], e.shift[0], prd), image(x, e.atoms[1], e.shift[1], prd));
+        let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
         let v = bond_volume(rsq, state.dimension, rsq.sqrt());
         vol.add(l, v);
-        let r0 = state.topo.bonds[l.entry.rec as usize].history[0];
+        let r0 = l.history[0];
         if r0 < EPSILON || r0.is_nan() {
             created = true;
             dvol0.add(l, v);

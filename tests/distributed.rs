@@ -553,3 +553,30 @@ fn bonds_breaking_across_ranks_break_as_in_the_serial_run() {
     compare(&deck, 2);
     compare(&deck, 4);
 }
+
+/// A dump of forces written on ranks: the gathered atoms carry the forces of the last
+/// evaluation (migration does not), so fx fy fz are the serial run's, not zeros.
+#[test]
+fn a_dump_of_forces_on_ranks_is_the_serial_one() {
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ndump         d all custom 50 dump.f id fx fy fz\ndump_modify  d sort id format float %.15g\n");
+    let run_in = |ranks: usize| {
+        let dir = tempfile::tempdir().unwrap();
+        let opts = DeckOptions { base_dir: Some(dir.path().to_path_buf()), ..options() };
+        let results: Vec<Result<Outcome, String>> = Threads::world(ranks)
+            .into_iter()
+            .map(|c| {
+                let (opts, deck) = (opts.clone(), deck.clone());
+                std::thread::spawn(move || run_text_on("deck", &deck, &opts, Some(Arc::new(c) as Arc<dyn Comm>)).map(|r| outcome(&r)).map_err(|f| f.rendered))
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|_| Err("rank panicked".into())))
+            .collect();
+        assert!(results.iter().all(|r| r.is_ok()), "{ranks} ranks: {:?}", results.iter().find_map(|r| r.as_ref().err()));
+        numbers(&std::fs::read_to_string(dir.path().join("dump.f")).unwrap())
+    };
+    let (n1, n2) = (run_in(1), run_in(2));
+    assert_eq!(n1.len(), n2.len(), "the dumps have the same snapshots");
+    assert!(n1.iter().filter(|x| x.abs() > 1e-3).count() > 1000, "the serial dump has forces");
+    assert!(n2.iter().zip(&n1).all(|(x, y)| close(*x, *y, 1e-9)), "the dump of forces written on 2 ranks differs from the serial one");
+}

@@ -469,6 +469,24 @@ impl Decomp {
         for b in self.comm.allgather(buf) {
             whole.unpack_owned(&b);
         }
+        // the forces and torques of the last evaluation, which migration does not carry (dumps
+        // of fx, and the commands after a run, read them), in the same rank order
+        let n = atoms.nlocal;
+        let sphere = atoms.features.sphere;
+        let mine: Vec<f64> = atoms.f[..n].iter().chain(if sphere { &atoms.torque[..n] } else { &[] }).flatten().copied().collect();
+        let mut k = 0;
+        for part in self.comm.allgather(mine) {
+            let m = part.len() / if sphere { 6 } else { 3 };
+            for (j, c) in part.chunks_exact(3).enumerate() {
+                let v = [c[0], c[1], c[2]];
+                if j < m {
+                    whole.f[k + j] = v;
+                } else {
+                    whole.torque[k + j - m] = v;
+                }
+            }
+            k += m;
+        }
         whole
     }
 }

@@ -35,35 +35,17 @@ use std::collections::HashMap;
 /// each pair is kept when the random number of its lower-tag atom is below `fraction`; one
 /// number is drawn per atom with a partner, in atom-ID order (see the module doc).
 pub fn mutual_partners(a: &crate::engine::atoms::Atoms, partner: &[i64], fraction: f64, random: &mut RanPark) -> Vec<(usize, usize)> {
-    let n = partner.len();
+    let choice: std::collections::BTreeMap<i64, (i64, f64)> = (0..partner.len()).filter(|&i| partner[i] != 0).map(|i| (a.tag[i], (partner[i], 0.0))).collect();
     let map = a.tag_map();
-    let mut probability: HashMap<i64, f64> = HashMap::new();
-    if fraction < 1.0 {
-        let mut with: Vec<i64> = (0..n).filter(|&i| partner[i] != 0).map(|i| a.tag[i]).collect();
-        with.sort_unstable();
-        for t in with {
-            probability.insert(t, random.uniform());
-        }
-    }
-    let mut pairs = vec![];
-    for i in 0..n {
-        if partner[i] == 0 {
-            continue;
-        }
-        let j = map.get(partner[i]).expect("partner is an owned atom");
-        if partner[j] != a.tag[i] || a.tag[i] > a.tag[j] {
-            continue;
-        }
-        if fraction < 1.0 && probability[&a.tag[i]] >= fraction {
-            continue;
-        }
-        pairs.push((i, j));
-    }
+    let local = |t: i64| map.get(t).expect("partner is an owned atom");
+    // in the local order of the lower-ID atom, as the atoms were scanned
+    let mut pairs: Vec<(usize, usize)> = mutual_choices(&choice, fraction, random).into_iter().map(|(t, p)| (local(t), local(p))).collect();
+    pairs.sort_unstable();
     pairs
 }
 
 /// The pairs of atoms (lower ID first, in ID order) whose choices (`choice[t]` = (partner,
-/// r^2)) name each other, as [`mutual_partners`] pairs owned atoms; below `fraction` 1 each is
+/// r^2)) name each other (the rule of [`mutual_partners`], by ID); below `fraction` 1 each is
 /// kept when the random number of its lower-ID atom is below `fraction`, one number drawn per
 /// atom with a choice, in ID order.
 pub fn mutual_choices(choice: &std::collections::BTreeMap<i64, (i64, f64)>, fraction: f64, random: &mut RanPark) -> Vec<(i64, i64)> {

@@ -405,6 +405,13 @@ impl Decomp {
         }
     }
 
+    /// The owners' values of one per-atom vector for every ghost, in ghost order, leaving the
+    /// ghosts' own copies as they are (fix sph's fresh velocity estimates at a run's setup).
+    pub fn owners_vectors(&self, atoms: &Atoms, domain: &Domain, get: fn(&Atoms) -> &[[f64; 3]]) -> Vec<[f64; 3]> {
+        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, _, _, out| out.extend_from_slice(&get(a)[i]));
+        bufs.concat().chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect()
+    }
+
     /// Pack each send list with `pack(atoms, i, shifted x, shift, out)` and exchange: the buffers
     /// received, in ghost order (by sending rank).
     fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], [i8; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {

@@ -84,6 +84,19 @@ impl LammpsOrder {
         }
     }
 
+    /// IDs 1..N in this order (after [`LammpsOrder::before_rebuild`]): LAMMPS' `tag_extend`
+    /// of an atomic system whose IDs were all cleared (`delete_atoms ... compress yes`).
+    pub fn renumber(&mut self, atoms: &mut Atoms) {
+        let map = atoms.tag_map();
+        for (k, t) in self.ids.iter_mut().enumerate() {
+            let i = map.get(*t).expect("every ordered atom is owned");
+            atoms.tag[i] = k as i64 + 1;
+            *t = k as i64 + 1;
+        }
+        self.local.clear();
+        self.sides = None;
+    }
+
     /// After dmhs' rebuild at `step`: LAMMPS' `Atom::sort` when it is due (always at the
     /// setup of a run; then on rebuilds from `nextsort` on), then the map to dmhs' indices.
     /// `cutneighmax` is the largest pair cutoff plus skin.

@@ -254,6 +254,14 @@ impl State {
             d.forward_positions(&mut self.atoms, domain);
         }
     }
+    /// The owners' values of a per-atom vector for every ghost (serial or distributed), without
+    /// changing the ghosts' copies.
+    pub fn owners_vectors(&self, get: fn(&Atoms) -> &[[f64; 3]]) -> Vec<[f64; 3]> {
+        match (&self.decomp, self.distributed, &self.domain) {
+            (Some(d), Some(_), Some(domain)) => d.owners_vectors(&self.atoms, domain, get),
+            _ => self.atoms.ghost_owner.iter().map(|&o| get(&self.atoms)[o as usize]).collect(),
+        }
+    }
     /// Fresh ghost state (positions, velocities and every per-atom value ghosts carry) from
     /// the owners, serial or distributed.
     pub fn forward_ghost_state(&mut self) {

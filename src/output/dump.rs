@@ -408,6 +408,12 @@ impl Dump {
         self.columns.iter().any(|c| matches!(c, Column::PerAtom(_) | Column::Local(_)))
     }
 
+    /// The per-atom compute and fix columns (`c_ID`, `f_ID`), and whether there are local ones.
+    pub fn model_columns(&self) -> (Vec<&crate::models::compute::PerAtomRef>, bool) {
+        let peratom = self.columns.iter().filter_map(|c| if let Column::PerAtom(r) = c { Some(r) } else { None }).collect();
+        (peratom, self.columns.iter().any(|c| matches!(c, Column::Local(_))))
+    }
+
     pub fn write(&mut self, w: &World, ev: &mut dyn dmhs_parser::EvalContext) -> Result<(), String> {
         if let Some(p) = &self.picture {
             p.write(w, &mut |name| dmhs_parser::variables::compute_equal(ev, name), self.groupbit).map_err(|e| format!("dump {}: {e}", self.id))?;

@@ -14,10 +14,13 @@ use std::sync::Arc;
 /// integrators and forces that act atom by atom, and the thermo computes that are sums.
 const PAIRS: &[&str] = &[
     "lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction",
-    "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular",
+    "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular", "dmhs/sph/diffusion", "dmhs/lj/wet",
 ];
-const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes"];
+const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom"];
+/// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
+/// only the atoms' own values, which travel with them).
+const GATHERED_COMPUTES: &[&str] = &["property/atom"];
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
@@ -78,7 +81,7 @@ impl Simulation {
             Some(format!("compute {} ({})", c.id(), c.style()))
         } else if let Some((c, (fix, id))) = self.computes.iter().find_map(|c| c.reads().into_iter().find(|r| !self.reads_on_ranks(r)).map(|r| (c, r))) {
             Some(format!("compute {} ({}) of {} {id}", c.id(), c.style(), if fix { "fix" } else { "compute" }))
-        } else if let Some(d) = self.dumps.iter().find(|d| d.reads_models()) {
+        } else if let Some(d) = self.dumps.iter().find(|d| !self.dump_gathers(d)) {
             Some(format!("dump {} (it writes values of computes or fixes)", d.id))
         } else if self.state.boundary.iter().flatten().any(|b| !matches!(b, crate::engine::domain::BoundaryKind::Periodic | crate::engine::domain::BoundaryKind::Fixed)) {
             Some("shrink-wrapped boundaries (s, m)".to_string())
@@ -89,11 +92,18 @@ impl Simulation {
             "pair styles {}; bond styles {}; angle styles {}; dihedral styles {}; fixes {}; computes {}",
             PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
         );
-        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values (run on one rank)"))
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values and of compute property/atom (run on one rank)"))
     }
 
     /// Whether a compute may read compute or fix `id` on ranks: one of the allowed computes
     /// with per-atom values (local rows are per rank) or one of the allowed fixes.
+    /// Whether rank 0 can write dump `d` from the gathered atoms: its compute columns are of
+    /// computes that read only the atoms' own values.
+    fn dump_gathers(&self, d: &crate::output::dump::Dump) -> bool {
+        let (peratom, local) = d.model_columns();
+        !local && peratom.iter().all(|r| !r.fix && self.computes.iter().any(|c| c.id() == r.id && GATHERED_COMPUTES.contains(&c.style())))
+    }
+
     fn reads_on_ranks(&self, (fix, id): &(bool, String)) -> bool {
         if *fix {
             self.fixes.iter().any(|f| f.id() == id && FIXES.contains(&f.style()) && f.local().is_none())

@@ -8,8 +8,11 @@
 //! owned atoms, each with the other's (stale) ghost, so for the setup forces the pairs LAMMPS
 //! holds at the other atom are computed apart with the estimates swapped (owned stale, ghosts
 //! fresh): each atom then gets the mirror image of LAMMPS' pair.
+//!
+//! A distributed run reproduces the serial run: only periodic images (ghosts with a shift) are
+//! the serial run's ghosts; a ghost from a neighbouring rank stands for an owned atom of the
+//! serial run and is given its owner's fresh estimate.
 
-use crate::engine::atoms::Atoms;
 use crate::engine::domain::Domain;
 use crate::models::pair::Tally;
 use crate::sim::{RunError, Simulation};
@@ -76,18 +79,12 @@ impl LammpsBins {
     }
 }
 
-/// Whether some ghost's vest differs from its owner's (a serial run's ghosts only).
-fn stale(atoms: &Atoms) -> bool {
-    let n = atoms.nlocal;
-    atoms.vest[n..].iter().zip(&atoms.ghost_owner).any(|(g, &o)| *g != atoms.vest[o as usize])
-}
-
 impl Simulation {
     /// The owned atoms' vest before fixes' `setup_pre_force`, when the setup forces may need
-    /// [`Simulation::mirror_stale_pairs`]: a serial SPH run with `newton on`.
+    /// [`Simulation::setup_forces_stale_vest`]: an SPH run with `newton on`.
     pub(crate) fn vest_before_setup(&self) -> Option<Vec<[f64; 3]>> {
         let s = &self.state;
-        let wanted = s.atoms.features.sph && s.newton_pair && s.distributed.is_none() && self.pair.is_some() && s.domain.is_some();
+        let wanted = s.atoms.features.sph && s.newton_pair && self.pair.is_some() && s.domain.is_some();
         wanted.then(|| s.atoms.vest[..s.atoms.nlocal].to_vec())
     }
 
@@ -95,20 +92,36 @@ impl Simulation {
     /// the ghosts were made with. Pair forces of the list minus the pairs LAMMPS holds at the
     /// other atom, then those pairs alone with owned vest = `old` and ghost vest fresh.
     pub(crate) fn setup_forces_stale_vest(&mut self, old: Option<Vec<[f64; 3]>>) -> Result<(), RunError> {
-        let Some(old) = old.filter(|_| stale(&self.state.atoms)) else {
+        let Some(old) = old else {
             return self.compute_forces(true, false);
         };
         let (nlocal, step) = (self.state.atoms.nlocal, self.state.step);
+        let fresh_ghosts = self.state.owners_vectors(|a| &a.vest);
+        let image = |a: &crate::engine::atoms::Atoms, k: usize| a.ghost_shift[k] != [0; 3];
+        // ghosts from other ranks stand for the serial run's owned atoms: fresh
+        let a = &mut self.state.atoms;
+        for k in 0..a.nghost() {
+            if !image(a, k) {
+                a.vest[nlocal + k] = fresh_ghosts[k];
+            }
+        }
+        // whether some periodic image holds an estimate its owner no longer has (on any rank)
+        let mut stale = [(0..a.nghost()).any(|k| image(a, k) && a.vest[nlocal + k] != fresh_ghosts[k]) as u8 as f64];
+        self.state.max_ranks(&mut stale);
+        if stale[0] == 0.0 {
+            return self.compute_forces(true, false);
+        }
         if self.computes.iter().any(|c| c.uses_peratom_tally()) {
             return Err(RunError::new(step, "per-atom energies and virials (compute pe/atom, stress/atom) of an SPH run setup whose ghosts hold old velocity estimates are not made yet (LAMMPS splits those pairs by its newton list)"));
         }
         let domain = self.state.domain.as_ref().expect("a box");
         let from_full = self.pair.as_deref().is_some_and(|p| p.sub_styles().contains(&"sph/rhosum"));
         let bins = LammpsBins::new(domain, self.state.neighbor.cutneighmax, self.state.neigh_settings.binsize, from_full);
-        let x = &self.state.atoms.x;
-        let here = |i: usize, j: usize| j < nlocal || bins.held_at_owned(&x[i], &x[j]);
+        let a = &self.state.atoms;
+        let here = |i: usize, j: usize| j < nlocal || !image(a, j - nlocal) || bins.held_at_owned(&a.x[i], &a.x[j]);
         let full = &self.state.neighbor.list;
         let (near, far) = (full.retained(here), full.retained(|i, j| !here(i, j)));
+        let ghosts_old = self.state.atoms.vest[nlocal..].to_vec();
         // the density summation (sph/rhosum) sees every pair
         self.compute_forces_listed(true, false, Some(near))?;
         // the far pairs alone, on zeroed accumulators, with the estimates swapped
@@ -116,13 +129,10 @@ impl Simulation {
         let near_out = (std::mem::take(&mut a.f), std::mem::take(&mut a.drho), std::mem::take(&mut a.desph));
         (a.f, a.drho, a.desph) = (vec![[0.0; 3]; near_out.0.len()], vec![0.0; near_out.1.len()], vec![0.0; near_out.2.len()]);
         let fresh = a.vest[..nlocal].to_vec();
-        let ghosts_old = a.vest[nlocal..].to_vec();
         a.vest[..nlocal].copy_from_slice(&old);
-        for (g, &o) in a.vest[nlocal..].iter_mut().zip(&a.ghost_owner) {
-            *g = fresh[o as usize];
-        }
+        a.vest[nlocal..].copy_from_slice(&fresh_ghosts);
         let full = std::mem::replace(&mut self.state.neighbor.list, far);
-        let tally: Tally = self.with_pair(|p, input, out| p.compute(input, out), true, false);
+        let mut tally: Tally = self.with_pair(|p, input, out| p.compute(input, out), true, false);
         self.state.neighbor.list = full;
         let a = &mut self.state.atoms;
         a.vest[..nlocal].copy_from_slice(&fresh);
@@ -137,6 +147,11 @@ impl Simulation {
         for (e, g) in a.desph.iter_mut().zip(&far_out.2) {
             *e += g;
         }
+        // the near pass's energies are already summed over the ranks
+        let mut v = [tally.evdwl, tally.ecoul, tally.virial[0], tally.virial[1], tally.virial[2], tally.virial[3], tally.virial[4], tally.virial[5]];
+        self.state.sum_ranks(&mut v);
+        (tally.evdwl, tally.ecoul) = (v[0], v[1]);
+        tally.virial.copy_from_slice(&v[2..8]);
         let e = &mut self.state.energies;
         e.pair.evdwl += tally.evdwl;
         e.pair.ecoul += tally.ecoul;

@@ -140,16 +140,14 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     }
     let tags: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i]).map(|i| sim.state.atoms.tag[i]).collect();
     let ndel = tags.len();
+    // LAMMPS' local order before and after the deletion (it moves its last atom into each hole)
+    sim.state.lammps_order.before_rebuild(&sim.state.atoms);
     sim.state.atoms.retain(&gone);
+    sim.state.lammps_order.before_rebuild(&sim.state.atoms);
     sim.state.topo.remove_atoms(&tags);
-    // LAMMPS renumbers IDs 1..N only for atomic systems; it walks atoms in local order,
-    // which before any run is ID order: dmhs uses ID order always.
+    // LAMMPS renumbers IDs 1..N only for atomic systems, in its local order
     if compress && !sim.state.atoms.features.molecular() {
-        let mut order: Vec<usize> = (0..sim.state.atoms.nlocal).collect();
-        order.sort_by_key(|&i| sim.state.atoms.tag[i]);
-        for (k, &i) in order.iter().enumerate() {
-            sim.state.atoms.tag[i] = k as i64 + 1;
-        }
+        sim.state.lammps_order.renumber(&mut sim.state.atoms);
     }
     sim.state.lists_valid = false;
     sim.out.print(&format!("Deleted {ndel} atoms, new total = {}", sim.state.atoms.nlocal));

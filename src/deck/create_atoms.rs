@@ -22,8 +22,6 @@ keyword value ... (keywords: basis M itype, remap yes|no, units lattice|box, ove
 const EPSILON: f64 = 1.0e-6;
 /// Seed for min/max searches.
 const BIG: f64 = 1.0e30;
-/// Relative padding of shrink-wrapped faces when a box is created (LAMMPS Domain `SMALL`).
-const SMALL: f64 = 1.0e-4;
 
 /// What `create_box` defines: the number of atom types, the box, and the topology counts.
 #[derive(Clone, Debug, PartialEq)]
@@ -103,19 +101,10 @@ pub fn create_box(
     // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
     // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
     let unpadded = Domain { dimension, lo, hi, boundary };
-    let (mut lo, mut hi) = (lo, hi);
-    for d in 0..3 {
-        let small = SMALL * (hi[d] - lo[d]);
-        if boundary[d][0] == BoundaryKind::Shrink {
-            lo[d] -= small;
-        }
-        if boundary[d][1] == BoundaryKind::Shrink {
-            hi[d] += small;
-        }
-    }
+    let domain = crate::engine::boundary::pad_shrink_faces(&unpadded);
     let mut out = CreateBox {
         ntypes,
-        domain: Domain { dimension, lo, hi, boundary },
+        domain,
         unpadded,
         bond_types: 0,
         angle_types: 0,

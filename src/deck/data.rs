@@ -221,6 +221,8 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     };
     sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
     sim.state.box_initial = Some(domain.clone());
+    // a new box: LAMMPS' set_initial_box(1) pads its shrink-wrapped faces
+    let domain = if o.add.is_none() { crate::engine::boundary::pad_shrink_faces(&domain) } else { domain };
     sim.state.domain = Some(domain.clone());
     let natoms = sim.state.atoms.nlocal + h.atoms;
     crate::sim::memory::check_atoms(natoms as f64, sim.state.atoms.features, 0, 0).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {natoms} atoms: {e}"), "too many atoms for this machine"))?;
@@ -327,6 +329,10 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     for b in &data.dihedrals {
         check_type(b.topo_type, h.dihedral_types, b.span, "dihedral")?;
         sim.state.topo.dihedrals.push(Dihedral::new(b.topo_type + doff, b.atoms.map(|a| a + id_off)));
+    }
+    // LAMMPS' read_data shrink-wraps the box to the atoms at once (its margins from the file's box)
+    if let (Some(d), Some(initial)) = (sim.state.domain.as_mut(), sim.state.box_initial.as_ref()) {
+        crate::engine::boundary::reset_shrink_wrap(d, initial, &sim.state.atoms);
     }
     sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", data.atoms.len(), data.bonds.len(), data.angles.len(), data.dihedrals.len()));
     if o.add.is_some() && !(data.bonds.is_empty() && data.angles.is_empty() && data.dihedrals.is_empty()) {

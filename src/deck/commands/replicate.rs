@@ -6,7 +6,8 @@
 //! lo + n * prd. Copies are made replica by replica (z fastest, then y, then x), each in the
 //! old local order, and copy k = ix + nx (iy + ny iz) adds k * maxtag to atom IDs and
 //! k * maxmol to positive molecule IDs; bonds, angles and dihedrals are copied with their atom
-//! IDs shifted the same way. Every other per-atom value is copied unchanged.
+//! IDs shifted the same way. Every other per-atom value is copied unchanged. Shrink-wrapped
+//! faces of the new box are padded as create_box pads them.
 
 use super::need_box;
 use crate::sim::Simulation;
@@ -92,8 +93,10 @@ pub fn replicate(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
         }
     }
     replicate_topology(&mut st.topo, &reps, n, maxtag);
+    // LAMMPS' set_initial_box(1): the margins of shrink-wrapped faces come from the new box and
+    // pad it until the next run wraps it (seen by $(ylo) and EDGE regions between commands)
     st.box_initial = Some(big.clone());
-    st.domain = Some(big.clone());
+    st.domain = Some(crate::engine::boundary::pad_shrink_faces(&big));
     sim.out.print(&format!("  {}", crate::deck::box_text(&big)));
     sim.out.print(&format!("  {} atoms", sim.state.atoms.nlocal));
     let t = &sim.state.topo;

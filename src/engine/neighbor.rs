@@ -233,10 +233,10 @@ pub struct ChunkList {
 
 impl ChunkList {
     /// The list of atoms `start..end` whose neighbours are `neigh[offsets[k]..offsets[k + 1]]`,
-    /// indexing `nall` atoms.
-    pub fn new(start: usize, end: usize, offsets: Vec<u32>, neigh: Vec<u32>, nall: usize) -> ChunkList {
+    /// indexing `nall` atoms of which `nlocal` are owned.
+    pub fn new(start: usize, end: usize, offsets: Vec<u32>, neigh: Vec<u32>, nlocal: usize, nall: usize) -> ChunkList {
         assert!(offsets.len() == end - start + 1 && offsets.windows(2).all(|w| w[0] <= w[1]) && offsets.last().is_none_or(|&o| o as usize == neigh.len()));
-        ChunkList { start, end, offsets, neigh: Entries::new(neigh, nall) }
+        ChunkList { start, end, offsets, neigh: Entries::new(neigh, nlocal, nall) }
     }
     /// The entries of atom `i` (index and special level).
     #[inline]
@@ -247,6 +247,12 @@ impl ChunkList {
     #[inline]
     pub fn entries<'id>(&self, s: &Scope<'id>, i: usize) -> &[Entry<'id>] {
         self.neigh.view(s, self.span(i))
+    }
+    /// The chunk's entries as values of scope `s`, checked against the scope once (for a loop
+    /// over all its atoms).
+    #[inline]
+    pub fn view<'id>(&self, s: &Scope<'id>) -> ChunkView<'id, '_> {
+        ChunkView { list: self, entries: self.neigh.view(s, 0..self.neigh.len()) }
     }
     #[inline]
     fn span(&self, i: usize) -> std::ops::Range<usize> {
@@ -281,6 +287,20 @@ impl ChunkList {
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.neigh.capacity() * 4 + self.offsets.capacity() * 4
+    }
+}
+
+/// A chunk's entries viewed in one scope ([`ChunkList::view`]).
+pub struct ChunkView<'id, 'a> {
+    list: &'a ChunkList,
+    entries: &'a [Entry<'id>],
+}
+
+impl<'id, 'a> ChunkView<'id, 'a> {
+    /// The entries of atom `i`.
+    #[inline]
+    pub fn of(&self, i: usize) -> &'a [Entry<'id>] {
+        &self.entries[self.list.span(i)]
     }
 }
 
@@ -343,7 +363,7 @@ impl NeighList {
                     neigh.extend(c.neighbors(i).iter().filter(|&&j| keep(i, (j & NEIGH_MASK) as usize)));
                     offsets.push(neigh.len() as u32);
                 }
-                ChunkList::new(c.start, c.end, offsets, neigh, c.neigh.bound())
+                ChunkList::new(c.start, c.end, offsets, neigh, c.neigh.owned(), c.neigh.bound())
             })
             .collect();
         NeighList { chunks, generation: BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed), ..self.clone_header() }
@@ -827,7 +847,7 @@ impl Neighbor {
                     }
                     offsets.push(neigh.len() as u32);
                 }
-                Ok(ChunkList::new(start, end, offsets, neigh, nall))
+                Ok(ChunkList::new(start, end, offsets, neigh, n, nall))
             })
             .collect();
         let chunks = chunks.map_err(|entries| NeighError::OutOfMemory { entries, cut: cutmax })?;

@@ -1,6 +1,7 @@
 //! Every threading primitive of dmhs and every `unsafe` block of the engine crate (the others
 //! are in [`lanes`], the vector type of the batched kernels, [`bounded`], neighbour entries
-//! that read per-atom arrays without bounds checks, and [`cmath`], the C library's cube root).
+//! that read per-atom arrays and write a task's window without bounds checks, and [`cmath`],
+//! the C library's cube root).
 //!
 //! - The slab schedule ([`slab_phase`]): the pair and bonded passes split the owned atoms into chunks
 //!   along one axis (the neighbour list's chunks); task `c` writes only to the atoms of chunks

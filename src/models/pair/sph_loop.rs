@@ -15,7 +15,7 @@
 use super::sph::{Packed, SphKernel};
 use super::{sum_tallies, PairInput, PairOutput, Tally};
 use crate::engine::tally::PairShare;
-use crate::engine::par::bounded::{scope, Entry, Reader};
+use crate::engine::par::bounded::{scope_writing, Entry, Reader};
 use crate::engine::par::lanes::{for_each_lane, lanes, transpose4, L, LANES};
 use crate::engine::par::{completed_after, ranges, slab_phase, AtomsMut};
 
@@ -253,13 +253,18 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     let bounds = list.bounds();
     // each chunk's tallies and, for compute pe/atom and stress/atom, its pairs' virials
     let mut parts = vec![(Tally::default(), Vec::new()); nchunks];
-    // neighbour entries read the records and types unchecked (both hold every atom)
-    scope(a.nall(), |s| {
-    let (recs_of, typ_of) = (s.reader(recs), s.reader(&typ));
+    let nall = a.nall();
     for parity in 0..2 {
         let windows = (AtomsMut::new(&mut acc), AtomsMut::new(&mut acc_e), AtomsMut::new(forces), AtomsMut::new(&mut *first), AtomsMut::new(&mut *second));
-        slab_phase(&bounds, parity, windows, &mut parts, |c, (mut acc, mut acc_e, mut f, mut first, mut second)| {
+        slab_phase(&bounds, parity, windows, &mut parts, |c, (acc, acc_e, mut f, mut first, mut second)| {
+        // neighbour entries read the records and types unchecked (both hold every atom), and
+        // write the sums of owned partners unchecked (the list's owned entries lie in the window)
+        scope_writing(nall, nlocal, acc.range(), |s| {
+        let (recs_of, typ_of) = (s.reader(recs), s.reader(&typ));
+        let mut acc = s.writer(acc);
+        let mut acc_e = (D == 3).then(|| s.writer(acc_e));
         let chunk = &list.chunks[c];
+        let view = chunk.view(&s);
         let mut t = Tally::default();
         let mut shares: Vec<PairShare> = Vec::new();
         let mut inside: Vec<Entry> = Vec::new();
@@ -271,7 +276,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             let filter = input.type_filter.map(|fl| &fl[ti * stride..(ti + 1) * stride]);
             // gather the neighbours inside the cutoff (and the type filter), branch-free; room
             // for every neighbour and the padding of the last batch
-            let neigh = chunk.entries(&s, i);
+            let neigh = view.of(i);
             if let Some(&first) = neigh.first() {
                 if inside.len() < neigh.len() + LANES {
                     inside.resize(neigh.len() + LANES, first);
@@ -319,15 +324,14 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 };
                 // apply in list order (the sums of a one-pair-at-a-time loop)
                 let apply = |l: usize| {
-                    let j = js[l];
                     own += ri[l];
                     if D == 3 {
                         own_e += c.de_i[l];
                     }
-                    if j < nlocal {
-                        acc[j] += rj[l];
-                        if D == 3 {
-                            acc_e[j] += c.de_j[l];
+                    if let Some(j) = s.owned(es[l]) {
+                        *acc.at(j) += rj[l];
+                        if let Some(acc_e) = &mut acc_e {
+                            *acc_e.at(j) += c.de_j[l];
                         }
                     }
                 };
@@ -348,7 +352,7 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
                 }
             }
             acc[i] += own;
-            if D == 3 {
+            if let Some(acc_e) = &mut acc_e {
                 acc_e[i] += own_e;
             }
         }
@@ -357,7 +361,10 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             for i in list.chunks[done].start..list.chunks[done].end {
                 let r = acc[i];
                 // 2D: fx fy drho desph; 3D: fx fy fz drho, desph beside
-                let (fz, rho_rate, e_rate) = if D == 2 { (0.0, r[2], r[3]) } else { (r[2], r[3], acc_e[i]) };
+                let (fz, rho_rate, e_rate) = match &acc_e {
+                    None => (0.0, r[2], r[3]),
+                    Some(e) => (r[2], r[3], e[i]),
+                };
                 let fi = &mut f[i];
                 fi[0] += r[0];
                 fi[1] += r[1];
@@ -371,9 +378,9 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
             }
         }
         (t, shares)
+        })
         });
     }
-    });
     if let Some(pa) = out.peratom.as_deref_mut() {
         parts.iter().for_each(|(_, s)| pa.add_pairs(s));
     }

@@ -47,14 +47,16 @@ impl Simulation {
     }
 
     /// Call one hook of every fix that uses it, in definition order. Called between a stamp
-    /// and a charge of the Modify stage: each fix is charged the time since the last reading.
+    /// and a charge of the Modify stage, which charges the last fix that ran (the clock is
+    /// read between fixes only).
     pub(crate) fn fix_hook(&mut self, wanted: fn(&FixHooks) -> bool, hook: Hook) -> Result<(), RunError> {
         for k in 0..self.fixes.len() {
             if !wanted(&self.fixes[k].hooks()) {
                 continue;
             }
+            self.timers.fix_starts();
             let result = self.with_fix(k, hook);
-            self.timers.charge_fix(k);
+            self.timers.fix_ran(k);
             result?;
         }
         Ok(())

@@ -321,7 +321,9 @@ pub struct NeighList {
 impl NeighList {
     /// Chunk boundaries for the slab schedule: chunk c holds atoms `bounds[c]..bounds[c + 1]`.
     pub fn bounds(&self) -> Vec<usize> {
-        let mut b: Vec<usize> = self.chunks.iter().map(|c| c.start).collect();
+        // one allocation of the final size (collect then push reallocated, on every pass)
+        let mut b = Vec::with_capacity(self.chunks.len() + 1);
+        b.extend(self.chunks.iter().map(|c| c.start));
         b.push(self.chunks.last().map(|c| c.end).unwrap_or(0));
         b
     }

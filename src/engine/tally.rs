@@ -43,7 +43,7 @@ impl Tally {
 }
 
 /// Sum tallies in chunk order (deterministic).
-pub fn sum_tallies(parts: &[Tally]) -> Tally {
+pub fn sum_tallies<'a>(parts: impl IntoIterator<Item = &'a Tally>) -> Tally {
     let mut t = Tally::default();
     for p in parts {
         t.add(p);

@@ -46,15 +46,17 @@ impl Simulation {
         work(fix.as_mut(), &mut self.state, &mut ctx)
     }
 
-    /// Call one hook of every fix that uses it, in definition order.
+    /// Call one hook of every fix that uses it, in definition order. Called between a stamp
+    /// and a charge of the Modify stage, which charges the last fix that ran (the clock is
+    /// read between fixes only).
     pub(crate) fn fix_hook(&mut self, wanted: fn(&FixHooks) -> bool, hook: Hook) -> Result<(), RunError> {
         for k in 0..self.fixes.len() {
             if !wanted(&self.fixes[k].hooks()) {
                 continue;
             }
-            let t0 = std::time::Instant::now();
+            self.timers.fix_starts();
             let result = self.with_fix(k, hook);
-            self.timers.charge_fix(k, t0.elapsed().as_secs_f64());
+            self.timers.fix_ran(k);
             result?;
         }
         Ok(())
@@ -288,6 +290,14 @@ impl Simulation {
     /// [`Simulation::compute_forces`], the pair forces (not the density summation) over
     /// `force_list` when given.
     pub(crate) fn compute_forces_listed(&mut self, eflag: bool, advance: bool, force_list: Option<crate::engine::neighbor::NeighList>) -> Result<(), RunError> {
+        self.timers.stamp();
+        self.forces_timed(eflag, advance, force_list)
+    }
+
+    /// The forces, timed from the last reading of the timers (the step charged the stage
+    /// before: one clock reading less per step). The clearing of forces and rates is charged
+    /// to Pair.
+    fn forces_timed(&mut self, eflag: bool, advance: bool, force_list: Option<crate::engine::neighbor::NeighList>) -> Result<(), RunError> {
         let a = &mut self.state.atoms;
         clear(&mut a.f, [0.0; 3]);
         if a.features.sphere {
@@ -302,7 +312,6 @@ impl Simulation {
                 clear(&mut a.extra[k].data, 0.0);
             }
         }
-        self.timers.stamp();
         let mut pair_tally = Tally::default();
         // per-atom tallies (compute pe/atom, stress/atom): loops with contact histories add
         // to them while computing the forces
@@ -330,19 +339,27 @@ impl Simulation {
             }
         }
         self.timers.charge(Stage::Pair);
-        let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
-            Some(bpm) => {
-                let (tally, broken) = bpm.compute(&mut self.state, eflag, peratom.as_mut())?;
-                if !broken.is_empty() {
-                    self.bonds_broken(&broken)?;
+        // no bonded style: no pass and, as LAMMPS without molecular atoms, no clock reading
+        let bonded = if self.bond_style.is_none() && self.angle_style.is_none() && self.dihedral_style.is_none() {
+            crate::models::bonded::pass::BondedTally::default()
+        } else {
+            let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
+                Some(bpm) => {
+                    let (tally, broken) = bpm.compute(&mut self.state, eflag, peratom.as_mut())?;
+                    if !broken.is_empty() {
+                        self.bonds_broken(&broken)?;
+                    }
+                    tally
                 }
-                tally
-            }
-            None => crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?,
+                None => crate::models::bonded::pass::compute_bonded(&mut self.state, BondedStyles::of(&self.bond_style, &self.angle_style, &self.dihedral_style), eflag)?,
+            };
+            self.timers.charge(Stage::Bond);
+            bonded
         };
-        self.timers.charge(Stage::Bond);
         if let Some(t) = peratom {
             self.tally_peratom(t)?;
+            // the per-atom pass is charged to no stage (as before: the step stamps after it)
+            self.timers.stamp();
         }
         if eflag {
             let mut virial = pair_tally.virial;
@@ -479,9 +496,9 @@ impl Simulation {
             self.timers.charge(Stage::Comm);
         }
 
-        self.compute_forces(eflag, true)?;
+        // the stages follow each other: each starts at the reading that ended the last
+        self.forces_timed(eflag, true, None)?;
 
-        self.timers.stamp();
         self.fix_hook(|h| h.post_force, |f, s, c| f.post_force(s, c))?;
         self.fix_hook(|h| h.final_integrate, |f, s, c| f.final_integrate(s, c))?;
         let dt = self.state.dt;

@@ -216,14 +216,22 @@ pub fn dt_hint(sim: &Simulation) -> String {
 /// than the skin in one step may have passed partners the lists do not hold (LAMMPS rebuilds
 /// at skin/2, so a correct deck stays far below); with skin 0 (the lists are rebuilt on every
 /// step), the list cutoff, as an atom that moves farther passed through its partners. None
-/// without lists (no pair style).
-fn step_bound(sim: &Simulation) -> Option<(f64, String)> {
+/// without lists (no pair style). The bound only: its description is [`step_bound_name`], made
+/// for an error alone (formatting it on every step cost a tiny deck a tenth of its time).
+fn step_bound(sim: &Simulation) -> Option<f64> {
     let skin = sim.state.neigh_settings.skin;
     let cut = sim.state.neighbor.cutneighmax;
     if !(cut > 0.0) {
         return None;
     }
-    Some(if skin > 0.0 { (skin, format!("the neighbour skin {skin}")) } else { (cut, format!("the neighbour list cutoff {cut} (skin 0)")) })
+    Some(if skin > 0.0 { skin } else { cut })
+}
+
+/// What [`step_bound`] is, for the error message.
+fn step_bound_name(sim: &Simulation) -> String {
+    let skin = sim.state.neigh_settings.skin;
+    let cut = sim.state.neighbor.cutneighmax;
+    if skin > 0.0 { format!("the neighbour skin {skin}") } else { format!("the neighbour list cutoff {cut} (skin 0)") }
 }
 
 /// Whether some component is not finite: `v * 0` is 0 for finite v and NaN otherwise (a test
@@ -254,7 +262,7 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     let (x, v) = (&a.x[..n], &a.v[..n]);
     // the step's motion |v| dt within the bound: |v|^2 <= (bound/dt)^2 (false for NaN)
     let bound = step_bound(sim);
-    let vmax2 = bound.as_ref().map(|(b, _)| (b / sim.state.dt.abs()).powi(2)).unwrap_or(f64::INFINITY);
+    let vmax2 = bound.map(|b| (b / sim.state.dt.abs()).powi(2)).unwrap_or(f64::INFINITY);
     let bad_motion = |i: usize| {
         let w = &v[i];
         not_finite3(&x[i]) | not_finite3(w) | !(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= vmax2)
@@ -313,8 +321,8 @@ pub fn check_state(sim: &Simulation) -> Result<(), RunError> {
     }
     // the fastest atom over the bound (squared speeds compare as the pass did)
     let speed2 = |i: usize| a.v[i][0] * a.v[i][0] + a.v[i][1] * a.v[i][1] + a.v[i][2] * a.v[i][2];
-    if let (Some(i), Some((_, what))) = ((0..n).filter(|&i| !(speed2(i) <= vmax2)).max_by(|&i, &j| speed2(i).total_cmp(&speed2(j))), bound) {
-        let (speed, dt) = (speed2(i).sqrt(), sim.state.dt);
+    if let (Some(i), Some(_)) = ((0..n).filter(|&i| !(speed2(i) <= vmax2)).max_by(|&i, &j| speed2(i).total_cmp(&speed2(j))), bound) {
+        let (speed, dt, what) = (speed2(i).sqrt(), sim.state.dt, step_bound_name(sim));
         return Err(RunError::new(
             step,
             format!(

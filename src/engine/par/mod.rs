@@ -160,26 +160,29 @@ pub fn slab_phase<S: Split, R: Send>(bounds: &[usize], parity: usize, data: S, o
     if parity >= n {
         return;
     }
-    let mut tasks = Vec::with_capacity(n / 2 + 1);
     let mut rest = data.split(bounds[parity], parity).1;
+    if !(n >= 2 && parallel(bounds[n])) {
+        // serial: each window as it is split off, no task list to allocate
+        for c in (parity..n).step_by(2) {
+            let end = (c + 2).min(n);
+            let (window, tail) = rest.split(bounds[end], end);
+            out[c] = work(c, window);
+            rest = tail;
+        }
+        return;
+    }
+    let mut tasks = Vec::with_capacity(n / 2 + 1);
     for c in (parity..n).step_by(2) {
         let end = (c + 2).min(n);
         let (window, tail) = rest.split(bounds[end], end);
         tasks.push((c, window));
         rest = tail;
     }
-    if n >= 2 && parallel(bounds[n]) {
-        // one task per chunk (with_max_len(1)): work is often concentrated in a few slabs (a
-        // water column in a wide tank), and rayon's default splitting would leave them on one
-        // thread
-        let results: Vec<(usize, R)> = tasks.into_par_iter().with_max_len(1).map(|(c, w)| (c, work(c, w))).collect();
-        for (c, r) in results {
-            out[c] = r;
-        }
-    } else {
-        for (c, w) in tasks {
-            out[c] = work(c, w);
-        }
+    // one task per chunk (with_max_len(1)): work is often concentrated in a few slabs (a water
+    // column in a wide tank), and rayon's default splitting would leave them on one thread
+    let results: Vec<(usize, R)> = tasks.into_par_iter().with_max_len(1).map(|(c, w)| (c, work(c, w))).collect();
+    for (c, r) in results {
+        out[c] = r;
     }
 }
 

@@ -73,14 +73,19 @@ pub trait ContactModel: Sync {
     /// ignored). The default evaluates them one at a time with [`ContactModel::contact`].
     fn contact_lanes(&self, b: &LaneSrc, update: bool, dt: f64) -> LanesOut {
         let mut o = LanesOut::default();
-        let (vi, vj, wi, wj) = (b.v3(b.v, 0), b.v3(b.v, 1), b.v3(b.omega, 0), b.v3(b.omega, 1));
-        let c = b.contact(&vi, &vj, &wi, &wj);
-        let hist = b.hist::<MAX_HISTORY>();
+        // each lane read straight from the arrays (gathering all four lanes first and picking
+        // one back out cost a single contact, the common case of a sparse bed, twice as much);
+        // del and rsq are the operations of `LaneSrc::contact`, per lane the same bits
+        let hsize = b.hsize;
         for l in 0..b.n {
-            let pick = |a: &[L; 3]| [a[0][l], a[1][l], a[2][l]];
-            let (vil, vjl, wil, wjl) = (pick(&vi), pick(&vj), pick(&wi), pick(&wj));
-            let one = Contact { del: pick(&c.del), rsq: c.rsq[l], radi: c.radi[l], radj: c.radj[l], vi: &vil, vj: &vjl, omegai: &wil, omegaj: &wjl, mi: c.mi[l], mj: c.mj[l] };
-            let mut h: [f64; MAX_HISTORY] = std::array::from_fn(|d| hist[d][l]);
+            let (i, j) = (b.ij[0][l], b.ij[1][l]);
+            let (xi, xj) = (&b.x[i], &b.x[j]);
+            let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            let one = Contact { del, rsq, radi: b.radius[i], radj: b.radius[j], vi: &b.v[i], vj: &b.v[j], omegai: &b.omega[i], omegaj: &b.omega[j], mi: b.rmass[i], mj: b.rmass[j] };
+            let mut h = [0.0; MAX_HISTORY];
+            let e = b.e[l];
+            h[..hsize].copy_from_slice(&b.values[e * hsize..(e + 1) * hsize]);
             let (ti, tj) = b.types(l);
             let r = Self::contact(self.params(ti, tj), &one, &mut h[..b.hsize], update, dt);
             for (d, hd) in h[..b.hsize].iter().enumerate() {
@@ -377,6 +382,5 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     if let Some(pa) = out.peratom.as_deref_mut() {
         parts.iter().for_each(|(_, s)| pa.add_pairs(s));
     }
-    let tallies: Vec<Tally> = parts.iter().map(|p| p.0).collect();
-    sum_tallies(&tallies)
+    sum_tallies(parts.iter().map(|p| &p.0))
 }

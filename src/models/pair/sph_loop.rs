@@ -384,6 +384,5 @@ fn sph_loop<K: SphKernel, const D: usize>(kernel: &K, input: &PairInput, out: &m
     if let Some(pa) = out.peratom.as_deref_mut() {
         parts.iter().for_each(|(_, s)| pa.add_pairs(s));
     }
-    let tallies: Vec<Tally> = parts.iter().map(|p| p.0).collect();
-    sum_tallies(&tallies)
+    sum_tallies(parts.iter().map(|p| &p.0))
 }

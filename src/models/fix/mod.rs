@@ -33,6 +33,7 @@ pub mod pour;
 pub mod sampling;
 pub mod print;
 pub mod property_atom;
+pub mod rigid_small;
 pub mod setforce;
 pub mod sph;
 pub mod spring;
@@ -432,6 +433,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 

@@ -13,7 +13,7 @@
 //! With `fix enforce2d` (defined after this fix) the out-of-plane body values are zeroed at
 //! its post_force, as LAMMPS' FixRigidSmall::enforce2d.
 
-use super::{Fix, FixCtx, FixHooks, MinRole};
+use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
 use crate::engine::quat::{self, Quat};
 use crate::engine::state::{RunError, State};
@@ -65,6 +65,8 @@ pub struct FixRigidSmall {
     members: HashMap<i64, Member>,
     /// A fix enforce2d follows this fix (2d).
     enforce2d: bool,
+    /// The constraint forces' virial (LAMMPS' virial_global_flag, on by default for rigid fixes).
+    tally: ThermoTally,
 }
 
 impl FixRigidSmall {
@@ -92,7 +94,7 @@ impl FixRigidSmall {
             };
             return Err(a.error_at(w, what, "not supported"));
         }
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false })
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, tally: ThermoTally { has_virial: true, virial_on: true, ..ThermoTally::default() } })
     }
 
     fn massone(state: &State, i: usize) -> f64 {
@@ -296,13 +298,22 @@ impl FixRigidSmall {
     }
 
     /// Positions (`with_x`) and velocities of the body atoms from their bodies (LAMMPS'
-    /// set_xv and set_v); spheres take the body's angular velocity.
-    fn set_atoms(&self, state: &mut State, with_x: bool) -> Result<(), String> {
+    /// set_xv and set_v); spheres take the body's angular velocity. Each call tallies half the
+    /// virial of the constraint forces, m dv / dtf - f at the unwrapped position before the
+    /// move, in LAMMPS' local order (the other half comes from the other call of the step).
+    fn set_atoms(&mut self, state: &mut State, with_x: bool) -> Result<(), String> {
         let prd = state.domain()?.prd();
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let per_atom_mass = state.atoms.features.per_atom_mass();
+        let order = state.lammps_order.indices(state.atoms.nlocal);
         let a = &mut state.atoms;
-        for i in 0..a.nlocal {
-            let Some(m) = self.members.get(&a.tag[i]) else { continue };
-            let b = &self.bodies[m.body];
+        let (members, bodies, tally) = (&self.members, &self.bodies, &mut self.tally);
+        for &i in order.iter() {
+            let Some(m) = members.get(&a.tag[i]) else { continue };
+            let b = &bodies[m.body];
+            let xbox = Self::xcmimage(a.image[i], b.image);
+            let x0 = [a.x[i][0] + xbox[0] as f64 * prd[0], a.x[i][1] + xbox[1] as f64 * prd[1], a.x[i][2] + xbox[2] as f64 * prd[2]];
+            let v0 = a.v[i];
             let d = quat::matvec_cols(&b.ex, &b.ey, &b.ez, &m.displace);
             a.v[i] = [
                 b.omega[1] * d[2] - b.omega[2] * d[1] + b.vcm[0],
@@ -310,7 +321,6 @@ impl FixRigidSmall {
                 b.omega[0] * d[1] - b.omega[1] * d[0] + b.vcm[2],
             ];
             if with_x {
-                let xbox = Self::xcmimage(a.image[i], b.image);
                 let mut x = d;
                 for k in 0..3 {
                     x[k] += b.xcm[k] - xbox[k] as f64 * prd[k];
@@ -319,6 +329,12 @@ impl FixRigidSmall {
             }
             if m.sphere {
                 a.omega[i] = b.omega;
+            }
+            if tally.virial_on {
+                let massone = if per_atom_mass { a.rmass[i] } else { state.type_mass[a.typ[i]] };
+                let (v, f) = (a.v[i], a.f[i]);
+                let fc = [massone * (v[0] - v0[0]) / dtf - f[0], massone * (v[1] - v0[1]) / dtf - f[1], massone * (v[2] - v0[2]) / dtf - f[2]];
+                tally.v_tally([0.5 * x0[0] * fc[0], 0.5 * x0[1] * fc[1], 0.5 * x0[2] * fc[2], 0.5 * x0[0] * fc[1], 0.5 * x0[0] * fc[2], 0.5 * x0[1] * fc[2]]);
             }
         }
         Ok(())
@@ -375,7 +391,12 @@ impl Fix for FixRigidSmall {
         for b in self.bodies.iter_mut() {
             b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
         }
+        self.tally.v_init();
         self.set_atoms(state, false).map_err(|e| self.err(state, e))?;
+        // LAMMPS' guess of the setup virial: twice the set_v half
+        for v in self.tally.virial.iter_mut() {
+            *v *= 2.0;
+        }
         // fix enforce2d's setup (its post_force) follows
         if self.enforce2d {
             self.zero_out_of_plane();
@@ -401,6 +422,7 @@ impl Fix for FixRigidSmall {
             quat::richardson(&mut b.quat, &b.angmom, &mut b.omega, &b.inertia, dtq);
             [b.ex, b.ey, b.ez] = quat::q_to_exyz(&b.quat);
         }
+        self.tally.v_init();
         self.set_atoms(state, true).map_err(|e| self.err(state, e))
     }
     fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -461,6 +483,12 @@ impl Fix for FixRigidSmall {
             }
         }
         n as f64
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
     }
     fn write_restart(&self) -> Option<Vec<f64>> {
         None

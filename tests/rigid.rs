@@ -1,15 +1,17 @@
 //! fix rigid/small against LAMMPS beyond the trajectories (those are in tests/lammps_parity.rs):
-//! the thermo tables of rigid_small_clumps (3d) and rigid_small_2d (enforce2d), whose pressure
-//! and its tensor carry the bodies' constraint virial (LAMMPS' set_xv/set_v tally, on by
-//! default), every printed step, against lammps-refs/refs/NAME/thermo.txt (and LAMMPS run now,
-//! when present). And the located refusals of what the fix does not support.
+//! the thermo tables of rigid_small_clumps (3d), rigid_small_2d (enforce2d) and
+//! rigid_small_gran (clumps of spheres on a granular floor: the body mass in the granular
+//! damping, compute temp/sphere), whose pressure and its tensor carry the bodies' constraint
+//! virial (LAMMPS' set_xv/set_v tally, on by default), every printed step, against
+//! lammps-refs/refs/NAME/thermo.txt (and LAMMPS run now, when present). And the located
+//! refusals of what the fix does not support.
 
 use dmhs::deck::{run_text, DeckOptions};
 
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 2] = ["rigid_small_clumps", "rigid_small_2d"];
+const DECKS: [&str; 3] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 

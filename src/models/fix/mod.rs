@@ -287,6 +287,11 @@ pub trait Fix: Send + Sync {
     fn extensive(&self, _index: Option<usize>) -> bool {
         false
     }
+    /// A rigid fix: per atom (owned and ghost), the mass of its rigid body, 0 outside bodies
+    /// (LAMMPS' extract "body" and "masstotal", read by granular pairs and walls).
+    fn rigid_body_mass(&self, _state: &State) -> Option<Vec<f64>> {
+        None
+    }
     /// Degrees of freedom this fix removes from atoms of a group (for temperature).
     fn dof_removed(&self, _state: &State, _groupbit: u32) -> f64 {
         0.0

@@ -452,6 +452,10 @@ impl Fix for FixRigidSmall {
         }
         self.set_atoms(state, false).map_err(|e| self.err(state, e))
     }
+    fn rigid_body_mass(&self, state: &State) -> Option<Vec<f64>> {
+        let a = &state.atoms;
+        Some((0..a.nall()).map(|i| self.members.get(&a.tag[i]).map_or(0.0, |m| self.bodies[m.body].mass)).collect())
+    }
     fn dof_removed(&self, state: &State, groupbit: u32) -> f64 {
         // LAMMPS' FixRigidSmall::dof: each body wholly in the temperature group keeps 6 (3d;
         // 5 if linear) or 3 (2d) degrees of freedom of its 3N+6M (2N+3M)

@@ -40,7 +40,7 @@ fn fix_modify_virial_switches_the_constraint_virial() {
 
 #[test]
 fn unsupported_uses_are_located_errors() {
-    for (cmd, want) in [("fix_modify 1 energy yes", "does not support fix_modify energy")] {
+    for (cmd, want) in [("fix_modify 1 energy yes", "does not support fix_modify energy"), ("fix 2 all rigid molecule", "fix rigid is not supported"), ("fix 2 all rigid/small molecule langevin 1 1 1 5", "langevin")] {
         let deck = format!("{BASE}{cmd}\nrun 0\n");
         let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
         let line = BASE.lines().count() + 1;

@@ -156,7 +156,7 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             "respa" => return Err(a.error_at(kw, "fix_modify respa: dmhs has no rRESPA integrator (run_style respa)", "not supported")),
             "bodyforces" => {
                 let f = &sim.fixes[k];
-                return Err(a.error_at(kw, format!("fix {} ({}) does not support fix_modify bodyforces (a fix rigid keyword; dmhs has no fix rigid)", f.id(), f.style()), "not supported"));
+                return Err(a.error_at(kw, format!("fix {} ({}) does not support fix_modify bodyforces (a fix rigid keyword; dmhs refuses fix rigid)", f.id(), f.style()), "not supported"));
             }
             _ => return Err(a.unknown_keyword(kw, &["temp", "energy", "virial", "dynamic/dof", "respa", "bodyforces"])),
         }

@@ -441,6 +441,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
+    ("rigid", |d, _| Ok(Box::new(rigid_small::FixRigidSmall::refuse_rigid(d.args, d.cmd, d.style)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 

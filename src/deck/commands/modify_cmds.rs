@@ -140,7 +140,7 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 let (fid, style) = (f.id().to_string(), f.style().to_string());
                 // LAMMPS checks the fix only when the tally is switched on
                 match f.thermo_tally_mut() {
-                    Some(t) if energy && t.has_energy => t.energy = on,
+                    Some(t) if energy && !t.no_energy => t.energy = on,
                     Some(t) if !energy && t.has_virial => t.virial_on = on,
                     _ if !on => {}
                     _ => {

@@ -152,8 +152,8 @@ pub enum MinRole {
 pub struct ThermoTally {
     /// The fix tallies a virial (LAMMPS' virial_global_flag).
     pub has_virial: bool,
-    /// The fix has an energy (LAMMPS' energy_global_flag; every fix with a tally but the rigid ones).
-    pub has_energy: bool,
+    /// The fix has no energy (LAMMPS' energy_global_flag unset: the rigid fixes).
+    pub no_energy: bool,
     /// `fix_modify energy yes`: the fix's scalar counts in pe (LAMMPS' thermo_energy).
     pub energy: bool,
     /// `fix_modify virial yes`: [`ThermoTally::virial`] counts in the pressure.
@@ -164,7 +164,7 @@ pub struct ThermoTally {
 
 impl ThermoTally {
     pub fn new(has_virial: bool) -> ThermoTally {
-        ThermoTally { has_virial, has_energy: true, ..ThermoTally::default() }
+        ThermoTally { has_virial, ..ThermoTally::default() }
     }
     /// A force application starts (LAMMPS' v_init): the virial restarts if it is used.
     pub fn v_init(&mut self) {

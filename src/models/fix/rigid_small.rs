@@ -94,7 +94,7 @@ impl FixRigidSmall {
             };
             return Err(a.error_at(w, what, "not supported"));
         }
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, tally: ThermoTally { has_virial: true, virial_on: true, ..ThermoTally::default() } })
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, tally: ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() } })
     }
 
     /// `fix rigid` (one set of bodies summed over all ranks) is refused: LAMMPS' fix rigid

@@ -297,7 +297,7 @@ fn omega(l: [f64; 3], i: [[f64; 3]; 3]) -> Result<[f64; 3], String> {
         return Ok(w);
     }
     // Principal axes: columns of evec are ex, ey, ez (made right-handed).
-    let (mut idiag, evec) = jacobi3(i).ok_or("insufficient Jacobi rotations for the group's angular velocity")?;
+    let (mut idiag, evec) = crate::engine::jacobi::jacobi3(&i, crate::engine::jacobi::Sort::Decreasing).ok_or("insufficient Jacobi rotations for the group's angular velocity")?;
     let ex = [evec[0][0], evec[1][0], evec[2][0]];
     let ey = [evec[0][1], evec[1][1], evec[2][1]];
     let mut ez = [evec[0][2], evec[1][2], evec[2][2]];
@@ -326,139 +326,6 @@ fn omega(l: [f64; 3], i: [[f64; 3]; 3]) -> Result<[f64; 3], String> {
     Ok(w)
 }
 
-/// Eigen-decomposition of a symmetric 3x3 matrix by Jacobi rotations with largest-element
-/// pivoting (the algorithm of LAMMPS `MathEigen::jacobi3`): eigenvalues sorted decreasing,
-/// eigenvectors as columns. None if 50 sweeps do not converge.
-fn jacobi3(mat: [[f64; 3]; 3]) -> Option<([f64; 3], [[f64; 3]; 3])> {
-    const N: usize = 3;
-    let mut m = mat;
-    let mut evec = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    // Largest off-diagonal entry in row i (upper triangle).
-    let max_entry_row = |m: &[[f64; 3]; 3], i: usize| -> usize {
-        let mut jm = i + 1;
-        for j in i + 2..N {
-            if m[i][j].abs() > m[i][jm].abs() {
-                jm = j;
-            }
-        }
-        jm
-    };
-    let mut max_idx_row = [0usize; N];
-    for i in 0..N - 1 {
-        max_idx_row[i] = max_entry_row(&m, i);
-    }
-    let max_iters = 50 * N * (N - 1) / 2;
-    let mut converged = false;
-    for _ in 0..max_iters {
-        // MaxEntry
-        let (mut i, mut j) = (0, max_idx_row[0]);
-        let mut max_entry = m[i][j].abs();
-        for r in 1..N - 1 {
-            let c = max_idx_row[r];
-            if m[r][c].abs() > max_entry {
-                max_entry = m[r][c].abs();
-                i = r;
-                j = c;
-            }
-        }
-        if m[i][i] + m[i][j] == m[i][i] && m[j][j] + m[i][j] == m[j][j] {
-            m[i][j] = 0.0;
-            max_idx_row[i] = max_entry_row(&m, i);
-        }
-        if m[i][j] == 0.0 {
-            converged = true;
-            break;
-        }
-        // CalcRot
-        let mut t = 1.0;
-        let mjj_ii = m[j][j] - m[i][i];
-        if mjj_ii != 0.0 {
-            let mut kappa = mjj_ii;
-            t = 0.0;
-            let mij = m[i][j];
-            if mij != 0.0 {
-                kappa /= 2.0 * mij;
-                t = 1.0 / ((1.0 + kappa * kappa).sqrt() + kappa.abs());
-                if kappa < 0.0 {
-                    t = -t;
-                }
-            }
-        }
-        let c = 1.0 / (1.0 + t * t).sqrt();
-        let s = c * t;
-        // ApplyRot (upper triangle; the lower triangle keeps backups)
-        m[i][i] -= t * m[i][j];
-        m[j][j] += t * m[i][j];
-        m[i][j] = 0.0;
-        for w in 0..i {
-            m[i][w] = m[w][i];
-            m[w][i] = c * m[w][i] - s * m[w][j];
-            if i == max_idx_row[w] {
-                max_idx_row[w] = max_entry_row(&m, w);
-            } else if m[w][i].abs() > m[w][max_idx_row[w]].abs() {
-                max_idx_row[w] = i;
-            }
-        }
-        for w in i + 1..j {
-            m[w][i] = m[i][w];
-            m[i][w] = c * m[i][w] - s * m[w][j];
-        }
-        for w in j + 1..N {
-            m[w][i] = m[i][w];
-            m[i][w] = c * m[i][w] - s * m[j][w];
-        }
-        max_idx_row[i] = max_entry_row(&m, i);
-        for w in 0..i {
-            m[w][j] = s * m[i][w] + c * m[w][j];
-            if j == max_idx_row[w] {
-                max_idx_row[w] = max_entry_row(&m, w);
-            } else if m[w][j].abs() > m[w][max_idx_row[w]].abs() {
-                max_idx_row[w] = j;
-            }
-        }
-        for w in i + 1..j {
-            m[w][j] = s * m[w][i] + c * m[w][j];
-            if j == max_idx_row[w] {
-                max_idx_row[w] = max_entry_row(&m, w);
-            } else if m[w][j].abs() > m[w][max_idx_row[w]].abs() {
-                max_idx_row[w] = j;
-            }
-        }
-        for w in j + 1..N {
-            m[j][w] = s * m[w][i] + c * m[j][w];
-        }
-        max_idx_row[j] = max_entry_row(&m, j);
-        // ApplyRotLeft on the eigenvector rows
-        for v in 0..N {
-            let eiv = evec[i][v];
-            evec[i][v] = c * evec[i][v] - s * evec[j][v];
-            evec[j][v] = s * eiv + c * evec[j][v];
-        }
-    }
-    if !converged {
-        return None;
-    }
-    let mut eval = [m[0][0], m[1][1], m[2][2]];
-    // SortRows, decreasing eigenvalues (selection sort with swaps, as jacobi_pd)
-    for i in 0..N - 1 {
-        let mut imax = i;
-        for j in i + 1..N {
-            if eval[j] > eval[imax] {
-                imax = j;
-            }
-        }
-        eval.swap(i, imax);
-        evec.swap(i, imax);
-    }
-    // rows -> columns
-    let mut cols = [[0.0; 3]; 3];
-    for r in 0..3 {
-        for c in 0..3 {
-            cols[r][c] = evec[c][r];
-        }
-    }
-    Some((eval, cols))
-}
 
 /// The three random components for one atom (uniform in [-0.5, 0.5) or Gaussian).
 fn triple(random: &mut RanPark, gaussian: bool) -> [f64; 3] {

@@ -9,6 +9,7 @@ pub mod decomp;
 pub mod domain;
 pub mod fields;
 pub mod groups;
+pub mod jacobi;
 pub mod lammps_order;
 pub mod lattice;
 pub mod molecule;

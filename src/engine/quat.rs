@@ -177,3 +177,127 @@ pub fn rotate_about_axis(point: &[f64; 3], runit: &[f64; 3], x: &[f64], sine: f6
     let disp = [a[0] * cosine + b[0] * sine, a[1] * cosine + b[1] * sine, a[2] * cosine + b[2] * sine];
     (c, disp)
 }
+
+/// `matvec(ex, ey, ez, v)`: P v with the columns ex, ey, ez of P (body to space frame).
+#[inline]
+pub fn matvec_cols(ex: &[f64; 3], ey: &[f64; 3], ez: &[f64; 3], v: &[f64; 3]) -> [f64; 3] {
+    [
+        ex[0] * v[0] + ey[0] * v[1] + ez[0] * v[2],
+        ex[1] * v[0] + ey[1] * v[1] + ez[1] * v[2],
+        ex[2] * v[0] + ey[2] * v[1] + ez[2] * v[2],
+    ]
+}
+
+/// `transpose_matvec(ex, ey, ez, v)`: P^T v (space to body frame).
+#[inline]
+pub fn transpose_matvec_cols(ex: &[f64; 3], ey: &[f64; 3], ez: &[f64; 3], v: &[f64; 3]) -> [f64; 3] {
+    [
+        ex[0] * v[0] + ex[1] * v[1] + ex[2] * v[2],
+        ey[0] * v[0] + ey[1] * v[1] + ey[2] * v[2],
+        ez[0] * v[0] + ez[1] * v[1] + ez[2] * v[2],
+    ]
+}
+
+/// `transpose_matvec(m, v)`: m^T v.
+#[inline]
+pub fn transpose_matvec(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
+    [
+        m[0][0] * v[0] + m[1][0] * v[1] + m[2][0] * v[2],
+        m[0][1] * v[0] + m[1][1] * v[1] + m[2][1] * v[2],
+        m[0][2] * v[0] + m[1][2] * v[1] + m[2][2] * v[2],
+    ]
+}
+
+/// `exyz_to_q`: the unit quaternion of the rotation whose columns are ex, ey, ez (from the
+/// largest of its squared components).
+pub fn exyz_to_q(ex: &[f64; 3], ey: &[f64; 3], ez: &[f64; 3]) -> Quat {
+    let q0sq = 0.25 * (ex[0] + ey[1] + ez[2] + 1.0);
+    let q1sq = q0sq - 0.5 * (ey[1] + ez[2]);
+    let q2sq = q0sq - 0.5 * (ex[0] + ez[2]);
+    let q3sq = q0sq - 0.5 * (ex[0] + ey[1]);
+    let mut q = [0.0; 4];
+    if q0sq >= 0.25 {
+        q[0] = q0sq.sqrt();
+        q[1] = (ey[2] - ez[1]) / (4.0 * q[0]);
+        q[2] = (ez[0] - ex[2]) / (4.0 * q[0]);
+        q[3] = (ex[1] - ey[0]) / (4.0 * q[0]);
+    } else if q1sq >= 0.25 {
+        q[1] = q1sq.sqrt();
+        q[0] = (ey[2] - ez[1]) / (4.0 * q[1]);
+        q[2] = (ey[0] + ex[1]) / (4.0 * q[1]);
+        q[3] = (ex[2] + ez[0]) / (4.0 * q[1]);
+    } else if q2sq >= 0.25 {
+        q[2] = q2sq.sqrt();
+        q[0] = (ez[0] - ex[2]) / (4.0 * q[2]);
+        q[1] = (ey[0] + ex[1]) / (4.0 * q[2]);
+        q[3] = (ez[1] + ey[2]) / (4.0 * q[2]);
+    } else if q3sq >= 0.25 {
+        q[3] = q3sq.sqrt();
+        q[0] = (ex[1] - ey[0]) / (4.0 * q[3]);
+        q[1] = (ez[0] + ex[2]) / (4.0 * q[3]);
+        q[2] = (ez[1] + ey[2]) / (4.0 * q[3]);
+    }
+    qnormalize(&mut q);
+    q
+}
+
+/// `q_to_exyz`: the space-frame principal axes of orientation q.
+pub fn q_to_exyz(q: &Quat) -> [[f64; 3]; 3] {
+    [
+        [q[0] * q[0] + q[1] * q[1] - q[2] * q[2] - q[3] * q[3], 2.0 * (q[1] * q[2] + q[0] * q[3]), 2.0 * (q[1] * q[3] - q[0] * q[2])],
+        [2.0 * (q[1] * q[2] - q[0] * q[3]), q[0] * q[0] - q[1] * q[1] + q[2] * q[2] - q[3] * q[3], 2.0 * (q[2] * q[3] + q[0] * q[1])],
+        [2.0 * (q[1] * q[3] + q[0] * q[2]), 2.0 * (q[2] * q[3] - q[0] * q[1]), q[0] * q[0] - q[1] * q[1] - q[2] * q[2] + q[3] * q[3]],
+    ]
+}
+
+/// `angmom_to_omega`: space-frame angular velocity from angular momentum m, principal axes
+/// ex, ey, ez and principal moments idiag (a zero moment gives no spin about its axis).
+pub fn angmom_to_omega(m: &[f64; 3], ex: &[f64; 3], ey: &[f64; 3], ez: &[f64; 3], idiag: &[f64; 3]) -> [f64; 3] {
+    let comp = |e: &[f64; 3], i: f64| if i == 0.0 { 0.0 } else { (m[0] * e[0] + m[1] * e[1] + m[2] * e[2]) / i };
+    let wbody = [comp(ex, idiag[0]), comp(ey, idiag[1]), comp(ez, idiag[2])];
+    [
+        wbody[0] * ex[0] + wbody[1] * ey[0] + wbody[2] * ez[0],
+        wbody[0] * ex[1] + wbody[1] * ey[1] + wbody[2] * ez[1],
+        wbody[0] * ex[2] + wbody[1] * ey[2] + wbody[2] * ez[2],
+    ]
+}
+
+/// `mq_to_omega`: angular velocity from angular momentum m at orientation q.
+pub fn mq_to_omega(m: &[f64; 3], q: &Quat, moments: &[f64; 3]) -> [f64; 3] {
+    let rot = quat_to_mat(q);
+    let mut wbody = transpose_matvec(&rot, m);
+    for k in 0..3 {
+        if moments[k] == 0.0 {
+            wbody[k] = 0.0;
+        } else {
+            wbody[k] /= moments[k];
+        }
+    }
+    matvec(&rot, &wbody)
+}
+
+/// `richardson`: advance the orientation of a rigid body by dq/dt = 1/2 w q over `dtq`,
+/// omega re-evaluated from the angular momentum at the half step; `w` becomes that omega.
+pub fn richardson(q: &mut Quat, m: &[f64; 3], w: &mut [f64; 3], moments: &[f64; 3], dtq: f64) {
+    let wq = vecquat(w, q);
+    let mut qfull = [0.0; 4];
+    let mut qhalf = [0.0; 4];
+    for c in 0..4 {
+        qfull[c] = q[c] + dtq * wq[c];
+    }
+    qnormalize(&mut qfull);
+    for c in 0..4 {
+        qhalf[c] = q[c] + 0.5 * dtq * wq[c];
+    }
+    qnormalize(&mut qhalf);
+    *w = mq_to_omega(m, &qhalf, moments);
+    let wq = vecquat(w, &qhalf);
+    for c in 0..4 {
+        qhalf[c] += 0.5 * dtq * wq[c];
+    }
+    qnormalize(&mut qhalf);
+    for c in 0..4 {
+        q[c] = 2.0 * qhalf[c] - qfull[c];
+    }
+    qnormalize(q);
+}

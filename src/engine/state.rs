@@ -95,6 +95,10 @@ pub struct State {
     pub ntypes: usize,
     /// Per-type mass (index 0 unused) and whether it was set.
     pub type_mass: Vec<f64>,
+    /// The masses granular contacts use for the effective mass: each rigid body atom's body
+    /// mass, else its own (LAMMPS' mass_rigid, refreshed on list rebuilds; owned and ghost
+    /// atoms); empty without a rigid fix.
+    pub rigid_mass: Vec<f64>,
     pub mass_set: Vec<bool>,
     pub topo: Topology,
     pub special_bonds: SpecialBonds,
@@ -180,6 +184,7 @@ impl State {
             atoms: Atoms::new(AtomFeatures::default()),
             ntypes: 0,
             type_mass: vec![0.0],
+            rigid_mass: Vec::new(),
             mass_set: vec![false],
             topo: Topology::default(),
             special_bonds: SpecialBonds::default(),

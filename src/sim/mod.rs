@@ -74,6 +74,8 @@ pub struct Simulation {
     pub restart_fixes: Vec<crate::models::fix::FixState>,
     /// The generator of random() and normal() in atom-style variables (made at first use).
     pub random_atom: crate::models::atom_formula::AtomRandom,
+    /// The list build `State::rigid_mass` was made for.
+    pub rigid_mass_build: Option<u64>,
 }
 
 impl Default for Simulation {
@@ -117,6 +119,7 @@ impl Simulation {
             min_stats: None,
             restart_fixes: Vec::new(),
             random_atom: None,
+            rigid_mass_build: None,
         }
     }
 

@@ -266,6 +266,7 @@ impl Simulation {
             dimension: self.state.dimension,
             newton_pair: self.state.newton_pair,
             sides: self.state.lammps_order.sides(),
+            rigid_mass: (!self.state.rigid_mass.is_empty()).then_some(&self.state.rigid_mass[..]),
         };
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields, peratom };
@@ -279,6 +280,23 @@ impl Simulation {
         }
         self.pair = Some(pair);
         r
+    }
+
+    /// The granular effective masses of rigid body atoms (`State::rigid_mass`) from the first
+    /// rigid fix, after each list build, as LAMMPS' granular pairs and walls refresh theirs
+    /// (neighbor->ago == 0).
+    fn refresh_rigid_mass(&mut self) {
+        let build = self.state.neighbor.nbuilds;
+        if self.rigid_mass_build == Some(build) {
+            return;
+        }
+        self.rigid_mass_build = Some(build);
+        let body = self.fixes.iter().find_map(|f| f.rigid_body_mass(&self.state));
+        let a = &self.state.atoms;
+        self.state.rigid_mass = match body {
+            Some(m) => m.iter().zip(&a.rmass).map(|(&mb, &mi)| if mb > 0.0 { mb } else { mi }).collect(),
+            None => Vec::new(),
+        };
     }
 
     /// Zero forces and rates, then pair and bonded forces. Tallies energies if `eflag`.
@@ -331,6 +349,7 @@ impl Simulation {
                 }
             }
         }
+        self.refresh_rigid_mass();
         if self.pair.is_some() {
             let full = force_list.map(|l| std::mem::replace(&mut self.state.neighbor.list, l));
             pair_tally = self.with_pair_peratom(|p, input, out| p.compute(input, out), eflag, advance, peratom.as_mut());

@@ -100,7 +100,7 @@ pub fn uncompute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
 
 /// The fix styles that tally an energy (and a virial) for `fix_modify energy`/`virial`.
 const WITH_ENERGY: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce, spring, indent and gravity";
-const WITH_VIRIAL: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region and addforce";
+const WITH_VIRIAL: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce and rigid/small (on by default)";
 
 /// `fix_modify ID keyword value ...` (LAMMPS' Fix::modify_params): `temp CID` (a thermostat
 /// measures its temperature with compute CID, a plain `compute temp`, its extra/dof as set
@@ -140,8 +140,8 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 let (fid, style) = (f.id().to_string(), f.style().to_string());
                 // LAMMPS checks the fix only when the tally is switched on
                 match f.thermo_tally_mut() {
-                    Some(t) if energy => t.energy = on,
-                    Some(t) if t.has_virial => t.virial_on = on,
+                    Some(t) if energy && !t.no_energy => t.energy = on,
+                    Some(t) if !energy && t.has_virial => t.virial_on = on,
                     _ if !on => {}
                     _ => {
                         let list = if energy { WITH_ENERGY } else { WITH_VIRIAL };
@@ -156,7 +156,7 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             "respa" => return Err(a.error_at(kw, "fix_modify respa: dmhs has no rRESPA integrator (run_style respa)", "not supported")),
             "bodyforces" => {
                 let f = &sim.fixes[k];
-                return Err(a.error_at(kw, format!("fix {} ({}) does not support fix_modify bodyforces (a fix rigid keyword; dmhs has no fix rigid)", f.id(), f.style()), "not supported"));
+                return Err(a.error_at(kw, format!("fix {} ({}) does not support fix_modify bodyforces (a fix rigid keyword; dmhs refuses fix rigid)", f.id(), f.style()), "not supported"));
             }
             _ => return Err(a.unknown_keyword(kw, &["temp", "energy", "virial", "dynamic/dof", "respa", "bodyforces"])),
         }

@@ -1,7 +1,7 @@
 //! `compute ID all pressure temp-ID`: P = (N_dof kB T + sum r.f) / (dim V) * nktv2p
-//! and the pressure tensor (kinetic tensor + virial) / V.
+//! and the pressure tensor (the temperature compute's kinetic tensor + virial) / V.
 
-use super::{temp::ke_tensor, Compute};
+use super::Compute;
 use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -65,7 +65,8 @@ impl Compute for ComputePressure {
     }
     fn vector(&self, w: &World) -> Result<Vec<f64>, String> {
         let tc = self.temp(w)?;
-        let k = ke_tensor(w, tc.groupbit());
+        // the temperature compute's kinetic tensor (temp/sphere's has the rotational part)
+        let k = tc.vector(w)?;
         let v = &w.virial();
         let inv = 1.0 / w.state.domain()?.volume();
         let n = w.state.units.nktv2p;

@@ -33,6 +33,7 @@ pub mod pour;
 pub mod sampling;
 pub mod print;
 pub mod property_atom;
+pub mod rigid_small;
 pub mod setforce;
 pub mod sph;
 pub mod spring;
@@ -151,6 +152,8 @@ pub enum MinRole {
 pub struct ThermoTally {
     /// The fix tallies a virial (LAMMPS' virial_global_flag).
     pub has_virial: bool,
+    /// The fix has no energy (LAMMPS' energy_global_flag unset: the rigid fixes).
+    pub no_energy: bool,
     /// `fix_modify energy yes`: the fix's scalar counts in pe (LAMMPS' thermo_energy).
     pub energy: bool,
     /// `fix_modify virial yes`: [`ThermoTally::virial`] counts in the pressure.
@@ -283,6 +286,11 @@ pub trait Fix: Send + Sync {
     /// extensive: thermo output divides it by the atom count under `thermo_modify norm yes`.
     fn extensive(&self, _index: Option<usize>) -> bool {
         false
+    }
+    /// A rigid fix: per atom (owned and ghost), the mass of its rigid body, 0 outside bodies
+    /// (LAMMPS' extract "body" and "masstotal", read by granular pairs and walls).
+    fn rigid_body_mass(&self, _state: &State) -> Option<Vec<f64>> {
+        None
     }
     /// Degrees of freedom this fix removes from atoms of a group (for temperature).
     fn dof_removed(&self, _state: &State, _groupbit: u32) -> f64 {
@@ -432,6 +440,8 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
+    ("rigid", |d, _| Ok(Box::new(rigid_small::FixRigidSmall::refuse_rigid(d.args, d.cmd, d.style)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 

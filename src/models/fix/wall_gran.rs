@@ -272,7 +272,9 @@ impl FixWallGran {
         let nc = if kc.is_some() { n } else { 0 };
         let (c8, _) = cdata[..CONTACT_COLS * nc].as_chunks_mut::<CONTACT_COLS>();
         let temp: &[f64] = heat.map_or(&[], |(_, kt, _)| &a.extra[kt].data[..]);
-        let (x, v, omega, radius, rmass, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.rmass[..n], &a.mask[..n]);
+        // with rigid bodies the body's mass (LAMMPS' mass_rigid)
+        let rmass = if state.rigid_mass.is_empty() { &a.rmass[..n] } else { &state.rigid_mass[..n] };
+        let (x, v, omega, radius, mask) = (&a.x[..n], &a.v[..n], &a.omega[..n], &a.radius[..n], &a.mask[..n]);
         let (h3, _) = hist[..W * n].as_chunks_mut::<W>();
         let nq = if heat.is_some() { n } else { 0 };
         let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3), AtomsMut::new(&mut flow[..nq]), AtomsMut::new(c8));

@@ -153,6 +153,8 @@ impl FixWallGranRegion {
         let dt = state.dt;
         let kx = state.atoms.find_extra(&self.array);
         let a = &mut state.atoms;
+        // with rigid bodies the body's mass (LAMMPS' mass_rigid)
+        let rigid_mass = &state.rigid_mass;
         let n = a.nlocal;
         let mut hist = kx.map(|k| std::mem::take(&mut a.extra[k].data)).unwrap_or_default();
         // heat: the atoms' temperatures (read) and heat flows (added to), when conducting
@@ -203,7 +205,7 @@ impl FixWallGranRegion {
                     continue;
                 }
                 let vwall = if dynamic { c.vwall } else { w0 };
-                let g = Contact { del: c.del, rsq, radi, radj: c.radius, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, mi: a.rmass[i], mj: 0.0 };
+                let g = Contact { del: c.del, rsq, radi, radj: c.radius, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, mi: if rigid_mass.is_empty() { a.rmass[i] } else { rigid_mass[i] }, mj: 0.0 };
                 let hs = if w > 0 { &mut h[slot..slot + w] } else { &mut [][..] };
                 let r = granular_contact(&self.model, &g, true, hs, update, dt);
                 for d in 0..3 {

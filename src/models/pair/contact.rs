@@ -234,7 +234,10 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         }
     };
     let stride = input.ntypes + 1;
-    let (x, v, omega, radius, rmass, typ) = (&a.x[..], &a.v[..], &a.omega[..], &a.radius[..], &a.rmass[..], &a.typ[..]);
+    // with rigid bodies the effective mass takes the bodies' masses (LAMMPS' mass_rigid)
+    let rmass = input.rigid_mass.unwrap_or(&a.rmass[..]);
+    assert!(rmass.len() >= nall);
+    let (x, v, omega, radius, typ) = (&a.x[..], &a.v[..], &a.omega[..], &a.radius[..], &a.typ[..]);
     let update = input.advance;
     let dt = input.dt;
     let list = input.list;

@@ -183,6 +183,7 @@ mod tests {
             dimension: 3,
             newton_pair: true,
             sides: None,
+            rigid_mass: None,
         };
         let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![], peratom: None };
         hc.compute(&input, &mut out);

@@ -151,6 +151,9 @@ pub struct PairInput<'a> {
     pub newton_pair: bool,
     /// Which atom of a pair LAMMPS lists it from, as of the last rebuild.
     pub sides: Option<&'a crate::engine::lammps_order::ListSides>,
+    /// Granular effective masses with rigid bodies ([`crate::engine::state::State::rigid_mass`]);
+    /// None: the atoms' rmass.
+    pub rigid_mass: Option<&'a [f64]>,
 }
 
 /// What a pair style may check and read before a run (granular styles need the atoms'

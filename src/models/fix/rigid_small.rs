@@ -1,0 +1,529 @@
+//! `fix ID group rigid/small molecule`: each molecule of the group moves as one rigid body
+//! (LAMMPS' fix rigid/small with nve integration, 22 Jul 2025, serial order of operations).
+//!
+//! Setup (every run, LAMMPS' reinit yes): mass and centre of mass from unwrapped positions,
+//! the inertia tensor (finite-size spheres add 0.4 m r^2), principal axes by LAMMPS' Jacobi
+//! rotations (ascending moments; in 2d the axis along z last), the quaternion, each atom's
+//! displacement in the body frame; vcm and angular momentum from the atoms' velocities.
+//! Per step: initial_integrate (half kick of vcm and angular momentum, drift of the centre,
+//! Richardson update of the quaternion, positions and velocities of the atoms from the
+//! body), final_integrate (force and torque summed over the body's atoms, half kick,
+//! velocities of the atoms). Sums over atoms run in LAMMPS' local order. The body centre
+//! is wrapped into a periodic box on each list rebuild, as LAMMPS' pre_neighbor does.
+//! With `fix enforce2d` (defined after this fix) the out-of-plane body values are zeroed at
+//! its post_force, as LAMMPS' FixRigidSmall::enforce2d.
+
+use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
+use crate::engine::jacobi::{jacobi3, Sort};
+use crate::engine::quat::{self, Quat};
+use crate::engine::state::{RunError, State};
+use dmhs_parser::{Args, Command, DResult, Word};
+use std::collections::HashMap;
+
+pub const SYNTAX: &str = "fix ID group rigid/small molecule";
+
+/// Moment of inertia prefactor of a solid sphere.
+const SINERTIA: f64 = 0.4;
+/// Principal moments below EPSILON times the largest are zero (LAMMPS' EPSILON).
+const EPSILON: f64 = 1.0e-7;
+
+#[derive(Clone, Debug, Default)]
+pub struct Body {
+    pub mol: i64,
+    pub mass: f64,
+    pub xcm: [f64; 3],
+    pub vcm: [f64; 3],
+    pub fcm: [f64; 3],
+    pub torque: [f64; 3],
+    pub angmom: [f64; 3],
+    pub omega: [f64; 3],
+    pub inertia: [f64; 3],
+    pub ex: [f64; 3],
+    pub ey: [f64; 3],
+    pub ez: [f64; 3],
+    pub quat: Quat,
+    /// Image flags of the wrapped centre (LAMMPS' body image).
+    pub image: [i32; 3],
+    /// Atoms: point particles and finite-size ones (for the degrees of freedom).
+    pub npoint: usize,
+    pub nsphere: usize,
+}
+
+/// A body atom: its body and its displacement from the centre in the body frame.
+#[derive(Clone, Copy, Debug)]
+struct Member {
+    body: usize,
+    displace: [f64; 3],
+    sphere: bool,
+}
+
+pub struct FixRigidSmall {
+    id: String,
+    groupbit: u32,
+    style: &'static str,
+    bodies: Vec<Body>,
+    members: HashMap<i64, Member>,
+    /// A fix enforce2d follows this fix (2d).
+    enforce2d: bool,
+    /// The constraint forces' virial (LAMMPS' virial_global_flag, on by default for rigid fixes).
+    tally: ThermoTally,
+}
+
+impl FixRigidSmall {
+    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let kind = a.word("body style (molecule)")?;
+        if kind.text != "molecule" {
+            let msg = match kind.text.as_str() {
+                "custom" => "fix rigid/small custom is not supported yet (only molecule)",
+                _ => "fix rigid/small needs the body style molecule",
+            };
+            return Err(a.error_at(kind, msg, "supported: molecule"));
+        }
+        if !state.atoms.features.molecule {
+            return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+        }
+        if let Some(w) = a.peek() {
+            let what = match w.text.as_str() {
+                "langevin" => "fix rigid/small langevin (a thermostat) is not supported yet",
+                "infile" => "fix rigid/small infile is not supported yet",
+                "mol" => "fix rigid/small mol (bodies inserted by fix pour/deposit) is not supported yet",
+                "reinit" => "fix rigid/small reinit is not supported yet (bodies are set up at every run, LAMMPS' default)",
+                "temp" | "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "tparam" | "pchain" => "this fix rigid/small keyword (thermostat/barostat variants) is not supported",
+                _ => return Err(a.unknown_keyword(w, &[])),
+            };
+            return Err(a.error_at(w, what, "not supported"));
+        }
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, tally: ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() } })
+    }
+
+    /// `fix rigid` (one set of bodies summed over all ranks) is refused: LAMMPS' fix rigid
+    /// molecule sets its bodies up in another order of operations (its step-0 pressure differs
+    /// from rigid/small's by ~1e-13 relative on rigid_small_clumps and rigid_small_2d), so this
+    /// fix's integration would differ from it silently in the last bits.
+    pub fn refuse_rigid(args: &[Word], cmd: &Command, style: &Word) -> DResult<Self> {
+        let a = Args::from_words(args, cmd.span, SYNTAX);
+        Err(a.error_at(style, "fix rigid is not supported: its body setup differs from fix rigid/small's in the last bits", "not supported").with_help("use `fix ID group rigid/small molecule` (the same physics; LAMMPS' numbers of rigid/small)"))
+    }
+
+    fn massone(state: &State, i: usize) -> f64 {
+        let a = &state.atoms;
+        if a.features.per_atom_mass() { a.rmass[i] } else { state.type_mass[a.typ[i]] }
+    }
+
+    /// The bodies of the group's molecules, in the order LAMMPS creates them (first atom of
+    /// each molecule in local order), with their membership counts; nothing else set.
+    fn assign(&self, state: &State) -> (Vec<Body>, HashMap<i64, Member>) {
+        let a = &state.atoms;
+        let mut bodies: Vec<Body> = Vec::new();
+        let mut by_mol: HashMap<i64, usize> = HashMap::new();
+        let mut members = HashMap::new();
+        for &i in state.lammps_order.indices(a.nlocal).iter() {
+            if a.mask[i] & self.groupbit == 0 {
+                continue;
+            }
+            let mol = a.molecule[i];
+            let b = *by_mol.entry(mol).or_insert_with(|| {
+                bodies.push(Body { mol, ..Body::default() });
+                bodies.len() - 1
+            });
+            let sphere = a.features.sphere && a.radius[i] > 0.0;
+            if sphere {
+                bodies[b].nsphere += 1;
+            } else {
+                bodies[b].npoint += 1;
+            }
+            members.insert(a.tag[i], Member { body: b, displace: [0.0; 3], sphere });
+        }
+        (bodies, members)
+    }
+
+    /// The atom's body-relative image (LAMMPS' xcmimage = image - body image).
+    fn xcmimage(atom: [i32; 3], body: [i32; 3]) -> [i32; 3] {
+        [atom[0] - body[0], atom[1] - body[1], atom[2] - body[2]]
+    }
+
+    /// LAMMPS' setup_bodies_static and setup_bodies_dynamic.
+    fn setup_bodies(&mut self, state: &State) -> Result<(), String> {
+        let domain = state.domain()?.clone();
+        let (mut bodies, mut members) = self.assign(state);
+        let a = &state.atoms;
+        let order = state.lammps_order.indices(a.nlocal);
+        let extended = members.values().any(|m| m.sphere);
+        // centre of mass from unwrapped positions
+        for &i in order.iter() {
+            let Some(m) = members.get(&a.tag[i]) else { continue };
+            let b = &mut bodies[m.body];
+            let massone = Self::massone(state, i);
+            let unwrap = domain.unmap(a.x[i], a.image[i]);
+            for k in 0..3 {
+                b.xcm[k] += unwrap[k] * massone;
+            }
+            b.mass += massone;
+        }
+        for b in bodies.iter_mut() {
+            for k in 0..3 {
+                b.xcm[k] /= b.mass;
+            }
+            b.image = [0; 3];
+            // pre_neighbor: the centre wrapped into the box
+            domain.remap(&mut b.xcm, &mut b.image);
+        }
+        // inertia tensor about the centre (Voigt: xx yy zz yz xz xy)
+        let mut itensor = vec![[0.0f64; 6]; bodies.len()];
+        for &i in order.iter() {
+            let Some(m) = members.get(&a.tag[i]) else { continue };
+            let b = &bodies[m.body];
+            let unwrap = domain.unmap(a.x[i], Self::xcmimage(a.image[i], b.image));
+            let (dx, dy, dz) = (unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]);
+            let massone = Self::massone(state, i);
+            let t = &mut itensor[m.body];
+            t[0] += massone * (dy * dy + dz * dz);
+            t[1] += massone * (dx * dx + dz * dz);
+            t[2] += massone * (dx * dx + dy * dy);
+            t[3] -= massone * dy * dz;
+            t[4] -= massone * dx * dz;
+            t[5] -= massone * dx * dy;
+        }
+        if extended {
+            for &i in order.iter() {
+                let Some(m) = members.get(&a.tag[i]) else { continue };
+                if m.sphere {
+                    let massone = Self::massone(state, i);
+                    let t = &mut itensor[m.body];
+                    for k in 0..3 {
+                        t[k] += SINERTIA * massone * a.radius[i] * a.radius[i];
+                    }
+                }
+            }
+        }
+        for (b, t) in bodies.iter_mut().zip(&itensor) {
+            let tensor = [[t[0], t[5], t[4]], [t[5], t[1], t[3]], [t[4], t[3], t[2]]];
+            // ascending moments, so that in 2d the z axis comes last
+            let Some((mut inertia, evec)) = jacobi3(&tensor, Sort::Increasing) else {
+                return Err(format!("insufficient Jacobi rotations for the rigid body of molecule {}", b.mol));
+            };
+            let ex = [evec[0][0], evec[1][0], evec[2][0]];
+            let mut ey = [evec[0][1], evec[1][1], evec[2][1]];
+            let mut ez = [evec[0][2], evec[1][2], evec[2][2]];
+            // 2d: the axis along z last, so the quaternion is a rotation about z
+            if state.dimension == 2 && (ez[0].abs() > EPSILON || ez[1].abs() > EPSILON) {
+                inertia.swap(1, 2);
+                std::mem::swap(&mut ey, &mut ez);
+            }
+            let max = inertia[0].max(inertia[1]).max(inertia[2]);
+            for k in 0..3 {
+                if inertia[k] < EPSILON * max {
+                    inertia[k] = 0.0;
+                }
+            }
+            // right-handed axes
+            let cross = quat::cross3(&ex, &ey);
+            if cross[0] * ez[0] + cross[1] * ez[1] + cross[2] * ez[2] < 0.0 {
+                ez = [-ez[0], -ez[1], -ez[2]];
+            }
+            b.quat = quat::exyz_to_q(&ex, &ey, &ez);
+            (b.inertia, b.ex, b.ey, b.ez) = (inertia, ex, ey, ez);
+        }
+        // displacements in the body frame
+        for &i in order.iter() {
+            let Some(m) = members.get_mut(&a.tag[i]) else { continue };
+            let b = &bodies[m.body];
+            let unwrap = domain.unmap(a.x[i], Self::xcmimage(a.image[i], b.image));
+            let delta = [unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]];
+            m.displace = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &delta);
+        }
+        // dynamic: vcm and angular momentum from the atoms
+        for &i in order.iter() {
+            let Some(m) = members.get(&a.tag[i]) else { continue };
+            let b = &mut bodies[m.body];
+            let massone = Self::massone(state, i);
+            let v = a.v[i];
+            for k in 0..3 {
+                b.vcm[k] += v[k] * massone;
+            }
+            let unwrap = domain.unmap(a.x[i], Self::xcmimage(a.image[i], b.image));
+            let (dx, dy, dz) = (unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]);
+            b.angmom[0] += dy * massone * v[2] - dz * massone * v[1];
+            b.angmom[1] += dz * massone * v[0] - dx * massone * v[2];
+            b.angmom[2] += dx * massone * v[1] - dy * massone * v[0];
+        }
+        if extended {
+            for &i in order.iter() {
+                let Some(m) = members.get(&a.tag[i]) else { continue };
+                if m.sphere {
+                    let b = &mut bodies[m.body];
+                    let radone = a.radius[i];
+                    for k in 0..3 {
+                        b.angmom[k] += SINERTIA * a.rmass[i] * radone * radone * a.omega[i][k];
+                    }
+                }
+            }
+        }
+        for b in bodies.iter_mut() {
+            for k in 0..3 {
+                b.vcm[k] /= b.mass;
+            }
+        }
+        self.bodies = bodies;
+        self.members = members;
+        Ok(())
+    }
+
+    /// Force and torque on each body from its atoms (LAMMPS' compute_forces_and_torques).
+    fn forces_and_torques(&mut self, state: &State) -> Result<(), String> {
+        let domain = state.domain()?;
+        let a = &state.atoms;
+        for b in self.bodies.iter_mut() {
+            b.fcm = [0.0; 3];
+            b.torque = [0.0; 3];
+        }
+        let order = state.lammps_order.indices(a.nlocal);
+        for &i in order.iter() {
+            let Some(m) = self.members.get(&a.tag[i]) else { continue };
+            let b = &mut self.bodies[m.body];
+            let f = a.f[i];
+            for k in 0..3 {
+                b.fcm[k] += f[k];
+            }
+            let unwrap = domain.unmap(a.x[i], Self::xcmimage(a.image[i], b.image));
+            let (dx, dy, dz) = (unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]);
+            b.torque[0] += dy * f[2] - dz * f[1];
+            b.torque[1] += dz * f[0] - dx * f[2];
+            b.torque[2] += dx * f[1] - dy * f[0];
+        }
+        if self.members.values().any(|m| m.sphere) {
+            for &i in order.iter() {
+                let Some(m) = self.members.get(&a.tag[i]) else { continue };
+                if m.sphere {
+                    let t = &mut self.bodies[m.body].torque;
+                    for k in 0..3 {
+                        t[k] += a.torque[i][k];
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Positions (`with_x`) and velocities of the body atoms from their bodies (LAMMPS'
+    /// set_xv and set_v); spheres take the body's angular velocity. Each call tallies half the
+    /// virial of the constraint forces, m dv / dtf - f at the unwrapped position before the
+    /// move, in LAMMPS' local order (the other half comes from the other call of the step).
+    fn set_atoms(&mut self, state: &mut State, with_x: bool) -> Result<(), String> {
+        let prd = state.domain()?.prd();
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let per_atom_mass = state.atoms.features.per_atom_mass();
+        let order = state.lammps_order.indices(state.atoms.nlocal);
+        let a = &mut state.atoms;
+        let (members, bodies, tally) = (&self.members, &self.bodies, &mut self.tally);
+        for &i in order.iter() {
+            let Some(m) = members.get(&a.tag[i]) else { continue };
+            let b = &bodies[m.body];
+            let xbox = Self::xcmimage(a.image[i], b.image);
+            let x0 = [a.x[i][0] + xbox[0] as f64 * prd[0], a.x[i][1] + xbox[1] as f64 * prd[1], a.x[i][2] + xbox[2] as f64 * prd[2]];
+            let v0 = a.v[i];
+            let d = quat::matvec_cols(&b.ex, &b.ey, &b.ez, &m.displace);
+            a.v[i] = [
+                b.omega[1] * d[2] - b.omega[2] * d[1] + b.vcm[0],
+                b.omega[2] * d[0] - b.omega[0] * d[2] + b.vcm[1],
+                b.omega[0] * d[1] - b.omega[1] * d[0] + b.vcm[2],
+            ];
+            if with_x {
+                let mut x = d;
+                for k in 0..3 {
+                    x[k] += b.xcm[k] - xbox[k] as f64 * prd[k];
+                }
+                a.x[i] = x;
+            }
+            if m.sphere {
+                a.omega[i] = b.omega;
+            }
+            if tally.virial_on {
+                let massone = if per_atom_mass { a.rmass[i] } else { state.type_mass[a.typ[i]] };
+                let (v, f) = (a.v[i], a.f[i]);
+                let fc = [massone * (v[0] - v0[0]) / dtf - f[0], massone * (v[1] - v0[1]) / dtf - f[1], massone * (v[2] - v0[2]) / dtf - f[2]];
+                tally.v_tally([0.5 * x0[0] * fc[0], 0.5 * x0[1] * fc[1], 0.5 * x0[2] * fc[2], 0.5 * x0[0] * fc[1], 0.5 * x0[0] * fc[2], 0.5 * x0[1] * fc[2]]);
+            }
+        }
+        Ok(())
+    }
+
+    /// LAMMPS' FixRigidSmall::enforce2d, called from fix enforce2d's post_force.
+    fn zero_out_of_plane(&mut self) {
+        for b in self.bodies.iter_mut() {
+            b.xcm[2] = 0.0;
+            b.vcm[2] = 0.0;
+            b.fcm[2] = 0.0;
+            b.torque[0] = 0.0;
+            b.torque[1] = 0.0;
+            b.angmom[0] = 0.0;
+            b.angmom[1] = 0.0;
+            b.omega[0] = 0.0;
+            b.omega[1] = 0.0;
+        }
+    }
+
+    fn err(&self, state: &State, e: String) -> RunError {
+        RunError::new(state.step, format!("fix {} ({}): {e}", self.id, self.style))
+    }
+}
+
+impl Fix for FixRigidSmall {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &str {
+        self.style
+    }
+    fn groupbit(&self) -> u32 {
+        self.groupbit
+    }
+    fn hooks(&self) -> FixHooks {
+        FixHooks { initial_integrate: true, pre_exchange: true, final_integrate: true, ..FixHooks::default() }
+    }
+    fn min_role(&self) -> MinRole {
+        MinRole::Refused(format!("fix {} ({}) is not supported in minimize", self.id, self.style))
+    }
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
+        if let Some(f) = ctx.others[0].iter().find(|f| f.style() == "enforce2d") {
+            return Err(format!("fix enforce2d {} must be defined after fix {} ({})", f.id(), self.id, self.style));
+        }
+        self.enforce2d = state.dimension == 2 && ctx.others[1].iter().any(|f| f.style() == "enforce2d");
+        Ok(())
+    }
+    fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.setup_bodies(state).map_err(|e| self.err(state, e))
+    }
+    fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
+        for b in self.bodies.iter_mut() {
+            b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
+        }
+        self.tally.v_init();
+        self.set_atoms(state, false).map_err(|e| self.err(state, e))?;
+        // LAMMPS' guess of the setup virial: twice the set_v half
+        for v in self.tally.virial.iter_mut() {
+            *v *= 2.0;
+        }
+        // fix enforce2d's setup (its post_force) follows
+        if self.enforce2d {
+            self.zero_out_of_plane();
+        }
+        Ok(())
+    }
+    fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let dtv = state.dt;
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        let dtq = 0.5 * state.dt;
+        for b in self.bodies.iter_mut() {
+            let dtfm = dtf / b.mass;
+            for k in 0..3 {
+                b.vcm[k] += dtfm * b.fcm[k];
+            }
+            for k in 0..3 {
+                b.xcm[k] += dtv * b.vcm[k];
+            }
+            for k in 0..3 {
+                b.angmom[k] += dtf * b.torque[k];
+            }
+            b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
+            quat::richardson(&mut b.quat, &b.angmom, &mut b.omega, &b.inertia, dtq);
+            [b.ex, b.ey, b.ez] = quat::q_to_exyz(&b.quat);
+        }
+        self.tally.v_init();
+        self.set_atoms(state, true).map_err(|e| self.err(state, e))
+    }
+    fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        // LAMMPS' pre_neighbor: centres back into the box (atoms' images follow their wrap)
+        let domain = state.domain().map_err(|e| self.err(state, e))?.clone();
+        for b in self.bodies.iter_mut() {
+            domain.remap(&mut b.xcm, &mut b.image);
+        }
+        Ok(())
+    }
+    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        // fix enforce2d's post_force came between the two halves
+        if self.enforce2d {
+            self.zero_out_of_plane();
+        }
+        self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
+        let dtf = 0.5 * state.dt * state.units.ftm2v;
+        for b in self.bodies.iter_mut() {
+            let dtfm = dtf / b.mass;
+            for k in 0..3 {
+                b.vcm[k] += dtfm * b.fcm[k];
+            }
+            for k in 0..3 {
+                b.angmom[k] += dtf * b.torque[k];
+            }
+            b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
+        }
+        self.set_atoms(state, false).map_err(|e| self.err(state, e))
+    }
+    /// The temperature of the bodies (LAMMPS' compute_scalar): translational and rotational
+    /// (in the body frame) kinetic energy over 6 degrees of freedom per body.
+    fn scalar(&self, state: &State) -> Option<f64> {
+        let mut t = 0.0;
+        for b in &self.bodies {
+            let vcm = b.vcm;
+            t += b.mass * (vcm[0] * vcm[0] + vcm[1] * vcm[1] + vcm[2] * vcm[2]);
+            let rot = quat::quat_to_mat(&b.quat);
+            let mut wbody = quat::transpose_matvec(&rot, &b.angmom);
+            for k in 0..3 {
+                wbody[k] = if b.inertia[k] == 0.0 { 0.0 } else { wbody[k] / b.inertia[k] };
+            }
+            t += b.inertia[0] * wbody[0] * wbody[0] + b.inertia[1] * wbody[1] * wbody[1] + b.inertia[2] * wbody[2] * wbody[2];
+        }
+        let tfactor = state.units.mvv2e / (6.0 * self.bodies.len() as f64 * state.units.boltz);
+        Some(t * tfactor)
+    }
+    fn rigid_body_mass(&self, state: &State) -> Option<Vec<f64>> {
+        let a = &state.atoms;
+        Some((0..a.nall()).map(|i| self.members.get(&a.tag[i]).map_or(0.0, |m| self.bodies[m.body].mass)).collect())
+    }
+    fn dof_removed(&self, state: &State, groupbit: u32) -> f64 {
+        // LAMMPS' FixRigidSmall::dof: each body wholly in the temperature group keeps 6 (3d;
+        // 5 if linear) or 3 (2d) degrees of freedom of its 3N+6M (2N+3M)
+        let (bodies, members) = self.assign(state);
+        let a = &state.atoms;
+        let mut in_group = vec![0usize; bodies.len()];
+        for i in 0..a.nlocal {
+            if let Some(m) = members.get(&a.tag[i]) {
+                if a.mask[i] & groupbit != 0 {
+                    in_group[m.body] += 1;
+                }
+            }
+        }
+        let mut n = 0i64;
+        for (k, b) in bodies.iter().enumerate() {
+            if in_group[k] != b.npoint + b.nsphere {
+                continue;
+            }
+            let (np, ns) = (b.npoint as i64, b.nsphere as i64);
+            if state.dimension == 3 {
+                n += 3 * np + 6 * ns - 6;
+                // linear bodies (a zero principal moment) keep 5
+                let linear = self.bodies.iter().find(|s| s.mol == b.mol).is_some_and(|s| s.inertia.contains(&0.0));
+                if linear {
+                    n += 1;
+                }
+            } else {
+                n += 2 * np + 3 * ns - 3;
+            }
+        }
+        n as f64
+    }
+    fn thermo_tally(&self) -> Option<&ThermoTally> {
+        Some(&self.tally)
+    }
+    fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
+        Some(&mut self.tally)
+    }
+    fn write_restart(&self) -> Option<Vec<f64>> {
+        None
+    }
+    fn describe(&self) -> String {
+        format!("fix {} {}: {} rigid bodies", self.id, self.style, self.bodies.len())
+    }
+}

@@ -109,6 +109,8 @@ class lammps:
         """Run a command on a worker thread (the GIL is released while the engine works) and
         wait for it here, so that Ctrl-C raises KeyboardInterrupt in this thread: the run is
         cancelled at its next step and the instance stays usable."""
+        # before the command's thread starts, so that a Ctrl-C from now on is never lost
+        self._core.clear_cancel()
         if threading.current_thread() is not threading.main_thread():
             # signals only reach the main thread: run here
             return self._run_flagged(method, *args)

@@ -128,8 +128,9 @@ impl Core {
         self.with(f).map_err(err)
     }
 
+    /// The flag is cleared by the caller (`clear_cancel`) before the command's thread starts:
+    /// a clear here, on that thread, could come after a Ctrl-C's cancel and lose it.
     fn run(&self, py: Python, src: Source) -> PyResult<()> {
-        self.cancel.store(false, Ordering::Relaxed);
         py.allow_threads(|| self.with(|e| e.execute(src))).map_err(err)
     }
 }
@@ -149,6 +150,11 @@ impl Core {
     /// Stop a running `run` at its next step (callable from any thread while it runs).
     fn cancel(&self) {
         self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    /// Forget a cancellation that came when no command ran (called before each command).
+    fn clear_cancel(&self) {
+        self.cancel.store(false, Ordering::Relaxed);
     }
 
     fn close(&self) -> PyResult<()> {

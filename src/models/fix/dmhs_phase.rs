@@ -280,7 +280,7 @@ impl FixDmhsPhase {
         // Newly solid atoms in ID order, each bonding to solid atoms within the cut-off: to the
         // atoms solid before (not melted now) and to those frozen now with a lower ID. Solid
         // means the solid type in the group (the label follows the type); ghosts of a
-        // distributed run carry both. New bonds are added in (ID, ID) order on every rank.
+        // distributed run carry both. Every rank adds the new bonds in rank order.
         let mut new_bonds: Vec<f64> = vec![];
         if let Some((_, rc)) = self.bond {
             let domain = state.domain.as_ref().ok_or_else(|| RunError::new(state.step, "no simulation box"))?;
@@ -319,9 +319,9 @@ impl FixDmhsPhase {
         }
         let new_bonds = state.allgather_ranks(new_bonds);
         if let Some((btype, _)) = self.bond {
-            let mut pairs: Vec<(i64, i64)> = new_bonds.chunks_exact(2).map(|p| (p[0] as i64, p[1] as i64)).collect();
-            pairs.sort_unstable();
-            pairs.dedup();
+            // in the order found (the serial run's: the scenes are sensitive to it), each once
+            let mut seen = std::collections::HashSet::new();
+            let pairs: Vec<(i64, i64)> = new_bonds.chunks_exact(2).map(|p| (p[0] as i64, p[1] as i64)).filter(|&(p, q)| seen.insert((p.min(q), p.max(q)))).collect();
             self.created += pairs.len() as u64;
             topo_changed |= !pairs.is_empty();
             state.topo.bonds.extend(pairs.into_iter().map(|(ti, tj)| Bond::new(btype, [ti, tj])));

@@ -148,6 +148,8 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     // LAMMPS renumbers IDs 1..N only for atomic systems, in its local order
     if compress && !sim.state.atoms.features.molecular() {
         sim.state.lammps_order.renumber(&mut sim.state.atoms);
+    } else if compress {
+        sim.out.print("WARNING: Ignoring 'compress yes' for molecular system");
     }
     sim.state.lists_valid = false;
     sim.out.print(&format!("Deleted {ndel} atoms, new total = {}", sim.state.atoms.nlocal));

@@ -254,6 +254,7 @@ impl FixDmhsPhase {
                 melt.push(i);
             }
         }
+        freeze.sort_by_key(|&i| a.tag[i]);
         // events by ID: freezing atoms positive, melting ones negative
         let events: Vec<f64> = freeze.iter().map(|&i| a.tag[i] as f64).chain(melt.iter().map(|&i| -a.tag[i] as f64)).collect();
         let events = state.allgather_ranks(events);
@@ -319,9 +320,11 @@ impl FixDmhsPhase {
         }
         let new_bonds = state.allgather_ranks(new_bonds);
         if let Some((btype, _)) = self.bond {
-            // in the order found (the serial run's: the scenes are sensitive to it), each once
+            // by the freezing atom's ID, then in the order found (the serial run's order of
+            // bonds, which the scenes are sensitive to), each once
             let mut seen = std::collections::HashSet::new();
-            let pairs: Vec<(i64, i64)> = new_bonds.chunks_exact(2).map(|p| (p[0] as i64, p[1] as i64)).filter(|&(p, q)| seen.insert((p.min(q), p.max(q)))).collect();
+            let mut pairs: Vec<(i64, i64)> = new_bonds.chunks_exact(2).map(|p| (p[0] as i64, p[1] as i64)).filter(|&(p, q)| seen.insert((p.min(q), p.max(q)))).collect();
+            pairs.sort_by_key(|p| p.0);
             self.created += pairs.len() as u64;
             topo_changed |= !pairs.is_empty();
             state.topo.bonds.extend(pairs.into_iter().map(|(ti, tj)| Bond::new(btype, [ti, tj])));

@@ -442,6 +442,37 @@ fn the_cleaning_scene_on_two_ranks_is_the_serial_run() {
     compare(&deck, 2);
 }
 
+/// The paper's casting scene, its fast case cut to four 100-step runs (the stopper, the gate
+/// and the ladle removed between them), the melt started at 25.3 C so the surface freezes
+/// within them (dmhs/phase: types, bonds to solid neighbours across ranks; dmhs/cooling,
+/// dmhs/heatconduction, wall/reflect, dmhs/bond/break): the serial run's thermo and atoms.
+#[test]
+fn the_casting_scene_on_two_ranks_is_the_serial_run() {
+    let deck = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/scenes/casting/in.casting")).unwrap();
+    let deck = deck.replace("1.0*(100-25)", "1.0*(25.3-25)").replace("thermo       $(round(0.1/v_dt))", "thermo       10\nthermo_modify format float %.17g");
+    let deck = format!("variable case index fast\nvariable img index 0\nvariable topen index 0.02\nvariable tgate index 0.04\nvariable tpour index 0.02\nvariable tend index 0.08\n{deck}");
+    let (text, _) = serial(&deck);
+    let last = thermo_rows(&text).last().cloned().unwrap_or_default();
+    // f_phase[3]: bonds created
+    assert!(last.get(7).is_some_and(|&b| b > 10.0), "bonds made in the serial run: {last:?}\n{text}");
+    compare(&deck, 2);
+}
+
+/// The paper's lava scene at 540 C, cut to 200 heat steps of the crust (the surface freezes and bonds)
+/// and 100 steps of the flow (dmhs/blend with its contact history, bond/break): the serial
+/// run's thermo and atoms.
+#[test]
+fn the_lava_scene_on_two_ranks_is_the_serial_run() {
+    let deck = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/scenes/lava/in.lava")).unwrap();
+    let deck = deck.replace("sph/e $(1000.0*", "sph/e $(540.0*").replace("thermo       $(round(v_tcrust/6/v_dth))", "thermo       10\nthermo_modify format float %.17g").replace("thermo       $(round(0.05/v_dt))", "thermo       10");
+    let deck = format!("variable quick index 1\nvariable img index 0\nvariable tcrust index 10.0\nvariable tflow index 0.02\n{deck}");
+    let (text, _) = serial(&deck);
+    let last = thermo_rows(&text).last().cloned().unwrap_or_default();
+    // f_phase[3]: bonds created
+    assert!(last.get(3).is_some_and(|&b| b > 10.0), "bonds made in the serial run: {last:?}\n{text}");
+    compare(&deck, 2);
+}
+
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
     let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all temp/berendsen 1.0 1.0 0.5\n");

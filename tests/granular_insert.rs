@@ -81,7 +81,8 @@ fn erotate_sphere_is_zero_without_spin() {
 #[test]
 fn refused_pour_forms_are_located_errors() {
     let cases: &[(&str, &str)] = &[
-        ("fix p2 all pour 10 1 5 region slab mol m", "molecule insertion"),
+        ("fix p2 all pour 10 1 5 region slab mol m", "molecule template `m` for fix pour does not exist"),
+        ("fix p2 all pour 10 1 5 region slab shake s", "`shake` is not supported"),
         ("region c cylinder x 0 0 1 11 14 units box\nfix p2 all pour 10 1 5 region c", "z-axis cylinder"),
         ("region big block -11 9 -9 9 10 15 units box\nfix p2 all pour 10 1 5 region big", "outside the simulation box"),
         ("fix p2 all pour 10 1 0 region slab", "seed"),

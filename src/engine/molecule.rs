@@ -5,7 +5,8 @@
 
 use crate::engine::atoms::NewAtom;
 use crate::engine::domain::Domain;
-use crate::engine::quat::{axisangle_to_quat, matvec, norm3, quat_to_mat};
+use crate::engine::jacobi::{jacobi3, Sort};
+use crate::engine::quat::{axisangle_to_quat, cross3, exyz_to_q, matvec, norm3, quat_to_mat, transpose_matvec_cols, Quat};
 use crate::engine::state::State;
 use crate::engine::topology::{Angle, Bond, Dihedral};
 
@@ -14,6 +15,37 @@ use crate::engine::topology::{Angle, Bond, Dihedral};
 pub fn rotation(mut r: [f64; 3], theta: f64) -> [[f64; 3]; 3] {
     norm3(&mut r);
     quat_to_mat(&axisangle_to_quat(&r, theta))
+}
+
+/// A template as one rigid body (LAMMPS' Molecule::compute_mass, compute_com and
+/// compute_inertia): what fix rigid/small gives a body that fix pour or deposit inserts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidTemplate {
+    pub masstotal: f64,
+    pub com: [f64; 3],
+    /// The geometric centre (where an insertion puts the template's `center`).
+    pub center: [f64; 3],
+    /// Principal moments (those below 1e-7 of the largest are 0).
+    pub inertia: [f64; 3],
+    pub quat: Quat,
+    /// Each atom's displacement from the COM in the body frame.
+    pub dxbody: Vec<[f64; 3]>,
+    /// Finite-size atoms (the template has diameters).
+    pub spheres: bool,
+}
+
+/// One molecule inserted as a rigid body (the arguments of LAMMPS' set_molecule).
+#[derive(Clone, Debug)]
+pub struct RigidInsert {
+    /// The rigid fix named by the inserting fix.
+    pub fix_id: String,
+    /// The atom ID before the copy's first (its atoms are tagprev + 1 ..).
+    pub tagprev: i64,
+    pub mol: i64,
+    /// Where the template's geometric centre went, the copy's velocity and rotation.
+    pub xgeom: [f64; 3],
+    pub vcm: [f64; 3],
+    pub quat: Quat,
 }
 
 /// One molecule template, with the file's offsets and `scale` applied.
@@ -173,6 +205,73 @@ impl Molecule {
             }
         }
         Ok(())
+    }
+
+    /// The template as a rigid body, in LAMMPS' order of operations: masses from the Masses
+    /// section or the type masses, the COM (sum of x m, one division), the inertia tensor about
+    /// it (spheres add 0.4 m r^2), principal axes by Jacobi rotations with the moments
+    /// decreasing (jacobi3's default there), right-handed, the quaternion and the body-frame
+    /// displacements. `Err` if the rotations do not converge or a type mass is missing.
+    pub fn rigid(&self, type_mass: &[f64]) -> Result<RigidTemplate, String> {
+        let typ = self.typ.as_ref().ok_or_else(|| format!("molecule template `{}` has no Types section", self.id))?;
+        let mass = |i: usize| match &self.rmass {
+            Some(m) => m[i],
+            None => type_mass.get(typ[i]).copied().unwrap_or(0.0),
+        };
+        let n = self.natoms();
+        let mut masstotal = 0.0;
+        for i in 0..n {
+            masstotal += mass(i);
+        }
+        if masstotal <= 0.0 {
+            return Err(format!("molecule template `{}` has no mass (set type masses or a Masses section)", self.id));
+        }
+        let mut com = [0.0; 3];
+        for i in 0..n {
+            for k in 0..3 {
+                com[k] += self.x[i][k] * mass(i);
+            }
+        }
+        for c in com.iter_mut() {
+            *c /= masstotal;
+        }
+        let dxcom: Vec<[f64; 3]> = self.x.iter().map(|p| [p[0] - com[0], p[1] - com[1], p[2] - com[2]]).collect();
+        let mut t = [0.0f64; 6];
+        for (i, d) in dxcom.iter().enumerate() {
+            let m = mass(i);
+            let (dx, dy, dz) = (d[0], d[1], d[2]);
+            t[0] += m * (dy * dy + dz * dz);
+            t[1] += m * (dx * dx + dz * dz);
+            t[2] += m * (dx * dx + dy * dy);
+            t[3] -= m * dy * dz;
+            t[4] -= m * dx * dz;
+            t[5] -= m * dx * dy;
+        }
+        if let Some(r) = &self.radius {
+            for i in 0..n {
+                for v in t.iter_mut().take(3) {
+                    *v += 0.4 * mass(i) * r[i] * r[i];
+                }
+            }
+        }
+        let tensor = [[t[0], t[5], t[4]], [t[5], t[1], t[3]], [t[4], t[3], t[2]]];
+        let (mut inertia, evec) = jacobi3(&tensor, Sort::Decreasing).ok_or_else(|| format!("insufficient Jacobi rotations for the rigid molecule `{}`", self.id))?;
+        let ex = [evec[0][0], evec[1][0], evec[2][0]];
+        let ey = [evec[0][1], evec[1][1], evec[2][1]];
+        let mut ez = [evec[0][2], evec[1][2], evec[2][2]];
+        let max = inertia[0].max(inertia[1]).max(inertia[2]);
+        for v in inertia.iter_mut() {
+            if *v < 1.0e-7 * max {
+                *v = 0.0;
+            }
+        }
+        let c = cross3(&ex, &ey);
+        if c[0] * ez[0] + c[1] * ez[1] + c[2] * ez[2] < 0.0 {
+            ez = [-ez[0], -ez[1], -ez[2]];
+        }
+        let quat = exyz_to_q(&ex, &ey, &ez);
+        let dxbody = dxcom.iter().map(|d| transpose_matvec_cols(&ex, &ey, &ez, d)).collect();
+        Ok(RigidTemplate { masstotal, com, center: self.center, inertia, quat, dxbody, spheres: self.radius.is_some() })
     }
 
     pub fn natoms(&self) -> usize {

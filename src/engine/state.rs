@@ -121,6 +121,9 @@ pub struct State {
     pub regions: Vec<Region>,
     /// Molecule templates (`molecule` command).
     pub molecules: Vec<crate::engine::molecule::Molecule>,
+    /// Molecules an inserting fix (pour) added this step as bodies of a rigid fix, handed to
+    /// that fix before the lists are rebuilt (LAMMPS' direct set_molecule call).
+    pub rigid_inserts: Vec<crate::engine::molecule::RigidInsert>,
     pub dt: f64,
     pub dt_set: bool,
     pub step: i64,
@@ -200,6 +203,7 @@ impl State {
             lattice: None,
             regions: Vec::new(),
             molecules: Vec::new(),
+            rigid_inserts: Vec::new(),
             dt: units.dt,
             dt_set: false,
             step: 0,

@@ -15,12 +15,15 @@ use std::sync::Arc;
 const PAIRS: &[&str] = &[
     "lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction",
     "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular", "dmhs/sph/diffusion", "dmhs/lj/wet",
+    "dmhs/heatconduction", "dmhs/blend",
 ];
-const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell"];
-const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom"];
+/// (GROUP: a dynamic group's update, per owned atom; atom values by ID stop the run on ranks.)
+const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell",
+    "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them).
-const GATHERED_COMPUTES: &[&str] = &["property/atom"];
+const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom"];
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];

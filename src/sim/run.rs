@@ -282,6 +282,18 @@ impl Simulation {
         r
     }
 
+    /// Molecules inserted this step as rigid bodies go to their rigid fix.
+    fn deliver_rigid_inserts(&mut self) -> Result<(), RunError> {
+        for ins in std::mem::take(&mut self.state.rigid_inserts) {
+            let step = self.state.step;
+            let Some(f) = self.fixes.iter_mut().find(|f| f.id() == ins.fix_id) else {
+                return Err(RunError::new(step, format!("fix pour rigid: fix {} does not exist", ins.fix_id)));
+            };
+            f.add_rigid_molecule(&self.state, &ins).map_err(|e| RunError::new(step, e))?;
+        }
+        Ok(())
+    }
+
     /// The granular effective masses of rigid body atoms (`State::rigid_mass`) from the first
     /// rigid fix, after each list build, as LAMMPS' granular pairs and walls refresh theirs
     /// (neighbor->ago == 0).
@@ -505,6 +517,7 @@ impl Simulation {
         if self.any_rank(moved) || requested {
             self.timers.stamp();
             self.fix_hook(|h| h.pre_exchange, |f, s, c| f.pre_exchange(s, c))?;
+            self.deliver_rigid_inserts()?;
             self.timers.charge(Stage::Modify);
             self.flush_messages();
             self.rebuild()?;

@@ -243,7 +243,9 @@ impl Fix for FixBondBreak {
             }
         }
         let mut broken = mutual_choices(&choice, self.fraction, &mut self.random);
-        broken.extend(hot_bonds);
+        // the bonds broken by temperature, every rank's (each bond is listed on one rank)
+        let hot: Vec<f64> = hot_bonds.iter().flat_map(|&(p, q)| [p as f64, q as f64]).collect();
+        broken.extend(state.allgather_ranks(hot).chunks_exact(2).map(|c| (c[0] as i64, c[1] as i64)));
         self.breakcount = broken.len();
         let mut longest = [longest_sq];
         state.max_ranks(&mut longest);

@@ -83,8 +83,11 @@ impl FixDmhsCooling {
             rate -= de;
             n += 1;
         }
-        self.ncool = n;
-        rate
+        // a distributed run: the count and the rate of every rank
+        let mut v = [n as f64, rate];
+        state.sum_ranks(&mut v);
+        self.ncool = v[0] as usize;
+        v[1]
     }
 }
 
@@ -205,8 +208,9 @@ impl Fix for FixDmhsCooling {
         if let Some((d, _)) = self.surface {
             let periodic = (0..state.dimension).any(|k| state.domain.as_ref().map(|dm| dm.periodic(k)).unwrap_or(false));
             let cut = ctx.pair.map(|p| (1..=state.ntypes).flat_map(|i| (1..=state.ntypes).map(move |j| (i, j))).map(|(i, j)| p.cutoff(i, j)).fold(0.0, f64::max)).unwrap_or(0.0) + state.neigh_settings.skin;
-            if periodic && d > cut {
-                return Err(format!("the coordination distance {d} is longer than the neighbour cutoff {cut}: periodic images would be missed"));
+            // periodic images, or a distributed run's ghosts, reach only as far as the cutoff
+            if (periodic || state.decomp.is_some()) && d > cut {
+                return Err(format!("the coordination distance {d} is longer than the neighbour cutoff {cut}: periodic images or other ranks' atoms would be missed"));
             }
         }
         Ok(())

@@ -209,8 +209,17 @@ impl FixDmhsPhase {
         }
     }
 
-    /// Copy the ghost-carried fields to the existing ghosts.
+    /// Copy the ghost-carried fields to the existing ghosts (a distributed run: from their
+    /// owners on the other ranks, these fields only).
     fn forward(state: &mut State) {
+        if let (Some(d), Some(_), Some(domain)) = (&state.decomp, state.distributed, &state.domain) {
+            let a = &mut state.atoms;
+            d.forward_field(a, domain, |a| a.field_values(TEMPERATURE).unwrap_or(&[]), |a| Self::field_mut(a, TEMPERATURE));
+            if a.field(LIQUID_WEIGHT).is_some() {
+                d.forward_field(a, domain, |a| a.field_values(LIQUID_WEIGHT).unwrap_or(&[]), |a| Self::field_mut(a, LIQUID_WEIGHT));
+            }
+            return;
+        }
         let a = &mut state.atoms;
         let n = a.nlocal;
         for f in [TEMPERATURE, LIQUID_WEIGHT] {
@@ -220,7 +229,14 @@ impl FixDmhsPhase {
         }
     }
 
-    /// Apply the solidification and melting rules; returns whether anything changed.
+    fn field_mut(a: &mut crate::engine::atoms::Atoms, f: Field) -> &mut [f64] {
+        let k = a.field(f).expect("dmhs/phase fields are registered at definition");
+        &mut a.extra[k].data
+    }
+
+    /// Apply the solidification and melting rules. A distributed run's ranks each find their
+    /// own atoms' events and every rank reads all of them (by ID), so the topology, which every
+    /// rank keeps whole, and the counts stay the same on every rank.
     fn transitions(&mut self, state: &mut State) -> Result<(), RunError> {
         let kl = Self::field(state, PHASE);
         let a = &state.atoms;
@@ -238,54 +254,82 @@ impl FixDmhsPhase {
                 melt.push(i);
             }
         }
-        if freeze.is_empty() && melt.is_empty() {
+        freeze.sort_by_key(|&i| a.tag[i]);
+        // events by ID: freezing atoms positive, melting ones negative
+        let events: Vec<f64> = freeze.iter().map(|&i| a.tag[i] as f64).chain(melt.iter().map(|&i| -a.tag[i] as f64)).collect();
+        let events = state.allgather_ranks(events);
+        if events.is_empty() {
             return Ok(());
         }
+        let frozen: std::collections::HashSet<i64> = events.iter().filter(|&&t| t > 0.0).map(|&t| t as i64).collect();
+        let melted: std::collections::HashSet<i64> = events.iter().filter(|&&t| t < 0.0).map(|&t| -t as i64).collect();
         let mut topo_changed = false;
-        if !melt.is_empty() {
-            let gone: std::collections::HashSet<i64> = melt.iter().map(|&i| state.atoms.tag[i]).collect();
+        if !melted.is_empty() {
             let t = &mut state.topo;
             let before = t.bonds.len() + t.angles.len() + t.dihedrals.len();
             let nb = t.bonds.len();
-            t.remove_atoms(&gone);
+            t.remove_atoms(&melted);
             self.deleted += (nb - t.bonds.len()) as u64;
             topo_changed |= t.bonds.len() + t.angles.len() + t.dihedrals.len() != before;
-            self.melted += melt.len() as u64;
+            self.melted += melted.len() as u64;
             for &i in &melt {
                 state.atoms.extra[kl].data[i] = 0.0;
                 state.atoms.typ[i] = self.liquid;
             }
         }
-        self.frozen += freeze.len() as u64;
-        // newly solid atoms in ID order, each bonding to solid atoms within the cut-off
-        freeze.sort_by_key(|&i| state.atoms.tag[i]);
-        let mut bonded: std::collections::HashSet<(i64, i64)> = std::collections::HashSet::new();
-        if self.bond.is_some() {
-            bonded = state.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect();
-        }
-        for &i in &freeze {
-            if let Some((btype, rc)) = self.bond {
-                let domain = state.domain.as_ref().ok_or_else(|| RunError::new(state.step, "no simulation box"))?;
-                let a = &state.atoms;
-                let xi = a.x[i];
-                let ti = a.tag[i];
-                for j in 0..a.nlocal {
-                    if j == i || a.extra[kl].data[j] == 0.0 {
+        self.frozen += frozen.len() as u64;
+        // Newly solid atoms in ID order, each bonding to solid atoms within the cut-off: to the
+        // atoms solid before (not melted now) and to those frozen now with a lower ID. Solid
+        // means the solid type in the group (the label follows the type); ghosts of a
+        // distributed run carry both. Every rank adds the new bonds in rank order.
+        let mut new_bonds: Vec<f64> = vec![];
+        if let Some((_, rc)) = self.bond {
+            let domain = state.domain.as_ref().ok_or_else(|| RunError::new(state.step, "no simulation box"))?;
+            let bonded: std::collections::HashSet<(i64, i64)> = state.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect();
+            let a = &state.atoms;
+            // serial: the owned atoms at their nearest image; ranks: owned atoms and ghosts as placed
+            let (nj, nearest) = if state.distributed.is_some() { (a.nall(), false) } else { (a.nlocal, true) };
+            let mut mine: std::collections::HashSet<(i64, i64)> = std::collections::HashSet::new();
+            for &i in &freeze {
+                let (xi, ti) = (a.x[i], a.tag[i]);
+                for j in 0..nj {
+                    let tj = a.tag[j];
+                    let solid = if melted.contains(&tj) {
+                        false
+                    } else if frozen.contains(&tj) {
+                        tj < ti
+                    } else {
+                        a.mask[j] & self.groupbit != 0 && a.typ[j] == self.solid
+                    };
+                    if j == i || tj == ti || !solid {
                         continue;
                     }
                     let mut d = [xi[0] - a.x[j][0], xi[1] - a.x[j][1], xi[2] - a.x[j][2]];
-                    domain.minimum_image(&mut d);
+                    if nearest {
+                        domain.minimum_image(&mut d);
+                    }
                     if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= rc * rc {
                         continue;
                     }
-                    let tj = a.tag[j];
-                    if bonded.insert((ti.min(tj), ti.max(tj))) {
-                        state.topo.bonds.push(Bond::new(btype, [ti, tj]));
-                        self.created += 1;
-                        topo_changed = true;
+                    let key = (ti.min(tj), ti.max(tj));
+                    if !bonded.contains(&key) && mine.insert(key) {
+                        new_bonds.extend([ti as f64, tj as f64]);
                     }
                 }
             }
+        }
+        let new_bonds = state.allgather_ranks(new_bonds);
+        if let Some((btype, _)) = self.bond {
+            // by the freezing atom's ID, then in the order found (the serial run's order of
+            // bonds, which the scenes are sensitive to), each once
+            let mut seen = std::collections::HashSet::new();
+            let mut pairs: Vec<(i64, i64)> = new_bonds.chunks_exact(2).map(|p| (p[0] as i64, p[1] as i64)).filter(|&(p, q)| seen.insert((p.min(q), p.max(q)))).collect();
+            pairs.sort_by_key(|p| p.0);
+            self.created += pairs.len() as u64;
+            topo_changed |= !pairs.is_empty();
+            state.topo.bonds.extend(pairs.into_iter().map(|(ti, tj)| Bond::new(btype, [ti, tj])));
+        }
+        for &i in &freeze {
             state.atoms.extra[kl].data[i] = 1.0;
             state.atoms.typ[i] = self.solid;
         }
@@ -314,7 +358,9 @@ impl FixDmhsPhase {
                 }
             }
         }
-        (n, ns, fs, np)
+        let mut v = [n, ns, fs, np];
+        state.sum_ranks(&mut v);
+        (v[0], v[1], v[2], v[3])
     }
 }
 

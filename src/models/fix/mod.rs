@@ -292,6 +292,11 @@ pub trait Fix: Send + Sync {
     fn rigid_body_mass(&self, _state: &State) -> Option<Vec<f64>> {
         None
     }
+    /// A rigid fix: make a body of a molecule another fix has just inserted (LAMMPS'
+    /// set_molecule). Other fixes refuse.
+    fn add_rigid_molecule(&mut self, _state: &State, _insert: &crate::engine::molecule::RigidInsert) -> Result<(), String> {
+        Err(format!("fix {} ({}) does not make rigid bodies of inserted molecules", self.id(), self.style()))
+    }
     /// Degrees of freedom this fix removes from atoms of a group (for temperature).
     fn dof_removed(&self, _state: &State, _groupbit: u32) -> f64 {
         0.0

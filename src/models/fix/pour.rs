@@ -2,8 +2,10 @@
 //! run into a block or z-cylinder region, a batch every `nfreq` steps, as LAMMPS' fix pour.
 //! Keywords: `region ID` (required), `diam one D | range Dlo Dhi | poly N D1 P1 ...`,
 //! `dens lo hi`, `vol fraction Nattempt`, `rate v`, `vel vxlo vxhi vylo vyhi vz` (2D: `vxlo
-//! vxhi vy`), `id max|next`, `ignore`. Molecule insertion (`mol`, `molfrac`, `rigid`, `shake`)
-//! is refused.
+//! vxhi vy`), `id max|next`, `ignore`, `mol TEMPLATE` (copies of a molecule template, types
+//! offset by `type`, turned at random about z in 2D, about a random axis in 3D, LAMMPS' draws),
+//! `molfrac 1` and `rigid FIXID` (each copy a body of that fix rigid/small, made from the
+//! template: LAMMPS' set_molecule). `shake` and templates of several molecules are refused.
 //!
 //! Positions, radii, densities and velocities come from LAMMPS' Park-Miller stream in LAMMPS'
 //! order of draws, so the inserted particles are LAMMPS' own: after 30 discarded numbers, per
@@ -18,13 +20,15 @@
 
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::atoms::NewAtom;
+use crate::engine::molecule::RigidInsert;
+use crate::engine::quat::{axisangle_to_quat, norm3, quat_to_mat};
 use crate::engine::random_park::RanPark;
 use crate::engine::region::Simple;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult};
 use std::f64::consts::PI;
 
-const SYNTAX: &str = "fix ID group pour N type seed region ID [diam one D | diam range Dlo Dhi | diam poly N D1 P1 ...] [dens lo hi] [vol fraction Nattempt] [rate v] [vel vxlo vxhi vylo vyhi vz (2D: vxlo vxhi vy)] [id max|next] [ignore]";
+const SYNTAX: &str = "fix ID group pour N type seed region ID [mol TEMPLATE [molfrac 1] [rigid FIXID]] [diam one D | diam range Dlo Dhi | diam poly N D1 P1 ...] [dens lo hi] [vol fraction Nattempt] [rate v] [vel vxlo vxhi vylo vyhi vz (2D: vxlo vxhi vy)] [id max|next] [ignore]";
 
 /// How LAMMPS tells the gravity direction is the insertion axis (-z in 3D, -y in 2D).
 const EPSILON: f64 = 0.001;
@@ -102,6 +106,9 @@ pub struct FixPour {
     ninserted: i64,
     maxtag: i64,
     dimension: usize,
+    /// `mol`: the template inserted, and the rigid fix that makes each copy a body.
+    mol: Option<(crate::engine::molecule::Molecule, Option<String>)>,
+    maxmol: i64,
 }
 
 impl FixPour {
@@ -112,7 +119,9 @@ impl FixPour {
             return Err(a.error_at(&cmd.name, "fix pour requires atom attributes radius and rmass (atom_style sphere)", "no sphere attributes"));
         }
         let ninsert = a.i64_in("number of particles to insert N", 0, i64::from(i32::MAX))?;
-        let ntype = a.i64_in("atom type", 1, state.ntypes as i64)? as usize;
+        // 0 is allowed with `mol` (an offset added to the template's types)
+        let type_word = a.peek().cloned();
+        let ntype = a.i64_in("atom type", 0, state.ntypes as i64)? as usize;
         let seed = a.i64_in("random seed (> 0)", 1, i64::from(i32::MAX))? as i32;
         let dimension = state.dimension;
         let mut region = None;
@@ -120,6 +129,8 @@ impl FixPour {
         let (mut density, mut volfrac, mut maxattempt, mut rate) = ((1.0, 1.0), 0.25, 50, 0.0);
         let mut vel = [0.0; 5];
         let mut id_next = false;
+        let mut mol: Option<(crate::engine::molecule::Molecule, Option<String>)> = None;
+        let mut rigid = None;
         while let Some(k) = a.peek() {
             a.skip(1);
             match k.text.as_str() {
@@ -179,11 +190,47 @@ impl FixPour {
                 "id" => id_next = a.choice("id mode", &["max", "next"])? == 1,
                 // lines and triangles, which `ignore` skips in the overlap test, do not exist in dmhs
                 "ignore" => {}
-                "mol" | "molfrac" | "rigid" | "shake" => {
-                    return Err(a.error_at(k, format!("fix pour `{}` (molecule insertion) is not supported", k.text), "not supported"));
+                "mol" => {
+                    let w = a.word("molecule template ID")?;
+                    let m = state.molecules.iter().find(|m| m.id == w.text).ok_or_else(|| a.error_at(w, format!("molecule template `{}` for fix pour does not exist", w.text), "unknown template"))?;
+                    if m.typ.is_none() {
+                        return Err(a.error_at(w, "fix pour molecule must have atom types", "no Types section"));
+                    }
+                    if ntype + m.max_type() > state.ntypes {
+                        return Err(a.error_at(w, format!("fix pour mol: type {} + the template's types exceed the {} atom types", ntype, state.ntypes), "invalid atom type"));
+                    }
+                    if m.has_topology() {
+                        return Err(a.error_at(w, "fix pour of molecules with bonds, angles or dihedrals is not supported", "not supported"));
+                    }
+                    mol = Some((m.clone().with_radius(), None));
                 }
-                _ => return Err(a.unknown_keyword(k, &["region", "diam", "dens", "vol", "rate", "vel", "id", "ignore"])),
+                "molfrac" => {
+                    if mol.is_none() {
+                        return Err(a.error_at(k, "fix pour molfrac needs `mol TEMPLATE` before it", "no template"));
+                    }
+                    let f = a.f64("molecule fraction")?;
+                    if (f - 1.0).abs() > 1e-6 {
+                        return Err(a.error_at(a.last().unwrap(), "fix pour molfrac of a one-molecule template must be 1", "fractions must sum to 1"));
+                    }
+                }
+                "rigid" => rigid = Some(a.word("rigid fix ID")?),
+                "shake" => {
+                    return Err(a.error_at(k, "fix pour `shake` is not supported", "not supported"));
+                }
+                _ => return Err(a.unknown_keyword(k, &["region", "diam", "dens", "vol", "rate", "vel", "id", "ignore", "mol", "molfrac", "rigid"])),
             }
+        }
+        if ntype == 0 && mol.is_none() {
+            let w = type_word.unwrap();
+            return Err(a.error_at(&w, "fix pour atom type 0 needs `mol TEMPLATE` (an offset of the template's types)", "expected a type from 1"));
+        }
+        if let Some(w) = rigid {
+            let Some((_, r)) = mol.as_mut() else { return Err(a.error_at(w, "fix pour rigid needs `mol TEMPLATE`", "not molecule insertion")) };
+            let f = d.fixes.iter().find(|f| f.id() == w.text).ok_or_else(|| a.error_at(w, format!("fix pour rigid fix `{}` does not exist", w.text), "unknown fix"))?;
+            if f.style() != "rigid/small" {
+                return Err(a.error_at(w, format!("fix pour rigid: fix `{}` is {}, not rigid/small", w.text, f.style()), "not rigid/small"));
+            }
+            *r = Some(w.text.clone());
         }
         let Some((rword, shape)) = region else { return Err(a.missing("region ID (fix pour needs `region ID`)")) };
         let domain = state.domain.as_ref().ok_or_else(|| a.error_at(&cmd.name, "fix pour needs a simulation box", "no box yet"))?;
@@ -215,7 +262,11 @@ impl FixPour {
         check_direction(gravity.dir, dimension).map_err(|m| a.error_at(&cmd.name, m, "gravity direction"))?;
         let grav = -magnitude * state.units.ftm2v;
 
-        let radius_max = diam.max_radius();
+        // with molecules the particle is the template's bounding circle or sphere
+        let radius_max = match &mol {
+            Some((m, _)) => m.molradius,
+            None => diam.max_radius(),
+        };
         let (v_rel, delta) = match volume {
             Volume::Block { lo, hi } if dimension == 2 => (vel[4] - rate, hi[1] - lo[1]),
             Volume::Block { lo, hi } => (vel[4] - rate, hi[2] - lo[2]),
@@ -231,7 +282,7 @@ impl FixPour {
         };
         let one = |r: f64| if dimension == 3 { 4.0 / 3.0 * PI * r * r * r } else { PI * r * r };
         let volume_one = match &diam {
-            Diameters::Poly(p) => p.iter().map(|&(r, f)| one(r) * f).sum(),
+            Diameters::Poly(p) if mol.is_none() => p.iter().map(|&(r, f)| one(r) * f).sum(),
             _ => one(radius_max),
         };
         let nper = (volfrac * region_volume / volume_one) as i32 as i64;
@@ -240,6 +291,7 @@ impl FixPour {
         }
         let nfirst = state.step + 1;
         let maxtag = if id_next { state.atoms.max_tag() } else { 0 };
+        let maxmol = if id_next { state.atoms.max_molecule() } else { 0 };
         // LAMMPS discards the first 30 numbers (nearby seeds would give correlated first positions)
         let mut random = RanPark::new(seed);
         for _ in 0..30 {
@@ -269,6 +321,8 @@ impl FixPour {
             ninserted: 0,
             maxtag,
             dimension,
+            mol,
+            maxmol,
         })
     }
 
@@ -396,10 +450,14 @@ impl Fix for FixPour {
         self.next
     }
     fn insert_radius(&self, itype: usize) -> f64 {
-        if itype == self.ntype {
-            self.radius_max
-        } else {
-            0.0
+        match &self.mol {
+            // the largest radius among the template's atoms of that type (LAMMPS' extract)
+            Some((m, _)) => {
+                let typ = m.typ.as_deref().unwrap_or(&[]);
+                (0..m.natoms()).filter(|&k| typ.get(k).map(|t| t + self.ntype) == Some(itype)).map(|k| m.radius.as_ref().map_or(0.5, |r| r[k])).fold(0.0, f64::max)
+            }
+            None if itype == self.ntype => self.radius_max,
+            None => 0.0,
         }
     }
     fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -410,6 +468,7 @@ impl Fix for FixPour {
         state.atoms.clear_ghosts();
         if !self.id_next {
             self.maxtag = state.atoms.max_tag();
+            self.maxmol = state.atoms.max_molecule();
         }
         let nnew = self.nper.min(self.ninsert - self.ninserted);
         let bounds = self.current_bounds(state.step, state.dt);
@@ -425,26 +484,46 @@ impl Fix for FixPour {
         while nsuccess < nnew {
             let rn = self.random.uniform();
             let h = hi_c - rn * rn * (hi_c - lo_c);
-            let radius = self.diam.sample(&mut self.random);
-            let mut placed = None;
+            let radius = if self.mol.is_none() { self.diam.sample(&mut self.random) } else { 0.0 };
+            // the particle's atoms (wrapped, with images and radii), and a molecule's rotation
+            let mut placed: Option<(Vec<([f64; 3], [i32; 3], f64)>, [f64; 3], [f64; 4])> = None;
             while attempt < maxiter {
                 attempt += 1;
                 let x = self.trial_position(h);
-                let clear = near.iter().all(|&(y, ry)| {
-                    let mut del = [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-                    domain.minimum_image(&mut del);
-                    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                    let radsum = radius + ry;
-                    rsq > radsum * radsum
+                let (atoms, quat) = match &self.mol {
+                    None => (vec![(x, [0; 3], radius)], [1.0, 0.0, 0.0, 0.0]),
+                    Some((m, _)) => {
+                        // the template draw (one template: always the first), then the rotation
+                        self.random.uniform();
+                        let mut r = [0.0, 0.0, 1.0];
+                        if self.dimension == 3 {
+                            r = [self.random.uniform() - 0.5, self.random.uniform() - 0.5, self.random.uniform() - 0.5];
+                        }
+                        let theta = self.random.uniform() * 2.0 * PI;
+                        norm3(&mut r);
+                        let quat = axisangle_to_quat(&r, theta);
+                        let rot = quat_to_mat(&quat);
+                        let radii = (0..m.natoms()).map(|k| m.radius.as_ref().map_or(0.5, |r| r[k]));
+                        (m.place(&rot, x, &domain).into_iter().zip(radii).map(|((p, img), r)| (p, img, r)).collect(), quat)
+                    }
+                };
+                let clear = atoms.iter().all(|&(p, _, radius)| {
+                    near.iter().all(|&(y, ry)| {
+                        let mut del = [p[0] - y[0], p[1] - y[1], p[2] - y[2]];
+                        domain.minimum_image(&mut del);
+                        let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                        let radsum = radius + ry;
+                        rsq > radsum * radsum
+                    })
                 });
                 if clear {
-                    placed = Some(x);
+                    placed = Some((atoms, x, quat));
                     break;
                 }
             }
-            let Some(x) = placed else { break };
+            let Some((atoms, x, quat)) = placed else { break };
             nsuccess += 1;
-            near.push((x, radius));
+            near.extend(atoms.iter().map(|&(p, _, r)| (p, r)));
             let [vxlo, vxhi, vylo, vyhi, vfall] = self.vel;
             let mut v = [0.0; 3];
             v[0] = vxlo + self.random.uniform() * (vxhi - vxlo);
@@ -452,19 +531,41 @@ impl Fix for FixPour {
                 v[1] = vylo + self.random.uniform() * (vyhi - vylo);
             }
             v[vertical] = -(vfall * vfall + 2.0 * self.grav * (x[vertical] - hi_c)).sqrt();
-            let dens = self.density.0 + self.random.uniform() * (self.density.1 - self.density.0);
-            if domain.takes_inserted(x) {
-                let mut atom = NewAtom::at(self.maxtag + 1, self.ntype, x);
-                atom.v = v;
-                atom.radius = radius;
-                atom.rmass = 4.0 * PI / 3.0 * radius * radius * radius * dens;
-                state.atoms.push(&atom);
-                let n = state.atoms.nlocal - 1;
-                state.atoms.mask[n] = 1 | self.groupbit;
+            match &self.mol {
+                None => {
+                    let dens = self.density.0 + self.random.uniform() * (self.density.1 - self.density.0);
+                    if domain.takes_inserted(x) {
+                        let mut atom = NewAtom::at(self.maxtag + 1, self.ntype, x);
+                        atom.v = v;
+                        atom.radius = radius;
+                        atom.rmass = 4.0 * PI / 3.0 * radius * radius * radius * dens;
+                        state.atoms.push(&atom);
+                        let n = state.atoms.nlocal - 1;
+                        state.atoms.mask[n] = 1 | self.groupbit;
+                    }
+                    self.maxtag += 1;
+                }
+                Some((m, rigid)) => {
+                    if !atoms.iter().all(|&(p, _, _)| domain.takes_inserted(p)) {
+                        return Err(RunError::new(state.step, format!("fix {} pour: a molecule would be inserted partly outside the box, which dmhs does not support", self.id)));
+                    }
+                    let at: Vec<([f64; 3], [i32; 3])> = atoms.iter().map(|&(p, img, _)| (p, img)).collect();
+                    let new = m.push_copy(state, &at, self.maxtag, self.maxmol, self.ntype, v);
+                    for n in new {
+                        state.atoms.mask[n] = 1 | self.groupbit;
+                    }
+                    if let Some(fix_id) = rigid {
+                        state.rigid_inserts.push(RigidInsert { fix_id: fix_id.clone(), tagprev: self.maxtag, mol: self.maxmol + m.nmolecules(), xgeom: x, vcm: v, quat });
+                    }
+                    self.maxtag += m.natoms() as i64;
+                    if state.atoms.features.molecule {
+                        self.maxmol += 1;
+                    }
+                }
             }
-            self.maxtag += 1;
         }
-        let inserted = (near.len() - nprevious) as i64;
+        let natom = self.mol.as_ref().map_or(1, |(m, _)| m.natoms());
+        let inserted = ((near.len() - nprevious) / natom) as i64;
         self.ninserted += inserted;
         if inserted < nnew {
             state.messages.push("WARNING: Fewer insertions than requested".into());

@@ -7,7 +7,8 @@
 //!   doubles), 0 for now: `set`, compute property/atom and dumps do not read them yet.
 //!
 //! `ghost yes` makes ghost images carry the custom values (temperature always travels: the heat
-//! models read it on neighbours). mol, q, rmass, arrays (`d2_`, `i2_`) and `read_data ... fix`
+//! models read it on neighbours). `mol` gives an atom style without molecule IDs (sphere) the
+//! molecule IDs, 0 until set (fix pour and deposit number their molecules); q, rmass, arrays (`d2_`, `i2_`) and `read_data ... fix`
 //! sections are refused. Unfixing removes the values.
 
 use super::{Fix, FixHooks};
@@ -15,7 +16,7 @@ use crate::engine::fields::{HEATFLOW, TEMPERATURE};
 use crate::engine::state::State;
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "fix ID group property/atom name1 name2 ... [ghost yes|no]  (names: temperature heatflow d_NAME i_NAME)";
+pub const SYNTAX: &str = "fix ID group property/atom name1 name2 ... [ghost yes|no]  (names: mol temperature heatflow d_NAME i_NAME)";
 
 pub struct FixPropertyAtom {
     id: String,
@@ -30,6 +31,7 @@ impl FixPropertyAtom {
         // (word, extra array name, carried by ghosts unless `ghost no`)
         let mut wanted: Vec<(&Word, String, bool)> = vec![];
         let mut ghost = false;
+        let mut wants_mol = false;
         while let Some(w) = a.peek() {
             a.skip(1);
             let t = w.text.as_str();
@@ -40,7 +42,16 @@ impl FixPropertyAtom {
                     ghost = a.choice("ghost yes|no", &["yes", "no"])? == 0;
                     continue;
                 }
-                "mol" | "q" | "rmass" => {
+                "mol" => {
+                    // molecule IDs for an atom style without them (bodystyle molecule of fix
+                    // rigid/small reads them); ghosts always carry them
+                    if state.atoms.features.molecule || wants_mol {
+                        return Err(a.error_at(w, "fix property/atom mol: the atoms already have molecule IDs", "defined twice"));
+                    }
+                    wants_mol = true;
+                    continue;
+                }
+                "q" | "rmass" => {
                     return Err(a.error_at(w, format!("fix property/atom {t} is not supported by dmhs"), "not supported").with_help("use an atom style that has it (e.g. atom_style full for mol and q, sphere for rmass)"));
                 }
                 _ if t.starts_with("d2_") || t.starts_with("i2_") => {
@@ -59,12 +70,17 @@ impl FixPropertyAtom {
             }
             wanted.push((w, name, always_ghost));
         }
-        if wanted.is_empty() {
+        if wanted.is_empty() && !wants_mol {
             return Err(a.missing("a per-atom value name (temperature, heatflow, d_NAME or i_NAME)"));
         }
         // new arrays are added without ghosts; the next run makes them again
         state.atoms.clear_ghosts();
         state.lists_valid = false;
+        if wants_mol {
+            let n = state.atoms.nlocal;
+            state.atoms.features.molecule = true;
+            state.atoms.molecule = vec![0; n];
+        }
         let mut names = vec![];
         for (_, name, always_ghost) in wanted {
             state.atoms.extra_field(&name, 1, always_ghost || ghost);

@@ -15,12 +15,13 @@
 
 use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
+use crate::engine::molecule::{RigidInsert, RigidTemplate};
 use crate::engine::quat::{self, Quat};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 use std::collections::HashMap;
 
-pub const SYNTAX: &str = "fix ID group rigid/small molecule";
+pub const SYNTAX: &str = "fix ID group rigid/small molecule [mol TEMPLATE]";
 
 /// Moment of inertia prefactor of a solid sphere.
 const SINERTIA: f64 = 0.4;
@@ -65,6 +66,8 @@ pub struct FixRigidSmall {
     members: HashMap<i64, Member>,
     /// A fix enforce2d follows this fix (2d).
     enforce2d: bool,
+    /// `mol TEMPLATE`: the template's body (LAMMPS' onemols), for molecules fix pour inserts.
+    template: Option<(String, RigidTemplate)>,
     /// The constraint forces' virial (LAMMPS' virial_global_flag, on by default for rigid fixes).
     tally: ThermoTally,
 }
@@ -83,18 +86,27 @@ impl FixRigidSmall {
         if !state.atoms.features.molecule {
             return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
         }
-        if let Some(w) = a.peek() {
+        let mut template = None;
+        while let Some(w) = a.peek() {
             let what = match w.text.as_str() {
+                "mol" => {
+                    a.skip(1);
+                    let t = a.word("molecule template ID")?;
+                    let m = state.molecules.iter().find(|m| m.id == t.text).ok_or_else(|| a.error_at(t, format!("molecule template `{}` does not exist", t.text), "unknown template"))?;
+                    // LAMMPS computes the template's body once, here
+                    let body = m.rigid(&state.type_mass).map_err(|e| a.error_at(t, e, "not a rigid body"))?;
+                    template = Some((t.text.clone(), body));
+                    continue;
+                }
                 "langevin" => "fix rigid/small langevin (a thermostat) is not supported yet",
                 "infile" => "fix rigid/small infile is not supported yet",
-                "mol" => "fix rigid/small mol (bodies inserted by fix pour/deposit) is not supported yet",
                 "reinit" => "fix rigid/small reinit is not supported yet (bodies are set up at every run, LAMMPS' default)",
                 "temp" | "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "tparam" | "pchain" => "this fix rigid/small keyword (thermostat/barostat variants) is not supported",
-                _ => return Err(a.unknown_keyword(w, &[])),
+                _ => return Err(a.unknown_keyword(w, &["mol"])),
             };
             return Err(a.error_at(w, what, "not supported"));
         }
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, tally: ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() } })
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally: ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() } })
     }
 
     /// `fix rigid` (one set of bodies summed over all ranks) is refused: LAMMPS' fix rigid
@@ -481,6 +493,44 @@ impl Fix for FixRigidSmall {
     fn rigid_body_mass(&self, state: &State) -> Option<Vec<f64>> {
         let a = &state.atoms;
         Some((0..a.nall()).map(|i| self.members.get(&a.tag[i]).map_or(0.0, |m| self.bodies[m.body].mass)).collect())
+    }
+    /// LAMMPS' set_molecule: the body from the template's mass, COM, moments and orientation,
+    /// turned by the insertion's quaternion; the atoms keep the template's body-frame
+    /// displacements; no angular momentum. The centre is wrapped as at a rebuild.
+    fn add_rigid_molecule(&mut self, state: &State, ins: &RigidInsert) -> Result<(), String> {
+        let Some((_, t)) = &self.template else {
+            return Err(format!("fix {} ({}) has no molecule template (`mol TEMPLATE`) for inserted bodies", self.id, self.style));
+        };
+        let rot = quat::quat_to_mat(&ins.quat);
+        let ctr2com = [t.com[0] - t.center[0], t.com[1] - t.center[1], t.com[2] - t.center[2]];
+        let d = quat::matvec(&rot, &ctr2com);
+        let mut xcm = [d[0] + ins.xgeom[0], d[1] + ins.xgeom[1], d[2] + ins.xgeom[2]];
+        let q = quat::quatquat(&ins.quat, &t.quat);
+        let [ex, ey, ez] = quat::q_to_exyz(&q);
+        let mut image = [0; 3];
+        state.domain()?.remap(&mut xcm, &mut image);
+        let n = t.dxbody.len();
+        let body = Body {
+            mol: ins.mol,
+            mass: t.masstotal,
+            xcm,
+            vcm: ins.vcm,
+            inertia: t.inertia,
+            quat: q,
+            ex,
+            ey,
+            ez,
+            image,
+            npoint: if t.spheres { 0 } else { n },
+            nsphere: if t.spheres { n } else { 0 },
+            ..Body::default()
+        };
+        self.bodies.push(body);
+        let b = self.bodies.len() - 1;
+        for (m, &displace) in t.dxbody.iter().enumerate() {
+            self.members.insert(ins.tagprev + m as i64 + 1, Member { body: b, displace, sphere: t.spheres });
+        }
+        Ok(())
     }
     fn dof_removed(&self, state: &State, groupbit: u32) -> f64 {
         // LAMMPS' FixRigidSmall::dof: each body wholly in the temperature group keeps 6 (3d;

@@ -184,6 +184,16 @@ def test_gil_released_during_run(from_thread):
 
 
 def test_keyboard_interrupt_stops_a_run_cleanly():
+    # a process started in the background by a non-interactive shell inherits SIGINT ignored,
+    # and Python then installs no KeyboardInterrupt handler: install it for this test
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        _interrupt_a_long_run()
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _interrupt_a_long_run():
     lmp = make("dmhs")
     lmp.commands_string(LJ_MELT)
     # the melt's steady push would make a run of millions of steps unstable: a loaded machine

@@ -23,6 +23,20 @@ pub fn qnormalize(q: &mut Quat) {
     }
 }
 
+/// The end of both Richardson updates: the second half step from `qhalf` with `w`, then
+/// q = 2 q_half - q_full, renormalised.
+fn second_half_and_extrapolate(q: &mut Quat, qfull: &Quat, mut qhalf: Quat, w: &[f64; 3], dtq: f64) {
+    let wq = vecquat(w, &qhalf);
+    for c in 0..4 {
+        qhalf[c] += 0.5 * dtq * wq[c];
+    }
+    qnormalize(&mut qhalf);
+    for c in 0..4 {
+        q[c] = 2.0 * qhalf[c] - qfull[c];
+    }
+    qnormalize(q);
+}
+
 /// `richardson_sphere`: advance the orientation of a sphere by dq/dt = 1/2 w q over `dtq`
 /// (callers pass half the time step, as LAMMPS does): a full Euler step and two half steps,
 /// combined by Richardson extrapolation and renormalised.
@@ -36,15 +50,7 @@ pub fn richardson_sphere(q: &mut Quat, w: &[f64; 3], dtq: f64) {
     }
     qnormalize(&mut qfull);
     qnormalize(&mut qhalf);
-    let wq = vecquat(w, &qhalf);
-    for c in 0..4 {
-        qhalf[c] += 0.5 * dtq * wq[c];
-    }
-    qnormalize(&mut qhalf);
-    for c in 0..4 {
-        q[c] = 2.0 * qhalf[c] - qfull[c];
-    }
-    qnormalize(q);
+    second_half_and_extrapolate(q, &qfull, qhalf, w, dtq);
 }
 
 /// `axisangle_to_quat`: the rotation by `angle` about the unit vector `v`.
@@ -291,13 +297,5 @@ pub fn richardson(q: &mut Quat, m: &[f64; 3], w: &mut [f64; 3], moments: &[f64; 
     }
     qnormalize(&mut qhalf);
     *w = mq_to_omega(m, &qhalf, moments);
-    let wq = vecquat(w, &qhalf);
-    for c in 0..4 {
-        qhalf[c] += 0.5 * dtq * wq[c];
-    }
-    qnormalize(&mut qhalf);
-    for c in 0..4 {
-        q[c] = 2.0 * qhalf[c] - qfull[c];
-    }
-    qnormalize(q);
+    second_half_and_extrapolate(q, &qfull, qhalf, w, dtq);
 }

@@ -77,19 +77,45 @@ impl Timers {
             self.fix_seconds[k] += t;
         }
     }
-    /// The breakdown table for a run that took `total` seconds.
-    pub fn report(&self, total: f64) -> String {
+    /// The breakdown table for a run that took `total` seconds; `spread`: each stage's seconds
+    /// over the ranks of a distributed run (None: this process's own).
+    pub fn report(&self, total: f64, spread: Option<&[Spread; 6]>) -> String {
         let mut s = String::from("MPI task timing breakdown:\nSection |  min time  |  avg time  |  max time  |%varavg| %total\n---------------------------------------------------------------\n");
         let pct = |t: f64| if total > 0.0 { 100.0 * t / total } else { 0.0 };
         let mut used = 0.0;
         for (k, (_, name)) in STAGES.iter().enumerate() {
-            let t = self.seconds[k];
-            used += t;
-            s += &format!("{:<8}| {:<10.5} | {:<10.5} | {:<10.5} |   0.0 | {:5.2}\n", name, t, t, t, pct(t));
+            let r = spread.map_or_else(|| Spread::of(&[self.seconds[k]]), |s| s[k]);
+            used += r.avg;
+            s += &format!("{:<8}| {:<10.5} | {:<10.5} | {:<10.5} | {:5.1} | {:5.2}\n", name, r.min, r.avg, r.max, r.varavg, pct(r.avg));
         }
         let other = (total - used).max(0.0);
         s += &format!("{:<8}|            | {:<10.5} |            |       | {:5.2}\n", "Other", other, pct(other));
         s
+    }
+}
+
+/// One stage's seconds over the ranks: least, mean, most, and the spread as LAMMPS prints it
+/// (`%varavg`: the standard deviation in per cent of the mean, 0 below a millisecond).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Spread {
+    pub min: f64,
+    pub avg: f64,
+    pub max: f64,
+    pub varavg: f64,
+}
+
+impl Spread {
+    /// The spread of one value per rank.
+    pub fn of(per_rank: &[f64]) -> Spread {
+        let n = per_rank.len().max(1) as f64;
+        let avg = per_rank.iter().sum::<f64>() / n;
+        let sq = per_rank.iter().map(|t| t * t).sum::<f64>() / n;
+        Spread::from_sums(per_rank.iter().copied().fold(f64::INFINITY, f64::min), avg, per_rank.iter().copied().fold(0.0, f64::max), sq)
+    }
+    /// From the reductions of a distributed run: least, mean, most and mean square.
+    pub fn from_sums(min: f64, avg: f64, max: f64, mean_square: f64) -> Spread {
+        let varavg = if avg > 0.001 { 100.0 * (mean_square - avg * avg).max(0.0).sqrt() / avg } else { 0.0 };
+        Spread { min, avg, max, varavg }
     }
 }
 
@@ -135,5 +161,20 @@ mod tests {
         assert_eq!(m, t.fix_seconds[0] + t.fix_seconds[2]);
         t.charge(Stage::Pair);
         assert_eq!(t.fix_seconds[2] + t.fix_seconds[0], m, "a charge without a fix that ran charges no fix");
+    }
+
+    /// The spread over ranks: mean, extremes and the standard deviation in per cent of the mean.
+    #[test]
+    fn a_spread_is_lammps_varavg() {
+        let s = Spread::of(&[1.0, 3.0]);
+        assert_eq!((s.min, s.avg, s.max), (1.0, 2.0, 3.0));
+        assert!((s.varavg - 50.0).abs() < 1e-12, "{s:?}");
+        assert_eq!(Spread::of(&[0.0005, 0.0001]).varavg, 0.0, "below a millisecond: 0");
+        let t = Timers { seconds: [2.0, 0.0, 0.0, 0.0, 0.0, 0.0], ..Timers::default() };
+        let mut spread = [Spread::default(); 6];
+        spread[0] = s;
+        let table = t.report(4.0, Some(&spread));
+        assert!(table.contains("Pair    | 1.00000    | 2.00000    | 3.00000    |  50.0 | 50.00"), "{table}");
+        assert!(t.report(4.0, None).contains("Pair    | 2.00000    | 2.00000    | 2.00000    |   0.0 | 50.00"));
     }
 }

@@ -37,6 +37,8 @@ pub struct RankCounts {
     pub nlocal: [f64; 3],
     pub nghost: [f64; 3],
     pub neighs: [f64; 3],
+    /// Each stage's seconds over the ranks.
+    pub stages: [crate::engine::timing::Spread; 6],
 }
 
 impl Simulation {
@@ -237,6 +239,15 @@ impl Simulation {
         d.comm.max(&mut max);
         d.comm.min(&mut min);
         let k = |i: usize| [sum[i], min[i], max[i]];
-        Some(RankCounts { nlocal: k(0), nghost: k(1), neighs: k(2) })
+        let t = self.timers.seconds;
+        let (mut tsum, mut tmax, mut tmin) = (t, t, t);
+        let mut tsq = t.map(|x| x * x);
+        d.comm.sum(&mut tsum);
+        d.comm.sum(&mut tsq);
+        d.comm.max(&mut tmax);
+        d.comm.min(&mut tmin);
+        let n = d.comm.size() as f64;
+        let stages = std::array::from_fn(|s| crate::engine::timing::Spread::from_sums(tmin[s], tsum[s] / n, tmax[s], tsq[s] / n));
+        Some(RankCounts { nlocal: k(0), nghost: k(1), neighs: k(2), stages })
     }
 }

@@ -821,7 +821,7 @@ impl Simulation {
         if let Some(stats) = stats {
             self.out.print(stats);
         }
-        self.out.print(&self.timers.report(loop_time));
+        self.out.print(&self.timers.report(loop_time, counts.as_ref().map(|c| &c.stages)));
         self.out.print(&crate::engine::timing::model_report(&self.model_rows(), loop_time));
         self.out.print(&format!(
             "Memory per particle: {:.0} bytes ({:.4} Mbytes in all)\n",
@@ -831,7 +831,8 @@ impl Simulation {
         // per rank: the sum, the least and the most (one rank: its own count three times)
         let counts = counts.unwrap_or_else(|| {
             let one = |x: usize| [x as f64; 3];
-            crate::sim::distributed::RankCounts { nlocal: one(self.state.atoms.nlocal), nghost: one(self.state.atoms.nghost()), neighs: one(self.state.neighbor.list.npairs()) }
+            let stages = [crate::engine::timing::Spread::default(); 6];
+            crate::sim::distributed::RankCounts { nlocal: one(self.state.atoms.nlocal), nghost: one(self.state.atoms.nghost()), neighs: one(self.state.neighbor.list.npairs()), stages }
         });
         let ranks = self.nranks() as f64;
         let g = crate::output::format::g;

@@ -309,11 +309,18 @@ impl Decomp {
             }
             s
         };
-        // the images of each atom that can reach any sub-domain: itself, and across a periodic
-        // face only when it lies within `cut` of the opposite face
-        let images: Vec<Vec<[i8; 3]>> = atoms.x[..atoms.nlocal]
+        // only an atom within `cut` of its own sub-domain's faces can lie within `cut` of
+        // another sub-domain or of a periodic face (the sub-domains tile the box)
+        let (my_lo, my_hi) = self.subdomain(domain, me);
+        let near: Vec<usize> = (0..atoms.nlocal)
+            .filter(|&i| (0..domain.dimension).any(|d| !(atoms.x[i][d] >= my_lo[d] + cut && atoms.x[i][d] < my_hi[d] - cut)))
+            .collect();
+        // the images of each such atom that can reach any sub-domain: itself, and across a
+        // periodic face only when it lies within `cut` of the opposite face
+        let images: Vec<Vec<[i8; 3]>> = near
             .iter()
-            .map(|x| {
+            .map(|&i| {
+                let x = atoms.x[i];
                 shifts
                     .iter()
                     .copied()
@@ -325,7 +332,7 @@ impl Decomp {
         for &q in &targets {
             let (lo, hi) = self.subdomain(domain, q);
             let mut list = Vec::new();
-            for (i, images) in images.iter().enumerate() {
+            for (&i, images) in near.iter().zip(&images) {
                 for s in images {
                     if q == me && *s == [0, 0, 0] {
                         continue;

@@ -226,3 +226,22 @@ fn replicate_pads_shrink_wrapped_faces_as_lammps() {
     assert_eq!((b2[0], b2[1]), (b1[0] - small, b1[1] + small), "{out}");
     assert_eq!((b2[2], b2[3]), (0.0, 12.0), "{out}");
 }
+
+/// `delete_atoms overlap` finds overlaps in the pair style's neighbour list, as LAMMPS does:
+/// no pair style or a cutoff beyond every list is refused; a type pair with a shorter list keeps
+/// its close pairs (a warning). LAMMPS 22 Jul 2025 on lammps-refs/decks/in.delete_atoms_overlap:
+/// "WARNING: Delete_atoms cutoff > minimum neighbor cutoff", "Deleted 48 atoms, new total = 188"
+/// (the trajectory is compared by tests/lammps_parity.rs).
+#[test]
+fn delete_atoms_overlap_uses_the_neighbor_list() {
+    let d = deck("in.delete_atoms_overlap");
+    let (code, out) = run(&d);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("WARNING: Delete_atoms cutoff > minimum neighbor cutoff") && out.contains("Deleted 48 atoms, new total = 188"), "{out}");
+    let pair = "pair_style   lj/cut 1.25\npair_coeff   1 1 1.0 0.5\npair_coeff   1 2 1.0 0.5\npair_coeff   2 2 0.0 0.5 0.3\n";
+    let delete = "delete_atoms overlap 0.8 all two\n";
+    expect_error(&d.replace(pair, "").replace(delete, &format!("{delete}{pair}")), "Delete_atoms requires a pair style be defined");
+    expect_error(&d.replace(delete, "delete_atoms overlap 1.6 all two\n"), "Delete_atoms cutoff > max neighbor cutoff (1.6 > 1.55)");
+    // LAMMPS' compute reduce reads x, y, z, v*, f* directly; other attributes via property/atom
+    expect_error(&d.replace("run          ${nsteps}", "compute r all reduce max mass\nrun ${nsteps}"), "Unknown compute reduce keyword: mass");
+}

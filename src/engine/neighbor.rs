@@ -104,8 +104,9 @@ impl SpecialTable {
             }
         }
     }
+    /// The special level (0: none, 1-3) of atom `jtag` in atom `itag`'s list.
     #[inline]
-    fn level(&self, itag: i64, jtag: i64) -> u8 {
+    pub(crate) fn level(&self, itag: i64, jtag: i64) -> u8 {
         let Some(t) = self.keys.key(itag) else { return 0 };
         if t + 1 >= self.offsets.len() {
             return 0;

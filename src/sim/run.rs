@@ -62,6 +62,20 @@ impl Simulation {
         Ok(())
     }
 
+    /// The pair style's checks against the atoms (`checked`; else only what sets its cutoffs
+    /// runs, e.g. granular radii) and its mixing (LAMMPS' Pair::init), before a run or a
+    /// command that needs its cutoffs.
+    pub fn init_pair(&mut self, checked: bool) -> Result<(), String> {
+        let ntypes = self.state.ntypes;
+        let Some(mut p) = self.pair.take() else { return Ok(()) };
+        let insert_radius = (0..=ntypes).map(|t| self.fixes.iter().map(|f| f.insert_radius(t)).fold(0.0, f64::max)).collect();
+        let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel, insert_radius };
+        let sim_checks = p.init_sim(&setup);
+        let r = if checked { sim_checks } else { Ok(()) }.and_then(|_| p.init(ntypes, &self.pair_modify, None));
+        self.pair = Some(p);
+        r
+    }
+
     /// Checks before a run; errors name what is missing.
     pub fn init_run(&mut self) -> Result<(), SetupError> {
         let domain = self.state.domain.as_ref().ok_or("run before the simulation box is defined (use create_box or read_data)")?;
@@ -74,14 +88,7 @@ impl Simulation {
                 }
             }
         }
-        let ntypes = self.state.ntypes;
-        if let Some(mut p) = self.pair.take() {
-            let insert_radius = (0..=ntypes).map(|t| self.fixes.iter().map(|f| f.insert_radius(t)).fold(0.0, f64::max)).collect();
-            let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel, insert_radius };
-            let r = p.init_sim(&setup).and_then(|_| p.init(ntypes, &self.pair_modify, None));
-            self.pair = Some(p);
-            r.map_err(|message| SetupError { message, at: self.pair_span })?;
-        }
+        self.init_pair(true).map_err(|message| SetupError { message, at: self.pair_span })?;
         let warnings = crate::models::bonded::pass::init_bonded(&mut self.state, self.bond_style.as_mut(), self.angle_style.as_mut(), self.dihedral_style.as_mut())?;
         for w in warnings {
             self.out.print(&format!("WARNING: {w}"));

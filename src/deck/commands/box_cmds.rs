@@ -118,7 +118,8 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             let g1 = sim.state.groups.bit(&g1w.text).ok_or_else(|| a.error_at(g1w, format!("group `{}` does not exist", g1w.text), "unknown group"))?;
             let g2w = a.word("group2")?;
             let g2 = sim.state.groups.bit(&g2w.text).ok_or_else(|| a.error_at(g2w, format!("group `{}` does not exist", g2w.text), "unknown group"))?;
-            gone = overlap_deletions(sim, cut, g1, g2);
+            let cutneigh = overlap_cutoffs(sim, cmd, cut)?;
+            gone = overlap_deletions(sim, cut, &cutneigh, g1, g2).map_err(|e| Diagnostic::at(cmd.span, e, "special bonds"))?;
         }
         _ => {
             let w = a.last().unwrap();
@@ -156,11 +157,54 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     Ok(())
 }
 
-/// Atoms of group1 within `cut` of an atom of group2 (LAMMPS `delete_atoms overlap`: of a
-/// pair in both groups only one is deleted, the one with the larger ID).
-fn overlap_deletions(sim: &Simulation, cut: f64, g1: u32, g2: u32) -> Vec<bool> {
+/// The neighbour cutoff of each type pair (row-major over `0..=ntypes`; pair cutoff plus skin,
+/// 0 without interaction): LAMMPS finds overlaps in the pair style's neighbour list, so it
+/// needs a pair style whose list reaches `cut`, and misses pairs of types whose list is shorter.
+fn overlap_cutoffs(sim: &mut Simulation, cmd: &Command, cut: f64) -> DResult<Vec<f64>> {
+    let n = sim.state.ntypes;
+    if sim.pair.is_none() {
+        return Err(Diagnostic::at(cmd.span, "Delete_atoms requires a pair style be defined (overlaps are found in its neighbor list)", "no pair_style yet"));
+    }
+    // the checks of the atoms' data (set later in many decks) wait for the run, as in LAMMPS
+    sim.init_pair(false).map_err(|e| Diagnostic::at(cmd.span, e, "the pair style is not ready"))?;
+    let pair = sim.pair.as_ref().expect("a pair style");
+    let skin = sim.state.neigh_settings.skin;
+    let mut cutneigh = vec![0.0; (n + 1) * (n + 1)];
+    for i in 1..=n {
+        for j in 1..=n {
+            let c = pair.cutoff(i.min(j), i.max(j));
+            cutneigh[i * (n + 1) + j] = if c > 0.0 { c + skin } else { 0.0 };
+        }
+    }
+    let typed = || (1..=n).flat_map(|i| (1..=n).map(move |j| (i, j))).map(|(i, j)| cutneigh[i * (n + 1) + j]);
+    let (max, min) = (typed().fold(0.0, f64::max), typed().fold(f64::INFINITY, f64::min));
+    if cut > max {
+        return Err(Diagnostic::at(cmd.span, format!("Delete_atoms cutoff > max neighbor cutoff ({cut} > {max})"), "only pairs in the neighbor list can be found"));
+    }
+    if cut > min {
+        sim.out.print("WARNING: Delete_atoms cutoff > minimum neighbor cutoff");
+    }
+    Ok(cutneigh)
+}
+
+/// Atoms of group1 within `cut` of an atom of group2 (LAMMPS `delete_atoms overlap`), among
+/// the pairs its full neighbour list holds: closer than `cutneigh` of their types, and not a
+/// special pair its list excludes. LAMMPS visits the atoms in its local order and deletes one
+/// at its first such partner that is still there; a partner that is a periodic image (a ghost)
+/// does not tell whether its atom was deleted, so a pair across a periodic face where both
+/// atoms are in both groups deletes the atom with the smaller ID.
+fn overlap_deletions(sim: &mut Simulation, cut: f64, cutneigh: &[f64], g1: u32, g2: u32) -> Result<Vec<bool>, String> {
+    let excluded = if sim.state.topo.bonds.is_empty() {
+        None
+    } else {
+        sim.state.rebuild_special()?;
+        Some(sim.state.special_bonds.flags(false))
+    };
+    sim.state.lammps_order.before_rebuild(&sim.state.atoms);
     let a = &sim.state.atoms;
     let d = sim.state.domain.as_ref().unwrap();
+    let table = &sim.state.special_table;
+    let stride = sim.state.ntypes + 1;
     let n = a.nlocal;
     let mut gone = vec![false; n];
     let cutsq = cut * cut;
@@ -181,32 +225,55 @@ fn overlap_deletions(sim: &Simulation, cut: f64, g1: u32, g2: u32) -> Vec<bool> 
             cells.entry(cell(&a.x[j])).or_default().push(j);
         }
     }
-    for i in 0..n {
+    let tags = a.tag_map();
+    let order: Vec<usize> = sim.state.lammps_order.ids().iter().filter_map(|&t| tags.get(t)).collect();
+    for i in order {
         if a.mask[i] & g1 == 0 {
             continue;
         }
         let c = cell(&a.x[i]);
+        let mut seen = std::collections::HashSet::new();
         'search: for dz in -1i64..=1 {
             for dy in -1i64..=1 {
-                for dx in -1i64..=1 {
+                'cell: for dx in -1i64..=1 {
                     let mut cc = [0usize; 3];
                     for (k, off) in [dx, dy, dz].into_iter().enumerate() {
                         let v = c[k] as i64 + off;
                         let m = nc[k] as i64;
-                        cc[k] = if d.periodic(k) { v.rem_euclid(m) as usize } else if v < 0 || v >= m { continue } else { v as usize };
+                        cc[k] = if d.periodic(k) {
+                            v.rem_euclid(m) as usize
+                        } else if v < 0 || v >= m {
+                            continue 'cell;
+                        } else {
+                            v as usize
+                        };
+                    }
+                    // a small box wraps several offsets onto one cell
+                    if !seen.insert(cc) {
+                        continue;
                     }
                     let Some(list) = cells.get(&cc) else { continue };
                     for &j in list {
-                        if j == i || gone[j] {
+                        if j == i {
                             continue;
                         }
-                        let mut del = [a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1], a.x[i][2] - a.x[j][2]];
+                        let direct = [a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1], a.x[i][2] - a.x[j][2]];
+                        let mut del = direct;
                         d.minimum_image(&mut del);
-                        if del[0] * del[0] + del[1] * del[1] + del[2] * del[2] >= cutsq {
+                        let image = del != direct;
+                        let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+                        let listed = cutneigh[a.typ[i] * stride + a.typ[j]];
+                        if rsq >= cutsq || rsq >= listed * listed {
                             continue;
                         }
-                        // j also in group1: only the one with the larger ID goes
-                        if a.mask[j] & g1 != 0 && a.tag[i] < a.tag[j] {
+                        if excluded.is_some_and(|f| f[table.level(a.tag[i], a.tag[j]) as usize] == crate::engine::special::SpecialFlag::Exclude) {
+                            continue;
+                        }
+                        if !image {
+                            if gone[j] {
+                                continue;
+                            }
+                        } else if a.mask[i] & g2 != 0 && a.mask[j] & g1 != 0 && a.tag[i] > a.tag[j] {
                             continue;
                         }
                         gone[i] = true;
@@ -216,7 +283,7 @@ fn overlap_deletions(sim: &Simulation, cut: f64, g1: u32, g2: u32) -> Vec<bool> 
             }
         }
     }
-    gone
+    Ok(gone)
 }
 
 pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -> DResult<()> {

@@ -84,10 +84,12 @@ impl ComputeReduce {
                 inputs.push(Input::PerAtom(r.map_err(|e| a.error_at(w, e, "not a per-atom value"))?));
             } else if t.starts_with("v_") || t.starts_with("d_") || t.starts_with("i_") {
                 return Err(a.error_at(w, format!("reduce input `{t}` is not supported yet (only attributes, per-atom computes and fixes)"), "not supported"));
-            } else if ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"].contains(&t) || Field::parse(t).is_some() {
-                let f = Field::parse(t).unwrap();
+            } else if let Some(f) = Field::parse(t).filter(|_| ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"].contains(&t)) {
                 f.check(world.state).map_err(|e| a.error_at(w, e, "not available"))?;
                 inputs.push(Input::Attr(f));
+            } else if Field::parse(t).is_some() {
+                // LAMMPS reads only positions, velocities and forces directly
+                return Err(a.error_at(w, format!("Unknown compute reduce keyword: {t} (the attributes it reads directly are x, y, z, vx, vy, vz, fx, fy, fz; for `{t}` define `compute ID group property/atom {t}` and reduce c_ID)"), "expected x, y, z, vx, vy, vz, fx, fy, fz, c_ID or f_ID"));
             } else {
                 return Err(a.error_at(w, format!("unknown reduce input `{t}`"), "expected an attribute or c_ID"));
             }

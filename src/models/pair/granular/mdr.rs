@@ -68,7 +68,7 @@ const EPSILON2: f64 = 1e-16;
 const EPSILON3: f64 = 1e-20;
 // LAMMPS' literals
 const PISQ: f64 = 9.869_604_401_089_358;
-const PIINV: f64 = 0.318_309_886_183_790_7;
+const PIINV: f64 = std::f64::consts::FRAC_1_PI;
 const PITOFIVETHIRDS: f64 = 6.738_808_595_698_141;
 const CBRT2: f64 = 1.259_921_049_894_873_2;
 const SQRTHALFPI: f64 = 1.253_314_137_315_500_1;

@@ -149,9 +149,9 @@ fn bad_input_is_located() {
     assert!(e.contains("cutoff") && e.contains("in.test:7:"), "{e}");
     let e = error_of(&format!("atom_style bpm/sphere\n{BOX}pair_style bpm/spring\npair_coeff 1 1 1.0 1.0 1.0\nrun 0\n"));
     assert!(e.contains("comm_modify vel yes"), "{e}");
-    // dynamic radii are not supported
-    let e = error_of("atom_style bpm/sphere 1\n");
-    assert!(e.contains("dynamic radius") && e.contains("in.test:1:"), "{e}");
+    // the dynamic-radius flag is 0 or 1
+    let e = error_of("atom_style bpm/sphere 2\n");
+    assert!(e.contains("unexpected argument `2`") && e.contains("in.test:1:"), "{e}");
 }
 
 #[test]

@@ -35,9 +35,48 @@ pub const HEAT_CAPACITY: Field = Field { name: "dmhs/c", ghosts: false };
 /// Liquid weight phi(T) of `fix dmhs/phase ... mix`, read by `pair_style dmhs/blend`.
 pub const LIQUID_WEIGHT: Field = Field { name: "dmhs/phi", ghosts: true };
 
+/// Per-particle state of pair granular's `mdr` normal model (LAMMPS' fix GRANULAR/MDR keeps
+/// them as `fix property/atom d_NAME ... ghost yes`, so `compute property/atom d_psi` reads
+/// them here too). The model reads these on neighbours: initial radius, geometric and
+/// elastic volumes, contact area of the last step, total area, free-area ratio, mean surface
+/// displacement increment, the averaged radius increment and the flag of initialised atoms.
+pub const MDR_RO: Field = Field { name: "d_Ro", ghosts: true };
+pub const MDR_VGEO: Field = Field { name: "d_Vgeo", ghosts: true };
+pub const MDR_VELAS: Field = Field { name: "d_Velas", ghosts: true };
+pub const MDR_ACON0: Field = Field { name: "d_Acon0", ghosts: true };
+pub const MDR_ATOT: Field = Field { name: "d_Atot", ghosts: true };
+pub const MDR_PSI: Field = Field { name: "d_psi", ghosts: true };
+pub const MDR_DDELTA_BAR: Field = Field { name: "d_ddelta_bar", ghosts: true };
+pub const MDR_DRAVG: Field = Field { name: "d_dRavg", ghosts: true };
+pub const MDR_SETUP: Field = Field { name: "d_history_setup_flag", ghosts: true };
+/// The sums the `mdr` contacts add to during the pair pass (owned atoms; zeroed by the model
+/// before each pass but the run's first, as LAMMPS' fix GRANULAR/MDR zeroes them in pre_force
+/// outside setup): cap volumes, volume-averaged strain, the two sums of the radius update,
+/// contact area, area balance, and the diagonal of the particle stress.
+pub const MDR_VCAPS: Field = Field { name: "d_Vcaps", ghosts: false };
+pub const MDR_EPS_BAR: Field = Field { name: "d_eps_bar", ghosts: false };
+pub const MDR_DRNUM: Field = Field { name: "d_dRnumerator", ghosts: false };
+pub const MDR_DRDEN: Field = Field { name: "d_dRdenominator", ghosts: false };
+pub const MDR_ACON1: Field = Field { name: "d_Acon1", ghosts: false };
+pub const MDR_ATOT_SUM: Field = Field { name: "d_Atot_sum", ghosts: false };
+pub const MDR_SIGMAXX: Field = Field { name: "d_sigmaxx", ghosts: false };
+pub const MDR_SIGMAYY: Field = Field { name: "d_sigmayy", ghosts: false };
+pub const MDR_SIGMAZZ: Field = Field { name: "d_sigmazz", ghosts: false };
+/// The pair pass's sums, in the order [`crate::models::pair::granular::mdr`] adds them.
+pub const MDR_SUMS: [Field; 9] = [MDR_VCAPS, MDR_EPS_BAR, MDR_DRNUM, MDR_DRDEN, MDR_ACON1, MDR_ATOT_SUM, MDR_SIGMAXX, MDR_SIGMAYY, MDR_SIGMAZZ];
+/// Every field of the `mdr` model.
+pub const MDR_FIELDS: [Field; 18] = [
+    MDR_RO, MDR_VGEO, MDR_VELAS, MDR_ACON0, MDR_ATOT, MDR_PSI, MDR_DDELTA_BAR, MDR_DRAVG, MDR_SETUP, MDR_VCAPS, MDR_EPS_BAR, MDR_DRNUM, MDR_DRDEN,
+    MDR_ACON1, MDR_ATOT_SUM, MDR_SIGMAXX, MDR_SIGMAYY, MDR_SIGMAZZ,
+];
+
 /// The fields that are rates of the pair pass: zeroed before it, written by it (taken out of the
 /// atoms for the pass, like the forces).
 pub const RATES: &[Field] = &[WATER_RATE, HEATFLOW];
+
+/// Fields the pair pass adds to without the force stage zeroing them (taken out of the atoms
+/// for the pass like the rates): the `mdr` model's sums.
+pub const PAIR_SUMS: &[Field] = &MDR_SUMS;
 
 impl Atoms {
     /// Index of the field's array, if some model registered it.

@@ -78,6 +78,8 @@ impl Simulation {
             Some(format!("dihedral_style {}", b.name()))
         } else if let Some(p) = self.pair.as_ref().and_then(|p| p.sub_styles().into_iter().find(|s| !PAIRS.contains(s))) {
             Some(format!("pair_style {p}"))
+        } else if let Some(r) = self.pair.as_ref().and_then(|p| p.ranks_refusal()) {
+            Some(r)
         } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
             Some(format!("fix {} ({})", f.id(), f.style()))
         } else if let Some(f) = self.fixes.iter().find(|f| f.thermo_tally().is_some_and(|t| t.energy || t.virial_on)) {

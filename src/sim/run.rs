@@ -69,7 +69,10 @@ impl Simulation {
         let ntypes = self.state.ntypes;
         let Some(mut p) = self.pair.take() else { return Ok(()) };
         let insert_radius = (0..=ntypes).map(|t| self.fixes.iter().map(|f| f.insert_radius(t)).fold(0.0, f64::max)).collect();
-        let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel, insert_radius };
+        if crate::models::pair::granular::mdr_state::ensure_fields_for(p.atom_fields(), &mut self.state.atoms) {
+            self.state.lists_valid = false;
+        }
+        let setup = crate::models::pair::PairSetup { atoms: &self.state.atoms, ntypes, comm_vel: self.state.comm_vel, newton_pair: self.state.newton_pair, insert_radius };
         let sim_checks = p.init_sim(&setup);
         let r = if checked { sim_checks } else { Ok(()) }.and_then(|_| p.init(ntypes, &self.pair_modify, None));
         self.pair = Some(p);
@@ -256,7 +259,7 @@ impl Simulation {
             std::mem::take(&mut self.state.atoms.drho),
             std::mem::take(&mut self.state.atoms.desph),
         );
-        let rate_fields: Vec<(usize, Field)> = crate::engine::fields::RATES.iter().filter_map(|&fl| self.state.atoms.field(fl).map(|k| (k, fl))).collect();
+        let rate_fields: Vec<(usize, Field)> = crate::engine::fields::RATES.iter().chain(crate::engine::fields::PAIR_SUMS).filter_map(|&fl| self.state.atoms.field(fl).map(|k| (k, fl))).collect();
         let mut rates: Vec<Vec<f64>> = rate_fields.iter().map(|&(k, _)| std::mem::take(&mut self.state.atoms.extra[k].data)).collect();
         let input = PairInput {
             atoms: &self.state.atoms,
@@ -481,6 +484,7 @@ impl Simulation {
         // (src/sim/stale_vest.rs).
         let vest_before = self.vest_before_setup();
         self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
+        self.pair_pre_force(true)?;
         self.timers.charge(Stage::Modify);
         // what fixes noticed when the run starts (e.g. a region defined again)
         self.flush_messages();
@@ -493,6 +497,14 @@ impl Simulation {
         // lines fixes printed in their setup (fix print)
         self.flush_messages();
         Ok(())
+    }
+
+    /// The pair style's work before a force evaluation ([`crate::models::pair::PairStyle::pre_force`]).
+    fn pair_pre_force(&mut self, setup: bool) -> Result<(), RunError> {
+        let Some(mut p) = self.pair.take() else { return Ok(()) };
+        let r = p.pre_force(&mut self.state, setup);
+        self.pair = Some(p);
+        r.map_err(|e| RunError::new(self.state.step, e))
     }
 
     /// A fix (dt/reset) changed dt from `before`: every fix renews what it made from dt (LAMMPS'
@@ -535,6 +547,7 @@ impl Simulation {
             self.timers.charge(Stage::Comm);
         }
 
+        self.pair_pre_force(false)?;
         // the stages follow each other: each starts at the reading that ended the last
         self.forces_timed(eflag, true, None)?;
 

@@ -48,6 +48,8 @@ pub fn pair_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         return Err(Diagnostic::at(cmd.args[0].span.to(cmd.args[1].span), "pair_coeff sets no type pair (each pair needs I <= J)", "no I <= J pair in these ranges"));
     }
     pair.coeff(ilo, ihi, jlo, jhi, &mut a)?;
+    // the per-atom values a style keeps exist from here on (LAMMPS: its fix property/atom)
+    crate::models::pair::granular::mdr_state::ensure_fields_for(pair.atom_fields(), &mut sim.state.atoms);
     sim.state.lists_valid = false;
     Ok(())
 }

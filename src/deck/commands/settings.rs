@@ -153,14 +153,10 @@ pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             if w.text == "hybrid" {
                 return Err(a.error_at(w, "atom_style hybrid cannot contain hybrid", "not allowed"));
             }
-            // `sphere 0|1` takes an optional flag (dynamic radius): accept 0 only
-            if w.text == "0" || w.text == "1" {
-                if let Some(&prev @ ("sphere" | "bpm/sphere")) = names.last() {
-                    if w.text == "1" {
-                        return Err(a.error_at(w, format!("atom_style {prev} with dynamic radius (1) is not supported"), "use 0"));
-                    }
-                    continue;
-                }
+            // `sphere 0|1` takes an optional flag (1: dynamic radius, which LAMMPS then sends to
+            // ghosts at every step; dmhs always does)
+            if (w.text == "0" || w.text == "1") && matches!(names.last(), Some(&("sphere" | "bpm/sphere"))) {
+                continue;
             }
             if !ATOM_STYLES.contains(&w.text.as_str()) {
                 return Err(crate::models::styles::unsupported_style("atom_style", w, &w.text, ATOM_STYLES));
@@ -174,10 +170,7 @@ pub fn atom_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         names.push(&first.text);
         let rest = &cmd.args[1..];
         let takes_flag = first.text == "sphere" || first.text == "bpm/sphere";
-        let ok_extra = takes_flag && rest.len() == 1 && rest[0].text == "0";
-        if takes_flag && rest.len() == 1 && rest[0].text == "1" {
-            return Err(a.error_at(&rest[0], format!("atom_style {} with dynamic radius (1) is not supported", first.text), "use 0"));
-        }
+        let ok_extra = takes_flag && rest.len() == 1 && (rest[0].text == "0" || rest[0].text == "1");
         if !rest.is_empty() && !ok_extra {
             return Err(a.error_at(&rest[0], format!("unexpected argument `{}`", rest[0].text), "not expected here"));
         }

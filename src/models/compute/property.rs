@@ -36,6 +36,8 @@ pub enum Field {
     /// Per-atom temperature and heat flow (fix property/atom temperature heatflow).
     Temperature,
     HeatFlow,
+    /// A named per-atom value a model keeps (`d_psi` of pair granular mdr).
+    Extra(crate::engine::fields::Field),
 }
 
 impl Field {
@@ -79,7 +81,7 @@ impl Field {
             "dwater" => Field::DWater,
             "temperature" => Field::Temperature,
             "heatflow" => Field::HeatFlow,
-            _ => return None,
+            _ => Field::Extra(*crate::engine::fields::MDR_FIELDS.iter().find(|f| f.name == name)?),
         })
     }
 
@@ -95,6 +97,7 @@ impl Field {
             Field::Conc | Field::Water | Field::DWater => (state.atoms.field(crate::engine::fields::WATER).is_some(), "water field (define fix dmhs/diffusion or set ... dmhs/conc first)"),
             Field::Temperature => (state.atoms.field(crate::engine::fields::TEMPERATURE).is_some(), "temperature (define fix property/atom temperature first)"),
             Field::HeatFlow => (state.atoms.field(crate::engine::fields::HEATFLOW).is_some(), "heatflow (define fix property/atom heatflow first)"),
+            Field::Extra(f) => (state.atoms.field(*f).is_some(), "such per-atom value (pair granular mdr makes it at its pair_coeff)"),
             _ => (true, ""),
         };
         if ok { Ok(()) } else { Err(format!("this atom style has no {what}")) }
@@ -144,6 +147,7 @@ impl Field {
             Field::DWater => crate::engine::water::field_value(a, crate::engine::fields::WATER_RATE, i),
             Field::Temperature => crate::engine::water::field_value(a, crate::engine::fields::TEMPERATURE, i),
             Field::HeatFlow => crate::engine::water::field_value(a, crate::engine::fields::HEATFLOW, i),
+            Field::Extra(f) => crate::engine::water::field_value(a, f, i),
         }
     }
 }

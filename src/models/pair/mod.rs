@@ -84,7 +84,8 @@ pub struct PairOutput<'a> {
     pub torque: &'a mut [[f64; 3]],
     pub drho: &'a mut [f64],
     pub desph: &'a mut [f64],
-    /// The rate fields ([`crate::engine::fields::RATES`]) some model registered.
+    /// The rate fields ([`crate::engine::fields::RATES`]) and pair sums
+    /// ([`crate::engine::fields::PAIR_SUMS`]) some model registered.
     pub fields: Vec<(Field, &'a mut [f64])>,
     /// The per-atom tallies of this force evaluation, when compute pe/atom or stress/atom needs
     /// them: styles whose loops cannot evaluate a pair again (contact histories) add their
@@ -163,6 +164,8 @@ pub struct PairSetup<'a> {
     pub ntypes: usize,
     /// `comm_modify vel yes`
     pub comm_vel: bool,
+    /// `newton on` (for pairs)
+    pub newton_pair: bool,
     /// Per type, the largest radius of particles fixes will insert during the run (granular
     /// cutoffs must cover them before they exist).
     pub insert_radius: Vec<f64>,
@@ -274,6 +277,20 @@ pub trait PairStyle: Send + Sync {
     /// The largest curvature V''(r_min) of a pair potential's well (force per length), for the
     /// time-step estimate of potentials without another (Lennard-Jones).
     fn well_stiffness(&self) -> Option<f64> {
+        None
+    }
+    /// Per-atom fields the style keeps on the atoms (made at pair_coeff and before a run).
+    fn atom_fields(&self) -> &'static [crate::engine::fields::Field] {
+        &[]
+    }
+    /// Work on the atoms and the style's contact histories before each force evaluation of a
+    /// run (`setup`: at its setup, after the fixes' setup_pre_force), as the fix a LAMMPS style
+    /// adds for itself does (pair granular mdr: fix GRANULAR/MDR).
+    fn pre_force(&mut self, _state: &mut crate::engine::state::State, _setup: bool) -> Result<(), String> {
+        Ok(())
+    }
+    /// Why the style cannot run on several ranks yet (None: it can if its name is supported).
+    fn ranks_refusal(&self) -> Option<String> {
         None
     }
     /// Start the per-part clocks of [`PairStyle::model_seconds`] again (at run setup).

@@ -10,9 +10,13 @@
 //!   -2 ln e / sqrt(pi^2 + ln^2 e) for hooke, -sqrt(3/2) 2 sqrt(5/6) ln e / sqrt(pi^2 + ln^2 e)
 //!   for every other normal model (Hertzian).
 //!
+//! * `mdr 1|2`: only with the `mdr` normal model, whose last coefficient is the damping
+//!   coefficient: type 1 eta_n = damp sqrt(2 m_eff E_eff a) (the scale the normal model stores
+//!   in the history), type 2 eta_n = damp while that scale is not 0.
+//!
 //! tsuji and coeff_restitution refuse a cohesive normal model (LAMMPS allow_cohesion = 0).
 
-use super::{geometric, Flags, Style};
+use super::{geometric, Coeff, Flags, Range, Style};
 use std::f64::consts::PI;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -24,6 +28,8 @@ pub enum Damping {
     Viscoelastic { damp: f64 },
     /// tsuji and coeff_restitution (they differ in `damp` only)
     Tsuji { damp: f64 },
+    /// `damping mdr`: type 1 (`scaled`) or 2
+    Mdr { damp: f64, scaled: bool },
 }
 
 const NO_COHESION: Flags = Flags { no_cohesion: true, ..Flags::NONE };
@@ -54,6 +60,14 @@ pub static STYLES: &[Style<Damping>] = &[
         history: 0,
         flags: NO_COHESION,
         build: |_, ctx| Damping::Tsuji { damp: from_restitution(ctx.normal_damp, ctx.normal == "hooke") },
+        mix: geometric,
+    },
+    Style {
+        name: "mdr",
+        coeffs: &[Coeff { name: "type", about: "1: mdr stiffness, 2: velocity", range: Range::Whole(1, 2) }],
+        history: 0,
+        flags: Flags::NONE,
+        build: |c, ctx| Damping::Mdr { damp: ctx.normal_damp, scaled: c[0] as i64 == 1 },
         mix: geometric,
     },
 ];
@@ -102,12 +116,17 @@ fn powint(x: f64, n: i32) -> f64 {
 impl Damping {
     /// eta_n (LAMMPS `damp_prefactor`); `a` is the contact radius, `fnormal` the normal force.
     #[inline(always)]
-    pub fn prefactor(&self, meff: f64, a: f64, fnormal: f64, delta: f64) -> f64 {
+    /// `damp_scale` is the scale the mdr normal model stored (0 for the others).
+    pub fn prefactor(&self, meff: f64, a: f64, fnormal: f64, delta: f64, damp_scale: f64) -> f64 {
         match *self {
             Damping::Velocity { damp } => damp,
             Damping::MassVelocity { damp } => damp * meff,
             Damping::Viscoelastic { damp } => damp * meff * a,
             Damping::Tsuji { damp } => damp * (meff * fnormal / delta).sqrt(),
+            Damping::Mdr { damp, scaled: true } => damp * damp_scale,
+            Damping::Mdr { damp, scaled: false } => {
+                if damp_scale == 0.0 { 0.0 } else { damp }
+            }
             Damping::None => 0.0,
         }
     }

@@ -25,6 +25,8 @@
 
 pub mod damping;
 pub mod heat;
+pub mod mdr;
+pub mod mdr_state;
 pub mod normal;
 pub mod rolling;
 pub mod tangential;
@@ -50,7 +52,7 @@ use twisting::{Twisting, TwistingIn};
 pub const SYNTAX: &str = "pair_style granular [cutoff]";
 
 /// Most coefficients of a sub-model.
-pub const MAX_COEFFS: usize = 4;
+pub const MAX_COEFFS: usize = 6;
 pub type Coeffs = [f64; MAX_COEFFS];
 
 /// A coefficient of a sub-model, for the parser and its messages.
@@ -71,6 +73,12 @@ pub enum Range {
     NonNegativeOrNull,
     /// a Poisson's ratio, in (-1, 0.5]
     Poisson,
+    /// > 0
+    Positive,
+    /// in [lo, hi]
+    Closed(f64, f64),
+    /// a whole number from lo to hi (LAMMPS truncates the value to an int first)
+    Whole(i64, i64),
 }
 
 /// What NULL reads as (LAMMPS).
@@ -96,6 +104,12 @@ impl Coeff {
                 a.f64_where(&what, ">= 0 or NULL", |x| x >= 0.0)
             }
             Range::Poisson => a.f64_where(&what, "in (-1, 0.5]", |x| x > -1.0 && x <= 0.5),
+            Range::Positive => a.f64_where(&what, "> 0", |x| x > 0.0),
+            Range::Closed(lo, hi) => a.f64_where(&what, &format!("in [{lo}, {hi}]"), |x| x >= lo && x <= hi),
+            Range::Whole(lo, hi) => {
+                let alts: Vec<String> = (lo..=hi).map(|k| k.to_string()).collect();
+                a.f64_where(&what, &alts.join(" or "), |x| (x as i64) >= lo && (x as i64) <= hi)
+            }
         }
     }
 }
@@ -125,11 +139,11 @@ pub struct Flags {
     pub material: bool,
     /// history values (bits, from the model's first) that keep their sign when the pair is
     /// seen from the other side (LAMMPS transfer_history_factor +1)
-    pub keep: u16,
+    pub keep: u64,
     /// kept values that LAMMPS 22 Jul 2025 nevertheless negates when its list moves the pair
     /// to the other atom (rolling and twisting springs: factor -1 there; later LAMMPS versions
     /// keep them)
-    pub flip: u16,
+    pub flip: u64,
 }
 
 impl Flags {
@@ -364,6 +378,21 @@ impl GranSpec {
                 "Kt NULL without E and nu",
             ));
         }
+        // LAMMPS GranSubModDamping*::init: the mdr models go only together
+        let damping_is_mdr = m.damping.style.name == "mdr";
+        if (normal.name == "mdr") != damping_is_mdr {
+            let (w, msg) = match (named[DAMPING], damping_is_mdr) {
+                (Some(d), false) => (d.word, "only damping mdr may be used with the mdr normal model".to_string()),
+                (Some(d), true) => (d.word, format!("damping mdr can only be used with the mdr normal model, not {}", normal.name)),
+                (None, _) => (named[NORMAL].unwrap().word, "the mdr normal model needs `damping mdr 1|2` (the default damping, viscoelastic, does not go with it)".to_string()),
+            };
+            return Err(a.error_at(w, msg, "mdr goes with mdr"));
+        }
+        if normal.name == "mdr" && wall {
+            let w = named[NORMAL].unwrap().word;
+            return Err(a.error_at(w, "granular mdr against a wall is not supported by dmhs yet", "not supported on walls"));
+        }
+        let max_history = if normal.name == "mdr" { mdr::MAX_TOTAL_HISTORY } else { MAX_HISTORY };
         let mut total = 0;
         for n in named.iter().flatten() {
             if n.flags.no_cohesion && normal.flags.cohesive {
@@ -373,8 +402,8 @@ impl GranSpec {
                 return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs' fix wall/gran", n.name), "not supported on walls"));
             }
             total += n.history;
-            if total > MAX_HISTORY {
-                return Err(a.error_at(n.word, format!("these granular models keep {total} history values per contact; dmhs keeps at most {MAX_HISTORY}"), "too much history"));
+            if total > max_history {
+                return Err(a.error_at(n.word, format!("these granular models keep {total} history values per contact; dmhs keeps at most {max_history}"), "too much history"));
             }
         }
         Ok(m)
@@ -442,9 +471,9 @@ pub struct GranModel {
     pub history_index: [usize; 6],
     pub history_size: usize,
     /// the history values that keep their sign from the other side (bits)
-    pub history_keep: u16,
+    pub history_keep: u64,
     /// the history values LAMMPS negates when its list moves the pair (bits)
-    pub history_flip: u16,
+    pub history_flip: u64,
     /// `cutoff` keyword (negative: from the radii)
     pub cutoff: f64,
 }
@@ -456,7 +485,7 @@ impl GranModel {
         let material = s.normal.style.flags.material.then(|| (s.normal.coeffs[0], s.normal.coeffs[2]));
         let ctx = Ctx { wall, mixed, normal: "", normal_damp: 0.0, material, tangential_k_mu: (0.0, 0.0) };
         let normal = s.normal.build(&ctx);
-        let mut ctx = Ctx { normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::DAMP_COEFF], ..ctx };
+        let mut ctx = Ctx { normal: s.normal.style.name, normal_damp: s.normal.coeffs[normal::damp_coeff(s.normal.style.name)], ..ctx };
         let tangential = s.tangential.build(&ctx);
         ctx.tangential_k_mu = tangential.k_mu();
         let sizes = [
@@ -518,6 +547,13 @@ pub fn contact_heat(m: &GranModel, heat: &Heat, rsq: f64, radi: f64, radj: f64, 
 /// plane, m_eff is the sphere's mass and the torque lever is its full radius.
 #[inline(always)]
 pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64) -> ContactForce {
+    granular_contact_with(m, g, wall, history, update, dt, None)
+}
+
+/// [`granular_contact`] with the normal force `fnormal` given (the mdr model computes it from
+/// per-atom state first); None: from the normal model.
+#[inline(always)]
+pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64, fnormal: Option<f64>) -> ContactForce {
     let (radi, radj) = (g.radi, g.radj);
     let meff = if wall { g.mi } else { g.mi * g.mj / (g.mi + g.mj) };
     let (radsum, reff) = radsum_reff(radi, radj, wall);
@@ -542,8 +578,10 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
 
     // normal force, damping, F_n,crit
     let a = if m.contact_radius { m.normal.contact_radius(delta * reff, reff) } else { 0.0 };
-    let fnormal = m.normal.force(delta, reff, a);
-    let damp_prefactor = m.damping.prefactor(meff, a, fnormal, delta);
+    let fnormal = fnormal.unwrap_or_else(|| m.normal.force(delta, reff, a));
+    // damping mdr reads the scale the mdr normal model just stored
+    let damp_scale = if matches!(m.damping, Damping::Mdr { .. }) { history[m.history_index[NORMAL] + mdr::DAMP_SCALE] } else { 0.0 };
+    let damp_prefactor = m.damping.prefactor(meff, a, fnormal, delta, damp_scale);
     let fdamp = -damp_prefactor * vnnr;
     let mut fntot = fnormal + fdamp;
     if m.limit_damping && fntot < 0.0 {
@@ -595,8 +633,36 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
     out
 }
 
+/// LAMMPS FixGranularMDR::setup_pre_force's checks: the mdr model is one model for every
+/// type pair (one pair_coeff; a mixed pair would be a second model). Returns its psi_b.
+fn mdr_check(models: &TypeTable<GranModel>, ntypes: usize, active: Option<&[bool]>, coeff_calls: usize) -> Result<Option<f64>, String> {
+    let mut mdr = None;
+    let mut other = false;
+    for i in 1..=ntypes {
+        for j in i..=ntypes {
+            if active.is_some_and(|a| !a[i * (ntypes + 1) + j]) {
+                continue;
+            }
+            match models.get(i, j).normal {
+                Normal::Mdr(m) => mdr = Some(m.psi_b),
+                _ => other = true,
+            }
+        }
+    }
+    if mdr.is_none() {
+        return Ok(None);
+    }
+    if other {
+        return Err("pair granular: cannot combine the mdr normal model with a different normal model (LAMMPS)".into());
+    }
+    if coeff_calls > 1 {
+        return Err(format!("pair granular: the mdr model takes one pair_coeff for all type pairs (LAMMPS: cannot currently define multiple MDR normal models in the pairstyle); found {coeff_calls}"));
+    }
+    Ok(mdr)
+}
+
 /// The first `n` bits of `m`, one flag per history value.
-fn bits(m: u16, n: usize) -> Vec<bool> {
+fn bits(m: u64, n: usize) -> Vec<bool> {
     (0..n).map(|d| m >> d & 1 != 0).collect()
 }
 
@@ -647,6 +713,10 @@ pub struct Granular {
     history: ContactHistory,
     /// some type pair conducts heat (a `heat` model)
     heat: bool,
+    /// pair_coeff commands given (each is one LAMMPS model; mdr allows one)
+    coeff_calls: usize,
+    /// psi_b of the mdr model, when the pairs use it
+    mdr: Option<f64>,
 }
 
 impl Granular {
@@ -661,7 +731,14 @@ impl Granular {
             types: GranTypes::default(),
             history: ContactHistory::new(0),
             heat: false,
+            coeff_calls: 0,
+            mdr: None,
         })
+    }
+
+    /// Some pair_coeff names the mdr normal model.
+    fn uses_mdr(&self) -> bool {
+        self.coeff.data.iter().any(|s| s.set && s.normal.style.name == "mdr")
     }
 
     /// Heat conduction of every contact (LAMMPS' calculate_heat after calculate_forces): Q into
@@ -726,6 +803,7 @@ impl PairStyle for Granular {
         args.syntax = coeff_syntax();
         let m = GranSpec::parse(args, false)?;
         args.finish()?;
+        self.coeff_calls += 1;
         self.grow(ihi.max(jhi));
         for i in ilo..=ihi {
             for j in jlo.max(i)..=jhi {
@@ -751,6 +829,9 @@ impl PairStyle for Granular {
     }
     fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
         check_setup(setup, self.style())?;
+        if self.uses_mdr() && setup.newton_pair {
+            return Err("pair granular: the mdr contact model requires `newton off` (LAMMPS: MDR contact model requires Newton off)".into());
+        }
         if self.coeff.data.iter().any(|s| s.set && s.heat.is_some()) {
             check_heat_fields(setup.atoms, "pair granular")?;
         }
@@ -761,7 +842,7 @@ impl PairStyle for Granular {
         self.grow(ntypes);
         self.types.check(ntypes, active, "granular")?;
         let mut models = TypeTable::new(ntypes);
-        let (mut size, mut keep, mut flip, mut beyond) = (0, 0u16, 0u16, false);
+        let (mut size, mut keep, mut flip, mut beyond) = (0, 0u64, 0u64, false);
         self.heat = false;
         for i in 1..=ntypes {
             for j in i..=ntypes {
@@ -784,6 +865,7 @@ impl PairStyle for Granular {
                 models.set(i, j, m);
             }
         }
+        self.mdr = mdr_check(&models, ntypes, active, self.coeff_calls)?;
         self.models = GranularModels(models, size, beyond);
         self.history.set_flips(bits(flip, size));
         self.history.set_layout(bits(keep, size))
@@ -804,13 +886,18 @@ impl PairStyle for Granular {
         true
     }
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
-        let t = compute_contacts(&self.models, input, out, Some(&mut self.history));
+        let t = if self.mdr.is_some() { mdr::compute_contacts(&self.models, &mut self.history, input, out).0 } else { compute_contacts(&self.models, input, out, Some(&mut self.history)) };
         if self.heat {
             self.heat_pass(input, out);
         }
         t
     }
     fn rebuilt(&mut self, input: &PairInput, _order: &[usize]) {
+        if self.mdr.is_some() {
+            // every contact touching at the last evaluation carries on (LAMMPS' fix
+            // neigh/history): the radii grow before the next one looks again
+            return self.history.rebuilt(input.atoms, input.list, input.sides, |_, _| true);
+        }
         if !self.models.2 {
             return rebuild_history(&mut self.history, input);
         }
@@ -825,6 +912,18 @@ impl PairStyle for Granular {
     }
     fn histories(&mut self) -> Vec<&mut ContactHistory> {
         vec![&mut self.history]
+    }
+    fn atom_fields(&self) -> &'static [crate::engine::fields::Field] {
+        if self.uses_mdr() { &crate::engine::fields::MDR_FIELDS } else { &[] }
+    }
+    fn pre_force(&mut self, state: &mut crate::engine::state::State, setup: bool) -> Result<(), String> {
+        match self.mdr {
+            Some(psi_b) => mdr_state::pre_force(state, &mut self.history, psi_b, setup),
+            None => Ok(()),
+        }
+    }
+    fn ranks_refusal(&self) -> Option<String> {
+        self.uses_mdr().then(|| "pair granular with the mdr model".to_string())
     }
     fn describe(&self) -> String {
         let mut s = String::from("granular");
@@ -886,8 +985,14 @@ mod tests {
     fn errors_name_what_the_tables_support() {
         let e = err("hooke 1e4 0.5 tangential linear_history 8235 0 0.5 damping coeff_restitution synchronized_verlet");
         assert!(e.contains("`synchronized_verlet` (half-step normal, LAMMPS 2025) is not supported"), "{e}");
-        let e = err("mdr 1 2 3 4 5 6 tangential linear_history 1 1 1");
-        assert!(e.contains("normal model `mdr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt, jkr"), "{e}");
+        let e = err("mdrr 1 2 3 4 5 6 tangential linear_history 1 1 1");
+        assert!(e.contains("normal model `mdrr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt, jkr, mdr") && e.contains("did you mean `mdr`"), "{e}");
+        // mdr goes with damping mdr only, and 27 history values are allowed with it
+        let e = err("mdr 5e6 0.4 1e5 0 0.5 0.2 damping tsuji tangential linear_history 1 1 1");
+        assert!(e.contains("only damping mdr may be used with the mdr normal model"), "{e}");
+        let m = GranModel::build(&parse("mdr 5e6 0.4 1e5 0 0.5 0.2 damping mdr 2 tangential mindlin_rescale 1 1 1 rolling sds 1 1 1", false).unwrap(), false);
+        assert_eq!((m.history_size, m.history_index[TANGENTIAL]), (27 + 4 + 3, 27));
+        assert_eq!(m.damping, Damping::Mdr { damp: 0.2, scaled: false });
         // JKR: cohesive, and not on dmhs' walls
         let e = err("jkr 1e6 0.5 0.3 1 damping coeff_restitution tangential linear_history 1 1 1");
         assert!(e.contains("cannot use coeff_restitution model with a cohesive normal model, jkr"), "{e}");

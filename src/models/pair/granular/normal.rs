@@ -15,10 +15,15 @@
 //!   centres are R_i + R_j + delta_pulloff apart, delta_pulloff = (3 pi^2/16)^(1/3)
 //!   (R_eff gamma^2/E_eff^2)^(1/3) (the neighbour cutoff includes it).
 //!
+//! * `mdr E nu Y gamma psi_b damp`: Zunker and Kamrin's model of large elastic-plastic
+//!   deformation ([`super::mdr`]); its force comes from the contact loop of that file, which
+//!   keeps per-atom state. Only `damping mdr` goes with it.
+//!
 //! eta_n0 is the damping model's coefficient (a restitution coefficient for coeff_restitution).
 //! Mixing (unset I,J pairs): geometric means, except E: Kn = 4/3 E_eff(E_i, nu_i, E_j, nu_j)
 //! (measured in LAMMPS 2025).
 
+use super::mdr::{self, Mdr};
 use super::{geometric, nn, poisson, Coeff, Coeffs, Ctx, Flags, Style};
 // the C library's cube root, as LAMMPS' (f64::cbrt differs from glibc's in the last bit)
 use crate::engine::par::cmath::cbrt;
@@ -35,6 +40,8 @@ pub enum Normal {
     Dmt { k: f64, cohesion: f64 },
     /// k = 4/3 E_eff
     Jkr { k: f64, emix: f64, cohesion: f64 },
+    /// the force is [`super::mdr::normal_force`]'s (it needs the atoms' state)
+    Mdr(Mdr),
 }
 
 /// Every normal model's second coefficient is eta_n0, the damping model's (LAMMPS `damp`).
@@ -89,7 +96,21 @@ pub static STYLES: &[Style<Normal>] = &[
         },
         mix: mix_material,
     },
+    Style {
+        name: "mdr",
+        coeffs: mdr::COEFFS,
+        history: mdr::HISTORY,
+        // every value is the same from either side (LAMMPS' transfer factor +1)
+        flags: Flags { contact_radius: true, keep: (1 << mdr::HISTORY) - 1, ..Flags::NONE },
+        build: |c, _| Normal::Mdr(Mdr::new(c)),
+        mix: geometric,
+    },
 ];
+
+/// Every normal model's damping coefficient, by its place among the coefficients.
+pub fn damp_coeff(name: &str) -> usize {
+    if name == "mdr" { 5 } else { DAMP_COEFF }
+}
 
 /// LAMMPS' constants of the JKR closed forms.
 const PI27SQ: f64 = 266.47931882941264802866; // 27 pi^2
@@ -201,7 +222,8 @@ impl Normal {
                 let a2 = a * a;
                 k * a * a2 / reff - 2.0 * PI * a2 * (4.0 * cohesion * emix / (PI * a)).sqrt()
             }
-            Normal::None => 0.0,
+            // the mdr contact loop gives its force to the contact (granular_contact_with)
+            Normal::None | Normal::Mdr(_) => 0.0,
         }
     }
 

@@ -809,3 +809,21 @@ fn mpiexec_bpm_solids_fracture_as_the_serial_run() {
         }
     }
 }
+
+/// Atoms lost through a fixed face with `thermo_modify lost ignore` leave every rank's topology
+/// (their bonds with them), so the ranks keep one topology: fragments of the fracturing
+/// bpm/spring solids fly out of the box (a longer time step), as in the serial run.
+#[test]
+fn bpm_fragments_lost_on_ranks_leave_every_ranks_topology() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = |f: &str| {
+        bpm_impact(false, &dir.path().join(f))
+            .replace("timestep 0.05", "timestep 0.1")
+            .replace("thermo_modify format float %.15g", "thermo_modify format float %.15g lost ignore")
+            .replace("thermo_style custom step ke pe ebond pxx pyy pzz c_tbond", "thermo_style custom step ke pe ebond pxx pyy pzz c_tbond atoms bonds")
+    };
+    let (text, _) = serial(&deck("a.local"));
+    let last = thermo_rows(&text).last().cloned().unwrap_or_default();
+    assert!(last.get(8).is_some_and(|&n| n < 434.0), "atoms are lost in the serial run: {last:?}\n{text}");
+    compare_decks(&deck("a.local"), &deck("b.local"), 2, 1e-9);
+}

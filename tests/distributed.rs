@@ -827,3 +827,14 @@ fn bpm_fragments_lost_on_ranks_leave_every_ranks_topology() {
     assert!(last.get(8).is_some_and(|&n| n < 434.0), "atoms are lost in the serial run: {last:?}\n{text}");
     compare_decks(&deck("a.local"), &deck("b.local"), 2, 1e-9);
 }
+
+/// bpm/spring/plastic on ranks: a bond's plastic strain, changed where the bond is computed,
+/// reaches every rank's topology (lammps-refs/decks/in.bond_bpm_spring_plastic: a ball yields a
+/// plate's bonds).
+#[test]
+fn bpm_plastic_springs_on_ranks_are_the_serial_run() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks/in.bond_bpm_spring_plastic");
+    let deck = std::fs::read_to_string(path).unwrap().replace("thermo       10\n", "thermo       30\nthermo_modify format float %.15g\n");
+    compare(&deck, 2);
+    compare(&deck, 3);
+}

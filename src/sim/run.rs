@@ -477,7 +477,10 @@ impl Simulation {
         let (mut recs, mut rows, mut masks) = (vec![], vec![], vec![]);
         for r in all.chunks_exact(width) {
             let rec = r[0] as usize;
-            if std::mem::replace(&mut seen[rec], true) {
+            let Some(seen) = seen.get_mut(rec) else {
+                return Err(RunError::new(self.state.step, format!("the ranks' bond records differ: record {rec} of {} broke on another rank", self.state.topo.bonds.len())));
+            };
+            if std::mem::replace(seen, true) {
                 continue;
             }
             recs.push(rec);

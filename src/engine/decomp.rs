@@ -197,7 +197,8 @@ impl Decomp {
             if p < 2 {
                 continue;
             }
-            if let Some(cuts) = balanced_cuts(&hist[d], p, cut / (domain.hi[d] - domain.lo[d])) {
+            // (a hair more than the cutoff: the widths computed back from the cuts round)
+            if let Some(cuts) = balanced_cuts(&hist[d], p, cut / (domain.hi[d] - domain.lo[d]) * (1.0 + 1e-12)) {
                 moved |= cuts != self.splits[d];
                 self.splits[d] = cuts;
             }

@@ -408,10 +408,10 @@ impl Dump {
         self.columns.iter().any(|c| matches!(c, Column::PerAtom(_) | Column::Local(_)))
     }
 
-    /// The per-atom compute and fix columns (`c_ID`, `f_ID`), and whether there are local ones.
-    pub fn model_columns(&self) -> (Vec<&crate::models::compute::PerAtomRef>, bool) {
+    /// The per-atom compute and fix columns (`c_ID`, `f_ID`), and the local ones.
+    pub fn model_columns(&self) -> (Vec<&crate::models::compute::PerAtomRef>, Vec<&crate::models::compute::LocalRef>) {
         let peratom = self.columns.iter().filter_map(|c| if let Column::PerAtom(r) = c { Some(r) } else { None }).collect();
-        (peratom, self.columns.iter().any(|c| matches!(c, Column::Local(_))))
+        (peratom, self.columns.iter().filter_map(|c| if let Column::Local(r) = c { Some(r) } else { None }).collect())
     }
 
     pub fn write(&mut self, w: &World, ev: &mut dyn dmhs_parser::EvalContext) -> Result<(), String> {

@@ -15,16 +15,18 @@ use std::sync::Arc;
 const PAIRS: &[&str] = &[
     "lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction",
     "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular", "dmhs/sph/diffusion", "dmhs/lj/wet",
-    "dmhs/heatconduction", "dmhs/blend",
+    "dmhs/heatconduction", "dmhs/blend", "bpm/spring",
 ];
 /// (GROUP: a dynamic group's update, per owned atom; atom values by ID stop the run on ranks.)
 const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell",
-    "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP"];
-const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom"];
+    "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them).
 const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom"];
-const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse"];
+/// (The BPM styles keep each bond's reference state in every rank's topology; see
+/// `bpm::rank_bond_list`.)
+const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse", "bpm/rotational", "bpm/spring", "bpm/spring/plastic"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
 
@@ -72,6 +74,9 @@ impl Simulation {
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
         let what = if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
             Some(format!("bond_style {}", b.name()))
+        } else if let Some(b) = self.bond_style.as_ref().filter(|b| b.as_bpm().is_some_and(|p| p.shared().volume)) {
+            // each bond reads both atoms' volume sums: a ghost's would have to travel mid-pass
+            Some(format!("bond_style {} volume/factor yes", b.name()))
         } else if let Some(b) = self.angle_style.as_ref().filter(|b| !ANGLES.contains(&b.name())) {
             Some(format!("angle_style {}", b.name()))
         } else if let Some(b) = self.dihedral_style.as_ref().filter(|b| !DIHEDRALS.contains(&b.name())) {
@@ -99,16 +104,18 @@ impl Simulation {
             "pair styles {}; bond styles {}; angle styles {}; dihedral styles {}; fixes {}; computes {}",
             PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
         );
-        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values and of compute property/atom (run on one rank)"))
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values, of compute property/atom and of the broken bonds of a BPM style's store/local (run on one rank)"))
     }
 
     /// Whether a compute may read compute or fix `id` on ranks: one of the allowed computes
     /// with per-atom values (local rows are per rank) or one of the allowed fixes.
     /// Whether rank 0 can write dump `d` from the gathered atoms: its compute columns are of
     /// computes that read only the atoms' own values.
+    /// A dump local may read fix STORE/LOCAL, whose rows (broken BPM bonds) every rank holds.
     fn dump_gathers(&self, d: &crate::output::dump::Dump) -> bool {
         let (peratom, local) = d.model_columns();
-        !local && peratom.iter().all(|r| !r.fix && self.computes.iter().any(|c| c.id() == r.id && GATHERED_COMPUTES.contains(&c.style())))
+        local.iter().all(|r| r.fix && self.fixes.iter().any(|f| f.id() == r.id && f.style() == "STORE/LOCAL"))
+            && peratom.iter().all(|r| !r.fix && self.computes.iter().any(|c| c.id() == r.id && GATHERED_COMPUTES.contains(&c.style())))
     }
 
     fn reads_on_ranks(&self, (fix, id): &(bool, String)) -> bool {

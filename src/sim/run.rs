@@ -387,7 +387,9 @@ impl Simulation {
             let bonded = match self.bond_style.as_deref().and_then(|b| b.as_bpm()) {
                 Some(bpm) => {
                     let (tally, broken) = bpm.compute(&mut self.state, eflag, peratom.as_mut())?;
-                    if !broken.is_empty() {
+                    if self.state.distributed.is_some() {
+                        self.bonds_broken_ranks(&broken)?;
+                    } else if !broken.is_empty() {
                         self.bonds_broken(&broken)?;
                     }
                     tally
@@ -459,6 +461,48 @@ impl Simulation {
             fix.add_rows(rows, &masks);
         }
         crate::models::bonded::bpm::remove_broken(&mut self.state, broken);
+        Ok(())
+    }
+
+    /// [`Simulation::bonds_broken`] on the ranks of a distributed run: each rank's broken bonds
+    /// (with their store/local rows, made where the bond was computed) go to every rank, which
+    /// records each once, in rank order, and removes it from its topology, special table and
+    /// neighbour list, so every rank keeps the same topology. A bond across ranks breaks on both
+    /// (they compute it with the same bits).
+    fn bonds_broken_ranks(&mut self, broken: &[crate::models::bonded::bpm::Broken]) -> Result<(), RunError> {
+        use crate::models::bonded::bpm;
+        let sl = self.bond_style.as_deref().and_then(|b| b.as_bpm()).and_then(|b| b.shared().store_local.clone());
+        let width = 3 + sl.as_ref().map_or(0, |s| s.values.len());
+        let mut mine = Vec::with_capacity(broken.len() * width);
+        for b in broken {
+            let a = &self.state.atoms;
+            mine.push(b.rec as f64);
+            mine.extend(b.atoms.map(|i| a.mask[i as usize] as f64));
+            if let Some(sl) = &sl {
+                mine.extend(bpm::record(&sl.values, &self.state, b));
+            }
+        }
+        let all = self.state.allgather_ranks(mine);
+        let mut seen = vec![false; self.state.topo.bonds.len()];
+        let (mut recs, mut rows, mut masks) = (vec![], vec![], vec![]);
+        for r in all.chunks_exact(width) {
+            let rec = r[0] as usize;
+            let Some(seen) = seen.get_mut(rec) else {
+                return Err(RunError::new(self.state.step, format!("the ranks' bond records differ: record {rec} of {} broke on another rank", self.state.topo.bonds.len())));
+            };
+            if std::mem::replace(seen, true) {
+                continue;
+            }
+            recs.push(rec);
+            masks.push([r[1] as u32, r[2] as u32]);
+            rows.push(r[3..].to_vec());
+        }
+        if let Some(sl) = sl.filter(|_| !rows.is_empty()) {
+            let fix = self.fixes.iter_mut().find(|f| f.id() == sl.fix_id).and_then(|f| f.as_store_local());
+            let Some(fix) = fix else { return Err(RunError::new(self.state.step, format!("Cannot find fix STORE/LOCAL id {}", sl.fix_id))) };
+            fix.add_rows(rows, &masks);
+        }
+        bpm::remove_broken_records(&mut self.state, recs);
         Ok(())
     }
 

@@ -353,18 +353,27 @@ pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
             }
         }
     }
-    let Some((i, d)) = first else { return Ok(()) };
     if sim.thermo.lost_ignore {
-        let tags: std::collections::HashSet<i64> = (0..a.nlocal).filter(|&k| gone[k]).map(|k| a.tag[k]).collect();
-        let before = a.nlocal;
-        sim.state.atoms.retain(&gone);
+        let tags: Vec<f64> = (0..a.nlocal).filter(|&k| gone[k]).map(|k| a.tag[k] as f64).collect();
+        // the ranks of a distributed run keep one topology: each drops every rank's lost atoms
+        let tags: std::collections::HashSet<i64> = sim.state.allgather_ranks(tags).into_iter().map(|t| t as i64).collect();
+        if tags.is_empty() {
+            return Ok(());
+        }
+        let before = sim.state.natoms();
+        if first.is_some() {
+            sim.state.atoms.retain(&gone);
+        }
         sim.state.topo.remove_atoms(&tags);
+        // a distributed run's index of the records by atom follows the records
+        sim.state.stored_on = None;
         if sim.thermo.lost_warn && !sim.thermo.lost_warned {
             sim.thermo.lost_warned = true;
-            sim.state.messages.push(format!("WARNING: Lost atoms: original {before} current {}", sim.state.atoms.nlocal));
+            sim.state.messages.push(format!("WARNING: Lost atoms: original {before} current {}", before - tags.len()));
         }
         return Ok(());
     }
+    let Some((i, d)) = first else { return Ok(()) };
     let n_lost = gone.iter().filter(|&&g| g).count();
     Err(RunError::new(
         sim.state.step,

@@ -32,10 +32,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 const EPSILON: f64 = 1e-10;
 
 /// Reference positions for `x/ref y/ref z/ref` (LAMMPS' property/atom d_BPM_X_REF ...), the
-/// positions when `bond_style` was given. Bonds read them on their owned atoms (a LAMMPS ghost
-/// has its owner's value), so ghosts need none.
+/// positions when `bond_style` was given. A LAMMPS ghost has its owner's value: ghosts carry
+/// them (a distributed run's broken bond may have its second atom on another rank).
 pub const X_REF: [Field; 3] =
-    [Field { name: "BPM_X_REF", ghosts: false }, Field { name: "BPM_Y_REF", ghosts: false }, Field { name: "BPM_Z_REF", ghosts: false }];
+    [Field { name: "BPM_X_REF", ghosts: true }, Field { name: "BPM_Y_REF", ghosts: true }, Field { name: "BPM_Z_REF", ghosts: true }];
 
 /// The per-atom volumes of bpm/spring's `volume/factor yes` (LAMMPS' property/atom d_vol and
 /// d_vol0): the sum over an atom's bonds of the current (VOL) and reference (VOL0) lengths cubed
@@ -329,6 +329,46 @@ pub fn lammps_bond_list(state: &State, bonds: &[Entry<2>]) -> Vec<Listed> {
     keyed.into_iter().map(|k| k.1).collect()
 }
 
+/// A distributed run's BPM bond list: each rank lists, as LAMMPS does with `newton_bond off`,
+/// every bond with an owned atom, its partner at the local copy (owned or ghost) closest to that
+/// atom. A bond whose atoms are both owned here is listed once and both take its forces; a bond
+/// to a ghost (an atom of another rank, or a periodic image) is listed by its owned atom, which
+/// alone takes them. The rank that owns the other atom lists the same bond with the same
+/// positions (a ghost is its owner's copy), so both compute the same bits, and see it break at
+/// the same step. Order as [`lammps_bond_list`], in this rank's LAMMPS order.
+pub fn rank_bond_list(state: &State, copies: &crate::models::bonded::pass::Copies) -> Result<Vec<Listed>, RunError> {
+    let (a, nlocal) = (&state.atoms, state.atoms.nlocal);
+    let map = a.tag_map();
+    let mut lidx = vec![0u32; nlocal];
+    for (k, &i) in state.lammps_order.indices(nlocal).iter().enumerate() {
+        lidx[i] = k as u32;
+    }
+    let mut keyed: Vec<((u32, u32), Listed)> = vec![];
+    for (rec, b) in state.topo.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
+        let own = b.atoms.map(|t| map.get(t));
+        for k in 0..2 {
+            let Some(o) = own[k] else { continue };
+            let other = copies.closest(b.atoms[1 - k], a.x[o]).ok_or_else(|| crate::models::bonded::pass::missing_partner(state.step, "bond", b.atoms[1 - k], &b.atoms))? as usize;
+            let mut atoms = [0u32; 2];
+            (atoms[k], atoms[1 - k]) = (o as u32, other as u32);
+            let entry = Entry { atoms, shift: [[0; 3]; 2], typ: b.typ, rec: rec as u32 };
+            if other < nlocal {
+                // both owned: listed once, from the first atom's side
+                if k == 0 {
+                    let key = if lidx[o] < lidx[other] { (lidx[o], b.slots[0]) } else { (lidx[other], b.slots[1]) };
+                    keyed.push((key, Listed { entry, apply: [true, true], history: b.history }));
+                }
+            } else {
+                let mut apply = [false; 2];
+                apply[k] = true;
+                keyed.push(((lidx[o], b.slots[k]), Listed { entry, apply, history: b.history }));
+            }
+        }
+    }
+    keyed.sort_unstable_by_key(|k| k.0);
+    Ok(keyed.into_iter().map(|k| k.1).collect())
+}
+
 /// Position of atom `i` at periodic shift `s` (LAMMPS' ghost copy `x + s L`).
 #[inline(always)]
 fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Vec3) -> Vec3 {
@@ -367,10 +407,14 @@ const CHUNK: usize = 1024;
 /// ([`lammps_bond_list`]), so the sums have LAMMPS' bits. Returns the bonds that broke, in that
 /// order; the caller removes them ([`remove_broken`]).
 pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut peratom: Option<&mut PerAtomTally>) -> Result<(BondedTally, Vec<Broken>), RunError> {
-    if state.bonded_lists.lammps_bonds.is_empty() {
+    let distributed = state.distributed.is_some();
+    // (every rank of a distributed run takes part in the exchange after the pass)
+    if state.bonded_lists.lammps_bonds.is_empty() && !distributed {
         return Ok((BondedTally::default(), vec![]));
     }
     let prd = state.domain.as_ref().unwrap().prd();
+    // the records whose reference state the pass rewrote (their list copies follow after it)
+    let mut rewritten: Option<Vec<bool>> = None;
     // LAMMPS' store_data: every bond's reference at the first evaluation of the style
     let first = !style.bpm().stored.swap(true, Ordering::Relaxed);
     if first {
@@ -380,6 +424,11 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
         }
         // a bond to a periodic image is listed twice: the record keeps the last one's
         sync_history(state, None);
+        if distributed {
+            let mut all = vec![false; state.topo.bonds.len()];
+            state.bonded_lists.lammps_bonds.iter().for_each(|l| all[l.entry.rec as usize] = true);
+            rewritten = Some(all);
+        }
     }
     let list = &state.bonded_lists.lammps_bonds;
     let (x, tag) = (&state.atoms.x, &state.atoms.tag);
@@ -389,12 +438,12 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let mut torque = std::mem::take(&mut state.atoms.torque);
     let mut tally = BondedTally::default();
     let mut broken: Vec<Broken> = vec![];
-    // LAMMPS' ev_tally: with newton_bond off, half to each owned atom
-    let part = if state.newton_bond { 1.0 } else { 0.5 };
+    // LAMMPS' ev_tally: with newton_bond off, half to each owned atom (a distributed run lists
+    // its bonds as with newton_bond off whatever the setting)
+    let newton = state.newton_bond && !distributed;
+    let part = if newton { 1.0 } else { 0.5 };
     // LAMMPS' dvol0: a broken bond's reference volume leaves its atoms' vol0 after the pass
     let mut dvol0 = SideSums::new(state.atoms.nlocal);
-    // the records whose reference state the pass rewrote (their list copies follow after it)
-    let mut rewritten: Option<Vec<bool>> = None;
     // the bonds are evaluated (in parallel) and added (in order) a block at a time, so the
     // evaluated bonds are read back from cache, not from memory
     let block = CHUNK * rayon::current_num_threads().max(1);
@@ -453,7 +502,7 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
                 }
             }
             if eflag {
-                let sides = if state.newton_bond { 1 } else { apply.iter().filter(|&&a| a).count() };
+                let sides = if newton { 1 } else { apply.iter().filter(|&&a| a).count() };
                 for _ in 0..sides {
                     tally.ebond += part * out.energy;
                     for k in 0..6 {
@@ -472,7 +521,9 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     }
     state.atoms.f = f;
     state.atoms.torque = torque;
-    if let Some(changed) = rewritten {
+    if distributed {
+        share_histories(state, rewritten.as_deref())?;
+    } else if let Some(changed) = rewritten {
         sync_history(state, Some(&changed));
     }
     if let Some(v) = vols.as_mut() {
@@ -494,6 +545,40 @@ fn sync_history(state: &mut State, changed: Option<&[bool]>) {
             l.history = bonds[rec].history;
         }
     }
+}
+
+/// The reference states the ranks of a distributed run stored or changed in this evaluation
+/// (`changed`, by record), in every rank's topology: a bond's state then moves with no atom (a
+/// rank that comes to own one of its atoms finds it there), and the end of the run leaves every
+/// rank with all of them. Every rank holds the same topology, so records are named by index
+/// (their atom IDs checked). A bond listed by two ranks is computed by both with the same bits;
+/// if not (a bond across a periodic face, each side at its own image), the last rank's state
+/// is kept everywhere.
+fn share_histories(state: &mut State, changed: Option<&[bool]>) -> Result<(), RunError> {
+    const W: usize = 3 + BOND_HISTORY;
+    let mut mine: Vec<f64> = vec![];
+    if let Some(c) = changed {
+        for (rec, b) in state.topo.bonds.iter().enumerate().filter(|&(k, _)| c[k]) {
+            mine.extend([rec as f64, b.atoms[0] as f64, b.atoms[1] as f64]);
+            mine.extend_from_slice(&b.history);
+        }
+    }
+    let all = state.allgather_ranks(mine);
+    if all.is_empty() {
+        return Ok(());
+    }
+    let mut changed = vec![false; state.topo.bonds.len()];
+    for r in all.chunks_exact(W) {
+        let rec = r[0] as usize;
+        let b = state.topo.bonds.get_mut(rec).filter(|b| b.atoms == [r[1] as i64, r[2] as i64]);
+        let Some(b) = b else {
+            return Err(RunError::new(state.step, format!("the ranks' bond records differ at record {rec} (bond {} {})", r[1], r[2])));
+        };
+        b.history.copy_from_slice(&r[3..]);
+        changed[rec] = true;
+    }
+    sync_history(state, Some(&changed));
+    Ok(())
 }
 
 /// The per-atom volumes of one evaluation, owned atoms ([`VOL`], [`VOL0`]).
@@ -627,10 +712,14 @@ pub fn record(values: &[LocalValue], state: &State, b: &Broken) -> Vec<f64> {
 /// update/special/bonds), so the pair acts from the next force evaluation; the bonded lists
 /// lose their entries and follow the records' new indices.
 pub fn remove_broken(state: &mut State, broken: &[Broken]) {
-    if broken.is_empty() {
+    remove_broken_records(state, broken.iter().map(|b| b.rec as usize).collect());
+}
+
+/// [`remove_broken`] of topology records `recs` (each once).
+pub fn remove_broken_records(state: &mut State, recs: Vec<usize>) {
+    if recs.is_empty() {
         return;
     }
-    let recs: Vec<usize> = broken.iter().map(|b| b.rec as usize).collect();
     let pairs: Vec<[i64; 2]> = recs.iter().map(|&k| state.topo.bonds[k].atoms).collect();
     // new index of each record: its old one less the removed records before it
     let mut index: Vec<Option<u32>> = vec![Some(0); state.topo.bonds.len()];
@@ -653,6 +742,8 @@ pub fn remove_broken(state: &mut State, broken: &[Broken]) {
     for &[p, q] in &pairs {
         state.special_table.remove_one_two(p, q);
     }
+    // a distributed run's index of the records by atom moved with them
+    state.stored_on = None;
     let map = state.atoms.tag_map();
     for &[p, q] in &pairs {
         for (t, other) in [(p, q), (q, p)] {

@@ -162,19 +162,16 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
     if state.stored_on.is_none() {
         state.stored_on = Some(StoredOn::new(&state.topo));
     }
+    let copies = Copies::new(&state.atoms);
+    if styles.bond.is_some_and(|s| s.as_bpm().is_some()) {
+        // a BPM style has neither angles nor dihedrals (its init refuses them)
+        let lammps_bonds = crate::models::bonded::bpm::rank_bond_list(state, &copies)?;
+        state.bonded_lists = BondedLists { lammps_bonds, ..BondedLists::default() };
+        return Ok(());
+    }
     let (t, a, on) = (&state.topo, &state.atoms, state.stored_on.as_ref().unwrap());
     let step = state.step;
-    let mut copies: Vec<(i64, u32)> = (0..a.nall()).map(|j| (a.tag[j], j as u32)).collect();
-    copies.sort_unstable();
-    // the copy of atom `tag` closest to `x`, owned before ghosts on a tie (None: this rank has
-    // no copy)
-    let closest = |tag: i64, x: [f64; 3]| -> Option<u32> {
-        let d2 = |j: u32| {
-            let y = a.x[j as usize];
-            (0..3).map(|d| (y[d] - x[d]) * (y[d] - x[d])).sum::<f64>()
-        };
-        StoredOn::on(&copies, tag).min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
-    };
+    let closest = |tag: i64, x: [f64; 3]| copies.closest(tag, x);
     // the interactions stored on owned atoms, in record order: (record, reference atom)
     let owned_records = |list: &[(i64, u32)]| -> Vec<(u32, usize)> {
         let mut recs: Vec<(u32, usize)> = (0..a.nlocal).flat_map(|i| StoredOn::on(list, a.tag[i]).map(move |rec| (rec, i))).collect();
@@ -184,9 +181,7 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
     // the interaction's local atoms, each the copy closest to the reference atom `r`
     let local = |tags: &[i64], r: usize, atoms: &mut [u32], what: &str| -> Result<(), RunError> {
         for (m, &tag) in tags.iter().enumerate() {
-            atoms[m] = closest(tag, a.x[r]).ok_or_else(|| {
-                RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} reaches beyond the ghost cutoff (pair cutoff + skin; comm_modify cutoff)"))
-            })?;
+            atoms[m] = closest(tag, a.x[r]).ok_or_else(|| missing_partner(step, what, tag, tags))?;
         }
         Ok(())
     };
@@ -217,6 +212,35 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
     }
     state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, vec![]);
     Ok(())
+}
+
+/// Every local copy (owned atom or ghost) of each atom ID of a distributed run's rank, to find a
+/// bonded partner's copy closest to an atom.
+pub struct Copies<'a> {
+    x: &'a [[f64; 3]],
+    list: Vec<(i64, u32)>,
+}
+
+impl<'a> Copies<'a> {
+    pub fn new(a: &'a crate::engine::atoms::Atoms) -> Self {
+        let mut list: Vec<(i64, u32)> = (0..a.nall()).map(|j| (a.tag[j], j as u32)).collect();
+        list.sort_unstable();
+        Copies { x: &a.x, list }
+    }
+    /// The copy of atom `tag` closest to `x`, owned before ghosts on a tie (None: this rank has
+    /// no copy).
+    pub fn closest(&self, tag: i64, x: [f64; 3]) -> Option<u32> {
+        let d2 = |j: u32| {
+            let y = self.x[j as usize];
+            (0..3).map(|d| (y[d] - x[d]) * (y[d] - x[d])).sum::<f64>()
+        };
+        StoredOn::on(&self.list, tag).min_by(|&p, &q| d2(p).total_cmp(&d2(q)))
+    }
+}
+
+/// The error of an interaction whose atom `tag` has no copy on this rank.
+pub fn missing_partner(step: i64, what: &str, tag: i64, tags: &[i64]) -> RunError {
+    RunError::new(step, format!("{what} atom {tag} is missing on this rank: the {what} of atoms {tags:?} reaches beyond the ghost cutoff (pair cutoff + skin; comm_modify cutoff)"))
 }
 
 /// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd

@@ -51,14 +51,16 @@ impl Compute for ComputeNBondAtom {
     fn peratom(&self, w: &World) -> Result<PerAtom, String> {
         let a = &w.state.atoms;
         let map = a.tag_map();
+        // on the ranks of a distributed run, a partner owned by another rank is a ghost here
+        let ghosts: std::collections::HashSet<i64> = if w.state.distributed.is_some() { a.tag[a.nlocal..a.nall()].iter().copied().collect() } else { Default::default() };
         let mut data = vec![0.0; a.nlocal];
         for b in &w.state.topo.bonds {
             if b.typ == 0 || b.off || self.btype.is_some_and(|t| t != b.typ) {
                 continue;
             }
-            if let (Some(i), Some(j)) = (map.get(b.atoms[0]), map.get(b.atoms[1])) {
-                data[i] += 1.0;
-                data[j] += 1.0;
+            let own = b.atoms.map(|t| map.get(t));
+            if (0..2).all(|k| own[k].is_some() || ghosts.contains(&b.atoms[k])) {
+                own.into_iter().flatten().for_each(|i| data[i] += 1.0);
             }
         }
         // after the count, as LAMMPS zeroes them after its reverse communication

@@ -14,8 +14,19 @@ fn root() -> PathBuf {
 
 #[test]
 fn squeezed_spheres_match_the_stored_lammps_reference() {
-    let deck = root().join("lammps-refs/decks/in.gran_mdr_squeeze");
-    let refdir = root().join("lammps-refs/refs/gran_mdr_squeeze");
+    matches_stored_reference("gran_mdr_squeeze");
+}
+
+/// Region walls with mdr: a moving spherical indenter presses spheres into a box floor
+/// (plastic, bulk response, adhesion), a sphere slides down a corner.
+#[test]
+fn region_walls_match_the_stored_lammps_reference() {
+    matches_stored_reference("gran_mdr_wall");
+}
+
+fn matches_stored_reference(name: &str) {
+    let deck = root().join(format!("lammps-refs/decks/in.{name}"));
+    let refdir = root().join(format!("lammps-refs/refs/{name}"));
     let (ours0, ours, box_len) = dmhs_capture(&deck, &[]).unwrap_or_else(|e| panic!("dmhs failed: {e}"));
     let theirs0 = AtomTable::read(&refdir.join("forces0.txt")).unwrap();
     let theirs = AtomTable::read(&refdir.join("final.txt")).unwrap();
@@ -45,7 +56,28 @@ fn lammps_refusals_are_located_errors() {
         (with_coeff("pair_coeff * * mdr 5e6 0.4 1.9e5 2.0 1.5 0.2 damping mdr 1 tangential linear_history 1 1 1"), "psi_b"),
         (with_coeff("pair_coeff * * mdr 5e6 0.4 1.9e5 -2.0 0.96 0.2 damping mdr 1 tangential linear_history 1 1 1"), "gamma (effective surface energy) must be >= 0"),
         (base.replace(coeff, &format!("{coeff}\n{coeff}")), "takes one pair_coeff"),
-        (base.replace("fix          1 all nve/sphere", "fix          1 all nve/sphere\nfix          w all wall/gran granular mdr 5e6 0.4 1.9e5 2.0 0.96 0.2 damping mdr 1 tangential linear_history 1 1 1 zplane -0.01 NULL"), "granular mdr against a wall"),
+        (base.replace("fix          1 all nve/sphere", "fix          1 all nve/sphere\nfix          w all wall/gran granular mdr 5e6 0.4 1.9e5 2.0 0.96 0.2 damping mdr 1 tangential linear_history 1 1 1 zplane -0.01 NULL"), "LAMMPS' mdr supports only region walls"),
+    ];
+    for (deck, want) in cases {
+        let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted, expected `{want}`"));
+        assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "expected `{want}`:\n{}", f.rendered);
+    }
+}
+
+/// The region-wall deck, edited: LAMMPS' checks that the walls' mdr agrees with the pair's.
+#[test]
+fn region_walls_disagreeing_with_the_pair_are_refused() {
+    let base = std::fs::read_to_string(root().join("lammps-refs/decks/in.gran_mdr_wall")).unwrap().replace("run          ${nsteps}", "run 0");
+    let wall = "fix          press all wall/gran/region granular mdr 5e6 0.4 1.9e5 0.0 0.96 0.2 damping mdr 1";
+    let pair = "pair_coeff   * * mdr 5e6 0.4 1.9e5 2.0 0.96 0.2 damping mdr 1 tangential linear_history 1428.57 1.0 0.7 rolling sds 1.0 0.0 0.6";
+    assert!(base.contains(wall) && base.contains(pair));
+    let cases: Vec<(String, &str)> = vec![
+        (base.replace(wall, &wall.replace("5e6 0.4", "6e6 0.4")), "Young's modulus in pair style, 5000000, does not agree with value 6000000"),
+        (base.replace(wall, &wall.replace("0.4 1.9e5", "0.3 1.9e5")), "Poisson's ratio in pair style"),
+        (base.replace(wall, &wall.replace("1.9e5", "2e5")), "Yield stress in pair style"),
+        (base.replace(wall, &wall.replace("0.96 0.2", "0.9 0.2")), "Bulk response trigger in pair style"),
+        (base.replace(wall, &wall.replace("0.96 0.2", "0.96 0.3")), "Damping in pair style"),
+        (base.replace(pair, "pair_coeff   * * hertz/material 5e6 0.2 0.4 tangential linear_history 1428.57 1.0 0.7"), "needs pair_style granular with the mdr model"),
     ];
     for (deck, want) in cases {
         let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted, expected `{want}`"));

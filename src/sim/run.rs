@@ -592,6 +592,7 @@ impl Simulation {
         }
 
         self.pair_pre_force(false)?;
+        self.fix_hook(|h| h.mdr_pre_force, |f, s, c| f.mdr_pre_force(s, c))?;
         // the stages follow each other: each starts at the reading that ended the last
         self.forces_timed(eflag, true, None)?;
 

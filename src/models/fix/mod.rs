@@ -79,6 +79,9 @@ pub struct FixHooks {
     pub pre_exchange: bool,
     pub post_integrate: bool,
     pub post_force: bool,
+    /// After pair granular mdr's work before the forces, outside a run's setup (a region wall
+    /// with the mdr model: LAMMPS' fix GRANULAR/MDR updates it last in its pre_force).
+    pub mdr_pre_force: bool,
     pub final_integrate: bool,
     pub end_of_step: bool,
 }
@@ -266,6 +269,10 @@ pub trait Fix: Send + Sync {
         0.0
     }
     fn post_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        Ok(())
+    }
+    /// See [`FixHooks::mdr_pre_force`].
+    fn mdr_pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
     fn final_integrate(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {

@@ -162,6 +162,10 @@ impl FixWallGran {
             return Err(a.error_at(&cmd.name, "fix wall/gran requires atom attributes radius and omega (atom_style sphere)", "no sphere attributes"));
         }
         let spec = parse_model(&mut a, cmd, syntax(), state)?;
+        if spec.normal.style.name == "mdr" {
+            let w = args.iter().find(|w| w.text == "mdr").unwrap_or(&cmd.name);
+            return Err(a.error_at(w, "fix wall/gran cannot use the mdr normal model: LAMMPS' mdr supports only region walls (MDR model currently only supports fix wall/gran/region, not fix wall/gran)", "use fix wall/gran/region"));
+        }
         let model = GranModel::build(&spec, true);
         let w = a.word("wall style (xplane, yplane or zplane)")?;
         let dim = match w.text.as_str() {

@@ -27,7 +27,8 @@ use crate::engine::region::{Region, WallContact};
 use crate::engine::state::{RunError, State};
 use crate::models::pair::contact::Contact;
 use crate::models::pair::granular::normal::Normal;
-use crate::models::pair::granular::{contact_heat, granular_contact, GranModel, GranSpec};
+use crate::models::pair::granular::mdr_state::{self, MdrArrays};
+use crate::models::pair::granular::{contact_heat, granular_contact_with, mdr, GranModel, GranSpec};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 fn syntax() -> String {
@@ -163,6 +164,11 @@ impl FixWallGranRegion {
             _ => None,
         };
         let mut flow = heat.map(|(_, _, kq)| std::mem::take(&mut a.extra[kq].data)).unwrap_or_default();
+        // the mdr model reads and adds to the atoms' mdr values
+        let mut mdr_io = match self.model.normal {
+            Normal::Mdr(_) => Some(MdrArrays::take(a).map_err(|e| RunError::new(step, format!("fix {}: {e}", self.id)))?),
+            _ => None,
+        };
         let w0 = [0.0f64; 3];
         let mut result = Ok(());
         for i in 0..n {
@@ -177,22 +183,8 @@ impl FixWallGranRegion {
                 break;
             }
             let h = if w > 0 { &mut hist[i * stride..(i + 1) * stride] } else { &mut [][..] };
-            if w > 0 {
-                if nc == 0 {
-                    h[0] = 0.0;
-                    continue;
-                }
-                self.c2r.clear();
-                self.c2r.resize(tmax.max(1), 0);
-                let count = h[0] as usize;
-                let iwall = self.contacts[0].iwall;
-                if nc == 1 && count == 0 {
-                    h[0] = 1.0;
-                    h[1] = iwall as f64;
-                    h[1 + slots..1 + slots + w].fill(0.0);
-                } else if nc > 1 || count > 1 || h[1] as usize != iwall {
-                    update_contacts(h, slots, w, &self.contacts, &mut self.c2r);
-                }
+            if w > 0 && !track_contacts(h, slots, w, tmax, &self.contacts, &mut self.c2r) {
+                continue;
             }
             for ic in 0..nc {
                 let c = self.contacts[ic];
@@ -205,9 +197,19 @@ impl FixWallGranRegion {
                     continue;
                 }
                 let vwall = if dynamic { c.vwall } else { w0 };
-                let g = Contact { del: c.del, rsq, radi, radj: c.radius, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, mi: if rigid_mass.is_empty() { a.rmass[i] } else { rigid_mass[i] }, mj: 0.0 };
+                let mi = if rigid_mass.is_empty() { a.rmass[i] } else { rigid_mass[i] };
+                let g = Contact { del: c.del, rsq, radi, radj: c.radius, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, mi, mj: 0.0 };
                 let hs = if w > 0 { &mut h[slot..slot + w] } else { &mut [][..] };
-                let r = granular_contact(&self.model, &g, true, hs, update, dt);
+                let fnormal = match (&self.model.normal, mdr_io.as_mut()) {
+                    (Normal::Mdr(m), Some(io)) => {
+                        let at = io.atom(i, a.tag[i], radi);
+                        let rinv = 1.0 / c.r;
+                        let nx = [rinv * c.del[0], rinv * c.del[1], rinv * c.del[2]];
+                        Some(mdr::normal_force(m, [&at, &at], [i, i], true, radi - c.r, &nx, mi, &mut hs[..mdr::HISTORY], update, &mut io.sums()).f)
+                    }
+                    _ => None,
+                };
+                let r = granular_contact_with(&self.model, &g, true, hs, update, dt, fnormal);
                 for d in 0..3 {
                     a.f[i][d] += r.f[d];
                     a.torque[i][d] += r.ti[d];
@@ -223,8 +225,92 @@ impl FixWallGranRegion {
         if let Some((_, _, kq)) = heat {
             a.extra[kq].data = flow;
         }
+        if let Some(io) = mdr_io {
+            io.restore(a);
+        }
         result
     }
+
+    /// LAMMPS FixGranularMDR::update_fix_gran_wall, for this wall with the mdr model: after the
+    /// pair style's mdr pass (new radii, mean surface displacements of the pairs), each atom's
+    /// contacts with the wall (at its new radius) are tracked as the force pass will track them
+    /// and add their overlap increments to the atom's mean surface displacement; then the
+    /// ghosts get it.
+    fn mdr_pre_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        let step = state.step;
+        if self.region.is_dynamic() {
+            let me: &dyn Fix = &NameOnly(&self.id);
+            self.region.prematch(&mut |name| ctx.equal(state, me, name)).map_err(|e| RunError::new(step, format!("fix {} region {}: {e}", self.id, self.region_id)))?;
+        }
+        let (w, slots, tmax) = (self.width(), self.slots, self.tmax);
+        let stride = self.stride(slots);
+        let a = &mut state.atoms;
+        let Some(kx) = a.find_extra(&self.array) else { return Ok(()) };
+        let mut hist = std::mem::take(&mut a.extra[kx].data);
+        let mut result = Ok(());
+        for i in 0..a.nlocal {
+            if !self.region.matches(a.x[i]) {
+                continue;
+            }
+            self.region.surface(a.x[i], a.radius[i], &mut self.contacts);
+            if self.contacts.len() > tmax {
+                result = Err(RunError::new(step, format!("too many wall/gran/region contacts for one particle (atom {}: {}, at most {tmax})", a.tag[i], self.contacts.len())));
+                break;
+            }
+            let h = &mut hist[i * stride..(i + 1) * stride];
+            if !track_contacts(h, slots, w, tmax, &self.contacts, &mut self.c2r) {
+                continue;
+            }
+            for (ic, c) in self.contacts.iter().enumerate() {
+                let slot = 1 + slots + self.c2r[ic] * w;
+                let delta = a.radius[i] - c.r;
+                if let Err(e) = mdr_state::wall_surface_displacement(a, i, delta, &h[slot..slot + w]) {
+                    result = Err(RunError::new(step, e));
+                }
+            }
+        }
+        a.extra[kx].data = hist;
+        result?;
+        let kd = a.field(crate::engine::fields::MDR_DDELTA_BAR).ok_or_else(|| RunError::new(step, "pair granular mdr: the per-atom value d_ddelta_bar is missing"))?;
+        mdr_state::forward(a, kd);
+        Ok(())
+    }
+}
+
+/// LAMMPS FixGranularMDR::setup_pre_force's checks of a region wall with the mdr model: pair
+/// granular uses mdr too, with the same material (E, nu, Y, psi_b and damping coefficient).
+fn check_mdr_wall(wall: &mdr::Mdr, pair: Option<mdr::Mdr>) -> Result<(), String> {
+    let Some(p) = pair else {
+        return Err("the mdr normal model on a region wall needs pair_style granular with the mdr model (LAMMPS: Must specify MDR normal model with pair granular)".into());
+    };
+    for (what, a, b) in [("Young's modulus", p.e, wall.e), ("Poisson's ratio", p.nu, wall.nu), ("Yield stress", p.y, wall.y), ("Bulk response trigger", p.psi_b, wall.psi_b), ("Damping", p.damp, wall.damp)] {
+        if a != b {
+            return Err(format!("{what} in pair style, {a}, does not agree with value {b} in fix gran/wall/region (LAMMPS' mdr model)"));
+        }
+    }
+    Ok(())
+}
+
+/// The history of atom `i` (`h`: count, wall numbers, histories) follows its contacts now, and
+/// `c2r` maps each contact to its history slot (LAMMPS' post_force before the contacts: one
+/// contact handled at once, more by `update_contacts`). False when the atom touches nothing.
+fn track_contacts(h: &mut [f64], slots: usize, w: usize, tmax: usize, contacts: &[WallContact], c2r: &mut Vec<usize>) -> bool {
+    if contacts.is_empty() {
+        h[0] = 0.0;
+        return false;
+    }
+    c2r.clear();
+    c2r.resize(tmax.max(1), 0);
+    let count = h[0] as usize;
+    let iwall = contacts[0].iwall;
+    if contacts.len() == 1 && count == 0 {
+        h[0] = 1.0;
+        h[1] = iwall as f64;
+        h[1 + slots..1 + slots + w].fill(0.0);
+    } else if contacts.len() > 1 || count > 1 || h[1] as usize != iwall {
+        update_contacts(h, slots, w, contacts, c2r);
+    }
+    true
 }
 
 /// LAMMPS `update_contacts`: drop the remembered walls the atom no longer touches (the last
@@ -290,9 +376,12 @@ impl Fix for FixWallGranRegion {
         self.groupbit
     }
     fn hooks(&self) -> FixHooks {
-        FixHooks { post_force: true, ..FixHooks::default() }
+        FixHooks { post_force: true, mdr_pre_force: matches!(self.model.normal, Normal::Mdr(_)), ..FixHooks::default() }
     }
-    fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
+        if let Normal::Mdr(wall) = self.model.normal {
+            check_mdr_wall(&wall, ctx.pair.and_then(|p| p.mdr_model()))?;
+        }
         let now = state.regions.iter().find(|r| r.id == self.region_id).ok_or_else(|| format!("region {} for fix wall/gran/region does not exist", self.region_id))?;
         if let Some(style) = now.without_surface() {
             return Err(format!("region style {style} has no wall contacts"));
@@ -321,6 +410,9 @@ impl Fix for FixWallGranRegion {
     }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.apply(state, ctx, true)
+    }
+    fn mdr_pre_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        FixWallGranRegion::mdr_pre_force(self, state, ctx)
     }
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.remove_extra(&self.array);

@@ -289,6 +289,11 @@ pub trait PairStyle: Send + Sync {
     fn pre_force(&mut self, _state: &mut crate::engine::state::State, _setup: bool) -> Result<(), String> {
         Ok(())
     }
+    /// The `mdr` normal model of pair granular, when its pairs use it (after `init`): granular
+    /// region walls with mdr must agree with it (LAMMPS' fix GRANULAR/MDR checks).
+    fn mdr_model(&self) -> Option<crate::models::pair::granular::mdr::Mdr> {
+        None
+    }
     /// Why the style cannot run on several ranks yet (None: it can if its name is supported).
     fn ranks_refusal(&self) -> Option<String> {
         None

@@ -20,7 +20,7 @@
 //! With two equally long sides LAMMPS gives the penalty to one of them by the order of its
 //! neighbour list; here both get it (exact ties only).
 
-use super::mdr::{touching, AC, DELTAP, DELTA_MAX, OVERLAP_LIMIT, PENALTY};
+use super::mdr::{touching, MdrAtom, Sums, AC, DELTAP, DELTA_MAX, OVERLAP_LIMIT, PENALTY};
 use crate::engine::atoms::Atoms;
 use crate::engine::contact_history::ContactHistory;
 use crate::engine::fields::{self, Field};
@@ -48,7 +48,7 @@ fn index(atoms: &Atoms, f: Field) -> Result<usize, String> {
 }
 
 /// Copy a field of the owned atoms to their ghost images.
-fn forward(atoms: &mut Atoms, k: usize) {
+pub(crate) fn forward(atoms: &mut Atoms, k: usize) {
     let n = atoms.nlocal;
     let owner = std::mem::take(&mut atoms.ghost_owner);
     if atoms.extra[k].data.len() == n + owner.len() {
@@ -238,4 +238,52 @@ fn mean_surface_displacement(a: &mut Atoms, list: &crate::engine::neighbor::Neig
             }
         }
     }
+}
+
+/// What a granular region wall with the mdr model reads and adds to on the atoms, taken out of
+/// them for the wall's pass ([`MdrArrays::restore`] puts them back): the values of
+/// [`MdrAtom`] and the sums of the pair pass, to which the wall's contacts add (LAMMPS: the
+/// wall's model writes the same per-atom arrays after the pair pass).
+pub struct MdrArrays {
+    index: Vec<usize>,
+    data: Vec<Vec<f64>>,
+}
+
+const READ: [Field; 6] = [fields::MDR_RO, fields::MDR_PSI, fields::MDR_DDELTA_BAR, fields::MDR_VGEO, fields::MDR_ACON0, fields::MDR_VELAS];
+
+impl MdrArrays {
+    pub fn take(atoms: &mut Atoms) -> Result<MdrArrays, String> {
+        let index = READ.iter().chain(&fields::MDR_SUMS).map(|&f| index(atoms, f)).collect::<Result<Vec<_>, _>>()?;
+        let data = index.iter().map(|&k| std::mem::take(&mut atoms.extra[k].data)).collect();
+        Ok(MdrArrays { index, data })
+    }
+
+    /// Atom `i` as a contact reads it.
+    pub fn atom(&self, i: usize, tag: i64, radius: f64) -> MdrAtom {
+        let v = |k: usize| self.data[k][i];
+        MdrAtom { tag, radius, ro: v(0), psi: v(1), ddelta_bar: v(2), vgeo: v(3), acon0: v(4), velas: v(5) }
+    }
+
+    pub fn sums(&mut self) -> Sums<'_> {
+        let mut it = self.data[READ.len()..].iter_mut();
+        Sums(std::array::from_fn(|_| &mut it.next().expect("nine sums")[..]))
+    }
+
+    pub fn restore(self, atoms: &mut Atoms) {
+        for (k, d) in self.index.into_iter().zip(self.data) {
+            atoms.extra[k].data = d;
+        }
+    }
+}
+
+/// The mean surface displacement increment of atom `i` from one region-wall contact (LAMMPS
+/// FixGranularMDR::update_fix_gran_wall): the contact's new overlap `delta` against its last
+/// (history value 0), weighted by its share of the atom's contact area (history value AC).
+pub fn wall_surface_displacement(a: &mut Atoms, i: usize, delta: f64, h: &[f64]) -> Result<(), String> {
+    let (kc, kd) = (index(a, fields::MDR_ACON0)?, index(a, fields::MDR_DDELTA_BAR)?);
+    let con = a.extra[kc].data[i];
+    if con != 0.0 {
+        a.extra[kd].data[i] += h[AC] / con * (delta - h[0]);
+    }
+    Ok(())
 }

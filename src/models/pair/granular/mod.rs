@@ -388,10 +388,6 @@ impl GranSpec {
             };
             return Err(a.error_at(w, msg, "mdr goes with mdr"));
         }
-        if normal.name == "mdr" && wall {
-            let w = named[NORMAL].unwrap().word;
-            return Err(a.error_at(w, "granular mdr against a wall is not supported by dmhs yet", "not supported on walls"));
-        }
         let max_history = if normal.name == "mdr" { mdr::MAX_TOTAL_HISTORY } else { MAX_HISTORY };
         let mut total = 0;
         for n in named.iter().flatten() {
@@ -924,6 +920,13 @@ impl PairStyle for Granular {
     }
     fn ranks_refusal(&self) -> Option<String> {
         self.uses_mdr().then(|| "pair granular with the mdr model".to_string())
+    }
+    fn mdr_model(&self) -> Option<mdr::Mdr> {
+        self.mdr?;
+        self.models.0.data.iter().find_map(|m| match m.normal {
+            Normal::Mdr(m) => Some(m),
+            _ => None,
+        })
     }
     fn describe(&self) -> String {
         let mut s = String::from("granular");

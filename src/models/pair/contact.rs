@@ -215,6 +215,14 @@ fn tally_pair(sums: &mut Sums, i: usize, j: usize, w: f64, del: [f64; 3], f: [f6
     }
 }
 
+/// A contact that is over forgets its history. Rare, so out of line: inlined, the loop over the
+/// entries kept running offsets into `values` for it on every entry.
+#[cold]
+#[inline(never)]
+fn forget(values: &mut [f64], e: usize, hsize: usize) {
+    values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+}
+
 /// Compute all contacts of the list. `history` must be given when `M::HISTORY > 0` (and
 /// aligned with the list by [`ContactHistory::rebuilt`]).
 pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut PairOutput, history: Option<&mut ContactHistory>) -> Tally {
@@ -274,6 +282,10 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         let chunk = &list.chunks[c];
         let mut sums = Sums { t: Tally::default(), shares: record.then(Vec::new) };
         let mut empty = HistoryChunk::default();
+        if !(hsize > 0 || beyond) {
+            // flags nobody reads, so that every atom's flags below are one slice of its entries
+            empty.touch.resize(chunk.len(), 0);
+        }
         let h = if hsize > 0 || beyond { &mut hist[c] } else { &mut empty };
         let (touch, values): (&mut [u8], &mut [f64]) = (&mut h.touch[..], &mut h.values[..]);
         let mut b = Batch::default();
@@ -335,14 +347,17 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
             let radi = radius[i];
             let ti = typ[i];
             let k0 = chunk.first_entry(i);
-            for (k, &je) in entries.of(i).iter().enumerate() {
+            let neigh = entries.of(i);
+            // the atom's touch flags, checked once here instead of at every entry
+            let touch = &mut touch[k0..k0 + neigh.len()];
+            for (k, &je) in neigh.iter().enumerate() {
                 let (j, jraw) = (je.index(), je.raw());
                 let (xj, radj) = (*x_of.get(je), *radius_of.get(je));
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let radsum = radi + radj;
                 let e = k0 + k;
-                let touching = if beyond { M::touch(model.params(ti, *typ_of.get(je)), rsq, radi, radj, touch[e] != 0) } else { rsq < radsum * radsum };
+                let touching = if beyond { M::touch(model.params(ti, *typ_of.get(je)), rsq, radi, radj, touch[k] != 0) } else { rsq < radsum * radsum };
                 if !EXTRA {
                     // the common case without branches on the (unpredictable) overlap test:
                     // every entry is written to the next lane, which is kept only if touching
@@ -351,11 +366,11 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     b.e[n] = e;
                     n += touching as usize;
                     if hsize > 0 {
-                        let was = touch[e];
-                        touch[e] = touching as u8;
+                        let was = touch[k];
+                        touch[k] = touching as u8;
                         if was > touching as u8 {
                             // the contact is over
-                            values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+                            forget(values, e, hsize);
                         }
                     }
                     if n == LANES {
@@ -365,9 +380,9 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     continue;
                 }
                 if !touching {
-                    if (hsize > 0 || beyond) && touch[e] != 0 {
-                        touch[e] = 0;
-                        values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+                    if (hsize > 0 || beyond) && touch[k] != 0 {
+                        touch[k] = 0;
+                        forget(values, e, hsize);
                     }
                     continue;
                 }
@@ -382,7 +397,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     continue;
                 }
                 if hsize > 0 || beyond {
-                    touch[e] = 1;
+                    touch[k] = 1;
                 }
                 b.i[n] = i;
                 b.j[n] = j;

@@ -244,11 +244,6 @@ impl ChunkList {
     pub fn neighbors(&self, i: usize) -> &[u32] {
         &self.neigh.raw()[self.span(i)]
     }
-    /// The entries of atom `i` as values of scope `s`, for unchecked reads.
-    #[inline]
-    pub fn entries<'id>(&self, s: &Scope<'id>, i: usize) -> &[Entry<'id>] {
-        self.neigh.view(s, self.span(i))
-    }
     /// The chunk's entries as values of scope `s`, checked against the scope once (for a loop
     /// over all its atoms).
     #[inline]

@@ -195,6 +195,34 @@ impl LanesOut {
     }
 }
 
+/// A chunk's energy-step sums: its tallies and, for compute pe/atom and stress/atom (`shares`
+/// is `Some`), its pairs' virials.
+#[derive(Clone, Default)]
+struct Sums {
+    t: Tally,
+    shares: Option<Vec<PairShare>>,
+}
+
+/// One pair's tallies on an energy step. Out of line and cold: written inline in the batch
+/// code, the `Vec`'s push and what it referenced cost the loop over the entries registers and
+/// instructions on every step (docs/performance.md, "The contact loop's per-atom tallies").
+#[cold]
+#[inline(never)]
+fn tally_pair(sums: &mut Sums, i: usize, j: usize, w: f64, del: [f64; 3], f: [f64; 3]) {
+    sums.t.xyz(w, del, f);
+    if let Some(shares) = &mut sums.shares {
+        shares.push(PairShare::xyz(i, j, 0.0, del, f));
+    }
+}
+
+/// A contact that is over forgets its history. Rare, so out of line: inlined, the loop over the
+/// entries kept running offsets into `values` for it on every entry.
+#[cold]
+#[inline(never)]
+fn forget(values: &mut [f64], e: usize, hsize: usize) {
+    values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+}
+
 /// Compute all contacts of the list. `history` must be given when `M::HISTORY > 0` (and
 /// aligned with the list by [`ContactHistory::rebuilt`]).
 pub fn compute_contacts<M: ContactModel>(model: &M, input: &PairInput, out: &mut PairOutput, history: Option<&mut ContactHistory>) -> Tally {
@@ -244,7 +272,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
     let bounds = list.bounds();
     // each chunk's tallies and, for compute pe/atom and stress/atom, its pairs' virials
     let record = EFLAG && out.peratom.is_some();
-    let mut parts = vec![(Tally::default(), Vec::new()); list.chunks.len()];
+    let mut parts = vec![Sums::default(); list.chunks.len()];
     // neighbour entries read positions, radii and types unchecked (all hold every atom)
     scope(nall, |s| {
     let (x_of, radius_of, typ_of) = (s.reader(x), s.reader(radius), s.reader(typ));
@@ -252,14 +280,17 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         let windows = (AtomsMut::new(&mut *out.f), AtomsMut::new(&mut *out.torque), ChunksMut::new(&mut *hist));
         slab_phase(&bounds, parity, windows, &mut parts, |c, (mut fo, mut to, mut hist)| {
         let chunk = &list.chunks[c];
-        let mut t = Tally::default();
-        let mut shares: Vec<PairShare> = Vec::new();
+        let mut sums = Sums { t: Tally::default(), shares: record.then(Vec::new) };
         let mut empty = HistoryChunk::default();
+        if !(hsize > 0 || beyond) {
+            // flags nobody reads, so that every atom's flags below are one slice of its entries
+            empty.touch.resize(chunk.len(), 0);
+        }
         let h = if hsize > 0 || beyond { &mut hist[c] } else { &mut empty };
         let (touch, values): (&mut [u8], &mut [f64]) = (&mut h.touch[..], &mut h.values[..]);
         let mut b = Batch::default();
         // evaluate the batch and apply its results in list order
-        let mut flush = |b: &mut Batch, n: usize, values: &mut [f64], t: &mut Tally, shares: &mut Vec<PairShare>| {
+        let mut flush = |b: &mut Batch, n: usize, values: &mut [f64], sums: &mut Sums| {
             if n == 0 {
                 return;
             }
@@ -302,29 +333,31 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 };
                 if EFLAG {
                     let del = [x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]];
-                    t.xyz(w, del, [r.f[0][l], r.f[1][l], r.f[2][l]]);
-                    if record {
-                        shares.push(PairShare::xyz(i, j, 0.0, del, [r.f[0][l], r.f[1][l], r.f[2][l]]));
-                    }
+                    tally_pair(sums, i, j, w, del, [r.f[0][l], r.f[1][l], r.f[2][l]]);
                 }
             };
             crate::engine::par::lanes::for_each_lane(b.n, apply);
         };
         // lanes filled so far (a local, so it stays in a register)
         let mut n = 0usize;
+        // the chunk's entries checked against the scope once (not once per atom)
+        let entries = chunk.view(&s);
         for i in chunk.start..chunk.end {
             let xi = x[i];
             let radi = radius[i];
             let ti = typ[i];
             let k0 = chunk.first_entry(i);
-            for (k, &je) in chunk.entries(&s, i).iter().enumerate() {
+            let neigh = entries.of(i);
+            // the atom's touch flags, checked once here instead of at every entry
+            let touch = &mut touch[k0..k0 + neigh.len()];
+            for (k, &je) in neigh.iter().enumerate() {
                 let (j, jraw) = (je.index(), je.raw());
                 let (xj, radj) = (*x_of.get(je), *radius_of.get(je));
                 let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
                 let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
                 let radsum = radi + radj;
                 let e = k0 + k;
-                let touching = if beyond { M::touch(model.params(ti, *typ_of.get(je)), rsq, radi, radj, touch[e] != 0) } else { rsq < radsum * radsum };
+                let touching = if beyond { M::touch(model.params(ti, *typ_of.get(je)), rsq, radi, radj, touch[k] != 0) } else { rsq < radsum * radsum };
                 if !EXTRA {
                     // the common case without branches on the (unpredictable) overlap test:
                     // every entry is written to the next lane, which is kept only if touching
@@ -333,23 +366,23 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     b.e[n] = e;
                     n += touching as usize;
                     if hsize > 0 {
-                        let was = touch[e];
-                        touch[e] = touching as u8;
+                        let was = touch[k];
+                        touch[k] = touching as u8;
                         if was > touching as u8 {
                             // the contact is over
-                            values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+                            forget(values, e, hsize);
                         }
                     }
                     if n == LANES {
-                        flush(&mut b, n, values, &mut t, &mut shares);
+                        flush(&mut b, n, values, &mut sums);
                         n = 0;
                     }
                     continue;
                 }
                 if !touching {
-                    if (hsize > 0 || beyond) && touch[e] != 0 {
-                        touch[e] = 0;
-                        values[e * hsize..(e + 1) * hsize].iter_mut().for_each(|s| *s = 0.0);
+                    if (hsize > 0 || beyond) && touch[k] != 0 {
+                        touch[k] = 0;
+                        forget(values, e, hsize);
                     }
                     continue;
                 }
@@ -364,7 +397,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                     continue;
                 }
                 if hsize > 0 || beyond {
-                    touch[e] = 1;
+                    touch[k] = 1;
                 }
                 b.i[n] = i;
                 b.j[n] = j;
@@ -372,18 +405,18 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 b.factor[n] = factor;
                 n += 1;
                 if n == LANES {
-                    flush(&mut b, n, values, &mut t, &mut shares);
+                    flush(&mut b, n, values, &mut sums);
                     n = 0;
                 }
             }
         }
-        flush(&mut b, n, values, &mut t, &mut shares);
-        (t, shares)
+        flush(&mut b, n, values, &mut sums);
+        sums
         });
     }
     });
     if let Some(pa) = out.peratom.as_deref_mut() {
-        parts.iter().for_each(|(_, s)| pa.add_pairs(s));
+        parts.iter().filter_map(|p| p.shares.as_deref()).for_each(|s| pa.add_pairs(s));
     }
-    sum_tallies(parts.iter().map(|p| &p.0))
+    sum_tallies(parts.iter().map(|p| &p.t))
 }

@@ -127,6 +127,19 @@ fn compare_decks(serial_deck: &str, ranks_deck: &str, ranks: usize, atom_tol: f6
     }
 }
 
+/// The errors of a deck each of `n` thread-ranks must refuse (a rank that runs it fails the test).
+fn refusals(deck: &str, n: usize) -> Vec<String> {
+    on_ranks(deck, n).into_iter().map(|r| r.err().expect("refused")).collect()
+}
+
+/// The `--features mpi` build (DMHS_MPI_BIN) and the launcher (DMHS_MPIEXEC, default `mpiexec`)
+/// of the live MPI tests.
+fn mpi_launcher() -> (String, String) {
+    let bin = std::env::var("DMHS_MPI_BIN").expect("DMHS_MPI_BIN: a dmhs built with `cargo build --release --features mpi`");
+    assert!(std::path::Path::new(&bin).is_file(), "DMHS_MPI_BIN={bin} is not a file");
+    (bin, std::env::var("DMHS_MPIEXEC").unwrap_or_else(|_| "mpiexec".into()))
+}
+
 #[test]
 fn lj_melt_on_two_ranks_is_the_serial_run() {
     compare(MELT, 2);
@@ -220,8 +233,7 @@ fn bonded_chains_across_ranks_are_the_serial_run() {
 fn a_bond_longer_than_the_ghost_cutoff_stops_every_rank() {
     let dir = tempfile::tempdir().unwrap();
     let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace("comm_modify  cutoff 2.5\n", "");
-    for r in on_ranks(&deck, 4) {
-        let e = r.err().expect("refused");
+    for e in refusals(&deck, 4) {
         assert!(e.contains("is missing on this rank") && e.contains("beyond the ghost cutoff"), "{e}");
     }
 }
@@ -482,8 +494,7 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
     let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all temp/berendsen 1.0 1.0 0.5\n");
-    for r in on_ranks(&deck, 2) {
-        let e = r.err().expect("refused");
+    for e in refusals(&deck, 2) {
         assert!(e.contains("fix 2 (temp/berendsen) cannot run on 2 ranks yet"), "{e}");
     }
 }
@@ -491,8 +502,7 @@ fn what_is_not_distributed_yet_is_refused_on_every_rank() {
 #[test]
 fn sub_domains_thinner_than_the_cutoff_are_refused() {
     let deck = MELT.replace("block 0 6 0 6 0 6", "block 0 6 0 6 0 2");
-    for r in on_ranks(&deck.replace("run          150\nrun          100\n", "processors 1 1 2\nrun 10\n"), 2) {
-        let e = r.err().expect("refused");
+    for e in refusals(&deck.replace("run          150\nrun          100\n", "processors 1 1 2\nrun 10\n"), 2) {
         assert!(e.contains("less than the ghost cutoff"), "{e}");
     }
 }
@@ -502,9 +512,7 @@ fn sub_domains_thinner_than_the_cutoff_are_refused() {
 #[test]
 #[cfg_attr(not(live_mpi), ignore = "live MPI comparison: DMHS_MPI_BIN (a dmhs built with --features mpi) not set")]
 fn mpiexec_ranks_give_the_serial_run() {
-    let bin = std::env::var("DMHS_MPI_BIN").expect("DMHS_MPI_BIN: a dmhs built with `cargo build --release --features mpi`");
-    assert!(std::path::Path::new(&bin).is_file(), "DMHS_MPI_BIN={bin} is not a file");
-    let mpiexec = std::env::var("DMHS_MPIEXEC").unwrap_or_else(|_| "mpiexec".into());
+    let (bin, mpiexec) = mpi_launcher();
     let dir = tempfile::tempdir().unwrap();
     let deck = format!("{MELT}write_data final.data\n");
     std::fs::write(dir.path().join("in.melt"), &deck).unwrap();
@@ -770,8 +778,7 @@ fn bpm_solids_fracturing_on_ranks_are_the_serial_run() {
 fn bpm_volume_factor_is_refused_on_ranks() {
     let dir = tempfile::tempdir().unwrap();
     let deck = bpm_impact(false, &dir.path().join("b.local")).replace("bond_style bpm/spring store/local", "bond_style bpm/spring volume/factor yes store/local").replace("bond_coeff 1 1.0 0.04 1.0\nbond_coeff 2 1.0 0.20 1.0", "bond_coeff 1 1.0 0.04 1.0 0.5\nbond_coeff 2 1.0 0.20 1.0 0.5");
-    for r in on_ranks(&deck, 2) {
-        let e = r.err().expect("refused");
+    for e in refusals(&deck, 2) {
         assert!(e.contains("bond_style bpm/spring volume/factor yes cannot run on 2 ranks yet"), "{e}");
     }
 }
@@ -781,8 +788,7 @@ fn bpm_volume_factor_is_refused_on_ranks() {
 #[test]
 #[cfg_attr(not(live_mpi), ignore = "live MPI comparison: DMHS_MPI_BIN (a dmhs built with --features mpi) not set")]
 fn mpiexec_bpm_solids_fracture_as_the_serial_run() {
-    let bin = std::env::var("DMHS_MPI_BIN").expect("DMHS_MPI_BIN: a dmhs built with `cargo build --release --features mpi`");
-    let mpiexec = std::env::var("DMHS_MPIEXEC").unwrap_or_else(|_| "mpiexec".into());
+    let (bin, mpiexec) = mpi_launcher();
     let dir = tempfile::tempdir().unwrap();
     for rotational in [true, false] {
         let brk = dir.path().join("brk.local");

@@ -263,6 +263,30 @@ fn absurd_type_counts_are_refused() {
     }
 }
 
+/// Found by tests/fuzz.rs: `create_box 4000` in a pair granular deck needed 13.7 GB (a 350-byte
+/// model per type pair) and aborted under the 2 GB limit. One model per distinct pair_coeff runs
+/// in a few hundred MB; a style whose plain table does not fit (lj/cut: 48 bytes a pair) is
+/// refused at its pair_style line.
+#[test]
+fn thousands_of_types_run_or_are_refused_at_the_pair_style() {
+    let d = deck("in.types_4096");
+    for sub in ["run", "check"] {
+        let t = expect(sub, &[&d, "-log", "none"], 0, &[]);
+        if sub == "run" {
+            assert!(t.contains("for 20 steps with 2 atoms"), "{t}");
+        }
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let o = dmhs(&["-in", &d, "-var", "style", "lj", "-log", "none"], tmp.path());
+    let t = text(&o);
+    assert!(!t.contains("panicked") && !t.contains("RUST_BACKTRACE"), "{t}");
+    match o.status.code() {
+        Some(0) => assert!(t.contains("for 20 steps with 2 atoms"), "{t}"),
+        Some(2) => assert!(t.contains("a pair style's table of (N+1)^2 = 16785409 type pairs") && t.contains("in.types_4096:"), "{t}"),
+        c => panic!("exit {c:?}:\n{t}"),
+    }
+}
+
 /// Found by tests/fuzz.rs: 100,400 atoms in a strip of a periodic box 1e19 long. Bins grow only
 /// along the long dimension; with the bins of every dimension grown the strip was one bin and
 /// each neighbour build O(N^2) (over 60 s).

@@ -162,6 +162,10 @@ impl<'a> Args<'a> {
     pub fn error_at(&self, w: &Word, message: impl Into<String>, label: impl Into<String>) -> Diagnostic {
         self.help(Diagnostic::at(w.span, message, label))
     }
+    /// An error about the command as a whole (e.g. what it would allocate), at its anchor.
+    pub fn error_command(&self, message: impl Into<String>, label: impl Into<String>) -> Diagnostic {
+        self.help(Diagnostic::at(self.anchor, message, label))
+    }
     /// An error for a missing argument, pointing just after the last word.
     pub fn missing(&self, what: &str) -> Diagnostic {
         let span = match self.words.last() {

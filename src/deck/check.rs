@@ -37,8 +37,14 @@ impl Simulation {
             s += &format!("; {} bonds, {} angles, {} dihedrals", t.bonds.len(), t.angles.len(), t.dihedrals.len());
         }
         s += "\n";
+        let mut counts = vec![0usize; self.state.ntypes + 1];
+        for &t in &self.state.atoms.typ[..self.state.atoms.nlocal] {
+            if let Some(c) = counts.get_mut(t) {
+                *c += 1;
+            }
+        }
         for k in 1..=self.state.ntypes {
-            let count = self.state.atoms.typ[..self.state.atoms.nlocal].iter().filter(|&&x| x == k).count();
+            let count = counts[k];
             let m = if self.state.atoms.features.per_atom_mass() { "per-atom".to_string() } else if self.state.mass_set[k] { format!("{}", self.state.type_mass[k]) } else { "NOT SET".to_string() };
             s += &format!("  type {k}: {count} atoms, mass {m}\n");
         }

@@ -41,7 +41,7 @@ impl PairBpmSpring {
                 _ => return Err(a.unknown_keyword(w, &["anharmonic"])),
             }
         }
-        Ok(PairBpmSpring { anharmonic, coeff: TypeTable::new(0), pairs: TypeTable::new(0) })
+        Ok(PairBpmSpring { anharmonic, coeff: TypeTable::empty(), pairs: TypeTable::empty() })
     }
 
     fn coeff_syntax(&self) -> &'static str {
@@ -89,7 +89,7 @@ impl PairStyle for PairBpmSpring {
     }
 
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        self.coeff.grow(ihi.max(jhi));
+        self.coeff.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         args.syntax = self.coeff_syntax();
         let k = args.f64("k")?;
         let cut = args.positive_f64("the cutoff cut")?;
@@ -112,8 +112,8 @@ impl PairStyle for PairBpmSpring {
     }
 
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.coeff.grow(ntypes);
-        let mut pairs = TypeTable::new(ntypes);
+        self.coeff.grow(ntypes)?;
+        let mut pairs = TypeTable::new(ntypes)?;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if active.is_some_and(|a| !a[i * (ntypes + 1) + j]) {
@@ -153,14 +153,10 @@ impl PairStyle for PairBpmSpring {
 
     fn describe(&self) -> String {
         let mut s = format!("bpm/spring{}", if self.anharmonic { " anharmonic yes" } else { "" });
-        for i in 1..=self.coeff.n {
-            for j in i..=self.coeff.n {
-                let c = self.coeff.get(i, j);
-                if c.set {
-                    s += &format!("\n    {i} {j}: k {} cut {} gamma {}{}", c.k, c.cut, c.gamma, if self.anharmonic { format!(" ka {}", c.ka) } else { String::new() });
-                }
-            }
-        }
+        s += &super::pair_lines(self.coeff.n, |i, j| self.coeff.get(i, j).set, |i, j| {
+            let c = self.coeff.get(i, j);
+            format!("k {} cut {} gamma {}{}", c.k, c.cut, c.gamma, if self.anharmonic { format!(" ka {}", c.ka) } else { String::new() })
+        });
         s
     }
 }

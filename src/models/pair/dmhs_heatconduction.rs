@@ -45,7 +45,7 @@ impl DmhsHeatConduction {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let kernel = parse_kernel(&mut a)?;
-        Ok(DmhsHeatConduction { kernel, given: PairTable::new(0), pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true })
+        Ok(DmhsHeatConduction { kernel, given: PairTable::empty(), pairs: PairTable::empty(), cutsq: vec![], n: 0, dim3: true })
     }
 }
 
@@ -93,12 +93,12 @@ impl PairStyle for DmhsHeatConduction {
         let k = args.f64("kappa (thermal conductivity)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.given.put_range(ilo, ihi, jlo, jhi, (k, h));
+        self.given.put_range(ilo, ihi, jlo, jhi, (k, h)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         Ok(())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.given.grow(ntypes);
-        let mut p = PairTable::new(ntypes);
+        self.given.grow(ntypes)?;
+        let mut p = PairTable::new(ntypes)?;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if active.map(|a| !a[i * (ntypes + 1) + j]).unwrap_or(false) {
@@ -116,7 +116,7 @@ impl PairStyle for DmhsHeatConduction {
         }
         self.pairs = p;
         self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1)?;
         Ok(())
     }
     fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
@@ -155,7 +155,7 @@ mod tests {
             atoms.push(&n);
         }
         let type_mass = vec![0.0, 2.0, 5.0];
-        let mut hc = DmhsHeatConduction { kernel: Kernel::Lucy, given: PairTable::new(0), pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true };
+        let mut hc = DmhsHeatConduction { kernel: Kernel::Lucy, given: PairTable::empty(), pairs: PairTable::empty(), cutsq: vec![], n: 0, dim3: true };
         hc.given.grow(2);
         hc.given.put(1, 1, (1.0, 1.0));
         hc.given.put(2, 2, (3.0, 0.6));

@@ -83,7 +83,7 @@ impl LjWet {
                 _ => return Err(a.unknown_keyword(w, &["conc", "scale", "swell"])),
             }
         }
-        Ok(LjWet { cut_global, conc_max, scale_all, dmax, coeff: TypeTable::new(0), derived: TypeTable::new(0) })
+        Ok(LjWet { cut_global, conc_max, scale_all, dmax, coeff: TypeTable::empty(), derived: TypeTable::empty() })
     }
 }
 
@@ -150,7 +150,7 @@ impl PairStyle for LjWet {
         "dmhs/lj/wet"
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        self.coeff.grow(ihi.max(jhi));
+        self.coeff.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         args.syntax = COEFF_SYNTAX;
         let epsilon = args.non_negative_f64("epsilon")?;
         let sigma = args.positive_f64("sigma")?;
@@ -165,8 +165,8 @@ impl PairStyle for LjWet {
         Ok(())
     }
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.coeff.grow(ntypes);
-        let mut derived = TypeTable::new(ntypes);
+        self.coeff.grow(ntypes)?;
+        let mut derived = TypeTable::new(ntypes)?;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if active.map(|a| !a[i * (ntypes + 1) + j]).unwrap_or(false) {

@@ -136,7 +136,7 @@ impl SphDelta {
         if form == Form::Fourtakas && g.is_none() {
             return Err(Diagnostic::at(cmd.span, "the fourtakas form needs the gravity vector: add `g gx gy gz` (the fix gravity acceleration, e.g. g 0 -9.81 0)", "no gravity given").with_help(format!("syntax: {SYNTAX}")));
         }
-        Ok(SphDelta { form, kernel, g: g.unwrap_or([0.0; 3]), types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
+        Ok(SphDelta { form, kernel, g: g.unwrap_or([0.0; 3]), types: TaitTypes::default(), pairs: PairTable::empty(), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
     }
 }
 
@@ -190,7 +190,7 @@ impl PairStyle for SphDelta {
         let delta = args.f64_where("delta (diffusion coefficient)", "in (0, 1]", |x| x > 0.0 && x <= 1.0)?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, (delta, h));
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (delta, h)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         self.types.set(ilo, ihi, rho0, c0);
         Ok(())
     }
@@ -204,7 +204,7 @@ impl PairStyle for SphDelta {
         };
         // only the assigned pairs need coefficients (hybrid/overlay assigns exactly those given)
         self.pairs.check_all(ntypes, Some(active), "dmhs/sph/delta")?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.types.grow(ntypes);
         self.n = ntypes;
         // rho0 and c0 are per type I of a pair_coeff (as in the Tait styles)
@@ -215,7 +215,7 @@ impl PairStyle for SphDelta {
                 }
             }
         }
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, Some(active), |p| p.1);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, Some(active), |p| p.1)?;
         let (pairs, t) = (&self.pairs, &self.types);
         self.derived = PerTypePair::new(ntypes, |i, j| {
             if i == 0 || j == 0 || !pairs.is_set(i, j) {
@@ -226,7 +226,7 @@ impl PairStyle for SphDelta {
             let rho0 = 0.5 * (t.rho0[i] + t.rho0[j]);
             // delta h_s c0 psi . grad W with h_s = h/2 and psi's factor 2: delta h c0 per unit wfd
             (Support::new(h), delta * h * c0, rho0, -3.5 / (c0 * c0))
-        });
+        })?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -31,7 +31,7 @@ impl SphDiffusion {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let kernel = parse_kernel(&mut a)?;
-        Ok(SphDiffusion { kernel, pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true, kw: 0 })
+        Ok(SphDiffusion { kernel, pairs: PairTable::empty(), cutsq: vec![], n: 0, dim3: true, kw: 0 })
     }
 }
 
@@ -70,7 +70,7 @@ impl PairStyle for SphDiffusion {
         let d = args.non_negative_f64("D (diffusion coefficient)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, (2.0 * d, h));
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (2.0 * d, h)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         Ok(())
     }
     fn init_sim(&mut self, setup: &PairSetup) -> Result<(), String> {
@@ -89,10 +89,10 @@ impl PairStyle for SphDiffusion {
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "dmhs/sph/diffusion")?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.n = ntypes;
         // D = 0 pairs exchange nothing: leave them out of the list
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| if p.0 > 0.0 { p.1 } else { 0.0 });
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| if p.0 > 0.0 { p.1 } else { 0.0 })?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -38,7 +38,7 @@ impl LjCut {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let cut_global = a.positive_f64("the global cutoff Rc")?;
         a.finish()?;
-        Ok(LjCut { cut_global, coeff: TypeTable::new(0), derived: TypeTable::new(0) })
+        Ok(LjCut { cut_global, coeff: TypeTable::empty(), derived: TypeTable::empty() })
     }
 }
 
@@ -73,16 +73,7 @@ impl PairStyle for LjCut {
     }
 
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        let ntypes = ihi.max(jhi).max(self.coeff.n);
-        if self.coeff.n < ntypes {
-            let mut t = TypeTable::new(ntypes);
-            for i in 1..=self.coeff.n {
-                for j in 1..=self.coeff.n {
-                    t.set(i, j, *self.coeff.get(i, j));
-                }
-            }
-            self.coeff = t;
-        }
+        self.coeff.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         args.syntax = COEFF_SYNTAX;
         let epsilon = args.f64("epsilon")?;
         let sigma = args.f64("sigma")?;
@@ -97,16 +88,8 @@ impl PairStyle for LjCut {
     }
 
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        if self.coeff.n < ntypes {
-            let mut t = TypeTable::new(ntypes);
-            for i in 1..=self.coeff.n {
-                for j in 1..=self.coeff.n {
-                    t.set(i, j, *self.coeff.get(i, j));
-                }
-            }
-            self.coeff = t;
-        }
-        let mut derived = TypeTable::new(ntypes);
+        self.coeff.grow(ntypes)?;
+        let mut derived = TypeTable::new(ntypes)?;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if let Some(a) = active {
@@ -181,12 +164,10 @@ impl PairStyle for LjCut {
 
     fn describe(&self) -> String {
         let mut s = format!("lj/cut {}", self.cut_global);
-        for i in 1..=self.coeff.n {
-            for j in i..=self.coeff.n {
-                let c = self.coeff.get(i, j);
-                s += &format!("\n    {i} {j}: epsilon {} sigma {} cut {}{}", c.epsilon, c.sigma, c.cut, if c.set { "" } else { " (mixed)" });
-            }
-        }
+        s += &super::pair_lines(self.coeff.n, |_, _| true, |i, j| {
+            let c = self.coeff.get(i, j);
+            format!("epsilon {} sigma {} cut {}{}", c.epsilon, c.sigma, c.cut, if c.set { "" } else { " (mixed)" })
+        });
         s
     }
 }
@@ -212,7 +193,7 @@ mod tests {
 
     #[test]
     fn lj_values_match_closed_form() {
-        let mut lj = LjCut { cut_global: 2.5, coeff: TypeTable::new(1), derived: TypeTable::new(1) };
+        let mut lj = LjCut { cut_global: 2.5, coeff: TypeTable::new(1).unwrap(), derived: TypeTable::new(1).unwrap() };
         lj.coeff.set(1, 1, Coeff { set: true, epsilon: 1.0, sigma: 1.0, cut: 2.5 });
         lj.init(1, &PairModify { mix: MixRule::Geometric, shift: true }, None).unwrap();
         let r: f64 = 1.1;
@@ -226,7 +207,7 @@ mod tests {
 
     #[test]
     fn geometric_mixing() {
-        let mut lj = LjCut { cut_global: 2.5, coeff: TypeTable::new(2), derived: TypeTable::new(2) };
+        let mut lj = LjCut { cut_global: 2.5, coeff: TypeTable::new(2).unwrap(), derived: TypeTable::new(2).unwrap() };
         lj.coeff.set(1, 1, Coeff { set: true, epsilon: 1.0, sigma: 1.0, cut: 2.5 });
         lj.coeff.set(2, 2, Coeff { set: true, epsilon: 4.0, sigma: 2.0, cut: 5.0 });
         lj.init(2, &PairModify::default(), None).unwrap();

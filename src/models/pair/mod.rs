@@ -351,8 +351,8 @@ impl SphInfo {
 }
 
 /// Squared cutoffs per type pair from an SPH table (`h_of` picks h); 0 for pairs not active.
-pub fn sph_cutsq<T: Clone + Default>(pairs: &sph::PairTable<T>, n: usize, active: Option<&[bool]>, h_of: impl Fn(&T) -> f64) -> Vec<f64> {
-    let mut c = vec![0.0; (n + 1) * (n + 1)];
+pub fn sph_cutsq<T: Clone + Default>(pairs: &sph::PairTable<T>, n: usize, active: Option<&[bool]>, h_of: impl Fn(&T) -> f64) -> Result<Vec<f64>, String> {
+    let mut c = type_pair_vec(n, 0.0)?;
     for i in 1..=n {
         for j in 1..=n {
             let on = active.map(|a| a[i * (n + 1) + j]).unwrap_or(true);
@@ -362,7 +362,7 @@ pub fn sph_cutsq<T: Clone + Default>(pairs: &sph::PairTable<T>, n: usize, active
             }
         }
     }
-    c
+    Ok(c)
 }
 
 type PairCtor = fn(&Word, &[Word], &Command) -> DResult<Box<dyn PairStyle>>;
@@ -666,6 +666,22 @@ pub fn compute_pairs<K: PairKernel>(kernel: &K, input: &PairInput, out: &mut Pai
     t
 }
 
+/// A per-type-pair vector of `fill`, row-major over `0..=ntypes`: refused with a message when it
+/// would not fit in memory (thousands of types and a large value per pair), where a plain `vec!`
+/// would abort the process.
+pub fn type_pair_vec<T: Clone>(ntypes: usize, fill: T) -> Result<Vec<T>, String> {
+    let len = (ntypes + 1) * (ntypes + 1);
+    let bytes = len as f64 * std::mem::size_of::<T>().max(1) as f64;
+    if bytes > 1.0e6 {
+        let what = format!("{ntypes} atom types: a pair style's table of (N+1)^2 = {len} type pairs x {} bytes", std::mem::size_of::<T>());
+        crate::sim::memory::check_fits(bytes, &what)?;
+    }
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|_| format!("{ntypes} atom types: the memory for a pair style's table of {len} type pairs could not be allocated"))?;
+    v.resize(len, fill);
+    Ok(v)
+}
+
 /// Per-type-pair table (row-major over `0..=ntypes`), symmetric by construction.
 #[derive(Clone, Debug, Default)]
 pub struct TypeTable<T: Clone + Default> {
@@ -674,8 +690,13 @@ pub struct TypeTable<T: Clone + Default> {
 }
 
 impl<T: Clone + Default> TypeTable<T> {
-    pub fn new(ntypes: usize) -> Self {
-        TypeTable { n: ntypes, data: vec![T::default(); (ntypes + 1) * (ntypes + 1)] }
+    /// The table for `ntypes` types, every pair at its default; an error when it cannot fit.
+    pub fn new(ntypes: usize) -> Result<Self, String> {
+        Ok(TypeTable { n: ntypes, data: type_pair_vec(ntypes, T::default())? })
+    }
+    /// No types yet (a style before its first pair_coeff).
+    pub fn empty() -> Self {
+        TypeTable { n: 0, data: vec![T::default()] }
     }
     #[inline]
     pub fn get(&self, i: usize, j: usize) -> &T {
@@ -687,9 +708,9 @@ impl<T: Clone + Default> TypeTable<T> {
         &self.data[i * (self.n + 1)..(i + 1) * (self.n + 1)]
     }
     /// Make room for types 1..=n, keeping the values set so far (a larger table only).
-    pub fn grow(&mut self, n: usize) {
+    pub fn grow(&mut self, n: usize) -> Result<(), String> {
         if self.n < n {
-            let mut t = TypeTable::new(n);
+            let mut t = TypeTable::new(n)?;
             for i in 1..=self.n {
                 for j in 1..=self.n {
                     t.set(i, j, self.get(i, j).clone());
@@ -697,12 +718,100 @@ impl<T: Clone + Default> TypeTable<T> {
             }
             *self = t;
         }
+        Ok(())
     }
     #[inline]
     pub fn set(&mut self, i: usize, j: usize, v: T) {
         let s = self.n + 1;
         self.data[i * s + j] = v.clone();
         self.data[j * s + i] = v;
+    }
+}
+
+/// The type-pair lines of a style's `describe` (`dmhs check`): the pairs I <= J of `1..=n` that
+/// `listed` selects, `line` formatted for the first hundred, then how many more there are.
+pub fn pair_lines(n: usize, listed: impl Fn(usize, usize) -> bool, line: impl Fn(usize, usize) -> String) -> String {
+    const SHOWN: usize = 100;
+    let (mut s, mut count) = (String::new(), 0usize);
+    for i in 1..=n {
+        for j in i..=n {
+            if listed(i, j) {
+                if count < SHOWN {
+                    s += &format!("\n    {i} {j}: {}", line(i, j));
+                }
+                count += 1;
+            }
+        }
+    }
+    if count > SHOWN {
+        s += &format!("\n    ... and {} more type pairs", count - SHOWN);
+    }
+    s
+}
+
+/// A per-type-pair table of a few distinct values, each pair holding an index: for values of
+/// hundreds of bytes (a granular model) that thousands of types share from a few pair_coeff
+/// commands. Each value counts the cells that hold it, so only values in use are listed.
+#[derive(Clone, Debug)]
+pub struct SharedTable<T: Clone> {
+    pub n: usize,
+    index: Vec<u32>,
+    vals: Vec<T>,
+    refs: Vec<usize>,
+}
+
+impl<T: Clone> SharedTable<T> {
+    /// `ntypes` types, every pair holding `fill`; an error when the index cannot fit.
+    pub fn new(ntypes: usize, fill: T) -> Result<Self, String> {
+        let index = type_pair_vec(ntypes, 0u32)?;
+        let refs = vec![index.len()];
+        Ok(SharedTable { n: ntypes, index, vals: vec![fill], refs })
+    }
+    /// No types yet (a style before its first pair_coeff).
+    pub fn empty(fill: T) -> Self {
+        SharedTable { n: 0, index: vec![0], vals: vec![fill], refs: vec![1] }
+    }
+    #[inline(always)]
+    pub fn get(&self, i: usize, j: usize) -> &T {
+        &self.vals[self.index[i * (self.n + 1) + j] as usize]
+    }
+    /// The value of pair (i, j) as an index into the distinct values.
+    pub fn index_of(&self, i: usize, j: usize) -> u32 {
+        self.index[i * (self.n + 1) + j]
+    }
+    /// A new distinct value; [`SharedTable::set`] puts it on pairs.
+    pub fn push(&mut self, v: T) -> u32 {
+        self.vals.push(v);
+        self.refs.push(0);
+        (self.vals.len() - 1) as u32
+    }
+    /// Pairs (i, j) and (j, i) hold value `k`.
+    pub fn set(&mut self, i: usize, j: usize, k: u32) {
+        let s = self.n + 1;
+        for c in [i * s + j, j * s + i] {
+            self.refs[self.index[c] as usize] -= 1;
+            self.index[c] = k;
+            self.refs[k as usize] += 1;
+        }
+    }
+    /// The values some pair holds.
+    pub fn values(&self) -> impl Iterator<Item = &T> {
+        self.vals.iter().zip(&self.refs).filter(|(_, &r)| r > 0).map(|(v, _)| v)
+    }
+    /// Make room for types 1..=n (new pairs hold the first value, the fill).
+    pub fn grow(&mut self, n: usize) -> Result<(), String> {
+        if self.n < n {
+            let mut t = SharedTable { n, index: type_pair_vec(n, 0u32)?, vals: std::mem::take(&mut self.vals), refs: vec![] };
+            t.refs = vec![0; t.vals.len()];
+            t.refs[0] = t.index.len();
+            for i in 1..=self.n {
+                for j in i..=self.n {
+                    t.set(i, j, self.index_of(i, j));
+                }
+            }
+            *self = t;
+        }
+        Ok(())
     }
 }
 

@@ -35,7 +35,7 @@ impl Soft {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let cut_global = a.positive_f64("the global cutoff Rc")?;
         a.finish()?;
-        Ok(Soft { cut_global, coeff: TypeTable::new(0), derived: TypeTable::new(0) })
+        Ok(Soft { cut_global, coeff: TypeTable::empty(), derived: TypeTable::empty() })
     }
 }
 
@@ -69,7 +69,7 @@ impl PairStyle for Soft {
     }
 
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        self.coeff.grow(ihi.max(jhi));
+        self.coeff.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         args.syntax = COEFF_SYNTAX;
         let prefactor = args.f64("A")?;
         let cut = if args.is_empty() { self.cut_global } else { args.positive_f64("the cutoff Rc")? };
@@ -83,8 +83,8 @@ impl PairStyle for Soft {
     }
 
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.coeff.grow(ntypes);
-        let mut derived = TypeTable::new(ntypes);
+        self.coeff.grow(ntypes)?;
+        let mut derived = TypeTable::new(ntypes)?;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if let Some(a) = active {
@@ -128,12 +128,10 @@ impl PairStyle for Soft {
 
     fn describe(&self) -> String {
         let mut s = format!("soft {}", self.cut_global);
-        for i in 1..=self.coeff.n {
-            for j in i..=self.coeff.n {
-                let c = self.coeff.get(i, j);
-                s += &format!("\n    {i} {j}: A {} cut {}{}", c.prefactor, c.cut, if c.set { "" } else { " (mixed)" });
-            }
-        }
+        s += &super::pair_lines(self.coeff.n, |_, _| true, |i, j| {
+            let c = self.coeff.get(i, j);
+            format!("A {} cut {}{}", c.prefactor, c.cut, if c.set { "" } else { " (mixed)" })
+        });
         s
     }
 }

@@ -183,11 +183,14 @@ pub struct PerTypePair<T> {
 
 impl<T: Copy + PartialEq> PerTypePair<T> {
     /// The table of `f(i, j)` for types `0..=n`.
-    pub fn new(n: usize, f: impl Fn(usize, usize) -> T) -> Self {
+    pub fn new(n: usize, f: impl Fn(usize, usize) -> T) -> Result<Self, String> {
         let stride = n + 1;
-        let val: Vec<T> = (0..stride * stride).map(|k| f(k / stride, k % stride)).collect();
+        let mut val = super::type_pair_vec(n, f(0, 0))?;
+        for (k, v) in val.iter_mut().enumerate() {
+            *v = f(k / stride, k % stride);
+        }
         let uniform = (0..stride).map(|i| n >= 1 && (1..=n).all(|j| val[i * stride + j] == val[i * stride + 1])).collect();
-        PerTypePair { stride, val, uniform }
+        Ok(PerTypePair { stride, val, uniform })
     }
     #[inline(always)]
     pub fn get(&self, i: usize, j: usize) -> T {
@@ -333,7 +336,7 @@ pub const VISCOUS_COEFF_SYNTAX: &str = "pair_coeff I J alpha h";
 
 impl ViscousPairs {
     pub fn new(kernel: Kernel) -> Self {
-        ViscousPairs { kernel, pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true }
+        ViscousPairs { kernel, pairs: PairTable::empty(), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true }
     }
     /// `pair_coeff I J alpha h`.
     pub fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
@@ -341,14 +344,14 @@ impl ViscousPairs {
         let alpha = args.f64("alpha (artificial viscosity)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, (alpha, h));
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (alpha, h)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         Ok(())
     }
     pub fn init(&mut self, ntypes: usize, active: Option<&[bool]>, style: &str) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, style)?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1)?;
         let pairs = &self.pairs;
         self.derived = PerTypePair::new(ntypes, |i, j| {
             if i == 0 || j == 0 {
@@ -357,7 +360,7 @@ impl ViscousPairs {
             let (alpha, h) = *pairs.get(i, j);
             // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
             (Support::new(h), 0.01 * h * h, -alpha)
-        });
+        })?;
         Ok(())
     }
     /// The kernel support of a type pair after `init`.
@@ -407,8 +410,12 @@ pub struct PairTable<T: Clone> {
 }
 
 impl<T: Clone + Default> PairTable<T> {
-    pub fn new(n: usize) -> Self {
-        PairTable { n, set: vec![false; (n + 1) * (n + 1)], val: vec![T::default(); (n + 1) * (n + 1)] }
+    pub fn new(n: usize) -> Result<Self, String> {
+        Ok(PairTable { n, set: super::type_pair_vec(n, false)?, val: super::type_pair_vec(n, T::default())? })
+    }
+    /// No types yet (a style before its first pair_coeff).
+    pub fn empty() -> Self {
+        PairTable { n: 0, set: vec![false], val: vec![T::default()] }
     }
     #[inline(always)]
     pub fn get(&self, i: usize, j: usize) -> &T {
@@ -426,20 +433,21 @@ impl<T: Clone + Default> PairTable<T> {
     }
     /// `pair_coeff ilo:ihi jlo:jhi`: set `v` for every pair I <= J of the ranges (growing the
     /// table as needed).
-    pub fn put_range(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, v: T) {
-        self.grow(ihi.max(jhi));
+    pub fn put_range(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, v: T) -> Result<(), String> {
+        self.grow(ihi.max(jhi))?;
         for i in ilo..=ihi {
             for j in jlo.max(i)..=jhi {
                 self.put(i, j, v.clone());
             }
         }
+        Ok(())
     }
     /// Grow to `n` types keeping what is set.
-    pub fn grow(&mut self, n: usize) {
+    pub fn grow(&mut self, n: usize) -> Result<(), String> {
         if n <= self.n {
-            return;
+            return Ok(());
         }
-        let mut t = PairTable::new(n);
+        let mut t = PairTable::new(n)?;
         for i in 0..=self.n {
             for j in 0..=self.n {
                 if self.is_set(i, j) {
@@ -448,6 +456,7 @@ impl<T: Clone + Default> PairTable<T> {
             }
         }
         *self = t;
+        Ok(())
     }
     /// Every pair I <= J of `1..=n` (within `active` if given) must be set.
     pub fn check_all(&self, n: usize, active: Option<&[bool]>, style: &str) -> Result<(), String> {
@@ -504,7 +513,7 @@ pub fn tait_coeff(ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Arg
     let x = args.f64(x_name)?;
     let h = args.positive_f64("h (kernel support)")?;
     args.finish()?;
-    pairs.put_range(ilo, ihi, jlo, jhi, (x, h));
+    pairs.put_range(ilo, ihi, jlo, jhi, (x, h)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
     types.set(ilo, ihi, rho0, c0);
     Ok(())
 }

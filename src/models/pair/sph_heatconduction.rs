@@ -23,7 +23,7 @@ impl SphHeatConduction {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let kernel = parse_kernel(&mut a)?;
-        Ok(SphHeatConduction { kernel, pairs: PairTable::new(0), cutsq: vec![], n: 0, dim3: true })
+        Ok(SphHeatConduction { kernel, pairs: PairTable::empty(), cutsq: vec![], n: 0, dim3: true })
     }
 }
 
@@ -62,7 +62,7 @@ impl PairStyle for SphHeatConduction {
         let d = args.f64("D (diffusion coefficient)")?;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, (d, h));
+        self.pairs.put_range(ilo, ihi, jlo, jhi, (d, h)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         Ok(())
     }
     fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
@@ -70,9 +70,9 @@ impl PairStyle for SphHeatConduction {
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/heatconduction")?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1)?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

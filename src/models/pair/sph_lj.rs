@@ -89,7 +89,7 @@ impl PairStyle for SphLj {
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.init(ntypes, active, "sph/lj")?;
         let pairs = &self.pairs;
-        self.lrc = PerTypePair::new(ntypes, |i, j| if i == 0 || j == 0 { 0.0 } else { lrc(&pairs.support(i, j)) });
+        self.lrc = PerTypePair::new(ntypes, |i, j| if i == 0 || j == 0 { 0.0 } else { lrc(&pairs.support(i, j)) })?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -24,7 +24,7 @@ impl SphRhoSum {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let every = a.i64_in("N (steps between density summations)", 0, i64::MAX)?;
         a.finish()?;
-        Ok(SphRhoSum { every, pairs: PairTable::new(0), cutsq: vec![], n: 0 })
+        Ok(SphRhoSum { every, pairs: PairTable::empty(), cutsq: vec![], n: 0 })
     }
 }
 
@@ -53,7 +53,7 @@ impl PairStyle for SphRhoSum {
         args.syntax = COEFF_SYNTAX;
         let h = args.positive_f64("h (kernel support)")?;
         args.finish()?;
-        self.pairs.put_range(ilo, ihi, jlo, jhi, h);
+        self.pairs.put_range(ilo, ihi, jlo, jhi, h).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         Ok(())
     }
     fn init_sim(&mut self, setup: &super::PairSetup) -> Result<(), String> {
@@ -61,9 +61,9 @@ impl PairStyle for SphRhoSum {
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/rhosum")?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |h| *h);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |h| *h)?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

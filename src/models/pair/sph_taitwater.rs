@@ -31,7 +31,7 @@ impl SphTaitwater {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let (kernel, pmin) = parse_tait_options(&mut a)?;
-        Ok(SphTaitwater { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
+        Ok(SphTaitwater { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::empty(), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
     }
 }
 
@@ -103,10 +103,10 @@ impl PairStyle for SphTaitwater {
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/taitwater")?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.types.grow(ntypes);
         self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1)?;
         let (pairs, c0) = (&self.pairs, &self.types.c0);
         self.derived = PerTypePair::new(ntypes, |i, j| {
             if i == 0 || j == 0 {
@@ -115,7 +115,7 @@ impl PairStyle for SphTaitwater {
             let (alpha, h) = *pairs.get(i, j);
             // LAMMPS: rsq + 0.01*h*h and -viscosity*(c_i + c_j)*mu, left to right
             (Support::new(h), 0.01 * h * h, -alpha * (c0[i] + c0[j]))
-        });
+        })?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -29,7 +29,7 @@ impl SphTaitwaterMorris {
     pub fn from_lammps(args: &[Word], cmd: &Command) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let (kernel, pmin) = parse_tait_options(&mut a)?;
-        Ok(SphTaitwaterMorris { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::new(0), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
+        Ok(SphTaitwaterMorris { kernel, pmin, types: TaitTypes::default(), pairs: PairTable::empty(), cutsq: vec![], derived: PerTypePair::default(), n: 0, dim3: true })
     }
     /// The dimension, for styles that evaluate this one pair by pair (dmhs/blend).
     pub fn set_dim3(&mut self, dim3: bool) {
@@ -94,10 +94,10 @@ impl PairStyle for SphTaitwaterMorris {
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.pairs.check_all(ntypes, active, "sph/taitwater/morris")?;
-        self.pairs.grow(ntypes);
+        self.pairs.grow(ntypes)?;
         self.types.grow(ntypes);
         self.n = ntypes;
-        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1);
+        self.cutsq = super::sph_cutsq(&self.pairs, ntypes, active, |p| p.1)?;
         let pairs = &self.pairs;
         self.derived = PerTypePair::new(ntypes, |i, j| {
             if i == 0 || j == 0 {
@@ -105,7 +105,7 @@ impl PairStyle for SphTaitwaterMorris {
             }
             let (mu, h) = *pairs.get(i, j);
             (mu, Support::new(h))
-        });
+        })?;
         Ok(())
     }
     fn cutoff(&self, it: usize, jt: usize) -> f64 {

@@ -25,7 +25,7 @@ impl PairZero {
             }
             a.skip(1);
         }
-        Ok(PairZero { cut_global, nocoeff, cut: TypeTable::new(0) })
+        Ok(PairZero { cut_global, nocoeff, cut: TypeTable::empty() })
     }
 }
 
@@ -34,16 +34,7 @@ impl PairStyle for PairZero {
         "zero"
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
-        let n = ihi.max(jhi).max(self.cut.n);
-        if self.cut.n < n {
-            let mut t = TypeTable::new(n);
-            for i in 1..=self.cut.n {
-                for j in 1..=self.cut.n {
-                    t.set(i, j, *self.cut.get(i, j));
-                }
-            }
-            self.cut = t;
-        }
+        self.cut.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         let c = if !self.nocoeff && !args.is_empty() { args.non_negative_f64("the cutoff Rc")? } else { self.cut_global };
         if !self.nocoeff {
             args.finish()?;
@@ -56,7 +47,7 @@ impl PairStyle for PairZero {
         Ok(())
     }
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        let mut t = TypeTable::new(ntypes);
+        let mut t = TypeTable::new(ntypes)?;
         for i in 1..=ntypes {
             for j in i..=ntypes {
                 if let Some(a) = active {

@@ -34,7 +34,7 @@ pub mod twisting;
 
 use super::contact::{compute_contacts, Contact, ContactForce, ContactModel, MAX_HISTORY};
 use super::gran_hooke_history::{check_setup, rebuild_history, GranTypes};
-use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, Tally, TypeTable};
+use super::{PairInput, PairModify, PairOutput, PairSetup, PairStyle, SharedTable, Tally};
 use crate::engine::contact_history::ContactHistory;
 use crate::engine::atoms::Atoms;
 use crate::engine::fields;
@@ -631,7 +631,7 @@ pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &m
 
 /// LAMMPS FixGranularMDR::setup_pre_force's checks: the mdr model is one model for every
 /// type pair (one pair_coeff; a mixed pair would be a second model). Returns its psi_b.
-fn mdr_check(models: &TypeTable<GranModel>, ntypes: usize, active: Option<&[bool]>, coeff_calls: usize) -> Result<Option<f64>, String> {
+fn mdr_check(models: &SharedTable<GranModel>, ntypes: usize, active: Option<&[bool]>, coeff_calls: usize) -> Result<Option<f64>, String> {
     let mut mdr = None;
     let mut other = false;
     for i in 1..=ntypes {
@@ -676,7 +676,7 @@ fn add_opposite(out: &mut ContactForce, t: [f64; 3], wall: bool) {
 /// The per-type-pair models as a [`ContactModel`], the history values per contact (the most
 /// any pair's models keep: LAMMPS' size_history), and whether some pair interacts beyond
 /// touching (JKR).
-pub struct GranularModels(pub TypeTable<GranModel>, pub usize, pub bool);
+pub struct GranularModels(pub SharedTable<GranModel>, pub usize, pub bool);
 
 impl ContactModel for GranularModels {
     type Params = GranModel;
@@ -703,7 +703,7 @@ impl ContactModel for GranularModels {
 
 pub struct Granular {
     cut_global: f64,
-    coeff: TypeTable<GranSpec>,
+    coeff: SharedTable<GranSpec>,
     models: GranularModels,
     types: GranTypes,
     history: ContactHistory,
@@ -722,8 +722,8 @@ impl Granular {
         a.finish()?;
         Ok(Granular {
             cut_global,
-            coeff: TypeTable::new(0),
-            models: GranularModels(TypeTable::new(0), 0, false),
+            coeff: SharedTable::empty(GranSpec::default()),
+            models: GranularModels(SharedTable::empty(GranModel::default()), 0, false),
             types: GranTypes::default(),
             history: ContactHistory::new(0),
             heat: false,
@@ -734,7 +734,7 @@ impl Granular {
 
     /// Some pair_coeff names the mdr normal model.
     fn uses_mdr(&self) -> bool {
-        self.coeff.data.iter().any(|s| s.set && s.normal.style.name == "mdr")
+        self.coeff.values().any(|s| s.set && s.normal.style.name == "mdr")
     }
 
     /// Heat conduction of every contact (LAMMPS' calculate_heat after calculate_forces): Q into
@@ -774,18 +774,6 @@ impl Granular {
         }
     }
 
-    fn grow(&mut self, n: usize) {
-        if self.coeff.n >= n {
-            return;
-        }
-        let mut t = TypeTable::new(n);
-        for i in 1..=self.coeff.n {
-            for j in 1..=self.coeff.n {
-                t.set(i, j, *self.coeff.get(i, j));
-            }
-        }
-        self.coeff = t;
-    }
 }
 
 impl PairStyle for Granular {
@@ -793,24 +781,25 @@ impl PairStyle for Granular {
         "granular"
     }
     fn contact_stiffness(&self) -> Option<f64> {
-        self.coeff.data.iter().filter_map(|s| GranModel::build(s, false).normal.linear_stiffness()).reduce(f64::max)
+        self.coeff.values().filter_map(|s| GranModel::build(s, false).normal.linear_stiffness()).reduce(f64::max)
     }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         args.syntax = coeff_syntax();
         let m = GranSpec::parse(args, false)?;
         args.finish()?;
         self.coeff_calls += 1;
-        self.grow(ihi.max(jhi));
+        self.coeff.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
+        let k = self.coeff.push(m);
         for i in ilo..=ihi {
             for j in jlo.max(i)..=jhi {
-                self.coeff.set(i, j, m);
+                self.coeff.set(i, j, k);
             }
         }
         self.types.set_range(ilo, ihi, jlo, jhi);
         // lay the history store out now (init does it again with the mixed pairs, which use the
         // same sub-models): read_restart checks a file's contacts against it before any run
         let (mut size, mut keep, mut flip) = (0, 0, 0);
-        for s in self.coeff.data.iter().filter(|s| s.set) {
+        for s in self.coeff.values().filter(|s| s.set) {
             let g = GranModel::build(s, false);
             (size, keep, flip) = (size.max(g.history_size), keep | g.history_keep, flip | g.history_flip);
         }
@@ -828,16 +817,18 @@ impl PairStyle for Granular {
         if self.uses_mdr() && setup.newton_pair {
             return Err("pair granular: the mdr contact model requires `newton off` (LAMMPS: MDR contact model requires Newton off)".into());
         }
-        if self.coeff.data.iter().any(|s| s.set && s.heat.is_some()) {
+        if self.coeff.values().any(|s| s.set && s.heat.is_some()) {
             check_heat_fields(setup.atoms, "pair granular")?;
         }
         self.types.init_radii(setup);
         Ok(())
     }
     fn init(&mut self, ntypes: usize, _modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
-        self.grow(ntypes);
+        self.coeff.grow(ntypes)?;
         self.types.check(ntypes, active, "granular")?;
-        let mut models = TypeTable::new(ntypes);
+        let mut models = SharedTable::new(ntypes, GranModel::default())?;
+        // one model per distinct spec given, or per distinct pair of specs mixed
+        let mut built: std::collections::HashMap<(bool, u32, u32), u32> = std::collections::HashMap::new();
         let (mut size, mut keep, mut flip, mut beyond) = (0, 0u64, 0u64, false);
         self.heat = false;
         for i in 1..=ntypes {
@@ -847,18 +838,27 @@ impl PairStyle for Granular {
                         continue;
                     }
                 }
-                let c = *self.coeff.get(i, j);
-                let s = if c.set {
-                    c
-                } else {
-                    GranSpec::mix(self.coeff.get(i, i), self.coeff.get(j, j))
-                        .ok_or_else(|| format!("pair granular: types {i} and {j} use different models, so the {i} {j} pair cannot be mixed: set it with pair_coeff"))?
+                let c = self.coeff.get(i, j);
+                let key = if c.set { (true, self.coeff.index_of(i, j), 0) } else { (false, self.coeff.index_of(i, i), self.coeff.index_of(j, j)) };
+                let k = match built.get(&key) {
+                    Some(&k) => k,
+                    None => {
+                        let s = if c.set {
+                            *c
+                        } else {
+                            GranSpec::mix(self.coeff.get(i, i), self.coeff.get(j, j))
+                                .ok_or_else(|| format!("pair granular: types {i} and {j} use different models, so the {i} {j} pair cannot be mixed: set it with pair_coeff"))?
+                        };
+                        let m = GranModel::build(&s, false);
+                        (size, keep, flip) = (size.max(m.history_size), keep | m.history_keep, flip | m.history_flip);
+                        beyond |= s.normal.style.flags.beyond_contact;
+                        self.heat |= m.heat.is_some();
+                        let k = models.push(m);
+                        built.insert(key, k);
+                        k
+                    }
                 };
-                let m = GranModel::build(&s, false);
-                (size, keep, flip) = (size.max(m.history_size), keep | m.history_keep, flip | m.history_flip);
-                beyond |= s.normal.style.flags.beyond_contact;
-                self.heat |= m.heat.is_some();
-                models.set(i, j, m);
+                models.set(i, j, k);
             }
         }
         self.mdr = mdr_check(&models, ntypes, active, self.coeff_calls)?;
@@ -923,7 +923,7 @@ impl PairStyle for Granular {
     }
     fn mdr_model(&self) -> Option<mdr::Mdr> {
         self.mdr?;
-        self.models.0.data.iter().find_map(|m| match m.normal {
+        self.models.0.values().find_map(|m| match m.normal {
             Normal::Mdr(m) => Some(m),
             _ => None,
         })
@@ -933,14 +933,7 @@ impl PairStyle for Granular {
         if self.cut_global >= 0.0 {
             s += &format!(" {}", self.cut_global);
         }
-        for i in 1..=self.coeff.n {
-            for j in i..=self.coeff.n {
-                let c = self.coeff.get(i, j);
-                if c.set {
-                    s += &format!("\n    {i} {j}: {}", c.describe());
-                }
-            }
-        }
+        s += &super::pair_lines(self.coeff.n, |i, j| self.coeff.get(i, j).set, |i, j| self.coeff.get(i, j).describe());
         s
     }
 }

@@ -493,9 +493,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all temp/berendsen 1.0 1.0 0.5\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all spring tether 10.0 5.0 5.0 5.0 0.0\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("fix 2 (temp/berendsen) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("fix 2 (spring) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -596,6 +596,36 @@ fn a_langevin_fluid_on_two_ranks_keeps_its_temperature() {
 /// The thermo values that sum or pick over the group's atoms: compute com, reduce (sum, ave,
 /// min, max of attributes and of property/atom), and the group functions; the melt's atoms
 /// cross the periodic faces and change rank, so com unwraps with image flags on every rank.
+/// Walls, an indenter and the thermostats on ranks: each rank acts on its own atoms and the
+/// fixes' energies and forces (f_ID, f_ID[n]) are sums over the ranks.
+#[test]
+fn walls_indenters_and_thermostats_on_ranks_are_the_serial_run() {
+    let slab = MELT
+        .replace("region       box block 0 6 0 6 0 6\n", "boundary     p p f\nregion       box block 0 6 0 6 -0.25 6.25\n")
+        .replace("check no\n", "check yes\n");
+    let fixes = |text: &str| slab.replace("fix          1 all nve\nthermo_style custom step temp epair emol etotal press atoms\n", text);
+    let walls = fixes(
+        "fix          1 all nve\n\
+         fix          2 all wall/lj93 zlo EDGE 1.0 0.2 1.0 zhi EDGE 1.0 0.2 1.0\n\
+         fix          3 all indent 10.0 sphere 5.0 5.0 5.0 1.0 units box\n\
+         fix          4 all temp/berendsen 2.0 2.0 0.5\n\
+         thermo_style custom step temp epair etotal press f_2 f_2[1] f_2[2] f_3 f_3[1] f_3[2] f_3[3] f_4\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&walls, 2);
+    compare(&walls, 4);
+    let region = fixes(
+        "fix          1 all nvt temp 2.0 2.0 0.5\n\
+         region       slab block INF INF INF INF -0.2 6.2 units lattice\n\
+         fix          2 all wall/region slab harmonic 50.0 1.0 1.0\n\
+         fix          3 all wall/harmonic zlo -0.22 50.0 1.0 1.0 units lattice\n\
+         fix          4 all temp/rescale 10 2.0 2.0 0.05 1.0\n\
+         thermo_style custom step temp epair etotal press f_1 f_2 f_2[1] f_2[2] f_2[3] f_3 f_3[1] f_4\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&region, 2);
+}
+
 #[test]
 fn centres_of_mass_reductions_and_group_functions_on_ranks_are_the_serial_ones() {
     let deck = MELT

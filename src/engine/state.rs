@@ -237,6 +237,12 @@ impl State {
             d.comm.sum(v);
         }
     }
+    /// The sum of one value over the ranks of a distributed run (a fix's global energy or force).
+    pub fn summed_over_ranks(&self, x: f64) -> f64 {
+        let mut v = [x];
+        self.sum_ranks(&mut v);
+        v[0]
+    }
     /// The largest of `v` over the ranks of a distributed run, element by element.
     pub fn max_ranks(&self, v: &mut [f64]) {
         if let (Some(d), Some(_)) = (&self.decomp, self.distributed) {

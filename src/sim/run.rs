@@ -92,6 +92,8 @@ impl Simulation {
             }
         }
         self.init_pair(true).map_err(|message| SetupError { message, at: self.pair_span })?;
+        // LAMMPS' Neighbor::init: the builds and dangerous builds are counted per run
+        (self.state.neighbor.nbuilds, self.state.neighbor.ndanger) = (0, 0);
         let warnings = crate::models::bonded::pass::init_bonded(&mut self.state, self.bond_style.as_mut(), self.angle_style.as_mut(), self.dihedral_style.as_mut())?;
         for w in warnings {
             self.out.print(&format!("WARNING: {w}"));
@@ -685,8 +687,13 @@ impl Simulation {
         if start > first || stop < last {
             return Err(RunError::new(self.state.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
         }
+        // `pre no` after a first run skips LAMMPS' init, which restarts the build counts
+        let counts = (!opts.pre && self.state.run_window.is_some()).then_some((self.state.neighbor.nbuilds, self.state.neighbor.ndanger));
         self.state.run_window = Some((start, stop));
         self.init_run().map_err(|e| RunError::setup(self.state.step, e))?;
+        if let Some((nbuilds, ndanger)) = counts {
+            (self.state.neighbor.nbuilds, self.state.neighbor.ndanger) = (nbuilds, ndanger);
+        }
         if self.state.decomp.is_some() {
             self.distribute()?;
         }

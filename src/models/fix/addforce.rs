@@ -97,16 +97,10 @@ impl Fix for FixAddForce {
         Ok(())
     }
     fn scalar(&self, state: &State) -> Option<f64> {
-        let mut v = [self.foriginal[0]];
-        state.sum_ranks(&mut v);
-        Some(v[0])
+        Some(state.summed_over_ranks(self.foriginal[0]))
     }
     fn vector(&self, state: &State, i: usize) -> Option<f64> {
-        (1..=3).contains(&i).then(|| {
-            let mut v = [self.foriginal[i]];
-            state.sum_ranks(&mut v);
-            v[0]
-        })
+        (1..=3).contains(&i).then(|| state.summed_over_ranks(self.foriginal[i]))
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

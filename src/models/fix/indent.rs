@@ -192,11 +192,11 @@ impl Fix for FixIndent {
             }
         }
     }
-    fn scalar(&self, _state: &State) -> Option<f64> {
-        Some(self.indenter[0])
+    fn scalar(&self, state: &State) -> Option<f64> {
+        Some(state.summed_over_ranks(self.indenter[0]))
     }
-    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
-        (1..=3).contains(&i).then(|| self.indenter[i])
+    fn vector(&self, state: &State, i: usize) -> Option<f64> {
+        (1..=3).contains(&i).then(|| state.summed_over_ranks(self.indenter[i]))
     }
     fn size_vector(&self) -> usize {
         3

@@ -102,11 +102,7 @@ impl Fix for FixSetForce {
         Ok(())
     }
     fn vector(&self, state: &State, i: usize) -> Option<f64> {
-        (1..=3).contains(&i).then(|| {
-            let mut v = [self.foriginal[i - 1]];
-            state.sum_ranks(&mut v);
-            v[0]
-        })
+        (1..=3).contains(&i).then(|| state.summed_over_ranks(self.foriginal[i - 1]))
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

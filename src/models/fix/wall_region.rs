@@ -153,11 +153,11 @@ impl Fix for FixWallRegion {
             None => Ok(()),
         }
     }
-    fn scalar(&self, _state: &State) -> Option<f64> {
-        Some(self.ewall[0])
+    fn scalar(&self, state: &State) -> Option<f64> {
+        Some(state.summed_over_ranks(self.ewall[0]))
     }
-    fn vector(&self, _state: &State, i: usize) -> Option<f64> {
-        (1..=3).contains(&i).then(|| self.ewall[i])
+    fn vector(&self, state: &State, i: usize) -> Option<f64> {
+        (1..=3).contains(&i).then(|| state.summed_over_ranks(self.ewall[i]))
     }
     fn size_vector(&self) -> usize {
         3

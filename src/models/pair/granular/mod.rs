@@ -773,7 +773,6 @@ impl Granular {
             }
         }
     }
-
 }
 
 impl PairStyle for Granular {

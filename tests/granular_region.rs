@@ -43,7 +43,7 @@ fn wall_region_runs_and_pushes_a_sphere_off_the_floor() {
     let (code, out) = run("-in", &deck("fix w all wall/gran/region hooke/history 4000.0 NULL 100.0 NULL 0.5 1 region container\nvariable vz equal vz[1]\nthermo_style custom step v_vz\nthermo 10\nrun 10\n"));
     assert_eq!(code, 0, "{out}");
     // the sphere starts 0.1 inside the floor's reach: the wall pushes it up
-    let last = out.lines().filter(|l| l.trim_start().starts_with("10 ")).last().unwrap();
+    let last = out.lines().filter(|l| l.trim_start().starts_with("10 ")).next_back().unwrap();
     let vz: f64 = last.split_whitespace().nth(1).unwrap().parse().unwrap();
     assert!(vz > 0.0, "{out}");
 }

@@ -2,9 +2,15 @@
 //! the errors of bad input, located and named; LAMMPS' behaviour when a region a fix uses is
 //! deleted. Their numbers are compared with LAMMPS in tests/lammps_parity.rs (lammps-refs decks
 //! gran_region_box, gran_region_funnel, gran_region_rotate, gran_region_move, gran_region_mixer,
-//! gran_region_plane, gran_region_prism, gran_region_boolean).
+//! gran_region_plane, gran_region_prism, gran_region_boolean, gran_region_contacts). The
+//! `contacts` array of gran_region_contacts, reduced in thermo, is compared here column by column
+//! with LAMMPS' thermo table.
 
 use std::process::Command;
+
+mod thermo_tables;
+
+thermo_tables::thermo_table_tests!(["gran_region_contacts"]);
 
 fn run(mode: &str, deck: &str) -> (i32, String) {
     let tmp = tempfile::tempdir().unwrap();
@@ -37,7 +43,7 @@ fn wall_region_runs_and_pushes_a_sphere_off_the_floor() {
     let (code, out) = run("-in", &deck("fix w all wall/gran/region hooke/history 4000.0 NULL 100.0 NULL 0.5 1 region container\nvariable vz equal vz[1]\nthermo_style custom step v_vz\nthermo 10\nrun 10\n"));
     assert_eq!(code, 0, "{out}");
     // the sphere starts 0.1 inside the floor's reach: the wall pushes it up
-    let last = out.lines().filter(|l| l.trim_start().starts_with("10 ")).last().unwrap();
+    let last = out.lines().filter(|l| l.trim_start().starts_with("10 ")).next_back().unwrap();
     let vz: f64 = last.split_whitespace().nth(1).unwrap().parse().unwrap();
     assert!(vz > 0.0, "{out}");
 }
@@ -47,7 +53,8 @@ fn bad_input_is_located() {
     let cases = [
         ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region nowhere\n", "region nowhere for fix wall/gran/region does not exist"),
         ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 container\n", "expected `region region-ID`"),
-        ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region container contacts\n", "keyword `contacts` is not supported"),
+        ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region container contacts temperature 300\n", "`temperature` needs a heat model"),
+        ("fix w all wall/gran/region hooke 4000.0 NULL 100.0 NULL 0.5 1 region container\ncompute r all reduce sum f_w[1]\n", "fix `w` does not compute per-atom values"),
         ("fix w all wall/gran xplane -1 1 region container\n", "unknown"),
         ("region r block 0 1 0 1 0 1 move x NULL NULL\n", "v_name or NULL"),
         ("region c cone z 0 0 1 2 0 1 open 5\n", "no open face 5"),

@@ -35,7 +35,7 @@ pub(super) fn syntax() -> &'static str {
     static S: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     S.get_or_init(|| {
         format!(
-            "fix ID group wall/gran granular {} | hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v] [temperature T]",
+            "fix ID group wall/gran granular {} | hooke|hooke/history|hertz/history Kn Kt gamma_n gamma_t xmu dampflag [limit_damping]  xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v] [temperature T] [contacts]",
             model_syntax()
         )
     })
@@ -148,12 +148,70 @@ pub struct FixWallGran {
     array: String,
     /// `temperature T` (heat models)
     temperature: Option<FixValue>,
-    /// `contacts`: name of the per-atom contact array in `Atoms::extra`.
-    contacts: Option<String>,
+    /// `contacts`: the per-atom contact array.
+    contacts: Option<WallContacts>,
 }
 
 /// Columns of the `contacts` array: flag, force (3), contact point (3), radius.
 const CONTACT_COLS: usize = 8;
+
+/// The `contacts` per-atom array of fix wall/gran and wall/gran/region (LAMMPS' array_atom,
+/// 8 columns): kept in the atoms' extra arrays so it follows the atoms; each force pass
+/// clears every owned atom's row, then writes the row of each touching contact (an atom that
+/// touches several walls of a region keeps the last one's, as in LAMMPS).
+pub(super) struct WallContacts {
+    array: String,
+}
+
+impl WallContacts {
+    /// Registers the array of fix `id`.
+    pub(super) fn new(state: &mut State, id: &str, style: &str) -> Self {
+        let array = format!("{style}:{id}:contacts");
+        state.atoms.extra_array(&array, CONTACT_COLS);
+        WallContacts { array }
+    }
+
+    /// The array taken out of the atoms, every owned atom's row cleared; give it back with
+    /// [`WallContacts::restore`].
+    pub(super) fn take_cleared(&self, atoms: &mut crate::engine::atoms::Atoms) -> Vec<f64> {
+        let k = atoms.extra_array(&self.array, CONTACT_COLS);
+        let mut data = std::mem::take(&mut atoms.extra[k].data);
+        data.fill(0.0);
+        data
+    }
+
+    pub(super) fn restore(&self, atoms: &mut crate::engine::atoms::Atoms, data: Vec<f64>) {
+        let k = atoms.extra_array(&self.array, CONTACT_COLS);
+        atoms.extra[k].data = data;
+    }
+
+    /// One atom's row: touching, the wall's force `f` on it, the contact point `x - del`
+    /// (`del` from the wall to the sphere's centre) and its radius.
+    #[inline]
+    pub(super) fn row(x: &[f64; 3], del: &[f64; 3], f: &[f64; 3], radius: f64) -> [f64; CONTACT_COLS] {
+        [1.0, f[0], f[1], f[2], x[0] - del[0], x[1] - del[1], x[2] - del[2], radius]
+    }
+
+    /// Drops the array of a fix (None: the fix has none).
+    pub(super) fn remove(c: Option<&Self>, state: &mut State) {
+        if let Some(c) = c {
+            state.atoms.remove_extra(&c.array);
+        }
+    }
+
+    /// The owned atoms' rows, for dumps and compute reduce (`f_ID[1..8]`), of fix `me`
+    /// (an error when it was defined without `contacts`).
+    pub(super) fn peratom(c: Option<&Self>, state: &State, me: &dyn Fix) -> Result<crate::models::compute::PerAtom, String> {
+        let c = c.ok_or_else(|| format!("fix {} ({}) has per-atom values only with the `contacts` keyword", me.id(), me.style()))?;
+        let a = &state.atoms;
+        let data = a.find_extra(&c.array).map(|k| a.extra[k].data[..a.nlocal * CONTACT_COLS].to_vec()).unwrap_or_else(|| vec![0.0; a.nlocal * CONTACT_COLS]);
+        Ok(crate::models::compute::PerAtom { cols: CONTACT_COLS, data })
+    }
+
+    pub(super) fn cols(c: Option<&Self>) -> Option<usize> {
+        c.map(|_| CONTACT_COLS)
+    }
+}
 
 impl FixWallGran {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
@@ -218,10 +276,7 @@ impl FixWallGran {
         }
         let array = format!("wall/gran:{id}");
         state.atoms.extra_array(&array, width(&model));
-        let contacts = contacts.then(|| format!("wall/gran:{id}:contacts"));
-        if let Some(c) = &contacts {
-            state.atoms.extra_array(c, CONTACT_COLS);
-        }
+        let contacts = contacts.then(|| WallContacts::new(state, &id, "wall/gran"));
         Ok(FixWallGran { id, groupbit, spec, model, dim, lo, hi, motion, time_origin: state.step, array, temperature, contacts })
     }
 
@@ -270,10 +325,8 @@ impl FixWallGran {
         };
         let mut flow = heat.map(|(_, _, kq)| std::mem::take(&mut a.extra[kq].data)).unwrap_or_default();
         // contacts: every owned atom's row is cleared, then the touching ones filled (LAMMPS)
-        let kc = self.contacts.as_ref().map(|c| a.extra_array(c, CONTACT_COLS));
-        let mut cdata = kc.map(|kc| std::mem::take(&mut a.extra[kc].data)).unwrap_or_default();
-        cdata.fill(0.0);
-        let nc = if kc.is_some() { n } else { 0 };
+        let mut cdata = self.contacts.as_ref().map(|c| c.take_cleared(a)).unwrap_or_default();
+        let nc = if self.contacts.is_some() { n } else { 0 };
         let (c8, _) = cdata[..CONTACT_COLS * nc].as_chunks_mut::<CONTACT_COLS>();
         let temp: &[f64] = heat.map_or(&[], |(_, kt, _)| &a.extra[kt].data[..]);
         // with rigid bodies the body's mass (LAMMPS' mass_rigid)
@@ -321,14 +374,13 @@ impl FixWallGran {
                     flow[i] += contact_heat(model, hm, rsq, radi, 0.0, true, temp[i], tw);
                 }
                 if nc > 0 {
-                    let p = [x[i][0] - dx[0], x[i][1] - dx[1], x[i][2] - dx[2]];
-                    c8[i] = [1.0, r.f[0], r.f[1], r.f[2], p[0], p[1], p[2], radi];
+                    c8[i] = WallContacts::row(&x[i], &dx, &r.f, radi);
                 }
             }
         });
         a.extra[k].data = hist;
-        if let Some(kc) = kc {
-            a.extra[kc].data = cdata;
+        if let Some(c) = &self.contacts {
+            c.restore(a, cdata);
         }
         if let Some((_, _, kq)) = heat {
             a.extra[kq].data = flow;
@@ -364,19 +416,13 @@ impl Fix for FixWallGran {
     }
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.remove_extra(&self.array);
-        if let Some(c) = &self.contacts {
-            state.atoms.remove_extra(c);
-        }
+        WallContacts::remove(self.contacts.as_ref(), state);
     }
     fn peratom(&self, state: &State) -> Result<crate::models::compute::PerAtom, String> {
-        let a = &state.atoms;
-        let Some(k) = self.contacts.as_ref().and_then(|c| a.find_extra(c)) else {
-            return Err(format!("fix {} (wall/gran) has per-atom values only with the `contacts` keyword", self.id));
-        };
-        Ok(crate::models::compute::PerAtom { cols: CONTACT_COLS, data: a.extra[k].data[..a.nlocal * CONTACT_COLS].to_vec() })
+        WallContacts::peratom(self.contacts.as_ref(), state, self)
     }
     fn peratom_cols(&self) -> Option<usize> {
-        self.contacts.as_ref().map(|_| CONTACT_COLS)
+        WallContacts::cols(self.contacts.as_ref())
     }
     fn image_planes(&self, state: &State, _equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {
         let (wlo, whi, _) = self.wall_now(state);

@@ -16,11 +16,16 @@
 //! it (`update_contacts`). The history survives `region ID delete` and a new definition of the
 //! region (LAMMPS keeps its arrays then and only resets the region's motion).
 //!
+//! `contacts` gives LAMMPS' per-atom array (f_ID[1..8], as fix wall/gran's: touching, the
+//! wall's force, the contact point, the radius; [`WallContacts`]). An atom touching several of
+//! the region's walls reports the last contact in the region's order (LAMMPS overwrites the
+//! row for each); the forces of all of them act.
+//!
 //! As in LAMMPS 2025, the fix acts on every atom whatever its group (its group test reads
 //! `(!mask[i]) & groupbit`); `dmhs check` warns when the group is not `all`.
 
 use super::value::FixValue;
-use super::wall_gran::{check_heat, parse_model, parse_temperature, syntax as wall_syntax, wall_temperature};
+use super::wall_gran::{check_heat, parse_model, parse_temperature, syntax as wall_syntax, wall_temperature, WallContacts};
 use crate::engine::fields::{HEATFLOW, TEMPERATURE};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::region::{Region, WallContact};
@@ -32,7 +37,7 @@ use crate::models::pair::granular::{contact_heat, granular_contact_with, mdr, Gr
 use dmhs_parser::{Args, Command, DResult, Word};
 
 fn syntax() -> String {
-    wall_syntax().replace("wall/gran ", "wall/gran/region ").replace(" xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v] [temperature T]", " region region-ID [temperature T]")
+    wall_syntax().replace("wall/gran ", "wall/gran/region ").replace(" xplane|yplane|zplane lo hi [wiggle x|y|z A period | shear x|y|z v]", " region region-ID")
 }
 
 pub struct FixWallGranRegion {
@@ -54,6 +59,8 @@ pub struct FixWallGranRegion {
     c2r: Vec<usize>,
     /// `temperature T` (heat models)
     temperature: Option<FixValue>,
+    /// `contacts`: the per-atom contact array.
+    contact_array: Option<WallContacts>,
 }
 
 impl FixWallGranRegion {
@@ -80,12 +87,13 @@ impl FixWallGranRegion {
             return Err(a.error_at(rw, format!("fix wall/gran/region does not support region style {style} yet (block, cylinder, cone, sphere, union and intersect)"), "not supported"));
         }
         let mut temperature = None;
+        let mut contacts = false;
         while let Some(k) = a.peek() {
             a.skip(1);
             match k.text.as_str() {
                 "temperature" => temperature = Some(parse_temperature(&mut a, k, &model, "wall/gran/region")?),
-                "contacts" => return Err(a.error_at(k, format!("fix wall/gran/region keyword `{}` is not supported", k.text), "not supported")),
-                _ => return Err(a.unknown_keyword(k, &["temperature"])),
+                "contacts" => contacts = true,
+                _ => return Err(a.unknown_keyword(k, &["temperature", "contacts"])),
             }
         }
         check_heat(&a, cmd, &model, &temperature, "wall/gran/region")?;
@@ -95,7 +103,8 @@ impl FixWallGranRegion {
         let region = region.clone();
         let tmax = region.contact_counts().1;
         let array = format!("wall/gran/region:{id}");
-        let mut fix = FixWallGranRegion { id, groupbit, spec, model, region_id: rw.text.clone(), region, tmax, slots: 0, array, contacts: vec![], c2r: vec![], temperature };
+        let contact_array = contacts.then(|| WallContacts::new(state, &id, "wall/gran/region"));
+        let mut fix = FixWallGranRegion { id, groupbit, spec, model, region_id: rw.text.clone(), region, tmax, slots: 0, array, contacts: vec![], c2r: vec![], temperature, contact_array };
         fix.reserve(state, tmax);
         Ok(fix)
     }
@@ -164,6 +173,9 @@ impl FixWallGranRegion {
             _ => None,
         };
         let mut flow = heat.map(|(_, _, kq)| std::mem::take(&mut a.extra[kq].data)).unwrap_or_default();
+        // contacts: every owned atom's row is cleared, then each touching contact's written
+        let mut cdata = self.contact_array.as_ref().map(|c| c.take_cleared(a)).unwrap_or_default();
+        let cols = WallContacts::cols(self.contact_array.as_ref()).unwrap_or(0);
         // the mdr model reads and adds to the atoms' mdr values
         let mut mdr_io = match self.model.normal {
             Normal::Mdr(_) => Some(MdrArrays::take(a).map_err(|e| RunError::new(step, format!("fix {}: {e}", self.id)))?),
@@ -217,7 +229,13 @@ impl FixWallGranRegion {
                 if let (Some((tw, kt, _)), Some(hm)) = (heat, &self.model.heat) {
                     flow[i] += contact_heat(&self.model, hm, rsq, radi, c.radius, true, a.extra[kt].data[i], tw);
                 }
+                if cols > 0 {
+                    cdata[i * cols..(i + 1) * cols].copy_from_slice(&WallContacts::row(&a.x[i], &c.del, &r.f, radi));
+                }
             }
+        }
+        if let Some(c) = &self.contact_array {
+            c.restore(a, cdata);
         }
         if let Some(k) = kx {
             a.extra[k].data = hist;
@@ -416,6 +434,13 @@ impl Fix for FixWallGranRegion {
     }
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.remove_extra(&self.array);
+        WallContacts::remove(self.contact_array.as_ref(), state);
+    }
+    fn peratom(&self, state: &State) -> Result<crate::models::compute::PerAtom, String> {
+        WallContacts::peratom(self.contact_array.as_ref(), state, self)
+    }
+    fn peratom_cols(&self) -> Option<usize> {
+        WallContacts::cols(self.contact_array.as_ref())
     }
     fn describe(&self) -> String {
         format!("fix {} wall/gran/region granular {} region {}", self.id, self.spec.describe(), self.region_id)

@@ -11,6 +11,7 @@ use crate::models::pair::{PairInput, PairOutput, Tally};
 use crate::sim::{Energies, RunError, SetupError, Simulation, State};
 use crate::engine::fields::Field;
 use crate::engine::timing::Stage;
+use crate::engine::domain::BoundaryKind;
 use std::time::Instant;
 
 /// Options of the `run` command.
@@ -35,6 +36,16 @@ impl RunOptions {
 type Hook = fn(&mut dyn Fix, &mut State, &mut FixCtx) -> Result<(), RunError>;
 
 impl Simulation {
+    /// LAMMPS' Domain::init box_change (a shrink-wrapped face, or a fix that changes the box),
+    /// then Thermo::init's Volume column of style one.
+    pub(crate) fn init_thermo_columns(&mut self) {
+        let shrink = self.state.domain.as_ref().is_some_and(|d| {
+            d.boundary.iter().flatten().any(|b| matches!(b, BoundaryKind::Shrink | BoundaryKind::ShrinkMin))
+        });
+        let box_change = shrink || self.fixes.iter().any(|f| f.changes_box());
+        self.thermo.init_volume_column(box_change);
+    }
+
     /// Run `work` on fix `k` with the state and a context in which expressions see every fix
     /// (the running one passes itself), every compute and every variable.
     pub(crate) fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
@@ -99,6 +110,7 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
+        self.init_thermo_columns();
         // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
         for c in &self.thermo.columns {
             if let crate::output::thermo::Field::Fix(id, _) = &c.field {

@@ -2,6 +2,7 @@
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
 pub mod addforce;
+pub mod aveforce;
 pub mod ave_atom;
 pub mod ave_chunk;
 pub mod ave_time;
@@ -198,12 +199,17 @@ pub trait Fix: Send + Sync {
     /// applies many of them through hooks dmhs' fixes do not have).
     fn min_role(&self) -> MinRole {
         match self.hooks().post_force {
-            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring, viscous, wall/* and wall/region", self.id(), self.style())),
+            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, aveforce, enforce2d, addforce, indent, spring, viscous, wall/* and wall/region", self.id(), self.style())),
             false => MinRole::Inert,
         }
     }
     fn id(&self) -> &str;
     fn style(&self) -> &str;
+    /// The fix changes the box or the sub-domains (LAMMPS' box_change flags): thermo style one
+    /// then prints the volume.
+    fn changes_box(&self) -> bool {
+        false
+    }
     /// Bitmask of the fix group.
     fn groupbit(&self) -> u32;
     fn hooks(&self) -> FixHooks;
@@ -411,6 +417,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("gravity", |d, state| Ok(Box::new(gravity::FixGravity::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("addforce", |d, state| Ok(Box::new(addforce::FixAddForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("aveforce", |d, state| Ok(Box::new(aveforce::FixAveForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

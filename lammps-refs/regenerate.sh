@@ -55,7 +55,7 @@ for name in "${names[@]+"${names[@]}"}"; do
     # tests/rigid.rs; box and pressure of a
     # shrink-wrapped box, shrink_wrap_press)
     case "$name" in
-        bond*|thermo_*|rigid*|deposit_mol|walls_family|walls_region|walls_colloid|fix_modify_*|shrink_wrap_press|aveforce_*) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
+        bond*|thermo_*|rigid*|deposit_mol|walls_family|walls_region|walls_colloid|fix_modify_*|shrink_wrap_press|aveforce_*|adapt_*) awk '/^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p' \
                    "$out/log.lammps" > "$out/thermo.txt" ;;
         # the minimization's thermo table and its summary (tests/minimize.rs)
         min_*) awk '/^minimize /{m = 1} m && /^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p; /^Minimization stats/{q = 1} q && /^ *$/{q = 0} q {print "## " $0}' \

@@ -1,14 +1,15 @@
 //! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
 //! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
-//! aveforce (aveforce_flow, the thermo table at every printed step against
+//! aveforce (aveforce_flow) and fix adapt (adapt_soft; the thermo table at every printed step against
 //! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
 //! Volume column when the box can change, region IDs with '-'; and the located errors.
 
 use dmhs::deck::{run_text, DeckOptions};
 
 mod thermo_tables;
+use thermo_tables::{root, table};
 
-const DECKS: [&str; 1] = ["aveforce_flow"];
+const DECKS: [&str; 2] = ["aveforce_flow", "adapt_soft"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -96,5 +97,41 @@ fn bad_aveforce_is_a_located_error() {
         let n = text.lines().count();
         let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
         assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}
+
+/// After the run, fix adapt's `reset yes` puts the 1 1 and 2 2 prefactors back to 0 and the
+/// cross term keeps its last value (reset no, LAMMPS' default): the energy of a `run 0` after
+/// the deck, with both fixes gone, is LAMMPS' (0.340219080803117, LAMMPS 22 Jul 2025 on the
+/// same deck and lines).
+#[test]
+fn adapt_resets_only_with_reset_yes() {
+    let deck = std::fs::read_to_string(root().join("lammps-refs/decks/in.adapt_soft")).unwrap();
+    let text = format!("{deck}unfix 3\nunfix 4\nrun 0\n");
+    let r = run_text("adapt.deck", &text, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let (names, rows) = table(r.sim.out.captured.as_deref().unwrap());
+    let pe = rows[0][names.iter().position(|n| n == "PotEng").unwrap()];
+    assert!((pe - 0.340219080803117).abs() < 1e-12, "{pe}");
+}
+
+#[test]
+fn bad_adapt_is_a_located_error() {
+    let base = "pair_style soft 1.0\npair_coeff * * 1.0\nvariable p equal 2.0\n";
+    for (line, want) in [
+        ("fix 3 all adapt 1 kspace v_p\n", "`kspace` is not supported"),
+        ("fix 3 all adapt -1 pair soft a * * v_p\n", ">= 0"),
+        ("fix 3 all adapt 1 pair soft a * * 2.0\n", "v_name"),
+        ("fix 3 all adapt 1 pair soft a * * v_p every 2\n", "unknown keyword `every`"),
+        ("fix 3 all adapt 1\n", "missing"),
+    ] {
+        let text = deck("p p p", &format!("{base}{line}"));
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+    // what only a run can check: the pair style and its parameter
+    for (line, want) in [("fix 3 all adapt 1 pair lj/cut epsilon * * v_p\nrun 0\n", "lj/cut does not exist"), ("fix 3 all adapt 1 pair soft d * * v_p\nrun 0\n", "no parameter `d`")] {
+        let f = run_text("bad.deck", &deck("p p p", &format!("{base}{line}")), &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(want), "{line}: {}", f.rendered);
     }
 }

@@ -1,6 +1,7 @@
 //! Fixes: operations applied to a group of atoms at fixed points of the time step
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
+pub mod adapt;
 pub mod addforce;
 pub mod aveforce;
 pub mod ave_atom;
@@ -80,6 +81,8 @@ pub struct FixHooks {
     pub pre_exchange: bool,
     pub post_integrate: bool,
     pub post_force: bool,
+    /// Before the forces of a step, after the neighbour lists (LAMMPS' pre_force; fix adapt).
+    pub pre_force: bool,
     /// After pair granular mdr's work before the forces, outside a run's setup (a region wall
     /// with the mdr model: LAMMPS' fix GRANULAR/MDR updates it last in its pre_force).
     pub mdr_pre_force: bool,
@@ -277,6 +280,12 @@ pub trait Fix: Send + Sync {
     fn post_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
+    /// See [`FixHooks::pre_force`].
+    fn pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        Ok(())
+    }
+    /// At the end of a run (LAMMPS' post_run; fix adapt restores its parameters).
+    fn post_run(&mut self, _state: &mut State) {}
     /// See [`FixHooks::mdr_pre_force`].
     fn mdr_pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
@@ -417,6 +426,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("gravity", |d, state| Ok(Box::new(gravity::FixGravity::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("addforce", |d, state| Ok(Box::new(addforce::FixAddForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("adapt", |d, state| Ok(Box::new(adapt::FixAdapt::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("aveforce", |d, state| Ok(Box::new(aveforce::FixAveForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -8,7 +8,7 @@
 use dmhs::deck::{run_file, run_text, DeckOptions};
 use std::path::{Path, PathBuf};
 
-const DECKS: [&str; 5] = ["min_lj_cg", "min_chains_sd", "min_fire_2d", "min_cluster_cg", "min_cluster_walls"];
+const DECKS: [&str; 6] = ["min_lj_cg", "min_chains_sd", "min_fire_2d", "min_cluster_cg", "min_cluster_walls", "min_indent_2d"];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -80,6 +80,15 @@ pub struct Energies {
     pub step: i64,
 }
 
+/// One per-type-pair parameter of the pair style set to a value (types i <= j).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairParamChange {
+    pub param: String,
+    pub i: usize,
+    pub j: usize,
+    pub value: f64,
+}
+
 pub struct State {
     pub units: Units,
     pub dimension: usize,
@@ -154,6 +163,9 @@ pub struct State {
     /// Lines for the screen and the log from models (e.g. a fix's warnings during a run),
     /// printed and cleared by the command or step that produced them.
     pub messages: Vec<String>,
+    /// Pair parameters a fix asked to change (fix adapt), applied by the simulation before
+    /// the forces.
+    pub pair_changes: Vec<PairParamChange>,
     /// The ranks of a distributed run (None: one rank). Between runs every rank holds every
     /// atom, as a serial run does; during a run each holds its sub-domain's (`distributed`).
     pub decomp: Option<crate::engine::decomp::Decomp>,
@@ -219,6 +231,7 @@ impl State {
             special_dirty: false,
             special_frozen: false,
             messages: Vec::new(),
+            pair_changes: Vec::new(),
             decomp: None,
             procs_user: [None; 3],
             distributed: None,

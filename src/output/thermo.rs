@@ -45,6 +45,8 @@ pub struct Thermo {
     /// pressure compute thermo_press); `press ID`: the pressure compute of press and pxx...
     pub temp_id: String,
     pub press_id: String,
+    /// The last column is the Volume that [`Thermo::init_volume_column`] added.
+    pub volume_added: bool,
 }
 
 impl Default for Thermo {
@@ -64,6 +66,7 @@ impl Default for Thermo {
             flush: false,
             temp_id: "thermo_temp".into(),
             press_id: "thermo_press".into(),
+            volume_added: false,
         }
     }
 }
@@ -260,6 +263,19 @@ fn center(s: &str, width: usize) -> String {
 }
 
 impl Thermo {
+    /// LAMMPS' Thermo::init: style one gets a Volume column for a run in which the box can
+    /// change (a shrink-wrapped face, or a fix that moves the box or the sub-domains).
+    pub fn init_volume_column(&mut self, box_change: bool) {
+        if self.volume_added {
+            self.columns.pop();
+            self.volume_added = false;
+        }
+        if box_change && !self.custom {
+            self.columns.extend(parse_columns(&["vol"]).unwrap());
+            self.volume_added = true;
+        }
+    }
+
     /// The header line (custom/one style).
     pub fn header(&self) -> String {
         let mut h = String::new();

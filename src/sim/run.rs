@@ -11,6 +11,7 @@ use crate::models::pair::{PairInput, PairOutput, Tally};
 use crate::sim::{Energies, RunError, SetupError, Simulation, State};
 use crate::engine::fields::Field;
 use crate::engine::timing::Stage;
+use crate::engine::domain::BoundaryKind;
 use std::time::Instant;
 
 /// Options of the `run` command.
@@ -35,6 +36,33 @@ impl RunOptions {
 type Hook = fn(&mut dyn Fix, &mut State, &mut FixCtx) -> Result<(), RunError>;
 
 impl Simulation {
+    /// Pair parameters the fixes asked to change (fix adapt), then the pair style's init
+    /// (LAMMPS' Pair::reinit).
+    pub(crate) fn apply_pair_changes(&mut self) -> Result<(), RunError> {
+        if self.state.pair_changes.is_empty() {
+            return Ok(());
+        }
+        let changes = std::mem::take(&mut self.state.pair_changes);
+        let step = self.state.step;
+        let p = self.pair.as_mut().ok_or_else(|| RunError::new(step, "fix adapt: no pair style"))?;
+        for c in &changes {
+            if !p.adapt_set(&c.param, c.i, c.j, c.value) {
+                return Err(RunError::new(step, format!("fix adapt: pair style {} has no parameter `{}` for types {} {}", p.style(), c.param, c.i, c.j)));
+            }
+        }
+        self.init_pair(false).map_err(|e| RunError::new(step, e))
+    }
+
+    /// LAMMPS' Domain::init box_change (a shrink-wrapped face, or a fix that changes the box),
+    /// then Thermo::init's Volume column of style one.
+    pub(crate) fn init_thermo_columns(&mut self) {
+        let shrink = self.state.domain.as_ref().is_some_and(|d| {
+            d.boundary.iter().flatten().any(|b| matches!(b, BoundaryKind::Shrink | BoundaryKind::ShrinkMin))
+        });
+        let box_change = shrink || self.fixes.iter().any(|f| f.changes_box());
+        self.thermo.init_volume_column(box_change);
+    }
+
     /// Run `work` on fix `k` with the state and a context in which expressions see every fix
     /// (the running one passes itself), every compute and every variable.
     pub(crate) fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
@@ -101,6 +129,7 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
+        self.init_thermo_columns();
         // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
         for c in &self.thermo.columns {
             if let crate::output::thermo::Field::Fix(id, _) = &c.field {
@@ -530,6 +559,7 @@ impl Simulation {
         // (src/sim/stale_vest.rs).
         let vest_before = self.vest_before_setup();
         self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
+        self.apply_pair_changes()?;
         self.pair_pre_force(true)?;
         self.timers.charge(Stage::Modify);
         // what fixes noticed when the run starts (e.g. a region defined again)
@@ -593,6 +623,11 @@ impl Simulation {
             self.timers.charge(Stage::Comm);
         }
 
+        if self.fixes.iter().any(|f| f.hooks().pre_force) {
+            self.fix_hook(|h| h.pre_force, |f, s, c| f.pre_force(s, c))?;
+            self.apply_pair_changes()?;
+            self.timers.charge(Stage::Modify);
+        }
         self.pair_pre_force(false)?;
         self.fix_hook(|h| h.mdr_pre_force, |f, s, c| f.mdr_pre_force(s, c))?;
         // the stages follow each other: each starts at the reading that ended the last
@@ -697,7 +732,15 @@ impl Simulation {
         if self.state.decomp.is_some() {
             self.distribute()?;
         }
-        let outcome = self.run_steps(opts, first, last);
+        let mut outcome = self.run_steps(opts, first, last);
+        // LAMMPS' post_run (fix adapt's reset)
+        for f in self.fixes.iter_mut() {
+            f.post_run(&mut self.state);
+        }
+        if let Ok(Ok(())) = outcome {
+            outcome = Ok(self.apply_pair_changes());
+        }
+        self.state.pair_changes.clear();
         let counts = self.rank_counts();
         self.gather_ranks();
         // a setup that failed prints no loop line

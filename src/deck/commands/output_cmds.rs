@@ -51,6 +51,7 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         }
         _ => return Err(a.error_at(&cmd.args[0], format!("thermo_style {} is not supported yet", cmd.args[0].text), "supported: one, custom")),
     }
+    sim.thermo.volume_added = false;
     // a new style resets thermo_modify formats, as in LAMMPS
     sim.thermo.format_line = None;
     sim.thermo.format_int = None;

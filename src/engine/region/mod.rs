@@ -293,12 +293,9 @@ impl Region {
         let mut a = Args::new(cmd, &syntax);
         let id_word = a.word("region ID")?;
         let id = id_word.text.clone();
-        if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            return Err(a.error_at(
-                id_word,
-                format!("region ID `{id}` must use only letters, digits and underscores"),
-                "invalid ID",
-            ));
+        // LAMMPS checks no characters in region IDs (`lo-fixed` in examples/friction)
+        if id.is_empty() {
+            return Err(a.error_at(id_word, "empty region ID", "invalid ID"));
         }
         let style_word = a.word("region style")?;
         if style_word.text == "delete" {
@@ -436,7 +433,8 @@ union N id1 id2 ...; keywords: side in|out, units lattice|box, open face, move v
         assert!(e.message.contains("missing"));
         let e = reg("region r sphere 0 0 v_z 1", None, None, &[]).unwrap_err();
         assert!(e.message.contains("(v_name)"));
-        let e = reg("region 1-a sphere 0 0 0 1", None, None, &[]).unwrap_err();
-        assert!(e.message.contains("letters, digits"));
+        // any characters, as LAMMPS (examples/friction's `lo-fixed`)
+        let r = reg("region lo-fixed sphere 0 0 0 1", None, None, &[]).unwrap();
+        assert_eq!(r.id, "lo-fixed");
     }
 }

@@ -32,6 +32,9 @@ impl Fix for FixBalance {
     fn style(&self) -> &str {
         "balance"
     }
+    fn changes_box(&self) -> bool {
+        true
+    }
     fn groupbit(&self) -> u32 {
         self.groupbit
     }

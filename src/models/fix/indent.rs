@@ -149,6 +149,11 @@ impl Fix for FixIndent {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
+    /// LAMMPS' min_setup and min_post_force are its post_force; with `fix_modify energy yes`
+    /// the indenter energy is part of the minimized energy (examples/indent/in.indent.min).
+    fn min_role(&self) -> super::MinRole {
+        super::MinRole::PostForce
+    }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.indenter = [0.0; 4];
         let mut val = |v: &FixValue, me: &Self, state: &State| ctx.value(state, me, v).map(|x| x.unwrap_or(0.0));

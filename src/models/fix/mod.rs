@@ -1,7 +1,9 @@
 //! Fixes: operations applied to a group of atoms at fixed points of the time step
 //! (LAMMPS' `Fix` hooks). Each style lives in its own file; [`new_fix`] is the registry.
 
+pub mod adapt;
 pub mod addforce;
+pub mod aveforce;
 pub mod ave_atom;
 pub mod ave_chunk;
 pub mod ave_time;
@@ -79,6 +81,8 @@ pub struct FixHooks {
     pub pre_exchange: bool,
     pub post_integrate: bool,
     pub post_force: bool,
+    /// Before the forces of a step, after the neighbour lists (LAMMPS' pre_force; fix adapt).
+    pub pre_force: bool,
     /// After pair granular mdr's work before the forces, outside a run's setup (a region wall
     /// with the mdr model: LAMMPS' fix GRANULAR/MDR updates it last in its pre_force).
     pub mdr_pre_force: bool,
@@ -198,12 +202,17 @@ pub trait Fix: Send + Sync {
     /// applies many of them through hooks dmhs' fixes do not have).
     fn min_role(&self) -> MinRole {
         match self.hooks().post_force {
-            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, enforce2d, addforce, spring, viscous, wall/* and wall/region", self.id(), self.style())),
+            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, aveforce, enforce2d, addforce, indent, spring, viscous, wall/* and wall/region", self.id(), self.style())),
             false => MinRole::Inert,
         }
     }
     fn id(&self) -> &str;
     fn style(&self) -> &str;
+    /// The fix changes the box or the sub-domains (LAMMPS' box_change flags): thermo style one
+    /// then prints the volume.
+    fn changes_box(&self) -> bool {
+        false
+    }
     /// Bitmask of the fix group.
     fn groupbit(&self) -> u32;
     fn hooks(&self) -> FixHooks;
@@ -271,6 +280,12 @@ pub trait Fix: Send + Sync {
     fn post_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
     }
+    /// See [`FixHooks::pre_force`].
+    fn pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        Ok(())
+    }
+    /// At the end of a run (LAMMPS' post_run; fix adapt restores its parameters).
+    fn post_run(&mut self, _state: &mut State) {}
     /// See [`FixHooks::mdr_pre_force`].
     fn mdr_pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())
@@ -411,6 +426,8 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("gravity", |d, state| Ok(Box::new(gravity::FixGravity::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("addforce", |d, state| Ok(Box::new(addforce::FixAddForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("adapt", |d, state| Ok(Box::new(adapt::FixAdapt::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("aveforce", |d, state| Ok(Box::new(aveforce::FixAveForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

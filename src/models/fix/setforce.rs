@@ -34,22 +34,28 @@ pub fn region_now<'a>(regions: &'a [crate::engine::region::Region], step: i64, f
     }
 }
 
+/// `fx fy fz [region R]` of fix setforce and fix aveforce: each a constant, v_name or NULL.
+pub fn parse_components(args: &[Word], cmd: &Command, syntax: &'static str, state: &State) -> DResult<([FixValue; 3], Option<String>)> {
+    let mut a = Args::from_words(args, cmd.span, syntax);
+    let mut value = [FixValue::Null, FixValue::Null, FixValue::Null];
+    for (k, what) in ["fx", "fy", "fz"].iter().enumerate() {
+        let w = a.word(what)?;
+        value[k] = FixValue::parse(w, what, true).map_err(|d| d.with_help(format!("syntax: {syntax}")))?;
+    }
+    let mut region = None;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "region" => region = Some(find_region(&mut a, state)?),
+            _ => return Err(a.unknown_keyword(w, &["region"])),
+        }
+    }
+    Ok((value, region))
+}
+
 impl FixSetForce {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
-        let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        let mut value = [FixValue::Null, FixValue::Null, FixValue::Null];
-        for (k, what) in ["fx", "fy", "fz"].iter().enumerate() {
-            let w = a.word(what)?;
-            value[k] = FixValue::parse(w, what, true).map_err(|d| d.with_help(format!("syntax: {SYNTAX}")))?;
-        }
-        let mut region = None;
-        while let Some(w) = a.peek() {
-            a.skip(1);
-            match w.text.as_str() {
-                "region" => region = Some(find_region(&mut a, state)?),
-                _ => return Err(a.unknown_keyword(w, &["region"])),
-            }
-        }
+        let (value, region) = parse_components(args, cmd, SYNTAX, state)?;
         Ok(FixSetForce { id, groupbit, value, region, foriginal: [0.0; 3] })
     }
 }

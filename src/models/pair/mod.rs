@@ -195,6 +195,16 @@ pub trait PairStyle: Send + Sync {
     }
     /// `pair_coeff I J args...` with the type ranges already parsed (`args` starts after them).
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()>;
+    /// A per-type-pair parameter that fix adapt may change (LAMMPS' Pair::extract with
+    /// dim 2): its value for types i <= j; None if the style has no such parameter.
+    fn adapt_get(&self, _param: &str, _i: usize, _j: usize) -> Option<f64> {
+        None
+    }
+    /// Set it (false: no such parameter); `init` then re-derives mixed and cached values
+    /// (LAMMPS' Pair::reinit).
+    fn adapt_set(&mut self, _param: &str, _i: usize, _j: usize, _value: f64) -> bool {
+        false
+    }
     /// Checks against the atoms before a run (called before `init`); an error stops the run.
     fn init_sim(&mut self, _setup: &PairSetup) -> Result<(), String> {
         Ok(())

@@ -82,6 +82,19 @@ impl PairStyle for Soft {
         Ok(())
     }
 
+    /// `a`: the prefactor A (an unset cross term is mixed again by `init`, as LAMMPS' init_one).
+    fn adapt_get(&self, param: &str, i: usize, j: usize) -> Option<f64> {
+        (param == "a" && i.max(j) <= self.coeff.n).then(|| self.coeff.get(i, j).prefactor)
+    }
+    fn adapt_set(&mut self, param: &str, i: usize, j: usize, value: f64) -> bool {
+        if param != "a" || i.max(j) > self.coeff.n {
+            return false;
+        }
+        let c = *self.coeff.get(i, j);
+        self.coeff.set(i, j, Coeff { prefactor: value, ..c });
+        true
+    }
+
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String> {
         self.coeff.grow(ntypes)?;
         let mut derived = TypeTable::new(ntypes)?;

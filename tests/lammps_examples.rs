@@ -1,0 +1,137 @@
+//! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
+//! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
+//! aveforce (aveforce_flow) and fix adapt (adapt_soft; the thermo table at every printed step against
+//! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
+//! Volume column when the box can change, region IDs with '-'; and the located errors.
+
+use dmhs::deck::{run_text, DeckOptions};
+
+mod thermo_tables;
+use thermo_tables::{root, table};
+
+const DECKS: [&str; 2] = ["aveforce_flow", "adapt_soft"];
+
+thermo_tables::thermo_table_tests!(DECKS);
+
+fn opts() -> DeckOptions {
+    DeckOptions { screen: false, capture_text: true, ..Default::default() }
+}
+
+/// A 2D slab of 60 atoms; `boundary` and the lines after it are the test's.
+fn deck(boundary: &str, extra: &str) -> String {
+    format!(
+        "dimension 2\nboundary {boundary}\natom_style atomic\nlattice hex 0.9\nregion box block 0 6 0 5 -0.25 0.25\ncreate_box 1 box\n\
+         create_atoms 1 box\nmass 1 1.0\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\nfix 2 all enforce2d\n{extra}"
+    )
+}
+
+fn header(text: &str) -> Vec<String> {
+    let line = text.lines().find(|l| l.trim_start().starts_with("Step")).expect("a thermo header");
+    line.split_whitespace().map(String::from).collect()
+}
+
+/// LAMMPS' Thermo::init: style one gains Volume when a face is shrink-wrapped (or a fix such as
+/// balance changes the box), custom never does; a later run in a periodic box drops it again.
+#[test]
+fn thermo_one_prints_volume_when_the_box_can_change() {
+    let one = ["Step", "Temp", "E_pair", "E_mol", "TotEng", "Press"];
+    for (boundary, extra, volume) in [
+        ("p s p", "run 0\n", true),
+        ("p m p", "run 0\n", true),
+        ("p f p", "run 0\n", false),
+        ("p p p", "run 0\n", false),
+        ("p p p", "fix b all balance 10 1.1 shift x 5 1.05\nrun 0\n", true),
+        ("p s p", "thermo_style custom step temp press\nrun 0\n", false),
+    ] {
+        let r = run_text("t.deck", &deck(boundary, extra), &opts()).unwrap_or_else(|f| panic!("{boundary} {extra}: {}", f.rendered));
+        let h = header(r.sim.out.captured.as_deref().unwrap());
+        let mut want: Vec<String> = if extra.contains("custom") { vec!["Step".into(), "Temp".into(), "Press".into()] } else { one.iter().map(|s| s.to_string()).collect() };
+        if volume {
+            want.push("Volume".into());
+        }
+        assert_eq!(h, want, "boundary {boundary}, {extra}");
+    }
+    // the column belongs to the run: a second run after change_box to periodic drops it
+    let r = run_text("t.deck", &deck("p s p", "run 0\nchange_box all boundary p p p\nrun 0\n"), &opts()).unwrap();
+    let text = r.sim.out.captured.clone().unwrap();
+    let last = text.lines().filter(|l| l.trim_start().starts_with("Step")).last().unwrap();
+    assert!(!last.contains("Volume"), "{last}");
+}
+
+/// The average of the group's forces plus the given component replaces each atom's force;
+/// f_ID is the total before averaging; NULL components stay as the pair forces left them.
+#[test]
+fn aveforce_sets_the_average_force() {
+    let shake = "displace_atoms all random 0.05 0.05 0.0 4711 units box\nregion top block INF INF 4.5 INF INF INF\ngroup top region top\n";
+    let plain = run_text("t.deck", &deck("p s p", &format!("{shake}run 0\n")), &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let r = run_text("t.deck", &deck("p s p", &format!("{shake}fix 3 top aveforce 0.25 NULL 0.0\nrun 0\n")), &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let sim = &r.sim;
+    let a = &sim.state.atoms;
+    let bit = sim.state.groups.bit("top").unwrap();
+    let top: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0).collect();
+    assert!(top.len() > 3);
+    let fx = a.f[top[0]][0];
+    assert!(top.iter().all(|&i| a.f[i][0] == fx && a.f[i][2] == 0.0));
+    let fix = &sim.fixes[sim.find_fix("3").unwrap()];
+    let total = fix.vector(&sim.state, 1).unwrap();
+    assert!((fx - (total / top.len() as f64 + 0.25)).abs() < 1e-12, "{fx} {total}");
+    // y untouched: the same as without the fix (atoms matched by ID)
+    let p = &plain.sim.state.atoms;
+    for &i in &top {
+        let j = (0..p.nlocal).find(|&j| p.tag[j] == a.tag[i]).unwrap();
+        assert_eq!(a.f[i][1], p.f[j][1]);
+    }
+    let spread = top.iter().map(|&i| a.f[i][1]).fold(f64::NEG_INFINITY, f64::max) - top.iter().map(|&i| a.f[i][1]).fold(f64::INFINITY, f64::min);
+    assert!(spread > 1e-3, "the displaced atoms' y forces differ ({spread})");
+}
+
+#[test]
+fn bad_aveforce_is_a_located_error() {
+    for (line, want) in [
+        ("fix 3 all aveforce 0.0 0.0\n", "fz"),
+        ("fix 3 all aveforce 0.0 zero 0.0\n", "fy"),
+        ("fix 3 all aveforce 0.0 0.0 0.0 region nowhere\n", "region `nowhere` does not exist"),
+        ("fix 3 all aveforce 0.0 0.0 0.0 every 2\n", "unknown keyword `every`"),
+    ] {
+        let text = deck("p p p", line);
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}
+
+/// After the run, fix adapt's `reset yes` puts the 1 1 and 2 2 prefactors back to 0 and the
+/// cross term keeps its last value (reset no, LAMMPS' default): the energy of a `run 0` after
+/// the deck, with both fixes gone, is LAMMPS' (0.340219080803117, LAMMPS 22 Jul 2025 on the
+/// same deck and lines).
+#[test]
+fn adapt_resets_only_with_reset_yes() {
+    let deck = std::fs::read_to_string(root().join("lammps-refs/decks/in.adapt_soft")).unwrap();
+    let text = format!("{deck}unfix 3\nunfix 4\nrun 0\n");
+    let r = run_text("adapt.deck", &text, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let (names, rows) = table(r.sim.out.captured.as_deref().unwrap());
+    let pe = rows[0][names.iter().position(|n| n == "PotEng").unwrap()];
+    assert!((pe - 0.340219080803117).abs() < 1e-12, "{pe}");
+}
+
+#[test]
+fn bad_adapt_is_a_located_error() {
+    let base = "pair_style soft 1.0\npair_coeff * * 1.0\nvariable p equal 2.0\n";
+    for (line, want) in [
+        ("fix 3 all adapt 1 kspace v_p\n", "`kspace` is not supported"),
+        ("fix 3 all adapt -1 pair soft a * * v_p\n", ">= 0"),
+        ("fix 3 all adapt 1 pair soft a * * 2.0\n", "v_name"),
+        ("fix 3 all adapt 1 pair soft a * * v_p every 2\n", "unknown keyword `every`"),
+        ("fix 3 all adapt 1\n", "missing"),
+    ] {
+        let text = deck("p p p", &format!("{base}{line}"));
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+    // what only a run can check: the pair style and its parameter
+    for (line, want) in [("fix 3 all adapt 1 pair lj/cut epsilon * * v_p\nrun 0\n", "lj/cut does not exist"), ("fix 3 all adapt 1 pair soft d * * v_p\nrun 0\n", "no parameter `d`")] {
+        let f = run_text("bad.deck", &deck("p p p", &format!("{base}{line}")), &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}

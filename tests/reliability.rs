@@ -260,6 +260,19 @@ fn absurd_type_counts_are_refused() {
         expect(sub, &[&deck("in.many_types"), "-log", "none"], 2, &["number of atom types must be in 1..=4096, found 2147483647", "in.many_types:6:14"]);
         let data = deck("many_types.data");
         expect(sub, &[&deck("in.many_types_data"), "-var", "data", &data, "-log", "none"], 2, &["too many atom types: 2147483647; dmhs accepts at most 4096", "many_types.data:4:1"]);
+        // found by tests/fuzz.rs (seed 44): read_data's extra bond types were not bounded
+        let t = expect(sub, &[&deck("in.extra_types"), "-var", "data", &deck("one_bond.data"), "-log", "none"], 2, &["number of extra bond types must be in 0..=4096, found 2147483647", "in.extra_types:6:"]);
+        assert!(!t.contains("memory allocation"), "{t}");
+    }
+}
+
+/// Found by tests/fuzz.rs (seed 77): a fix wall/gran/region defined again with its ID replaced
+/// the old fix, whose cleanup then removed the new one's history array (same name): a panic at
+/// setup. The old fix is now removed first, as LAMMPS' Modify::add_fix deletes it.
+#[test]
+fn a_fix_defined_twice_keeps_its_per_atom_arrays() {
+    for sub in ["run", "check"] {
+        expect(sub, &[&deck("in.wall_gran_region_twice"), "-log", "none"], 0, &[]);
     }
 }
 

@@ -29,15 +29,18 @@ struct ReadOptions {
     shift: [f64; 3],
     /// Types beyond the file's (first read only).
     extra_types: [usize; 5],
+    /// Where the last extra/*/types keyword is (for the error of a total above MAX_TYPES).
+    extra_at: Option<dmhs_parser::span::Span>,
     group: Option<u32>,
     coeffs: bool,
 }
 
+const KINDS: [&str; 5] = ["atom", "bond", "angle", "dihedral", "improper"];
+
 fn read_options(sim: &mut Simulation, cmd: &Command, a: &mut Args) -> DResult<ReadOptions> {
-    let mut o = ReadOptions { add: None, offset: [0; 5], shift: [0.0; 3], extra_types: [0; 5], group: None, coeffs: true };
+    let mut o = ReadOptions { add: None, offset: [0; 5], shift: [0.0; 3], extra_types: [0; 5], extra_at: None, group: None, coeffs: true };
     let (mut offset_w, mut shift_w, mut extra_w) = (None, None, None);
     let ft = sim.state.atoms.features;
-    const KINDS: [&str; 5] = ["atom", "bond", "angle", "dihedral", "improper"];
     let allowed = [true, ft.bonds, ft.angles, ft.dihedrals, false];
     while let Some(w) = a.peek() {
         a.skip(1);
@@ -87,8 +90,10 @@ fn read_options(sim: &mut Simulation, cmd: &Command, a: &mut Args) -> DResult<Re
                         if !allowed[k] {
                             return Err(a.error_at(w, format!("no {kind}s are allowed with atom style {}", sim.state.atom_style.join(" ")), "not with this atom style"));
                         }
-                        o.extra_types[k] = a.i64_in(&format!("number of extra {kind} types"), 0, i32::MAX as i64)? as usize;
+                        // dmhs keeps tables per type (and per pair of atom types): at most MAX_TYPES in all
+                        o.extra_types[k] = a.i64_in(&format!("number of extra {kind} types"), 0, dmhs_parser::data_file::MAX_TYPES as i64)? as usize;
                         extra_w = Some(w);
+                        o.extra_at = Some(w.span);
                     }
                     ["extra", kind, "per", "atom"] if KINDS[1..].contains(&kind) || kind == "special" => {
                         if !ft.molecular() {
@@ -184,7 +189,13 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
                 return Err(Diagnostic::at(cmd.span, "a 2d data file must have zlo < 0 < zhi", "2d box"));
             }
             let domain = Domain { dimension: sim.state.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.state.boundary };
-            let ntypes = h.atom_types + o.extra_types[0];
+            let max = dmhs_parser::data_file::MAX_TYPES;
+            let totals = [h.atom_types + o.extra_types[0], h.bond_types + o.extra_types[1], h.angle_types + o.extra_types[2], h.dihedral_types + o.extra_types[3], h.improper_types + o.extra_types[4]];
+            if let Some(k) = totals.iter().position(|&n| n > max) {
+                let message = format!("read_data: {} {} types with the extra ones; dmhs accepts at most {max}", totals[k], KINDS[k]);
+                return Err(Diagnostic::at(o.extra_at.unwrap_or(cmd.span), message, "too many types"));
+            }
+            let ntypes = totals[0];
             crate::sim::memory::check_types(ntypes).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {ntypes} atom types: {e}"), "too many atom types"))?;
             sim.state.ntypes = ntypes;
             sim.state.type_mass = vec![0.0; ntypes + 1];

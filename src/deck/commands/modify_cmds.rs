@@ -33,7 +33,21 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             return Err(a.error_at(id, format!("fix `{}` already exists with style {}; replacing it needs the same style", id.text, sim.fixes[k].style()), "ID in use"));
         }
     }
-    let mut f = crate::models::fix::new_fix(cmd, id, bit, style, rest, crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref() }, &mut sim.state)?;
+    // LAMMPS' Modify::add_fix deletes the fix it replaces before making the new one: the old
+    // one's per-atom arrays (named by the ID) go first, so the new one's are its own
+    if let Some(k) = existing {
+        sim.fixes[k].cleanup(&mut sim.state);
+    }
+    let made = crate::models::fix::new_fix(cmd, id, bit, style, rest, crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref() }, &mut sim.state);
+    let mut f = match made {
+        Ok(f) => f,
+        Err(e) => {
+            if let Some(k) = existing {
+                sim.fixes.remove(k);
+            }
+            return Err(e);
+        }
+    };
     // LAMMPS' Modify::add_fix: the state a restart file holds for this ID and style
     if let Some(k) = sim.restart_fixes.iter().position(|s| s.id == id.text && s.style == style.text) {
         let s = sim.restart_fixes.remove(k);
@@ -41,10 +55,7 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
         sim.out.print(&format!("Resetting global fix info from restart file:\n  fix style: {}, fix ID: {}", s.style, s.id));
     }
     match existing {
-        Some(k) => {
-            let mut old = std::mem::replace(&mut sim.fixes[k], f);
-            old.cleanup(&mut sim.state);
-        }
+        Some(k) => sim.fixes[k] = f,
         None => sim.fixes.push(f),
     }
     sim.flush_messages();

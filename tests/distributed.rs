@@ -567,10 +567,10 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
     assert!(out.status.success(), "{text}");
     // 864 fcc atoms in a cube on a 1 x 2 x 2 grid: 216 each
     assert!(text.contains("on 4 ranks: 1 by 2 by 2 processor grid; atoms per rank 216 to 216 (216, 216, 216, 216)"), "{text}");
-    std::fs::write(dir.path().join("in.lang"), MELT.replace("fix          1 all nve\n", "fix          1 all temp/berendsen 1.0 1.0 0.5\n")).unwrap();
+    std::fs::write(dir.path().join("in.lang"), MELT.replace("fix          1 all nve\n", "fix          1 all spring tether 10.0 5.0 5.0 5.0 0.0\n")).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.lang", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("on 2 ranks: fix 1 (temp/berendsen) cannot run on 2 ranks yet"), "{text}");
+    assert!(text.contains("on 2 ranks: fix 1 (spring) cannot run on 2 ranks yet"), "{text}");
 }
 
 #[test]

@@ -62,7 +62,7 @@ pub const MDR_ATOT_SUM: Field = Field { name: "d_Atot_sum", ghosts: false };
 pub const MDR_SIGMAXX: Field = Field { name: "d_sigmaxx", ghosts: false };
 pub const MDR_SIGMAYY: Field = Field { name: "d_sigmayy", ghosts: false };
 pub const MDR_SIGMAZZ: Field = Field { name: "d_sigmazz", ghosts: false };
-/// The pair pass's sums, in the order [`crate::models::pair::granular::mdr`] adds them.
+/// The pair pass's sums, in the order the mdr model's pair pass adds them.
 pub const MDR_SUMS: [Field; 9] = [MDR_VCAPS, MDR_EPS_BAR, MDR_DRNUM, MDR_DRDEN, MDR_ACON1, MDR_ATOT_SUM, MDR_SIGMAXX, MDR_SIGMAYY, MDR_SIGMAZZ];
 /// Every field of the `mdr` model.
 pub const MDR_FIELDS: [Field; 18] = [

@@ -12,6 +12,7 @@ pub mod groups;
 pub mod jacobi;
 pub mod lammps_order;
 pub mod lattice;
+pub mod memory;
 pub mod molecule;
 #[cfg(feature = "mpi")]
 pub mod mpi_comm;

@@ -156,7 +156,7 @@ mod tests {
         }
         let type_mass = vec![0.0, 2.0, 5.0];
         let mut hc = DmhsHeatConduction { kernel: Kernel::Lucy, given: PairTable::empty(), pairs: PairTable::empty(), cutsq: vec![], n: 0, dim3: true };
-        hc.given.grow(2);
+        hc.given.grow(2).unwrap();
         hc.given.put(1, 1, (1.0, 1.0));
         hc.given.put(2, 2, (3.0, 0.6));
         hc.init(2, &PairModify::default(), None).unwrap();

@@ -684,7 +684,7 @@ pub fn type_pair_vec<T: Clone>(ntypes: usize, fill: T) -> Result<Vec<T>, String>
     let bytes = len as f64 * std::mem::size_of::<T>().max(1) as f64;
     if bytes > 1.0e6 {
         let what = format!("{ntypes} atom types: a pair style's table of (N+1)^2 = {len} type pairs x {} bytes", std::mem::size_of::<T>());
-        crate::sim::memory::check_fits(bytes, &what)?;
+        crate::engine::memory::check_fits(bytes, &what)?;
     }
     let mut v = Vec::new();
     v.try_reserve_exact(len).map_err(|_| format!("{ntypes} atom types: the memory for a pair style's table of {len} type pairs could not be allocated"))?;

@@ -97,13 +97,13 @@ fn rotation<'w>(a: &mut Args<'w>) -> DResult<(Rotation, &'w Word)> {
 /// The name of a per-atom array of the fix, and whether it holds values already. An array of
 /// this ID that is there when no fix of the ID exists comes from a restart file (an unfixed fix
 /// removes its own): kept, as LAMMPS restores its per-atom restart data. A fix replacing one of
-/// the same ID takes the other of two names, since the old one removes its array afterwards.
+/// the same ID starts afresh (the old one's arrays are removed before it is made). The `:next`
+/// name is what a replacing fix used before that order; restart files may still hold it.
 fn store_name(state: &State, base: &str, replacing: bool) -> (String, bool) {
     let alt = format!("{base}:next");
     let found = |n: &str| state.atoms.find_extra(n).is_some();
     match (replacing, found(base)) {
-        (true, true) => (alt, false),
-        (true, false) => (base.to_string(), false),
+        (true, _) => (base.to_string(), false),
         (false, _) if found(&alt) => (alt, true),
         (false, restored) => (base.to_string(), restored),
     }

@@ -2,9 +2,15 @@
 //! Trajectories are compared with LAMMPS by lammps-refs/decks/in.group_dynamic and
 //! in.pour_timestep (tests/lammps_parity.rs); here: what LAMMPS 22 Jul 2025 refuses (located
 //! errors), what it prints, and that write_dump writes what a dump of the same step writes.
+//! in.group_dynamic_property (`property`, and `set ... i_NAME|d_NAME`): its thermo table against
+//! LAMMPS', every column.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+mod thermo_tables;
+
+thermo_tables::thermo_table_tests!(["group_dynamic_property"]);
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -63,6 +69,10 @@ fn dynamic_group_refusals_are_lammps() {
     expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all var nope"), "Variable 'nope' for dynamic group pushed does not exist");
     expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all region band every 0"), "Illegal every value 0");
     expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all foo 1"), "unknown keyword `foo`");
+    // property: a custom per-atom vector that exists when the group is defined (LAMMPS' check)
+    expect_error(&d.replace(GROUP_LINE, "group        pushed dynamic all property flag"), "Custom per-atom vector flag for group dynamic does not exist");
+    expect_error(&d.replace(GROUP_LINE, "set          group all i_flag 1"), "Set keyword or custom property i_flag does not exist");
+    expect_error(&d.replace(GROUP_LINE, "fix p all property/atom i_flag\nset group all i_flag 1.5"), "integer");
     // the parent of a dynamic group cannot be dynamic (LAMMPS checks at init)
     let (code, out) = run(&with("group sub dynamic pushed region lhalf"));
     assert_ne!(code, 0, "{out}");

@@ -243,7 +243,7 @@ fn group_dynamic(sim: &mut Simulation, a: &mut Args, idw: &Word, style: &Word) -
     if idw.text == "all" {
         return Err(a.error_at(idw, "Group all cannot be made dynamic", "reserved group"));
     }
-    let (mut region, mut var, mut every) = (None, None, 1);
+    let (mut region, mut var, mut property, mut every) = (None, None, None, 1);
     while let Some(kw) = a.peek() {
         a.skip(1);
         match kw.text.as_str() {
@@ -270,14 +270,20 @@ fn group_dynamic(sim: &mut Simulation, a: &mut Args, idw: &Word, style: &Word) -
                     return Err(a.error_at(w, format!("Illegal every value {every} for dynamic group {}", idw.text), "must be > 0"));
                 }
             }
-            "property" => return Err(a.error_at(kw, "group dynamic `property` is a LAMMPS keyword that dmhs does not support yet", "not supported")),
+            "property" => {
+                let w = a.word("custom per-atom property name")?;
+                if crate::models::fix::group_dynamic::find_custom(&sim.state.atoms, &w.text).is_none() {
+                    return Err(a.error_at(w, format!("Custom per-atom vector {} for group dynamic does not exist (a fix property/atom i_{0} or d_{0} defines one)", w.text), "unknown property"));
+                }
+                property = Some(w.text.clone());
+            }
             _ => return Err(a.unknown_keyword(kw, &["region", "var", "property", "every"])),
         }
     }
     let k = sim.state.groups.find_or_create(&idw.text).map_err(|e| a.error_at(idw, e, "too many groups"))?;
     drop_dynamic(sim, k);
     sim.state.groups.set_dynamic(k, true);
-    sim.fixes.push(Box::new(crate::models::fix::group_dynamic::FixGroup::new(&idw.text, parent, 1 << k, region, var, every)));
+    sim.fixes.push(Box::new(crate::models::fix::group_dynamic::FixGroup::new(&idw.text, parent, 1 << k, region, var, property, every)));
     sim.out.print(&format!("dynamic group {} defined", idw.text));
     Ok(())
 }
@@ -492,8 +498,22 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 let (w, v) = set_value(sim, &mut a, "temperature", syntax)?;
                 each(&mut sim.state.atoms, &v, w, &|t| t >= 0.0, "Invalid temperature in set command", &mut |at, i, t| at.extra[k].data[i] = t)?;
             }
+            custom if (custom.starts_with("i_") || custom.starts_with("d_")) && custom.len() > 2 => {
+                // LAMMPS: a fix property/atom value; an integer one truncates a variable's value
+                let Some(k) = sim.state.atoms.find_extra(custom) else {
+                    return Err(a.error_at(kw, format!("Set keyword or custom property {custom} does not exist"), "no such custom value").with_help(format!("define it first: fix ID all property/atom {custom}")));
+                };
+                let int = custom.starts_with("i_");
+                let (w, v) = if int && !is_var(&a) {
+                    let m = a.i64("integer value")?;
+                    (a.last().unwrap(), SetValue::One(m as f64))
+                } else {
+                    set_value(sim, &mut a, custom, syntax)?
+                };
+                each(&mut sim.state.atoms, &v, w, &|_| true, "", &mut |at, i, x| at.extra[k].data[i] = if int { x.trunc() } else { x })?;
+            }
             other => {
-                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water", "temperature"];
+                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water", "temperature", "i_NAME", "d_NAME"];
                 let mut d = a.error_at(kw, format!("set keyword `{other}` is not supported"), "unknown or unsupported keyword");
                 if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
                     d = d.with_help(h);

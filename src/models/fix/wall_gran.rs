@@ -301,10 +301,10 @@ impl FixWallGran {
 
     fn apply(&mut self, state: &mut State, ctx: &mut FixCtx, update: bool) -> Result<(), RunError> {
         let twall = wall_temperature(&self.temperature, state, ctx, self)?;
-        if width(&self.model) == 3 {
-            self.apply_w::<3>(state, update, twall)
-        } else {
-            self.apply_w::<MAX_HISTORY>(state, update, twall)
+        match width(&self.model) {
+            3 => self.apply_w::<3>(state, update, twall),
+            MAX_HISTORY => self.apply_w::<MAX_HISTORY>(state, update, twall),
+            _ => self.apply_w::<WIDEST>(state, update, twall),
         }
     }
 
@@ -336,6 +336,7 @@ impl FixWallGran {
         let nq = if heat.is_some() { n } else { 0 };
         let windows = (AtomsMut::new(&mut a.f[..n]), AtomsMut::new(&mut a.torque[..n]), AtomsMut::new(h3), AtomsMut::new(&mut flow[..nq]), AtomsMut::new(c8));
         let (dim, groupbit, model) = (self.dim, self.groupbit, &self.model);
+        let beyond = model.beyond_contact;
         // atoms are independent: ranges of them may run in parallel (same bits)
         ranges(n, 1024, windows, |range, (mut f, mut torque, mut h3, mut flow, mut c8)| {
             for i in range {
@@ -351,7 +352,8 @@ impl FixWallGran {
                 let rsq = dist * dist;
                 let radi = radius[i];
                 let h = &mut h3[i];
-                if rsq >= radi * radi {
+                let touching = if beyond { model.wall_touch(rsq, radi, 0.0, h[0] != 0.0) } else { rsq < radi * radi };
+                if !touching {
                     // no contact: history zero (written only if it is not, so the many atoms
                     // away from the wall do not dirty their history's cache lines)
                     if h.iter().fold(0, |b, x| b | x.to_bits()) != 0 {
@@ -360,6 +362,9 @@ impl FixWallGran {
                     continue;
                 }
                 let mut hv = *h;
+                if beyond {
+                    hv[0] = 1.0;
+                }
                 let mut dx = [0.0f64; 3];
                 dx[dim] = dist;
                 let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -389,10 +394,18 @@ impl FixWallGran {
     }
 }
 
-/// History values per atom: 3 (as before the models that keep more), or the most any keeps.
+/// History values per atom: 3 (as before the models that keep more), the most a pair keeps,
+/// or that and a beyond-contact model's touch flag.
 fn width(model: &GranModel) -> usize {
-    if model.history_size <= 3 { 3 } else { MAX_HISTORY }
+    match model.history_size {
+        0..=3 => 3,
+        4..=MAX_HISTORY => MAX_HISTORY,
+        _ => WIDEST,
+    }
 }
+
+/// The most history values a wall keeps per atom.
+const WIDEST: usize = MAX_HISTORY + 1;
 
 impl Fix for FixWallGran {
     fn id(&self) -> &str {

@@ -72,9 +72,6 @@ impl FixWallGranRegion {
         }
         let spec = parse_model(&mut a, cmd, &syn, state)?;
         let model = GranModel::build(&spec, true);
-        if matches!(model.normal, Normal::Jkr { .. }) {
-            return Err(a.error_at(&cmd.name, "fix wall/gran/region with the jkr normal model is not supported (its pull-off distance widens the region search)", "not supported"));
-        }
         let w = a.word("`region` and a region ID")?;
         if w.text != "region" {
             return Err(a.error_at(w, format!("expected `region region-ID`, found `{}`", w.text), "expected region"));
@@ -188,7 +185,9 @@ impl FixWallGranRegion {
                 continue;
             }
             let radi = a.radius[i];
-            self.region.surface(a.x[i], radi, &mut self.contacts);
+            // LAMMPS widens the search by the pull-off distance against R_j = 0, which is 0:
+            // a JKR contact with a region wall ends where it stops touching
+            self.region.surface(a.x[i], radi + self.model.normal.pulloff_distance(radi, 0.0), &mut self.contacts);
             let nc = self.contacts.len();
             if nc > tmax {
                 result = Err(RunError::new(step, format!("too many wall/gran/region contacts for one particle (atom {}: {nc}, at most {tmax})", a.tag[i])));
@@ -202,11 +201,15 @@ impl FixWallGranRegion {
                 let c = self.contacts[ic];
                 let rsq = c.r * c.r;
                 let slot = if w > 0 { 1 + slots + self.c2r[ic] * w } else { 0 };
-                if rsq >= radi * radi {
+                let beyond = self.model.beyond_contact;
+                if !self.model.wall_touch(rsq, radi, c.radius, beyond && h[slot] != 0.0) {
                     if w > 0 {
                         h[slot..slot + w].fill(0.0);
                     }
                     continue;
+                }
+                if beyond {
+                    h[slot] = 1.0;
                 }
                 let vwall = if dynamic { c.vwall } else { w0 };
                 let mi = if rigid_mass.is_empty() { a.rmass[i] } else { rigid_mass[i] };

@@ -133,7 +133,7 @@ pub struct Flags {
     pub cohesive: bool,
     /// refuses a cohesive normal model (LAMMPS allow_cohesion = 0)
     pub no_cohesion: bool,
-    /// interacts beyond touching (LAMMPS beyond_contact; not against fix wall/gran here)
+    /// interacts beyond touching (LAMMPS beyond_contact): a wall keeps the touch flag first
     pub beyond_contact: bool,
     /// a normal model with E and nu (LAMMPS material_properties): mindlin's Kt may be NULL
     pub material: bool,
@@ -394,9 +394,6 @@ impl GranSpec {
             if n.flags.no_cohesion && normal.flags.cohesive {
                 return Err(a.error_at(n.word, format!("cannot use {} model with a cohesive normal model, {}", n.name, normal.name), "cohesive normal model"));
             }
-            if n.flags.beyond_contact && wall {
-                return Err(a.error_at(n.word, format!("granular model {} interacts beyond contact: not supported by dmhs' fix wall/gran", n.name), "not supported on walls"));
-            }
             total += n.history;
             if total > max_history {
                 return Err(a.error_at(n.word, format!("these granular models keep {total} history values per contact; dmhs keeps at most {max_history}"), "too much history"));
@@ -472,6 +469,9 @@ pub struct GranModel {
     pub history_flip: u64,
     /// `cutoff` keyword (negative: from the radii)
     pub cutoff: f64,
+    /// some sub-model interacts beyond touching (JKR): a contact holds while it was touching
+    /// up to the pull-off distance; a wall keeps that flag as its history's first value
+    pub beyond_contact: bool,
 }
 
 impl GranModel {
@@ -492,7 +492,9 @@ impl GranModel {
             s.twisting.map_or(0, |g| g.style.history),
             s.heat.map_or(0, |g| g.style.history),
         ];
-        let mut history_index = [0; 6];
+        // a wall's beyond-contact touch flag comes first (LAMMPS fix wall/gran: next_index 1)
+        let beyond_contact = s.normal.style.flags.beyond_contact;
+        let mut history_index = [usize::from(wall && beyond_contact), 0, 0, 0, 0, 0];
         for k in 1..6 {
             history_index[k] = history_index[k - 1] + sizes[k - 1];
         }
@@ -513,7 +515,17 @@ impl GranModel {
             history_keep,
             history_flip,
             cutoff: s.cutoff,
+            beyond_contact,
         }
+    }
+
+    /// LAMMPS GranularModel::check_contact against a wall (R_i + 0 and R_eff = R_i for a plane,
+    /// or with the wall's curvature radius `radj`): touching, or for JKR a contact that `was`
+    /// touching up to the pull-off distance.
+    #[inline(always)]
+    pub fn wall_touch(&self, rsq: f64, radi: f64, radj: f64, was: bool) -> bool {
+        let (radsum, reff) = radsum_reff(radi, radj, true);
+        self.normal.touch_with(rsq, radsum, reff, was)
     }
 }
 
@@ -988,13 +1000,15 @@ mod tests {
         let m = GranModel::build(&parse("mdr 5e6 0.4 1e5 0 0.5 0.2 damping mdr 2 tangential mindlin_rescale 1 1 1 rolling sds 1 1 1", false).unwrap(), false);
         assert_eq!((m.history_size, m.history_index[TANGENTIAL]), (27 + 4 + 3, 27));
         assert_eq!(m.damping, Damping::Mdr { damp: 0.2, scaled: false });
-        // JKR: cohesive, and not on dmhs' walls
+        // JKR: cohesive; on a wall its touch flag comes first in the history (LAMMPS' layout)
         let e = err("jkr 1e6 0.5 0.3 1 damping coeff_restitution tangential linear_history 1 1 1");
         assert!(e.contains("cannot use coeff_restitution model with a cohesive normal model, jkr"), "{e}");
         let w = words("jkr 1e6 0.5 0.3 1 tangential linear_history 1 1 1 zplane 0 NULL");
         let mut a = Args::from_words(&w, Span::new(Default::default(), 0, 1), "");
-        let e = GranSpec::parse(&mut a, true).err().unwrap();
-        assert!(e.message.contains("jkr interacts beyond contact"), "{}", e.message);
+        let spec = GranSpec::parse(&mut a, true).unwrap();
+        let (wall, pair) = (GranModel::build(&spec, true), GranModel::build(&spec, false));
+        assert_eq!((wall.history_size, wall.history_index[TANGENTIAL]), (4, 1));
+        assert_eq!((pair.history_size, pair.history_index[TANGENTIAL]), (3, 0));
         let e = err("hooke 1 1 damping tsuij tangential linear_history 1 1 1");
         assert!(e.contains("`tsuij`") && e.contains("coeff_restitution") && e.contains("did you mean `tsuji`"), "{e}");
         let e = err("hooke 1 1 tangential linear_history 1 1 1 rolling sdss 1 1 1");

@@ -187,9 +187,14 @@ impl Normal {
     #[inline(always)]
     pub fn touch(&self, rsq: f64, radi: f64, radj: f64, was: bool) -> bool {
         let radsum = radi + radj;
+        self.touch_with(rsq, radsum, radi * radj / radsum, was)
+    }
+
+    /// [`Normal::touch`] with the contact's R_i + R_j (a wall: R_i) and R_eff given.
+    #[inline(always)]
+    pub fn touch_with(&self, rsq: f64, radsum: f64, reff: f64, was: bool) -> bool {
         match *self {
             Normal::Jkr { emix, cohesion, .. } if was => {
-                let reff = radi * radj / radsum;
                 let dist_pulloff = radsum + jkr_pulloff(reff, cohesion, emix);
                 rsq < dist_pulloff * dist_pulloff
             }

@@ -27,7 +27,7 @@ impl VelocityTemp for ComputeTemp<'_> {
     }
     fn bias(&mut self, v: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, String> {
         self.load(v);
-        Ok(self.spec.field(self.state)?.unwrap_or_else(|| vec![[0.0; 3]; v.len()]))
+        Ok(self.spec.field(self.state, self.spec.groupbit)?.unwrap_or_else(|| vec![[0.0; 3]; v.len()]))
     }
     fn reapply(&mut self, v: &mut [[f64; 3]]) {
         self.spec.reapply(self.state, v);

@@ -115,9 +115,11 @@ impl TempSpec {
             _ => Ok(None),
         }
     }
-    /// The bias of every owned atom (zero outside the compute's group), as remove_bias_all
-    /// stores it; None without a bias.
-    pub fn field(&self, state: &State) -> Result<Option<Vec<[f64; 3]>>, String> {
+    /// The bias of every owned atom of group `over` (zero for the others); None without a bias.
+    /// `over` is the compute's group for remove_bias_all (velocity), the group of the fix or
+    /// compute that calls LAMMPS' per-atom remove_bias (thermostats, stress/atom): temp/com's
+    /// bias is the compute group's centre-of-mass velocity either way.
+    pub fn field(&self, state: &State, over: u32) -> Result<Option<Vec<[f64; 3]>>, String> {
         let a = &state.atoms;
         let vcm = if self.bias == Bias::Com { vcm(state, self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
@@ -129,7 +131,7 @@ impl TempSpec {
                 .map(|i| {
                     let v = a.v[i];
                     match &self.bias {
-                        _ if a.mask[i] & self.groupbit == 0 => [0.0; 3],
+                        _ if a.mask[i] & over == 0 => [0.0; 3],
                         Bias::Partial(keep) => [0, 1, 2].map(|k| if keep[k] { 0.0 } else { v[k] }),
                         Bias::Com => vcm,
                         Bias::Region(_) if region.is_some_and(|r| r.matches(a.x[i])) => [0.0; 3],

@@ -126,7 +126,7 @@ impl FixLangevin {
         };
         let order = state.lammps_order.indices(state.atoms.nlocal).into_owned();
         let bias = match &self.temp {
-            Some(spec) => spec.field(state).map_err(|e| RunError::new(state.step, e))?,
+            Some(spec) => spec.field(state, self.groupbit).map_err(|e| RunError::new(state.step, e))?,
             None => None,
         };
         let a = &mut state.atoms;

@@ -38,7 +38,7 @@ impl GroupTemp {
     /// v *= factor for the owned atoms of `groupbit` (the fix's group), the compute's bias
     /// removed before and restored after (LAMMPS' remove_bias / restore_bias around the scaling).
     pub fn scale(&self, state: &mut State, groupbit: u32, factor: f64) -> Result<(), RunError> {
-        match self.spec.field(state).map_err(|e| RunError::new(state.step, e))? {
+        match self.spec.field(state, groupbit).map_err(|e| RunError::new(state.step, e))? {
             None => super::temp_scale::scale_group(state, groupbit, factor),
             Some(bias) => {
                 let a = &mut state.atoms;

@@ -9,7 +9,7 @@ use dmhs::deck::{run_text, DeckOptions};
 /// The thermostat decks (thermo_bias*: with the bias computes temp/partial, temp/com and
 /// temp/region), and deposit_mol (langevin on a substrate, atoms inserted during the run,
 /// `thermo_modify temp` of the inserted atoms).
-const DECKS: [&str; 8] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "thermo_bias", "thermo_bias_nvt", "deposit_mol"];
+const DECKS: [&str; 9] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "thermo_bias", "thermo_bias_nvt", "thermo_bias_region", "deposit_mol"];
 
 mod thermo_tables;
 use thermo_tables::{root, table};

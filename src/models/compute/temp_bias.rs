@@ -244,8 +244,12 @@ impl Compute for ComputeTempBias {
         index.is_some()
     }
     fn dof(&self, w: &World) -> Option<f64> {
-        // a region that no longer exists leaves no degrees of freedom (the scalar says why)
-        Some(self.measure(w).map_or(0.0, |m| m.1))
+        Some(match self.bias {
+            // counted with the temperature; a region that no longer exists leaves none (the
+            // scalar says why)
+            Bias::Region(_) => self.measure(w).map_or(0.0, |m| m.1),
+            _ => self.dof.current(|| self.count_dof(w)),
+        })
     }
     fn setup(&mut self, w: &World) {
         self.dof.at_setup = Some(self.count_dof(w));

@@ -6,9 +6,10 @@
 
 use dmhs::deck::{run_text, DeckOptions};
 
-/// The thermostat decks, and deposit_mol (langevin on a substrate, atoms inserted during the run,
+/// The thermostat decks (thermo_bias*: with the bias computes temp/partial, temp/com and
+/// temp/region), and deposit_mol (langevin on a substrate, atoms inserted during the run,
 /// `thermo_modify temp` of the inserted atoms).
-const DECKS: [&str; 6] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "deposit_mol"];
+const DECKS: [&str; 9] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "thermo_bias", "thermo_bias_nvt", "thermo_bias_region", "deposit_mol"];
 
 mod thermo_tables;
 use thermo_tables::{root, table};
@@ -61,7 +62,14 @@ fn thermostat_errors_are_located() {
         ("fix 2 all nvt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "pressure control"),
         ("fix 2 all npt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "barostat"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 temp nothere", "compute `nothere` does not exist"),
-        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nfix_modify 2 temp ke", "not a plain compute temp"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nfix_modify 2 temp ke", "is not a temperature fix_modify temp takes"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/partial 0 1 2", "zflag"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/partial 0 1", "zflag"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tr all temp/region nowhere", "Region nowhere for compute temp/region does not exist"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tc all temp/com extra", "compute ID group temp/com"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\nvelocity all scale 0.1 bias yes", "without temp keyword"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute t all temp\nvelocity all scale 0.1 temp t bias yes", "does not calculate a velocity bias"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nvelocity all scale 0.1 temp ke", "is not a temperature dmhs' velocity takes"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 energy yes", "fix_modify energy"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute t all temp\nfix_modify 1 temp t", "has no temperature"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 9 temp t", "fix `9` does not exist"),

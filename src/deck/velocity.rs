@@ -1,8 +1,38 @@
 //! The `velocity` command: binds the algorithms of `velocity_create` to the simulation.
 
+use crate::deck::velocity_create::{Velocity, VelocityAtoms, VelocityEnv, VelocityTemp};
+use crate::engine::state::State;
+use crate::models::compute::temp_bias::{Bias, TempSpec};
 use crate::sim::Simulation;
-use crate::deck::velocity_create::{Velocity, VelocityAtoms, VelocityEnv};
 use dmhs_parser::{Command, DResult, Diagnostic, SourceMap};
+
+/// The `temp ID` compute measured on the velocities velocity is changing (they are copied into
+/// the state, which is otherwise the one the command runs on).
+struct ComputeTemp<'a> {
+    state: &'a mut State,
+    spec: TempSpec,
+    dof: f64,
+}
+
+impl ComputeTemp<'_> {
+    fn load(&mut self, v: &[[f64; 3]]) {
+        self.state.atoms.v = v.to_vec();
+    }
+}
+
+impl VelocityTemp for ComputeTemp<'_> {
+    fn temperature(&mut self, v: &[[f64; 3]]) -> Result<f64, String> {
+        self.load(v);
+        Ok(self.spec.temperature(self.state, self.dof)?.0)
+    }
+    fn bias(&mut self, v: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, String> {
+        self.load(v);
+        Ok(self.spec.field(self.state, self.spec.groupbit)?.unwrap_or_else(|| vec![[0.0; 3]; v.len()]))
+    }
+    fn reapply(&mut self, v: &mut [[f64; 3]]) {
+        self.spec.reapply(self.state, v);
+    }
+}
 
 pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let vel = Velocity::from_lammps(cmd, sim.state.dimension, sim.state.lattice.as_ref())?;
@@ -12,26 +42,44 @@ pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) 
     let n = sim.state.atoms.nlocal;
     let selected: Vec<bool> = (0..n).map(|i| sim.state.atoms.mask[i] & bit != 0).collect();
     let mass: Vec<f64> = (0..n).map(|i| sim.state.mass(i)).collect();
-    // degrees of freedom of the temperature compute (`temp ID` or a default compute temp)
-    let dof = match &vel.opts.temp {
+    // degrees of freedom of a compute temp over the group (velocity's own, or bias yes')
+    let d = sim.state.dimension as f64;
+    let dof = d * sim.state.group_count(bit) as f64 - (d + sim.world().fix_dof(bit));
+    // the `temp ID` compute: its measure and degrees of freedom counted afresh, as LAMMPS' velocity
+    let tc = match &vel.opts.temp {
         Some(id) => {
-            // LAMMPS' velocity counts the compute's degrees of freedom afresh
-            if let Some(k) = sim.find_compute(id) {
-                sim.setup_computes(Some(k));
+            let k = sim.find_compute(id).ok_or_else(|| Diagnostic::at(cmd.span, format!("Could not find velocity temperature compute ID `{id}`"), "unknown compute"))?;
+            sim.setup_computes(Some(k));
+            let (spec, cdof, style) = {
+                let world = sim.world();
+                let c = &sim.computes[k];
+                (c.temp_spec(), c.dof(&world), c.style().to_string())
+            };
+            let (Some(spec), Some(cdof)) = (spec, cdof) else {
+                return Err(Diagnostic::at(cmd.span, format!("velocity temperature compute `{id}` ({style}) is not a temperature dmhs' velocity takes (temp, temp/partial, temp/com, temp/region)"), "not a translational temperature"));
+            };
+            if spec.groupbit != bit {
+                sim.out.print("WARNING: Mismatch between velocity and compute groups");
             }
-            let world = sim.world();
-            let c = world.compute(id).ok_or_else(|| Diagnostic::at(cmd.span, format!("compute `{id}` does not exist"), "unknown compute"))?;
-            c.dof(&world).ok_or_else(|| Diagnostic::at(cmd.span, format!("compute `{id}` is not a temperature compute"), "not a temperature"))?
+            if vel.opts.bias && spec.bias == Bias::None {
+                return Err(Diagnostic::at(cmd.span, format!("Velocity temperature ID `{id}` does not calculate a velocity bias (bias yes)"), "no bias"));
+            }
+            Some((spec, cdof))
         }
-        None => {
-            let d = sim.state.dimension as f64;
-            d * sim.state.group_count(bit) as f64 - (d + sim.world().fix_dof(bit))
-        }
+        None if vel.opts.bias => return Err(Diagnostic::at(cmd.span, "Cannot use velocity bias command without temp keyword", "bias yes needs temp ID")),
+        None => None,
     };
     let env = VelocityEnv { dimension: sim.state.dimension, boltz: sim.state.units.boltz, mvv2e: sim.state.units.mvv2e, prd: sim.state.domain.as_ref().unwrap().prd(), dof };
     let mut v = std::mem::take(&mut sim.state.atoms.v);
-    let atoms = VelocityAtoms { ids: &sim.state.atoms.tag, x: &sim.state.atoms.x, image: &sim.state.atoms.image, mass: &mass, selected: &selected };
-    let r = vel.apply(&mut v, &atoms, &env);
+    let (ids, x, image) = (sim.state.atoms.tag.clone(), sim.state.atoms.x.clone(), sim.state.atoms.image.clone());
+    let atoms = VelocityAtoms { ids: &ids, x: &x, image: &image, mass: &mass, selected: &selected };
+    let r = match tc {
+        Some((spec, dof)) => {
+            let mut t = ComputeTemp { state: &mut sim.state, spec, dof };
+            vel.apply(&mut v, &atoms, &env, Some(&mut t))
+        }
+        None => vel.apply(&mut v, &atoms, &env, None),
+    };
     sim.state.atoms.v = v;
     r
 }

@@ -16,7 +16,7 @@ use dmhs_parser::{Args, Command, DResult, Diagnostic, Span, Word};
 
 const SYNTAX: &str = "velocity group-ID style args keyword value ... \
 (styles: create T seed | set vx vy vz | scale T | ramp vdim vlo vhi dim clo chi | zero linear|angular; \
-keywords: dist uniform|gaussian, sum yes|no, mom yes|no, rot yes|no, temp compute-ID, \
+keywords: dist uniform|gaussian, sum yes|no, mom yes|no, rot yes|no, temp compute-ID, bias yes|no, \
 loop all|local|geom, units box|lattice)";
 
 /// Warm-up draws for `loop local` (LAMMPS `WARMUP`).
@@ -43,6 +43,8 @@ pub struct VelocityOptions {
     pub rot: bool,
     /// Compute ID given with `temp` (default: a `compute temp` over the group).
     pub temp: Option<String>,
+    /// `bias yes`: remove the `temp` compute's velocity bias before create/scale, restore after.
+    pub bias: bool,
     pub loop_mode: LoopMode,
     pub lattice_units: bool,
 }
@@ -55,6 +57,7 @@ impl Default for VelocityOptions {
             mom: true,
             rot: false,
             temp: None,
+            bias: false,
             loop_mode: LoopMode::All,
             lattice_units: true,
         }
@@ -118,8 +121,31 @@ pub struct VelocityEnv {
     pub mvv2e: f64,
     /// Box lengths (for unwrapping with image flags).
     pub prd: [f64; 3],
-    /// Degrees of freedom of the temperature compute (see [`default_dof`]).
+    /// Degrees of freedom of a `compute temp` over the group (see [`default_dof`]).
     pub dof: f64,
+}
+
+/// The temperature compute given with `temp ID`: the temperature of velocities `v` as it
+/// measures it, and its velocity bias (LAMMPS' compute_scalar, remove_bias_all,
+/// reapply_bias_all). Without one, velocity measures a `compute temp` over its group.
+pub trait VelocityTemp {
+    fn temperature(&mut self, v: &[[f64; 3]]) -> Result<f64, String>;
+    /// The bias of each atom for velocities `v` (zero outside the compute's group).
+    fn bias(&mut self, v: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, String>;
+    /// Reset the components the bias owns after new thermal velocities (temp/partial: 0).
+    fn reapply(&mut self, v: &mut [[f64; 3]]);
+}
+
+fn add_field(v: &mut [[f64; 3]], field: &[[f64; 3]], sign: f64) {
+    for (vi, b) in v.iter_mut().zip(field) {
+        for k in 0..3 {
+            if sign > 0.0 {
+                vi[k] += b[k];
+            } else {
+                vi[k] -= b[k];
+            }
+        }
+    }
 }
 
 /// Degrees of freedom of a default `compute temp` over `count` atoms: `dim * count - dim`
@@ -344,6 +370,7 @@ pub fn create(
     t_desired: f64,
     seed: i32,
     opts: &VelocityOptions,
+    mut tc: Option<&mut dyn VelocityTemp>,
 ) -> Result<(), String> {
     if seed <= 0 {
         return Err(format!("illegal velocity create seed {seed}"));
@@ -351,6 +378,16 @@ pub fn create(
     let n = v.len();
     let sel = atoms.selected;
     let vhold: Option<Vec<[f64; 3]>> = if opts.sum { Some(v.to_vec()) } else { None };
+    // bias yes: the compute's bias comes off first and back after the rescale
+    let bias = match (&mut tc, opts.bias) {
+        (Some(tc), true) => {
+            tc.temperature(v)?;
+            let b = tc.bias(v)?;
+            add_field(v, &b, -1.0);
+            Some(b)
+        }
+        _ => None,
+    };
     let assign = |v: &mut [[f64; 3]], i: usize, r: [f64; 3]| {
         let factor = 1.0 / atoms.mass[i].sqrt();
         v[i][0] = r[0] * factor;
@@ -409,8 +446,16 @@ pub fn create(
     if opts.rot {
         zero_rotation(v, atoms, env.prd)?;
     }
-    let t = temperature(v, atoms.mass, sel, env.dof, env.boltz, env.mvv2e);
+    // with a bias the new thermal velocities are measured by a compute temp over the group
+    let t = match (&mut tc, &bias) {
+        (Some(tc), None) => tc.temperature(v)?,
+        _ => temperature(v, atoms.mass, sel, env.dof, env.boltz, env.mvv2e),
+    };
     rescale(v, sel, t, t_desired)?;
+    if let (Some(tc), Some(b)) = (&mut tc, &bias) {
+        tc.reapply(v);
+        add_field(v, b, 1.0);
+    }
     if let Some(old) = vhold {
         for i in 0..n {
             if sel[i] {
@@ -506,7 +551,8 @@ impl Velocity {
                         [a.choice("loop", &["all", "local", "geom"])?];
                 }
                 "units" => opts.lattice_units = a.choice("units", &["lattice", "box"])? == 0,
-                "bias" | "rigid" => {
+                "bias" => opts.bias = logical(&mut a, "bias")?,
+                "rigid" => {
                     return Err(a.error_at(
                         kw,
                         format!("velocity keyword `{}` is not supported", kw.text),
@@ -601,21 +647,35 @@ impl Velocity {
     }
 
     /// Apply the command to the atoms (`v` has one entry per local atom).
-    pub fn apply(&self, v: &mut [[f64; 3]], atoms: &VelocityAtoms, env: &VelocityEnv) -> DResult<()> {
+    pub fn apply(&self, v: &mut [[f64; 3]], atoms: &VelocityAtoms, env: &VelocityEnv, tc: Option<&mut dyn VelocityTemp>) -> DResult<()> {
         let located = |msg: String| Diagnostic::at(self.span, msg, "in this velocity command");
         if v.is_empty() {
             return Err(located("velocity command with no atoms existing".into()));
         }
         match &self.style {
-            VelocityStyle::Create { temp, seed } => create(v, atoms, env, *temp, *seed, &self.opts).map_err(located),
+            VelocityStyle::Create { temp, seed } => create(v, atoms, env, *temp, *seed, &self.opts, tc).map_err(located),
             VelocityStyle::Set { v: value } => {
                 set(v, atoms.selected, *value, self.opts.sum);
                 Ok(())
             }
-            VelocityStyle::Scale { temp } => {
-                let t = temperature(v, atoms.mass, atoms.selected, env.dof, env.boltz, env.mvv2e);
-                rescale(v, atoms.selected, t, *temp).map_err(located)
-            }
+            VelocityStyle::Scale { temp } => match tc {
+                None => {
+                    let t = temperature(v, atoms.mass, atoms.selected, env.dof, env.boltz, env.mvv2e);
+                    rescale(v, atoms.selected, t, *temp).map_err(located)
+                }
+                Some(tc) => {
+                    let t = tc.temperature(v).map_err(located)?;
+                    let bias = if self.opts.bias { Some(tc.bias(v).map_err(located)?) } else { None };
+                    if let Some(b) = &bias {
+                        add_field(v, b, -1.0);
+                    }
+                    rescale(v, atoms.selected, t, *temp).map_err(located)?;
+                    if let Some(b) = &bias {
+                        add_field(v, b, 1.0);
+                    }
+                    Ok(())
+                }
+            },
             VelocityStyle::Ramp { vdim, vlo, vhi, cdim, clo, chi } => {
                 ramp(v, atoms.x, atoms.selected, *vdim, *vlo, *vhi, *cdim, *clo, *chi, self.opts.sum);
                 Ok(())
@@ -681,7 +741,7 @@ mod tests {
                 dof: default_dof(count, self.dim),
             };
             let atoms = VelocityAtoms { ids: &self.ids, x: &self.x, image: &self.image, mass: &mass, selected };
-            vc.apply(&mut self.v, &atoms, &env).unwrap();
+            vc.apply(&mut self.v, &atoms, &env, None).unwrap();
         }
     }
 

@@ -114,8 +114,8 @@ const WITH_ENERGY: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wa
 const WITH_VIRIAL: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce and rigid/small (on by default)";
 
 /// `fix_modify ID keyword value ...` (LAMMPS' Fix::modify_params): `temp CID` (a thermostat
-/// measures its temperature with compute CID, a plain `compute temp`, its extra/dof as set
-/// when fix_modify is given), `energy yes|no` (the fix's energy counts in pe and in the
+/// measures its temperature with compute CID, temp or a bias compute, its extra/dof as set
+/// when fix_modify is given, and removes the compute's bias while it scales), `energy yes|no` (the fix's energy counts in pe and in the
 /// minimizer's objective), `virial yes|no` (its virial counts in the pressure),
 /// `dynamic/dof yes|no`; `respa` and `bodyforces` are refused.
 pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
@@ -132,8 +132,8 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 let cw = a.word("temperature compute ID")?;
                 let c = sim.find_compute(&cw.text).ok_or_else(|| a.error_at(cw, format!("compute `{}` does not exist", cw.text), "unknown compute"))?;
                 let compute = &sim.computes[c];
-                let Some(extra) = compute.plain_temp_extra() else {
-                    return Err(a.error_at(cw, format!("compute `{}` ({}) is not a plain compute temp, the only temperature fix_modify temp takes in dmhs", cw.text, compute.style()), "not compute temp"));
+                let Some(spec) = compute.temp_spec() else {
+                    return Err(a.error_at(cw, format!("compute `{}` ({}) is not a temperature fix_modify temp takes in dmhs (compute temp, temp/partial, temp/com or temp/region)", cw.text, compute.style()), "not a translational temperature"));
                 };
                 let groupbit = compute.groupbit();
                 let fix_bit = sim.fixes[k].groupbit();
@@ -142,7 +142,7 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                     let text = format!("WARNING: Group for fix_modify temp != fix group: {} vs {}", name(fix_bit), name(groupbit));
                     sim.out.print(&text);
                 }
-                sim.fixes[k].modify_temp(groupbit, extra).map_err(|e| a.error_at(kw, e, "no temperature"))?;
+                sim.fixes[k].modify_temp(spec).map_err(|e| a.error_at(kw, e, "no temperature"))?;
             }
             "energy" | "virial" => {
                 let energy = kw.text == "energy";

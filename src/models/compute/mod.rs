@@ -23,6 +23,10 @@ pub mod reduce;
 pub mod sph_atom;
 pub mod stress_atom;
 pub mod temp;
+pub mod temp_bias;
+pub mod temp_com;
+pub mod temp_partial;
+pub mod temp_region;
 pub mod temp_sphere;
 
 use crate::engine::state::State;
@@ -228,10 +232,11 @@ pub trait Compute: Send + Sync {
     /// `compute_modify extra/dof` and `dynamic/dof` (only temperatures use them; LAMMPS accepts
     /// them for every compute).
     fn modify_dof(&mut self, _extra: Option<f64>, _dynamic: Option<bool>) {}
-    /// For a plain `compute temp` (no bias, no rotation): the extra degrees of freedom set by
-    /// `compute_modify extra/dof` (Some(None) when not set), so that a thermostat given it by
-    /// `fix_modify temp` counts the same degrees of freedom. None for other computes.
-    fn plain_temp_extra(&self) -> Option<Option<f64>> {
+    /// For a temperature of translational velocities (compute temp and the bias computes, not
+    /// temp/sphere): its group, extra degrees of freedom and bias, so that a thermostat given it
+    /// by `fix_modify temp` (or `velocity ... temp ID`) measures and scales as it does. None for
+    /// other computes.
+    fn temp_spec(&self) -> Option<temp_bias::TempSpec> {
         None
     }
     /// A pressure compute's temperature compute becomes `temp_id` (LAMMPS
@@ -271,6 +276,9 @@ type ComputeCtor = fn(ComputeDef, &World) -> DResult<Box<dyn Compute>>;
 /// Every compute style this build implements.
 const STYLES: &[(&str, ComputeCtor)] = &[
     ("temp", |d, _| Ok(Box::new(temp::ComputeTemp::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("temp/partial", |d, w| Ok(Box::new(temp_partial::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("temp/com", |d, _| Ok(Box::new(temp_com::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("temp/region", |d, w| Ok(Box::new(temp_region::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/sphere", |d, w| Ok(Box::new(temp_sphere::ComputeTempSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("ke/atom", |d, _| Ok(Box::new(ke_atom::ComputeKeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -3,8 +3,9 @@
 //! six columns xx yy zz xy xz yz, as LAMMPS' compute stress/atom: the virial shares of pairs,
 //! bonds, angles and dihedrals summed in that order, then the kinetic term, then the sign and
 //! units; 0 outside the group. Minus the sum of the first three columns over all atoms,
-//! divided by 3V (2V in 2d), is the pressure. dmhs' temperatures have no velocity bias, so a
-//! temp-ID gives the same kinetic term as NULL. The `fix` term (also in `virial` and the
+//! divided by 3V (2V in 2d), is the pressure. With a temp-ID of a bias compute (temp/partial,
+//! temp/com, temp/region) the kinetic term is that of the velocities less the compute's bias, as
+//! LAMMPS' remove_bias_all around it; a plain compute temp gives NULL's. The `fix` term (also in `virial` and the
 //! default) is the per-atom virial of fixes whose virial counts (`fix_modify virial yes`):
 //! dmhs does not tally those per atom, so such a fix makes the compute an error rather than a
 //! silently smaller stress; with no such fix the term is zero, as in LAMMPS.
@@ -22,6 +23,8 @@ pub struct ComputeStressAtom {
     /// Virial shares of pair, bond, angle, dihedral.
     terms: [bool; 4],
     ke: bool,
+    /// The temperature compute whose velocity bias the kinetic term leaves out.
+    temp_id: Option<String>,
     /// The fixes' per-atom virials were asked for (`fix`, `virial` or no keyword).
     fix: bool,
 }
@@ -45,7 +48,8 @@ impl ComputeStressAtom {
             terms = [true; 4];
         }
         let fix = !any || fix_named || others.contains(&1);
-        Ok(ComputeStressAtom { id, groupbit, terms, ke, fix })
+        let temp_id = (tw.text != "NULL").then(|| tw.text.clone());
+        Ok(ComputeStressAtom { id, groupbit, terms, ke, fix, temp_id })
     }
 }
 
@@ -78,6 +82,16 @@ impl Compute for ComputeStressAtom {
         let t = tallies(s, &self.id, "stress/atom")?;
         let a = &s.atoms;
         let (mvv2e, nktv2p) = (s.units.mvv2e, -s.units.nktv2p);
+        let bias = match self.temp_id.as_deref().filter(|_| self.ke) {
+            Some(tid) => {
+                let c = w.compute(tid).ok_or_else(|| format!("compute {} (stress/atom): temperature compute `{tid}` does not exist", self.id))?;
+                match c.temp_spec() {
+                    Some(spec) => spec.field(s, self.groupbit)?,
+                    None => None,
+                }
+            }
+            None => None,
+        };
         let mut data = vec![0.0; a.nlocal * 6];
         for (i, st) in data.chunks_exact_mut(6).enumerate() {
             if a.mask[i] & self.groupbit == 0 {
@@ -88,7 +102,10 @@ impl Compute for ComputeStressAtom {
             }
             if self.ke {
                 let onemass = mvv2e * s.mass(i);
-                let v = a.v[i];
+                let mut v = a.v[i];
+                if let Some(b) = &bias {
+                    (0..3).for_each(|k| v[k] -= b[i][k]);
+                }
                 for (m, (p, q)) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)].into_iter().enumerate() {
                     st[m] += onemass * v[p] * v[q];
                 }

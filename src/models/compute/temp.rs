@@ -98,20 +98,23 @@ pub fn sum_mv2(state: &State, groupbit: u32) -> f64 {
     v[0]
 }
 
+/// One atom's m v_a v_b added to a kinetic tensor (xx yy zz xy xz yz).
+pub fn add_tensor(t: &mut [f64; 6], m: f64, v: [f64; 3]) {
+    t[0] += m * v[0] * v[0];
+    t[1] += m * v[1] * v[1];
+    t[2] += m * v[2] * v[2];
+    t[3] += m * v[0] * v[1];
+    t[4] += m * v[0] * v[2];
+    t[5] += m * v[1] * v[2];
+}
+
 /// Kinetic energy tensor mvv2e * sum m v_a v_b (xx yy zz xy xz yz).
 pub fn ke_tensor(w: &World, groupbit: u32) -> [f64; 6] {
     let a = &w.state.atoms;
     let mut t = [0.0; 6];
     for i in 0..a.nlocal {
         if a.mask[i] & groupbit != 0 {
-            let m = w.state.mass(i);
-            let v = a.v[i];
-            t[0] += m * v[0] * v[0];
-            t[1] += m * v[1] * v[1];
-            t[2] += m * v[2] * v[2];
-            t[3] += m * v[0] * v[1];
-            t[4] += m * v[0] * v[2];
-            t[5] += m * v[1] * v[2];
+            add_tensor(&mut t, w.state.mass(i), a.v[i]);
         }
     }
     w.state.sum_ranks(&mut t);
@@ -147,8 +150,8 @@ impl Compute for ComputeTemp {
     fn setup(&mut self, w: &World) {
         self.dof.at_setup = Some(self.count_dof(w));
     }
-    fn plain_temp_extra(&self) -> Option<Option<f64>> {
-        Some(self.dof.extra)
+    fn temp_spec(&self) -> Option<super::temp_bias::TempSpec> {
+        Some(super::temp_bias::TempSpec { extra: self.dof.extra, ..super::temp_bias::TempSpec::plain(self.groupbit) })
     }
     fn modify_dof(&mut self, extra: Option<f64>, dynamic: Option<bool>) {
         self.dof.modify(extra, dynamic);

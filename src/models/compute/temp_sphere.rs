@@ -2,8 +2,7 @@
 //! their rotation, as LAMMPS: T = (sum m v^2 + sum I w^2) mvv2e/(dof kB) with I = 0.4 m r^2; a
 //! sphere has 6 degrees of freedom in 3D (3 in 2D), a point particle (radius 0) 3 (2); `dof
 //! rotate` counts rotation only (3 or 1 per sphere, no centre-of-mass correction). The vector is
-//! the kinetic energy tensor with the rotational part. The velocity `bias` keyword is refused
-//! (dmhs has no bias computes).
+//! the kinetic energy tensor with the rotational part. The velocity `bias` keyword is refused.
 
 use super::temp::{tfactor, Dof};
 use super::Compute;
@@ -29,7 +28,7 @@ impl ComputeTempSphere {
             a.skip(1);
             match k.text.as_str() {
                 "dof" => rotate_only = a.choice("dof mode", &["all", "rotate"])? == 1,
-                "bias" => return Err(a.error_at(k, "compute temp/sphere `bias` is not supported (dmhs has no velocity-bias computes)", "not supported")),
+                "bias" => return Err(a.error_at(k, "compute temp/sphere `bias` is not supported yet (temp/sphere with a bias compute)", "not supported")),
                 _ => return Err(a.unknown_keyword(k, &["dof", "bias"])),
             }
         }

@@ -7,6 +7,7 @@
 //! operations follow LAMMPS' fix_langevin.cpp (the non-GJF path).
 
 use super::thermostat::Target;
+use crate::models::compute::temp_bias::{Bias, TempSpec};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::random_mars::{RanMars, SEED_RANGE};
 use crate::engine::state::{RunError, State};
@@ -36,6 +37,8 @@ pub struct FixLangevin {
     tallied: bool,
     energy: f64,
     energy_onestep: f64,
+    /// `fix_modify temp CID` with a bias compute: the drag acts on the thermal velocity.
+    temp: Option<TempSpec>,
 }
 
 impl FixLangevin {
@@ -88,6 +91,7 @@ impl FixLangevin {
             tallied: false,
             energy: 0.0,
             energy_onestep: 0.0,
+            temp: None,
         })
     }
 
@@ -121,6 +125,10 @@ impl FixLangevin {
             0
         };
         let order = state.lammps_order.indices(state.atoms.nlocal).into_owned();
+        let bias = match &self.temp {
+            Some(spec) => spec.field(state, self.groupbit).map_err(|e| RunError::new(state.step, e))?,
+            None => None,
+        };
         let a = &mut state.atoms;
         if self.tally {
             self.flangevin.resize(a.nlocal, [0.0; 3]);
@@ -144,7 +152,16 @@ impl FixLangevin {
             for r in &mut fran {
                 *r = gamma2 * (self.random.uniform() - 0.5);
             }
-            let v = a.v[i];
+            let mut v = a.v[i];
+            if let Some(b) = &bias {
+                // LAMMPS' remove_bias: drag on the thermal velocity, no noise on a removed component
+                for k in 0..3 {
+                    v[k] -= b[i][k];
+                    if v[k] == 0.0 {
+                        fran[k] = 0.0;
+                    }
+                }
+            }
             let fdrag = [gamma1 * v[0], gamma1 * v[1], gamma1 * v[2]];
             let f = &mut a.f[i];
             for k in 0..3 {
@@ -227,7 +244,8 @@ impl Fix for FixLangevin {
     }
     /// LAMMPS' fix langevin reads its temperature compute only to remove a bias; a plain
     /// compute temp has none, so the forces do not change.
-    fn modify_temp(&mut self, _groupbit: u32, _extra: Option<f64>) -> Result<(), String> {
+    fn modify_temp(&mut self, spec: TempSpec) -> Result<(), String> {
+        self.temp = (spec.bias != Bias::None).then_some(spec);
         Ok(())
     }
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {

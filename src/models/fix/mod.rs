@@ -327,9 +327,9 @@ pub trait Fix: Send + Sync {
     fn phase_eos(&self) -> Option<crate::models::fix::dmhs_phase::PhaseEos> {
         None
     }
-    /// `fix_modify ID temp CID` with CID a plain `compute temp` of group `groupbit` (and extra
-    /// degrees of freedom `extra`, None: the dimension): measure the temperature as it does.
-    fn modify_temp(&mut self, _groupbit: u32, _extra: Option<f64>) -> Result<(), String> {
+    /// `fix_modify ID temp CID`: measure the temperature as compute CID does (its group, extra
+    /// degrees of freedom and velocity bias).
+    fn modify_temp(&mut self, _spec: crate::models::compute::temp_bias::TempSpec) -> Result<(), String> {
         Err(format!("fix {} ({}) has no temperature to replace", self.id(), self.style()))
     }
     /// The fix's energy and virial for thermo (None: it tallies neither, and `fix_modify

@@ -103,7 +103,7 @@ impl FixNvt {
     }
 
     /// Half step of the chain; scales the group's velocities (LAMMPS' nhc_temp_integrate).
-    fn nhc_temp_integrate(&mut self, state: &mut State) {
+    fn nhc_temp_integrate(&mut self, state: &mut State) -> Result<(), RunError> {
         let boltz = state.units.boltz;
         let (dthalf, dt4, dt8) = (0.5 * state.dt, 0.25 * state.dt, 0.125 * state.dt);
         let m = self.mtchain;
@@ -130,7 +130,7 @@ impl FixNvt {
             self.eta_dot[0] *= expfac;
 
             let factor_eta = (-ncfac * dthalf * self.eta_dot[0]).exp();
-            super::temp_scale::scale_group(state, self.groupbit, factor_eta);
+            self.temp.scale(state, self.groupbit, factor_eta)?;
 
             // the temperature scales with the velocities; LAMMPS does not recompute it
             self.t_current *= factor_eta * factor_eta;
@@ -151,6 +151,7 @@ impl FixNvt {
                 self.eta_dot[ich] *= expfac;
             }
         }
+        Ok(())
     }
 
     /// v += dtf/m f for the group, and in the first half x += dt v (LAMMPS' nve_v, nve_x).
@@ -189,8 +190,8 @@ impl Fix for FixNvt {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
-    fn modify_temp(&mut self, groupbit: u32, extra: Option<f64>) -> Result<(), String> {
-        self.temp.replace(groupbit, extra);
+    fn modify_temp(&mut self, spec: crate::models::compute::temp_bias::TempSpec) -> Result<(), String> {
+        self.temp.replace(spec);
         Ok(())
     }
     fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
@@ -204,7 +205,7 @@ impl Fix for FixNvt {
         Ok(())
     }
     fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
-        self.t_current = self.temp.compute(state);
+        self.t_current = self.temp.compute(state)?;
         self.tdof = self.temp.dof;
         self.compute_temp_target(state);
         let boltz = state.units.boltz;
@@ -220,14 +221,15 @@ impl Fix for FixNvt {
     }
     fn initial_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         self.compute_temp_target(state);
-        self.nhc_temp_integrate(state);
+        self.nhc_temp_integrate(state)?;
         self.nve(state, true);
         Ok(())
     }
     fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         self.nve(state, false);
-        self.t_current = self.temp.compute(state);
-        self.nhc_temp_integrate(state);
+        self.t_current = self.temp.compute(state)?;
+        self.tdof = self.temp.dof;
+        self.nhc_temp_integrate(state)?;
         Ok(())
     }
     /// The chain's energy: L kT eta_1 + sum_k>1 kT eta_k + sum 0.5 Q_k eta_dot_k^2.

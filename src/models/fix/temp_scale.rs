@@ -9,6 +9,7 @@
 
 use super::thermostat::{GroupTemp, Target};
 use super::{Fix, FixCtx, FixHooks};
+use crate::models::compute::temp_bias::TempSpec;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -59,8 +60,8 @@ impl Fix for FixTempScale {
     fn hooks(&self) -> FixHooks {
         FixHooks { end_of_step: true, ..FixHooks::default() }
     }
-    fn modify_temp(&mut self, groupbit: u32, extra: Option<f64>) -> Result<(), String> {
-        self.temp.replace(groupbit, extra);
+    fn modify_temp(&mut self, spec: TempSpec) -> Result<(), String> {
+        self.temp.replace(spec);
         Ok(())
     }
     fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
@@ -73,7 +74,7 @@ impl Fix for FixTempScale {
                 return Ok(());
             }
         }
-        let t_current = self.temp.compute(state);
+        let t_current = self.temp.compute(state)?;
         let tdof = self.temp.dof;
         // nothing to do without degrees of freedom
         if tdof < 1.0 {
@@ -99,8 +100,7 @@ impl Fix for FixTempScale {
                 lamda
             }
         };
-        scale_group(state, self.groupbit, factor);
-        Ok(())
+        self.temp.scale(state, self.groupbit, factor)
     }
     fn scalar(&self, _state: &State) -> Option<f64> {
         Some(self.energy)

@@ -1,39 +1,55 @@
 //! What the thermostat fixes share: the temperature compute each creates on its group
-//! (LAMMPS' `ID_temp`, style temp), and the target temperature ramped over a run.
+//! (LAMMPS' `ID_temp`, style temp, or the compute `fix_modify temp` names), and the target temperature ramped over a run.
 
 use super::value::FixValue;
+use crate::models::compute::temp_bias::{self, TempSpec};
 use super::{Fix, FixCtx};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult};
 
-/// The fix's own `compute ID_temp group temp`: degrees of freedom counted at the start of a
-/// run (dim N - dim - fixes' dof), T summed in LAMMPS' atom order.
-#[derive(Clone, Copy, Debug, Default)]
+/// The fix's own `compute ID_temp group temp` (dim N - dim - fixes' dof, counted at the start
+/// of a run), or after `fix_modify temp CID` the measure of compute CID, with its bias removed
+/// while the fix scales velocities. T is summed in LAMMPS' atom order.
+#[derive(Clone, Debug)]
 pub struct GroupTemp {
-    pub groupbit: u32,
-    /// Degrees of freedom removed besides the fixes' (None: the dimension).
-    pub extra: Option<f64>,
+    pub spec: TempSpec,
     pub dof: f64,
 }
 
 impl GroupTemp {
     pub fn new(groupbit: u32) -> GroupTemp {
-        GroupTemp { groupbit, extra: None, dof: 0.0 }
+        GroupTemp { spec: TempSpec::plain(groupbit), dof: 0.0 }
     }
     /// LAMMPS' `dof_compute` (at init of a run).
     pub fn count_dof(&mut self, state: &State, ctx: &FixCtx) {
-        let dim = state.dimension as f64;
-        let fix_dof: f64 = ctx.other_fixes().map(|f| f.dof_removed(state, self.groupbit)).sum();
-        self.dof = dim * state.group_count(self.groupbit) as f64 - (self.extra.unwrap_or(dim) + fix_dof);
+        let fix_dof: f64 = ctx.other_fixes().map(|f| f.dof_removed(state, self.spec.groupbit)).sum();
+        self.dof = self.spec.dof(state, fix_dof);
     }
-    /// `fix_modify temp`: the group and extra degrees of freedom of another `compute temp`.
-    pub fn replace(&mut self, groupbit: u32, extra: Option<f64>) {
-        (self.groupbit, self.extra) = (groupbit, extra);
+    /// `fix_modify temp`: measure as another temperature compute does.
+    pub fn replace(&mut self, spec: TempSpec) {
+        self.spec = spec;
     }
-    /// The current temperature (0 without degrees of freedom).
-    pub fn compute(&self, state: &State) -> f64 {
-        let tfactor = if self.dof > 0.0 { state.units.mvv2e / (self.dof * state.units.boltz) } else { 0.0 };
-        crate::models::compute::temp::sum_mv2(state, self.groupbit) * tfactor
+    /// The current temperature (0 without degrees of freedom); temp/region recounts `dof`.
+    pub fn compute(&mut self, state: &State) -> Result<f64, RunError> {
+        let (t, dof) = self.spec.temperature(state, self.dof).map_err(|e| RunError::new(state.step, e))?;
+        self.dof = dof;
+        Ok(t)
+    }
+    /// v *= factor for the owned atoms of `groupbit` (the fix's group), the compute's bias
+    /// removed before and restored after (LAMMPS' remove_bias / restore_bias around the scaling).
+    pub fn scale(&self, state: &mut State, groupbit: u32, factor: f64) -> Result<(), RunError> {
+        match self.spec.field(state, groupbit).map_err(|e| RunError::new(state.step, e))? {
+            None => super::temp_scale::scale_group(state, groupbit, factor),
+            Some(bias) => {
+                let a = &mut state.atoms;
+                let n = a.nlocal;
+                temp_bias::remove(&mut a.v[..n], &a.mask[..n], groupbit, &bias);
+                super::temp_scale::scale_group(state, groupbit, factor);
+                let a = &mut state.atoms;
+                temp_bias::restore(&mut a.v[..n], &a.mask[..n], groupbit, &bias);
+            }
+        }
+        Ok(())
     }
 }
 

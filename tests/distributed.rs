@@ -1030,3 +1030,47 @@ run          150
     compare(deck, 2);
     compare(deck, 3);
 }
+
+/// Under mpiexec: fix move, spring and dt/reset with fix print (appending) and ave/time files,
+/// which rank 0 alone writes; thermo and files as the serial run's.
+#[test]
+#[cfg_attr(not(live_mpi), ignore = "live MPI comparison: DMHS_MPI_BIN (a dmhs built with --features mpi) not set")]
+fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
+    let (bin, mpiexec) = mpi_launcher();
+    let dir = tempfile::tempdir().unwrap();
+    let deck = melt_with(
+        "region       s2 block INF INF INF INF 3.3 4.6 units box\n\
+         group        lin region s2\n\
+         group        rest subtract all lin\n\
+         fix          1 rest nve\n\
+         fix          2 lin move linear 1.5 -0.7 NULL units box\n\
+         fix          3 rest spring tether 5.0 2.0 NULL 4.0 0.0\n\
+         fix          dt all dt/reset 10 NULL 0.006 0.02 units box\n\
+         fix          av all ave/time 5 4 50 c_thermo_temp c_thermo_pe f_3 file ave.txt\n\
+         fix          pr all print 25 \"$(step) $(dt:%.15g) $(temp:%.15g) $(pe:%.15g)\" append print.txt\n\
+         thermo_style custom step dt temp epair etotal f_3 f_av[1] f_av[2]\n\
+         thermo_modify format float %.15g\n",
+    );
+    std::fs::write(dir.path().join("in.fixes"), &deck).unwrap();
+    let run = |np: usize| {
+        for f in ["ave.txt", "print.txt"] {
+            let _ = std::fs::remove_file(dir.path().join(f));
+        }
+        let mut cmd = std::process::Command::new(&mpiexec);
+        cmd.args(["-np", &np.to_string(), &bin]);
+        let out = cmd.args(["-threads", "1", "-in", "in.fixes", "-log", "none"]).current_dir(dir.path()).output().unwrap_or_else(|e| panic!("{mpiexec}: {e}"));
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(out.status.success(), "{np} ranks: {text}\n{}", String::from_utf8_lossy(&out.stderr));
+        let files = ["ave.txt", "print.txt"].map(|f| file_numbers(&dir.path().join(f)).expect("written"));
+        (thermo_rows(&text), files)
+    };
+    let (rows1, files1) = run(1);
+    for np in [2, 3] {
+        let (rows, files) = run(np);
+        assert!(rows1.len() >= 7 && rows.len() == rows1.len(), "{np} ranks: {rows:?}");
+        assert!(rows.iter().flatten().zip(rows1.iter().flatten()).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: {rows:?} against serial {rows1:?}");
+        for (f, f1) in files.iter().zip(&files1) {
+            assert!(f.len() >= 25 && f.len() == f1.len() && f.iter().zip(f1).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: a fix's file differs from the serial one");
+        }
+    }
+}

@@ -89,6 +89,12 @@ run          150
 run          100
 ";
 
+/// The melt with `text` in place of its fix nve and thermo_style lines, its neighbour lists
+/// rebuilt when atoms moved far enough.
+fn melt_with(text: &str) -> String {
+    MELT.replace("fix          1 all nve\nthermo_style custom step temp epair emol etotal press atoms\n", text).replace("check no\n", "check yes\n")
+}
+
 fn compare(deck: &str, ranks: usize) {
     compare_decks(deck, deck, ranks, 1e-9);
 }
@@ -493,9 +499,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all spring tether 10.0 5.0 5.0 5.0 0.0\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all aveforce 0.0 NULL NULL\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("fix 2 (spring) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("fix 2 (aveforce) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -567,10 +573,20 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
     assert!(out.status.success(), "{text}");
     // 864 fcc atoms in a cube on a 1 x 2 x 2 grid: 216 each
     assert!(text.contains("on 4 ranks: 1 by 2 by 2 processor grid; atoms per rank 216 to 216 (216, 216, 216, 216)"), "{text}");
-    std::fs::write(dir.path().join("in.lang"), MELT.replace("fix          1 all nve\n", "fix          1 all spring tether 10.0 5.0 5.0 5.0 0.0\n")).unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.lang", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("on 2 ranks: fix 1 (spring) cannot run on 2 ranks yet"), "{text}");
+    let check2 = |deck: String| {
+        std::fs::write(dir.path().join("in.two"), deck).unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.two", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all aveforce 0.0 NULL NULL\n"));
+    assert!(text.contains("on 2 ranks: fix 1 (aveforce) cannot run on 2 ranks yet"), "{text}");
+    // the fixes that run on ranks since issue 19's second part: no refusal line
+    let text = check2(MELT.replace(
+        "fix          1 all nve\n",
+        "fix          1 all move linear 0.1 NULL NULL units box\nfix          2 all print 10 \"$(step)\"\nfix          3 all ave/time 1 1 10 c_thermo_temp\n\
+         fix          4 all dt/reset 10 NULL 0.006 0.02\nfix          5 all spring tether 10.0 5.0 5.0 5.0 0.0\n",
+    ));
+    assert!(text.contains("on 2 ranks: 1 by 1 by 2 processor grid") && !text.contains("cannot run"), "{text}");
 }
 
 #[test]
@@ -628,23 +644,21 @@ fn walls_indenters_and_thermostats_on_ranks_are_the_serial_run() {
 
 #[test]
 fn centres_of_mass_reductions_and_group_functions_on_ranks_are_the_serial_ones() {
-    let deck = MELT
-        .replace(
-            "thermo_style custom step temp epair emol etotal press atoms\n",
-            "region       half block 0 3 INF INF INF INF units lattice\n\
-             group        half region half\n\
-             compute      cm half com\n\
-             compute      xu all property/atom xu vy\n\
-             compute      lo all reduce min c_xu[1] y\n\
-             compute      hi half reduce max c_xu[1] vz\n\
-             compute      av all reduce ave vx c_xu[2]\n\
-             compute      sq half reduce sumsq vx\n\
-             variable     bx equal bound(all,xmax)-bound(half,ymin)\n\
-             variable     g equal xcm(half,x)+vcm(half,y)+count(half)+mass(half)+fcm(all,z)+gyration(half)+ke(half)\n\
-             thermo_style custom step temp c_cm[1] c_cm[2] c_cm[3] c_lo[1] c_lo[2] c_hi[1] c_hi[2] c_av[1] c_av[2] c_sq v_bx v_g\n\
-             thermo_modify format float %.15g\n",
-        )
-        .replace("check no\n", "check yes\n");
+    let deck = melt_with(
+        "fix          1 all nve\n\
+         region       half block 0 3 INF INF INF INF units lattice\n\
+         group        half region half\n\
+         compute      cm half com\n\
+         compute      xu all property/atom xu vy\n\
+         compute      lo all reduce min c_xu[1] y\n\
+         compute      hi half reduce max c_xu[1] vz\n\
+         compute      av all reduce ave vx c_xu[2]\n\
+         compute      sq half reduce sumsq vx\n\
+         variable     bx equal bound(all,xmax)-bound(half,ymin)\n\
+         variable     g equal xcm(half,x)+vcm(half,y)+count(half)+mass(half)+fcm(all,z)+gyration(half)+ke(half)\n\
+         thermo_style custom step temp c_cm[1] c_cm[2] c_cm[3] c_lo[1] c_lo[2] c_hi[1] c_hi[2] c_av[1] c_av[2] c_sq v_bx v_g\n\
+         thermo_modify format float %.15g\n",
+    );
     compare(&deck, 2);
     compare(&deck, 4);
 }
@@ -873,4 +887,193 @@ fn bpm_plastic_springs_on_ranks_are_the_serial_run() {
     let deck = std::fs::read_to_string(path).unwrap().replace("thermo       10\n", "thermo       30\nthermo_modify format float %.15g\n");
     compare(&deck, 2);
     compare(&deck, 3);
+}
+
+/// Fix move of every style on ranks: four groups moved (a cylinder rotated about z, a slab
+/// moved linearly across the periodic faces, one wiggled, one by variables) among nve atoms;
+/// the original positions travel with the atoms at migration and are gathered between runs.
+#[test]
+fn fix_move_on_ranks_is_the_serial_run() {
+    let deck = melt_with(
+        "region       cyl cylinder z 5.04 5.04 2.5 0.0 2.6 units box\n\
+         region       s2 block INF INF INF INF 3.3 4.6 units box\n\
+         region       s3 block INF INF INF INF 5.6 6.7 units box\n\
+         region       s4 block INF INF INF INF 7.5 8.6 units box\n\
+         group        rot region cyl\n\
+         group        lin region s2\n\
+         group        wig region s3\n\
+         group        var region s4\n\
+         group        rest subtract all rot lin wig var\n\
+         variable     dx equal 0.4*sin(2.0*time)\n\
+         variable     vx equal 0.8*cos(2.0*time)\n\
+         variable     vz equal 0.05\n\
+         fix          1 rest nve\n\
+         fix          2 rot move rotate 5.04 5.04 0.0 0 0 1 20.0 units box\n\
+         fix          3 lin move linear 1.5 -0.7 NULL units box\n\
+         fix          4 wig move wiggle 0.3 NULL 0.0 0.5 units box\n\
+         fix          5 var move variable v_dx NULL NULL v_vx NULL v_vz units box\n\
+         compute      cw wig com\n\
+         compute      cl lin com\n\
+         thermo_style custom step temp epair etotal press c_cw[1] c_cl[1] c_cl[2] c_cl[3]\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deck, 2);
+    compare(&deck, 3);
+}
+
+/// The numbers of a file written by a deck (None: it was not written).
+fn file_numbers(path: &std::path::Path) -> Option<Vec<f64>> {
+    std::fs::read_to_string(path).ok().map(|t| numbers(&t))
+}
+
+/// Fix print (screen and an appended file) and fix ave/time (of computes, a variable and a
+/// fix) on ranks: rank 0 alone writes, the values are global; fix dt/reset takes the least
+/// timestep over the ranks.
+#[test]
+fn print_ave_time_and_dt_reset_on_ranks_are_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = |tag: &str| {
+        let p = |name: &str| dir.path().join(format!("{tag}.{name}")).display().to_string();
+        melt_with(&format!(
+            "fix          1 all nve\n\
+             fix          dt all dt/reset 10 NULL 0.006 0.02 units box\n\
+             variable     e equal etotal\n\
+             compute      cm all com\n\
+             fix          av all ave/time 5 4 50 c_thermo_temp c_thermo_pe v_e f_dt c_cm[1] file {}\n\
+             fix          pr all print 25 \"$(step) $(dt:%.15g) $(temp:%.15g) $(pe:%.15g) $(c_cm[2]:%.15g)\" append {} screen yes\n\
+             thermo_style custom step dt time temp epair etotal f_av[1] f_av[2] f_av[3] f_av[4] f_dt\n\
+             thermo_modify format float %.15g\n",
+            p("ave"),
+            p("print")
+        ))
+    };
+    let files = |tag: &str| ["ave", "print"].map(|f| dir.path().join(format!("{tag}.{f}")));
+    for ranks in [2, 3] {
+        // each serial run its own files (the print file is appended to)
+        let (tag0, tag) = (format!("s{ranks}"), format!("r{ranks}"));
+        compare_decks(&deck(&tag0), &deck(&tag), ranks, 1e-9);
+        for (a, b) in files(&tag0).iter().zip(files(&tag)) {
+            let (x, y) = (file_numbers(a).expect("serial file"), file_numbers(&b).expect("file written on ranks"));
+            assert!(x.len() >= 25 && x.len() == y.len(), "{}: {} values against serial {}", b.display(), y.len(), x.len());
+            assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "{} differs from the serial file", b.display());
+        }
+    }
+    // dt/reset changed the timestep
+    let (text, _) = serial(&deck("check"));
+    assert!(thermo_rows(&text).iter().any(|r| r[1] != 0.005), "{text}");
+}
+
+/// Fix spring tether and couple on ranks: the groups' centres of mass are sums over the ranks;
+/// fix spring/self: the anchors travel with the atoms, f_ID is a sum over the ranks.
+#[test]
+fn springs_on_ranks_are_the_serial_run() {
+    let deck = melt_with(
+        "region       half block 0 3 INF INF INF INF units lattice\n\
+         group        half region half\n\
+         group        other subtract all half\n\
+         fix          1 all nve\n\
+         fix          2 half spring tether 5.0 2.0 NULL 4.0 0.0\n\
+         fix          3 other spring couple half 20.0 -4.0 NULL NULL 0.5\n\
+         fix          4 half spring/self 2.0 xy\n\
+         fix          5 other spring/self 0.5\n\
+         thermo_style custom step temp epair etotal press f_2 f_2[1] f_2[3] f_2[4] f_3 f_3[1] f_3[4] f_4 f_5\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deck, 2);
+    compare(&deck, 3);
+}
+
+/// A granular pile with heat on ranks: a region floor (fix wall/gran/region with a heat model
+/// and a wall temperature) and a sphere pressed into the pile (a moving region wall with
+/// tangential history); the per-atom wall histories travel with the atoms, fix heat/flow
+/// integrates the temperatures of fix property/atom.
+#[test]
+fn region_walls_and_heat_flow_on_ranks_are_the_serial_run() {
+    let deck = "
+units        lj
+atom_style   sphere
+boundary     p p f
+comm_modify  vel yes
+lattice      sc $(1.0/0.99^3) origin 0.5 0.5 0.5
+region       box block 0 6 0 6 0 12
+create_box   1 box
+region       fill block 0 6 0 6 0 8
+create_atoms 1 region fill
+set          type 1 diameter 1.0 density 1.0
+velocity     all create 0.02 87287 loop geom
+fix          props all property/atom temperature heatflow
+region       l1 block INF INF INF INF 1.98 3.96
+region       l2 block INF INF INF INF 3.96 INF
+set          type 1 temperature 0.0
+set          region l1 temperature 1.0
+set          region l2 temperature 2.0
+pair_style   granular
+pair_coeff   * * hooke 2000.0 20.0 tangential linear_history 571.42857142857 0.5 0.5 heat area 100.0
+variable     twall equal 4.0+0.01*step
+region       floor block INF INF INF INF 0.0 30.0 side in units box
+fix          wall all wall/gran/region granular hooke 2000.0 20.0 tangential linear_history 571.42857142857 0.5 0.5 heat area 50.0 region floor temperature v_twall
+variable     dz equal -0.5*time
+region       ball sphere 3.0 2.5 9.5 1.5 side out move NULL NULL v_dz units box
+fix          press all wall/gran/region hertz/history 2000.0 NULL 50.0 NULL 0.5 1 region ball
+fix          grav all gravity 1.0 vector 0 0 -1
+neighbor     0.2 bin
+neigh_modify every 1 delay 0 check yes
+fix          1 all nve/sphere
+fix          heat all heat/flow constant 1.0
+compute      tprop all property/atom temperature
+compute      tsum all reduce sum c_tprop
+compute      erot all erotate/sphere
+timestep     0.001
+thermo_style custom step ke pe c_erot c_tsum press
+thermo_modify format float %.15g
+thermo       50
+run          250
+run          150
+";
+    compare(deck, 2);
+    compare(deck, 3);
+}
+
+/// Under mpiexec: fix move, spring and dt/reset with fix print (appending) and ave/time files,
+/// which rank 0 alone writes; thermo and files as the serial run's.
+#[test]
+#[cfg_attr(not(live_mpi), ignore = "live MPI comparison: DMHS_MPI_BIN (a dmhs built with --features mpi) not set")]
+fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
+    let (bin, mpiexec) = mpi_launcher();
+    let dir = tempfile::tempdir().unwrap();
+    let deck = melt_with(
+        "region       s2 block INF INF INF INF 3.3 4.6 units box\n\
+         group        lin region s2\n\
+         group        rest subtract all lin\n\
+         fix          1 rest nve\n\
+         fix          2 lin move linear 1.5 -0.7 NULL units box\n\
+         fix          3 rest spring tether 5.0 2.0 NULL 4.0 0.0\n\
+         fix          dt all dt/reset 10 NULL 0.006 0.02 units box\n\
+         fix          av all ave/time 5 4 50 c_thermo_temp c_thermo_pe f_3 file ave.txt\n\
+         fix          pr all print 25 \"$(step) $(dt:%.15g) $(temp:%.15g) $(pe:%.15g)\" append print.txt\n\
+         thermo_style custom step dt temp epair etotal f_3 f_av[1] f_av[2]\n\
+         thermo_modify format float %.15g\n",
+    );
+    std::fs::write(dir.path().join("in.fixes"), &deck).unwrap();
+    let run = |np: usize| {
+        for f in ["ave.txt", "print.txt"] {
+            let _ = std::fs::remove_file(dir.path().join(f));
+        }
+        let mut cmd = std::process::Command::new(&mpiexec);
+        cmd.args(["-np", &np.to_string(), &bin]);
+        let out = cmd.args(["-threads", "1", "-in", "in.fixes", "-log", "none"]).current_dir(dir.path()).output().unwrap_or_else(|e| panic!("{mpiexec}: {e}"));
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(out.status.success(), "{np} ranks: {text}\n{}", String::from_utf8_lossy(&out.stderr));
+        let files = ["ave.txt", "print.txt"].map(|f| file_numbers(&dir.path().join(f)).expect("written"));
+        (thermo_rows(&text), files)
+    };
+    let (rows1, files1) = run(1);
+    for np in [2, 3] {
+        let (rows, files) = run(np);
+        assert!(rows1.len() >= 7 && rows.len() == rows1.len(), "{np} ranks: {rows:?}");
+        assert!(rows.iter().flatten().zip(rows1.iter().flatten()).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: {rows:?} against serial {rows1:?}");
+        for (f, f1) in files.iter().zip(&files1) {
+            assert!(f.len() >= 20 && f.len() == f1.len() && f.iter().zip(f1).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: a fix's file differs from the serial one: {} values against {}, first {:?} against {:?}", f.len(), f1.len(), &f[..f.len().min(12)], &f1[..f1.len().min(12)]);
+        }
+    }
 }

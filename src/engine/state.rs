@@ -256,6 +256,11 @@ impl State {
         self.sum_ranks(&mut v);
         v[0]
     }
+    /// Whether this process writes the files of fix outputs (fix print, ave/time): rank 0 of
+    /// several (set before the deck's first command), or a rank alone, as LAMMPS' `me == 0`.
+    pub fn writes_files(&self) -> bool {
+        self.decomp.as_ref().is_none_or(|d| d.rank() == 0)
+    }
     /// The largest of `v` over the ranks of a distributed run, element by element.
     pub fn max_ranks(&self, v: &mut [f64]) {
         if let (Some(d), Some(_)) = (&self.decomp, self.distributed) {

@@ -110,7 +110,7 @@ pub fn uncompute(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
 }
 
 /// The fix styles that tally an energy (and a virial) for `fix_modify energy`/`virial`.
-const WITH_ENERGY: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce, spring, indent and gravity";
+const WITH_ENERGY: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce, spring, spring/self, indent and gravity";
 const WITH_VIRIAL: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wall/morse, wall/region, addforce and rigid/small (on by default)";
 
 /// `fix_modify ID keyword value ...` (LAMMPS' Fix::modify_params): `temp CID` (a thermostat

@@ -178,7 +178,8 @@ impl FixAveTime {
             total: Vec::new(),
             combine: Combine::new(ave),
         };
-        if let Some(w) = out.file {
+        // on ranks rank 0 alone writes the file (its values are the same on every rank)
+        if let Some(w) = out.file.filter(|_| state.writes_files()) {
             if w.text.ends_with(".yaml") || w.text.ends_with(".yml") {
                 return Err(a.error_at(w, "fix ave/time YAML output is not supported; use a plain file name", "YAML file"));
             }

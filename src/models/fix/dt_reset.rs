@@ -99,7 +99,10 @@ impl FixDtReset {
             }
             dtmin = dtmin.min(dt);
         }
-        let mut dt = dtmin;
+        // the least over the ranks (LAMMPS' MPI_Allreduce MPI_MIN), then clamped
+        let mut all = [dtmin];
+        state.min_ranks(&mut all);
+        let mut dt = all[0];
         if let Some(lo) = self.tmin {
             dt = dt.max(lo);
         }

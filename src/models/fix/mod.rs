@@ -39,6 +39,7 @@ pub mod rigid_small;
 pub mod setforce;
 pub mod sph;
 pub mod spring;
+pub mod spring_self;
 pub mod store_local;
 pub mod temp_scale;
 pub mod thermostat;
@@ -202,7 +203,7 @@ pub trait Fix: Send + Sync {
     /// applies many of them through hooks dmhs' fixes do not have).
     fn min_role(&self) -> MinRole {
         match self.hooks().post_force {
-            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, aveforce, enforce2d, addforce, indent, spring, viscous, wall/* and wall/region", self.id(), self.style())),
+            true => MinRole::Refused(format!("fix {} ({}) acts on forces; dmhs' minimize supports fix setforce, aveforce, enforce2d, addforce, indent, spring, spring/self, viscous, wall/* and wall/region", self.id(), self.style())),
             false => MinRole::Inert,
         }
     }
@@ -440,6 +441,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("spring/self", |d, state| Ok(Box::new(spring_self::FixSpringSelf::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/lj93", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("wall/lj126", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("wall/lj1043", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),

@@ -28,7 +28,7 @@ enum Every {
 }
 
 impl FixPrint {
-    pub fn from_lammps(d: FixDef, _state: &State) -> DResult<Self> {
+    pub fn from_lammps(d: FixDef, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(d.args, d.cmd.span, SYNTAX);
         let every = match a.peek().and_then(|w| w.text.strip_prefix("v_")) {
             Some(name) => {
@@ -49,7 +49,8 @@ impl FixPrint {
                 _ => return Err(a.unknown_keyword(w, &["file", "append", "screen", "title"])),
             }
         }
-        let file = match file {
+        // on ranks only rank 0 opens it (another would truncate or append to it again)
+        let file = match file.filter(|_| state.writes_files()) {
             None => None,
             Some((append, w)) => {
                 let path = d.path(&w.text);

@@ -1,7 +1,8 @@
 //! `fix_modify energy` and `virial` against LAMMPS: every column of the thermo tables (pe,
 //! etotal, pressure and its tensor, compute pe with and without `fix`, the fixes' f_ID) of the
 //! decks fix_modify_walls (fix wall/lj93 and wall/region: energy and virial) and
-//! fix_modify_forces (fix addforce: energy and virial; spring, indent, gravity: energy) at every
+//! fix_modify_forces (fix addforce: energy and virial; spring, indent, gravity: energy) and
+//! fix_modify_spring_self (spring/self: energy) at every
 //! printed step, against lammps-refs/refs/NAME/thermo.txt (and LAMMPS run now, when present).
 //! The minimization with wall energies is min_cluster_walls in tests/minimize.rs. And the
 //! located errors for what a fix does not tally.
@@ -11,7 +12,7 @@ use dmhs::deck::run_text;
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 2] = ["fix_modify_walls", "fix_modify_forces"];
+const DECKS: [&str; 3] = ["fix_modify_walls", "fix_modify_forces", "fix_modify_spring_self"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 

@@ -4,13 +4,15 @@
 //! gran_region_box, gran_region_funnel, gran_region_rotate, gran_region_move, gran_region_mixer,
 //! gran_region_plane, gran_region_prism, gran_region_boolean, gran_region_contacts). The
 //! `contacts` arrays of gran_region_contacts and gran_jkr_walls (JKR against a flat and a region
-//! wall), reduced in thermo, are compared here column by column with LAMMPS' thermo table.
+//! wall), reduced in thermo, and gran_region_varshape (a turning cylinder whose radius shrinks,
+//! a plane lid that moves down: walls of variable shape) are compared here column by column
+//! with LAMMPS' thermo table.
 
 use std::process::Command;
 
 mod thermo_tables;
 
-thermo_tables::thermo_table_tests!(["gran_region_contacts", "gran_jkr_walls"]);
+thermo_tables::thermo_table_tests!(["gran_region_contacts", "gran_jkr_walls", "gran_region_varshape"]);
 
 fn run(mode: &str, deck: &str) -> (i32, String) {
     let tmp = tempfile::tempdir().unwrap();

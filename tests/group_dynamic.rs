@@ -3,14 +3,16 @@
 //! in.pour_timestep (tests/lammps_parity.rs); here: what LAMMPS 22 Jul 2025 refuses (located
 //! errors), what it prints, and that write_dump writes what a dump of the same step writes.
 //! in.group_dynamic_property (`property`, and `set ... i_NAME|d_NAME`): its thermo table against
-//! LAMMPS', every column.
+//! LAMMPS', every column. in.region_varshape (regions whose shape words are variables, and a
+//! moving region, read by fix addforce/setforce and count(all,region) in thermo): its thermo
+//! table against LAMMPS', and the located errors of variable shapes.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 mod thermo_tables;
 
-thermo_tables::thermo_table_tests!(["group_dynamic_property"]);
+thermo_tables::thermo_table_tests!(["group_dynamic_property", "region_varshape"]);
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -130,4 +132,24 @@ fn write_dump_errors_are_located() {
     expect_error(&with("write_dump all custom x.txt id modify sort foo"), "sorts dumps only by");
     expect_error(&with("write_dump all"), "group-ID, dump style and file name");
     expect_error(&with("write_dump all movie x.mp4 type type"), "movie cannot be used with write_dump");
+}
+
+const VARSHAPE: &str = "units lj\natom_style atomic\nregion box block 0 4 0 4 0 4 units box\ncreate_box 1 box\n\
+create_atoms 1 single 1 1 1 units box\nmass 1 1.0\npair_style zero 1.0\npair_coeff * *\nfix 1 all nve\n";
+
+/// Shape words that may be variables take them (evaluated at definition); those LAMMPS 22 Jul
+/// 2025 reads as numbers refuse them; a value that breaks the shape at a later step stops the
+/// run with LAMMPS' message.
+#[test]
+fn variable_shapes_are_checked_where_lammps_checks_them() {
+    expect_error(&format!("{VARSHAPE}variable r equal 1\nregion c cylinder z 1 1 1 v_r 2 units box\n"), "region cylinder takes a number for lo, not a variable");
+    expect_error(&format!("{VARSHAPE}region s sphere 1 1 1 v_nope units box\n"), "Variable nope for region sphere");
+    expect_error(&format!("{VARSHAPE}variable n equal 1\nregion p plane 0 0 0 v_n 0 1 units box\n"), "normal vector must be all variables or all constants");
+    let (code, out) = run(&format!("{VARSHAPE}variable r equal 1-0.1*step\nregion s sphere 1 1 1 v_r units box\nfix 2 all addforce 1 0 0 region s\nrun 20\n"));
+    assert_ne!(code, 0, "{out}");
+    assert!(out.contains("Variable evaluation in region gave bad value") && out.contains("step 11"), "{out}");
+    // a group command places the region at its step (a variable of the step)
+    let (code, out) = run(&format!("{VARSHAPE}variable x equal 2-0.5*step\nregion b block 0 v_x 0 4 0 4 units box\nrun 3\ngroup g region b\nprint \"N ${{n}}\"\n").replace("print", "variable n equal count(g)\nprint"));
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("0 atoms in group g") && out.contains("N 0"), "{out}");
 }

@@ -742,6 +742,7 @@ pub(crate) mod tests {
                         st.boxed.as_ref().map(|b| &b.domain),
                         st.lattice.as_ref(),
                         &st.regions,
+                        &mut |n| Err(format!("variable {n} is not defined in this test")),
                     )?;
                     st.regions.push(r);
                 }

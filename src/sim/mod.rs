@@ -160,6 +160,29 @@ impl Simulation {
         crate::output::thermo::values(thermo, &world, &mut Eval { world, thermo, variables: &mut self.variables, cpu: self.last_loop_seconds })
     }
 
+    /// LAMMPS' `prematch` of every region that moves or has a variable shape: their variables
+    /// evaluated now, so that what reads `state.regions` (fixes, computes, commands) finds each
+    /// where it is at this step. LAMMPS evaluates them at each use; a variable of the time gives
+    /// the same values, one that reads positions may not.
+    /// `only`: that region alone (a command that names it).
+    pub fn prematch_regions(&mut self, only: Option<&str>) -> Result<(), String> {
+        let wanted = |r: &crate::engine::region::Region| r.is_dynamic() && only.is_none_or(|id| r.id == id);
+        if !self.state.regions.iter().any(wanted) {
+            return Ok(());
+        }
+        let mut regions = std::mem::take(&mut self.state.regions);
+        let mut ev = self.eval();
+        let mut result = Ok(());
+        for r in regions.iter_mut().filter(|r| wanted(r)) {
+            if let Err(e) = r.prematch(&mut |name| dmhs_parser::variables::compute_equal(&mut ev, name)) {
+                result = Err(format!("region {}: {e}", r.id));
+                break;
+            }
+        }
+        self.state.regions = regions;
+        result
+    }
+
     /// The evaluation context of expressions, and the view it reads.
     pub fn eval(&mut self) -> Eval<'_> {
         Eval {

@@ -558,6 +558,7 @@ impl Simulation {
         // periodic faces see the old vest on the side LAMMPS' newton list gives them
         // (src/sim/stale_vest.rs).
         let vest_before = self.vest_before_setup();
+        self.prematch_regions(None).map_err(|e| RunError::new(self.state.step, e))?;
         self.fix_hook(|_| true, |f, s, c| f.setup_pre_force(s, c))?;
         self.apply_pair_changes()?;
         self.pair_pre_force(true)?;
@@ -599,6 +600,7 @@ impl Simulation {
     pub fn step_once(&mut self, eflag: bool) -> Result<(), RunError> {
         self.state.step += 1;
         self.timers.stamp();
+        self.prematch_regions(None).map_err(|e| RunError::new(self.state.step, e))?;
         self.fix_hook(|h| h.initial_integrate, |f, s, c| f.initial_integrate(s, c))?;
         self.fix_hook(|h| h.post_integrate, |f, s, c| f.post_integrate(s, c))?;
         self.timers.charge(Stage::Modify);

@@ -88,6 +88,9 @@ fn select_by_value(sim: &Simulation, a: &mut Args, values: impl Fn(usize) -> i64
 }
 
 pub fn group(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    if cmd.args.get(1).is_some_and(|w| w.text == "region") {
+        super::box_cmds::region_now(sim, cmd, "region")?;
+    }
     let syntax = "group ID style args  (style: type, id, molecule (values, ranges or <, <=, >, >=, ==, !=, <> v1 v2), region ID, subtract/union/intersect G1 G2 ..., delete, clear, empty)";
     let mut a = Args::new(cmd, syntax);
     let idw = a.word("group ID")?;
@@ -290,6 +293,9 @@ fn group_dynamic(sim: &mut Simulation, a: &mut Args, idw: &Word, style: &Word) -
 
 pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
+    if cmd.args.first().is_some_and(|w| w.text == "region") {
+        super::box_cmds::region_now(sim, cmd, "region")?;
+    }
     let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water, temperature; a number may be v_name of an atom-style variable)";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();

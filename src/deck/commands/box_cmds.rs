@@ -28,9 +28,20 @@ pub fn region(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
         sim.state.regions.remove(k);
         return Ok(());
     }
-    let r = crate::engine::region::Region::from_lammps(cmd, sim.state.domain.as_ref(), sim.state.lattice.as_ref(), &sim.state.regions)?;
-    sim.state.regions.push(r);
+    let existing = std::mem::take(&mut sim.state.regions);
+    let (domain, lattice) = (sim.state.domain.clone(), sim.state.lattice.clone());
+    let r = crate::engine::region::Region::from_lammps(cmd, domain.as_ref(), lattice.as_ref(), &existing, &mut |name| dmhs_parser::variables::compute_equal(sim, name));
+    sim.state.regions = existing;
+    sim.state.regions.push(r?);
     Ok(())
+}
+
+/// The region a command names after `keyword`, where it is now if it moves or changes its
+/// shape (LAMMPS' `prematch` in the commands that use a region); errors at the command.
+pub fn region_now(sim: &mut Simulation, cmd: &Command, keyword: &str) -> DResult<()> {
+    let Some(k) = cmd.args.iter().position(|w| w.text == keyword) else { return Ok(()) };
+    let Some(id) = cmd.args.get(k + 1) else { return Ok(()) };
+    sim.prematch_regions(Some(&id.text)).map_err(|e| Diagnostic::at(id.span, e, "while placing this region"))
 }
 
 pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
@@ -53,6 +64,7 @@ pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
 
 pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
+    region_now(sim, cmd, "region")?;
     sim.state.atoms.clear_ghosts();
     let existing: Vec<[f64; 3]> = sim.state.atoms.x[..sim.state.atoms.nlocal].to_vec();
     let domain = sim.state.domain.clone().unwrap();
@@ -92,6 +104,7 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
 
 pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
+    region_now(sim, cmd, "region")?;
     let syntax = "delete_atoms group ID | region ID | overlap cutoff group1 group2  [compress yes|no] [bond yes|no] [mol yes|no]";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();

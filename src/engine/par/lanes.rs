@@ -92,6 +92,12 @@ mod imp {
         store(unsafe { _mm256_cmp_pd::<_CMP_NEQ_UQ>(load(a), load(b)) })
     }
     binary!(and_bits, _mm256_and_pd);
+    /// Bit l set where lane l has its sign bit set (a mask lane that is true).
+    #[inline(always)]
+    pub fn sign_bits(a: &L) -> u32 {
+        // SAFETY: AVX is enabled at compile time
+        unsafe { _mm256_movemask_pd(load(a)) as u32 }
+    }
     /// Per lane: `yes` where the mask lane is all ones, else `no`.
     #[inline(always)]
     pub fn blend(m: &L, yes: &L, no: &L) -> L {
@@ -184,6 +190,10 @@ mod imp {
         lanes(|l| if m.0[l].to_bits() >> 63 != 0 { yes.0[l] } else { no.0[l] })
     }
     #[inline(always)]
+    pub fn sign_bits(a: &L) -> u32 {
+        (0..4).map(|l| ((a.0[l].to_bits() >> 63) as u32) << l).sum()
+    }
+    #[inline(always)]
     pub fn abs(a: &L) -> L {
         lanes(|l| a.0[l].abs())
     }
@@ -231,6 +241,8 @@ pub trait Real: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     fn ne(self, other: Self) -> Self::Mask;
     /// `if m { yes } else { no }`, per lane.
     fn select(m: Self::Mask, yes: Self, no: Self) -> Self;
+    /// Whether the mask is true in any lane (a branch that no lane takes can be skipped).
+    fn any(m: Self::Mask) -> bool;
 }
 
 impl Real for f64 {
@@ -262,6 +274,10 @@ impl Real for f64 {
         } else {
             no
         }
+    }
+    #[inline(always)]
+    fn any(m: bool) -> bool {
+        m
     }
 }
 
@@ -302,6 +318,10 @@ impl Real for L {
     #[inline(always)]
     fn select(m: Mask, yes: L, no: L) -> L {
         imp::blend(&m.0, &yes, &no)
+    }
+    #[inline(always)]
+    fn any(m: Mask) -> bool {
+        imp::sign_bits(&m.0) != 0
     }
 }
 

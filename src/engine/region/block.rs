@@ -3,7 +3,7 @@
 use super::{fixed, point_on_segment, Shape, ShapeArgs, Style, Vec3, WallContact, BIG};
 use dmhs_parser::DResult;
 
-pub const STYLE: Style = Style { syntax: "block xlo xhi ylo yhi zlo zhi", nargs: fixed::<6>, parse };
+pub const STYLE: Style = Style { syntax: "block xlo xhi ylo yhi zlo zhi", vars: &[0, 1, 2, 3, 4, 5], nargs: fixed::<6>, parse };
 
 #[derive(Debug)]
 struct Block {

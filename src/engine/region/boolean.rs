@@ -5,8 +5,8 @@
 use super::{Region, Shape, ShapeArgs, Style, Vec3, BIG};
 use dmhs_parser::{Args, DResult};
 
-pub const UNION: Style = Style { syntax: "union N id1 id2 ...", nargs: count, parse: |s| parse(s, false) };
-pub const INTERSECT: Style = Style { syntax: "intersect N id1 id2 ...", nargs: count, parse: |s| parse(s, true) };
+pub const UNION: Style = Style { syntax: "union N id1 id2 ...", vars: &[], nargs: count, parse: |s| parse(s, false) };
+pub const INTERSECT: Style = Style { syntax: "intersect N id1 id2 ...", vars: &[], nargs: count, parse: |s| parse(s, true) };
 
 #[derive(Debug)]
 struct Boolean {

@@ -6,7 +6,7 @@
 use super::{fixed, point_on_segment, Shape, ShapeArgs, Style, Vec3, WallContact, BIG};
 use dmhs_parser::DResult;
 
-pub const STYLE: Style = Style { syntax: "cone dim c1 c2 radlo radhi lo hi", nargs: fixed::<7>, parse };
+pub const STYLE: Style = Style { syntax: "cone dim c1 c2 radlo radhi lo hi", vars: &[1, 2, 3, 4, 5, 6], nargs: fixed::<7>, parse };
 
 #[derive(Debug)]
 struct Cone {
@@ -137,7 +137,7 @@ impl Shape for Cone {
             let del = [xa[0] - xs[0], xa[1] - xs[1], xa[2] - xs[2]];
             let dist = (del[0] * del[0] + del[1] * del[1] + del[2] * del[2]).sqrt();
             if dist < cutoff {
-                out.push(WallContact { r: dist, del, radius: -2.0 * self.radius_at(xs[a]), iwall: 2, vwall: [0.0; 3] });
+                out.push(WallContact { r: dist, del, radius: -2.0 * self.radius_at(xs[a]), iwall: 2, ..WallContact::default() });
             }
         }
         // LAMMPS' y-axis cone puts its end contacts along z

@@ -5,7 +5,7 @@
 use super::{fixed, Shape, ShapeArgs, Style, Vec3, WallContact, BIG};
 use dmhs_parser::DResult;
 
-pub const STYLE: Style = Style { syntax: "cylinder dim c1 c2 r lo hi", nargs: fixed::<6>, parse };
+pub const STYLE: Style = Style { syntax: "cylinder dim c1 c2 r lo hi", vars: &[1, 2, 3], nargs: fixed::<6>, parse };
 
 #[derive(Debug)]
 struct Cylinder {
@@ -65,6 +65,10 @@ impl Shape for Cylinder {
         Some((lo, hi))
     }
 
+    fn shape_frame(&self) -> Option<super::ShapeFrame> {
+        Some(super::ShapeFrame { center: self.center.into(), radius: self.radius, axis: Some(self.axis) })
+    }
+
     fn simple(&self) -> Option<super::Simple> {
         Some(super::Simple::Cylinder { axis: self.axis, center: self.center.into(), radius: self.radius, lo: self.lo, hi: self.hi })
     }
@@ -88,7 +92,7 @@ impl Shape for Cylinder {
             let mut del = [0.0; 3];
             del[d1] = del1 * (1.0 - self.radius / r);
             del[d2] = del2 * (1.0 - self.radius / r);
-            out.push(WallContact { r: delta, del, radius: -2.0 * self.radius, iwall: 2, vwall: [0.0; 3] });
+            out.push(WallContact { r: delta, del, radius: -2.0 * self.radius, iwall: 2, vwall: [0.0; 3], varflag: true });
         }
         let delta = x[a] - self.lo;
         if delta < cutoff && !open[0] {
@@ -155,6 +159,8 @@ impl Shape for Cylinder {
         }
         let mut c = WallContact::to_point(x, p);
         c.radius = crad;
+        // the curved side moves with a variable radius (LAMMPS sets varflag where it sets crad)
+        c.varflag = crad != 0.0;
         if c.r < cutoff {
             out.push(c);
         }

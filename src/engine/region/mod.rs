@@ -28,6 +28,7 @@ mod sphere;
 use crate::engine::domain::Domain;
 use crate::engine::lattice::Lattice;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
+pub use motion::ShapeFrame;
 use nalgebra::Vector3;
 use std::fmt::Debug;
 use std::sync::Arc;
@@ -71,6 +72,11 @@ pub trait Shape: Debug + Send + Sync {
     fn contact_counts(&self, _interior: bool) -> (usize, usize) {
         (0, 0)
     }
+    /// Where a change of the shape moves its wall (LAMMPS' `set_velocity_shape`: sphere and
+    /// cylinder, whose curved contacts have `varflag`); None for the other styles.
+    fn shape_frame(&self) -> Option<ShapeFrame> {
+        None
+    }
 }
 
 /// A block or a cylinder by its parameters, in box units.
@@ -86,6 +92,8 @@ pub enum Simple {
 #[derive(Clone, Copy)]
 pub struct Style {
     syntax: &'static str,
+    /// The shape words that may be equal-style variables `v_name` (LAMMPS 22 Jul 2025).
+    vars: &'static [usize],
     /// May read a count word first (`union N ...`); the style name is given for messages.
     nargs: fn(&mut Args, &str) -> DResult<usize>,
     parse: fn(&ShapeArgs) -> DResult<Box<dyn Shape>>,
@@ -142,6 +150,8 @@ fn syntax() -> String {
 /// and the regions defined so far; errors point at the words through `args`.
 pub struct ShapeArgs<'a> {
     args: &'a Args<'a>,
+    /// The current value of each shape word that is a variable (None for the others).
+    values: &'a [Option<f64>],
     style: &'a str,
     words: &'a [Word],
     /// Lattice spacings under `units lattice`, ones under `units box`.
@@ -161,7 +171,12 @@ impl ShapeArgs<'_> {
     pub fn num(&self, k: usize, what: &str) -> DResult<f64> {
         let w = &self.words[k];
         if w.text.starts_with("v_") {
-            return Err(self.error(w, "variable region parameters (v_name) are not supported", "variable not supported"));
+            return match self.values.get(k).copied().flatten() {
+                Some(v) => Ok(v),
+                None => Err(self
+                    .error(w, format!("region {} takes a number for {what}, not a variable (found `{}`)", self.style, w.text), "variable not allowed here")
+                    .with_help(format!("syntax: {}", self.args.syntax))),
+            };
         }
         dmhs_parser::args::word_f64(w, what).map_err(|d| d.with_help(format!("syntax: {}", self.args.syntax)))
     }
@@ -213,6 +228,39 @@ enum Kind {
     Boolean { all: bool, subs: Vec<Region> },
 }
 
+/// A shape with variable parameters (LAMMPS `varshape`): what rebuilding it from its words
+/// takes, each time the variables are evaluated (LAMMPS' `shape_update`).
+#[derive(Debug)]
+struct ShapeVars {
+    cmd: Command,
+    style: &'static str,
+    /// The shape words are `cmd.args[2..2 + nshape]` (styles with variables take no count word).
+    nshape: usize,
+    /// The variable of each shape word that is one.
+    names: Vec<Option<String>>,
+    scale: Vec3,
+    /// The box when the region was defined (EDGE bounds stay where they were).
+    domain: Option<Domain>,
+    open: Vec<usize>,
+}
+
+impl ShapeVars {
+    /// The shape with the shape words' variables at `values`.
+    fn build(&self, values: &[Option<f64>]) -> DResult<Box<dyn Shape>> {
+        let style = STYLES.iter().find(|(n, _)| *n == self.style).map(|(_, s)| *s).expect("a registered style");
+        let syntax = syntax();
+        let args = Args::new(&self.cmd, &syntax);
+        let words = &self.cmd.args[2..2 + self.nshape];
+        let open: Vec<(&Word, usize)> = self.open.iter().map(|&f| (&words[0], f)).collect();
+        (style.parse)(&ShapeArgs { args: &args, values, style: self.style, words, scale: self.scale, domain: self.domain.as_ref(), open: &open, existing: &[] })
+    }
+
+    /// The variables' values now.
+    fn values(&self, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<Option<f64>>, String> {
+        self.names.iter().map(|n| n.as_deref().map(&mut *equal).transpose()).collect()
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Region {
     pub id: String,
@@ -227,6 +275,10 @@ pub struct Region {
     /// `move` and `rotate`, the current displacement and angle, and the velocities inferred
     /// from them (motion.rs).
     motion: motion::Motion,
+    /// Shape words that are variables, if any.
+    shape_vars: Option<Arc<ShapeVars>>,
+    /// How the variable shape's wall moves this step (sphere and cylinder; motion.rs).
+    shape_velocity: Option<motion::ShapeVelocity>,
 }
 
 static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
@@ -282,12 +334,14 @@ impl Region {
     /// Parse a `region` command. `domain` is needed for `EDGE`/`INF` bounds; `lattice` gives
     /// the spacings for `units lattice` (the default; without a lattice command LAMMPS uses
     /// its initial `lattice none 1.0`); `existing` holds the regions defined so far (for
-    /// union/intersect and ID reuse).
+    /// union/intersect and ID reuse); `equal` evaluates the equal-style variables of shape
+    /// words `v_name` (LAMMPS evaluates them when the region is defined, and again at each use).
     pub fn from_lammps(
         cmd: &Command,
         domain: Option<&Domain>,
         lattice: Option<&Lattice>,
         existing: &[Region],
+        equal: &mut dyn FnMut(&str) -> Result<f64, String>,
     ) -> DResult<Region> {
         let syntax = syntax();
         let mut a = Args::new(cmd, &syntax);
@@ -321,6 +375,20 @@ impl Region {
         }
         let words = &a.remaining()[..nshape];
         a.skip(nshape);
+        // the shape words that are variables: their values now
+        let mut names: Vec<Option<String>> = vec![None; nshape];
+        for (k, w) in words.iter().enumerate() {
+            if let Some(var) = w.text.strip_prefix("v_").filter(|_| style.vars.contains(&k)) {
+                names[k] = Some(var.to_string());
+            }
+        }
+        let mut values = vec![None; nshape];
+        for (k, var) in names.iter().enumerate() {
+            if let Some(var) = var {
+                let v = equal(var).map_err(|e| a.error_at(&words[k], format!("Variable {var} for region {name}: {e}"), "equal-style variable"))?;
+                values[k] = Some(v);
+            }
+        }
 
         // Keywords come first in LAMMPS (they set the scale the shape arguments use).
         let mut interior = true;
@@ -357,13 +425,31 @@ impl Region {
             return Err(a.error_at(kw, format!("region {name} cannot be dynamic (its sub-regions may move)"), "not allowed here"));
         }
         moving.scale_point(&scale);
-        let shape = (style.parse)(&ShapeArgs { args: &a, style: name, words, scale, domain, open: &open, existing })?;
+        let shape = (style.parse)(&ShapeArgs { args: &a, values: &values, style: name, words, scale, domain, open: &open, existing })?;
         let kind = match shape.boolean() {
             Some((all, subs)) => Kind::Boolean { all, subs },
             None => Kind::Shape(shape.into()),
         };
+        let shape_vars = names.iter().any(Option::is_some).then(|| {
+            let open = open.iter().map(|(_, f)| *f).collect();
+            Arc::new(ShapeVars { cmd: cmd.clone(), style: name, nshape, names, scale, domain: domain.cloned(), open })
+        });
         let serial = SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        Ok(Region { id, style: name, kind, interior, open_faces, serial, motion: moving })
+        Ok(Region { id, style: name, kind, interior, open_faces, serial, motion: moving, shape_vars, shape_velocity: None })
+    }
+
+    /// Whether some shape word is a variable (LAMMPS `varshape`).
+    pub fn varshape(&self) -> bool {
+        self.shape_vars.is_some()
+    }
+
+    /// LAMMPS `shape_update`: the shape rebuilt with its variables' values now.
+    fn shape_update(&mut self, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<(), String> {
+        let Some(sv) = &self.shape_vars else { return Ok(()) };
+        let values = sv.values(equal)?;
+        let shape = sv.build(&values).map_err(|d| format!("Variable evaluation in region gave bad value: {}", d.message))?;
+        self.kind = Kind::Shape(shape.into());
+        Ok(())
     }
 }
 
@@ -378,7 +464,7 @@ pub(crate) mod tests {
     }
 
     pub(crate) fn reg(line: &str, d: Option<&Domain>, l: Option<&Lattice>, ex: &[Region]) -> DResult<Region> {
-        Region::from_lammps(&cmd(line), d, l, ex)
+        Region::from_lammps(&cmd(line), d, l, ex, &mut |n| Err(format!("variable {n} is not defined in this test")))
     }
 
     #[test]
@@ -431,8 +517,10 @@ union N id1 id2 ...; keywords: side in|out, units lattice|box, open face, move v
         assert_eq!(e.message, "region style `ellipsoid` is not supported");
         let e = reg("region r sphere 0 0 0", None, None, &[]).unwrap_err();
         assert!(e.message.contains("missing"));
+        let e = reg("region r cylinder z 1 1 1 v_lo 2", None, None, &[]).unwrap_err();
+        assert!(e.message.contains("takes a number for lo, not a variable"), "{}", e.message);
         let e = reg("region r sphere 0 0 v_z 1", None, None, &[]).unwrap_err();
-        assert!(e.message.contains("(v_name)"));
+        assert!(e.message.contains("Variable z for region sphere"), "{}", e.message);
         // any characters, as LAMMPS (examples/friction's `lo-fixed`)
         let r = reg("region lo-fixed sphere 0 0 0 1", None, None, &[]).unwrap();
         assert_eq!(r.id, "lo-fixed");

@@ -32,7 +32,8 @@ struct Rotation {
 /// LAMMPS' `prev`, `v`, `omega`, `rpoint` and `vel_timestep`.
 #[derive(Clone, Debug, Default)]
 struct Velocity {
-    prev: [f64; 4],
+    /// displacement, angle and (a variable shape's) radius at the previous call
+    prev: [f64; 5],
     v: [f64; 3],
     omega: [f64; 3],
     rpoint: [f64; 3],
@@ -146,10 +147,11 @@ impl Motion {
 
     /// LAMMPS `set_velocity`: velocities from the change since the previous call (zero at step
     /// 0), once per step.
-    pub fn set_velocity(&mut self, step: i64, dt: f64) {
+    /// Returns false if they were already computed at this step.
+    pub fn set_velocity(&mut self, step: i64, dt: f64) -> bool {
         let v = &mut self.vel;
         if v.timestep == Some(step) {
-            return;
+            return false;
         }
         v.timestep = Some(step);
         if self.moving.is_some() {
@@ -176,6 +178,7 @@ impl Motion {
             }
             v.prev[3] = self.theta;
         }
+        true
     }
 
     /// LAMMPS `velocity_contact`: the velocity of the wall at the contact point `x - del`.
@@ -196,7 +199,7 @@ impl Motion {
 
     /// LAMMPS `reset_vel`: the previous displacement and angle forgotten (zero).
     pub fn reset_vel(&mut self) {
-        self.vel.prev = [0.0; 4];
+        self.vel.prev = [0.0; 5];
     }
 
     /// LAMMPS `Region::init`: the velocities are computed again at the next call.
@@ -205,13 +208,63 @@ impl Motion {
     }
 }
 
+/// Where a shape's variable parameters move its wall: the centre (of a sphere; a point on a
+/// cylinder's axis, its axial component 0) in the region's own frame, the radius, and the axis
+/// of a cylinder.
+#[derive(Clone, Copy, Debug)]
+pub struct ShapeFrame {
+    pub center: [f64; 3],
+    pub radius: f64,
+    pub axis: Option<usize>,
+}
+
+/// LAMMPS `set_velocity_shape`: the centre moved where the region is, the radius now and at the
+/// previous call, and the time step.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ShapeVelocity {
+    center: [f64; 3],
+    radius: f64,
+    rprev: f64,
+    axis: Option<usize>,
+    dt: f64,
+}
+
+impl ShapeVelocity {
+    /// LAMMPS `velocity_contact_shape`: the wall point `xc` moves with the radius, away from
+    /// the centre (not along a cylinder's axis).
+    fn add_to(&self, vwall: &mut [f64; 3], xc: [f64; 3]) {
+        for d in 0..3 {
+            if self.axis == Some(d) {
+                continue;
+            }
+            let del = (xc[d] - self.center[d]) * (1.0 - self.rprev / self.radius);
+            vwall[d] += del / self.dt;
+        }
+    }
+}
+
 impl Region {
-    /// Whether the region (or a sub-region) moves: LAMMPS `dynamic_check`.
+    /// Whether the region (or a sub-region) moves or changes its shape: LAMMPS `dynamic_check`.
     pub fn is_dynamic(&self) -> bool {
         match &self.kind {
-            super::Kind::Shape(_) => self.motion.is_dynamic(),
+            super::Kind::Shape(_) => self.motion.is_dynamic() || self.varshape(),
             super::Kind::Boolean { subs, .. } => subs.iter().any(Region::is_dynamic),
         }
+    }
+
+    /// The wall velocity at contact `del` of the particle at `x`: the region's motion and, for
+    /// a contact with a curved wall of a variable shape (`varflag`), its change.
+    pub(super) fn wall_velocity(&self, x: [f64; 3], del: [f64; 3], varflag: bool) -> [f64; 3] {
+        let mut w = self.motion.velocity_contact(x, del);
+        if let (true, Some(sv)) = (varflag, &self.shape_velocity) {
+            // LAMMPS 22 Jul 2025 sets the contact point only for a rotating region; otherwise it
+            // passes an unset array, which reads as the origin (measured: a shrinking sphere
+            // centred at (1, 0, 0) gives LAMMPS' numbers this way, and differs from step 500 of
+            // 1000 with the contact point). Reproduced to give LAMMPS' numbers (docs/commands.md).
+            let xc = if self.motion.rotates() { [x[0] - del[0], x[1] - del[1], x[2] - del[2]] } else { [0.0; 3] };
+            sv.add_to(&mut w, xc);
+        }
+        w
     }
 
     /// Whether the region (or a sub-region) rotates: LAMMPS `rotateflag`.
@@ -223,8 +276,8 @@ impl Region {
     }
 
     /// Every region in this one, itself first (mutably).
-    fn each_mut(&mut self, f: &mut dyn FnMut(&mut Motion)) {
-        f(&mut self.motion);
+    fn each_mut(&mut self, f: &mut dyn FnMut(&mut Region)) {
+        f(self);
         if let super::Kind::Boolean { subs, .. } = &mut self.kind {
             for s in subs {
                 s.each_mut(f);
@@ -232,23 +285,35 @@ impl Region {
         }
     }
 
-    /// LAMMPS `prematch`: evaluate the motion variables of the region and its sub-regions.
+    /// LAMMPS `prematch`: evaluate the shape and motion variables of the region and its
+    /// sub-regions (`shape_update`, then `pretransform`).
     pub fn prematch(&mut self, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<(), String> {
         let mut result = Ok(());
-        self.each_mut(&mut |m| {
+        self.each_mut(&mut |r| {
             if result.is_ok() {
-                result = m.pretransform(equal);
+                result = r.shape_update(&mut *equal).and_then(|_| r.motion.pretransform(&mut *equal));
             }
         });
         result
     }
 
+    /// LAMMPS `set_velocity` (with `set_velocity_shape` for a variable shape), once per step.
     pub fn set_velocity(&mut self, step: i64, dt: f64) {
-        self.each_mut(&mut |m| m.set_velocity(step, dt));
+        self.each_mut(&mut |r| {
+            if !r.motion.set_velocity(step, dt) || !r.varshape() {
+                return;
+            }
+            let super::Kind::Shape(shape) = &r.kind else { return };
+            let Some(f) = shape.shape_frame() else { return };
+            let prev = &mut r.motion.vel.prev[4];
+            let rprev = if step > 0 { *prev } else { f.radius };
+            *prev = f.radius;
+            r.shape_velocity = Some(ShapeVelocity { center: r.motion.forward(f.center), radius: f.radius, rprev, axis: f.axis, dt });
+        });
     }
 
     pub fn reset_vel(&mut self) {
-        self.each_mut(&mut |m| m.reset_vel());
+        self.each_mut(&mut |r| r.motion.reset_vel());
     }
 
     /// LAMMPS `Region::init` of the region and its sub-regions, which a union or intersection
@@ -276,6 +341,9 @@ impl Region {
         }
         if let Some(r) = &self.motion.rotation {
             v.push(r.var.clone());
+        }
+        if let Some(sv) = &self.shape_vars {
+            v.extend(sv.names.iter().flatten().cloned());
         }
         if let super::Kind::Boolean { subs, .. } = &self.kind {
             for s in subs {

@@ -3,7 +3,7 @@
 use super::{fixed, Shape, ShapeArgs, Style, Vec3, WallContact};
 use dmhs_parser::DResult;
 
-pub const STYLE: Style = Style { syntax: "plane px py pz nx ny nz", nargs: fixed::<6>, parse };
+pub const STYLE: Style = Style { syntax: "plane px py pz nx ny nz", vars: &[0, 1, 2, 3, 4, 5], nargs: fixed::<6>, parse };
 
 #[derive(Debug)]
 struct Plane {
@@ -13,6 +13,10 @@ struct Plane {
 }
 
 fn parse(s: &ShapeArgs) -> DResult<Box<dyn Shape>> {
+    let variables = s.words[3..6].iter().filter(|w| w.text.starts_with("v_")).count();
+    if variables != 0 && variables != 3 {
+        return Err(s.error(&s.words[3], "region plane: the components of the normal vector must be all variables or all constants", "mixed normal"));
+    }
     let point = s.point(0, ["px", "py", "pz"])?;
     // LAMMPS scales the normal by the lattice spacings too
     let n = s.point(3, ["nx", "ny", "nz"])?;
@@ -64,7 +68,7 @@ impl Plane {
         if dot < cutoff && dot >= 0.0 {
             let n = &self.normal;
             let s = sign * dot;
-            out.push(WallContact { r: dot, del: [s * n[0], s * n[1], s * n[2]], radius: 0.0, iwall: 0, vwall: [0.0; 3] });
+            out.push(WallContact { r: dot, del: [s * n[0], s * n[1], s * n[2]], radius: 0.0, iwall: 0, ..WallContact::default() });
         }
     }
 }

@@ -5,7 +5,7 @@ use super::{fixed, point_on_segment, Shape, ShapeArgs, Style, Vec3, WallContact,
 use dmhs_parser::DResult;
 use nalgebra::Matrix3;
 
-pub const STYLE: Style = Style { syntax: "prism xlo xhi ylo yhi zlo zhi xy xz yz", nargs: fixed::<9>, parse };
+pub const STYLE: Style = Style { syntax: "prism xlo xhi ylo yhi zlo zhi xy xz yz", vars: &[0, 1, 2, 3, 4, 5, 6, 7, 8], nargs: fixed::<9>, parse };
 
 #[derive(Debug)]
 struct Prism {
@@ -193,7 +193,7 @@ impl Shape for Prism {
             let dot = self.depth(x, i);
             if dot < cutoff {
                 let f = &self.face[i];
-                out.push(WallContact { r: dot, del: [dot * f[0], dot * f[1], dot * f[2]], radius: 0.0, iwall: i, vwall: [0.0; 3] });
+                out.push(WallContact { r: dot, del: [dot * f[0], dot * f[1], dot * f[2]], radius: 0.0, iwall: i, ..WallContact::default() });
             }
         }
     }

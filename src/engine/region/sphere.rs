@@ -3,7 +3,7 @@
 use super::{fixed, Shape, ShapeArgs, Style, Vec3, WallContact};
 use dmhs_parser::DResult;
 
-pub const STYLE: Style = Style { syntax: "sphere x y z r", nargs: fixed::<4>, parse };
+pub const STYLE: Style = Style { syntax: "sphere x y z r", vars: &[0, 1, 2, 3], nargs: fixed::<4>, parse };
 
 #[derive(Debug)]
 struct Sphere {
@@ -32,7 +32,7 @@ impl Sphere {
     fn contact(&self, del: [f64; 3], r: f64, delta: f64, cutoff: f64, radius: f64, out: &mut Vec<WallContact>) {
         if delta < cutoff {
             let s = 1.0 - self.radius / r;
-            out.push(WallContact { r: delta, del: [del[0] * s, del[1] * s, del[2] * s], radius, iwall: 0, vwall: [0.0; 3] });
+            out.push(WallContact { r: delta, del: [del[0] * s, del[1] * s, del[2] * s], radius, iwall: 0, vwall: [0.0; 3], varflag: true });
         }
     }
 }
@@ -71,6 +71,10 @@ impl Shape for Sphere {
 
     fn contact_counts(&self, _interior: bool) -> (usize, usize) {
         (1, 1)
+    }
+
+    fn shape_frame(&self) -> Option<super::ShapeFrame> {
+        Some(super::ShapeFrame { center: self.center.into(), radius: self.radius, axis: None })
     }
 }
 

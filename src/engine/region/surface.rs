@@ -24,6 +24,8 @@ pub struct WallContact {
     /// Which wall of the region: contact history follows a wall by this number.
     pub iwall: usize,
     pub vwall: [f64; 3],
+    /// A curved wall that a variable shape moves (LAMMPS `varflag`: sphere, cylinder side).
+    pub varflag: bool,
 }
 
 impl WallContact {
@@ -38,7 +40,7 @@ impl WallContact {
     pub fn face(dim: usize, delta: f64, sign: f64, iwall: usize) -> WallContact {
         let mut del = [0.0; 3];
         del[dim] = if sign > 0.0 { delta } else { -delta };
-        WallContact { r: delta, del, radius: 0.0, iwall, vwall: [0.0; 3] }
+        WallContact { r: delta, del, radius: 0.0, iwall, ..WallContact::default() }
     }
 }
 
@@ -86,14 +88,14 @@ impl Region {
                     shape.surface_exterior(&xl, cutoff, open, &mut ext);
                     out.extend(ext);
                 }
-                let dynamic = self.motion.is_dynamic();
+                let dynamic = self.is_dynamic();
                 for c in out.iter_mut() {
                     if self.motion.rotates() {
                         let xs = self.motion.forward([xl[0] - c.del[0], xl[1] - c.del[1], xl[2] - c.del[2]]);
                         c.del = [x[0] - xs[0], x[1] - xs[1], x[2] - xs[2]];
                     }
                     if dynamic {
-                        c.vwall = self.motion.velocity_contact(x, c.del);
+                        c.vwall = self.wall_velocity(x, c.del, c.varflag);
                     }
                 }
             }

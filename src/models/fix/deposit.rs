@@ -95,7 +95,7 @@ impl FixDeposit {
                         return Err(a.error_at(w, "fix deposit region does not support a bounding box (side out, or an infinite shape)", "no bounding box"));
                     };
                     if r.is_dynamic() {
-                        return Err(a.error_at(w, "fix deposit region cannot be dynamic (move or rotate)", "dynamic region"));
+                        return Err(a.error_at(w, "fix deposit region cannot be dynamic (move, rotate or a variable shape)", "dynamic region"));
                     }
                     region = Some((w, r.id.clone(), ext));
                 }

@@ -101,7 +101,8 @@ impl Classic {
                 shear[d] += vtr[d] * s(dt);
             }
         }
-        let shrmag = (shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]).sqrt();
+        // its magnitude is taken before the rotation, and needed only where a contact slides
+        let unrotated = *shear;
         // rotate the shear displacement into the tangent plane
         let rsht = (shear[0] * delx + shear[1] * dely + shear[2] * delz) * k.rsqinv;
         if update {
@@ -122,6 +123,11 @@ impl Classic {
         let fsmag = (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2]).sqrt();
         let fn_ = s(self.xmu) * (k.ccel * k.r).abs();
         let slide = fn_.lt(fsmag);
+        if !T::any(slide) {
+            // every contact sticks (the common case in a bed at rest): nothing to rescale
+            return force(c, k.ccel, k.rinv, fs);
+        }
+        let shrmag = (unrotated[0] * unrotated[0] + unrotated[1] * unrotated[1] + unrotated[2] * unrotated[2]).sqrt();
         let rescale = slide & shrmag.ne(s(0.0));
         let ratio = fn_ / fsmag;
         for d in 0..3 {

@@ -148,6 +148,11 @@ fn variable_shapes_are_checked_where_lammps_checks_them() {
     let (code, out) = run(&format!("{VARSHAPE}variable r equal 1-0.1*step\nregion s sphere 1 1 1 v_r units box\nfix 2 all addforce 1 0 0 region s\nrun 20\n"));
     assert_ne!(code, 0, "{out}");
     assert!(out.contains("Variable evaluation in region gave bad value") && out.contains("step 11"), "{out}");
+    // fix pour refuses a region that changes (LAMMPS: its bounding box is fixed)
+    expect_error(
+        "units lj\natom_style sphere\nregion box block 0 10 0 10 0 10\ncreate_box 1 box\nvariable h equal 8+step*0.01\nregion slab block 1 9 1 9 5 v_h units box\nfix g all gravity 1.0 vector 0 0 -1\nfix ins all pour 10 1 4767548 region slab\n",
+        "fix pour region cannot be dynamic",
+    );
     // a group command places the region at its step (a variable of the step)
     let (code, out) = run(&format!("{VARSHAPE}variable x equal 2-0.5*step\nregion b block 0 v_x 0 4 0 4 units box\nrun 3\ngroup g region b\nprint \"N ${{n}}\"\n").replace("print", "variable n equal count(g)\nprint"));
     assert_eq!(code, 0, "{out}");

@@ -137,6 +137,9 @@ impl FixPour {
                 "region" => {
                     let w = a.word("region ID")?;
                     let r = state.regions.iter().find(|r| r.id == w.text).ok_or_else(|| a.error_at(w, format!("fix pour region `{}` does not exist", w.text), "unknown region"))?;
+                    if r.is_dynamic() {
+                        return Err(a.error_at(w, "fix pour region cannot be dynamic (move, rotate or a variable shape)", "dynamic region"));
+                    }
                     region = Some((w, r.simple()));
                 }
                 "diam" => {

@@ -153,6 +153,8 @@ fn variable_shapes_are_checked_where_lammps_checks_them() {
         "units lj\natom_style sphere\nregion box block 0 10 0 10 0 10\ncreate_box 1 box\nvariable h equal 8+step*0.01\nregion slab block 1 9 1 9 5 v_h units box\nfix g all gravity 1.0 vector 0 0 -1\nfix ins all pour 10 1 4767548 region slab\n",
         "fix pour region cannot be dynamic",
     );
+    // an ellipsoid has inside tests only (LAMMPS' surface code for it gives no displacement)
+    expect_error(&format!("{VARSHAPE}region e ellipsoid 2 2 2 1 1 1 units box\nfix w all wall/region e lj93 1 1 2.5\n"), "does not support region style ellipsoid");
     // a group command places the region at its step (a variable of the step)
     let (code, out) = run(&format!("{VARSHAPE}variable x equal 2-0.5*step\nregion b block 0 v_x 0 4 0 4 units box\nrun 3\ngroup g region b\nprint \"N ${{n}}\"\n").replace("print", "variable n equal count(g)\nprint"));
     assert_eq!(code, 0, "{out}");

@@ -19,6 +19,7 @@ mod block;
 mod boolean;
 mod cone;
 mod cylinder;
+mod ellipsoid;
 mod motion;
 mod surface;
 mod plane;
@@ -124,6 +125,7 @@ const STYLES: &[(&str, Style)] = &[
     ("sphere", sphere::STYLE),
     ("cylinder", cylinder::STYLE),
     ("cone", cone::STYLE),
+    ("ellipsoid", ellipsoid::STYLE),
     ("prism", prism::STYLE),
     ("plane", plane::STYLE),
     ("union", boolean::UNION),
@@ -131,7 +133,7 @@ const STYLES: &[(&str, Style)] = &[
 ];
 
 /// LAMMPS region styles that dmhs lacks: named as unsupported (checked after `STYLES`).
-const LAMMPS_ONLY: &[&str] = &["ellipsoid"];
+const LAMMPS_ONLY: &[&str] = &["grid"];
 
 /// Names of the supported styles.
 pub fn style_names() -> impl Iterator<Item = &'static str> {
@@ -495,7 +497,7 @@ pub(crate) mod tests {
         assert_eq!(
             syntax(),
             "region ID style args keyword value ... | region ID delete (styles: block xlo xhi ylo yhi zlo zhi | sphere x y z r | \
-cylinder dim c1 c2 r lo hi | cone dim c1 c2 radlo radhi lo hi | prism xlo xhi ylo yhi zlo zhi xy xz yz | plane px py pz nx ny nz | \
+cylinder dim c1 c2 r lo hi | cone dim c1 c2 radlo radhi lo hi | ellipsoid x y z a b c | prism xlo xhi ylo yhi zlo zhi xy xz yz | plane px py pz nx ny nz | \
 union N id1 id2 ...; keywords: side in|out, units lattice|box, open face, move v_x|NULL v_y|NULL v_z|NULL, rotate v_theta Px Py Pz Rx Ry Rz)"
                 .replace("union N id1 id2 ...;", "union N id1 id2 ... | intersect N id1 id2 ...;")
         );
@@ -513,8 +515,8 @@ union N id1 id2 ...; keywords: side in|out, units lattice|box, open face, move v
         assert!(e.message.contains("cannot be dynamic"), "{}", e.message);
         let e = reg("region r blok 0 1 0 1 0 1", None, None, &[]).unwrap_err();
         assert!(e.help[0].contains("block"), "{:?}", e.help);
-        let e = reg("region r ellipsoid 0 0 0 1 2 3", None, None, &[]).unwrap_err();
-        assert_eq!(e.message, "region style `ellipsoid` is not supported");
+        let e = reg("region r grid c_x:g:d gt 1.0", None, None, &[]).unwrap_err();
+        assert_eq!(e.message, "region style `grid` is not supported");
         let e = reg("region r sphere 0 0 0", None, None, &[]).unwrap_err();
         assert!(e.message.contains("missing"));
         let e = reg("region r cylinder z 1 1 1 v_lo 2", None, None, &[]).unwrap_err();

@@ -308,6 +308,7 @@ impl Simulation {
             newton_pair: self.state.newton_pair,
             sides: self.state.lammps_order.sides(),
             rigid_mass: (!self.state.rigid_mass.is_empty()).then_some(&self.state.rigid_mass[..]),
+            freeze_bit: self.fixes.iter().find(|f| f.style() == "freeze").map_or(0, |f| f.groupbit()),
         };
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields, peratom };

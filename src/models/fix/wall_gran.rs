@@ -368,7 +368,7 @@ impl FixWallGran {
                 let mut dx = [0.0f64; 3];
                 dx[dim] = dist;
                 let rsq = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-                let c = Contact { del: dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, mi: rmass[i], mj: 0.0 };
+                let c = Contact { del: dx, rsq, radi, radj: 0.0, vi: &v[i], vj: &vwall, omegai: &omega[i], omegaj: &w0, meff: rmass[i] };
                 let r = granular_contact(model, &c, true, &mut hv[..model.history_size], update, dt);
                 *h = hv;
                 for d in 0..3 {

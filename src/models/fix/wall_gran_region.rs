@@ -213,7 +213,7 @@ impl FixWallGranRegion {
                 }
                 let vwall = if dynamic { c.vwall } else { w0 };
                 let mi = if rigid_mass.is_empty() { a.rmass[i] } else { rigid_mass[i] };
-                let g = Contact { del: c.del, rsq, radi, radj: c.radius, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, mi, mj: 0.0 };
+                let g = Contact { del: c.del, rsq, radi, radj: c.radius, vi: &a.v[i], vj: &vwall, omegai: &a.omega[i], omegaj: &w0, meff: mi };
                 let hs = if w > 0 { &mut h[slot..slot + w] } else { &mut [][..] };
                 let fnormal = match (&self.model.normal, mdr_io.as_mut()) {
                     (Normal::Mdr(m), Some(io)) => {

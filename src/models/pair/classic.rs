@@ -184,7 +184,7 @@ impl<T: Real> Normal<T> {
         // relative rotational velocity (full radii)
         let wr = [0, 1, 2].map(|d| (radi * c.omegai[d] + radj * c.omegaj[d]) * rinv);
 
-        let meff = c.mi * c.mj / (c.mi + c.mj);
+        let meff = c.meff;
         let damp = meff * s(p.gamman) * vnnr * rsqinv;
         let mut ccel = s(p.kn) * (radsum - r) * rinv - damp;
         let polyhertz = p.hertz.then(|| ((radsum - r) * radi * radj / radsum).sqrt());

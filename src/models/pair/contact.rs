@@ -29,8 +29,22 @@ pub struct Contact<'a, T = f64> {
     pub vj: &'a [T; 3],
     pub omegai: &'a [T; 3],
     pub omegaj: &'a [T; 3],
-    pub mi: T,
-    pub mj: T,
+    /// the effective mass ([`effective_mass`]; against a wall the sphere's mass)
+    pub meff: T,
+}
+
+/// m_eff of a pair contact as LAMMPS' granular pair styles take it: m_i m_j / (m_i + m_j), or
+/// the other sphere's mass when one is in fix freeze's group (j's rule last).
+#[inline(always)]
+pub fn effective_mass(mi: f64, mj: f64, frozen_i: bool, frozen_j: bool) -> f64 {
+    let mut meff = mi * mj / (mi + mj);
+    if frozen_i {
+        meff = mj;
+    }
+    if frozen_j {
+        meff = mi;
+    }
+    meff
 }
 
 /// A contact's result: the force on i (j gets its negative) and the torques on i and j.
@@ -82,7 +96,8 @@ pub trait ContactModel: Sync {
             let (xi, xj) = (&b.x[i], &b.x[j]);
             let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
             let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-            let one = Contact { del, rsq, radi: b.radius[i], radj: b.radius[j], vi: &b.v[i], vj: &b.v[j], omegai: &b.omega[i], omegaj: &b.omega[j], mi: b.rmass[i], mj: b.rmass[j] };
+            let meff = effective_mass(b.rmass[i], b.rmass[j], b.frozen(i), b.frozen(j));
+            let one = Contact { del, rsq, radi: b.radius[i], radj: b.radius[j], vi: &b.v[i], vj: &b.v[j], omegai: &b.omega[i], omegaj: &b.omega[j], meff };
             let mut h = [0.0; MAX_HISTORY];
             let e = b.e[l];
             h[..hsize].copy_from_slice(&b.values[e * hsize..(e + 1) * hsize]);
@@ -124,6 +139,9 @@ pub struct LaneSrc<'a> {
     pub omega: &'a [[f64; 3]],
     pub radius: &'a [f64],
     pub rmass: &'a [f64],
+    /// group masks and fix freeze's bit (0: no fix freeze)
+    pub mask: &'a [u32],
+    pub freeze_bit: u32,
     pub typ: &'a [usize],
     pub values: &'a [f64],
     pub hsize: usize,
@@ -148,6 +166,21 @@ impl LaneSrc<'_> {
         let idx = &self.ij[which];
         lanes(|l| a[idx[l]])
     }
+    /// Whether atom `i` is in fix freeze's group.
+    #[inline(always)]
+    pub fn frozen(&self, i: usize) -> bool {
+        self.freeze_bit != 0 && self.mask[i] & self.freeze_bit != 0
+    }
+    /// The effective masses of the lanes ([`effective_mass`]).
+    #[inline(always)]
+    pub fn meff(&self) -> L {
+        if self.freeze_bit == 0 {
+            let (mi, mj) = (self.scalar(self.rmass, 0), self.scalar(self.rmass, 1));
+            return mi * mj / (mi + mj);
+        }
+        let [i, j] = &self.ij;
+        lanes(|l| effective_mass(self.rmass[i[l]], self.rmass[j[l]], self.frozen(i[l]), self.frozen(j[l])))
+    }
     /// The first `N` history values (zeros beyond `hsize`).
     #[inline(always)]
     pub fn hist<const N: usize>(&self) -> [L; N] {
@@ -169,8 +202,7 @@ impl LaneSrc<'_> {
             vj,
             omegai,
             omegaj,
-            mi: self.scalar(self.rmass, 0),
-            mj: self.scalar(self.rmass, 1),
+            meff: self.meff(),
         }
     }
     /// Atom types of lane `l`.
@@ -301,7 +333,7 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
                 b.j[l] = b.j[0];
                 b.e[l] = b.e[0];
             }
-            let src = LaneSrc { n: b.n, ij: [b.i, b.j], e: b.e, x, v, omega, radius, rmass, typ, values, hsize };
+            let src = LaneSrc { n: b.n, ij: [b.i, b.j], e: b.e, x, v, omega, radius, rmass, mask: &a.mask, freeze_bit: input.freeze_bit, typ, values, hsize };
             let mut r = model.contact_lanes(&src, update, dt);
             let apply = |l: usize| {
                 let e = b.e[l];
@@ -419,4 +451,45 @@ fn contact_loop<M: ContactModel, const EFLAG: bool, const EXTRA: bool>(
         parts.iter().filter_map(|p| p.shares.as_deref()).for_each(|s| pa.add_pairs(s));
     }
     sum_tallies(parts.iter().map(|p| &p.t))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// fix freeze's rule, per lane as for one pair (LAMMPS: j's rule applied last).
+    #[test]
+    fn frozen_spheres_give_the_other_mass() {
+        assert_eq!(effective_mass(2.0, 6.0, false, false), 1.5);
+        assert_eq!(effective_mass(2.0, 6.0, true, false), 6.0);
+        assert_eq!(effective_mass(2.0, 6.0, false, true), 2.0);
+        assert_eq!(effective_mass(2.0, 6.0, true, true), 2.0);
+        let x = vec![[0.0; 3]; 8];
+        let rmass: Vec<f64> = (0..8).map(|i| 1.0 + i as f64 * 0.37).collect();
+        let mask = vec![1, 3, 1, 1, 3, 3, 1, 1];
+        let typ = vec![1; 8];
+        for freeze_bit in [0, 2] {
+            let src = LaneSrc {
+                n: LANES,
+                ij: [std::array::from_fn(|l| 2 * l), std::array::from_fn(|l| 2 * l + 1)],
+                e: [0; LANES],
+                x: &x,
+                v: &x,
+                omega: &x,
+                radius: &rmass,
+                rmass: &rmass,
+                mask: &mask,
+                freeze_bit,
+                typ: &typ,
+                values: &[],
+                hsize: 0,
+            };
+            let m = src.meff();
+            for l in 0..LANES {
+                let (i, j) = (2 * l, 2 * l + 1);
+                let frozen = |k: usize| mask[k] & freeze_bit != 0;
+                assert_eq!(m[l].to_bits(), effective_mass(rmass[i], rmass[j], frozen(i), frozen(j)).to_bits());
+            }
+        }
+    }
 }

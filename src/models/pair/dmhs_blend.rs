@@ -18,7 +18,7 @@
 //! is for the blended particles; pure-SPH and pure-DEM pairs run faster with their own styles
 //! under hybrid/overlay. No special-bond weights apply.
 
-use super::contact::{Contact, ContactModel};
+use super::contact::{effective_mass, Contact, ContactModel};
 use super::classic::Classic;
 use super::gran_hooke_history::rebuild_history;
 use crate::engine::contact_history::ContactHistory;
@@ -110,7 +110,7 @@ impl Blended<'_> {
             r.rate_j = [w * c.drho_j[0], w * c.de_j[0]];
         }
         if solid {
-            let c = Contact { del, rsq, radi: ri, radj: rj, vi: &a.v[i], vj: &a.v[j], omegai: &a.omega[i], omegaj: &a.omega[j], mi: a.rmass[i], mj: a.rmass[j] };
+            let c = Contact { del, rsq, radi: ri, radj: rj, vi: &a.v[i], vj: &a.v[j], omegai: &a.omega[i], omegaj: &a.omega[j], meff: effective_mass(a.rmass[i], a.rmass[j], input.frozen(i), input.frozen(j)) };
             let cf = match hist {
                 Some(h) => <Classic as ContactModel>::contact(dem, &c, h, input.advance, input.dt),
                 None => dem.without_history(&c),

@@ -184,6 +184,7 @@ mod tests {
             newton_pair: true,
             sides: None,
             rigid_mass: None,
+            freeze_bit: 0,
         };
         let mut out = PairOutput { f: &mut f, torque: &mut tq, drho: &mut drho, desph: &mut de, fields: vec![], peratom: None };
         hc.compute(&input, &mut out);

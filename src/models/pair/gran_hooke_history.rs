@@ -254,6 +254,7 @@ mod tests {
                 }
                 for update in [false, true] {
                     let typ = vec![1usize; n];
+                    let mask = vec![0u32; n];
                     let src = LaneSrc {
                         n: LANES,
                         ij: [std::array::from_fn(|l| 2 * l), std::array::from_fn(|l| 2 * l + 1)],
@@ -263,6 +264,8 @@ mod tests {
                         omega: &w,
                         radius: &rad,
                         rmass: &m,
+                        mask: &mask,
+                        freeze_bit: 0,
                         typ: &typ,
                         values: &values,
                         hsize: 3,
@@ -281,8 +284,7 @@ mod tests {
                             vj: &v[j],
                             omegai: &w[i],
                             omegaj: &w[j],
-                            mi: m[i],
-                            mj: m[j],
+                            meff: m[i] * m[j] / (m[i] + m[j]),
                         };
                         let without = NoHistory::contact(&p, &c, &mut [], update, 1e-4);
                         for d in 0..3 {

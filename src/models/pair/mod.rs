@@ -155,6 +155,17 @@ pub struct PairInput<'a> {
     /// Granular effective masses with rigid bodies ([`crate::engine::state::State::rigid_mass`]);
     /// None: the atoms' rmass.
     pub rigid_mass: Option<&'a [f64]>,
+    /// The group bit of fix freeze (0: none): a granular contact with a frozen sphere takes
+    /// the other sphere's mass as m_eff (LAMMPS' freeze_group_bit).
+    pub freeze_bit: u32,
+}
+
+impl PairInput<'_> {
+    /// Whether atom `i` (owned or ghost) is in fix freeze's group.
+    #[inline(always)]
+    pub fn frozen(&self, i: usize) -> bool {
+        self.freeze_bit != 0 && self.atoms.mask[i] & self.freeze_bit != 0
+    }
 }
 
 /// What a pair style may check and read before a run (granular styles need the atoms'

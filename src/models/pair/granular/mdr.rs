@@ -30,7 +30,7 @@ use crate::engine::fields::{self, Field};
 use crate::engine::neighbor::{special_level, NEIGH_MASK};
 use crate::engine::par::cmath::cbrt;
 use crate::engine::tally::PairShare;
-use crate::models::pair::contact::{Contact, ContactModel};
+use crate::models::pair::contact::{effective_mass, Contact, ContactModel};
 use crate::models::pair::{PairInput, PairOutput, Tally};
 use std::f64::consts::PI;
 
@@ -546,11 +546,11 @@ pub fn compute_contacts(models: &super::GranularModels, history: &mut ContactHis
                 let rinv = 1.0 / r;
                 let nx = [rinv * del[0], rinv * del[1], rinv * del[2]];
                 let (mi, mj) = (rmass[i], rmass[j]);
-                let meff = mi * mj / (mi + mj);
+                let meff = effective_mass(mi, mj, input.frozen(i), input.frozen(j));
                 let (ai, aj) = (atom(i), atom(j));
                 let n = normal_force(mdr, [&ai, &aj], [i, j], false, radsum - r, &nx, meff, &mut h[..HISTORY], input.advance, &mut sums);
                 warn |= n.warn;
-                let g = Contact { del, rsq, radi: radius[i], radj: radius[j], vi: &a.v[i], vj: &a.v[j], omegai: &a.omega[i], omegaj: &a.omega[j], mi, mj };
+                let g = Contact { del, rsq, radi: radius[i], radj: radius[j], vi: &a.v[i], vj: &a.v[j], omegai: &a.omega[i], omegaj: &a.omega[j], meff };
                 let mut cf = granular_contact_with(m, &g, false, h, input.advance, input.dt, Some(n.f));
                 for d in 0..3 {
                     cf.f[d] *= factor;

@@ -4,7 +4,7 @@
 //! ```text
 //! pair_coeff I J NORMAL coeffs... [damping NAME] [tangential NAME coeffs...]
 //!            [rolling NAME coeffs...] [twisting NAME coeffs...] [heat NAME coeffs...]
-//!            [limit_damping] [cutoff value]
+//!            [limit_damping] [synchronized_verlet] [cutoff value]
 //! ```
 //!
 //! Each kind has its file with a `STYLES` table ([`normal`], [`damping`], [`tangential`],
@@ -18,9 +18,12 @@
 //! prefactor eta_n and F_damp = -eta_n v_n, F_n,tot = F_n + F_damp (`limit_damping` clamps it at
 //! 0), F_n,crit from the normal model, F_t from the tangential model, torques -(R - delta/2)
 //! (n x F_t) on each sphere (a wall: -R (n x F_t)), then rolling and twisting torques.
+//! `synchronized_verlet` (pairs only) takes n half a step back and turns the springs into the
+//! full-step tangent plane after their update (LAMMPS 22 Jul 2025).
 //!
 //! Unset I,J pairs mix from I,I and J,J: the same sub-models, coefficients mixed by each
-//! style's rule (geometric means unless the table says otherwise).
+//! style's rule (geometric means unless the table says otherwise); a mixed pair is not
+//! synchronized.
 //! The same models serve `fix wall/gran ... granular` ([`GranSpec::parse`] with `wall`).
 
 pub mod damping;
@@ -137,6 +140,8 @@ pub struct Flags {
     pub beyond_contact: bool,
     /// a normal model with E and nu (LAMMPS material_properties): mindlin's Kt may be NULL
     pub material: bool,
+    /// a tangential model that takes `synchronized_verlet` (LAMMPS allow_synchronization)
+    pub synchronizable: bool,
     /// history values (bits, from the model's first) that keep their sign when the pair is
     /// seen from the other side (LAMMPS transfer_history_factor +1)
     pub keep: u64,
@@ -147,7 +152,7 @@ pub struct Flags {
 }
 
 impl Flags {
-    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false, material: false, keep: 0, flip: 0 };
+    pub const NONE: Flags = Flags { contact_radius: false, cohesive: false, no_cohesion: false, beyond_contact: false, material: false, synchronizable: false, keep: 0, flip: 0 };
 }
 
 /// What constructors see besides their coefficients.
@@ -300,6 +305,8 @@ pub struct GranSpec {
     pub twisting: Option<Given<Twisting>>,
     pub heat: Option<Given<Heat>>,
     pub limit_damping: bool,
+    /// `synchronized_verlet`: the half-step contact normal (pairs only)
+    pub synchronized: bool,
     /// `cutoff` keyword (negative: from the radii)
     pub cutoff: f64,
 }
@@ -316,6 +323,7 @@ impl Default for GranSpec {
             twisting: None,
             heat: None,
             limit_damping: false,
+            synchronized: false,
             cutoff: -1.0,
         }
     }
@@ -331,6 +339,7 @@ impl GranSpec {
         let mut named: [Option<Named>; 6] = [None; 6];
         named[NORMAL] = Some(parse_sub(a, normal::STYLES, "normal", |g| m.normal = g)?);
         let mut limit_word = None;
+        let mut sync_word = None;
         let stops: &[&str] = if wall { &["xplane", "yplane", "zplane", "zcylinder", "region"] } else { &[] };
         while let Some(w) = a.peek() {
             if stops.contains(&w.text.as_str()) {
@@ -346,15 +355,14 @@ impl GranSpec {
                 "heat" => named[HEAT] = Some(parse_sub(a, heat::STYLES, kind, |g| m.heat = Some(g))?),
                 "limit_damping" => (m.limit_damping, limit_word) = (true, Some(w)),
                 "cutoff" if !wall => m.cutoff = a.f64("cutoff")?,
-                // LAMMPS' half-step contact normal and history rotation (examples/granular/in.sync_verlet)
-                "synchronized" | "synchronized_verlet" => {
-                    return Err(a.error_at(w, format!("granular `{kind}` (half-step normal, LAMMPS 2025) is not supported by dmhs"), "not supported"))
-                }
+                // LAMMPS' half-step contact normal (examples/granular/in.sync_verlet); walls
+                // do not take it (LAMMPS: unknown fix wall/gran keyword)
+                "synchronized_verlet" if !wall => (m.synchronized, sync_word) = (true, Some(w)),
                 _ => {
                     let mut known = KINDS.to_vec();
                     known.push("limit_damping");
                     if !wall {
-                        known.push("cutoff");
+                        known.extend(["cutoff", "synchronized_verlet"]);
                     }
                     return Err(a.unknown_keyword(w, &known));
                 }
@@ -364,6 +372,12 @@ impl GranSpec {
             return Err(a.missing(&format!("a tangential model (`tangential {}`): LAMMPS requires one", table_syntax(tangential::STYLES))));
         }
         // LAMMPS GranularModel::init's checks, located at the words that named the models
+        if let Some(w) = sync_word {
+            let name = m.tangential.style.name;
+            if !m.tangential.style.flags.synchronizable {
+                return Err(a.error_at(w, format!("cannot use synchronized verlet with a non-synchronized tangential model, {name}"), "a tangential model with history"));
+            }
+        }
         let normal = m.normal.style;
         if normal.flags.cohesive {
             if let Some(w) = limit_word {
@@ -413,6 +427,8 @@ impl GranSpec {
             twisting: mix_opt(&a.twisting, &b.twisting)?,
             heat: mix_opt(&a.heat, &b.heat)?,
             limit_damping: a.limit_damping || b.limit_damping,
+            // LAMMPS 22 Jul 2025's mix_coeffs does not carry it: a mixed pair is not synchronized
+            synchronized: false,
             cutoff: if a.cutoff >= 0.0 || b.cutoff >= 0.0 { a.cutoff.max(b.cutoff) } else { -1.0 },
         })
     }
@@ -426,6 +442,9 @@ impl GranSpec {
         }
         if self.limit_damping {
             s += " limit_damping";
+        }
+        if self.synchronized {
+            s += " synchronized_verlet";
         }
         s
     }
@@ -457,6 +476,9 @@ pub struct GranModel {
     pub twisting: Option<Twisting>,
     pub heat: Option<Heat>,
     pub limit_damping: bool,
+    /// `synchronized_verlet`: forces along the half-step normal, springs turned to the
+    /// full-step one after their update
+    pub synchronized: bool,
     /// some sub-model needs the contact radius a
     pub contact_radius: bool,
     /// offsets of each kind's values in the history (normal, damping, tangential, rolling,
@@ -509,6 +531,7 @@ impl GranModel {
             twisting: s.twisting.map(|g| g.build(&ctx)),
             heat: s.heat.map(|g| g.build(&ctx)),
             limit_damping: s.limit_damping,
+            synchronized: s.synchronized && !wall,
             contact_radius: flags.iter().flatten().any(|f| f.contact_radius),
             history_index,
             history_size: history_index[HEAT] + sizes[HEAT],
@@ -563,15 +586,25 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
 #[inline(always)]
 pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64, fnormal: Option<f64>) -> ContactForce {
     let (radi, radj) = (g.radi, g.radj);
-    let meff = if wall { g.mi } else { g.mi * g.mj / (g.mi + g.mj) };
+    let meff = g.meff;
     let (radsum, reff) = radsum_reff(radi, radj, wall);
     let r = g.rsq.sqrt();
     let rinv = 1.0 / r;
     let delta = radsum - r;
-    let nx = [rinv * g.del[0], rinv * g.del[1], rinv * g.del[2]];
+    let nfull = [rinv * g.del[0], rinv * g.del[1], rinv * g.del[2]];
+    let vr = [g.vi[0] - g.vj[0], g.vi[1] - g.vj[1], g.vi[2] - g.vj[2]];
+    // synchronized_verlet: the normal of the separation half a step back (velocities are at
+    // the half step), the full-step one kept for the springs' second turn
+    let (nx, full) = if m.synchronized {
+        let h = 0.5 * dt;
+        let nh = [g.del[0] - h * vr[0], g.del[1] - h * vr[1], g.del[2] - h * vr[2]];
+        let s = 1.0 / (nh[0] * nh[0] + nh[1] * nh[1] + nh[2] * nh[2]).sqrt();
+        ([nh[0] * s, nh[1] * s, nh[2] * s], Some(&nfull))
+    } else {
+        (nfull, None)
+    };
 
     // relative velocity: normal and tangential parts
-    let vr = [g.vi[0] - g.vj[0], g.vi[1] - g.vj[1], g.vi[2] - g.vj[2]];
     let vnnr = vr[0] * nx[0] + vr[1] * nx[1] + vr[2] * nx[2];
     let vn = [vnnr * nx[0], vnnr * nx[1], vnnr * nx[2]];
     let vt = [vr[0] - vn[0], vr[1] - vn[1], vr[2] - vn[2]];
@@ -599,7 +632,7 @@ pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &m
 
     // tangential force
     let ht = &mut history[m.history_index[TANGENTIAL]..m.history_index[ROLLING]];
-    let fs = m.tangential.force(&TangentialIn { nx: &nx, vtr: &vtr, fncrit, damp_prefactor, a, update, dt }, ht);
+    let fs = m.tangential.force(&TangentialIn { nx: &nx, full, vtr: &vtr, fncrit, damp_prefactor, a, update, dt }, ht);
 
     let f = [fntot * nx[0] + fs[0], fntot * nx[1] + fs[1], fntot * nx[2] + fs[2]];
     // torque direction -(n x F_t), scaled by the lever
@@ -626,7 +659,7 @@ pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &m
                 reff * (relrot[0] * nx[1] - relrot[1] * nx[0]),
             ];
             let h = &mut history[m.history_index[ROLLING]..m.history_index[TWISTING]];
-            let fr = rolling.force(&RollingIn { vrl: &vrl, nx: &nx, fncrit, update, dt }, h);
+            let fr = rolling.force(&RollingIn { vrl: &vrl, nx: &nx, full, fncrit, update, dt }, h);
             let tr = [reff * (nx[1] * fr[2] - nx[2] * fr[1]), reff * (nx[2] * fr[0] - nx[0] * fr[2]), reff * (nx[0] * fr[1] - nx[1] * fr[0])];
             add_opposite(&mut out, tr, wall);
         }
@@ -990,8 +1023,15 @@ mod tests {
 
     #[test]
     fn errors_name_what_the_tables_support() {
-        let e = err("hooke 1e4 0.5 tangential linear_history 8235 0 0.5 damping coeff_restitution synchronized_verlet");
-        assert!(e.contains("`synchronized_verlet` (half-step normal, LAMMPS 2025) is not supported"), "{e}");
+        // synchronized_verlet: a pair keyword for models with a tangential history (LAMMPS' checks)
+        let s = parse("hooke 1e4 0.5 tangential linear_history 8235 0 0.5 damping coeff_restitution synchronized_verlet", false).unwrap();
+        assert!(s.synchronized && GranModel::build(&s, false).synchronized && s.describe().ends_with(" synchronized_verlet"));
+        let e = err("hooke 1e4 0.5 tangential linear_nohistory 0 0.5 synchronized_verlet");
+        assert!(e.contains("cannot use synchronized verlet with a non-synchronized tangential model, linear_nohistory"), "{e}");
+        let Err(d) = parse("hooke 1e4 0.5 tangential linear_history 8235 0 0.5 synchronized_verlet", true) else { panic!("a wall took synchronized_verlet") };
+        assert!(d.message.contains("unknown keyword `synchronized_verlet`"), "{}", d.message);
+        // a mixed pair is not synchronized (LAMMPS 22 Jul 2025's mix_coeffs does not carry it)
+        assert!(!GranSpec::mix(&s, &s).unwrap().synchronized);
         let e = err("mdrr 1 2 3 4 5 6 tangential linear_history 1 1 1");
         assert!(e.contains("normal model `mdrr` is not supported") && e.contains("supported: hooke, hertz, hertz/material, dmt, jkr, mdr") && e.contains("did you mean `mdr`"), "{e}");
         // mdr goes with damping mdr only, and 27 history values are allowed with it

@@ -36,6 +36,8 @@ pub struct RollingIn<'a> {
     /// rolling velocity R_eff (omega_i - omega_j) x n
     pub vrl: &'a [f64; 3],
     pub nx: &'a [f64; 3],
+    /// `synchronized_verlet`: the full-step normal (`nx` is then the half-step one)
+    pub full: Option<&'a [f64; 3]>,
     pub fncrit: f64,
     pub update: bool,
     pub dt: f64,
@@ -58,6 +60,13 @@ impl Rolling {
             s[0] += r.dt * vrl[0];
             s[1] += r.dt * vrl[1];
             s[2] += r.dt * vrl[2];
+            // synchronized_verlet: turned into the full-step tangent plane
+            if let Some(n) = r.full {
+                let rolldotn = s[0] * n[0] + s[1] * n[1] + s[2] * n[2];
+                if rolldotn.abs() * k > FRAME_EPS * frcrit {
+                    rotate_rescale(&mut s, n, rolldotn);
+                }
+            }
         }
         let mut fr = [-k * s[0] - gamma * vrl[0], -k * s[1] - gamma * vrl[1], -k * s[2] - gamma * vrl[2]];
         let magfr = len3(fr[0], fr[1], fr[2]);
@@ -92,7 +101,7 @@ mod tests {
         let nx = [0.0, 0.0, 1.0];
         let mut h = [0.0; 3];
         // sticking: F_r = -k v_rl dt; not stored without update
-        let r = RollingIn { vrl: &[1.0, 0.0, 0.0], nx: &nx, fncrit: 100.0, update: false, dt: 0.01 };
+        let r = RollingIn { vrl: &[1.0, 0.0, 0.0], nx: &nx, full: None, fncrit: 100.0, update: false, dt: 0.01 };
         assert_eq!(m.force(&r, &mut h), [-0.0, -0.0, -0.0]);
         let r = RollingIn { update: true, ..r };
         assert_eq!(m.force(&r, &mut h), [-1.0, -0.0, -0.0]);

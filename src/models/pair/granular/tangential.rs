@@ -24,6 +24,9 @@
 //!   scaled by a/a_old first. The 4th value keeps its sign from the other side of the pair.
 //!
 //! The spring is advanced only when `update` (not during run setup, LAMMPS' history_update).
+//! With `synchronized_verlet` (`full`: the full-step normal, `nx` the half-step one) the
+//! linear_history and mindlin springs are turned once more, into the full-step tangent plane,
+//! after their update, and the dashpot then acts on v_tr turned the same way.
 
 use super::{geometric, nn, Coeff, Coeffs, Ctx, Flags, Range, Style, NULL};
 
@@ -52,7 +55,7 @@ const fn classic(name: &'static str) -> Style<Tangential> {
         name,
         coeffs: HISTORY,
         history: 3,
-        flags: Flags { contact_radius: true, ..Flags::NONE },
+        flags: Flags { contact_radius: true, synchronizable: true, ..Flags::NONE },
         build: |c, _| Tangential::LinearHistoryClassic { k: c[0], xt: c[1], mu: c[2] },
         mix: geometric,
     }
@@ -64,7 +67,7 @@ const fn mindlin(name: &'static str, force: bool, rescale: bool) -> Style<Tangen
         name,
         coeffs: MINDLIN,
         history: if rescale { 4 } else { 3 },
-        flags: Flags { contact_radius: true, keep: if rescale { 1 << 3 } else { 0 }, ..Flags::NONE },
+        flags: Flags { contact_radius: true, synchronizable: true, keep: if rescale { 1 << 3 } else { 0 }, ..Flags::NONE },
         build: match (force, rescale) {
             (false, false) => |c, ctx| Tangential::Mindlin { k: mindlin_k(c, ctx), xt: c[1], mu: c[2], force: false, rescale: false },
             (true, false) => |c, ctx| Tangential::Mindlin { k: mindlin_k(c, ctx), xt: c[1], mu: c[2], force: true, rescale: false },
@@ -90,7 +93,7 @@ pub static STYLES: &[Style<Tangential>] = &[
         name: "linear_history",
         coeffs: HISTORY,
         history: 3,
-        flags: Flags::NONE,
+        flags: Flags { synchronizable: true, ..Flags::NONE },
         build: |c, _| Tangential::LinearHistory { k: c[0], xt: c[1], mu: c[2] },
         mix: geometric,
     },
@@ -138,6 +141,8 @@ fn mix_mindlin(a: &[f64], b: &[f64]) -> Coeffs {
 /// What a tangential model reads of the contact.
 pub struct TangentialIn<'a> {
     pub nx: &'a [f64; 3],
+    /// `synchronized_verlet`: the full-step normal (`nx` is then the half-step one)
+    pub full: Option<&'a [f64; 3]>,
     pub vtr: &'a [f64; 3],
     pub fncrit: f64,
     /// eta_n, the normal damping prefactor
@@ -174,6 +179,7 @@ impl Tangential {
             Tangential::LinearHistory { k, xt, mu } => {
                 let damp = xt * t.damp_prefactor;
                 let fscrit = t.fncrit * mu;
+                let mut turned = false;
                 if t.update {
                     // rotate into the tangent plane, keeping the length, when the normal part matters
                     let rsht = h[0] * nx[0] + h[1] * nx[1] + h[2] * nx[2];
@@ -183,14 +189,20 @@ impl Tangential {
                     h[0] += t.dt * vtr[0];
                     h[1] += t.dt * vtr[1];
                     h[2] += t.dt * vtr[2];
+                    turned = t.full.is_some_and(|n| second_turn(h, n, |r| r.abs() * k > FRAME_EPS * fscrit));
                 }
-                let fs = [-k * h[0] - damp * vtr[0], -k * h[1] - damp * vtr[1], -k * h[2] - damp * vtr[2]];
+                let vd = damped_velocity(vtr, t.full, turned);
+                let fs = [-k * h[0] - damp * vd[0], -k * h[1] - damp * vd[1], -k * h[2] - damp * vd[2]];
+                // the spring is set back with the unturned v_tr (LAMMPS 22 Jul 2025, measured)
                 coulomb(fs, None, fscrit, Some(-1.0 / k), damp, vtr, h)
             }
             Tangential::Mindlin { k, xt, mu, force, rescale } => {
                 let damp = xt * t.damp_prefactor;
                 let fscrit = t.fncrit * mu;
                 let k_scaled = k * t.a;
+                // a stored force is compared as it is, a displacement as its force
+                let matters = |rsht: f64| if force { rsht.abs() } else { rsht.abs() * k_scaled } > FRAME_EPS * fscrit;
+                let mut turned = false;
                 // unloading since the last update: the spring shrinks with the contact radius
                 if rescale && t.a < h[3] {
                     let s = t.a / h[3];
@@ -200,9 +212,7 @@ impl Tangential {
                 }
                 if t.update {
                     let rsht = h[0] * nx[0] + h[1] * nx[1] + h[2] * nx[2];
-                    // a stored force is compared as it is, a displacement as its force
-                    let normal_part = if force { rsht.abs() } else { rsht.abs() * k_scaled };
-                    if normal_part > FRAME_EPS * fscrit {
+                    if matters(rsht) {
                         rotate_rescale(h, nx, rsht);
                     }
                     let step = if force { -k_scaled * t.dt } else { t.dt };
@@ -212,12 +222,15 @@ impl Tangential {
                     if rescale {
                         h[3] = t.a;
                     }
+                    turned = t.full.is_some_and(|n| second_turn(h, n, matters));
                 }
+                let vd = damped_velocity(vtr, t.full, turned);
                 let fs = if force {
-                    [h[0] - damp * vtr[0], h[1] - damp * vtr[1], h[2] - damp * vtr[2]]
+                    [h[0] - damp * vd[0], h[1] - damp * vd[1], h[2] - damp * vd[2]]
                 } else {
-                    [-k_scaled * h[0] - damp * vtr[0], -k_scaled * h[1] - damp * vtr[1], -k_scaled * h[2] - damp * vtr[2]]
+                    [-k_scaled * h[0] - damp * vd[0], -k_scaled * h[1] - damp * vd[1], -k_scaled * h[2] - damp * vd[2]]
                 };
+                // the spring is set back with the unturned v_tr (LAMMPS)
                 coulomb(fs, None, fscrit, (!force).then(|| -1.0 / k_scaled), damp, vtr, h)
             }
             Tangential::LinearHistoryClassic { k, xt, mu } => {
@@ -269,6 +282,30 @@ pub fn rotate_rescale(h: &mut [f64], nx: &[f64; 3], rsht: f64) {
     h[0] *= scale;
     h[1] *= scale;
     h[2] *= scale;
+}
+
+/// `synchronized_verlet`'s second turn: the spring, advanced in the half-step tangent plane,
+/// turned into the full-step one (`full`) when its normal part `matters`. Returns whether it was.
+#[inline(always)]
+fn second_turn(h: &mut [f64], full: &[f64; 3], matters: impl Fn(f64) -> bool) -> bool {
+    let rsht = h[0] * full[0] + h[1] * full[1] + h[2] * full[2];
+    let turned = matters(rsht);
+    if turned {
+        rotate_rescale(h, full, rsht);
+    }
+    turned
+}
+
+/// The velocity the tangential dashpot acts on: v_tr, turned into the full-step tangent plane
+/// as the spring was (`synchronized_verlet`).
+#[inline(always)]
+fn damped_velocity(vtr: &[f64; 3], full: Option<&[f64; 3]>, turned: bool) -> [f64; 3] {
+    let mut v = *vtr;
+    if let (Some(n), true) = (full, turned) {
+        let r = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+        rotate_rescale(&mut v, n, r);
+    }
+    v
 }
 
 /// Coulomb's limit on a spring-dashpot force: above mu F_n,crit the force is scaled down and

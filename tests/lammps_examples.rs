@@ -9,7 +9,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::{root, table};
 
-const DECKS: [&str; 2] = ["aveforce_flow", "adapt_soft"];
+const DECKS: [&str; 3] = ["aveforce_flow", "adapt_soft", "addforce_atom"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -98,6 +98,59 @@ fn bad_aveforce_is_a_located_error() {
         let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
         assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
     }
+}
+
+/// fix addforce's `energy` keyword: an atom-style variable, with variable forces only; its
+/// variables checked when the run starts (LAMMPS' init), at the run command.
+#[test]
+fn bad_addforce_is_a_located_error() {
+    for (line, want) in [
+        ("fix 3 all addforce 0.1 0.0 0.0 energy v_e
+", "Cannot use variable energy with constant force"),
+        ("variable f equal 0.1
+fix 3 all addforce v_f 0.0 0.0 energy e
+", "energy takes v_name"),
+        ("fix 3 all addforce 0.1 0.0 0.0 every 0
+", "every"),
+    ] {
+        let text = deck("p p p", line);
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+    for (line, want) in [
+        ("fix 3 all addforce v_nothere 0.0 0.0
+", "Variable name for fix addforce does not exist"),
+        ("variable f equal 0.1
+variable e equal 1.0
+fix 3 all addforce v_f 0.0 0.0 energy v_e
+", "energy v_e must be atom-style"),
+    ] {
+        let text = deck("p p p", &format!("{line}run 2\n"));
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}
+
+/// An atom-style addforce is a trap about the box centre: min_style cg with `energy v_E` and
+/// fix_modify energy relaxes the slab into it (refused without `energy`, as LAMMPS). LAMMPS 22
+/// Jul 2025 on the same deck prints energies -2.9844107928892 (initial) and -2.99277677662627
+/// (final) after 100 iterations and 208 force evaluations; dmhs prints the same text.
+#[test]
+fn addforce_energy_in_a_minimization() {
+    let trap = "variable xc equal 0.5*(xlo+xhi)\nvariable yc equal 0.5*(ylo+yhi)\nvariable fx atom -0.05*(x-v_xc)\n\
+        variable fy atom -0.05*(y-v_yc)\nvariable e atom 0.025*((x-v_xc)^2+(y-v_yc)^2)\n";
+    let text = deck("p p p", &format!("{trap}fix 3 all addforce v_fx v_fy 0.0\nminimize 0 1e-8 100 1000\n"));
+    let f = run_text("bad.deck", &text, &opts()).err().expect("refused");
+    assert!(f.rendered.contains("Must use variable energy"), "{}", f.rendered);
+    let text = deck("p p p", &format!("{trap}fix 3 all addforce v_fx v_fy 0.0 energy v_e\nfix_modify 3 energy yes\nminimize 0 1e-8 100 1000\n"));
+    let r = run_text("min.deck", &text, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let out = r.sim.out.captured.as_deref().unwrap();
+    let lines: Vec<&str> = out.lines().collect();
+    let k = lines.iter().position(|l| l.contains("Energy initial, next-to-last, final")).expect("the minimization summary");
+    assert_eq!(lines[k + 1].split_whitespace().collect::<Vec<_>>(), ["-2.9844107928892", "-2.9927767766246", "-2.99277677662627"], "{out}");
+    assert!(out.contains("Iterations, force evaluations = 100 208"), "{out}");
 }
 
 /// After the run, fix adapt's `reset yes` puts the 1 1 and 2 2 prefactors back to 0 and the

@@ -1,10 +1,10 @@
 //! The `velocity` command: binds the algorithms of `velocity_create` to the simulation.
 
-use crate::deck::velocity_create::{Velocity, VelocityAtoms, VelocityEnv, VelocityTemp};
+use crate::deck::velocity_create::{SetArg, Velocity, VelocityAtoms, VelocityEnv, VelocityStyle, VelocityTemp};
 use crate::engine::state::State;
 use crate::models::compute::temp_bias::{Bias, TempSpec};
 use crate::sim::Simulation;
-use dmhs_parser::{Command, DResult, Diagnostic, SourceMap};
+use dmhs_parser::{Command, DResult, Diagnostic, SourceMap, Word};
 
 /// The `temp ID` compute measured on the velocities velocity is changing (they are copied into
 /// the state, which is otherwise the one the command runs on).
@@ -35,10 +35,17 @@ impl VelocityTemp for ComputeTemp<'_> {
 }
 
 pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let vel = Velocity::from_lammps(cmd, sim.state.dimension, sim.state.lattice.as_ref())?;
+    let mut vel = Velocity::from_lammps(cmd, sim.state.dimension, sim.state.lattice.as_ref())?;
     let gw = &cmd.args[0];
     let bit = sim.state.groups.bit(&vel.group).ok_or_else(|| Diagnostic::at(gw.span, format!("group `{}` does not exist", vel.group), "unknown group"))?;
     sim.state.atoms.clear_ghosts();
+    if let VelocityStyle::Set { v } = &mut vel.style {
+        for arg in v.iter_mut() {
+            if let SetArg::Variable(w) = arg {
+                *arg = set_variable(sim, &w.clone())?;
+            }
+        }
+    }
     let n = sim.state.atoms.nlocal;
     let selected: Vec<bool> = (0..n).map(|i| sim.state.atoms.mask[i] & bit != 0).collect();
     let mass: Vec<f64> = (0..n).map(|i| sim.state.mass(i)).collect();
@@ -82,4 +89,18 @@ pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) 
     };
     sim.state.atoms.v = v;
     r
+}
+
+/// A `velocity set` component `v_name`: an equal-style variable's value or an atom-style one's
+/// values over the local atoms (LAMMPS' errors for a missing variable or another style).
+fn set_variable(sim: &mut Simulation, w: &Word) -> DResult<SetArg> {
+    let name = &w.text[2..];
+    match sim.variables.style(name) {
+        None => Err(Diagnostic::at(w.span, format!("Variable name for velocity set does not exist: {}", w.text), "no such variable")),
+        Some("atom") => Ok(SetArg::PerAtom(crate::deck::commands::atoms_cmds::atom_variable_values(sim, w, name, "velocity set")?)),
+        Some("equal" | "internal" | "timer" | "python") => {
+            dmhs_parser::variables::compute_equal(sim, name).map(SetArg::Value).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
+        }
+        Some(style) => Err(Diagnostic::at(w.span, format!("Variable for velocity set is invalid style: {} is {style}-style", w.text), "an equal- or atom-style variable is needed")),
+    }
 }

@@ -10,6 +10,7 @@
 // Index loops mirror LAMMPS' formulas term by term (same evaluation order).
 #![allow(clippy::needless_range_loop)]
 
+use crate::engine::group_rotation::{unwrap, GroupRotation};
 use crate::engine::lattice::Lattice;
 use crate::engine::random_park::RanPark;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span, Word};
@@ -21,9 +22,6 @@ loop all|local|geom, units box|lattice)";
 
 /// Warm-up draws for `loop local` (LAMMPS `WARMUP`).
 const WARMUP: usize = 100;
-/// Threshold below which the inertia tensor is treated as singular (LAMMPS group.cpp).
-const INERTIA_EPSILON: f64 = 1.0e-6;
-
 /// How `velocity create` walks the atoms to draw random numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LoopMode {
@@ -64,6 +62,17 @@ impl Default for VelocityOptions {
     }
 }
 
+/// One component of `velocity set`: NULL (left unchanged), a number (in box units), or a
+/// variable `v_name`, which the command evaluates before it applies (equal-style: one value;
+/// atom-style: one per local atom; LAMMPS scales neither by the lattice).
+#[derive(Clone, Debug, PartialEq)]
+pub enum SetArg {
+    Null,
+    Value(f64),
+    PerAtom(Vec<f64>),
+    Variable(Word),
+}
+
 /// A velocity style with its arguments already converted to box units.
 #[derive(Clone, Debug, PartialEq)]
 pub enum VelocityStyle {
@@ -71,9 +80,8 @@ pub enum VelocityStyle {
         temp: f64,
         seed: i32,
     },
-    /// `None` components (NULL) are left unchanged.
     Set {
-        v: [Option<f64>; 3],
+        v: [SetArg; 3],
     },
     Scale {
         temp: f64,
@@ -224,63 +232,12 @@ pub fn zero_momentum(v: &mut [[f64; 3]], mass: &[f64], selected: &[bool]) -> Res
     Ok(())
 }
 
-fn unwrap(x: [f64; 3], image: [i32; 3], prd: [f64; 3]) -> [f64; 3] {
-    [x[0] + image[0] as f64 * prd[0], x[1] + image[1] as f64 * prd[1], x[2] + image[2] as f64 * prd[2]]
-}
-
 /// Remove the angular velocity of the group about its centre of mass (LAMMPS
 /// `zero_rotation`: `v_i -= omega x r_i` with unwrapped positions).
 pub fn zero_rotation(v: &mut [[f64; 3]], atoms: &VelocityAtoms, prd: [f64; 3]) -> Result<(), String> {
-    let (x, image, mass, sel) = (atoms.x, atoms.image, atoms.mass, atoms.selected);
-    if !sel.iter().any(|&s| s) {
-        return Err("cannot zero momentum of no atoms".into());
-    }
-    let masstotal = group_mass(mass, sel);
-    // centre of mass
-    let mut cm = [0.0; 3];
-    for i in 0..v.len() {
-        if sel[i] {
-            let u = unwrap(x[i], image[i], prd);
-            cm[0] += u[0] * mass[i];
-            cm[1] += u[1] * mass[i];
-            cm[2] += u[2] * mass[i];
-        }
-    }
-    if masstotal > 0.0 {
-        for c in &mut cm {
-            *c /= masstotal;
-        }
-    }
-    // angular momentum and inertia tensor about it
-    let mut l = [0.0; 3];
-    let mut inertia = [[0.0; 3]; 3];
-    for i in 0..v.len() {
-        if sel[i] {
-            let u = unwrap(x[i], image[i], prd);
-            let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
-            let m = mass[i];
-            l[0] += m * (dy * v[i][2] - dz * v[i][1]);
-            l[1] += m * (dz * v[i][0] - dx * v[i][2]);
-            l[2] += m * (dx * v[i][1] - dy * v[i][0]);
-        }
-    }
-    for i in 0..v.len() {
-        if sel[i] {
-            let u = unwrap(x[i], image[i], prd);
-            let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
-            let m = mass[i];
-            inertia[0][0] += m * (dy * dy + dz * dz);
-            inertia[1][1] += m * (dx * dx + dz * dz);
-            inertia[2][2] += m * (dx * dx + dy * dy);
-            inertia[0][1] -= m * dx * dy;
-            inertia[1][2] -= m * dy * dz;
-            inertia[0][2] -= m * dx * dz;
-        }
-    }
-    inertia[1][0] = inertia[0][1];
-    inertia[2][1] = inertia[1][2];
-    inertia[2][0] = inertia[0][2];
-    let w = omega(l, inertia)?;
+    let r = GroupRotation::of(v, atoms.x, atoms.image, atoms.mass, atoms.selected, prd).ok_or("cannot zero momentum of no atoms")?;
+    let (cm, w) = (r.cm, r.omega()?);
+    let (x, image, sel) = (atoms.x, atoms.image, atoms.selected);
     for i in 0..v.len() {
         if sel[i] {
             let u = unwrap(x[i], image[i], prd);
@@ -292,66 +249,6 @@ pub fn zero_rotation(v: &mut [[f64; 3]], atoms: &VelocityAtoms, prd: [f64; 3]) -
     }
     Ok(())
 }
-
-/// Angular velocity from angular momentum and inertia tensor (LAMMPS `Group::omega`):
-/// the explicit inverse when the determinant is large enough, else the principal axes.
-fn omega(l: [f64; 3], i: [[f64; 3]; 3]) -> Result<[f64; 3], String> {
-    let det = i[0][0] * i[1][1] * i[2][2] + i[0][1] * i[1][2] * i[2][0] + i[0][2] * i[1][0] * i[2][1]
-        - i[0][0] * i[1][2] * i[2][1]
-        - i[0][1] * i[1][0] * i[2][2]
-        - i[2][0] * i[1][1] * i[0][2];
-    if det > INERTIA_EPSILON {
-        let mut inv = [[0.0; 3]; 3];
-        inv[0][0] = i[1][1] * i[2][2] - i[1][2] * i[2][1];
-        inv[0][1] = -(i[0][1] * i[2][2] - i[0][2] * i[2][1]);
-        inv[0][2] = i[0][1] * i[1][2] - i[0][2] * i[1][1];
-        inv[1][0] = -(i[1][0] * i[2][2] - i[1][2] * i[2][0]);
-        inv[1][1] = i[0][0] * i[2][2] - i[0][2] * i[2][0];
-        inv[1][2] = -(i[0][0] * i[1][2] - i[0][2] * i[1][0]);
-        inv[2][0] = i[1][0] * i[2][1] - i[1][1] * i[2][0];
-        inv[2][1] = -(i[0][0] * i[2][1] - i[0][1] * i[2][0]);
-        inv[2][2] = i[0][0] * i[1][1] - i[0][1] * i[1][0];
-        for row in &mut inv {
-            for c in row.iter_mut() {
-                *c /= det;
-            }
-        }
-        let mut w = [0.0; 3];
-        for k in 0..3 {
-            w[k] = inv[k][0] * l[0] + inv[k][1] * l[1] + inv[k][2] * l[2];
-        }
-        return Ok(w);
-    }
-    // Principal axes: columns of evec are ex, ey, ez (made right-handed).
-    let (mut idiag, evec) = crate::engine::jacobi::jacobi3(&i, crate::engine::jacobi::Sort::Decreasing).ok_or("insufficient Jacobi rotations for the group's angular velocity")?;
-    let ex = [evec[0][0], evec[1][0], evec[2][0]];
-    let ey = [evec[0][1], evec[1][1], evec[2][1]];
-    let mut ez = [evec[0][2], evec[1][2], evec[2][2]];
-    let cross = [ex[1] * ey[2] - ex[2] * ey[1], ex[2] * ey[0] - ex[0] * ey[2], ex[0] * ey[1] - ex[1] * ey[0]];
-    if cross[0] * ez[0] + cross[1] * ez[1] + cross[2] * ez[2] < 0.0 {
-        ez = [-ez[0], -ez[1], -ez[2]];
-    }
-    let max = if idiag[0] > idiag[1] { idiag[0] } else { idiag[1] };
-    let max = if max > idiag[2] { max } else { idiag[2] };
-    for d in &mut idiag {
-        if *d < INERTIA_EPSILON * max {
-            *d = 0.0;
-        }
-    }
-    // MathExtra::angmom_to_omega
-    let axes = [ex, ey, ez];
-    let mut wbody = [0.0; 3];
-    for k in 0..3 {
-        wbody[k] =
-            if idiag[k] == 0.0 { 0.0 } else { (l[0] * axes[k][0] + l[1] * axes[k][1] + l[2] * axes[k][2]) / idiag[k] };
-    }
-    let mut w = [0.0; 3];
-    for d in 0..3 {
-        w[d] = wbody[0] * ex[d] + wbody[1] * ey[d] + wbody[2] * ez[d];
-    }
-    Ok(w)
-}
-
 
 /// The three random components for one atom (uniform in [-0.5, 0.5) or Gaussian).
 fn triple(random: &mut RanPark, gaussian: bool) -> [f64; 3] {
@@ -468,19 +365,24 @@ pub fn create(
     Ok(())
 }
 
-/// `velocity G set vx vy vz` with components in box units (`None` = NULL, unchanged).
-pub fn set(v: &mut [[f64; 3]], selected: &[bool], value: [Option<f64>; 3], sum: bool) {
-    for (vi, _) in v.iter_mut().zip(selected).filter(|(_, &s)| s) {
+/// `velocity G set vx vy vz`, the components evaluated (NULL: unchanged), as LAMMPS' order.
+pub fn set(v: &mut [[f64; 3]], selected: &[bool], value: &[SetArg; 3], sum: bool) -> Result<(), String> {
+    for (i, (vi, _)) in v.iter_mut().zip(selected).enumerate().filter(|(_, (_, &s))| s) {
         for d in 0..3 {
-            if let Some(c) = value[d] {
-                if sum {
-                    vi[d] += c;
-                } else {
-                    vi[d] = c;
-                }
+            let c = match &value[d] {
+                SetArg::Null => continue,
+                SetArg::Value(c) => *c,
+                SetArg::PerAtom(p) => p[i],
+                SetArg::Variable(w) => return Err(format!("velocity set: variable {} was not evaluated", w.text)),
+            };
+            if sum {
+                vi[d] += c;
+            } else {
+                vi[d] = c;
             }
         }
     }
+    Ok(())
 }
 
 /// `velocity G ramp`: component `vdim` ramps from `vlo` to `vhi` as coordinate `cdim`
@@ -600,18 +502,25 @@ impl Velocity {
                 VelocityStyle::Create { temp, seed: seed as i32 }
             }
             "set" => {
-                let mut v = [None; 3];
+                let mut v = [SetArg::Null, SetArg::Null, SetArg::Null];
                 for d in 0..3 {
-                    if sargs[d].text != "NULL" {
-                        v[d] = Some(num(&sargs[d], ["vx", "vy", "vz"][d])? * scale[d]);
-                    }
+                    let w = &sargs[d];
+                    v[d] = if w.text == "NULL" {
+                        SetArg::Null
+                    } else if w.text.starts_with("v_") {
+                        SetArg::Variable(w.clone())
+                    } else {
+                        SetArg::Value(num(w, ["vx", "vy", "vz"][d])? * scale[d])
+                    };
                 }
-                if dimension == 2 && v[2].is_some_and(|z| z != 0.0) {
-                    return Err(a.error_at(
-                        &sargs[2],
-                        "cannot set a non-zero z velocity in a 2d simulation",
-                        "must be 0 or NULL",
-                    ));
+                match &v[2] {
+                    SetArg::Value(z) if dimension == 2 && *z != 0.0 => {
+                        return Err(a.error_at(&sargs[2], "cannot set a non-zero z velocity in a 2d simulation", "must be 0 or NULL"));
+                    }
+                    SetArg::Variable(w) if dimension == 2 => {
+                        return Err(a.error_at(w, "Cannot set variable z velocity for 2d simulation", "must be 0 or NULL"));
+                    }
+                    _ => {}
                 }
                 VelocityStyle::Set { v }
             }
@@ -654,10 +563,7 @@ impl Velocity {
         }
         match &self.style {
             VelocityStyle::Create { temp, seed } => create(v, atoms, env, *temp, *seed, &self.opts, tc).map_err(located),
-            VelocityStyle::Set { v: value } => {
-                set(v, atoms.selected, *value, self.opts.sum);
-                Ok(())
-            }
+            VelocityStyle::Set { v: value } => set(v, atoms.selected, value, self.opts.sum).map_err(located),
             VelocityStyle::Scale { temp } => match tc {
                 None => {
                     let t = temperature(v, atoms.mass, atoms.selected, env.dof, env.boltz, env.mvv2e);

@@ -8,6 +8,7 @@ pub mod contact_history;
 pub mod decomp;
 pub mod domain;
 pub mod fields;
+pub mod group_rotation;
 pub mod groups;
 pub mod jacobi;
 pub mod lammps_order;

@@ -570,7 +570,7 @@ fn set_value<'c>(sim: &mut Simulation, a: &mut Args<'c>, what: &str, syntax: &st
 
 /// The values of atom-style variable `name` (named at `w`) over every owned atom, for command
 /// `what` (set, group): LAMMPS' errors for a missing variable or another style.
-fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, what: &str) -> DResult<Vec<f64>> {
+pub(crate) fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, what: &str) -> DResult<Vec<f64>> {
     match sim.variables.style(name) {
         Some("atom") => {}
         None => return Err(Diagnostic::at(w.span, format!("Variable name {} for {what} does not exist", w.text), "no such variable").with_help(format!("define it first: variable {name} atom FORMULA"))),

@@ -2,7 +2,7 @@
 //! into changes of the [`Simulation`]. Flow control (variable, if, jump, include, print, ...)
 //! is the interpreter's (parser crate); everything else arrives here through [`Host`].
 
-mod atoms_cmds;
+pub(crate) mod atoms_cmds;
 mod box_cmds;
 mod change_box;
 mod displace;

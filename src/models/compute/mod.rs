@@ -326,9 +326,11 @@ pub fn default_computes() -> Vec<Box<dyn Compute>> {
 }
 
 /// Group functions of expressions: count(g[,region]), mass(g[,region]), xcm(g,dim), vcm(g,dim), fcm(g,dim),
-/// bound(g,xmin|xmax|...), ke(g). `None` if `name` is not a group function.
+/// bound(g,xmin|xmax|...), ke(g), gyration(g), angmom(g,dim), torque(g,dim), inertia(g,dimdim),
+/// omega(g,dim) (the last four about the centre of mass of the unwrapped positions, in LAMMPS'
+/// atom order). `None` if `name` is not a group function.
 pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Result<f64, String>> {
-    let known = ["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "ke", "gyration"];
+    let known = ["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "ke", "gyration", "angmom", "torque", "inertia", "omega"];
     if !known.contains(&name) {
         return None;
     }
@@ -375,6 +377,42 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
                 summed(members.map(|i| a.f[i][d]).sum())
             }
             "ke" => state.kinetic_energy(bit),
+            "angmom" | "omega" | "inertia" | "torque" => {
+                state.whole_system(&format!("the group function {name}()"))?;
+                let Some(r) = crate::engine::group_rotation::of_group(state, bit) else { return Ok(0.0) };
+                match name {
+                    "angmom" => r.angmom[dim_of(1)?],
+                    "omega" => r.omega()?[dim_of(1)?],
+                    "inertia" => {
+                        let pair = args.get(1).map(|s| s.as_str()).unwrap_or("");
+                        let (p, q) = match pair {
+                            "xx" => (0, 0),
+                            "yy" => (1, 1),
+                            "zz" => (2, 2),
+                            "xy" => (0, 1),
+                            "yz" => (1, 2),
+                            "xz" => (0, 2),
+                            _ => return Err("inertia() needs xx, yy, zz, xy, yz or xz".into()),
+                        };
+                        r.inertia[p][q]
+                    }
+                    _ => {
+                        // LAMMPS' Group::torque: the sum of r x f about the centre of mass
+                        let d = dim_of(1)?;
+                        let dom = state.domain()?;
+                        let mut t = [0.0; 3];
+                        for &i in state.lammps_order.indices(a.nlocal).iter().filter(|&&i| a.mask[i] & bit != 0) {
+                            let u = dom.unmap(a.x[i], a.image[i]);
+                            let (dx, dy, dz) = (u[0] - r.cm[0], u[1] - r.cm[1], u[2] - r.cm[2]);
+                            let f = a.f[i];
+                            t[0] += dy * f[2] - dz * f[1];
+                            t[1] += dz * f[0] - dx * f[2];
+                            t[2] += dx * f[1] - dy * f[0];
+                        }
+                        t[d]
+                    }
+                }
+            }
             "gyration" => {
                 let (c, m) = state.group_xcm(bit);
                 let dom = state.domain()?;

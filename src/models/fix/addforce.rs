@@ -1,12 +1,15 @@
-//! `fix ID group addforce fx fy fz [every N] [region R]`: adds a constant (or equal-style
-//! variable) force; f_ID is minus the work term, f_ID[1..3] the force before the addition.
+//! `fix ID group addforce fx fy fz [every N] [region R] [energy v_E]`: adds a force, each
+//! component a constant, an equal-style variable or an atom-style variable (one value per atom);
+//! f_ID is minus the work term (with constant forces), the sum of the atom-style variable E
+//! (with `energy`), f_ID[1..3] the force before the addition.
 
 use super::value::FixValue;
 use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::state::{RunError, State};
+use crate::models::atom_formula::atom_variable;
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "fix ID group addforce fx fy fz [every N] [region region-ID]";
+pub const SYNTAX: &str = "fix ID group addforce fx fy fz [every N] [region region-ID] [energy v_name]";
 
 pub struct FixAddForce {
     id: String,
@@ -14,6 +17,8 @@ pub struct FixAddForce {
     value: [FixValue; 3],
     every: i64,
     region: Option<String>,
+    /// `energy v_name`: the atom-style variable whose sum is the potential energy.
+    energy: Option<String>,
     /// -sum(F . x_unwrapped), then the original force sum.
     foriginal: [f64; 4],
     tally: ThermoTally,
@@ -29,15 +34,26 @@ impl FixAddForce {
         }
         let mut every = 1;
         let mut region = None;
+        let mut energy = None;
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
                 "every" => every = a.i64_in("every", 1, i64::MAX)?,
                 "region" => region = Some(super::setforce::find_region(&mut a, state)?),
-                _ => return Err(a.unknown_keyword(w, &["every", "region"])),
+                "energy" => {
+                    let e = a.word("energy (v_name of an atom-style variable)")?;
+                    match e.text.strip_prefix("v_") {
+                        Some(name) => energy = Some(name.to_string()),
+                        None => return Err(a.error_at(e, "fix addforce energy takes v_name of an atom-style variable", "not a variable")),
+                    }
+                    if value.iter().all(|v| matches!(v, FixValue::Const(_))) {
+                        return Err(a.error_at(e, "Cannot use variable energy with constant force in fix addforce", "the forces are constants"));
+                    }
+                }
+                _ => return Err(a.unknown_keyword(w, &["every", "region", "energy"])),
             }
         }
-        Ok(FixAddForce { id, groupbit, value, every, region, foriginal: [0.0; 4], tally: ThermoTally::new(true) })
+        Ok(FixAddForce { id, groupbit, value, every, region, energy, foriginal: [0.0; 4], tally: ThermoTally::new(true) })
     }
 }
 
@@ -54,21 +70,40 @@ impl Fix for FixAddForce {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_force: true, ..FixHooks::default() }
     }
-    /// LAMMPS applies it while minimizing (its energy counts only with fix_modify energy).
+    /// LAMMPS applies it while minimizing (its energy counts only with fix_modify energy); a
+    /// variable force needs the `energy` keyword there (LAMMPS: "Must use variable energy").
     fn min_role(&self) -> super::MinRole {
-        match self.value.iter().all(|v| matches!(v, FixValue::Const(_) | FixValue::Null)) {
+        match self.value.iter().all(|v| matches!(v, FixValue::Const(_) | FixValue::Null)) || self.energy.is_some() {
             true => super::MinRole::PostForce,
-            false => super::MinRole::Refused(format!("fix {} (addforce): a variable force needs LAMMPS' `energy` keyword in a minimization, which dmhs does not have", self.id)),
+            false => super::MinRole::Refused(format!("fix {} (addforce): Must use variable energy with fix addforce (a variable force in a minimization needs `energy v_name`)", self.id)),
         }
     }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         if state.step % self.every != 0 {
             return Ok(());
         }
+        let constant = self.value.iter().all(|v| matches!(v, FixValue::Const(_)));
+        // each component: one value, or (atom-style variable) one per local atom; the
+        // variables are evaluated x, y, z, then the energy, as LAMMPS does
         let mut fv = [0.0; 3];
+        let mut per_atom: [Option<Vec<f64>>; 3] = [None, None, None];
         for k in 0..3 {
-            fv[k] = ctx.value(state, self, &self.value[k])?.unwrap_or(0.0);
+            match &self.value[k] {
+                FixValue::Variable(name) if is_atom_style(state, ctx, self, name)? => {
+                    per_atom[k] = Some(ctx.eval(state, self, |w, ev| atom_variable(name, w, ev).map_err(|e| format!("fix addforce {}: {e}", self.id)))?);
+                }
+                v => fv[k] = ctx.value(state, self, v)?.unwrap_or(0.0),
+            }
         }
+        let energy = match &self.energy {
+            Some(name) => {
+                if !is_atom_style(state, ctx, self, name)? {
+                    return Err(RunError::new(state.step, format!("fix addforce {}: Variable for fix addforce is invalid style (energy v_{name} must be atom-style)", self.id)));
+                }
+                Some(ctx.eval(state, self, |w, ev| atom_variable(name, w, ev).map_err(|e| format!("fix addforce {}: {e}", self.id)))?)
+            }
+            None => None,
+        };
         let domain = state.domain.clone().ok_or_else(|| RunError::new(state.step, "no box"))?;
         let region = super::setforce::region_now(&state.regions, state.step, &self.id, &self.region)?;
         let a = &mut state.atoms;
@@ -84,15 +119,30 @@ impl Fix for FixAddForce {
                 }
             }
             let u = domain.unmap(a.x[i], a.image[i]);
-            self.foriginal[0] -= fv[0] * u[0] + fv[1] * u[1] + fv[2] * u[2];
+            let mut g = fv;
+            for k in 0..3 {
+                if let Some(p) = &per_atom[k] {
+                    g[k] = p[i];
+                }
+            }
+            // LAMMPS sums the work in one expression for constant forces, term by term otherwise
+            if constant {
+                self.foriginal[0] -= g[0] * u[0] + g[1] * u[1] + g[2] * u[2];
+            } else if let Some(e) = &energy {
+                self.foriginal[0] += e[i];
+            } else {
+                self.foriginal[0] -= g[0] * u[0];
+                self.foriginal[0] -= g[1] * u[1];
+                self.foriginal[0] -= g[2] * u[2];
+            }
             let f = &mut a.f[i];
             self.foriginal[1] += f[0];
             self.foriginal[2] += f[1];
             self.foriginal[3] += f[2];
-            f[0] += fv[0];
-            f[1] += fv[1];
-            f[2] += fv[2];
-            self.tally.v_tally([fv[0] * u[0], fv[1] * u[1], fv[2] * u[2], fv[0] * u[1], fv[0] * u[2], fv[1] * u[2]]);
+            f[0] += g[0];
+            f[1] += g[1];
+            f[2] += g[2];
+            self.tally.v_tally([g[0] * u[0], g[1] * u[1], g[2] * u[2], g[0] * u[1], g[0] * u[2], g[1] * u[2]]);
         }
         Ok(())
     }
@@ -110,5 +160,14 @@ impl Fix for FixAddForce {
     }
     fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
         Some(&mut self.tally)
+    }
+}
+
+/// Whether variable `name` is atom-style (LAMMPS' fix init: a missing variable is an error).
+fn is_atom_style(state: &State, ctx: &mut FixCtx, fix: &FixAddForce, name: &str) -> Result<bool, RunError> {
+    let style = ctx.eval(state, fix, |_, ev| Ok(ev.variables().style(name)))?;
+    match style {
+        Some(s) => Ok(s == "atom"),
+        None => Err(RunError::new(state.step, format!("fix addforce {}: Variable name for fix addforce does not exist (v_{name})", fix.id))),
     }
 }

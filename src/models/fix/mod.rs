@@ -25,6 +25,7 @@ pub mod group_dynamic;
 pub mod heat_flow;
 pub mod indent;
 pub mod langevin;
+pub mod momentum;
 #[path = "move.rs"]
 pub mod moves;
 pub mod nve;
@@ -432,6 +433,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("momentum", |d, _| Ok(Box::new(momentum::FixMomentum::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("wall/reflect", |d, state| Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran/region", |d, state| Ok(Box::new(wall_gran_region::FixWallGranRegion::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

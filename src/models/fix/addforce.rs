@@ -3,10 +3,9 @@
 //! f_ID is minus the work term (with constant forces), the sum of the atom-style variable E
 //! (with `energy`), f_ID[1..3] the force before the addition.
 
-use super::value::FixValue;
+use super::value::{Evaluated, FixValue};
 use super::{Fix, FixCtx, FixHooks, ThermoTally};
 use crate::engine::state::{RunError, State};
-use crate::models::atom_formula::atom_variable;
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub const SYNTAX: &str = "fix ID group addforce fx fy fz [every N] [region region-ID] [energy v_name]";
@@ -83,25 +82,14 @@ impl Fix for FixAddForce {
             return Ok(());
         }
         let constant = self.value.iter().all(|v| matches!(v, FixValue::Const(_)));
-        // each component: one value, or (atom-style variable) one per local atom; the
-        // variables are evaluated x, y, z, then the energy, as LAMMPS does
-        let mut fv = [0.0; 3];
-        let mut per_atom: [Option<Vec<f64>>; 3] = [None, None, None];
-        for k in 0..3 {
-            match &self.value[k] {
-                FixValue::Variable(name) if is_atom_style(state, ctx, self, name)? => {
-                    per_atom[k] = Some(ctx.eval(state, self, |w, ev| atom_variable(name, w, ev).map_err(|e| format!("fix addforce {}: {e}", self.id)))?);
-                }
-                v => fv[k] = ctx.value(state, self, v)?.unwrap_or(0.0),
-            }
-        }
+        // the variables are evaluated x, y, z, then the energy, as LAMMPS does
+        let [vx, vy, vz] = [0, 1, 2].map(|k| ctx.value_per_atom(state, self, &self.value[k]));
+        let g = [vx?, vy?, vz?];
         let energy = match &self.energy {
-            Some(name) => {
-                if !is_atom_style(state, ctx, self, name)? {
-                    return Err(RunError::new(state.step, format!("fix addforce {}: Variable for fix addforce is invalid style (energy v_{name} must be atom-style)", self.id)));
-                }
-                Some(ctx.eval(state, self, |w, ev| atom_variable(name, w, ev).map_err(|e| format!("fix addforce {}: {e}", self.id)))?)
-            }
+            Some(name) => match ctx.value_per_atom(state, self, &FixValue::Variable(name.clone()))? {
+                e @ Evaluated::PerAtom(_) => Some(e),
+                _ => return Err(RunError::new(state.step, format!("fix addforce {}: Variable for fix addforce is invalid style (energy v_{name} must be atom-style)", self.id))),
+            },
             None => None,
         };
         let domain = state.domain.clone().ok_or_else(|| RunError::new(state.step, "no box"))?;
@@ -119,17 +107,12 @@ impl Fix for FixAddForce {
                 }
             }
             let u = domain.unmap(a.x[i], a.image[i]);
-            let mut g = fv;
-            for k in 0..3 {
-                if let Some(p) = &per_atom[k] {
-                    g[k] = p[i];
-                }
-            }
+            let g = [0, 1, 2].map(|k| g[k].at(i).unwrap_or(0.0));
             // LAMMPS sums the work in one expression for constant forces, term by term otherwise
             if constant {
                 self.foriginal[0] -= g[0] * u[0] + g[1] * u[1] + g[2] * u[2];
             } else if let Some(e) = &energy {
-                self.foriginal[0] += e[i];
+                self.foriginal[0] += e.at(i).unwrap_or(0.0);
             } else {
                 self.foriginal[0] -= g[0] * u[0];
                 self.foriginal[0] -= g[1] * u[1];
@@ -163,11 +146,3 @@ impl Fix for FixAddForce {
     }
 }
 
-/// Whether variable `name` is atom-style (LAMMPS' fix init: a missing variable is an error).
-fn is_atom_style(state: &State, ctx: &mut FixCtx, fix: &FixAddForce, name: &str) -> Result<bool, RunError> {
-    let style = ctx.eval(state, fix, |_, ev| Ok(ev.variables().style(name)))?;
-    match style {
-        Some(s) => Ok(s == "atom"),
-        None => Err(RunError::new(state.step, format!("fix addforce {}: Variable name for fix addforce does not exist (v_{name})", fix.id))),
-    }
-}

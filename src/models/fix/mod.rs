@@ -139,6 +139,22 @@ impl FixCtx<'_> {
     pub fn value(&mut self, state: &State, running: &dyn Fix, v: &value::FixValue) -> Result<Option<f64>, RunError> {
         v.eval(&mut |name| self.expressions.equal(state, running, name)).map_err(|e| RunError::new(state.step, e))
     }
+    /// The current value of a fix argument that may also be an atom-style variable (one value
+    /// per local atom), as LAMMPS' fixes that take both (addforce, setforce).
+    pub fn value_per_atom(&mut self, state: &State, running: &dyn Fix, v: &value::FixValue) -> Result<value::Evaluated, RunError> {
+        let value::FixValue::Variable(name) = v else {
+            return Ok(self.value(state, running, v)?.map_or(value::Evaluated::Null, value::Evaluated::One));
+        };
+        let what = format!("fix {} {}", running.style(), running.id());
+        match self.eval(state, running, |_, ev| Ok(ev.variables().style(name)))? {
+            None => Err(RunError::new(state.step, format!("{what}: Variable name for fix {} does not exist (v_{name})", running.style()))),
+            Some("atom") => {
+                let vals = self.eval(state, running, |w, ev| crate::models::atom_formula::atom_variable(name, w, ev).map_err(|e| format!("{what}: {e}")))?;
+                Ok(value::Evaluated::PerAtom(vals))
+            }
+            Some(_) => Ok(value::Evaluated::One(self.equal(state, running, name).map_err(|e| RunError::new(state.step, format!("{what}: variable `{name}`: {e}")))?)),
+        }
+    }
 }
 
 /// What a fix does during `minimize` (LAMMPS calls only a fix's min_* hooks there).

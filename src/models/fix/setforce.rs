@@ -1,5 +1,5 @@
-//! `fix ID group setforce fx fy fz [region R]`: sets force components (NULL leaves one
-//! alone); f_ID[1..3] is the force before it was set.
+//! `fix ID group setforce fx fy fz [region R]`: sets force components, each a constant, an
+//! equal- or atom-style variable, or NULL (left alone); f_ID[1..3] is the force before it was set.
 
 use super::value::FixValue;
 use super::{Fix, FixCtx, FixHooks};
@@ -81,10 +81,8 @@ impl Fix for FixSetForce {
         }
     }
     fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
-        let mut fv = [None; 3];
-        for k in 0..3 {
-            fv[k] = ctx.value(state, self, &self.value[k])?;
-        }
+        let [vx, vy, vz] = [0, 1, 2].map(|k| ctx.value_per_atom(state, self, &self.value[k]));
+        let fv = [vx?, vy?, vz?];
         let region = region_now(&state.regions, state.step, &self.id, &self.region)?;
         let a = &mut state.atoms;
         self.foriginal = [0.0; 3];
@@ -100,7 +98,7 @@ impl Fix for FixSetForce {
             let f = &mut a.f[i];
             for k in 0..3 {
                 self.foriginal[k] += f[k];
-                if let Some(v) = fv[k] {
+                if let Some(v) = fv[k].at(i) {
                     f[k] = v;
                 }
             }

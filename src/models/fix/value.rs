@@ -1,4 +1,4 @@
-//! A fix argument that is a constant, an equal-style variable (`v_name`), or NULL.
+//! A fix argument that is a constant, a variable (`v_name`), or NULL, and its value at a step.
 
 use dmhs_parser::args::word_f64;
 use dmhs_parser::{DResult, Word};
@@ -27,6 +27,25 @@ impl FixValue {
             FixValue::Const(x) => Ok(Some(*x)),
             FixValue::Null => Ok(None),
             FixValue::Variable(name) => equal(name).map(Some).map_err(|e| format!("variable `{name}`: {e}")),
+        }
+    }
+}
+
+/// A fix argument's value at a step: NULL, one value for every atom, or (an atom-style
+/// variable) one per local atom.
+pub enum Evaluated {
+    Null,
+    One(f64),
+    PerAtom(Vec<f64>),
+}
+
+impl Evaluated {
+    /// The value for local atom `i` (None for NULL).
+    pub fn at(&self, i: usize) -> Option<f64> {
+        match self {
+            Evaluated::Null => None,
+            Evaluated::One(x) => Some(*x),
+            Evaluated::PerAtom(v) => Some(v[i]),
         }
     }
 }

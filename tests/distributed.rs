@@ -983,6 +983,29 @@ fn springs_on_ranks_are_the_serial_run() {
     compare(&deck, 3);
 }
 
+/// fix momentum (linear and angular with rescale) and the group functions angmom(), omega(),
+/// inertia() and torque() on ranks: every sum over the ranks, as LAMMPS' Group.
+#[test]
+fn momentum_and_group_rotation_on_ranks_are_the_serial_run() {
+    let deck = melt_with(
+        "region       half block 0 3 INF INF INF INF units lattice\n\
+         group        half region half\n\
+         fix          1 all nve\n\
+         fix          2 half addforce 0.2 -0.1 0.05\n\
+         fix          3 all momentum 5 linear 1 1 0\n\
+         fix          4 half momentum 7 angular rescale\n\
+         variable     lz equal angmom(half,z)\n\
+         variable     wx equal omega(half,x)\n\
+         variable     ixy equal inertia(half,xy)\n\
+         variable     tz equal torque(half,z)\n\
+         variable     vz equal vcm(all,z)\n\
+         thermo_style custom step temp epair etotal press v_lz v_wx v_ixy v_tz v_vz\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deck, 2);
+    compare(&deck, 3);
+}
+
 /// A granular pile with heat on ranks: a region floor (fix wall/gran/region with a heat model
 /// and a wall temperature) and a sphere pressed into the pile (a moving region wall with
 /// tangential history); the per-atom wall histories travel with the atoms, fix heat/flow

@@ -235,7 +235,7 @@ pub fn zero_momentum(v: &mut [[f64; 3]], mass: &[f64], selected: &[bool]) -> Res
 /// Remove the angular velocity of the group about its centre of mass (LAMMPS
 /// `zero_rotation`: `v_i -= omega x r_i` with unwrapped positions).
 pub fn zero_rotation(v: &mut [[f64; 3]], atoms: &VelocityAtoms, prd: [f64; 3]) -> Result<(), String> {
-    let r = GroupRotation::of(v, atoms.x, atoms.image, atoms.mass, atoms.selected, prd).ok_or("cannot zero momentum of no atoms")?;
+    let r = GroupRotation::of(v, atoms.x, atoms.image, atoms.mass, atoms.selected, prd, &mut |_| {}).ok_or("cannot zero momentum of no atoms")?;
     let (cm, w) = (r.cm, r.omega()?);
     let (x, image, sel) = (atoms.x, atoms.image, atoms.selected);
     for i in 0..v.len() {

@@ -20,12 +20,17 @@ pub struct GroupRotation {
 }
 
 impl GroupRotation {
-    /// Over the atoms `sel` marks (positions, image flags, masses, velocities `v`); None if none is.
-    pub fn of(v: &[[f64; 3]], x: &[[f64; 3]], image: &[[i32; 3]], mass: &[f64], sel: &[bool], prd: [f64; 3]) -> Option<GroupRotation> {
-        if !sel.iter().any(|&s| s) {
+    /// Over the atoms `sel` marks (positions, image flags, masses, velocities `v`); None if the
+    /// group has no mass. `reduce` sums partial sums over the ranks of a distributed run (as
+    /// LAMMPS' MPI_Allreduce after each of mass, centre, angular momentum and inertia; a no-op
+    /// on one rank).
+    pub fn of(v: &[[f64; 3]], x: &[[f64; 3]], image: &[[i32; 3]], mass: &[f64], sel: &[bool], prd: [f64; 3], reduce: &mut dyn FnMut(&mut [f64])) -> Option<GroupRotation> {
+        let mut masstotal = [mass.iter().zip(sel).filter(|(_, &s)| s).fold(0.0, |t, (&m, _)| t + m)];
+        reduce(&mut masstotal);
+        let masstotal = masstotal[0];
+        if masstotal <= 0.0 {
             return None;
         }
-        let masstotal: f64 = mass.iter().zip(sel).filter(|(_, &s)| s).fold(0.0, |t, (&m, _)| t + m);
         let mut cm = [0.0; 3];
         for i in 0..v.len() {
             if sel[i] {
@@ -35,10 +40,9 @@ impl GroupRotation {
                 cm[2] += u[2] * mass[i];
             }
         }
-        if masstotal > 0.0 {
-            for c in &mut cm {
-                *c /= masstotal;
-            }
+        reduce(&mut cm);
+        for c in &mut cm {
+            *c /= masstotal;
         }
         let mut l = [0.0; 3];
         let mut inertia = [[0.0; 3]; 3];
@@ -65,10 +69,10 @@ impl GroupRotation {
                 inertia[0][2] -= m * dx * dz;
             }
         }
-        inertia[1][0] = inertia[0][1];
-        inertia[2][1] = inertia[1][2];
-        inertia[2][0] = inertia[0][2];
-        Some(GroupRotation { cm, angmom: l, inertia })
+        let mut sums = [l[0], l[1], l[2], inertia[0][0], inertia[1][1], inertia[2][2], inertia[0][1], inertia[1][2], inertia[0][2]];
+        reduce(&mut sums);
+        let [l0, l1, l2, ixx, iyy, izz, ixy, iyz, ixz] = sums;
+        Some(GroupRotation { cm, angmom: [l0, l1, l2], inertia: [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]] })
     }
 
     /// The angular velocity (LAMMPS' Group::omega).
@@ -135,11 +139,8 @@ pub fn omega(l: [f64; 3], i: [[f64; 3]; 3]) -> Result<[f64; 3], String> {
     }
     Ok(w)
 }
-
-
-
-/// The rotation of the owned atoms of group `bit`, summed in LAMMPS' local order (one rank:
-/// the whole system); None for an empty group.
+/// The rotation of group `bit`: each rank's owned atoms summed in LAMMPS' local order, then
+/// over the ranks; None for an empty group.
 pub fn of_group(state: &crate::engine::state::State, bit: u32) -> Option<GroupRotation> {
     let a = &state.atoms;
     let order = state.lammps_order.indices(a.nlocal);
@@ -149,5 +150,5 @@ pub fn of_group(state: &crate::engine::state::State, bit: u32) -> Option<GroupRo
     let mass: Vec<f64> = sel.iter().map(|&i| state.mass(i)).collect();
     let v: Vec<[f64; 3]> = sel.iter().map(|&i| a.v[i]).collect();
     let prd = state.domain.as_ref().map_or([0.0; 3], |d| d.prd());
-    GroupRotation::of(&v, &x, &image, &mass, &vec![true; sel.len()], prd)
+    GroupRotation::of(&v, &x, &image, &mass, &vec![true; sel.len()], prd, &mut |s| state.sum_ranks(s))
 }

@@ -328,7 +328,7 @@ pub fn default_computes() -> Vec<Box<dyn Compute>> {
 /// Group functions of expressions: count(g[,region]), mass(g[,region]), xcm(g,dim), vcm(g,dim), fcm(g,dim),
 /// bound(g,xmin|xmax|...), ke(g), gyration(g), angmom(g,dim), torque(g,dim), inertia(g,dimdim),
 /// omega(g,dim) (the last four about the centre of mass of the unwrapped positions, in LAMMPS'
-/// atom order). `None` if `name` is not a group function.
+/// atom order, summed over the ranks). `None` if `name` is not a group function.
 pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Result<f64, String>> {
     let known = ["count", "mass", "charge", "xcm", "vcm", "fcm", "bound", "ke", "gyration", "angmom", "torque", "inertia", "omega"];
     if !known.contains(&name) {
@@ -378,7 +378,6 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
             }
             "ke" => state.kinetic_energy(bit),
             "angmom" | "omega" | "inertia" | "torque" => {
-                state.whole_system(&format!("the group function {name}()"))?;
                 let Some(r) = crate::engine::group_rotation::of_group(state, bit) else { return Ok(0.0) };
                 match name {
                     "angmom" => r.angmom[dim_of(1)?],
@@ -409,6 +408,7 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
                             t[1] += dz * f[0] - dx * f[2];
                             t[2] += dx * f[1] - dy * f[0];
                         }
+                        state.sum_ranks(&mut t);
                         t[d]
                     }
                 }

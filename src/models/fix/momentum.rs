@@ -89,10 +89,6 @@ impl Fix for FixMomentum {
         }
         let order = state.lammps_order.indices(state.atoms.nlocal).into_owned();
         let bit = self.groupbit;
-        // an empty (dynamic) group: nothing to do (LAMMPS: its mass is zero)
-        if !order.iter().any(|&i| state.atoms.mask[i] & bit != 0) {
-            return Ok(());
-        }
         let ekin_old = if self.rescale { self.twice_ke(state, &order) } else { 0.0 };
         if let Some(flags) = self.linear {
             let vc = vcm(state, bit);
@@ -109,7 +105,8 @@ impl Fix for FixMomentum {
         }
         if self.angular {
             let fail = |e: String| RunError::new(state.step, format!("fix momentum {}: {e}", self.id));
-            let r = group_rotation::of_group(state, bit).ok_or_else(|| fail("no atoms".into()))?;
+            // an empty (dynamic) group has no rotation to remove
+            let Some(r) = group_rotation::of_group(state, bit) else { return Ok(()) };
             let (cm, w) = (r.cm, r.omega().map_err(fail)?);
             let prd = state.domain.as_ref().map_or([0.0; 3], |d| d.prd());
             let a = &mut state.atoms;

@@ -12,7 +12,7 @@ use std::process::Command;
 
 mod thermo_tables;
 
-thermo_tables::thermo_table_tests!(["gran_region_contacts", "gran_jkr_walls", "gran_region_varshape"]);
+thermo_tables::thermo_table_tests!(["gran_region_contacts", "gran_jkr_walls", "gran_region_varshape", "gran_contact_atom"]);
 
 fn run(mode: &str, deck: &str) -> (i32, String) {
     let tmp = tempfile::tempdir().unwrap();

@@ -5,6 +5,7 @@
 pub mod bond_local;
 pub mod chunk_atom;
 pub mod com;
+pub mod contact_atom;
 pub mod displace_atom;
 pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
@@ -284,6 +285,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("ke/atom", |d, _| Ok(Box::new(ke_atom::ComputeKeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("nbond/atom", |d, w| Ok(Box::new(nbond_atom::ComputeNBondAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("contact/atom", |d, w| Ok(Box::new(contact_atom::ComputeContactAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("erotate/sphere/atom", |d, w| Ok(Box::new(erotate_sphere_atom::ComputeErotateSphereAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pe/atom", |d, _| Ok(Box::new(pe_atom::ComputePeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -5,6 +5,8 @@
 
 use dmhs::deck::{run_text, DeckOptions};
 
+mod common;
+
 /// Five spheres of diameter 1 along x in a periodic 6-long box: 1 at x=0.5, 2 at 1.5 (touching
 /// 1 exactly), 3 at 2.4 (overlapping 2), 4 at 3.6 (0.2 apart from 3), 5 at 5.5 (touching 1
 /// across the periodic face). LAMMPS 22 Jul 2025 on the same lines (read through atom-style
@@ -42,13 +44,13 @@ fn contacts_of_a_row_of_spheres() {
 fn contact_atom_errors_are_located() {
     let sphere = "units lj\natom_style sphere\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 single 1 1 1\n";
     let atomic = "units lj\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 single 1 1 1\nmass 1 1.0\n";
-    for (base, extra, want) in [
-        (atomic, "compute c all contact/atom\n", "requires atom style sphere"),
-        (sphere, "compute c all contact/atom nogroup\n", "group2 ID nogroup does not exist"),
-        (sphere, "compute c all contact/atom all extra\n", "extra"),
-        (sphere, "compute c all contact/atom\ncompute s all reduce sum c_c\nthermo_style custom step c_s\n", "requires a pair style"),
-    ] {
-        let f = run_text("bad.deck", &format!("{base}{extra}run 0\n"), &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
-        assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
-    }
+    common::assert_located_errors(atomic, &[("compute c all contact/atom\n", "requires atom style sphere")]);
+    common::assert_located_errors(
+        sphere,
+        &[
+            ("compute c all contact/atom nogroup\n", "group2 ID nogroup does not exist"),
+            ("compute c all contact/atom all extra\n", "extra"),
+            ("compute c all contact/atom\ncompute s all reduce sum c_c\nthermo_style custom step c_s\n", "requires a pair style"),
+        ],
+    );
 }

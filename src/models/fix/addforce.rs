@@ -145,4 +145,3 @@ impl Fix for FixAddForce {
         Some(&mut self.tally)
     }
 }
-

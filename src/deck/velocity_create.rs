@@ -10,7 +10,8 @@
 // Index loops mirror LAMMPS' formulas term by term (same evaluation order).
 #![allow(clippy::needless_range_loop)]
 
-use crate::engine::group_rotation::{unwrap, GroupRotation};
+use crate::engine::domain::unmap_prd;
+use crate::engine::group_rotation::{remove_rotation, GroupRotation};
 use crate::engine::lattice::Lattice;
 use crate::engine::random_park::RanPark;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Span, Word};
@@ -240,11 +241,7 @@ pub fn zero_rotation(v: &mut [[f64; 3]], atoms: &VelocityAtoms, prd: [f64; 3]) -
     let (x, image, sel) = (atoms.x, atoms.image, atoms.selected);
     for i in 0..v.len() {
         if sel[i] {
-            let u = unwrap(x[i], image[i], prd);
-            let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
-            v[i][0] -= w[1] * dz - w[2] * dy;
-            v[i][1] -= w[2] * dx - w[0] * dz;
-            v[i][2] -= w[0] * dy - w[1] * dx;
+            remove_rotation(&mut v[i], unmap_prd(x[i], image[i], prd), cm, w);
         }
     }
     Ok(())

@@ -62,8 +62,7 @@ impl Domain {
     }
     /// Unwrapped coordinate: `x + image * prd` (LAMMPS `Domain::unmap`).
     pub fn unmap(&self, x: [f64; 3], image: [i32; 3]) -> [f64; 3] {
-        let p = self.prd();
-        [x[0] + image[0] as f64 * p[0], x[1] + image[1] as f64 * p[1], x[2] + image[2] as f64 * p[2]]
+        unmap_prd(x, image, self.prd())
     }
     /// Wrap a position back into a periodic box, updating its image flags, exactly as
     /// LAMMPS `Domain::pbc` does (one box length at most per call).
@@ -259,4 +258,9 @@ mod tests {
         d.remap_near(&mut x, &[1.0, 1.0, 1.0]);
         assert_eq!(x, [4.0, 2.0, -1.0]);
     }
+}
+
+/// [`Domain::unmap`] for callers that hold only the box lengths `prd` (orthogonal boxes).
+pub fn unmap_prd(x: [f64; 3], image: [i32; 3], prd: [f64; 3]) -> [f64; 3] {
+    [x[0] + image[0] as f64 * prd[0], x[1] + image[1] as f64 * prd[1], x[2] + image[2] as f64 * prd[2]]
 }

@@ -3,12 +3,18 @@
 //! (velocity's `rot yes` and `zero angular`, fix momentum `angular`, the group functions
 //! angmom(), inertia() and omega()). Sums run in the order of the arrays given.
 
+use crate::engine::domain::unmap_prd;
+
 /// Threshold below which the inertia tensor is treated as singular (LAMMPS group.cpp).
 const INERTIA_EPSILON: f64 = 1.0e-6;
 
-/// `x + image * prd` (orthogonal boxes; LAMMPS' Domain::unmap).
-pub fn unwrap(x: [f64; 3], image: [i32; 3], prd: [f64; 3]) -> [f64; 3] {
-    [x[0] + image[0] as f64 * prd[0], x[1] + image[1] as f64 * prd[1], x[2] + image[2] as f64 * prd[2]]
+/// `v -= omega x (u - cm)` for one atom at unwrapped position `u` (LAMMPS' zero_rotation and
+/// fix momentum `angular`).
+pub fn remove_rotation(v: &mut [f64; 3], u: [f64; 3], cm: [f64; 3], w: [f64; 3]) {
+    let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
+    v[0] -= w[1] * dz - w[2] * dy;
+    v[1] -= w[2] * dx - w[0] * dz;
+    v[2] -= w[0] * dy - w[1] * dx;
 }
 
 /// A group's centre of mass (unwrapped positions), angular momentum and inertia tensor about
@@ -34,7 +40,7 @@ impl GroupRotation {
         let mut cm = [0.0; 3];
         for i in 0..v.len() {
             if sel[i] {
-                let u = unwrap(x[i], image[i], prd);
+                let u = unmap_prd(x[i], image[i], prd);
                 cm[0] += u[0] * mass[i];
                 cm[1] += u[1] * mass[i];
                 cm[2] += u[2] * mass[i];
@@ -48,7 +54,7 @@ impl GroupRotation {
         let mut inertia = [[0.0; 3]; 3];
         for i in 0..v.len() {
             if sel[i] {
-                let u = unwrap(x[i], image[i], prd);
+                let u = unmap_prd(x[i], image[i], prd);
                 let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
                 let m = mass[i];
                 l[0] += m * (dy * v[i][2] - dz * v[i][1]);
@@ -58,7 +64,7 @@ impl GroupRotation {
         }
         for i in 0..v.len() {
             if sel[i] {
-                let u = unwrap(x[i], image[i], prd);
+                let u = unmap_prd(x[i], image[i], prd);
                 let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
                 let m = mass[i];
                 inertia[0][0] += m * (dy * dy + dz * dz);
@@ -139,6 +145,7 @@ pub fn omega(l: [f64; 3], i: [[f64; 3]; 3]) -> Result<[f64; 3], String> {
     }
     Ok(w)
 }
+
 /// The rotation of group `bit`: each rank's owned atoms summed in LAMMPS' local order, then
 /// over the ranks; None for an empty group.
 pub fn of_group(state: &crate::engine::state::State, bit: u32) -> Option<GroupRotation> {

@@ -6,6 +6,7 @@
 //! Group functions make them, so the same bits.
 
 use super::{Fix, FixCtx, FixHooks};
+use crate::engine::domain::unmap_prd;
 use crate::engine::group_rotation;
 use crate::engine::state::{RunError, State};
 use crate::models::compute::temp_bias::vcm;
@@ -112,12 +113,7 @@ impl Fix for FixMomentum {
             let a = &mut state.atoms;
             for &i in &order {
                 if a.mask[i] & bit != 0 {
-                    let u = group_rotation::unwrap(a.x[i], a.image[i], prd);
-                    let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
-                    let v = &mut a.v[i];
-                    v[0] -= w[1] * dz - w[2] * dy;
-                    v[1] -= w[2] * dx - w[0] * dz;
-                    v[2] -= w[0] * dy - w[1] * dx;
+                    group_rotation::remove_rotation(&mut a.v[i], unmap_prd(a.x[i], a.image[i], prd), cm, w);
                 }
             }
         }

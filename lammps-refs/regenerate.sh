@@ -63,6 +63,8 @@ for name in "${names[@]+"${names[@]}"}"; do
                    "$out/log.lammps" > "$out/thermo.txt" ;;
         # the orientations at the end (tests/bpm.rs)
         bpm_sphere_nve) "$py" "$here/bpm_quat.py" "$here/decks/in.$name" "$out" ;;
+        # the halt messages and the steps each run ended at (tests/fix_halt.rs)
+        fix_halt*) grep -E '^(Fix halt|after )' "$out/log.lammps" > "$out/messages.txt" ;;
     esac
     if [ "$chaos" = 1 ]; then
         "$py" "$here/chaos_check.py" "$here/decks/in.$name"

@@ -314,6 +314,22 @@ pub fn is_immediate_format_spec(fmt: &str) -> bool {
     })
 }
 
+/// The shortest form that reads back to `x`, as LAMMPS' messages print a double with fmt's
+/// `{}`: fixed notation from 1e-4 up to 1e16, else `1.5e-05` / `1e+16`.
+pub fn shortest(x: f64) -> String {
+    if x.is_nan() {
+        return "nan".into();
+    }
+    let a = x.abs();
+    if !x.is_finite() || a == 0.0 || (1e-4..1e16).contains(&a) {
+        return format!("{x}");
+    }
+    let s = format!("{x:e}");
+    let (mantissa, exp) = s.split_once('e').expect("{:e} has an exponent");
+    let (sign, digits) = exp.strip_prefix('-').map_or(("+", exp), |d| ("-", d));
+    format!("{mantissa}e{sign}{digits:0>2}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -595,6 +611,13 @@ mod tests {
             let x = f64::from_bits(bits);
             assert_eq!(format_g(x, 15), g15, "{bits:016x}");
             assert_eq!(format_g(x, 20), g20, "{bits:016x}");
+        }
+    }
+
+    #[test]
+    fn shortest_as_fmt() {
+        for (x, s) in [(1.4906985857069832, "1.4906985857069832"), (1.0, "1"), (1e-5, "1e-05"), (-2.5e-7, "-2.5e-07"), (1e16, "1e+16"), (123.0, "123"), (1e-4, "0.0001"), (0.0, "0"), (f64::NAN, "nan"), (1.5e300, "1.5e+300")] {
+            assert_eq!(super::shortest(x), s);
         }
     }
 }

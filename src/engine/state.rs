@@ -163,6 +163,9 @@ pub struct State {
     /// Lines for the screen and the log from models (e.g. a fix's warnings during a run),
     /// printed and cleared by the command or step that produced them.
     pub messages: Vec<String>,
+    /// A fix halt stopped the run (LAMMPS' expired timer): the run loop stops before its next
+    /// step and later `run` and `minimize` commands do nothing, until a `continue` halt resets it.
+    pub halted: bool,
     /// Pair parameters a fix asked to change (fix adapt), applied by the simulation before
     /// the forces.
     pub pair_changes: Vec<PairParamChange>,
@@ -231,6 +234,7 @@ impl State {
             special_dirty: false,
             special_frozen: false,
             messages: Vec::new(),
+            halted: false,
             pair_changes: Vec::new(),
             decomp: None,
             procs_user: [None; 3],

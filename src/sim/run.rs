@@ -714,6 +714,10 @@ impl Simulation {
 
     /// The `run` command.
     pub fn run(&mut self, opts: &RunOptions) -> Result<(), RunError> {
+        // after a fix halt with `error soft`, LAMMPS' runs return at once, printing nothing
+        if self.state.halted {
+            return Ok(());
+        }
         let nsteps = if opts.upto { opts.nsteps - self.state.step } else { opts.nsteps };
         if nsteps < 0 {
             return Err(RunError::new(self.state.step, format!("run upto {} is before the current step {}", opts.nsteps, self.state.step)));
@@ -801,6 +805,10 @@ impl Simulation {
         let progress = crate::output::progress::Progress::new(nsteps as u64, self.out.screen);
         let mut result = Ok(());
         for _ in 0..nsteps {
+            // a fix halt met on the last step: this run ends here (LAMMPS' check_timeout)
+            if self.state.halted {
+                break;
+            }
             if self.cancel.swap(false, std::sync::atomic::Ordering::Relaxed) {
                 result = Err(RunError::new(self.state.step, "run interrupted"));
                 break;

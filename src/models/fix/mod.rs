@@ -22,6 +22,7 @@ pub mod enforce2d;
 pub mod freeze;
 pub mod gravity;
 pub mod group_dynamic;
+pub mod halt;
 pub mod heat_flow;
 pub mod indent;
 pub mod langevin;
@@ -458,6 +459,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/chunk", |d, state| Ok(Box::new(ave_chunk::FixAveChunk::from_lammps(d, state)?))),
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
+    ("halt", |d, _| Ok(Box::new(halt::FixHalt::from_lammps(d)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("spring/self", |d, state| Ok(Box::new(spring_self::FixSpringSelf::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/lj93", |d, state| Ok(Box::new(wall_flat::FixWall::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),

@@ -340,6 +340,10 @@ impl Simulation {
     /// The `minimize` command (LAMMPS' Minimize::command with Min::setup, run, cleanup and
     /// the summary of Finish).
     pub fn minimize(&mut self, opts: &MinimizeOptions) -> Result<(), RunError> {
+        // after a fix halt with `error soft`, as LAMMPS' run
+        if self.state.halted {
+            return Ok(());
+        }
         let first = self.state.step;
         let Some(last) = first.checked_add(opts.maxiter) else {
             return Err(RunError::setup(first, format!("minimize: too many iterations: step {first} + {} is past the largest step", opts.maxiter).into()));

@@ -361,9 +361,10 @@ impl State {
     pub fn group_xcm(&self, bit: u32) -> ([f64; 3], f64) {
         let a = &self.atoms;
         let Some(d) = self.domain.as_ref() else { return ([0.0; 3], 0.0) };
-        // the moments and the mass, summed over the ranks before the division
+        // the moments and the mass in LAMMPS' atom order, summed over the ranks before the
+        // division
         let mut s = [0.0; 4];
-        for i in 0..a.nlocal {
+        for &i in self.lammps_order.indices(a.nlocal).iter() {
             if a.mask[i] & bit != 0 {
                 let mi = self.mass(i);
                 let u = d.unmap(a.x[i], a.image[i]);
@@ -383,10 +384,11 @@ impl State {
         (c, m)
     }
 
+    /// Centre-of-mass velocity of a group (sums in LAMMPS' atom order, over the ranks).
     pub fn group_vcm(&self, bit: u32) -> [f64; 3] {
         let a = &self.atoms;
         let mut s = [0.0; 4];
-        for i in 0..a.nlocal {
+        for &i in self.lammps_order.indices(a.nlocal).iter() {
             if a.mask[i] & bit != 0 {
                 let mi = self.mass(i);
                 for k in 0..3 {

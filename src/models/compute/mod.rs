@@ -10,6 +10,7 @@ pub mod displace_atom;
 pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
 pub mod erotate_sphere_atom;
+pub mod gyration;
 pub mod ke;
 pub mod ke_atom;
 pub mod msd;
@@ -29,6 +30,7 @@ pub mod temp_com;
 pub mod temp_partial;
 pub mod temp_region;
 pub mod temp_sphere;
+pub mod vacf;
 
 use crate::engine::state::State;
 use crate::models::world::World;
@@ -291,11 +293,13 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("pe/atom", |d, _| Ok(Box::new(pe_atom::ComputePeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("stress/atom", |d, w| Ok(Box::new(stress_atom::ComputeStressAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("vacf", |d, w| Ok(Box::new(vacf::ComputeVacf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("bond/local", |d, w| Ok(Box::new(bond_local::ComputeBondLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("chunk/atom", |d, w| Ok(Box::new(chunk_atom::ComputeChunkAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("gyration", |d, _| Ok(Box::new(gyration::ComputeGyration::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, w| Ok(Box::new(property_atom::ComputePropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("reduce", |d, w| Ok(Box::new(reduce::ComputeReduce::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
@@ -415,18 +419,7 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
                     }
                 }
             }
-            "gyration" => {
-                let (c, m) = state.group_xcm(bit);
-                let dom = state.domain()?;
-                let mut rg = 0.0;
-                for i in (0..a.nlocal).filter(|&i| a.mask[i] & bit != 0) {
-                    let u = dom.unmap(a.x[i], a.image[i]);
-                    let d = [u[0] - c[0], u[1] - c[1], u[2] - c[2]];
-                    rg += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * state.mass(i);
-                }
-                let rg = summed(rg);
-                if m > 0.0 { (rg / m).sqrt() } else { 0.0 }
-            }
+            "gyration" => gyration::radius(state, bit)?,
             "bound" => {
                 let which = args.get(1).map(|s| s.as_str()).unwrap_or("");
                 let (d, max) = match which {

@@ -93,7 +93,7 @@ impl TempSpec {
     /// (temp/region counts only the atoms inside its region).
     fn each_thermal(&self, state: &State, mut f: impl FnMut(f64, [f64; 3])) -> Result<(), String> {
         let a = &state.atoms;
-        let vcm = if self.bias == Bias::Com { vcm(state, self.groupbit) } else { [0.0; 3] };
+        let vcm = if self.bias == Bias::Com { state.group_vcm(self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
         for &i in state.lammps_order.indices(a.nlocal).iter() {
             if a.mask[i] & self.groupbit == 0 || region.is_some_and(|r| !r.matches(a.x[i])) {
@@ -121,7 +121,7 @@ impl TempSpec {
     /// bias is the compute group's centre-of-mass velocity either way.
     pub fn field(&self, state: &State, over: u32) -> Result<Option<Vec<[f64; 3]>>, String> {
         let a = &state.atoms;
-        let vcm = if self.bias == Bias::Com { vcm(state, self.groupbit) } else { [0.0; 3] };
+        let vcm = if self.bias == Bias::Com { state.group_vcm(self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
         if self.bias == Bias::None {
             return Ok(None);
@@ -171,28 +171,6 @@ pub fn restore(v: &mut [[f64; 3]], mask: &[u32], groupbit: u32, field: &[[f64; 3
         for k in 0..3 {
             vi[k] += b[k];
         }
-    }
-}
-
-/// The group's centre-of-mass velocity as LAMMPS' Group::vcm sums it (LAMMPS' atom order,
-/// the group mass summed first, as compute temp/com's init does).
-pub fn vcm(state: &State, groupbit: u32) -> [f64; 3] {
-    let a = &state.atoms;
-    let mut s = [0.0; 4];
-    for &i in state.lammps_order.indices(a.nlocal).iter() {
-        if a.mask[i] & groupbit != 0 {
-            let m = state.mass(i);
-            for (sk, vk) in s.iter_mut().zip(a.v[i]) {
-                *sk += vk * m;
-            }
-            s[3] += m;
-        }
-    }
-    state.sum_ranks(&mut s);
-    if s[3] > 0.0 {
-        [s[0] / s[3], s[1] / s[3], s[2] / s[3]]
-    } else {
-        [s[0], s[1], s[2]]
     }
 }
 

@@ -9,7 +9,6 @@ use super::{Fix, FixCtx, FixHooks};
 use crate::engine::domain::unmap_prd;
 use crate::engine::group_rotation;
 use crate::engine::state::{RunError, State};
-use crate::models::compute::temp_bias::vcm;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "fix ID group momentum N [linear xflag yflag zflag] [angular] [rescale]";
@@ -92,7 +91,7 @@ impl Fix for FixMomentum {
         let bit = self.groupbit;
         let ekin_old = if self.rescale { self.twice_ke(state, &order) } else { 0.0 };
         if let Some(flags) = self.linear {
-            let vc = vcm(state, bit);
+            let vc = state.group_vcm(bit);
             let a = &mut state.atoms;
             for &i in &order {
                 if a.mask[i] & bit != 0 {

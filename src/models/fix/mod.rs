@@ -37,6 +37,7 @@ pub mod pour;
 pub mod sampling;
 pub mod print;
 pub mod property_atom;
+pub mod recenter;
 pub mod rigid_small;
 pub mod setforce;
 pub mod sph;
@@ -459,6 +460,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/chunk", |d, state| Ok(Box::new(ave_chunk::FixAveChunk::from_lammps(d, state)?))),
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
+    ("recenter", |d, state| Ok(Box::new(recenter::FixRecenter::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("halt", |d, _| Ok(Box::new(halt::FixHalt::from_lammps(d)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("spring/self", |d, state| Ok(Box::new(spring_self::FixSpringSelf::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

@@ -1,8 +1,9 @@
-//! Thermostat fixes (langevin, temp/rescale, temp/berendsen, nvt) against LAMMPS, beyond the
+//! Thermostat fixes (langevin, temp/rescale, temp/berendsen, temp/csvr, nvt) against LAMMPS, beyond the
 //! per-atom state that tests/lammps_parity.rs compares: every column of the thermo table of the
 //! lammps-refs decks thermo_* (temperature, energies and the fixes' own f_ID scalars) at every
 //! printed step, against lammps-refs/refs/NAME/thermo.txt (and LAMMPS run now, when present).
-//! And a validation: a long Langevin run of an LJ liquid holds the target temperature.
+//! And validations: long Langevin and CSVR runs hold the target temperature with the canonical
+//! spread.
 
 use dmhs::deck::{run_text, DeckOptions};
 
@@ -41,6 +42,52 @@ fn langevin_holds_the_target_temperature() {
     assert!((sd / (1.2 * (2.0f64 / 1500.0).sqrt()) - 1.0).abs() < 0.3, "spread {sd}");
 }
 
+/// An ideal gas of 20 atoms (no pair forces: T moves only through the thermostat) under fix
+/// temp/csvr at T 1.5, damp 0.1 (20 steps): over 40000 steps sampled every 50, the mean and the
+/// spread of T are the canonical ones, 1.5 and 1.5 sqrt(2/57) (57 degrees of freedom), within 4
+/// standard errors for the mean (800 nearly independent samples: 0.01) and 20% for the spread.
+#[test]
+fn csvr_samples_the_canonical_temperature() {
+    let deck = "units lj\natom_style atomic\nregion box block 0 10 0 10 0 10\ncreate_box 1 box\n\
+        create_atoms 1 random 20 4821 NULL\nmass 1 1.0\nvelocity all create 0.3 7731 loop geom\npair_style zero 1.0\n\
+        pair_coeff * *\nfix 1 all nve\nfix 2 all temp/csvr 1.5 1.5 0.1 55117\nthermo 50\nrun 40000\n";
+    let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let run = run_text("csvr_gas", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let (names, rows) = table(run.sim.out.captured.as_deref().unwrap());
+    let t = names.iter().position(|c| c == "Temp").unwrap();
+    let temps: Vec<f64> = rows[20..].iter().map(|r| r[t]).collect();
+    let mean = temps.iter().sum::<f64>() / temps.len() as f64;
+    let sd = (temps.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (temps.len() - 1) as f64).sqrt();
+    let canonical = 1.5 * (2.0f64 / 57.0).sqrt();
+    println!("csvr gas: mean T {mean:.4} (target 1.5), spread {sd:.4} (canonical {canonical:.4})");
+    assert!((mean - 1.5).abs() < 4.0 * canonical / (temps.len() as f64).sqrt(), "mean temperature {mean}");
+    assert!((sd / canonical - 1.0).abs() < 0.2, "spread {sd} against {canonical}");
+}
+
+/// A run restarted from a restart file goes on with fix temp/csvr's energy and random stream
+/// (LAMMPS writes both): 10 steps after read_restart give the bits of the 10 steps that followed
+/// write_restart in the first deck. (After an odd number of steps the stream holds the second
+/// number of a Gaussian pair, which LAMMPS' RanMars state leaves out: there LAMMPS' restarted run
+/// differs from its continued one, and dmhs' does the same.)
+#[test]
+fn csvr_restarts_its_random_stream() {
+    let tmp = tempfile::tempdir().unwrap();
+    let rs = tmp.path().join("rs.bin").display().to_string();
+    let setup = "pair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\nfix t all temp/csvr 1.0 1.0 0.1 4321\nthermo_style custom step temp f_t\nthermo_modify format float %.17g\nthermo 10\n";
+    let first = format!("units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+        velocity all create 1.5 87287 loop geom\n{setup}run 100\nwrite_restart {rs}\nrun 10\n");
+    let second = format!("read_restart {rs}\n{setup}run 10\n");
+    let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let last_row = |name: &str, deck: &str| {
+        let run = run_text(name, deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+        table(run.sim.out.captured.as_deref().unwrap()).1.last().unwrap().clone()
+    };
+    let a = last_row("csvr_first", &first);
+    let b = last_row("csvr_second", &second);
+    assert_eq!(a[0], 110.0);
+    assert_eq!(a, b);
+}
+
 /// Bad thermostat commands give located errors (`dmhs check` on the langevin deck, edited).
 #[test]
 fn thermostat_errors_are_located() {
@@ -56,6 +103,9 @@ fn thermostat_errors_are_located() {
         ("fix 2 all langevin 0.1 0.1 1.0 5 wobble yes", "unknown keyword `wobble`"),
         ("fix 2 all temp/rescale 0 0.1 0.1 0.01 1.0", "N (steps between rescales)"),
         ("fix 2 all temp/berendsen 0.1 0.1", "damp"),
+        ("fix 2 all temp/csvr 0.1 0.1 0.0 5", "Tdamp"),
+        ("fix 2 all temp/csvr 0.1 0.1 1.0 0", "seed"),
+        ("fix 2 all temp/csvr 0.1 0.1 1.0 5 extra", "unexpected"),
         ("fix 2 all nvt temp 0.1 0.1 0.0", "Tdamp"),
         ("fix 2 all nvt temp 0.0 0.1 1.0", "must be > 0.0"),
         ("fix 2 all nvt tchain 3", "needs temperature control"),

@@ -101,6 +101,27 @@ impl RanMars {
         first
     }
 
+    /// The generator's state as LAMMPS' RanMars::get_state lists it (u[0..98], i97, j97, c, cd,
+    /// cm: 103 numbers; a saved second Gaussian value is not part of it).
+    pub fn state(&self) -> Vec<f64> {
+        let mut s = self.u.to_vec();
+        s.extend([self.i97 as f64, self.j97 as f64, self.c, self.cd, self.cm]);
+        s
+    }
+
+    /// Restore a [`RanMars::state`] (LAMMPS' set_state: the saved Gaussian value is left as
+    /// it is). False, with nothing changed, if `s` is not such a state.
+    pub fn set_state(&mut self, s: &[f64]) -> bool {
+        let index = |x: f64| (x.fract() == 0.0 && (1.0..=97.0).contains(&x)).then_some(x as usize);
+        let (Some(i97), Some(j97)) = (s.get(98).copied().and_then(index), s.get(99).copied().and_then(index)) else { return false };
+        if s.len() != 103 {
+            return false;
+        }
+        self.u.copy_from_slice(&s[..98]);
+        (self.i97, self.j97, self.c, self.cd, self.cm) = (i97, j97, s[100], s[101], s[102]);
+        true
+    }
+
     /// Mark `ntarget` of `n` items at random (LAMMPS' `RanMars::select_subset`, one process):
     /// passes over an active set, each item flipping with probability `thresh`, adding while too
     /// few are marked and removing while too many, until exactly `ntarget` are. An item that

@@ -44,6 +44,7 @@ pub mod sph;
 pub mod spring;
 pub mod spring_self;
 pub mod store_local;
+pub mod temp_csvr;
 pub mod temp_scale;
 pub mod thermostat;
 pub mod viscous;
@@ -490,6 +491,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("dt/reset", |d, state| Ok(Box::new(dt_reset::FixDtReset::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("temp/rescale", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
+    ("temp/csvr", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

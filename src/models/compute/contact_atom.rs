@@ -5,7 +5,6 @@
 //! skin); excluded pairs and special pairs of weight 0 are not counted, as in LAMMPS' list.
 
 use super::{Compute, PerAtom};
-use crate::engine::neighbor::{special_level, NEIGH_MASK};
 use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
@@ -58,41 +57,18 @@ impl Compute for ComputeContactAtom {
             return Err(format!("compute contact/atom {} needs neighbour lists: it can be read only during or after a run", self.id));
         }
         let at = &s.atoms;
-        let (lj, coul) = (s.special_bonds.lj, s.special_bonds.coul);
         let mut contact = vec![0.0; at.nlocal];
-        // a pair of owned atoms is listed once and counts for both; a pair with a ghost is
-        // listed by each owned end, which counts for itself
-        for chunk in &s.neighbor.list.chunks {
-            for i in chunk.start..chunk.end {
-                let (mi, xi, ri) = (at.mask[i], at.x[i], at.radius[i]);
-                if mi & (self.groupbit | self.jgroupbit) == 0 {
-                    continue;
+        super::group_pairs(s, self.groupbit, self.jgroupbit, |i, j, rsq, count_i, count_j| {
+            let radsum = at.radius[i] + at.radius[j];
+            if rsq <= radsum * radsum {
+                if count_i {
+                    contact[i] += 1.0;
                 }
-                for &e in chunk.neighbors(i) {
-                    let level = special_level(e);
-                    if lj[level] == 0.0 && coul[level] == 0.0 {
-                        continue;
-                    }
-                    let j = (e & NEIGH_MASK) as usize;
-                    let mj = at.mask[j];
-                    let count_i = mi & self.groupbit != 0 && mj & self.jgroupbit != 0;
-                    let count_j = j < at.nlocal && mj & self.groupbit != 0 && mi & self.jgroupbit != 0;
-                    if !count_i && !count_j {
-                        continue;
-                    }
-                    let (dx, dy, dz) = (xi[0] - at.x[j][0], xi[1] - at.x[j][1], xi[2] - at.x[j][2]);
-                    let radsum = ri + at.radius[j];
-                    if dx * dx + dy * dy + dz * dz <= radsum * radsum {
-                        if count_i {
-                            contact[i] += 1.0;
-                        }
-                        if count_j {
-                            contact[j] += 1.0;
-                        }
-                    }
+                if count_j {
+                    contact[j] += 1.0;
                 }
             }
-        }
+        });
         Ok(PerAtom { cols: 1, data: contact })
     }
 }

@@ -6,6 +6,7 @@ pub mod bond_local;
 pub mod chunk_atom;
 pub mod com;
 pub mod contact_atom;
+pub mod coord_atom;
 pub mod displace_atom;
 pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
@@ -287,6 +288,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("ke/atom", |d, _| Ok(Box::new(ke_atom::ComputeKeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("nbond/atom", |d, w| Ok(Box::new(nbond_atom::ComputeNBondAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("coord/atom", |d, w| Ok(Box::new(coord_atom::ComputeCoordAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("contact/atom", |d, w| Ok(Box::new(contact_atom::ComputeContactAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("erotate/sphere/atom", |d, w| Ok(Box::new(erotate_sphere_atom::ComputeErotateSphereAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
@@ -308,6 +310,39 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("sph/t/atom", |d, w| Ok(Box::new(sph_atom::ComputeSphAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
     ("dmhs/phase/atom", |d, w| Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
 ];
+
+/// Each pair of the pair style's neighbour list between an atom of group `gi` and one of group
+/// `gj`, special pairs of weight 0 left out (as LAMMPS' lists leave them out): `visit(i, j,
+/// rsq, count_i, count_j)`, where `count_i` says owned atom i is in `gi` and j in `gj`, and
+/// `count_j` the same the other way round for an owned j. A pair of owned atoms is listed
+/// once; a pair with a ghost is listed by each owned end, which counts for itself.
+pub fn group_pairs(s: &State, gi: u32, gj: u32, mut visit: impl FnMut(usize, usize, f64, bool, bool)) {
+    use crate::engine::neighbor::{special_level, NEIGH_MASK};
+    let at = &s.atoms;
+    let (lj, coul) = (s.special_bonds.lj, s.special_bonds.coul);
+    for chunk in &s.neighbor.list.chunks {
+        for i in chunk.start..chunk.end {
+            let (mi, xi) = (at.mask[i], at.x[i]);
+            if mi & (gi | gj) == 0 {
+                continue;
+            }
+            for &e in chunk.neighbors(i) {
+                let level = special_level(e);
+                if lj[level] == 0.0 && coul[level] == 0.0 {
+                    continue;
+                }
+                let j = (e & NEIGH_MASK) as usize;
+                let mj = at.mask[j];
+                let count_i = mi & gi != 0 && mj & gj != 0;
+                let count_j = j < at.nlocal && mj & gi != 0 && mi & gj != 0;
+                if count_i || count_j {
+                    let (dx, dy, dz) = (xi[0] - at.x[j][0], xi[1] - at.x[j][1], xi[2] - at.x[j][2]);
+                    visit(i, j, dx * dx + dy * dy + dz * dz, count_i, count_j);
+                }
+            }
+        }
+    }
+}
 
 /// Build a compute from `compute ID group style args...`.
 pub fn new_compute(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], w: &World) -> DResult<Box<dyn Compute>> {

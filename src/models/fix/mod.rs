@@ -42,6 +42,7 @@ pub mod rigid_small;
 pub mod setforce;
 pub mod sph;
 pub mod spring;
+pub mod spring_rg;
 pub mod spring_self;
 pub mod store_local;
 pub mod temp_csvr;
@@ -462,6 +463,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("recenter", |d, state| Ok(Box::new(recenter::FixRecenter::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("spring/rg", |d, _| Ok(Box::new(spring_rg::FixSpringRg::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("halt", |d, _| Ok(Box::new(halt::FixHalt::from_lammps(d)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("spring/self", |d, state| Ok(Box::new(spring_self::FixSpringSelf::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

@@ -62,6 +62,10 @@ pub trait Host: EvalContext {
     /// Whether the engine implements a command (the interpreter reports all unknown and
     /// unsupported command names of a file before running it).
     fn supports_command(&self, name: &str) -> bool;
+    /// A fix halt ended the runs (LAMMPS' expired timer): `run ... every` stops its segments.
+    fn run_halted(&self) -> bool {
+        false
+    }
     /// Report a warning (the host decides where it goes).
     fn warn(&mut self, warning: Diagnostic, sources: &SourceMap) {
         self.print(&warning.render(sources));

@@ -425,8 +425,94 @@ impl Interpreter {
             "quit" => self.quit_command(cmd, args),
             "partition" => self.partition(cmd, args, line, host),
             "shell" | "python" => Err(one(refused(&cmd.to_word()))),
+            "run" if args.iter().any(|w| w.as_str() == "every") => self.run_every(cmd, args, host),
             _ => self.host_command(words, host),
         }
+    }
+
+    /// `run N [keywords] every M c1 c2 ...` (or `NULL`), as LAMMPS' Run: the run in segments of M
+    /// steps, each a run of its own (its ramps over the segment unless `start`/`stop` are
+    /// given; a full setup for the first, and for all with `pre yes`; the full summary for the
+    /// last, and for all with `post yes`, LAMMPS' defaults being yes), the commands executed
+    /// after each segment. The segments stop early when a fix halt ended the runs.
+    fn run_every(&mut self, cmd: &LexWord, args: &[LexWord], host: &mut dyn Host) -> Flow {
+        let syntax = "syntax: run N [upto] [start N1] [stop N2] [pre yes|no] [post yes|no] every M c1 c2 ... (or NULL)";
+        let k = args.iter().position(|w| w.as_str() == "every").expect("called with every");
+        let every = &args[k];
+        let Some(m) = args.get(k + 1) else {
+            return Err(one(Diagnostic::at(every.span, "missing M after `every`", "here").with_help(syntax)));
+        };
+        let m_steps = match m.as_str().parse::<i64>() {
+            Ok(v) if v > 0 => v,
+            _ => return Err(one(Diagnostic::at(m.span, format!("run every M must be an integer > 0, found `{}`", m.as_str()), "expected M > 0").with_help(syntax))),
+        };
+        let commands = &args[k + 2..];
+        if commands.is_empty() {
+            return Err(one(Diagnostic::at(m.span, "missing commands after `every M` (NULL for none)", "here").with_help(syntax)));
+        }
+        let commands = if commands.len() == 1 && commands[0].as_str() == "NULL" { &[][..] } else { commands };
+        let Some(n_word) = args.first().filter(|_| k > 0) else {
+            return Err(one(Diagnostic::at(cmd.span, "missing N for `run`", "here").with_help(syntax)));
+        };
+        let Ok(n) = n_word.as_str().parse::<i64>() else {
+            return Err(one(Diagnostic::at(n_word.span, format!("run N must be an integer, found `{}`", n_word.as_str()), "expected N").with_help(syntax)));
+        };
+        // the keywords before `every`: upto, pre and post are decided per segment here, the
+        // others (start, stop) pass to each segment's run as written
+        let (mut upto, mut pre, mut post) = (false, true, true);
+        let mut passed: Vec<Word> = vec![];
+        let mut i = 1;
+        while i < k {
+            let w = &args[i];
+            match w.as_str() {
+                "upto" => upto = true,
+                "pre" | "post" if i + 1 < k => {
+                    let yes = logical(&args[i + 1])?;
+                    if w.as_str() == "pre" { pre = yes } else { post = yes }
+                    i += 1;
+                }
+                _ => passed.push(w.to_word()),
+            }
+            i += 1;
+        }
+        let mut nleft = n;
+        if upto {
+            let now = match host.thermo_keyword("step") {
+                Some(Ok(s)) => s as i64,
+                _ => return Err(one(Diagnostic::at(n_word.span, "run upto: the current step is not known", "here"))),
+            };
+            nleft = n - now;
+            if nleft < 0 {
+                return Err(one(Diagnostic::at(n_word.span, format!("Invalid run command upto value: {n}. Must be >= {now}"), "before the current step")));
+            }
+        }
+        let word = |text: String, span: Span| Word { text, span, quoted: false };
+        let mut iter = 0;
+        while nleft > 0 || iter == 0 {
+            if host.run_halted() {
+                break;
+            }
+            let nsteps = nleft.clamp(0, m_steps);
+            let mut run_args = vec![word(nsteps.to_string(), n_word.span)];
+            run_args.extend(passed.iter().cloned());
+            let yes_no = |b: bool| if b { "yes" } else { "no" }.to_string();
+            run_args.push(word("pre".into(), every.span));
+            run_args.push(word(yes_no(pre || iter == 0), every.span));
+            run_args.push(word("post".into(), every.span));
+            run_args.push(word(yes_no(post || nleft <= nsteps), every.span));
+            let name = cmd.to_word();
+            let command = Command { span: name.span.to(m.span), name, args: run_args };
+            host.execute(&command, &mut self.sources).map_err(one)?;
+            for c in commands {
+                self.one(&c.text, host)?;
+                if self.quit.is_some() {
+                    return Ok(());
+                }
+            }
+            nleft -= nsteps;
+            iter += 1;
+        }
+        Ok(())
     }
 
     fn host_command(&mut self, words: &[LexWord], host: &mut dyn Host) -> Flow {

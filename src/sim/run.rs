@@ -730,7 +730,9 @@ impl Simulation {
             return Err(RunError::new(self.state.step, format!("run start/stop must bracket the run: start {start} <= {first}, stop {stop} >= {last}")));
         }
         // `pre no` after a first run skips LAMMPS' init, which restarts the build counts
-        let counts = (!opts.pre && self.state.run_window.is_some()).then_some((self.state.neighbor.nbuilds, self.state.neighbor.ndanger));
+        // `pre no` after a first run: LAMMPS' output->setup only (no init, no setup banner)
+        let brief = !opts.pre && self.state.run_window.is_some();
+        let counts = brief.then_some((self.state.neighbor.nbuilds, self.state.neighbor.ndanger));
         self.state.run_window = Some((start, stop));
         self.init_run().map_err(|e| RunError::setup(self.state.step, e))?;
         if let Some((nbuilds, ndanger)) = counts {
@@ -739,7 +741,7 @@ impl Simulation {
         if self.state.decomp.is_some() {
             self.distribute()?;
         }
-        let mut outcome = self.run_steps(opts, first, last);
+        let mut outcome = self.run_steps(opts, first, last, brief);
         // LAMMPS' post_run (fix adapt's reset)
         for f in self.fixes.iter_mut() {
             f.post_run(&mut self.state);
@@ -770,14 +772,17 @@ impl Simulation {
 
     /// The setup (its error: the outer one) and the steps of a run, until `last` or the first
     /// error (on any rank).
-    fn run_steps(&mut self, opts: &RunOptions, first: i64, last: i64) -> Result<Result<(), RunError>, RunError> {
+    /// `brief`: `pre no` after a first run, which prints no setup banner and no memory line.
+    fn run_steps(&mut self, opts: &RunOptions, first: i64, last: i64, brief: bool) -> Result<Result<(), RunError>, RunError> {
         let nsteps = last - first;
-        self.out.print(&format!(
-            "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",
-            self.state.units.name(),
-            self.state.step,
-            crate::output::format::g(self.state.dt)
-        ));
+        if !brief {
+            self.out.print(&format!(
+                "Setting up Verlet run ...\n  Unit style    : {}\n  Current step  : {}\n  Time step     : {}\n",
+                self.state.units.name(),
+                self.state.step,
+                crate::output::format::g(self.state.dt)
+            ));
+        }
         self.setup(opts.pre)?;
         if self.want_capture && self.capture_setup.is_none() {
             // crosscheck: the forces after the setup of the first run, as lammps_driver.py's
@@ -789,8 +794,10 @@ impl Simulation {
         for w in warnings {
             self.out.print(&format!("WARNING: {w}"));
         }
-        let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
-        self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
+        if !brief {
+            let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
+            self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
+        }
         self.out.print(&self.thermo.header());
         let first_output = self.output_step(true, last);
         self.agree(first_output)?;

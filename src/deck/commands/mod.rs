@@ -132,6 +132,9 @@ impl Host for Simulation {
     fn print(&mut self, text: &str) {
         self.out.print(text);
     }
+    fn run_halted(&self) -> bool {
+        self.state.halted
+    }
     fn echo(&mut self, text: &str, screen: bool, log: bool) {
         self.out.print_to(text, screen, log);
     }

@@ -23,7 +23,6 @@ pub fn parse_run(cmd: &Command) -> DResult<RunOptions> {
             "stop" => o.stop = Some(a.i64("stop step")?),
             "pre" => o.pre = a.yes_no("pre")?,
             "post" => o.post = a.yes_no("post")?,
-            "every" => return Err(a.error_at(kw, "run ... every is not supported yet (use a loop with label/jump)", "not supported")),
             _ => return Err(a.unknown_keyword(kw, &["upto", "start", "stop", "pre", "post"])),
         }
     }

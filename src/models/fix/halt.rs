@@ -10,7 +10,7 @@ use super::{Fix, FixCtx, FixDef, FixHooks, MinRole};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult};
 
-pub const SYNTAX: &str = "fix ID group halt N bondmax|tlimit|v_name <|<=|>|>=|==|!=|^| avalue [error hard|soft|continue] [message yes|no] [universe no]";
+pub const SYNTAX: &str = "fix ID group halt N bondmax|tlimit|v_name OP avalue [error hard|soft|continue] [message yes|no] [universe no]  (OP: < <= > >= == != |^)";
 
 const OPERATORS: [&str; 7] = ["<", "<=", ">", ">=", "==", "!=", "|^"];
 

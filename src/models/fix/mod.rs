@@ -6,6 +6,7 @@ pub mod addforce;
 pub mod aveforce;
 pub mod ave_atom;
 pub mod ave_chunk;
+pub mod ave_histo;
 pub mod ave_time;
 pub mod balance;
 pub mod bond_break;
@@ -464,6 +465,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("recenter", |d, state| Ok(Box::new(recenter::FixRecenter::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("spring/rg", |d, _| Ok(Box::new(spring_rg::FixSpringRg::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("ave/histo", |d, state| Ok(Box::new(ave_histo::FixAveHisto::from_lammps(d, state)?))),
     ("halt", |d, _| Ok(Box::new(halt::FixHalt::from_lammps(d)?))),
     ("spring", |d, state| Ok(Box::new(spring::FixSpring::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("spring/self", |d, state| Ok(Box::new(spring_self::FixSpringSelf::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

@@ -2,11 +2,9 @@
 //! lammps-refs/decks/in.thermo_gyration_vacf and in.thermo_spring_rg against LAMMPS' (stored, and
 //! LAMMPS run now), the identities the computes obey, the restraint at work, and located errors.
 
-use dmhs::deck::{run_file, DeckOptions};
-
 mod common;
 mod thermo_tables;
-use thermo_tables::{root, table};
+use thermo_tables::dmhs_table;
 
 thermo_tables::thermo_table_tests!(["thermo_gyration_vacf", "thermo_spring_rg"]);
 
@@ -15,10 +13,7 @@ thermo_tables::thermo_table_tests!(["thermo_gyration_vacf", "thermo_spring_rg"])
 /// which thermo's temperature gives as T (3N - 3) / N.
 #[test]
 fn gyration_is_the_trace_and_vacf_starts_at_mean_v2() {
-    let deck = root().join("lammps-refs/decks/in.thermo_gyration_vacf");
-    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(deck.parent().unwrap().to_path_buf()), ..Default::default() };
-    let run = run_file(&deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
-    let (names, rows) = table(run.sim.out.captured.as_deref().unwrap());
+    let (names, rows) = dmhs_table("thermo_gyration_vacf");
     let col = |n: &str| names.iter().position(|c| c == n).unwrap_or_else(|| panic!("no column {n}"));
     for r in &rows {
         let trace = r[col("c_g[1]")] + r[col("c_g[2]")] + r[col("c_g[3]")];
@@ -50,10 +45,7 @@ fn bad_computes_are_located() {
 /// within 0.1 of it (K 5 is weak against the liquid's motion).
 #[test]
 fn spring_rg_pulls_the_radius_to_its_target() {
-    let deck = root().join("lammps-refs/decks/in.thermo_spring_rg");
-    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(deck.parent().unwrap().to_path_buf()), ..Default::default() };
-    let run = run_file(&deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
-    let (names, rows) = table(run.sim.out.captured.as_deref().unwrap());
+    let (names, rows) = dmhs_table("thermo_spring_rg");
     let col = |n: &str| names.iter().position(|c| c == n).unwrap_or_else(|| panic!("no column {n}"));
     assert!(rows[0][col("v_gl")] - rows[5][col("v_gl")] > 0.2, "{} -> {}", rows[0][col("v_gl")], rows[5][col("v_gl")]);
     for r in &rows {

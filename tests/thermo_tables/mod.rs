@@ -19,7 +19,8 @@ pub fn table(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     (names, rows)
 }
 
-fn dmhs_table(name: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+/// The last thermo table of lammps-refs/decks/in.NAME as dmhs prints it.
+pub fn dmhs_table(name: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     let deck = root().join("lammps-refs/decks").join(format!("in.{name}"));
     let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(deck.parent().unwrap().to_path_buf()), ..Default::default() };
     let run = run_file(&deck, &opts).unwrap_or_else(|f| panic!("{name}: {}", f.rendered));

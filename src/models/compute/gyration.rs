@@ -20,10 +20,9 @@ impl ComputeGyration {
     }
 }
 
-/// Each member's displacement from the centre of mass (unwrapped) with its mass, in LAMMPS'
-/// atom order; and the group's mass.
-fn about_centre(state: &State, bit: u32) -> Result<(Vec<([f64; 3], f64)>, f64), String> {
-    let (c, m) = state.group_xcm(bit);
+/// Each member's displacement from the centre `c` (unwrapped) with its mass, in LAMMPS' atom
+/// order.
+fn about(state: &State, bit: u32, c: [f64; 3]) -> Result<Vec<([f64; 3], f64)>, String> {
     let dom = state.domain()?;
     let a = &state.atoms;
     let order = state.lammps_order.indices(a.nlocal);
@@ -31,12 +30,19 @@ fn about_centre(state: &State, bit: u32) -> Result<(Vec<([f64; 3], f64)>, f64), 
         let u = dom.unmap(a.x[i], a.image[i]);
         ([u[0] - c[0], u[1] - c[1], u[2] - c[2]], state.mass(i))
     });
-    Ok((d.collect(), m))
+    Ok(d.collect())
 }
 
 /// The radius of gyration of group `bit` (0 for a massless group), over the ranks.
 pub fn radius(state: &State, bit: u32) -> Result<f64, String> {
-    let (d, m) = about_centre(state, bit)?;
+    let (c, m) = state.group_xcm(bit);
+    radius_about(state, bit, c, m)
+}
+
+/// [`radius`] about the group's centre `c` and mass `m` already summed (LAMMPS' gyration with
+/// its xcm).
+pub fn radius_about(state: &State, bit: u32, c: [f64; 3], m: f64) -> Result<f64, String> {
+    let d = about(state, bit, c)?;
     let mut rg = [d.iter().map(|(d, mi)| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * mi).sum::<f64>()];
     state.sum_ranks(&mut rg);
     Ok(if m > 0.0 { (rg[0] / m).sqrt() } else { 0.0 })
@@ -44,7 +50,8 @@ pub fn radius(state: &State, bit: u32) -> Result<f64, String> {
 
 /// The gyration tensor xx yy zz xy xz yz of group `bit`, over the ranks.
 pub fn tensor(state: &State, bit: u32) -> Result<[f64; 6], String> {
-    let (d, m) = about_centre(state, bit)?;
+    let (c, m) = state.group_xcm(bit);
+    let d = about(state, bit, c)?;
     let mut t = [0.0; 6];
     for (d, mi) in d {
         let p = [d[0] * d[0], d[1] * d[1], d[2] * d[2], d[0] * d[1], d[0] * d[2], d[1] * d[2]];

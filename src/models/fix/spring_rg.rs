@@ -57,7 +57,7 @@ impl Fix for FixSpringRg {
         let step = state.step;
         let rg0 = self.rg0.ok_or_else(|| RunError::new(step, format!("fix spring/rg {}: RG0 not set", self.id)))?;
         let (xcm, masstotal) = state.group_xcm(self.groupbit);
-        let rg = gyration::radius(state, self.groupbit).map_err(|e| RunError::new(step, e))?;
+        let rg = gyration::radius_about(state, self.groupbit, xcm, masstotal).map_err(|e| RunError::new(step, e))?;
         if masstotal <= 0.0 {
             return Ok(());
         }

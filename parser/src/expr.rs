@@ -22,8 +22,9 @@
 //!
 //! Where dmhs differs: numbers LAMMPS cannot convert (`.e5`, `1e400`, `1e-310`) make LAMMPS
 //! abort and are errors here; a stray `!` after an operand is a syntax error at once (LAMMPS
-//! reads on and reports a syntax error at the end); `random()`, `normal()` and the special
-//! functions on global vectors (`sum()`, `max()`, ...) are not supported.
+//! reads on and reports a syntax error at the end); the special functions on global vectors
+//! (`sum()`, `max()`, ...) are not supported. `random()` and `normal()` draw from the
+//! generator `Variables` keeps (LAMMPS' randomequal).
 
 use crate::context::EvalContext;
 

@@ -17,6 +17,8 @@ pub mod interp;
 pub mod lexer;
 pub mod molecule_file;
 pub mod numfmt;
+pub mod random_mars;
+pub mod random_park;
 pub mod span;
 pub mod suggest;
 #[cfg(test)]

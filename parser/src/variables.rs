@@ -21,6 +21,7 @@ use crate::context::EvalContext;
 use crate::diag::{DResult, Diagnostic};
 use crate::expr::{self, ExprError};
 use crate::numfmt;
+use crate::random_mars::{RanMars, SEED_RANGE};
 use crate::span::Span;
 use crate::suggest::did_you_mean_help;
 
@@ -71,6 +72,9 @@ struct Var {
 #[derive(Debug, Default)]
 pub struct Variables {
     vars: Vec<Var>,
+    /// The generator of equal-style `random()` and `normal()`: one for all formulas, seeded by
+    /// the first call that draws (later seeds are ignored), as LAMMPS' Variable::randomequal.
+    random_equal: Option<RanMars>,
 }
 
 const STYLES: &[&str] = &["index", "loop", "string", "equal", "internal", "format", "getenv", "atom", "vector", "delete"];
@@ -163,6 +167,21 @@ fn parse_float(w: &Word) -> DResult<f64> {
 }
 
 impl Variables {
+    /// The equal-style generator, made from `seed` (LAMMPS' int cast of the formula's third
+    /// argument) at the first draw, with LAMMPS' messages for a bad seed.
+    pub fn random_equal(&mut self, seed: f64) -> Result<&mut RanMars, String> {
+        if self.random_equal.is_none() {
+            let seed = seed as i32;
+            if seed <= 0 {
+                return Err("Invalid math function in variable formula".into());
+            }
+            if !SEED_RANGE.contains(&(seed as i64)) {
+                return Err("Invalid seed for Marsaglia random # generator".into());
+            }
+            self.random_equal = Some(RanMars::new(seed));
+        }
+        Ok(self.random_equal.as_mut().expect("made above"))
+    }
     fn find(&self, name: &str) -> Option<usize> {
         self.vars.iter().position(|v| v.name == name)
     }

@@ -20,8 +20,9 @@ pub mod mpi_comm;
 pub mod neighbor;
 pub mod par;
 pub mod quat;
-pub mod random_mars;
-pub mod random_park;
+/// LAMMPS' generators (in the parser crate: equal-style `random()` draws from RanMars too).
+pub use dmhs_parser::random_mars;
+pub use dmhs_parser::random_park;
 pub mod region;
 pub mod special;
 pub mod state;

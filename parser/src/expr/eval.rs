@@ -319,8 +319,15 @@ fn math(ctx: &mut dyn EvalContext, f: MathFn, v: &[f64], offset: usize, len: usi
             }
         }
         MathFn::Random | MathFn::Normal => {
-            return Err(e.err(format!("{name}() is not supported by dmhs"))
-                .with_help("random numbers in formulas are not implemented yet"));
+            if f == MathFn::Normal && v[1] < 0.0 {
+                return invalid("Invalid math function in variable formula");
+            }
+            let rng = ctx.variables().random_equal(v[2]).map_err(|m| e.err(m))?;
+            if f == MathFn::Normal {
+                x + v[1] * rng.gaussian()
+            } else {
+                rng.uniform() * (v[1] - x) + x
+            }
         }
         MathFn::Ramp => {
             let s = step_info(e, ctx, name)?;

@@ -640,3 +640,30 @@ fn boolean_conditions() {
         assert!(evaluate_boolean(text, &mut ctx).is_err(), "{text}");
     }
 }
+
+/// Equal-style random() and normal() draw from one generator that the first draw seeds (LAMMPS'
+/// Variable::randomequal): a later seed is ignored; a bad seed or sigma is LAMMPS' error.
+#[test]
+fn random_and_normal_share_one_generator() {
+    use crate::random_mars::RanMars;
+    let mut ctx = TestContext::new();
+    let mut reference = RanMars::new(5);
+    let u = evaluate("random(-1,3,5)", &mut ctx).unwrap();
+    assert_eq!(u, reference.uniform() * 4.0 - 1.0);
+    let g = evaluate("normal(2,0.5,777)", &mut ctx).unwrap();
+    assert_eq!(g, 2.0 + 0.5 * reference.gaussian());
+    assert_eq!(evaluate("random(0,1,1)", &mut ctx).unwrap(), reference.uniform());
+    // once seeded, a seed of 0 is not read
+    assert!(evaluate("random(0,1,0)", &mut ctx).is_ok());
+    assert_eq!(error_of("normal(0,-1,5)", &mut ctx).message, "Invalid math function in variable formula");
+    for (text, msg) in [
+        ("random(0,1,0)", "Invalid math function in variable formula"),
+        ("normal(0,1,-2.5)", "Invalid math function in variable formula"),
+        ("random(0,1,900000001)", "Invalid seed for Marsaglia random # generator"),
+        ("random(0,1)", "Invalid math function in variable formula"),
+    ] {
+        let e = error_of(text, &mut TestContext::new());
+        assert_eq!(e.message, msg, "{text}");
+        assert_eq!(&text[e.offset..e.offset + e.len], text, "{text}: location");
+    }
+}

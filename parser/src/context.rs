@@ -30,6 +30,20 @@ pub trait EvalContext {
     fn fix_value(&mut self, id: &str, _index: Option<usize>) -> Result<f64, String> {
         Err(format!("fix `{id}` does not exist"))
     }
+    /// `c_ID[i][j]` (1-based) of a global array.
+    fn compute_array_value(&mut self, id: &str, _i: usize, _j: usize) -> Result<f64, String> {
+        Err(format!("compute `{id}` does not exist"))
+    }
+    /// `f_ID[i][j]` (1-based) of a global array.
+    fn fix_array_value(&mut self, id: &str, _i: usize, _j: usize) -> Result<f64, String> {
+        Err(format!("fix `{id}` does not exist"))
+    }
+    /// What the special functions `sum()`, `min()`, `max()`, `ave()`, `trap()` and `slope()` run
+    /// over: `c_ID`/`f_ID` (`column` None) a global vector, `c_ID[k]`/`f_ID[k]` column k (1-based)
+    /// of a global array, in row order. `compute` tells `c_` from `f_`.
+    fn global_values(&mut self, compute: bool, id: &str, _column: Option<usize>) -> Result<Vec<f64>, String> {
+        Err(format!("{} `{id}` does not exist", if compute { "compute" } else { "fix" }))
+    }
     /// Group and region functions: `count(group)`, `mass(group)`, `xcm(group,x)`, `bound(group,xmin)`, ...
     /// `None`: not a group function.
     fn group_function(&mut self, _name: &str, _args: &[String]) -> Option<Result<f64, String>> {

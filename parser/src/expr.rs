@@ -22,9 +22,11 @@
 //!
 //! Where dmhs differs: numbers LAMMPS cannot convert (`.e5`, `1e400`, `1e-310`) make LAMMPS
 //! abort and are errors here; a stray `!` after an operand is a syntax error at once (LAMMPS
-//! reads on and reports a syntax error at the end); the special functions on global vectors
-//! (`sum()`, `max()`, ...) are not supported. `random()` and `normal()` draw from the
-//! generator `Variables` keeps (LAMMPS' randomequal).
+//! reads on and reports a syntax error at the end); the special functions `sum()`, `min()`,
+//! `max()`, `ave()`, `trap()` and `slope()` take computes' and fixes' global vectors and array
+//! columns, not vector-style variables; `sort()`, `rsort()` and the mask functions are not
+//! supported. `random()` and `normal()` draw from the generator `Variables` keeps (LAMMPS'
+//! randomequal).
 
 use crate::context::EvalContext;
 
@@ -187,7 +189,7 @@ pub const GROUP_FUNCTIONS: &[&str] =
 /// LAMMPS special and feature functions that dmhs does not implement (a clear error, not the
 /// "invalid function" of a misspelling).
 pub(crate) const UNSUPPORTED_FUNCTIONS: &[&str] = &[
-    "sum", "min", "max", "ave", "trap", "slope", "sort", "rsort", "gmask", "rmask", "grmask", "next", "is_active",
+    "sort", "rsort", "gmask", "rmask", "grmask", "next", "is_active",
     "is_available", "is_defined", "is_os", "extract_setting", "label2type", "is_typelabel", "is_timeout",
 ];
 

@@ -12,6 +12,9 @@ pub enum Field {
     Keyword(String),
     Compute(String, Option<usize>),
     Fix(String, Option<usize>),
+    /// `c_ID[i][j]`, `f_ID[i][j]`: a global array element (1-based).
+    ComputeArray(String, usize, usize),
+    FixArray(String, usize, usize),
     Variable(String),
 }
 
@@ -130,26 +133,28 @@ pub const KEYWORDS: &[(&str, &str)] = &[
     ("ndanger", "Ndanger"),
 ];
 
-/// Parse `c_ID`, `c_ID[2]`, `f_ID`, `v_name` or a keyword into a column.
+/// Parse `c_ID`, `c_ID[2]`, `c_ID[2][3]`, `f_ID` (the same), `v_name` or a keyword into a column.
 pub fn parse_column(word: &str) -> Result<Column, String> {
-    let indexed = |rest: &str| -> Result<(String, Option<usize>), String> {
-        match rest.find('[') {
-            Some(k) if rest.ends_with(']') => {
-                let n: usize = rest[k + 1..rest.len() - 1].parse().map_err(|_| format!("bad index in `{word}`"))?;
-                if n == 0 {
-                    return Err(format!("index in `{word}` must be >= 1"));
-                }
-                Ok((rest[..k].to_string(), Some(n)))
-            }
-            _ => Ok((rest.to_string(), None)),
+    let indexed = |rest: &str| -> Result<(String, Vec<usize>), String> {
+        let Some(k) = rest.find('[') else { return Ok((rest.to_string(), Vec::new())) };
+        let bad = || format!("bad index in `{word}`: expected ID[i] or ID[i][j] with i, j >= 1");
+        let inner = rest[k..].strip_prefix('[').and_then(|t| t.strip_suffix(']')).ok_or_else(bad)?;
+        let idx = inner.split("][").map(|t| t.parse::<usize>().ok().filter(|&n| n >= 1)).collect::<Option<Vec<_>>>().ok_or_else(bad)?;
+        if idx.len() > 2 {
+            return Err(bad());
         }
+        Ok((rest[..k].to_string(), idx))
     };
     let field = if let Some(r) = word.strip_prefix("c_") {
-        let (id, i) = indexed(r)?;
-        Field::Compute(id, i)
+        match indexed(r)? {
+            (id, i) if i.len() == 2 => Field::ComputeArray(id, i[0], i[1]),
+            (id, i) => Field::Compute(id, i.first().copied()),
+        }
     } else if let Some(r) = word.strip_prefix("f_") {
-        let (id, i) = indexed(r)?;
-        Field::Fix(id, i)
+        match indexed(r)? {
+            (id, i) if i.len() == 2 => Field::FixArray(id, i[0], i[1]),
+            (id, i) => Field::Fix(id, i.first().copied()),
+        }
     } else if let Some(r) = word.strip_prefix("v_") {
         Field::Variable(r.to_string())
     } else if let Some((_, label)) = KEYWORDS.iter().find(|(k, _)| *k == word) {
@@ -332,6 +337,8 @@ pub fn values(thermo: &Thermo, w: &World, ev: &mut dyn EvalContext) -> Result<Ve
             Field::Keyword(k) => ev.thermo_keyword(k).unwrap()?,
             Field::Compute(id, i) => per_atom(ev.compute_value(id, *i)?, w.compute(id).is_some_and(|c| c.extensive(*i))),
             Field::Fix(id, i) => per_atom(ev.fix_value(id, *i)?, w.fix(id).is_some_and(|f| f.extensive(*i))),
+            Field::ComputeArray(id, i, j) => ev.compute_array_value(id, *i, *j)?,
+            Field::FixArray(id, i, j) => per_atom(ev.fix_array_value(id, *i, *j)?, w.fix(id).is_some_and(|f| f.array_extensive())),
             Field::Variable(name) => dmhs_parser::variables::compute_equal(ev, name)?,
         };
         out.push(v);

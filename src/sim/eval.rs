@@ -45,6 +45,56 @@ impl EvalContext for Eval<'_> {
             Some(i) => f.vector(state, i).ok_or_else(|| format!("fix `{id}` ({}) has no global vector element {i}", f.style())),
         }
     }
+    fn compute_array_value(&mut self, id: &str, i: usize, j: usize) -> Result<f64, String> {
+        let c = self.world.compute(id).ok_or_else(|| format!("compute `{id}` does not exist"))?;
+        let cols = c.array_cols().ok_or_else(|| format!("compute `{id}` ({}) has no global array", c.style()))?;
+        let a = c.array(&self.world)?;
+        let out = || format!("Variable formula compute array is accessed out-of-range: compute `{id}` has {} x {cols} values, element [{i}][{j}]", a.len());
+        if j > cols {
+            return Err(out());
+        }
+        a.get(i.wrapping_sub(1)).and_then(|r| r.get(j - 1)).copied().ok_or_else(out)
+    }
+    fn fix_array_value(&mut self, id: &str, i: usize, j: usize) -> Result<f64, String> {
+        let f = self.world.fix(id).ok_or_else(|| format!("fix `{id}` does not exist"))?;
+        let (rows, cols) = f.size_array().ok_or_else(|| format!("fix `{id}` ({}) has no global array", f.style()))?;
+        let out = || format!("Variable formula fix array is accessed out-of-range: fix `{id}` has {rows} x {cols} values, element [{i}][{j}]");
+        if j > cols {
+            return Err(out());
+        }
+        // rows past the end are the fix's to judge (ave/time and ave/chunk give 0, as LAMMPS)
+        f.array(self.world.state, i, j).ok_or_else(out)
+    }
+    fn global_values(&mut self, compute: bool, id: &str, column: Option<usize>) -> Result<Vec<f64>, String> {
+        let mismatch = |kind: &str, style: &str| format!("{kind} '{id}' ({style}) in variable formula does not compute the requested property");
+        if compute {
+            let c = self.world.compute(id).ok_or_else(|| format!("Invalid compute ID '{id}' in variable formula"))?;
+            match column {
+                None => c.vector(&self.world).map_err(|_| mismatch("Compute", c.style())),
+                Some(k) if c.array_cols().is_some() => {
+                    if k > c.array_cols().unwrap_or(0) {
+                        return Err("Variable formula compute array is accessed out-of-range".into());
+                    }
+                    Ok(c.array(&self.world)?.iter().map(|r| r[k - 1]).collect())
+                }
+                _ => Err(mismatch("Compute", c.style())),
+            }
+        } else {
+            let f = self.world.fix(id).ok_or_else(|| format!("Invalid fix ID '{id}' in variable formula"))?;
+            let state = self.world.state;
+            let all = |n: usize, get: &dyn Fn(usize) -> Option<f64>| (1..=n).map(|i| get(i).unwrap_or(0.0)).collect();
+            match (column, f.size_array()) {
+                (None, _) if f.size_vector() > 0 => Ok(all(f.size_vector(), &|i| f.vector(state, i))),
+                (Some(k), Some((rows, cols))) => {
+                    if k > cols {
+                        return Err("Variable formula fix array is accessed out-of-range".into());
+                    }
+                    Ok(all(rows, &|i| f.array(state, i, k)))
+                }
+                _ => Err(mismatch("Fix", f.style())),
+            }
+        }
+    }
     fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
         crate::models::compute::group_function(self.world.state, name, args)
     }

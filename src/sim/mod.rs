@@ -208,6 +208,15 @@ impl EvalContext for Simulation {
     fn fix_value(&mut self, id: &str, index: Option<usize>) -> Result<f64, String> {
         self.eval().fix_value(id, index)
     }
+    fn compute_array_value(&mut self, id: &str, i: usize, j: usize) -> Result<f64, String> {
+        self.eval().compute_array_value(id, i, j)
+    }
+    fn fix_array_value(&mut self, id: &str, i: usize, j: usize) -> Result<f64, String> {
+        self.eval().fix_array_value(id, i, j)
+    }
+    fn global_values(&mut self, compute: bool, id: &str, column: Option<usize>) -> Result<Vec<f64>, String> {
+        self.eval().global_values(compute, id, column)
+    }
     fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
         self.eval().group_function(name, args)
     }

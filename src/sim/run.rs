@@ -132,7 +132,8 @@ impl Simulation {
         self.init_thermo_columns();
         // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
         for c in &self.thermo.columns {
-            if let crate::output::thermo::Field::Fix(id, _) = &c.field {
+            use crate::output::thermo::Field;
+            if let Field::Fix(id, _) | Field::FixArray(id, _, _) = &c.field {
                 if let Some(f) = self.fixes.iter().find(|f| f.id() == id) {
                     let freq = f.global_freq();
                     if self.thermo.every % freq != 0 {

@@ -80,14 +80,18 @@ pub fn eval(e: &Expr, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
             }
             variables::formula_value(ctx, name).map_err(|m| e.err(m).bare())
         }
-        Node::Compute { id, indices } => {
-            let i = global_index(e, indices, "c", id, ctx)?;
-            ctx.compute_value(id, i).map_err(|m| e.err(m))
+        Node::Compute { id, indices } => match global_index(e, indices, ctx)? {
+            (i, None) => ctx.compute_value(id, i),
+            (Some(i), Some(j)) => ctx.compute_array_value(id, i, j),
+            (None, Some(_)) => unreachable!("a second index comes with a first"),
         }
-        Node::Fix { id, indices } => {
-            let i = global_index(e, indices, "f", id, ctx)?;
-            ctx.fix_value(id, i).map_err(|m| e.err(m))
+        .map_err(|m| e.err(m)),
+        Node::Fix { id, indices } => match global_index(e, indices, ctx)? {
+            (i, None) => ctx.fix_value(id, i),
+            (Some(i), Some(j)) => ctx.fix_array_value(id, i, j),
+            (None, Some(_)) => unreachable!("a second index comes with a first"),
         }
+        .map_err(|m| e.err(m)),
         Node::UpperCase(word) => {
             let lower = word.to_ascii_lowercase();
             Err(e.err(format!("{word}: upper-case C_/F_ reads a global vector, which an equal-style formula cannot hold"))
@@ -196,19 +200,12 @@ fn index_value(e: &Expr, idx: &Index, ctx: &mut dyn EvalContext) -> Result<i64, 
     }
 }
 
-/// The single index of `c_ID[i]`/`f_ID[i]` (global arrays `[i][j]` are not available).
-fn global_index(
-    e: &Expr,
-    indices: &[Index],
-    prefix: &str,
-    id: &str,
-    ctx: &mut dyn EvalContext,
-) -> Result<Option<usize>, ExprError> {
-    match indices {
-        [] => Ok(None),
-        [i] => Ok(Some(index_value(e, i, ctx)? as usize)),
-        _ => Err(e.err(format!("{prefix}_{id}[i][j]: global array elements are not supported by dmhs"))),
-    }
+/// The indices of `c_ID`, `c_ID[i]` or `c_ID[i][j]` (the parser allows at most two).
+fn global_index(e: &Expr, indices: &[Index], ctx: &mut dyn EvalContext) -> Result<(Option<usize>, Option<usize>), ExprError> {
+    let mut at = |k: usize| -> Result<Option<usize>, ExprError> {
+        indices.get(k).map(|i| index_value(e, i, ctx).map(|n| n as usize)).transpose()
+    };
+    Ok((at(0)?, at(1)?))
 }
 
 /// The byte range errors of a function call point at.
@@ -532,6 +529,9 @@ fn function(e: &Expr, name: &str, args: &[String], ctx: &mut dyn EvalContext) ->
         }
         return Ok(bool_value(std::path::Path::new(&args[0]).is_file()));
     }
+    if let Some(r) = special_function(name, args, ctx) {
+        return r.map_err(|m| e.err(m));
+    }
     if UNSUPPORTED_FUNCTIONS.contains(&name) {
         return Err(e.err(format!("{name}() is a LAMMPS function that dmhs does not support")));
     }
@@ -541,4 +541,82 @@ fn function(e: &Expr, name: &str, args: &[String], ctx: &mut dyn EvalContext) ->
         err = err.with_help(h);
     }
     Err(err)
+}
+
+/// `sum()`, `min()`, `max()`, `ave()`, `trap()` and `slope()` of a global vector or array
+/// column, with LAMMPS' order of operations and messages (Variable::special_function).
+/// `None`: not one of them.
+fn special_function(name: &str, args: &[String], ctx: &mut dyn EvalContext) -> Option<Result<f64, String>> {
+    const BIG: f64 = 1.0e20;
+    if !["sum", "min", "max", "ave", "trap", "slope"].contains(&name) {
+        return None;
+    }
+    Some((|| {
+        let [arg] = args else {
+            return Err(format!("Invalid special function {name}() in variable formula"));
+        };
+        let (body, column) = match arg.find('[') {
+            None => (arg.as_str(), None),
+            Some(k) => {
+                let inside = arg[k + 1..].strip_suffix(']').ok_or("Mismatched brackets in variable")?;
+                if inside.is_empty() {
+                    return Err("Empty brackets in variable".into());
+                }
+                if !inside.bytes().all(|b| b.is_ascii_digit()) {
+                    return Err("Non digit character between brackets in variable".into());
+                }
+                match inside.parse::<usize>() {
+                    Ok(n) if n > 0 => (&arg[..k], Some(n)),
+                    _ => return Err("Index between variable brackets must be positive".into()),
+                }
+            }
+        };
+        let vec = if let Some(id) = body.strip_prefix("c_") {
+            ctx.global_values(true, id, column)?
+        } else if let Some(id) = body.strip_prefix("f_") {
+            ctx.global_values(false, id, column)?
+        } else if let Some(v) = body.strip_prefix("v_") {
+            if column.is_some() || variables::style_of(ctx, v).is_none() {
+                return Err("Invalid special function in variable formula".into());
+            }
+            if variables::style_of(ctx, v) != Some("vector") {
+                return Err("Mis-matched special function variable in variable formula".into());
+            }
+            return Err(format!("{name}(v_{v}): vector-style variables are not evaluated by dmhs"));
+        } else {
+            return Err("Invalid special function in variable formula".into());
+        };
+        let n = vec.len();
+        let mut value = match name {
+            "min" => BIG,
+            "max" => -BIG,
+            _ => 0.0,
+        };
+        let (mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0);
+        for (i, &one) in vec.iter().enumerate() {
+            match name {
+                "min" => value = if value < one { value } else { one },
+                "max" => value = if value > one { value } else { one },
+                "slope" => {
+                    let x = i as f64;
+                    sx += x;
+                    sy += one;
+                    sxx += x * x;
+                    sxy += x * one;
+                }
+                _ => value += one,
+            }
+        }
+        match name {
+            "trap" if n > 0 => value -= 0.5 * vec[0] + 0.5 * vec[n - 1],
+            "ave" => value /= n as f64,
+            "slope" => {
+                let numerator = n as f64 * sxy - sx * sy;
+                let denominator = n as f64 * sxx - sx * sx;
+                value = if denominator != 0.0 { numerator / denominator } else { BIG };
+            }
+            _ => {}
+        }
+        Ok(value)
+    })())
 }

@@ -512,9 +512,11 @@ fn context_values() {
     let e = error_of("c_nope", &mut ctx);
     assert_eq!((e.message.as_str(), e.offset, e.len), ("Invalid compute ID 'nope' in variable formula", 0, 6));
     assert_eq!(error_of("2*count(nope)", &mut ctx).message, "Group nope in variable formula does not exist");
-    assert_eq!(error_of("c_t[1][2]", &mut ctx).message, "c_t[i][j]: global array elements are not supported by dmhs");
+    // this context has no global arrays
+    assert_eq!(error_of("c_t[1][2]", &mut ctx).message, "compute `t` does not exist");
     assert_eq!(error_of("c_t[v_nope]", &mut ctx).message, "Invalid variable name nope in variable formula");
-    assert!(error_of("sum(c_t)", &mut ctx).message.contains("does not support"));
+    assert!(error_of("sort(c_t)", &mut ctx).message.contains("does not support"));
+    assert_eq!(error_of("sum(c_t,2)", &mut ctx).message, "Invalid special function sum() in variable formula");
     let e = error_of("stpe", &mut ctx);
     assert_eq!(e.message, "Invalid thermo keyword 'stpe' in variable formula");
 }

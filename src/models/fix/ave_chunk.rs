@@ -53,6 +53,8 @@ pub struct FixAveChunk {
     lock_start: i64,
     kept_ids: Option<HashMap<i64, usize>>,
     maxchunk: usize,
+    /// Array columns before the count: the original ID (compress yes) and the bin coordinates.
+    colextra: usize,
     count_many: Vec<f64>,
     count_sum: Vec<f64>,
     count_total: Vec<f64>,
@@ -143,6 +145,7 @@ impl FixAveChunk {
             lock_start: -1,
             kept_ids: None,
             maxchunk: 0,
+            colextra: usize::from(chunk.compress) + chunk.ncoord(),
             count_many: Vec::new(),
             count_sum: Vec::new(),
             count_total: Vec::new(),
@@ -449,6 +452,37 @@ impl Fix for FixAveChunk {
     }
     fn wants_energy(&self, step: i64) -> bool {
         self.sampling.due(step)
+    }
+    /// Per chunk: the original chunk ID (compress yes), the bin coordinates, the atom count
+    /// and the values, as LAMMPS' FixAveChunk::compute_array (which reads the coordinates of
+    /// row i, not of its original ID, under compress); rows beyond the chunks are 0.
+    fn array(&self, _state: &State, i: usize, j: usize) -> Option<f64> {
+        let (_, cols) = self.size_array()?;
+        if i == 0 || j == 0 || j > cols {
+            return None;
+        }
+        let Some(ch) = &self.chunks else { return Some(0.0) };
+        let (i, mut j) = (i - 1, j - 1);
+        if i >= ch.nchunk {
+            return Some(0.0);
+        }
+        let compress = self.colextra.saturating_sub(ch.ncoord);
+        if j < self.colextra {
+            if compress == 1 && j == 0 {
+                return Some(ch.chunk_id.get(i).map_or(0.0, |&c| c as f64));
+            }
+            return Some(ch.coord.get(i).map_or(0.0, |c| c[j - compress]));
+        }
+        j -= self.colextra;
+        let norm = self.combine.norm as f64;
+        if norm == 0.0 {
+            return Some(0.0);
+        }
+        Some(if j == 0 { self.count_total[i] / norm } else { self.values_total[i][j - 1] / norm })
+    }
+    fn size_array(&self) -> Option<(usize, usize)> {
+        // one row of zeros before the first sample, as LAMMPS' (its nchunk starts at 1)
+        Some((self.chunks.as_ref().map_or(1, |c| c.nchunk), self.colextra + 1 + self.values.len()))
     }
 }
 

@@ -20,7 +20,7 @@ use crate::models::world::World;
 use dmhs_parser::numfmt::{format_g, shortest};
 use dmhs_parser::{Args, DResult, EvalContext, Word};
 
-pub const SYNTAX: &str = "fix ID group ave/histo Nevery Nrepeat Nfreq lo hi Nbin value ... [mode scalar|vector] [ave one|running|window M] [start S] [beyond ignore|end|extra] [overwrite] [file F] [title1 T] [title2 T] [title3 T]";
+pub const SYNTAX: &str = "fix ID group ave/histo Nevery Nrepeat Nfreq lo hi Nbin value ... [mode scalar|vector] [ave one|running|window M] [start S] [beyond ignore|end|extra] [overwrite] [file F] [title1 T] [title2 T] [title3 T] [kind global|peratom|local]";
 
 const ATOM_VALUES: [&str; 9] = ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"];
 
@@ -29,6 +29,12 @@ enum Kind {
     Global,
     PerAtom,
     Local,
+}
+
+impl Kind {
+    fn name(self) -> &'static str {
+        ["global", "per-atom", "local"][self as usize]
+    }
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -81,6 +87,8 @@ pub struct FixAveHisto {
     coord: Vec<f64>,
     values: Vec<Value>,
     kind: Kind,
+    /// The `kind` keyword named it (variables must then be of that kind).
+    kind_given: bool,
     vector_mode: bool,
     beyond: Beyond,
     ave: Ave,
@@ -118,6 +126,7 @@ impl FixAveHisto {
         }
         let (mut vector_mode, mut ave, mut beyond, mut overwrite) = (false, Ave::One, Beyond::Ignore, false);
         let (mut file, mut titles): (Option<&Word>, [Option<String>; 3]) = (None, [None, None, None]);
+        let mut forced: Option<(Kind, &Word)> = None;
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
@@ -128,8 +137,12 @@ impl FixAveHisto {
                 "overwrite" => overwrite = true,
                 "file" => file = Some(a.word("file name")?),
                 "title1" | "title2" | "title3" => titles[(w.text.as_bytes()[5] - b'1') as usize] = Some(a.str("title")?.to_string()),
-                "weights" | "kind" | "append" => return Err(a.error_at(w, format!("fix ave/histo {} is not supported by dmhs", w.text), "not supported")),
-                _ => return Err(a.unknown_keyword(w, &["mode", "ave", "start", "beyond", "overwrite", "file", "title1", "title2", "title3"])),
+                "kind" => {
+                    let k = [Kind::Global, Kind::PerAtom, Kind::Local][a.choice("kind", &["global", "peratom", "local"])?];
+                    forced = Some((k, w));
+                }
+                "weights" | "append" => return Err(a.error_at(w, format!("fix ave/histo {} is not supported by dmhs", w.text), "not supported")),
+                _ => return Err(a.unknown_keyword(w, &["mode", "ave", "start", "beyond", "overwrite", "file", "title1", "title2", "title3", "kind"])),
             }
         }
         if overwrite && ave != Ave::Running {
@@ -142,6 +155,9 @@ impl FixAveHisto {
         for w in raw {
             let t = w.text.as_str();
             let (value, k) = if let Some(i) = ATOM_VALUES.iter().position(|v| *v == t) {
+                if let Some((k, kw)) = forced.filter(|f| f.0 != Kind::PerAtom) {
+                    return Err(a.error_at(kw, format!("fix ave/histo: `{t}` is a per-atom value, not {}", k.name()), "per-atom input"));
+                }
                 (Value::Atom(i / 3, i % 3), Some(Kind::PerAtom))
             } else {
                 let name = &t[2..];
@@ -156,18 +172,29 @@ impl FixAveHisto {
                 match &t[..2] {
                     "c_" => {
                         let c = d.computes.iter().find(|c| c.id() == id).ok_or_else(|| a.error_at(w, format!("Compute ID {id} for fix ave/histo does not exist"), "unknown compute"))?;
-                        let k = if c.peratom_cols().is_some() {
-                            Kind::PerAtom
-                        } else if c.local_cols().is_some() {
-                            Kind::Local
-                        } else {
-                            Kind::Global
+                        let has = |k: Kind| match k {
+                            Kind::PerAtom => c.peratom_cols().is_some(),
+                            Kind::Local => c.local_cols().is_some(),
+                            Kind::Global => c.peratom_cols().is_none() && c.local_cols().is_none() || c.size_vector().is_some(),
+                        };
+                        let k = match forced {
+                            Some((k, _)) if !has(k) => return Err(a.error_at(w, format!("Fix ave/histo input is invalid compute: {id} has no {} values", k.name()), "wrong kind")),
+                            Some((k, _)) => k,
+                            None if c.peratom_cols().is_some() => Kind::PerAtom,
+                            None if c.local_cols().is_some() => Kind::Local,
+                            None => Kind::Global,
                         };
                         (Value::Compute(id.to_string(), index), Some(k))
                     }
                     "f_" => {
                         let f = d.fixes.iter().find(|f| f.id() == id).ok_or_else(|| a.error_at(w, format!("Fix ID {id} for fix ave/histo does not exist"), "unknown fix"))?;
-                        let k = if f.peratom_cols().is_some() { Kind::PerAtom } else { Kind::Global };
+                        let k = match forced {
+                            Some((Kind::Local, _)) => return Err(a.error_at(w, format!("Fix ave/histo input is invalid fix: {id} has no local values"), "wrong kind")),
+                            Some((Kind::PerAtom, _)) if f.peratom_cols().is_none() => return Err(a.error_at(w, format!("Fix ave/histo input is invalid fix: {id} has no per-atom values"), "wrong kind")),
+                            Some((k, _)) => k,
+                            None if f.peratom_cols().is_some() => Kind::PerAtom,
+                            None => Kind::Global,
+                        };
                         if k == Kind::Global && sampling.nevery % f.global_freq() != 0 {
                             return Err(a.error_at(w, format!("Fix {id} for fix ave/histo not computed at compatible time"), "every"));
                         }
@@ -177,8 +204,8 @@ impl FixAveHisto {
                         if index.is_some() {
                             return Err(a.error_at(w, "fix ave/histo reads equal- and atom-style variables only (no vector-style element)", "vector variable"));
                         }
-                        // equal or atom style: known when a run starts
-                        (Value::Variable(id.to_string()), None)
+                        // equal or atom style: known when a run starts (or given by kind)
+                        (Value::Variable(id.to_string()), forced.map(|f| f.0))
                     }
                 }
             };
@@ -213,6 +240,7 @@ impl FixAveHisto {
             coord,
             values,
             kind: kind.unwrap_or(Kind::Global),
+            kind_given: forced.is_some(),
             vector_mode,
             beyond,
             ave,
@@ -434,7 +462,7 @@ impl Fix for FixAveHisto {
         }
         let styles = ctx.eval(state, self, |_, ev| Ok(names.iter().map(|n| ev.variables().style(n)).collect::<Vec<_>>()))?;
         let err = |m: String| RunError::new(state.step, format!("fix ave/histo {}: {m}", self.id));
-        let fixed = self.values.iter().any(|v| !matches!(v, Value::Variable(_)));
+        let fixed = self.kind_given || self.values.iter().any(|v| !matches!(v, Value::Variable(_)));
         let mut kind = fixed.then_some(self.kind);
         for (n, st) in names.iter().zip(styles) {
             let k = match st {
@@ -467,5 +495,19 @@ impl Fix for FixAveHisto {
     }
     fn vector(&self, _state: &State, i: usize) -> Option<f64> {
         (1..=4).contains(&i).then(|| self.total.stats[i - 1])
+    }
+    /// Per bin: its coordinate, the count, the count over the total (0 while nothing counted).
+    fn array(&self, _state: &State, i: usize, j: usize) -> Option<f64> {
+        let t = &self.total;
+        let b = *t.bins.get(i.wrapping_sub(1))?;
+        match j {
+            1 => Some(self.coord[i - 1]),
+            2 => Some(b),
+            3 => Some(if t.stats[0] != 0.0 { b / t.stats[0] } else { 0.0 }),
+            _ => None,
+        }
+    }
+    fn size_array(&self) -> Option<(usize, usize)> {
+        Some((self.coord.len(), 3))
     }
 }

@@ -362,6 +362,13 @@ impl Fix for FixAveTime {
         Ok(())
     }
     fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        if self.vector_mode && self.total.is_empty() {
+            // LAMMPS knows the rows from the inputs' lengths before the first sample: its
+            // vector or array reads zeros of that length until then
+            let nrows = ctx.eval(state, self, |w, ev| self.sample(w, ev))?.first().map_or(0, |c| c.len());
+            self.sum = vec![vec![0.0; self.values.len()]; nrows];
+            self.total = self.sum.clone();
+        }
         self.invoke(state, ctx)
     }
     fn end_of_step(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -381,13 +388,26 @@ impl Fix for FixAveTime {
             return None;
         }
         if self.vector_mode {
-            Some(self.value_out(i - 1, 0))
+            // several values in vector mode make an array, not a vector (LAMMPS)
+            (self.values.len() == 1).then(|| self.value_out(i - 1, 0))
         } else {
             (i <= self.values.len()).then(|| self.value_out(0, i - 1))
         }
     }
+    fn array(&self, _state: &State, i: usize, j: usize) -> Option<f64> {
+        (self.size_array().is_some() && i >= 1 && (1..=self.values.len()).contains(&j)).then(|| self.value_out(i - 1, j - 1))
+    }
+    fn size_array(&self) -> Option<(usize, usize)> {
+        (self.vector_mode && self.values.len() > 1).then_some((self.total.len(), self.values.len()))
+    }
+    fn array_extensive(&self) -> bool {
+        self.values[0].extensive
+    }
     fn size_vector(&self) -> usize {
         if self.vector_mode {
+            if self.values.len() > 1 {
+                return 0;
+            }
             self.total.len()
         } else if self.values.len() > 1 {
             self.values.len()

@@ -327,6 +327,18 @@ pub trait Fix: Send + Sync {
     fn vector(&self, _state: &State, _i: usize) -> Option<f64> {
         None
     }
+    /// Global array element `f_ID[i][j]` (1-based), if the fix has an array.
+    fn array(&self, _state: &State, _i: usize, _j: usize) -> Option<f64> {
+        None
+    }
+    /// Rows and columns of the global array, if the fix has one.
+    fn size_array(&self) -> Option<(usize, usize)> {
+        None
+    }
+    /// Whether the global array is extensive (LAMMPS' extarray).
+    fn array_extensive(&self) -> bool {
+        false
+    }
     /// Whether the global scalar (`index` None) or vector element `index` (1-based) is
     /// extensive: thermo output divides it by the atom count under `thermo_modify norm yes`.
     fn extensive(&self, _index: Option<usize>) -> bool {

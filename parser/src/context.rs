@@ -44,6 +44,15 @@ pub trait EvalContext {
     fn global_values(&mut self, compute: bool, id: &str, _column: Option<usize>) -> Result<Vec<f64>, String> {
         Err(format!("{} `{id}` does not exist", if compute { "compute" } else { "fix" }))
     }
+    /// `C_ID[I]` (`column` None) or `C_ID[I][J]` (`compute` true; `F_` alike): atom I's value of
+    /// a per-atom vector or array column J.
+    fn peratom_element(&mut self, compute: bool, id: &str, _column: Option<usize>, _atom: i64) -> Result<f64, String> {
+        Err(format!("{} `{id}` does not exist", if compute { "compute" } else { "fix" }))
+    }
+    /// `v_name[I]` of atom-style variable `name`: its value for atom I.
+    fn atom_variable_element(&mut self, name: &str, _atom: i64) -> Result<f64, String> {
+        Err(format!("Variable {name}: per-atom values are not available here"))
+    }
     /// Group and region functions: `count(group)`, `mass(group)`, `xcm(group,x)`, `bound(group,xmin)`, ...
     /// `None`: not a group function.
     fn group_function(&mut self, _name: &str, _args: &[String]) -> Option<Result<f64, String>> {

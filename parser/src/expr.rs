@@ -235,6 +235,9 @@ pub enum Node {
     Fix { id: String, indices: Vec<Index> },
     /// `C_ID`/`F_ID`: LAMMPS' forced access to a global vector (never a scalar).
     UpperCase(String),
+    /// `C_ID[I]`, `C_ID[I][J]` (`F_` alike): one atom's value of a per-atom vector or array
+    /// column J, by atom ID I.
+    AtomElement { compute: bool, id: String, indices: Vec<Index> },
     /// `x[12]`: one atom's value by atom ID.
     AtomValue { keyword: String, id: Index },
     /// A bare per-atom vector such as `x` (per-atom formulas only).

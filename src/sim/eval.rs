@@ -95,6 +95,35 @@ impl EvalContext for Eval<'_> {
             }
         }
     }
+    fn peratom_element(&mut self, compute: bool, id: &str, column: Option<usize>, atom: i64) -> Result<f64, String> {
+        let (kind, cols) = if compute {
+            let c = self.world.compute(id).ok_or_else(|| format!("Invalid compute ID '{id}' in variable formula"))?;
+            ("Compute", c.peratom_cols())
+        } else {
+            let f = self.world.fix(id).ok_or_else(|| format!("Invalid fix ID '{id}' in variable formula"))?;
+            ("Fix", f.peratom_cols())
+        };
+        let mismatch = || format!("{kind} '{id}' in variable formula does not compute the requested property");
+        // one column: a per-atom vector; more: an array
+        let name = match (cols, column) {
+            (Some(1), None) => format!("{}_{id}", if compute { 'c' } else { 'f' }),
+            (Some(n), Some(j)) if n > 1 => {
+                if j > n {
+                    return Err(format!("Variable formula {} array is accessed out-of-range", kind.to_lowercase()));
+                }
+                format!("{}_{id}[{j}]", if compute { 'c' } else { 'f' })
+            }
+            _ => return Err(mismatch()),
+        };
+        let r = crate::models::compute::PerAtomRef::parse(&name, &self.world).ok_or_else(mismatch)??;
+        let values = r.values(&self.world)?;
+        crate::models::compute::by_atom_id(self.world.state, atom, |i| r.get(&values, i))
+    }
+    fn atom_variable_element(&mut self, name: &str, atom: i64) -> Result<f64, String> {
+        let w = self.world;
+        let values = crate::models::atom_formula::atom_variable(name, &w, self)?;
+        crate::models::compute::by_atom_id(w.state, atom, |i| values[i])
+    }
     fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
         crate::models::compute::group_function(self.world.state, name, args)
     }

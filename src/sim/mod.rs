@@ -217,6 +217,12 @@ impl EvalContext for Simulation {
     fn global_values(&mut self, compute: bool, id: &str, column: Option<usize>) -> Result<Vec<f64>, String> {
         self.eval().global_values(compute, id, column)
     }
+    fn peratom_element(&mut self, compute: bool, id: &str, column: Option<usize>, atom: i64) -> Result<f64, String> {
+        self.eval().peratom_element(compute, id, column, atom)
+    }
+    fn atom_variable_element(&mut self, name: &str, atom: i64) -> Result<f64, String> {
+        self.eval().atom_variable_element(name, atom)
+    }
     fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
         self.eval().group_function(name, args)
     }

@@ -66,11 +66,15 @@ pub fn eval(e: &Expr, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
         }
         Node::Function { name, args } => function(e, name, args, ctx),
         Node::Variable { name, index } => {
-            if index.is_some() {
+            if let Some(index) = index {
                 return match variables::style_of(ctx, name) {
                     None => Err(e.err(format!("Invalid variable reference v_{name} in variable formula")).bare()),
-                    Some("atom") | Some("vector") => Err(e.err(format!(
-                        "Variable {name}: indexing a per-atom or vector variable (v_{name}[i]) is not supported by dmhs"
+                    Some("atom") => {
+                        let atom = index_value(e, index, ctx)?;
+                        ctx.atom_variable_element(name, atom).map_err(|m| e.err(m))
+                    }
+                    Some("vector") => Err(e.err(format!(
+                        "Variable {name}: an element of a vector-style variable (v_{name}[i]) is not supported by dmhs"
                     ))
                     .bare()),
                     Some(_) => Err(e.err(format!("Variable {name}: Mismatched variable in variable formula"))
@@ -92,6 +96,11 @@ pub fn eval(e: &Expr, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
             (None, Some(_)) => unreachable!("a second index comes with a first"),
         }
         .map_err(|m| e.err(m)),
+        Node::AtomElement { compute, id, indices } => {
+            let atom = index_value(e, &indices[0], ctx)?;
+            let column = indices.get(1).map(|j| index_value(e, j, ctx)).transpose()?;
+            ctx.peratom_element(*compute, id, column.map(|j| j as usize), atom).map_err(|m| e.err(m))
+        }
         Node::UpperCase(word) => {
             let lower = word.to_ascii_lowercase();
             Err(e.err(format!("{word}: upper-case C_/F_ reads a global vector, which an equal-style formula cannot hold"))

@@ -271,8 +271,12 @@ impl<'t> Lexer<'t> {
             let (rest, indices) = self.brackets(rest, 2)?;
             (rest, Node::Fix { id: id.to_string(), indices })
         } else if word.starts_with("C_") || word.starts_with("F_") {
-            let (rest, _) = self.brackets(rest, 2)?;
-            (rest, Node::UpperCase(word.to_string()))
+            let (rest, indices) = self.brackets(rest, 2)?;
+            if indices.is_empty() {
+                (rest, Node::UpperCase(word.to_string()))
+            } else {
+                (rest, Node::AtomElement { compute: word.starts_with('C'), id: word[2..].to_string(), indices })
+            }
         } else if let Some(name) = word.strip_prefix("v_") {
             let (rest, index) = opt(|i| self.bracket(i))(rest)?;
             (rest, Node::Variable { name: name.to_string(), index })

@@ -480,11 +480,24 @@ pub fn group_function(state: &State, name: &str, args: &[String]) -> Option<Resu
 pub fn atom_value(state: &State, keyword: &str, id: i64) -> Option<Result<f64, String>> {
     let field = property::Field::parse(keyword)?;
     Some((|| {
-        state.whole_system(&format!("the atom value {keyword}[ID]"))?;
         field.check(state)?;
-        let i = (0..state.atoms.nlocal).find(|&i| state.atoms.tag[i] == id).ok_or_else(|| format!("atom ID {id} does not exist"))?;
-        Ok(field.value(state, i))
+        by_atom_id(state, id, |i| field.value(state, i))
     })())
+}
+
+/// Atom `id`'s `value(i)` (i its owned index), as LAMMPS' peratom2global reads `x[ID]`,
+/// `C_ID[ID]` and `v_name[ID]`: an ID beyond the largest is an error, an ID no atom has reads
+/// 0, and on several ranks the owner's value is summed over the ranks.
+pub fn by_atom_id(state: &State, id: i64, value: impl Fn(usize) -> f64) -> Result<f64, String> {
+    let n = state.atoms.nlocal;
+    let mut max = [state.atoms.tag[..n].iter().copied().max().unwrap_or(0) as f64];
+    state.max_ranks(&mut max);
+    if id as f64 > max[0] {
+        return Err(format!("Variable atom ID is out of range: atom ID {id}, the largest is {}", max[0]));
+    }
+    let mut v = [(0..n).find(|&i| state.atoms.tag[i] == id).map_or(0.0, value)];
+    state.sum_ranks(&mut v);
+    Ok(v[0])
 }
 
 /// Parse `compute ID group style` with no further arguments.

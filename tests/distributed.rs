@@ -1100,3 +1100,42 @@ fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
         }
     }
 }
+
+/// Run control, restraints, a stochastic thermostat and analysis on ranks: fix recenter,
+/// spring/rg, temp/csvr (the same draws on every rank), ave/histo of per-atom values and its
+/// array, compute gyration, vacf, msd and coord/atom (pairs across a rank boundary counted by
+/// each owner), and fix halt stopping every rank at the same step.
+#[test]
+fn analysis_restraints_and_halt_on_ranks_are_the_serial_run() {
+    let deck = melt_with(
+        "fix          1 all nve\n\
+         region       half block 0 3 INF INF INF INF units lattice\n\
+         group        half region half\n\
+         fix          2 all recenter INIT INIT INIT\n\
+         fix          3 half spring/rg 2.0 NULL\n\
+         fix          4 all temp/csvr 2.5 2.5 0.5 4321\n\
+         compute      ke all ke/atom\n\
+         fix          5 all ave/histo 10 2 50 0.0 6.0 12 c_ke mode vector\n\
+         compute      g half gyration\n\
+         compute      vf all vacf\n\
+         compute      m half msd\n\
+         compute      co all coord/atom cutoff 1.3\n\
+         compute      cs all reduce sum c_co\n\
+         variable     h equal f_5[4][2]+max(f_5[3])\n\
+         thermo_style custom step temp epair etotal press f_2 f_3 f_4 f_5[1] f_5[3] v_h c_g c_g[1] c_vf[4] c_m[4] c_cs\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deck, 2);
+    compare(&deck, 3);
+    let halt = melt_with(
+        "fix          1 all nve\n\
+         variable     t equal temp\n\
+         fix          2 all halt 10 v_t < 1.62 error continue\n\
+         thermo_style custom step temp epair etotal press\n\
+         thermo_modify format float %.15g\n",
+    )
+    .replace("thermo       50\n", "thermo       10\n");
+    let (text, _) = serial(&halt);
+    assert!(text.contains("Fix halt condition for fix-id 2 met on step"), "{text}");
+    compare(&halt, 2);
+}

@@ -21,11 +21,12 @@ const PAIRS: &[&str] = &[
 const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt",
-    "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum"];
-const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom"];
+    "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
+    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them).
-const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom"];
+const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom", "ke/atom"];
 /// (The BPM styles keep each bond's reference state in every rank's topology; see
 /// `bpm::rank_bond_list`.)
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse", "bpm/rotational", "bpm/spring", "bpm/spring/plastic"];

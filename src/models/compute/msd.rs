@@ -114,6 +114,7 @@ impl Compute for ComputeMsd {
             msd[2] += dz * dz;
             msd[3] += dx * dx + dy * dy + dz * dz;
         }
+        s.sum_ranks(&mut msd);
         if self.count > 0 {
             let n = self.count as f64;
             msd.iter_mut().for_each(|m| *m /= n);

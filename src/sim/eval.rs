@@ -84,7 +84,7 @@ impl EvalContext for Eval<'_> {
             let state = self.world.state;
             let all = |n: usize, get: &dyn Fn(usize) -> Option<f64>| (1..=n).map(|i| get(i).unwrap_or(0.0)).collect();
             match (column, f.size_array()) {
-                (None, _) if f.size_vector() > 0 => Ok(all(f.size_vector(), &|i| f.vector(state, i))),
+                (None, _) if f.size_vector() > 0 || f.vector(state, 1).is_some() => Ok(all(f.size_vector(), &|i| f.vector(state, i))),
                 (Some(k), Some((rows, cols))) => {
                     if k > cols {
                         return Err("Variable formula fix array is accessed out-of-range".into());

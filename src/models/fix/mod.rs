@@ -49,6 +49,7 @@ pub mod store_local;
 pub mod temp_csvr;
 pub mod temp_scale;
 pub mod thermostat;
+pub mod vector;
 pub mod viscous;
 pub mod wall_gran;
 pub mod wall_colloid;
@@ -466,6 +467,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("vector", |d, state| Ok(Box::new(vector::FixVector::from_lammps(d, state)?))),
     ("momentum", |d, _| Ok(Box::new(momentum::FixMomentum::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("wall/reflect", |d, state| Ok(Box::new(wall_reflect::FixWallReflect::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("wall/gran", |d, state| Ok(Box::new(wall_gran::FixWallGran::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

@@ -1103,8 +1103,8 @@ fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
 
 /// Run control, restraints, a stochastic thermostat and analysis on ranks: fix recenter,
 /// spring/rg, temp/csvr (the same draws on every rank), ave/histo of per-atom values and its
-/// array, compute gyration, vacf, msd and coord/atom (pairs across a rank boundary counted by
-/// each owner), and fix halt stopping every rank at the same step.
+/// array, fix vector, compute gyration, vacf, msd and coord/atom (pairs across a rank boundary
+/// counted by each owner), and fix halt stopping every rank at the same step.
 #[test]
 fn analysis_restraints_and_halt_on_ranks_are_the_serial_run() {
     let deck = melt_with(
@@ -1121,7 +1121,8 @@ fn analysis_restraints_and_halt_on_ranks_are_the_serial_run() {
          compute      m half msd\n\
          compute      co all coord/atom cutoff 1.3\n\
          compute      cs all reduce sum c_co\n\
-         variable     h equal f_5[4][2]+max(f_5[3])\n\
+         fix          6 all vector 10 c_g c_thermo_temp\n\
+         variable     h equal f_5[4][2]+max(f_5[3])+trap(f_6[2])+f_6[1][1]\n\
          thermo_style custom step temp epair etotal press f_2 f_3 f_4 f_5[1] f_5[3] v_h c_g c_g[1] c_vf[4] c_m[4] c_cs\n\
          thermo_modify format float %.15g\n",
     );

@@ -1,5 +1,5 @@
 //! What the temperature computes with a velocity bias share (LAMMPS' `tempbias` computes
-//! temp/partial, temp/com and temp/region): the thermal velocity each leaves, the degrees of
+//! temp/partial, temp/com, temp/region and temp/ramp): the thermal velocity each leaves, the degrees of
 //! freedom each counts, and the bias that thermostats (`fix_modify temp`) and `velocity ...
 //! temp ID bias yes` remove before they scale velocities and restore after (LAMMPS'
 //! remove_bias_all, restore_bias_all, reapply_bias_all). Sums run in LAMMPS' atom order.
@@ -21,6 +21,28 @@ pub enum Bias {
     /// temp/region (region ID): an atom outside the region is all bias; the degrees of freedom
     /// are counted with each temperature, from the atoms inside.
     Region(String),
+    /// temp/ramp: a velocity component ramped along a coordinate.
+    Ramp(Ramp),
+}
+
+/// temp/ramp's profile (box units): component `vdim` has the bias vlo + f (vhi - vlo), f the
+/// position along `dim` between clo and chi, clamped to [0, 1].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ramp {
+    pub vdim: usize,
+    pub vlo: f64,
+    pub vhi: f64,
+    pub dim: usize,
+    pub clo: f64,
+    pub chi: f64,
+}
+
+impl Ramp {
+    /// The ramp velocity at position `x` (LAMMPS' operation order).
+    fn at(&self, x: &[f64; 3]) -> f64 {
+        let fraction = ((x[self.dim] - self.clo) / (self.chi - self.clo)).max(0.0).min(1.0);
+        self.vlo + fraction * (self.vhi - self.vlo)
+    }
 }
 
 /// A temperature as a compute measures it, copied into the thermostats that `fix_modify temp`
@@ -50,7 +72,7 @@ impl TempSpec {
                 nper * count - (nper / d) * (fix_dof + extra)
             }
             Bias::Region(_) => 0.0,
-            Bias::None | Bias::Com => d * count - (extra + fix_dof),
+            Bias::None | Bias::Com | Bias::Ramp(_) => d * count - (extra + fix_dof),
         }
     }
     /// The temperature now and the degrees of freedom it used: `dof` (from [`TempSpec::dof`])
@@ -103,6 +125,11 @@ impl TempSpec {
             let vt = match &self.bias {
                 Bias::Partial(keep) => [0, 1, 2].map(|k| if keep[k] { v[k] } else { 0.0 }),
                 Bias::Com => [v[0] - vcm[0], v[1] - vcm[1], v[2] - vcm[2]],
+                Bias::Ramp(r) => {
+                    let mut vt = v;
+                    vt[r.vdim] -= r.at(&a.x[i]);
+                    vt
+                }
                 Bias::None | Bias::Region(_) => v,
             };
             f(state.mass(i), vt);
@@ -135,6 +162,11 @@ impl TempSpec {
                         Bias::Partial(keep) => [0, 1, 2].map(|k| if keep[k] { 0.0 } else { v[k] }),
                         Bias::Com => vcm,
                         Bias::Region(_) if region.is_some_and(|r| r.matches(a.x[i])) => [0.0; 3],
+                        Bias::Ramp(r) => {
+                            let mut b = [0.0; 3];
+                            b[r.vdim] = r.at(&a.x[i]);
+                            b
+                        }
                         _ => v,
                     }
                 })
@@ -174,7 +206,7 @@ pub fn restore(v: &mut [[f64; 3]], mask: &[u32], groupbit: u32, field: &[[f64; 3
     }
 }
 
-/// A temperature compute with a bias (the three styles differ only in their [`Bias`]).
+/// A temperature compute with a bias (the styles differ only in their [`Bias`]).
 pub struct ComputeTempBias {
     id: String,
     style: &'static str,

@@ -10,7 +10,7 @@ use dmhs::deck::{run_text, DeckOptions};
 /// The thermostat decks (thermo_bias*: with the bias computes temp/partial, temp/com and
 /// temp/region), and deposit_mol (langevin on a substrate, atoms inserted during the run,
 /// `thermo_modify temp` of the inserted atoms).
-const DECKS: [&str; 10] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "thermo_bias", "thermo_bias_nvt", "thermo_bias_region", "thermo_temp_ramp", "deposit_mol"];
+const DECKS: [&str; 11] = ["thermo_rescale", "thermo_berendsen", "thermo_nvt", "thermo_langevin", "thermo_langevin_omega", "thermo_bias", "thermo_bias_nvt", "thermo_bias_region", "thermo_temp_ramp", "thermo_temp_profile", "deposit_mol"];
 
 mod thermo_tables;
 use thermo_tables::{root, table};
@@ -121,6 +121,11 @@ fn thermostat_errors_are_located() {
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tr all temp/ramp vx 0 1 q 0 1", "dim"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tr all temp/ramp vx 0 1 y 0 1 units reduced", "units"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tr all temp/ramp vx 0 1 y 0", "chi"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/profile 1 0 0 w 5", "bin style"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/profile 1 0 0 xy 5", "Ny"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/profile 1 0 0 x 0", "Nx"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/profile 1 0 2 x 3", "zflag"),
+        ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/profile 1 0 0 x 3 out bin", "out bin"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nvelocity all scale 0.1 bias yes", "without temp keyword"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute t all temp\nvelocity all scale 0.1 temp t bias yes", "does not calculate a velocity bias"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nvelocity all scale 0.1 temp ke", "is not a temperature dmhs' velocity takes"),

@@ -29,6 +29,7 @@ pub mod temp;
 pub mod temp_bias;
 pub mod temp_com;
 pub mod temp_partial;
+pub mod temp_profile;
 pub mod temp_ramp;
 pub mod temp_region;
 pub mod temp_sphere;
@@ -283,6 +284,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("temp", |d, _| Ok(Box::new(temp::ComputeTemp::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("temp/partial", |d, w| Ok(Box::new(temp_partial::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/ramp", |d, w| Ok(Box::new(temp_ramp::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("temp/profile", |d, w| Ok(Box::new(temp_profile::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/com", |d, _| Ok(Box::new(temp_com::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("temp/region", |d, w| Ok(Box::new(temp_region::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/sphere", |d, w| Ok(Box::new(temp_sphere::ComputeTempSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

@@ -1,5 +1,5 @@
 //! What the temperature computes with a velocity bias share (LAMMPS' `tempbias` computes
-//! temp/partial, temp/com, temp/region and temp/ramp): the thermal velocity each leaves, the degrees of
+//! temp/partial, temp/com, temp/region, temp/ramp and temp/profile): the thermal velocity each leaves, the degrees of
 //! freedom each counts, and the bias that thermostats (`fix_modify temp`) and `velocity ...
 //! temp ID bias yes` remove before they scale velocities and restore after (LAMMPS'
 //! remove_bias_all, restore_bias_all, reapply_bias_all). Sums run in LAMMPS' atom order.
@@ -23,6 +23,79 @@ pub enum Bias {
     Region(String),
     /// temp/ramp: a velocity component ramped along a coordinate.
     Ramp(Ramp),
+    /// temp/profile: the mean velocity of the spatial bin an atom is in.
+    Profile(Profile),
+}
+
+/// temp/profile's bins: `nbin` per direction over the box, the `flags` components biased.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    pub flags: [bool; 3],
+    pub nbin: [usize; 3],
+}
+
+/// The bin of each owned atom of a group (None outside it) and each bin's mean velocity of the
+/// flagged components (0 for the others and for empty bins).
+struct BinAverages {
+    bin: Vec<Option<usize>>,
+    mean: Vec<[f64; 3]>,
+}
+
+impl Profile {
+    /// LAMMPS' bin_assign and bin_average: periodic coordinates folded once into the box, bin
+    /// indices truncated and clamped; velocities summed in LAMMPS' atom order, over the ranks.
+    fn averages(&self, state: &State, groupbit: u32) -> Result<BinAverages, String> {
+        let d = state.domain()?;
+        let (a, prd) = (&state.atoms, d.prd());
+        let nbins = self.nbin.iter().product::<usize>();
+        let bin: Vec<Option<usize>> = (0..a.nlocal)
+            .map(|i| {
+                (a.mask[i] & groupbit != 0).then(|| {
+                    let mut ib = [0usize; 3];
+                    for k in (0..3).filter(|&k| self.nbin[k] > 1) {
+                        let mut c = a.x[i][k];
+                        if d.periodic(k) {
+                            if c < d.lo[k] {
+                                c += prd[k];
+                            }
+                            if c >= d.hi[k] {
+                                c -= prd[k];
+                            }
+                        }
+                        let invdelta = self.nbin[k] as f64 / prd[k];
+                        ib[k] = (((c - d.lo[k]) * invdelta) as i64).clamp(0, self.nbin[k] as i64 - 1) as usize;
+                    }
+                    self.nbin[0] * self.nbin[1] * ib[2] + self.nbin[0] * ib[1] + ib[0]
+                })
+            })
+            .collect();
+        // per bin: the three component sums, then the count
+        let mut sums = vec![0.0; 4 * nbins];
+        for &i in state.lammps_order.indices(a.nlocal).iter() {
+            if let Some(b) = bin[i] {
+                for k in (0..3).filter(|&k| self.flags[k]) {
+                    sums[4 * b + k] += a.v[i][k];
+                }
+                sums[4 * b + 3] += 1.0;
+            }
+        }
+        state.sum_ranks(&mut sums);
+        let mean = sums
+            .chunks(4)
+            .map(|s| {
+                let n = s[3];
+                [0, 1, 2].map(|k| if n > 0.0 { s[k] / n } else { s[k] })
+            })
+            .collect();
+        Ok(BinAverages { bin, mean })
+    }
+    /// The degrees of freedom the bins' streaming velocities take beyond the centre of mass's
+    /// (Evans and Morriss): ncount (nbins - 1), as LAMMPS 22 Jul 2025 counts them (measured:
+    /// 3N - 3 - 4 with vx over 5 bins, 3N - 3 - 10 with vx vy over 6, 3N - 3 - 21 with all three
+    /// over 8).
+    fn nstreaming(&self) -> f64 {
+        (self.flags.iter().filter(|&&f| f).count() * (self.nbin.iter().product::<usize>() - 1)) as f64
+    }
 }
 
 /// temp/ramp's profile (box units): component `vdim` has the bias vlo + f (vhi - vlo), f the
@@ -73,6 +146,7 @@ impl TempSpec {
             }
             Bias::Region(_) => 0.0,
             Bias::None | Bias::Com | Bias::Ramp(_) => d * count - (extra + fix_dof),
+            Bias::Profile(p) => d * count - (extra + fix_dof + p.nstreaming()),
         }
     }
     /// The temperature now and the degrees of freedom it used: `dof` (from [`TempSpec::dof`])
@@ -117,6 +191,7 @@ impl TempSpec {
         let a = &state.atoms;
         let vcm = if self.bias == Bias::Com { state.group_vcm(self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
+        let bins = self.bins(state)?;
         for &i in state.lammps_order.indices(a.nlocal).iter() {
             if a.mask[i] & self.groupbit == 0 || region.is_some_and(|r| !r.matches(a.x[i])) {
                 continue;
@@ -130,11 +205,21 @@ impl TempSpec {
                     vt[r.vdim] -= r.at(&a.x[i]);
                     vt
                 }
+                Bias::Profile(p) => {
+                    let b = bins.as_ref().and_then(|b| b.bin[i].map(|k| b.mean[k])).unwrap_or([0.0; 3]);
+                    [0, 1, 2].map(|k| if p.flags[k] { v[k] - b[k] } else { v[k] })
+                }
                 Bias::None | Bias::Region(_) => v,
             };
             f(state.mass(i), vt);
         }
         Ok(())
+    }
+    fn bins(&self, state: &State) -> Result<Option<BinAverages>, String> {
+        match &self.bias {
+            Bias::Profile(p) => p.averages(state, self.groupbit).map(Some),
+            _ => Ok(None),
+        }
     }
     fn region<'a>(&self, state: &'a State) -> Result<Option<&'a Region>, String> {
         match &self.bias {
@@ -150,6 +235,7 @@ impl TempSpec {
         let a = &state.atoms;
         let vcm = if self.bias == Bias::Com { state.group_vcm(self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
+        let bins = self.bins(state)?;
         if self.bias == Bias::None {
             return Ok(None);
         }
@@ -166,6 +252,11 @@ impl TempSpec {
                             let mut b = [0.0; 3];
                             b[r.vdim] = r.at(&a.x[i]);
                             b
+                        }
+                        // an atom outside the compute's group has no bin: no bias
+                        Bias::Profile(p) => {
+                            let b = bins.as_ref().and_then(|b| b.bin[i].map(|k| b.mean[k])).unwrap_or([0.0; 3]);
+                            [0, 1, 2].map(|k| if p.flags[k] { b[k] } else { 0.0 })
                         }
                         _ => v,
                     }

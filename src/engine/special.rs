@@ -333,38 +333,72 @@ pub fn build_special(
     }
     stats.max12 = l12.iter().map(Vec::len).max().unwrap_or(0);
 
-    // 1-3: for every atom, each ordered pair of distinct slots of its 1-2 list
-    let mut l13: Vec<Vec<i64>> = vec![vec![]; n];
+    // 1-3: for every atom, each ordered pair of distinct slots of its 1-2 list. LAMMPS lists
+    // the repeats and removes them after; dmhs counts them (the log's maxima are LAMMPS') but
+    // keeps only first appearances, so a densely bonded deck (every atom bonded to every
+    // other) costs its unique entries, not deg^3 (the order of first appearances, and so the
+    // lists, are the same)
+    let unique = |n: usize| -> (Vec<Vec<i64>>, Vec<std::collections::HashSet<i64>>) {
+        (vec![vec![]; n], (0..n).map(|i| std::collections::HashSet::from([ids[i]])).collect())
+    };
+    let (mut l13, mut seen13) = unique(n);
+    let mut count13 = vec![0usize; n];
+    // an atom bonded twice to one partner is in its own raw 1-3 list (its 1-4 list then gets
+    // its 1-2 partners, which LAMMPS' "before dihedral trim" count includes)
+    let mut self13 = vec![false; n];
     if levels >= 2 {
         for list in &l12 {
             for (j, &a) in list.iter().enumerate() {
+                let ia = index[&a];
+                count13[ia] += list.len() - 1;
                 for (k, &b) in list.iter().enumerate() {
                     if j != k {
-                        l13[index[&a]].push(b);
+                        if b == a {
+                            self13[ia] = true;
+                        } else if seen13[ia].insert(b) {
+                            l13[ia].push(b);
+                        }
                     }
                 }
             }
         }
-        stats.max13 = Some(l13.iter().map(Vec::len).max().unwrap_or(0));
+        stats.max13 = Some(count13.iter().copied().max().unwrap_or(0));
     }
+    drop(seen13);
 
-    // 1-4: atom a in i's 1-3 list gets i's 1-2 partners
-    let mut l14: Vec<Vec<i64>> = vec![vec![]; n];
+    // 1-4: atom a in i's 1-3 list gets i's 1-2 partners (with LAMMPS' repeats, a gets them
+    // once for each time it is in i's 1-3 list: counted, not stored)
+    let (mut l14, mut seen14) = unique(n);
     if levels >= 3 {
-        for i in 0..n {
-            for &a in &l13[i] {
-                let ia = index[&a];
-                l14[ia].extend_from_slice(&l12[i]);
+        let mut count14 = vec![0usize; n];
+        for list in &l12 {
+            for (j, &a) in list.iter().enumerate() {
+                let deg = l12[index[&a]].len();
+                for (k, &b) in list.iter().enumerate() {
+                    if j != k {
+                        count14[index[&b]] += deg;
+                    }
+                }
             }
         }
-        stats.max14 = Some(l14.iter().map(Vec::len).max().unwrap_or(0));
-    }
-
-    // de-duplicate each level, dropping the atom itself
-    for lists in [&mut l12, &mut l13, &mut l14] {
-        for (i, list) in lists.iter_mut().enumerate() {
-            dedup_keep_first(list, ids[i]);
+        for i in 0..n {
+            let me = self13[i].then_some(ids[i]);
+            for &a in l13[i].iter().chain(me.iter()) {
+                let ia = index[&a];
+                for &b in &l12[i] {
+                    if seen14[ia].insert(b) {
+                        l14[ia].push(b);
+                    }
+                }
+            }
         }
+        stats.max14 = Some(count14.iter().copied().max().unwrap_or(0));
+    }
+    drop(seen14);
+
+    // de-duplicate the 1-2 level, dropping the atom itself (the others are already)
+    for (i, list) in l12.iter_mut().enumerate() {
+        dedup_keep_first(list, ids[i]);
     }
 
     if levels >= 2 && sb.angle {
@@ -571,6 +605,20 @@ mod tests {
             }
             assert_eq!(stats.log(&sb, stats.max_special), sc.log, "`{}`", sc.settings);
         }
+    }
+
+    /// Every atom bonded to every other (a fuzzed deck made one: 2.3 GB for 256 atoms when the
+    /// repeats were stored): the lists hold each partner once, at level 1, and the maxima are
+    /// LAMMPS' counts with repeats, (n-1)(n-2) and (n-1)^2 (n-2).
+    #[test]
+    fn a_complete_graph_costs_its_unique_entries() {
+        let n = 200i64;
+        let ids: Vec<i64> = (1..=n).collect();
+        let bonds: Vec<[i64; 2]> = (1..=n).flat_map(|a| (a + 1..=n).map(move |b| [a, b])).collect();
+        let (lists, stats) = build_special(&SpecialBonds::default(), &ids, Topology { bonds: &bonds, ..Default::default() }).unwrap();
+        assert!(lists.iter().all(|l| l.one_two().len() == n as usize - 1 && l.one_three().is_empty() && l.one_four().is_empty()));
+        let m = (n - 1) as usize;
+        assert_eq!((stats.max12, stats.max13, stats.max14), (m, Some(m * (m - 1)), Some(m * m * (m - 1))));
     }
 
     #[test]

@@ -161,14 +161,7 @@ impl FixAveHisto {
                 (Value::Atom(i / 3, i % 3), Some(Kind::PerAtom))
             } else {
                 let name = &t[2..];
-                let (id, index) = match name.find('[') {
-                    Some(k) if name.ends_with(']') => {
-                        let i = name[k + 1..name.len() - 1].parse::<usize>().ok().filter(|&i| i >= 1);
-                        (&name[..k], Some(i.ok_or_else(|| a.error_at(w, format!("`{t}`: the index must be a positive integer"), "bad index"))?))
-                    }
-                    Some(_) => return Err(a.error_at(w, format!("`{t}`: missing `]`"), "bad index")),
-                    None => (name, None),
-                };
+                let (id, index) = super::value::split_index(name, w, &a)?;
                 match &t[..2] {
                     "c_" => {
                         let c = d.computes.iter().find(|c| c.id() == id).ok_or_else(|| a.error_at(w, format!("Compute ID {id} for fix ave/histo does not exist"), "unknown compute"))?;

@@ -121,17 +121,7 @@ impl FixAveTime {
                 _ => None,
             };
             for text in expand(w, len, &a)? {
-                let index = match text.find('[') {
-                    Some(k) if text.ends_with(']') => Some(
-                        text[k + 1..text.len() - 1]
-                            .parse::<usize>()
-                            .ok()
-                            .filter(|&i| i >= 1)
-                            .ok_or_else(|| a.error_at(w, format!("`{}`: the index must be a positive integer", w.text), "bad index"))?,
-                    ),
-                    Some(_) => return Err(a.error_at(w, format!("`{}`: missing `]`", w.text), "bad index")),
-                    None => None,
-                };
+                let (_, index) = super::value::split_index(&text, w, &a)?;
                 let extensive = match source {
                     Source::Compute => {
                         let c = compute.ok_or_else(|| a.error_at(w, format!("compute `{name}` for fix ave/time does not exist"), "unknown compute"))?;

@@ -1,7 +1,7 @@
 //! A fix argument that is a constant, a variable (`v_name`), or NULL, and its value at a step.
 
 use dmhs_parser::args::word_f64;
-use dmhs_parser::{DResult, Word};
+use dmhs_parser::{Args, DResult, Word};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum FixValue {
@@ -47,5 +47,18 @@ impl Evaluated {
             Evaluated::One(x) => Some(*x),
             Evaluated::PerAtom(v) => Some(v[i]),
         }
+    }
+}
+
+/// `NAME` or `NAME[I]` (an input of fix ave/time, ave/histo or vector without its `c_`/`f_`/`v_`
+/// prefix, or with it): the name and the 1-based index I, a located error at `w` for a bad one.
+pub fn split_index<'t>(text: &'t str, w: &Word, a: &Args) -> DResult<(&'t str, Option<usize>)> {
+    match text.find('[') {
+        None => Ok((text, None)),
+        Some(k) if text.ends_with(']') => {
+            let i = text[k + 1..text.len() - 1].parse::<usize>().ok().filter(|&i| i >= 1);
+            Ok((&text[..k], Some(i.ok_or_else(|| a.error_at(w, format!("`{}`: the index must be a positive integer", w.text), "bad index"))?)))
+        }
+        Some(_) => Err(a.error_at(w, format!("`{}`: missing `]`", w.text), "bad index")),
     }
 }

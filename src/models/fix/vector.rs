@@ -43,13 +43,7 @@ impl FixVector {
             }
             a.skip(1);
             let rest = &t[2..];
-            let (id, index) = match rest.find('[') {
-                None => (rest, None),
-                Some(k) => {
-                    let i = rest[k + 1..].strip_suffix(']').and_then(|s| s.parse::<usize>().ok()).filter(|&i| i >= 1);
-                    (&rest[..k], Some(i.ok_or_else(|| a.error_at(w, format!("`{t}`: expected ID[I] with a positive integer I"), "bad index"))?))
-                }
-            };
+            let (id, index) = super::value::split_index(rest, w, &a)?;
             let (value, ext) = match &t[..2] {
                 "c_" => {
                     let c = d.computes.iter().find(|c| c.id() == id).ok_or_else(|| a.error_at(w, "Compute ID for fix vector does not exist", "unknown compute"))?;

@@ -96,6 +96,13 @@ pub fn run_text(name: &str, text: &str, opts: &DeckOptions) -> Result<DeckRun, D
 
 /// [`run_text`] as one rank of the ranks `comm` connects (None: alone).
 pub fn run_text_on(name: &str, text: &str, opts: &DeckOptions, comm: Option<std::sync::Arc<dyn crate::engine::comm::Comm>>) -> Result<DeckRun, DeckFailure> {
+    use crate::engine::par::team;
+    if !team::installed() {
+        // a thread of a rayon pool runs the deck with as many threads as the pool has (`dmhs
+        // -threads N`, the tests' pools); any other thread alone
+        let threads = if rayon::current_thread_index().is_some() { rayon::current_num_threads() } else { 1 };
+        return team::with_threads(threads, || run_text_on(name, text, opts, comm));
+    }
     // the log and the screen are rank 0's
     let quiet = DeckOptions { log: None, screen: false, ..opts.clone() };
     let opts = if comm.as_ref().is_some_and(|c| c.rank() > 0) { &quiet } else { opts };

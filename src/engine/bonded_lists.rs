@@ -19,26 +19,35 @@ impl<const N: usize> Entry<N> {
     }
 }
 
-/// Interactions grouped by the slab chunk of their lowest-index atom, when all their atoms
-/// lie in that chunk or the next (so chunks can run with the pair loop's even/odd schedule);
-/// the rest (e.g. interactions spanning a periodic boundary) are done afterwards in order.
-/// Chunk `c` holds `entries[offsets[c]..offsets[c+1]]`.
+/// Interactions grouped by the slab chunk of their lowest-index atom. Those whose atoms all
+/// lie in that chunk or the next run with the pair loop's even/odd schedule: chunk `c` holds
+/// `entries[offsets[c]..offsets[c+1]]`. Those reaching two or three chunks further (an angle or
+/// a dihedral along the slab axis, where chunks are about one cutoff thick) run afterwards on a
+/// schedule of [`WIDE`]-chunk windows: chunk `c` holds `wide[wide_offsets[c]..wide_offsets[c+1]]`.
+/// The rest (interactions across a periodic boundary, with a ghost, or longer still) are done
+/// last, in order.
 #[derive(Clone, Debug)]
 pub struct Slabbed<E> {
     pub entries: Vec<E>,
     pub offsets: Vec<u32>,
+    pub wide: Vec<E>,
+    pub wide_offsets: Vec<u32>,
     pub leftover: Vec<E>,
 }
 
+/// Chunks a task of the wide schedule writes to: an interaction of chunk `c` reaches at most
+/// chunk `c + WIDE - 1`.
+pub const WIDE: usize = 4;
+
 impl<E> Default for Slabbed<E> {
     fn default() -> Self {
-        Slabbed { entries: vec![], offsets: vec![0], leftover: vec![] }
+        Slabbed { entries: vec![], offsets: vec![0], wide: vec![], wide_offsets: vec![0], leftover: vec![] }
     }
 }
 
 impl<E> Slabbed<E> {
     pub fn len(&self) -> usize {
-        self.entries.len() + self.leftover.len()
+        self.entries.len() + self.wide.len() + self.leftover.len()
     }
     pub fn is_empty(&self) -> bool {
         self.len() == 0
@@ -46,26 +55,18 @@ impl<E> Slabbed<E> {
     pub fn nchunks(&self) -> usize {
         self.offsets.len() - 1
     }
+    /// Every interaction: the chunks' in chunk order, the wide ones in chunk order, the rest.
+    pub fn all(&self) -> impl Iterator<Item = &E> {
+        self.entries.iter().chain(&self.wide).chain(&self.leftover)
+    }
 }
 
 impl<const N: usize> Slabbed<Entry<N>> {
     /// Keep the entries for which `keep` gives a new record index (records were removed from
     /// the topology), in order; chunk boundaries follow.
     pub fn retain_records(&mut self, keep: impl Fn(u32) -> Option<u32>) {
-        let mut out = 0;
-        let mut start = 0;
-        for c in 0..self.nchunks() {
-            let end = self.offsets[c + 1] as usize;
-            for k in start..end {
-                if let Some(rec) = keep(self.entries[k].rec) {
-                    self.entries[out] = Entry { rec, ..self.entries[k] };
-                    out += 1;
-                }
-            }
-            start = end;
-            self.offsets[c + 1] = out as u32;
-        }
-        self.entries.truncate(out);
+        retain_grouped(&mut self.entries, &mut self.offsets, &keep);
+        retain_grouped(&mut self.wide, &mut self.wide_offsets, &keep);
         self.leftover.retain_mut(|e| match keep(e.rec) {
             Some(rec) => {
                 e.rec = rec;
@@ -74,6 +75,24 @@ impl<const N: usize> Slabbed<Entry<N>> {
             None => false,
         });
     }
+}
+
+/// [`Slabbed::retain_records`] of one grouping.
+fn retain_grouped<const N: usize>(entries: &mut Vec<Entry<N>>, offsets: &mut [u32], keep: &impl Fn(u32) -> Option<u32>) {
+    let mut out = 0;
+    let mut start = 0;
+    for c in 0..offsets.len() - 1 {
+        let end = offsets[c + 1] as usize;
+        for k in start..end {
+            if let Some(rec) = keep(entries[k].rec) {
+                entries[out] = Entry { rec, ..entries[k] };
+                out += 1;
+            }
+        }
+        start = end;
+        offsets[c + 1] = out as u32;
+    }
+    entries.truncate(out);
 }
 
 /// The interactions of chunk `c` (none if the kind has fewer chunks).
@@ -85,26 +104,49 @@ pub fn chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
     }
 }
 
+/// The wide interactions of chunk `c` (none if the kind has fewer chunks).
+pub fn wide_chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
+    if c + 1 < s.wide_offsets.len() {
+        &s.wide[s.wide_offsets[c] as usize..s.wide_offsets[c + 1] as usize]
+    } else {
+        &[]
+    }
+}
+
 /// Group entries by chunk (`chunk_of[i]` = chunk of owned atom i); entries that need a periodic
 /// image or a ghost go to the leftovers, so chunk entries read positions directly. Within a chunk, entries are
 /// taken with a stride of N (0, N, 2N, ..., then 1, N+1, ...): interactions along a chain
 /// (bond k and k+1 share an atom) would otherwise form one long dependency through the force
 /// accumulators and run at the latency of sqrt/acos instead of their throughput.
 pub fn slab<E: Copy, const N: usize>(entries: &[E], atoms: impl Fn(&E) -> [u32; N], shifted: impl Fn(&E) -> bool, chunk_of: &[u32], nchunks: usize) -> Slabbed<E> {
-    let mut target: Vec<u32> = Vec::with_capacity(entries.len());
-    let mut counts = vec![0u32; nchunks + 1];
+    // per entry: (grouping, chunk), grouping 0 near, 1 wide, 2 leftover
+    let mut target: Vec<(u8, u32)> = Vec::with_capacity(entries.len());
     let mut leftover = Vec::new();
     for e in entries {
         let idx = atoms(e);
         let (lo, hi) = (*idx.iter().min().unwrap() as usize, *idx.iter().max().unwrap() as usize);
         // a ghost (a distributed run's) is in no chunk
         let (c, ch) = (chunk_of[lo], chunk_of.get(hi).copied().unwrap_or(u32::MAX - 1));
-        if ch <= c + 1 && !shifted(e) {
-            target.push(c);
-            counts[c as usize + 1] += 1;
-        } else {
-            target.push(u32::MAX);
+        let span = ch.saturating_sub(c) as usize;
+        if shifted(e) || span >= WIDE {
+            target.push((2, 0));
             leftover.push(*e);
+        } else {
+            target.push(((span > 1) as u8, c));
+        }
+    }
+    let (near, offsets) = group::<E, N>(entries, &target, 0, nchunks);
+    let (wide, wide_offsets) = group::<E, N>(entries, &target, 1, nchunks);
+    Slabbed { entries: near, offsets, wide, wide_offsets, leftover }
+}
+
+/// The entries whose target grouping is `which`, ordered by chunk, each chunk with the stride
+/// of N (see [`slab`]); and the chunk offsets.
+fn group<E: Copy, const N: usize>(entries: &[E], target: &[(u8, u32)], which: u8, nchunks: usize) -> (Vec<E>, Vec<u32>) {
+    let mut counts = vec![0u32; nchunks + 1];
+    for &(g, c) in target {
+        if g == which {
+            counts[c as usize + 1] += 1;
         }
     }
     for c in 0..nchunks {
@@ -113,14 +155,14 @@ pub fn slab<E: Copy, const N: usize>(entries: &[E], atoms: impl Fn(&E) -> [u32; 
     let offsets = counts.clone();
     let mut fill = counts;
     let total = offsets[nchunks] as usize;
-    let Some(&first) = entries.iter().zip(&target).find(|(_, &t)| t != u32::MAX).map(|(e, _)| e) else {
-        return Slabbed { entries: vec![], offsets, leftover };
+    let Some(&first) = entries.iter().zip(target).find(|(_, t)| t.0 == which).map(|(e, _)| e) else {
+        return (vec![], offsets);
     };
     let mut out = vec![first; total];
-    for (e, &t) in entries.iter().zip(&target) {
-        if t != u32::MAX {
-            out[fill[t as usize] as usize] = *e;
-            fill[t as usize] += 1;
+    for (e, &(g, c)) in entries.iter().zip(target) {
+        if g == which {
+            out[fill[c as usize] as usize] = *e;
+            fill[c as usize] += 1;
         }
     }
     let mut scratch = Vec::new();
@@ -132,7 +174,7 @@ pub fn slab<E: Copy, const N: usize>(entries: &[E], atoms: impl Fn(&E) -> [u32; 
         }
         chunk.copy_from_slice(&scratch);
     }
-    Slabbed { entries: out, offsets, leftover }
+    (out, offsets)
 }
 
 #[derive(Clone, Debug, Default)]

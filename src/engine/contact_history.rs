@@ -29,7 +29,6 @@
 use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::lammps_order::ListSides;
 use crate::engine::neighbor::{ChunkList, NeighList, NEIGH_MASK};
-use rayon::prelude::*;
 
 /// Touch flags and values aligned with one chunk of the neighbour list.
 #[derive(Clone, Debug, Default)]
@@ -218,10 +217,7 @@ impl ContactHistory {
         let keep = &self.keep;
         let flip = &self.flip;
         let x = &atoms.x;
-        self.chunks = list
-            .chunks
-            .par_iter()
-            .map(|chunk| {
+        self.chunks = crate::engine::par::team::map(list.chunks.iter().collect(), |chunk| {
                 let len = chunk.len();
                 let mut h = HistoryChunk { touch: vec![0; len], values: vec![0.0; len * size], side: vec![] };
                 if let Some(sides) = sides {
@@ -281,8 +277,7 @@ impl ContactHistory {
                     }
                 }
                 h
-            })
-            .collect();
+            });
         self.list.clone_from(&list.chunks);
     }
 

@@ -15,7 +15,6 @@ use crate::engine::atoms::{Atoms, IdKeys};
 use crate::engine::domain::Domain;
 use crate::engine::special::{minimum_image_check, PairAction, SpecialFlag, SpecialList};
 use crate::engine::par::bounded::{Entries, Entry, Scope, INDEX_BITS, INDEX_MASK};
-use rayon::prelude::*;
 
 /// Builds (and edits) of neighbour lists in the process: each list's `generation`.
 static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
@@ -731,12 +730,7 @@ impl Neighbor {
         }
         let acting_cache = &self.acting;
         let plain = excl.is_empty() && !use_special;
-        let chunks: Result<Vec<ChunkList>, usize> = bounds
-            .windows(2)
-            .collect::<Vec<_>>()
-            .par_iter()
-            .with_max_len(1)
-            .map(|w| {
+        let chunks: Result<Vec<ChunkList>, usize> = crate::engine::par::team::map(bounds.windows(2).collect::<Vec<_>>(), |w| {
                 let (start, end) = (w[0], w[1]);
                 let mut offsets = Vec::with_capacity(end - start + 1);
                 let mut neigh = Vec::new();
@@ -847,6 +841,7 @@ impl Neighbor {
                 }
                 Ok(ChunkList::new(start, end, offsets, neigh, n, nall))
             })
+            .into_iter()
             .collect();
         let chunks = chunks.map_err(|entries| NeighError::OutOfMemory { entries, cut: cutmax })?;
         // the rest of the rebuild and of the step allocate per-atom arrays (copies of positions,

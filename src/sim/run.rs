@@ -950,7 +950,7 @@ impl Simulation {
                 tps * n / 1e6
             ));
         }
-        let threads = rayon::current_num_threads();
+        let threads = crate::engine::par::threads();
         self.out.print(&format!("100.0% CPU use with {} MPI tasks x {threads} threads\n", self.nranks()));
         if let Some(stats) = stats {
             self.out.print(stats);
@@ -985,11 +985,12 @@ impl Simulation {
     }
 }
 
-/// Set every element to `zero` (in parallel chunks for large arrays).
+/// Set every element to `zero`, in the integrators' blocks of atoms (so each thread clears
+/// the forces it then adds to, in its own cache).
 fn clear<T: Copy + Send + Sync>(v: &mut [T], zero: T) {
-    use rayon::prelude::*;
-    if rayon::current_num_threads() > 1 && v.len() > 16384 {
-        v.par_chunks_mut(8192).for_each(|c| c.fill(zero));
+    use crate::engine::par::{ranges, AtomsMut, PARALLEL_MIN_ATOMS};
+    if v.len() >= PARALLEL_MIN_ATOMS {
+        ranges(v.len(), 1024, AtomsMut::new(v), |r, mut w| w.slice(r).fill(zero));
     } else {
         v.fill(zero);
     }

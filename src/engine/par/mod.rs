@@ -20,13 +20,14 @@
 pub mod bounded;
 pub mod cmath;
 pub mod lanes;
+pub mod team;
 
-use rayon::prelude::*;
+pub use team::{threads, with_threads};
 use std::ops::{Index, IndexMut, Range};
 
-/// Below this many owned atoms the slab schedule runs on the calling thread: waking a second
-/// thread twice per loop costs more than it saves (the 564-particle Plinko scene ran slower with
-/// 2 threads than with 1).
+/// Below this many owned atoms the slab schedule runs on the calling thread: handing a loop to
+/// a second thread twice per loop costs more than it saves (the 564-particle Plinko scene ran
+/// slower with 2 threads than with 1).
 pub const PARALLEL_MIN_ATOMS: usize = 2000;
 
 /// A mutable window on per-atom values, indexed by atom index: the atoms `start..start + len`.
@@ -138,7 +139,7 @@ tuples!(A B C D E F);
 
 /// Whether a schedule over `atoms` owned atoms should use the pool.
 fn parallel(atoms: usize) -> bool {
-    rayon::current_num_threads() > 1 && atoms >= PARALLEL_MIN_ATOMS
+    atoms >= PARALLEL_MIN_ATOMS && threads() > 1
 }
 
 /// One phase of the slab schedule: chunk `c` holds atoms `bounds[c]..bounds[c + 1]`; every task
@@ -156,31 +157,39 @@ fn parallel(atoms: usize) -> bool {
 /// Tasks run in parallel when the pool has several threads and there are enough atoms, in
 /// chunk order otherwise; every atom receives its contributions in the same order either way.
 pub fn slab_phase<S: Split, R: Send>(bounds: &[usize], parity: usize, data: S, out: &mut [R], work: impl Fn(usize, S) -> R + Sync) {
+    window_phase(bounds, 2, parity, data, out, work)
+}
+
+/// One phase of a schedule of `width`-chunk windows, the slab schedule's generalisation: every
+/// task `c` with `c % width == phase` runs `work(c, window)` with the window of `data` on chunks
+/// `c..c + width`, its result going to `out[c]`. Run phases `0..width` in turn. Tasks of one
+/// phase are `width` chunks apart, so their windows do not overlap.
+pub fn window_phase<S: Split, R: Send>(bounds: &[usize], width: usize, phase: usize, data: S, out: &mut [R], work: impl Fn(usize, S) -> R + Sync) {
     let n = bounds.len().saturating_sub(1);
-    if parity >= n {
+    if phase >= n {
         return;
     }
-    let mut rest = data.split(bounds[parity], parity).1;
+    let mut rest = data.split(bounds[phase], phase).1;
     if !(n >= 2 && parallel(bounds[n])) {
         // serial: each window as it is split off, no task list to allocate
-        for c in (parity..n).step_by(2) {
-            let end = (c + 2).min(n);
+        for c in (phase..n).step_by(width) {
+            let end = (c + width).min(n);
             let (window, tail) = rest.split(bounds[end], end);
             out[c] = work(c, window);
             rest = tail;
         }
         return;
     }
-    let mut tasks = Vec::with_capacity(n / 2 + 1);
-    for c in (parity..n).step_by(2) {
-        let end = (c + 2).min(n);
+    let mut tasks = Vec::with_capacity(n / width + 1);
+    for c in (phase..n).step_by(width) {
+        let end = (c + width).min(n);
         let (window, tail) = rest.split(bounds[end], end);
         tasks.push((c, window));
         rest = tail;
     }
-    // one task per chunk (with_max_len(1)): work is often concentrated in a few slabs (a water
-    // column in a wide tank), and rayon's default splitting would leave them on one thread
-    let results: Vec<(usize, R)> = tasks.into_par_iter().with_max_len(1).map(|(c, w)| (c, work(c, w))).collect();
+    // one task per chunk: work is often concentrated in a few slabs (a water column in a wide
+    // tank), which the team's threads share once their own blocks are done
+    let results = team::map(tasks, |(c, w)| (c, work(c, w)));
     for (c, r) in results {
         out[c] = r;
     }
@@ -223,7 +232,7 @@ pub fn check_slab_invariant<'a>(bounds: &[usize], partners: impl Fn(usize) -> &'
 /// whose atoms are independent, so the results are the same either way. With one thread it is
 /// one plain loop, without the pool's overhead.
 pub fn ranges<S: Split>(n: usize, chunk: usize, data: S, work: impl Fn(Range<usize>, S) + Sync) {
-    if rayon::current_num_threads() == 1 || n <= chunk {
+    if threads() == 1 || n <= chunk {
         work(0..n, data);
         return;
     }
@@ -235,7 +244,7 @@ pub fn ranges<S: Split>(n: usize, chunk: usize, data: S, work: impl Fn(Range<usi
         tasks.push((k * chunk..end, window));
         rest = tail;
     }
-    tasks.into_par_iter().with_max_len(1).for_each(|(r, w)| work(r, w));
+    team::map(tasks, |(r, w)| work(r, w));
 }
 
 /// Indices per parallel work item of [`any_index`].
@@ -246,10 +255,10 @@ const ANY_CHUNK: usize = 4096;
 pub fn any_index(n: usize, bad: impl Fn(usize) -> bool + Sync) -> bool {
     let chunk_bad = |c: usize| (c * ANY_CHUNK..((c + 1) * ANY_CHUNK).min(n)).fold(false, |acc, i| acc | bad(i));
     let chunks = n.div_ceil(ANY_CHUNK);
-    if rayon::current_num_threads() == 1 || chunks <= 1 {
+    if threads() == 1 || chunks <= 1 {
         (0..chunks).any(chunk_bad)
     } else {
-        (0..chunks).into_par_iter().any(chunk_bad)
+        team::map((0..chunks).collect(), chunk_bad).into_iter().any(|b| b)
     }
 }
 
@@ -263,15 +272,14 @@ mod tests {
     #[test]
     fn slab_windows_cover_two_chunks_and_complete_in_order() {
         for threads in [1, 2, 3] {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            for n in 0..9usize {
-                // chunks of 3000 atoms, so the pool is used
-                let bounds: Vec<usize> = (0..=n).map(|c| c * 3000).collect();
-                let natoms = n * 3000;
-                let mut writes = vec![0u32; natoms + 5];
-                let mut done = vec![0u32; n];
-                let mut out = vec![usize::MAX; n];
-                pool.install(|| {
+            with_threads(threads, || {
+                for n in 0..9usize {
+                    // chunks of 3000 atoms, so the team is used
+                    let bounds: Vec<usize> = (0..=n).map(|c| c * 3000).collect();
+                    let natoms = n * 3000;
+                    let mut writes = vec![0u32; natoms + 5];
+                    let mut done = vec![0u32; n];
+                    let mut out = vec![usize::MAX; n];
                     for parity in 0..2 {
                         slab_phase(&bounds, parity, (AtomsMut::new(&mut writes), ChunksMut::new(&mut done)), &mut out, |c, (mut w, mut d)| {
                             for i in bounds[c]..bounds[(c + 2).min(n)] {
@@ -285,11 +293,11 @@ mod tests {
                             c
                         });
                     }
-                });
-                assert_eq!(out, (0..n).collect::<Vec<_>>());
-                assert!(done.iter().all(|&d| d == 1), "{threads} threads, {n} chunks: {done:?}");
-                assert!(writes[natoms..].iter().all(|&w| w == 0), "no task writes beyond the owned atoms");
-            }
+                    assert_eq!(out, (0..n).collect::<Vec<_>>());
+                    assert!(done.iter().all(|&d| d == 1), "{threads} threads, {n} chunks: {done:?}");
+                    assert!(writes[natoms..].iter().all(|&w| w == 0), "no task writes beyond the owned atoms");
+                }
+            });
         }
     }
 
@@ -317,9 +325,8 @@ mod tests {
 
     #[test]
     fn ranges_give_each_task_its_own_atoms() {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
         let mut x = vec![0usize; 10_000];
-        pool.install(|| {
+        with_threads(2, || {
             ranges(x.len(), 1024, AtomsMut::new(&mut x), |r, mut w| {
                 for i in r {
                     w[i] = i;

@@ -446,7 +446,7 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let mut dvol0 = SideSums::new(state.atoms.nlocal);
     // the bonds are evaluated (in parallel) and added (in order) a block at a time, so the
     // evaluated bonds are read back from cache, not from memory
-    let block = CHUNK * rayon::current_num_threads().max(1);
+    let block = CHUNK * crate::engine::par::threads();
     let mut buf = vec![Done::default(); block.min(list.len())];
     for part_list in list.chunks(block) {
         let done = &mut buf[..part_list.len()];

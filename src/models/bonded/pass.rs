@@ -4,9 +4,9 @@
 //! copy is (`x + shift * L`), so displacements match LAMMPS bit for bit.
 
 use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
-use crate::engine::par::{slab_phase, AtomsMut};
+use crate::engine::par::{slab_phase, window_phase, AtomsMut};
 use crate::engine::state::{RunError, State};
-use crate::engine::bonded_lists::{chunk, slab, BondedLists, Entry};
+use crate::engine::bonded_lists::{chunk, slab, wide_chunk, BondedLists, Entry, WIDE};
 use crate::engine::topology::StoredOn;
 
 /// Energies and virial of the bonded pass.
@@ -274,6 +274,18 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
                 t
             });
         }
+        // the interactions reaching further along the slab axis, on windows of WIDE chunks
+        if [lists.bonds.wide.len(), lists.angles.wide.len(), lists.dihedrals.wide.len()].iter().any(|&n| n > 0) {
+            let mut wide_parts = vec![BondedTally::default(); bounds.len() - 1];
+            for phase in 0..WIDE {
+                window_phase(&bounds, WIDE, phase, AtomsMut::new(&mut f), &mut wide_parts, |c, mut f| {
+                    let mut t = BondedTally::default();
+                    ctx.run(wide_chunk(&lists.bonds, c), wide_chunk(&lists.angles, c), wide_chunk(&lists.dihedrals, c), &mut f, &mut t);
+                    t
+                });
+            }
+            parts.extend(wide_parts);
+        }
         let mut tally = BondedTally::default();
         for p in &parts {
             tally.add(p);
@@ -416,10 +428,8 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engi
     let Some(dom) = state.domain.as_ref() else { return };
     // every entry at its shifts (chunk entries have none)
     let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
-    let all = |n: usize| 0..=n;
     if let Some(style) = styles.bond {
-        let n = lists.bonds.nchunks();
-        for e in all(n).flat_map(|c| if c < n { chunk(&lists.bonds, c) } else { &lists.bonds.leftover[..] }) {
+        for e in lists.bonds.all() {
             let del = sub(k.pos(e.atoms[0], e.shift[0]), k.pos(e.atoms[1], e.shift[1]));
             let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
             let (fbond, energy) = style.compute(e.typ, del, rsq);
@@ -428,8 +438,7 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engi
         }
     }
     if let Some(style) = styles.angle {
-        let n = lists.angles.nchunks();
-        for e in all(n).flat_map(|c| if c < n { chunk(&lists.angles, c) } else { &lists.angles.leftover[..] }) {
+        for e in lists.angles.all() {
             let x2 = k.pos(e.atoms[1], e.shift[1]);
             let del1 = sub(k.pos(e.atoms[0], e.shift[0]), x2);
             let del2 = sub(k.pos(e.atoms[2], e.shift[2]), x2);
@@ -439,8 +448,7 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engi
         }
     }
     if let Some(style) = styles.dihedral {
-        let n = lists.dihedrals.nchunks();
-        for e in all(n).flat_map(|c| if c < n { chunk(&lists.dihedrals, c) } else { &lists.dihedrals.leftover[..] }) {
+        for e in lists.dihedrals.all() {
             let p: [[f64; 3]; 4] = std::array::from_fn(|m| k.pos(e.atoms[m], e.shift[m]));
             let (vb1, vb2, vb3) = (sub(p[0], p[1]), sub(p[2], p[1]), sub(p[3], p[2]));
             let r = style.compute(e.typ, vb1, vb2, vb3);

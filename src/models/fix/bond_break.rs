@@ -204,10 +204,10 @@ impl Fix for FixBondBreak {
         let lists = &state.bonded_lists.bonds;
         let mut longest_sq: f64 = 0.0;
         // the bonds longer than Rmax, as (tag, tag, r^2), in list order: chunk entries, then
-        // the ones across periodic faces; a distributed run's ranks each list the bonds they
+        // the wide ones, then the ones across periodic faces; a distributed run's ranks each list the bonds they
         // compute, and every rank then reads all of them in rank order
         let mut candidates: Vec<f64> = vec![];
-        for e in lists.entries.iter().chain(&lists.leftover) {
+        for e in lists.all() {
             if e.typ != self.btype {
                 continue;
             }

@@ -3,6 +3,7 @@
 
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::state::{RunError, State};
+use crate::engine::par::{ranges, AtomsMut};
 use dmhs_parser::{Args, Command, DResult, Word};
 
 pub struct FixEnforce2d {
@@ -43,24 +44,27 @@ impl Fix for FixEnforce2d {
         let a = &mut state.atoms;
         let n = a.nlocal;
         let groupbit = self.groupbit;
-        // plain slices: through `a`, every store made the compiler reload the arrays' addresses
-        let (mask, v, f) = (&a.mask[..n], &mut a.v[..n], &mut a.f[..n]);
-        for ((m, vi), fi) in mask.iter().zip(v.iter_mut()).zip(f.iter_mut()) {
-            if m & groupbit != 0 {
-                vi[2] = 0.0;
-                fi[2] = 0.0;
-            }
-        }
-        if a.features.sphere {
-            let (mask, omega, torque) = (&a.mask[..n], &mut a.omega[..n], &mut a.torque[..n]);
-            for ((m, wi), ti) in mask.iter().zip(omega.iter_mut()).zip(torque.iter_mut()) {
-                if m & groupbit != 0 {
-                    wi[0] = 0.0;
-                    wi[1] = 0.0;
-                    ti[0] = 0.0;
-                    ti[1] = 0.0;
+        let mask = &a.mask[..n];
+        // in the integrators' blocks of atoms, each thread on the atoms in its cache
+        ranges(n, 1024, (AtomsMut::new(&mut a.v[..n]), AtomsMut::new(&mut a.f[..n])), |r, (mut v, mut f)| {
+            for i in r {
+                if mask[i] & groupbit != 0 {
+                    v[i][2] = 0.0;
+                    f[i][2] = 0.0;
                 }
             }
+        });
+        if a.features.sphere {
+            ranges(n, 1024, (AtomsMut::new(&mut a.omega[..n]), AtomsMut::new(&mut a.torque[..n])), |r, (mut omega, mut torque)| {
+                for i in r {
+                    if mask[i] & groupbit != 0 {
+                        omega[i][0] = 0.0;
+                        omega[i][1] = 0.0;
+                        torque[i][0] = 0.0;
+                        torque[i][1] = 0.0;
+                    }
+                }
+            });
         }
         Ok(())
     }

@@ -313,7 +313,8 @@ impl Simulation {
         };
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields, peratom };
-        let r = work(pair.as_mut(), &input, &mut out);
+        // a pass over few pairs (sparse contacts) is not worth sharing among threads
+        let r = if input.list.npairs() < crate::engine::par::PARALLEL_MIN_WORK { crate::engine::par::alone(|| work(pair.as_mut(), &input, &mut out)) } else { work(pair.as_mut(), &input, &mut out) };
         self.state.atoms.f = f;
         self.state.atoms.torque = torque;
         self.state.atoms.drho = drho;
@@ -988,10 +989,6 @@ impl Simulation {
 /// Set every element to `zero`, in the integrators' blocks of atoms (so each thread clears
 /// the forces it then adds to, in its own cache).
 fn clear<T: Copy + Send + Sync>(v: &mut [T], zero: T) {
-    use crate::engine::par::{ranges, AtomsMut, PARALLEL_MIN_ATOMS};
-    if v.len() >= PARALLEL_MIN_ATOMS {
-        ranges(v.len(), 1024, AtomsMut::new(v), |r, mut w| w.slice(r).fill(zero));
-    } else {
-        v.fill(zero);
-    }
+    use crate::engine::par::{ranges, AtomsMut};
+    ranges(v.len(), 1024, AtomsMut::new(v), |r, mut w| w.slice(r).fill(zero));
 }

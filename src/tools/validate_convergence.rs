@@ -176,7 +176,8 @@ pub fn study(quick: bool, progress: &(dyn Fn(&ConvPoint) + Sync)) -> Result<Vec<
         .par_iter()
         .map(|&k| {
             let (case, kernel, rule, n) = configs[k];
-            let p = run_point(case, kernel, rule, n)?;
+            // each run on one thread: the runs themselves share the cores
+            let p = crate::engine::par::with_threads(1, || run_point(case, kernel, rule, n))?;
             progress(&p);
             Ok((k, p))
         })

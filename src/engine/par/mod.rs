@@ -1,7 +1,7 @@
 //! Every threading primitive of dmhs and every `unsafe` block of the engine crate (the others
 //! are in [`lanes`], the vector type of the batched kernels, [`bounded`], neighbour entries
-//! that read per-atom arrays and write a task's window without bounds checks, and [`cmath`],
-//! the C library's cube root).
+//! that read per-atom arrays and write a task's window without bounds checks, [`cmath`],
+//! the C library's cube root, and [`team`], the threads every loop below runs on).
 //!
 //! - The slab schedule ([`slab_phase`]): the pair and bonded passes split the owned atoms into chunks
 //!   along one axis (the neighbour list's chunks); task `c` writes only to the atoms of chunks
@@ -9,7 +9,8 @@
 //!   own window of every array it writes ([`AtomsMut`], indexed by atom index), split off with
 //!   safe slice splitting: no two tasks can touch the same atom, and a write outside the
 //!   window panics instead of racing. Every atom receives its contributions in the same order
-//!   whatever the thread count, so results do not depend on it.
+//!   whatever the thread count, so results do not depend on it. [`window_phase`] is the same
+//!   schedule with wider windows (bonded interactions reaching further).
 //! - Parallel ranges over independent atoms ([`ranges`]) for the integrators and other per-atom
 //!   loops, and a parallel "any" ([`any_index`]).
 //!
@@ -22,13 +23,17 @@ pub mod cmath;
 pub mod lanes;
 pub mod team;
 
-pub use team::{threads, with_threads};
+pub use team::{alone, threads, with_threads};
 use std::ops::{Index, IndexMut, Range};
 
-/// Below this many owned atoms the slab schedule runs on the calling thread: handing a loop to
-/// a second thread twice per loop costs more than it saves (the 564-particle Plinko scene ran
-/// slower with 2 threads than with 1).
-pub const PARALLEL_MIN_ATOMS: usize = 2000;
+/// Below this many owned atoms the slab schedule runs on the calling thread.
+pub const PARALLEL_MIN_ATOMS: usize = 200;
+
+/// Below this much work (the entries of a pair pass's neighbour list, the interactions of a
+/// bonded pass) a pass runs on the calling thread ([`alone`]): 564 ring-cell particles with
+/// 1,100 bonds and angles and almost no contacts (the Plinko scene) ran slower on two threads,
+/// a 216-particle SPH channel with 3,100 pairs faster (docs/performance.md).
+pub const PARALLEL_MIN_WORK: usize = 2500;
 
 /// A mutable window on per-atom values, indexed by atom index: the atoms `start..start + len`.
 /// An array a model does not have (empty) stays empty in every window.
@@ -228,11 +233,13 @@ pub fn check_slab_invariant<'a>(bounds: &[usize], partners: impl Fn(usize) -> &'
 }
 
 /// Run `work(range, window)` over ranges of `chunk` atoms covering `0..n`, with the window of
-/// `data` on that range, in parallel when the pool has several threads: for per-atom loops
-/// whose atoms are independent, so the results are the same either way. With one thread it is
-/// one plain loop, without the pool's overhead.
+/// `data` on that range, in parallel when the team has several threads and there are at least
+/// four ranges (`chunk` says how much work is worth handing to another thread): for per-atom
+/// loops whose atoms are independent, so the results are the same either way. Otherwise one
+/// plain loop: a few thousand atoms of an integrator fit in one core's cache, and splitting
+/// them moves them between caches every step.
 pub fn ranges<S: Split>(n: usize, chunk: usize, data: S, work: impl Fn(Range<usize>, S) + Sync) {
-    if threads() == 1 || n <= chunk {
+    if threads() == 1 || n < 4 * chunk {
         work(0..n, data);
         return;
     }

@@ -252,6 +252,22 @@ pub fn map<T: Send, R: Send>(items: Vec<T>, f: impl Fn(T) -> R + Sync) -> Vec<R>
     slots.into_iter().map(|s| s.into_inner().unwrap_or_else(|e| e.into_inner()).1.expect("every task ran")).collect()
 }
 
+/// Run `f` with the calling thread's team set aside: its loops run on this thread alone (a
+/// pass with too little work to share).
+pub fn alone<R>(f: impl FnOnce() -> R) -> R {
+    let team = TEAM.with(|t| t.borrow().clone());
+    let Some(team) = team.filter(|t| !t.busy.get()) else { return f() };
+    team.busy.set(true);
+    struct Free(Rc<Team>);
+    impl Drop for Free {
+        fn drop(&mut self) {
+            self.0.busy.set(false);
+        }
+    }
+    let _free = Free(team);
+    f()
+}
+
 /// Whether the calling thread has a team of its own (made by [`with_threads`]).
 pub fn installed() -> bool {
     TEAM.with(|t| t.borrow().is_some())

@@ -4,7 +4,7 @@
 //! copy is (`x + shift * L`), so displacements match LAMMPS bit for bit.
 
 use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
-use crate::engine::par::{slab_phase, window_phase, AtomsMut};
+use crate::engine::par::{alone, slab_phase, window_phase, AtomsMut, PARALLEL_MIN_WORK};
 use crate::engine::state::{RunError, State};
 use crate::engine::bonded_lists::{chunk, slab, wide_chunk, BondedLists, Entry, WIDE};
 use crate::engine::topology::StoredOn;
@@ -113,30 +113,46 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
         };
         let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
         if styles.bond.is_some() {
-            for (rec, b) in t.bonds.iter().enumerate().filter(|(_, b)| !b.off) {
+            bonds = in_blocks(&t.bonds, |rec, b| {
                 let i = [find(b.atoms[0], "bond")?, find(b.atoms[1], "bond")?];
-                bonds.push(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ, rec: rec as u32 });
-            }
+                Ok(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ, rec: rec as u32 })
+            }, |b| b.off)?;
         }
         if styles.angle.is_some() {
-            for (rec, a) in t.angles.iter().enumerate().filter(|(_, a)| !a.off) {
+            angles = in_blocks(&t.angles, |rec, a| {
                 let i = [find(a.atoms[0], "angle")?, find(a.atoms[1], "angle")?, find(a.atoms[2], "angle")?];
                 let r = i[1] as usize;
-                angles.push(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ, rec: rec as u32 });
-            }
+                Ok(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ, rec: rec as u32 })
+            }, |a| a.off)?;
         }
         if styles.dihedral.is_some() {
-            for (rec, d) in t.dihedrals.iter().enumerate().filter(|(_, d)| !d.off) {
+            dihedrals = in_blocks(&t.dihedrals, |rec, d| {
                 let i = [find(d.atoms[0], "dihedral")?, find(d.atoms[1], "dihedral")?, find(d.atoms[2], "dihedral")?, find(d.atoms[3], "dihedral")?];
                 let r = i[1] as usize;
                 let shift = [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize), closest(r, i[3] as usize)];
-                dihedrals.push(Entry { atoms: i, shift, typ: d.typ, rec: rec as u32 });
-            }
+                Ok(Entry { atoms: i, shift, typ: d.typ, rec: rec as u32 })
+            }, |d| d.off)?;
         }
         let lammps_bonds = if bpm { crate::models::bonded::bpm::lammps_bond_list(state, &bonds) } else { vec![] };
         state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, lammps_bonds);
         Ok(())
     }
+
+/// `entry(rec, record)` of every record not `off`, in record order, made in blocks of records on
+/// the team; the error of the first failing record.
+fn in_blocks<R: Sync, E: Send>(records: &[R], entry: impl Fn(usize, &R) -> Result<E, RunError> + Sync, off: impl Fn(&R) -> bool + Sync) -> Result<Vec<E>, RunError> {
+    const BLOCK: usize = 4096;
+    let blocks: Vec<usize> = (0..records.len().div_ceil(BLOCK)).collect();
+    let parts = crate::engine::par::team::map(blocks, |b| {
+        let lo = b * BLOCK;
+        records[lo..(lo + BLOCK).min(records.len())].iter().enumerate().filter(|(_, r)| !off(r)).map(|(k, r)| entry(lo + k, r)).collect::<Result<Vec<E>, RunError>>()
+    });
+    let mut out = Vec::with_capacity(records.len());
+    for part in parts {
+        out.extend(part?);
+    }
+    Ok(out)
+}
 
 /// The entries grouped by the chunks of the neighbour list (see [`slab`]).
 fn slabbed(state: &State, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], lammps_bonds: Vec<crate::engine::bonded_lists::Listed>) -> BondedLists {
@@ -266,26 +282,31 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
         let bounds = state.neighbor.list.bounds();
         let nchunks = lists.bonds.nchunks().max(lists.angles.nchunks()).max(lists.dihedrals.nchunks());
         assert!(nchunks + 1 <= bounds.len(), "bonded lists built on another neighbour list");
-        let mut parts = vec![BondedTally::default(); bounds.len() - 1];
-        for parity in 0..2 {
-            slab_phase(&bounds, parity, AtomsMut::new(&mut f), &mut parts, |c, mut f| {
-                let mut t = BondedTally::default();
-                ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &mut f, &mut t);
-                t
-            });
-        }
-        // the interactions reaching further along the slab axis, on windows of WIDE chunks
-        if [lists.bonds.wide.len(), lists.angles.wide.len(), lists.dihedrals.wide.len()].iter().any(|&n| n > 0) {
-            let mut wide_parts = vec![BondedTally::default(); bounds.len() - 1];
-            for phase in 0..WIDE {
-                window_phase(&bounds, WIDE, phase, AtomsMut::new(&mut f), &mut wide_parts, |c, mut f| {
+        let phases = |f: &mut Vec<[f64; 3]>| {
+            let mut parts = vec![BondedTally::default(); bounds.len() - 1];
+            for parity in 0..2 {
+                slab_phase(&bounds, parity, AtomsMut::new(&mut *f), &mut parts, |c, mut f| {
                     let mut t = BondedTally::default();
-                    ctx.run(wide_chunk(&lists.bonds, c), wide_chunk(&lists.angles, c), wide_chunk(&lists.dihedrals, c), &mut f, &mut t);
+                    ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &mut f, &mut t);
                     t
                 });
             }
-            parts.extend(wide_parts);
-        }
+            // the interactions reaching further along the slab axis, on windows of WIDE chunks
+            if [lists.bonds.wide.len(), lists.angles.wide.len(), lists.dihedrals.wide.len()].iter().any(|&n| n > 0) {
+                let mut wide_parts = vec![BondedTally::default(); bounds.len() - 1];
+                for phase in 0..WIDE {
+                    window_phase(&bounds, WIDE, phase, AtomsMut::new(&mut *f), &mut wide_parts, |c, mut f| {
+                        let mut t = BondedTally::default();
+                        ctx.run(wide_chunk(&lists.bonds, c), wide_chunk(&lists.angles, c), wide_chunk(&lists.dihedrals, c), &mut f, &mut t);
+                        t
+                    });
+                }
+                parts.extend(wide_parts);
+            }
+            parts
+        };
+        // a few interactions among many atoms (capsules in a fluid) are not worth sharing
+        let parts = if lists.bonds.len() + lists.angles.len() + lists.dihedrals.len() < PARALLEL_MIN_WORK { alone(|| phases(&mut f)) } else { phases(&mut f) };
         let mut tally = BondedTally::default();
         for p in &parts {
             tally.add(p);

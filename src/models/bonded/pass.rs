@@ -260,7 +260,8 @@ pub fn missing_partner(step: i64, what: &str, tag: i64, tags: &[i64]) -> RunErro
 }
 
 /// Bond, angle and dihedral forces on owned atoms: chunks in the pair loop's even/odd
-/// schedule, then the leftovers, so results do not depend on the thread count.
+/// schedule, the wide ones on windows of four chunks, then the leftovers, so results do not
+/// depend on the thread count.
 pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> Result<BondedTally, RunError> {
         let lists = &state.bonded_lists;
         let distributed = state.distributed.is_some();
@@ -282,31 +283,18 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
         let bounds = state.neighbor.list.bounds();
         let nchunks = lists.bonds.nchunks().max(lists.angles.nchunks()).max(lists.dihedrals.nchunks());
         assert!(nchunks + 1 <= bounds.len(), "bonded lists built on another neighbour list");
+        // a few interactions among many atoms (capsules in a fluid) are not worth sharing; the
+        // tallies of the tasks are kept on energy steps only
+        let few = lists.bonds.len() + lists.angles.len() + lists.dihedrals.len() < PARALLEL_MIN_WORK;
         let phases = |f: &mut Vec<[f64; 3]>| {
-            let mut parts = vec![BondedTally::default(); bounds.len() - 1];
-            for parity in 0..2 {
-                slab_phase(&bounds, parity, AtomsMut::new(&mut *f), &mut parts, |c, mut f| {
-                    let mut t = BondedTally::default();
-                    ctx.run(chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c), &mut f, &mut t);
-                    t
-                });
+            if eflag {
+                run_phases(&bounds, lists, &ctx, f, |t| t)
+            } else {
+                run_phases(&bounds, lists, &ctx, f, |_| ());
+                vec![]
             }
-            // the interactions reaching further along the slab axis, on windows of WIDE chunks
-            if [lists.bonds.wide.len(), lists.angles.wide.len(), lists.dihedrals.wide.len()].iter().any(|&n| n > 0) {
-                let mut wide_parts = vec![BondedTally::default(); bounds.len() - 1];
-                for phase in 0..WIDE {
-                    window_phase(&bounds, WIDE, phase, AtomsMut::new(&mut *f), &mut wide_parts, |c, mut f| {
-                        let mut t = BondedTally::default();
-                        ctx.run(wide_chunk(&lists.bonds, c), wide_chunk(&lists.angles, c), wide_chunk(&lists.dihedrals, c), &mut f, &mut t);
-                        t
-                    });
-                }
-                parts.extend(wide_parts);
-            }
-            parts
         };
-        // a few interactions among many atoms (capsules in a fluid) are not worth sharing
-        let parts = if lists.bonds.len() + lists.angles.len() + lists.dihedrals.len() < PARALLEL_MIN_WORK { alone(|| phases(&mut f)) } else { phases(&mut f) };
+        let parts = if few { alone(|| phases(&mut f)) } else { phases(&mut f) };
         let mut tally = BondedTally::default();
         for p in &parts {
             tally.add(p);
@@ -318,6 +306,33 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
             d.reverse_forces(&mut state.atoms);
         }
         Ok(tally)
+}
+
+/// The interactions of every chunk on the slab schedule, then the wide ones on the window
+/// schedule (see [`Slabbed`](crate::engine::bonded_lists::Slabbed)); each task's tally through
+/// `keep`, by chunk, the wide ones after.
+fn run_phases<R: Clone + Default + Send>(bounds: &[usize], lists: &BondedLists, ctx: &Kernels, f: &mut [[f64; 3]], keep: impl Fn(BondedTally) -> R + Sync) -> Vec<R> {
+    let mut parts = vec![R::default(); bounds.len() - 1];
+    let task = |(b, a, d): (&[Entry<2>], &[Entry<3>], &[Entry<4>]), f: &mut AtomsMut<[f64; 3]>| {
+        let mut t = BondedTally::default();
+        // a chunk of the wide schedule usually has none
+        if !(b.is_empty() && a.is_empty() && d.is_empty()) {
+            ctx.run(b, a, d, f, &mut t);
+        }
+        keep(t)
+    };
+    for parity in 0..2 {
+        slab_phase(bounds, parity, AtomsMut::new(&mut *f), &mut parts, |c, mut f| task((chunk(&lists.bonds, c), chunk(&lists.angles, c), chunk(&lists.dihedrals, c)), &mut f));
+    }
+    // the interactions reaching further along the slab axis, on windows of WIDE chunks
+    if [lists.bonds.wide.len(), lists.angles.wide.len(), lists.dihedrals.wide.len()].iter().any(|&n| n > 0) {
+        let mut wide_parts = vec![R::default(); bounds.len() - 1];
+        for phase in 0..WIDE {
+            window_phase(bounds, WIDE, phase, AtomsMut::new(&mut *f), &mut wide_parts, |c, mut f| task((wide_chunk(&lists.bonds, c), wide_chunk(&lists.angles, c), wide_chunk(&lists.dihedrals, c)), &mut f));
+        }
+        parts.extend(wide_parts);
+    }
+    parts
 }
 
 impl BondedTally {

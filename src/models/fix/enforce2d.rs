@@ -47,21 +47,21 @@ impl Fix for FixEnforce2d {
         let mask = &a.mask[..n];
         // in the integrators' blocks of atoms, each thread on the atoms in its cache
         ranges(n, 1024, (AtomsMut::new(&mut a.v[..n]), AtomsMut::new(&mut a.f[..n])), |r, (mut v, mut f)| {
-            for i in r {
-                if mask[i] & groupbit != 0 {
-                    v[i][2] = 0.0;
-                    f[i][2] = 0.0;
+            for ((m, vi), fi) in mask[r.clone()].iter().zip(v.slice(r.clone())).zip(f.slice(r)) {
+                if m & groupbit != 0 {
+                    vi[2] = 0.0;
+                    fi[2] = 0.0;
                 }
             }
         });
         if a.features.sphere {
             ranges(n, 1024, (AtomsMut::new(&mut a.omega[..n]), AtomsMut::new(&mut a.torque[..n])), |r, (mut omega, mut torque)| {
-                for i in r {
-                    if mask[i] & groupbit != 0 {
-                        omega[i][0] = 0.0;
-                        omega[i][1] = 0.0;
-                        torque[i][0] = 0.0;
-                        torque[i][1] = 0.0;
+                for ((m, wi), ti) in mask[r.clone()].iter().zip(omega.slice(r.clone())).zip(torque.slice(r)) {
+                    if m & groupbit != 0 {
+                        wi[0] = 0.0;
+                        wi[1] = 0.0;
+                        ti[0] = 0.0;
+                        ti[1] = 0.0;
                     }
                 }
             });

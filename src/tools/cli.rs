@@ -47,7 +47,8 @@ options:
   -log FILE|none       log file (default log.dmhs)
   -screen none         no screen output
   -echo screen|log|both|none
-  -threads N           worker threads (default: all cores; results do not depend on it)
+  -threads N           worker threads (default: all cores, under mpiexec one per rank;
+                       results do not depend on it)
   -h, -help            this help;  -version: the version of dmhs
   crosscheck: --force-tol X (default 1e-12, relative to the largest force in the run)
               --pos-tol X   (default 1e-9, relative to the box length)
@@ -274,7 +275,14 @@ pub fn main_with_args(args: &[String]) -> i32 {
         }
         universe
     });
-    pool.install(|| dispatch(&cli))
+    // the deck's team of threads: -threads N, or all cores; under mpiexec one per rank unless
+    // -threads says otherwise (as LAMMPS runs one thread per MPI task), so ranks sharing a
+    // machine's cores do not each spin a worker per core
+    let team = match (cli.threads, ranks()) {
+        (None, Some(_)) => 1,
+        _ => pool.current_num_threads(),
+    };
+    pool.install(|| crate::engine::par::with_threads(team, || dispatch(&cli)))
 }
 
 /// The ranks this process runs with (`mpiexec` of the `mpi` build); unset: alone.

@@ -56,10 +56,15 @@ enum Source<'a> {
 impl Engine {
     fn execute(&mut self, src: Source) -> Result<(), String> {
         let Engine { sim, interp, pool } = self;
-        let result = pool.install(|| match src {
-            Source::File(path) => interp.run_file(path, sim),
-            Source::Line(text) => interp.execute_line(text, sim),
-            Source::Lines(name, text) => interp.run_source(name, text, sim),
+        // the command's loops run on a team as large as the pool (made per command: the pool
+        // runs it on any of its threads, and a team belongs to the thread that made it)
+        let threads = pool.current_num_threads();
+        let result = pool.install(|| {
+            dmhs::engine::par::with_threads(threads, || match src {
+                Source::File(path) => interp.run_file(path, sim),
+                Source::Line(text) => interp.execute_line(text, sim),
+                Source::Lines(name, text) => interp.run_source(name, text, sim),
+            })
         });
         sim.out.flush();
         result.map(|_| ()).map_err(|diags| diags.iter().map(|d| d.render(interp.sources())).collect::<Vec<_>>().join("\n"))

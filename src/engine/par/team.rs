@@ -1,7 +1,8 @@
 //! The team: threads that stay awake between the parallel loops of a run, as an OpenMP team
 //! does. A step runs a dozen short loops (integrators, the pair and bonded phases, the list
-//! build); handing each to a pool whose idle threads have gone to sleep, and whose tasks land on
-//! whichever thread steals them, cost more than the loops gained below about 10,000 atoms.
+//! build); handed to a pool whose idle threads had gone to sleep, and whose tasks landed on
+//! whichever thread stole them, a short loop took longer on two threads than on one (fix nve of
+//! a 10,000-atom melt: 0.070 s on one thread, 0.157 s on two; docs/performance.md).
 //!
 //! - The calling thread is thread 0 of its team and takes part in every loop.
 //! - A loop of `n` tasks is cut into one contiguous block per thread; a thread runs its own
@@ -32,13 +33,17 @@ struct Job {
     /// a block, and the caller returns only when every index has been claimed and finished.
     task: *const (dyn Fn(usize) + Sync),
     /// Per thread: the next unclaimed index of its block and the block's end.
-    next: Vec<AtomicUsize>,
+    next: Vec<Cursor>,
     end: Vec<usize>,
     /// Indices not finished yet.
     left: AtomicUsize,
     /// The first panic of a task, raised again on the calling thread.
     panic: Mutex<Option<Box<dyn Any + Send>>>,
 }
+
+/// A block's next index, alone on its cache line (each thread claims from its own block).
+#[repr(align(64))]
+struct Cursor(AtomicUsize);
 
 // SAFETY: the task is `Sync` (called from several threads at once) and outlived by the caller,
 // which waits for `left == 0` before it returns (see `Job::task`).
@@ -51,7 +56,7 @@ impl Job {
         let blocks = self.next.len();
         for b in (0..blocks).map(|k| (me + k) % blocks) {
             loop {
-                let k = self.next[b].fetch_add(1, Ordering::Relaxed);
+                let k = self.next[b].0.fetch_add(1, Ordering::Relaxed);
                 if k >= self.end[b] {
                     break;
                 }
@@ -98,6 +103,10 @@ fn worker(shared: Arc<Shared>, me: usize) {
         while shared.epoch.load(Ordering::Acquire) == seen {
             std::hint::spin_loop();
             spins = spins.wrapping_add(1);
+            if spins % 256 == 0 {
+                // more threads than free cores: let a thread that holds a task run
+                std::thread::yield_now();
+            }
             if spins % 64 == 0 && start.elapsed() > SPIN {
                 let mut g = shared.sleep.lock().unwrap_or_else(|e| e.into_inner());
                 shared.sleepers.fetch_add(1, Ordering::SeqCst);
@@ -164,7 +173,7 @@ impl Team {
         let task: *const (dyn Fn(usize) + Sync) = unsafe { std::mem::transmute(task) };
         let job = Arc::new(Job {
             task,
-            next: (0..blocks).map(|b| AtomicUsize::new(bound(b))).collect(),
+            next: (0..blocks).map(|b| Cursor(AtomicUsize::new(bound(b)))).collect(),
             end: (0..blocks).map(|b| bound(b + 1)).collect(),
             left: AtomicUsize::new(n),
             panic: Mutex::new(None),
@@ -177,7 +186,7 @@ impl Team {
         while job.left.load(Ordering::Acquire) > 0 {
             std::hint::spin_loop();
             spins = spins.wrapping_add(1);
-            if spins % 1024 == 0 {
+            if spins % 256 == 0 {
                 // a worker descheduled (more threads than cores): give it the core
                 std::thread::yield_now();
             }

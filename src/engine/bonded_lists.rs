@@ -97,17 +97,18 @@ fn retain_grouped<const N: usize>(entries: &mut Vec<Entry<N>>, offsets: &mut [u3
 
 /// The interactions of chunk `c` (none if the kind has fewer chunks).
 pub fn chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
-    if c + 1 < s.offsets.len() {
-        &s.entries[s.offsets[c] as usize..s.offsets[c + 1] as usize]
-    } else {
-        &[]
-    }
+    of_chunk(&s.entries, &s.offsets, c)
 }
 
 /// The wide interactions of chunk `c` (none if the kind has fewer chunks).
 pub fn wide_chunk<E>(s: &Slabbed<E>, c: usize) -> &[E] {
-    if c + 1 < s.wide_offsets.len() {
-        &s.wide[s.wide_offsets[c] as usize..s.wide_offsets[c + 1] as usize]
+    of_chunk(&s.wide, &s.wide_offsets, c)
+}
+
+/// Chunk `c` of entries grouped by `offsets`.
+fn of_chunk<'a, E>(entries: &'a [E], offsets: &[u32], c: usize) -> &'a [E] {
+    if c + 1 < offsets.len() {
+        &entries[offsets[c] as usize..offsets[c + 1] as usize]
     } else {
         &[]
     }

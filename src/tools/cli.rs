@@ -253,11 +253,10 @@ pub fn main_with_args(args: &[String]) -> i32 {
         // the benchmark makes its own pool per thread count
         return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1), cli.ranks);
     }
-    // The whole command runs on a worker of its pool: each parallel loop is then started from
-    // inside the pool (work is pushed to the local queue and stolen) instead of being sent in
-    // from the main thread and waited for, which cost about 15% of a step at 2 threads.
-    // 0 threads: rayon's default (the cores, or RAYON_NUM_THREADS). Worker stacks are as
-    // large as a main thread's, for deeply nested decks.
+    // The pool says how many threads (0: rayon's default, the cores or RAYON_NUM_THREADS) and
+    // runs the command on one of its workers, whose stack is as large as a main thread's (for
+    // deeply nested decks); sub-commands that run several decks at once spread them over it.
+    // The loops of a run use the team made below (engine::par::team), not the pool.
     let pool = match rayon::ThreadPoolBuilder::new().num_threads(cli.threads.map(|n| n.max(1)).unwrap_or(0)).stack_size(8 << 20).build() {
         Ok(p) => p,
         Err(e) => {

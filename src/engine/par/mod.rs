@@ -142,7 +142,7 @@ tuples!(A B C D);
 tuples!(A B C D E);
 tuples!(A B C D E F);
 
-/// Whether a schedule over `atoms` owned atoms should use the pool.
+/// Whether a schedule over `atoms` owned atoms should use the team.
 fn parallel(atoms: usize) -> bool {
     atoms >= PARALLEL_MIN_ATOMS && threads() > 1
 }
@@ -159,7 +159,7 @@ fn parallel(atoms: usize) -> bool {
 /// }
 /// ```
 ///
-/// Tasks run in parallel when the pool has several threads and there are enough atoms, in
+/// Tasks run in parallel when the team has several threads and there are enough atoms, in
 /// chunk order otherwise; every atom receives its contributions in the same order either way.
 pub fn slab_phase<S: Split, R: Send>(bounds: &[usize], parity: usize, data: S, out: &mut [R], work: impl Fn(usize, S) -> R + Sync) {
     window_phase(bounds, 2, parity, data, out, work)
@@ -328,6 +328,33 @@ mod tests {
         let bad: [&[u32]; 3] = [&[5], &[], &[]];
         let e = check_slab_invariant(&bounds, |c| bad[c], |j| j as usize).unwrap_err();
         assert!(e.contains("chunk 0 lists owned atom 5"), "{e}");
+    }
+
+    /// Windows of four chunks: each atom is written once by every task whose window holds its
+    /// chunk, on any number of threads.
+    #[test]
+    fn wide_windows_cover_four_chunks() {
+        for threads in [1, 2, 3] {
+            with_threads(threads, || {
+                for n in 0..11usize {
+                    let bounds: Vec<usize> = (0..=n).map(|c| c * 300).collect();
+                    let mut writes = vec![0u32; n * 300];
+                    let mut out = vec![usize::MAX; n];
+                    for phase in 0..4 {
+                        window_phase(&bounds, 4, phase, AtomsMut::new(&mut writes), &mut out, |c, mut w| {
+                            for i in bounds[c]..bounds[(c + 4).min(n)] {
+                                w[i] += 1;
+                            }
+                            c
+                        });
+                    }
+                    assert_eq!(out, (0..n).collect::<Vec<_>>());
+                    for (i, &w) in writes.iter().enumerate() {
+                        assert_eq!(w as usize, (i / 300 + 1).min(4), "{threads} threads, {n} chunks, atom {i}");
+                    }
+                }
+            });
+        }
     }
 
     #[test]

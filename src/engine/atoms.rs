@@ -173,6 +173,54 @@ impl Atoms {
         self.nlocal += 1;
     }
 
+    /// Room for `more` atoms beyond those present in every array, so that adding them (ghosts
+    /// of a rebuild) does not double each array's capacity: an array that must grow grows to
+    /// what is needed plus 1/16 (a few more ghosts at the next rebuild fit without a copy).
+    pub fn reserve(&mut self, more: usize) {
+        fn grow<T>(v: &mut Vec<T>, more: usize, per: usize) {
+            let need = v.len() + more * per;
+            if v.capacity() < need {
+                v.reserve_exact(need - v.len() + need / 16);
+            }
+        }
+        let ft = self.features;
+        grow(&mut self.ghost_owner, more, 1);
+        grow(&mut self.ghost_shift, more, 1);
+        grow(&mut self.tag, more, 1);
+        grow(&mut self.typ, more, 1);
+        grow(&mut self.mask, more, 1);
+        grow(&mut self.x, more, 1);
+        grow(&mut self.v, more, 1);
+        grow(&mut self.f, more, 1);
+        grow(&mut self.image, more, 1);
+        if ft.molecule {
+            grow(&mut self.molecule, more, 1);
+        }
+        if ft.charge {
+            grow(&mut self.q, more, 1);
+        }
+        if ft.sphere {
+            grow(&mut self.radius, more, 1);
+            grow(&mut self.rmass, more, 1);
+            grow(&mut self.omega, more, 1);
+            grow(&mut self.torque, more, 1);
+        }
+        if ft.quat {
+            grow(&mut self.quat, more, 1);
+        }
+        if ft.sph {
+            grow(&mut self.rho, more, 1);
+            grow(&mut self.drho, more, 1);
+            grow(&mut self.esph, more, 1);
+            grow(&mut self.desph, more, 1);
+            grow(&mut self.cv, more, 1);
+            grow(&mut self.vest, more, 1);
+        }
+        for e in self.extra.iter_mut().filter(|e| e.ghosts) {
+            grow(&mut e.data, more, e.stride);
+        }
+    }
+
     /// Remove all ghosts (before atoms are added, removed or reordered).
     pub fn clear_ghosts(&mut self) {
         let n = self.nlocal;
@@ -454,7 +502,9 @@ impl Atoms {
             if v.is_empty() {
                 return;
             }
-            let old = std::mem::take(v);
+            // the new array keeps the old one's capacity, the room ghosts take after a rebuild
+            let keep = v.capacity();
+            let old = std::mem::replace(v, Vec::with_capacity(keep));
             v.extend(order.iter().map(|&i| old[i]));
         }
         apply(&mut self.tag, order);
@@ -478,9 +528,9 @@ impl Atoms {
         apply(&mut self.cv, order);
         apply(&mut self.vest, order);
         for e in &mut self.extra {
-            let old = std::mem::take(&mut e.data);
+            let keep = e.data.capacity();
+            let old = std::mem::replace(&mut e.data, Vec::with_capacity(keep));
             let s = e.stride;
-            e.data.reserve(order.len() * s);
             for &i in order {
                 e.data.extend_from_slice(&old[i * s..(i + 1) * s]);
             }

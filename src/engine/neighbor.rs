@@ -632,6 +632,8 @@ impl Neighbor {
                     continue;
                 }
                 let count = atoms.nall();
+                let near = |x: f64| (x < domain.lo[d] + cutmax) as usize + (x >= domain.hi[d] - cutmax) as usize;
+                atoms.reserve(atoms.x.iter().map(|x| near(x[d])).sum());
                 for k in 0..count {
                     let xk = atoms.x[k][d];
                     let near_lo = xk < domain.lo[d] + cutmax;

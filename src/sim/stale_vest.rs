@@ -109,6 +109,8 @@ impl Simulation {
         let mut stale = [(0..a.nghost()).any(|k| image(a, k) && a.vest[nlocal + k] != fresh_ghosts[k]) as u8 as f64];
         self.state.max_ranks(&mut stale);
         if stale[0] == 0.0 {
+            // the copy is as large as the velocities: not held through the forces
+            drop(old);
             return self.compute_forces(true, false);
         }
         if self.computes.iter().any(|c| c.uses_peratom_tally()) {

@@ -5,6 +5,7 @@
 //! `mpiexec -np N` and `-sf omp -pk omp N` above; LIGGGHTS runs serial. The ratio column compares
 //! each engine with the fastest reference engine on the same number of cores.
 
+use crate::output::plot::{Chart, Legend, Series};
 use crate::tools::lammps::{LmpConfig, RunTiming};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -109,13 +110,20 @@ fn median(mut v: Vec<f64>) -> f64 {
     if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
 }
 
+/// One deck measured: `times[e][r]`, engine e in round r (None where it failed).
+type Rounds = Vec<Vec<Option<Timing>>>;
+
 /// `repeat` rounds, each timing every engine once in turn (so that a slow spell of a shared
 /// machine hits all engines of a round alike); each engine's row gives its median time, its ratio
 /// to the fastest reference engine on as many cores (medians), and with more than one round the
 /// lowest and highest of the per-round ratios.
 /// `ranks`: also dmhs on that many ranks of one thread (the `mpi` build), against the reference
 /// engines on as many cores.
-pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[String], threads: Vec<usize>, repeat: usize, ranks: Option<usize>) -> i32 {
+/// `sizes`: an index variable of the decks and its values: every deck runs once per value, and
+/// a chart of particle-steps/s against particles, one line per engine, goes to `img` (default
+/// out/bench) as bench_sizes_DECK.png and .svg.
+#[allow(clippy::too_many_arguments)]
+pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[String], threads: Vec<usize>, repeat: usize, ranks: Option<usize>, sizes: Option<&(String, Vec<String>)>, img: Option<&Path>) -> i32 {
     if decks.is_empty() {
         eprintln!("dmhs bench: give at least one deck");
         return 2;
@@ -151,45 +159,45 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
     let mut status = 0;
     for deck in decks {
         let name = deck.display().to_string();
-        // times[e][r]: engine e in round r (None where it failed)
-        let mut times: Vec<Vec<Option<Timing>>> = vec![vec![]; engines.len()];
-        for _ in 0..repeat {
-            for (e, engine) in engines.iter().enumerate() {
-                let t = engine.time(deck, vars);
-                if let Err(msg) = &t {
-                    eprintln!("dmhs bench: {}", msg.trim_end());
-                    status = 1;
+        let Some((var, values)) = sizes else {
+            let times = measure(deck, vars, &engines, repeat, &mut status);
+            print_rows(&name, &engines, &times, repeat);
+            continue;
+        };
+        // per engine: (particles, median particle-steps/s) at each size
+        let mut curves: Vec<Vec<(f64, f64)>> = vec![vec![]; engines.len()];
+        for value in values {
+            let mut with_size: Vec<(String, Vec<String>)> = vars.iter().filter(|(n, _)| n != var).cloned().collect();
+            with_size.push((var.clone(), vec![value.clone()]));
+            let times = measure(deck, &with_size, &engines, repeat, &mut status);
+            print_rows(&format!("{name} {var}={value}"), &engines, &times, repeat);
+            for (curve, rounds) in curves.iter_mut().zip(&times) {
+                let ok: Vec<&Timing> = rounds.iter().flatten().collect();
+                if let Some(first) = ok.first() {
+                    curve.push((first.atoms as f64, median(ok.iter().map(|t| t.particle_steps_per_second()).collect())));
                 }
-                times[e].push(t.ok());
             }
         }
-        let pss = |t: &Option<Timing>| t.as_ref().map(|t| t.particle_steps_per_second());
-        // the fastest reference engine on `cores` cores: by medians, and in round r
-        let best_median = |cores: usize| -> Option<f64> {
-            engines.iter().zip(&times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, r)| {
-                let ok: Vec<f64> = r.iter().filter_map(pss).collect();
-                (!ok.is_empty()).then(|| median(ok))
-            }).reduce(f64::max)
-        };
-        let best_in_round = |cores: usize, r: usize| -> Option<f64> {
-            engines.iter().zip(&times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, t)| pss(&t[r])).reduce(f64::max)
-        };
-        for (engine, rounds) in engines.iter().zip(&times) {
-            let ok: Vec<&Timing> = rounds.iter().flatten().collect();
-            let Some(first) = ok.first() else { continue };
-            let seconds = median(ok.iter().map(|t| t.seconds).collect());
-            let p = median(ok.iter().map(|t| t.particle_steps_per_second()).collect());
-            let ratio = best_median(engine.cores()).map(|r| format!("{:.2}", p / r)).unwrap_or("-".into());
-            let peak = ok.iter().filter_map(|t| t.peak_bytes).max();
-            let mib = peak.map(|b| format!("{:.1}", b as f64 / 1048576.0)).unwrap_or("-".into());
-            let per_particle = peak.map(|b| format!("{:.0}", b as f64 / first.atoms.max(1) as f64)).unwrap_or("-".into());
-            let mut line = format!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>9} {:>10}", name, first.engine, first.atoms, first.steps, seconds, p, ratio, mib, per_particle);
-            if repeat > 1 {
-                let per_round: Vec<f64> = rounds.iter().enumerate().filter_map(|(r, t)| Some(pss(t)? / best_in_round(engine.cores(), r)?)).collect();
-                let range = if per_round.is_empty() { "-".to_string() } else { format!("{:.2}-{:.2}", per_round.iter().copied().fold(f64::INFINITY, f64::min), per_round.iter().copied().fold(0.0, f64::max)) };
-                line += &format!(" {range:>13}");
+        let stem = deck.file_name().map(|f| f.to_string_lossy().replace('.', "_")).unwrap_or_else(|| "deck".into());
+        let dir = img.map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("out/bench"));
+        let mut chart = Chart::new(&format!("{} at {} = {}", deck.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default(), var, values.join(", ")))
+            .x_label("particles")
+            .y_label("particle-steps per second")
+            .log_x()
+            .log_y()
+            .legend(Legend::LowerLeft);
+        for (k, (engine, curve)) in engines.iter().zip(curves).enumerate() {
+            if !curve.is_empty() {
+                let series = if engine.is_reference() { Series::dashed(&engine.label(), curve) } else { Series::line_points(&engine.label(), curve) };
+                chart = chart.series(series.color(k));
             }
-            println!("{line}");
+        }
+        match std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display())).and_then(|_| chart.save(&dir.join(format!("bench_sizes_{stem}")))) {
+            Ok(files) => println!("chart: {}", files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", ")),
+            Err(e) => {
+                eprintln!("dmhs bench: {e}");
+                status = 1;
+            }
         }
     }
     if !against.is_empty() {
@@ -197,4 +205,52 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
         println!("peak MiB: the summed high-water resident memory of the engine's processes; bytes/part: that over the atoms");
     }
     status
+}
+
+/// Every engine on `deck`, `repeat` interleaved rounds; a failure is reported and sets `status`.
+fn measure(deck: &Path, vars: &[(String, Vec<String>)], engines: &[Engine], repeat: usize, status: &mut i32) -> Rounds {
+    let mut times: Rounds = vec![vec![]; engines.len()];
+    for _ in 0..repeat {
+        for (e, engine) in engines.iter().enumerate() {
+            let t = engine.time(deck, vars);
+            if let Err(msg) = &t {
+                eprintln!("dmhs bench: {}", msg.trim_end());
+                *status = 1;
+            }
+            times[e].push(t.ok());
+        }
+    }
+    times
+}
+
+/// The table rows of one measured deck (`name` in the deck column).
+fn print_rows(name: &str, engines: &[Engine], times: &Rounds, repeat: usize) {
+    let pss = |t: &Option<Timing>| t.as_ref().map(|t| t.particle_steps_per_second());
+    // the fastest reference engine on `cores` cores: by medians, and in round r
+    let best_median = |cores: usize| -> Option<f64> {
+        engines.iter().zip(times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, r)| {
+            let ok: Vec<f64> = r.iter().filter_map(pss).collect();
+            (!ok.is_empty()).then(|| median(ok))
+        }).reduce(f64::max)
+    };
+    let best_in_round = |cores: usize, r: usize| -> Option<f64> {
+        engines.iter().zip(times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, t)| pss(&t[r])).reduce(f64::max)
+    };
+    for (engine, rounds) in engines.iter().zip(times) {
+        let ok: Vec<&Timing> = rounds.iter().flatten().collect();
+        let Some(first) = ok.first() else { continue };
+        let seconds = median(ok.iter().map(|t| t.seconds).collect());
+        let p = median(ok.iter().map(|t| t.particle_steps_per_second()).collect());
+        let ratio = best_median(engine.cores()).map(|r| format!("{:.2}", p / r)).unwrap_or("-".into());
+        let peak = ok.iter().filter_map(|t| t.peak_bytes).max();
+        let mib = peak.map(|b| format!("{:.1}", b as f64 / 1048576.0)).unwrap_or("-".into());
+        let per_particle = peak.map(|b| format!("{:.0}", b as f64 / first.atoms.max(1) as f64)).unwrap_or("-".into());
+        let mut line = format!("{:<40} {:<12} {:>10} {:>8} {:>9.3} {:>14.4e} {:>8} {:>9} {:>10}", name, first.engine, first.atoms, first.steps, seconds, p, ratio, mib, per_particle);
+        if repeat > 1 {
+            let per_round: Vec<f64> = rounds.iter().enumerate().filter_map(|(r, t)| Some(pss(t)? / best_in_round(engine.cores(), r)?)).collect();
+            let range = if per_round.is_empty() { "-".to_string() } else { format!("{:.2}-{:.2}", per_round.iter().copied().fold(f64::INFINITY, f64::min), per_round.iter().copied().fold(0.0, f64::max)) };
+            line += &format!(" {range:>13}");
+        }
+        println!("{line}");
+    }
 }

@@ -60,6 +60,10 @@ options:
                         range of the per-round ratios; default 1)
          --ranks N     (also dmhs on N ranks of one thread, `dmhs Nr`: the
                         build with --features mpi, run by DMHS_MPIEXEC or mpiexec)
+         --sizes NAME=V1,V2,...  (each deck once per value of its index variable
+                        NAME, e.g. NX=32,100,316,1000; draws particle-steps/s
+                        against particles for every engine into --img DIR,
+                        default out/bench)
   validate: --quick (the fast variants the tests run), --engine dmhs|lammps,
             --json FILE (default out/validate/CASE.json), --img DIR (also draw the charts)
 ";
@@ -77,6 +81,7 @@ struct Cli {
     threads_list: Option<Vec<usize>>,
     repeat: Option<usize>,
     ranks: Option<usize>,
+    sizes: Option<(String, Vec<String>)>,
     quick: bool,
     engine: Option<String>,
     json: Option<PathBuf>,
@@ -193,6 +198,16 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 c.ranks = Some(v.parse::<usize>().ok().filter(|&n| n >= 1).ok_or_else(|| format!("--ranks: `{v}` is not a count of 1 or more"))?);
                 i += 2;
             }
+            "--sizes" => {
+                let v = value(i, a)?;
+                let (name, values) = v.split_once('=').ok_or_else(|| format!("--sizes: `{v}` is not NAME=V1,V2,... (an index variable of the deck and its values)"))?;
+                let values: Vec<String> = values.split(',').map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect();
+                if name.is_empty() || values.is_empty() {
+                    return Err(format!("--sizes: `{v}` is not NAME=V1,V2,... (an index variable of the deck and its values)"));
+                }
+                c.sizes = Some((name.to_string(), values));
+                i += 2;
+            }
             "--quick" => {
                 c.quick = true;
                 i += 1;
@@ -251,7 +266,7 @@ pub fn main_with_args(args: &[String]) -> i32 {
     };
     if cli.sub == "bench" {
         // the benchmark makes its own pool per thread count
-        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1), cli.ranks);
+        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1), cli.ranks, cli.sizes.as_ref(), cli.img.as_deref());
     }
     // The pool says how many threads (0: rayon's default, the cores or RAYON_NUM_THREADS) and
     // runs the command on one of its workers, whose stack is as large as a main thread's (for

@@ -40,6 +40,21 @@ fn high_water(pid: u32) -> Option<u64> {
     Some(kb * 1024)
 }
 
+/// Whether `pid` is `root` or a descendant of it in `table`.
+fn descends_from(pid: u32, root: u32, table: &HashMap<u32, (u32, String)>) -> bool {
+    let mut p = pid;
+    for _ in 0..64 {
+        if p == root {
+            return true;
+        }
+        match table.get(&p) {
+            Some(&(parent, _)) if parent != 0 => p = parent,
+            _ => return false,
+        }
+    }
+    false
+}
+
 /// Run `cmd` to completion, polling every `interval` the high-water memory of the processes in
 /// its tree whose command name is `engine` (the kernel's name: the executable's file name, cut to
 /// 15 bytes).
@@ -59,40 +74,38 @@ pub fn run_measured(cmd: &mut Command, engine: &str, interval: Duration) -> std:
     let out = drain(child.stdout.take().map(|p| Box::new(p) as Box<dyn Read + Send>));
     let err = drain(child.stderr.take().map(|p| Box::new(p) as Box<dyn Read + Send>));
     let root = child.id();
+    let start = std::time::Instant::now();
     let mut peaks: HashMap<u32, u64> = HashMap::new();
     let mut readable = false;
+    let mut last_scan: Option<std::time::Instant> = None;
     let status = loop {
         if let Some(status) = child.try_wait()? {
             break status;
         }
-        let table = process_table();
-        readable |= !table.is_empty();
-        for (&pid, (_, comm)) in &table {
-            if *comm != engine {
-                continue;
-            }
-            // a descendant of the child (or the child itself)?
-            let mut p = pid;
-            let mut ours = false;
-            for _ in 0..64 {
-                if p == root {
-                    ours = true;
-                    break;
-                }
-                match table.get(&p) {
-                    Some(&(parent, _)) if parent != 0 => p = parent,
-                    _ => break,
-                }
-            }
-            if ours {
-                if let Some(hwm) = high_water(pid) {
-                    let e = peaks.entry(pid).or_insert(0);
-                    *e = (*e).max(hwm);
+        // a run's first second is polled every 2 ms (the engine processes are looked for every
+        // 20 ms), so that the peak of a run of a few milliseconds is read near its end; then
+        // both every `interval`
+        let young = start.elapsed() < Duration::from_secs(1);
+        let scan_every = if young { interval.min(Duration::from_millis(20)) } else { interval };
+        if last_scan.is_none_or(|t| t.elapsed() >= scan_every) {
+            last_scan = Some(std::time::Instant::now());
+            let table = process_table();
+            readable |= !table.is_empty();
+            for (&pid, (_, comm)) in &table {
+                if *comm == engine && !peaks.contains_key(&pid) && descends_from(pid, root, &table) {
+                    peaks.insert(pid, 0);
                 }
             }
         }
-        std::thread::sleep(interval);
+        for (&pid, peak) in peaks.iter_mut() {
+            if let Some(hwm) = high_water(pid) {
+                *peak = (*peak).max(hwm);
+            }
+        }
+        std::thread::sleep(if young { interval.min(Duration::from_millis(2)) } else { interval });
     };
+    // engine processes seen before their first reading count only with one
+    peaks.retain(|_, p| *p > 0);
     let stdout = out.join().unwrap_or_default();
     let stderr = err.join().unwrap_or_default();
     let peak_bytes = if readable && !peaks.is_empty() { Some(peaks.values().sum()) } else { None };

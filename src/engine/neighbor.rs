@@ -543,6 +543,9 @@ impl Neighbor {
         mut ghosts: Ghosts,
     ) -> Result<Vec<usize>, NeighError> {
         atoms.clear_ghosts();
+        // the old list indexes the ghosts just cleared: freed before the new one is made, so
+        // that a rebuild does not hold two lists
+        self.list.chunks = Vec::new();
         let n = atoms.nlocal;
         for (i, x) in atoms.x.iter().enumerate() {
             if !(x[0].is_finite() && x[1].is_finite() && x[2].is_finite()) {

@@ -34,10 +34,12 @@ usage:
   dmhs validate CASE [--quick]      run an SPH validation case against its analytic reference:
                                     poiseuille, couette, heat, hydrostatic, dambreak, all
   dmhs validate chart               Poiseuille speed-versus-accuracy chart, dmhs and LAMMPS
-                                    (writes docs/img/speed_accuracy.png and .svg)
+                                    (speed_accuracy.png and .svg in --img DIR, default
+                                    out/validate; --img docs/img updates the docs)
   dmhs validate convergence         kernel convergence of Poiseuille and Couette flow: Lucy,
                                     cubic, Wendland C2 at h/dx rising with N, 2.6, 3 and 4
-                                    (writes docs/img/convergence_*.png and .svg)
+                                    (convergence_*.png and .svg in --img DIR, default
+                                    out/validate)
   dmhs plot FILE [--x COL] [--y COL1,COL2] [-o OUT.png|OUT.svg] [--title T] [--logy]
                                     line chart of columns of a thermo log (every run), a fix
                                     ave/time file or a column file with a header line

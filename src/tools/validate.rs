@@ -904,7 +904,8 @@ fn chart_cmd(quick: bool, json_path: Option<&Path>, img: Option<&Path>) -> i32 {
             status = 1;
         }
     }
-    let dir = img.map(Path::to_path_buf).unwrap_or(PathBuf::from("docs/img"));
+    // the tracked charts (docs/img) change only when asked (--img docs/img)
+    let dir = img.map(Path::to_path_buf).unwrap_or(PathBuf::from("out/validate"));
     if let Err(e) = save_charts(&speed_charts(&points), &dir) {
         eprintln!("dmhs validate chart: {e}");
         status = 1;

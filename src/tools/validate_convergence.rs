@@ -361,7 +361,8 @@ pub fn to_json(points: &[ConvPoint], quick: bool) -> Value {
 }
 
 /// `dmhs validate convergence [--quick] [--json FILE] [--img DIR]`: the charts go to DIR, or to
-/// docs/img for the full study (the quick one draws none unless asked).
+/// out/validate for the full study (the quick one draws none unless asked; the tracked charts in
+/// docs/img change only with --img docs/img).
 pub fn convergence_cmd(quick: bool, json_path: Option<&Path>, img: Option<&Path>) -> i32 {
     let show = |p: &ConvPoint| {
         println!(
@@ -402,7 +403,7 @@ pub fn convergence_cmd(quick: bool, json_path: Option<&Path>, img: Option<&Path>
             status = 1;
         }
     }
-    let dir = img.map(Path::to_path_buf).or((!quick).then(|| PathBuf::from("docs/img")));
+    let dir = img.map(Path::to_path_buf).or((!quick).then(|| PathBuf::from("out/validate")));
     if let Some(dir) = dir {
         if let Err(e) = save_charts(&charts(&points), &dir) {
             eprintln!("dmhs validate convergence: {e}");

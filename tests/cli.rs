@@ -224,6 +224,26 @@ fn bench_runs_a_deck_at_each_size_and_draws_the_chart() {
     assert!(text(&o).contains("--sizes: `n` is not NAME=V1,V2,..."), "{}", text(&o));
 }
 
+/// `dmhs bench --baseline PATH`: another dmhs build on the same thread counts, interleaved, and
+/// the ratios taken against it (here the same executable: the baseline's own ratio is 1).
+#[test]
+fn bench_compares_against_a_baseline_build() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = decks().join("in.small_lj");
+    let o = dmhs(&["bench", "--baseline", env!("CARGO_BIN_EXE_dmhs"), "--threads-list", "1", "--repeat", "2", deck.to_str().unwrap(), "-var", "nsteps", "20"], tmp.path());
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let rows: Vec<Vec<&str>> = t.lines().filter(|l| l.contains("in.small_lj")).map(|l| l.split_whitespace().collect()).collect();
+    let engines: Vec<String> = rows.iter().map(|r| r[1..3].join(" ")).collect();
+    assert_eq!(engines, ["base 1t", "dmhs 1t"], "{t}");
+    assert_eq!((rows[0][7], rows[0][10]), ("1.00", "1.00-1.00"), "{t}");
+    assert!(rows[1][7].parse::<f64>().unwrap() > 0.0, "{t}");
+    assert!(t.contains("ratio: particle-steps/s over the baseline build"), "{t}");
+    let o = dmhs(&["bench", "--baseline", "no/such/dmhs", deck.to_str().unwrap()], tmp.path());
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--baseline no/such/dmhs: no such file"), "{}", text(&o));
+}
+
 #[test]
 fn bench_rejects_a_bad_repeat_count() {
     let o = dmhs(&["bench", "--against", "lammps", "--repeat", "0", "x"], &decks());

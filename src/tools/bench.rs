@@ -35,6 +35,11 @@ pub fn time_dmhs(deck: &Path, vars: &[(String, Vec<String>)], threads: usize) ->
 /// one: this executable must be the `mpi` build.
 pub fn time_dmhs_on(deck: &Path, vars: &[(String, Vec<String>)], threads: usize, ranks: usize) -> Result<RunTiming, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find the dmhs executable: {e}"))?;
+    time_exe(&exe, deck, vars, threads, ranks)
+}
+
+/// [`time_dmhs_on`] with the dmhs executable `exe` (another build, for `--baseline`).
+fn time_exe(exe: &Path, deck: &Path, vars: &[(String, Vec<String>)], threads: usize, ranks: usize) -> Result<RunTiming, String> {
     let dir = deck.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let mut cmd = if ranks > 1 {
         if !cfg!(feature = "mpi") {
@@ -42,10 +47,10 @@ pub fn time_dmhs_on(deck: &Path, vars: &[(String, Vec<String>)], threads: usize,
         }
         let mpiexec = std::env::var("DMHS_MPIEXEC").unwrap_or_else(|_| "mpiexec".into());
         let mut c = std::process::Command::new(mpiexec);
-        c.arg("-np").arg(ranks.to_string()).arg(&exe);
+        c.arg("-np").arg(ranks.to_string()).arg(exe);
         c
     } else {
-        std::process::Command::new(&exe)
+        std::process::Command::new(exe)
     };
     cmd.current_dir(dir).arg("-in").arg(deck.file_name().unwrap_or_default()).arg("-log").arg("none").arg("-threads").arg(threads.to_string());
     for (name, values) in vars {
@@ -68,6 +73,8 @@ enum Engine {
     Dmhs(usize),
     /// dmhs on N ranks of one thread each
     DmhsRanks(usize),
+    /// another dmhs build (`--baseline PATH`) on N threads
+    Baseline(usize),
 }
 
 impl Engine {
@@ -75,12 +82,18 @@ impl Engine {
         match self {
             Engine::Lammps(c) => c.cores(),
             Engine::Liggghts => 1,
-            Engine::Dmhs(n) | Engine::DmhsRanks(n) => n,
+            Engine::Dmhs(n) | Engine::DmhsRanks(n) | Engine::Baseline(n) => n,
         }
     }
 
-    fn is_reference(self) -> bool {
-        !matches!(self, Engine::Dmhs(_) | Engine::DmhsRanks(_))
+    /// Whether the ratios are taken against this engine: the baseline build when there is one,
+    /// else the reference engines (LAMMPS, LIGGGHTS).
+    fn is_reference(self, with_baseline: bool) -> bool {
+        match self {
+            Engine::Baseline(_) => true,
+            Engine::Lammps(_) | Engine::Liggghts => !with_baseline,
+            Engine::Dmhs(_) | Engine::DmhsRanks(_) => false,
+        }
     }
 
     fn label(self) -> String {
@@ -89,15 +102,17 @@ impl Engine {
             Engine::Liggghts => "liggghts 1t".into(),
             Engine::Dmhs(n) => format!("dmhs {n}t"),
             Engine::DmhsRanks(n) => format!("dmhs {n}r"),
+            Engine::Baseline(n) => format!("base {n}t"),
         }
     }
 
-    fn time(self, deck: &Path, vars: &[(String, Vec<String>)]) -> Result<Timing, String> {
+    fn time(self, deck: &Path, vars: &[(String, Vec<String>)], baseline: Option<&Path>) -> Result<Timing, String> {
         let t = match self {
             Engine::Lammps(config) => crate::tools::lammps::time_lmp(deck, vars, config)?,
             Engine::Liggghts => crate::tools::liggghts::time_liggghts(deck, vars)?,
             Engine::Dmhs(n) => time_dmhs(deck, vars, n)?,
             Engine::DmhsRanks(n) => time_dmhs_on(deck, vars, 1, n)?,
+            Engine::Baseline(n) => time_exe(baseline.expect("a baseline build"), deck, vars, n, 1)?,
         };
         Ok(Timing { engine: self.label(), seconds: t.seconds, steps: t.steps, atoms: t.atoms, peak_bytes: t.peak_bytes })
     }
@@ -113,17 +128,36 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// One deck measured: `times[e][r]`, engine e in round r (None where it failed).
 type Rounds = Vec<Vec<Option<Timing>>>;
 
+/// What `dmhs bench` runs besides the decks.
+pub struct BenchOptions<'a> {
+    /// reference engines: "lammps", "liggghts"
+    pub against: &'a [String],
+    /// core counts: dmhs threads, and the reference engines' configurations on as many cores
+    pub threads: Vec<usize>,
+    /// interleaved rounds of all engines
+    pub repeat: usize,
+    /// also dmhs on that many ranks of one thread (the `mpi` build)
+    pub ranks: Option<usize>,
+    /// an index variable of the decks and its values (`--sizes NAME=V1,V2`)
+    pub sizes: Option<&'a (String, Vec<String>)>,
+    /// where the chart of `sizes` goes (default out/bench)
+    pub img: Option<&'a Path>,
+    /// another dmhs build, run on the same thread counts, against which the ratios are taken
+    pub baseline: Option<&'a Path>,
+}
+
 /// `repeat` rounds, each timing every engine once in turn (so that a slow spell of a shared
 /// machine hits all engines of a round alike); each engine's row gives its median time, its ratio
-/// to the fastest reference engine on as many cores (medians), and with more than one round the
-/// lowest and highest of the per-round ratios.
+/// to the fastest reference engine on as many cores (medians; the baseline build where given),
+/// and with more than one round the lowest and highest of the per-round ratios.
 /// `ranks`: also dmhs on that many ranks of one thread (the `mpi` build), against the reference
 /// engines on as many cores.
 /// `sizes`: an index variable of the decks and its values: every deck runs once per value, and
 /// a chart of particle-steps/s against particles, one line per engine, goes to `img` (default
 /// out/bench) as bench_sizes_DECK.png and .svg.
-#[allow(clippy::too_many_arguments)]
-pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[String], threads: Vec<usize>, repeat: usize, ranks: Option<usize>, sizes: Option<&(String, Vec<String>)>, img: Option<&Path>) -> i32 {
+pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], o: &BenchOptions) -> i32 {
+    let BenchOptions { against, threads, repeat, ranks, sizes, img, baseline } = o;
+    let (against, threads, repeat, ranks, sizes, img, baseline) = (*against, threads.clone(), *repeat, *ranks, *sizes, *img, *baseline);
     if decks.is_empty() {
         eprintln!("dmhs bench: give at least one deck");
         return 2;
@@ -152,6 +186,13 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
     if against.iter().any(|a| a == "liggghts") {
         engines.push(Engine::Liggghts);
     }
+    if let Some(b) = baseline {
+        if !b.is_file() {
+            eprintln!("dmhs bench: --baseline {}: no such file (give another dmhs executable)", b.display());
+            return 2;
+        }
+        engines.extend(threads.iter().map(|&n| Engine::Baseline(n)));
+    }
     engines.extend(threads.iter().map(|&n| Engine::Dmhs(n)));
     engines.extend(ranks.map(Engine::DmhsRanks));
     let rounds_col = if repeat > 1 { format!(" {:>13}", "round ratios") } else { String::new() };
@@ -160,8 +201,8 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
     for deck in decks {
         let name = deck.display().to_string();
         let Some((var, values)) = sizes else {
-            let times = measure(deck, vars, &engines, repeat, &mut status);
-            print_rows(&name, &engines, &times, repeat);
+            let times = measure(deck, vars, &engines, repeat, baseline, &mut status);
+            print_rows(&name, &engines, &times, repeat, baseline.is_some());
             continue;
         };
         // per engine: (particles, median particle-steps/s) at each size
@@ -169,8 +210,8 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
         for value in values {
             let mut with_size: Vec<(String, Vec<String>)> = vars.iter().filter(|(n, _)| n != var).cloned().collect();
             with_size.push((var.clone(), vec![value.clone()]));
-            let times = measure(deck, &with_size, &engines, repeat, &mut status);
-            print_rows(&format!("{name} {var}={value}"), &engines, &times, repeat);
+            let times = measure(deck, &with_size, &engines, repeat, baseline, &mut status);
+            print_rows(&format!("{name} {var}={value}"), &engines, &times, repeat, baseline.is_some());
             for (curve, rounds) in curves.iter_mut().zip(&times) {
                 let ok: Vec<&Timing> = rounds.iter().flatten().collect();
                 if let Some(first) = ok.first() {
@@ -188,7 +229,7 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
             .legend(Legend::LowerLeft);
         for (k, (engine, curve)) in engines.iter().zip(curves).enumerate() {
             if !curve.is_empty() {
-                let series = if engine.is_reference() { Series::dashed(&engine.label(), curve) } else { Series::line_points(&engine.label(), curve) };
+                let series = if engine.is_reference(baseline.is_some()) { Series::dashed(&engine.label(), curve) } else { Series::line_points(&engine.label(), curve) };
                 chart = chart.series(series.color(k));
             }
         }
@@ -200,7 +241,9 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
             }
         }
     }
-    if !against.is_empty() {
+    if baseline.is_some() {
+        println!("ratio: particle-steps/s over the baseline build (base: --baseline) on as many cores");
+    } else if !against.is_empty() {
         println!("ratio: particle-steps/s over the fastest reference engine on as many cores (LAMMPS: serial on 1; mpiexec -np N and -sf omp -pk omp N on N)");
         println!("peak MiB: the summed high-water resident memory of the engine's processes; bytes/part: that over the atoms");
     }
@@ -208,11 +251,11 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], against: &[S
 }
 
 /// Every engine on `deck`, `repeat` interleaved rounds; a failure is reported and sets `status`.
-fn measure(deck: &Path, vars: &[(String, Vec<String>)], engines: &[Engine], repeat: usize, status: &mut i32) -> Rounds {
+fn measure(deck: &Path, vars: &[(String, Vec<String>)], engines: &[Engine], repeat: usize, baseline: Option<&Path>, status: &mut i32) -> Rounds {
     let mut times: Rounds = vec![vec![]; engines.len()];
     for _ in 0..repeat {
         for (e, engine) in engines.iter().enumerate() {
-            let t = engine.time(deck, vars);
+            let t = engine.time(deck, vars, baseline);
             if let Err(msg) = &t {
                 eprintln!("dmhs bench: {}", msg.trim_end());
                 *status = 1;
@@ -224,17 +267,17 @@ fn measure(deck: &Path, vars: &[(String, Vec<String>)], engines: &[Engine], repe
 }
 
 /// The table rows of one measured deck (`name` in the deck column).
-fn print_rows(name: &str, engines: &[Engine], times: &Rounds, repeat: usize) {
+fn print_rows(name: &str, engines: &[Engine], times: &Rounds, repeat: usize, with_baseline: bool) {
     let pss = |t: &Option<Timing>| t.as_ref().map(|t| t.particle_steps_per_second());
     // the fastest reference engine on `cores` cores: by medians, and in round r
     let best_median = |cores: usize| -> Option<f64> {
-        engines.iter().zip(times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, r)| {
+        engines.iter().zip(times).filter(|(e, _)| e.is_reference(with_baseline) && e.cores() == cores).filter_map(|(_, r)| {
             let ok: Vec<f64> = r.iter().filter_map(pss).collect();
             (!ok.is_empty()).then(|| median(ok))
         }).reduce(f64::max)
     };
     let best_in_round = |cores: usize, r: usize| -> Option<f64> {
-        engines.iter().zip(times).filter(|(e, _)| e.is_reference() && e.cores() == cores).filter_map(|(_, t)| pss(&t[r])).reduce(f64::max)
+        engines.iter().zip(times).filter(|(e, _)| e.is_reference(with_baseline) && e.cores() == cores).filter_map(|(_, t)| pss(&t[r])).reduce(f64::max)
     };
     for (engine, rounds) in engines.iter().zip(times) {
         let ok: Vec<&Timing> = rounds.iter().flatten().collect();

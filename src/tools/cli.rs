@@ -66,6 +66,8 @@ options:
                         NAME, e.g. NX=32,100,316,1000; draws particle-steps/s
                         against particles for every engine into --img DIR,
                         default out/bench)
+         --baseline PATH  (also another dmhs build, `base Nt` rows on the same
+                        thread counts, interleaved; the ratios are taken against it)
   validate: --quick (the fast variants the tests run), --engine dmhs|lammps,
             --json FILE (default out/validate/CASE.json), --img DIR (also draw the charts)
 ";
@@ -84,6 +86,7 @@ struct Cli {
     repeat: Option<usize>,
     ranks: Option<usize>,
     sizes: Option<(String, Vec<String>)>,
+    baseline: Option<PathBuf>,
     quick: bool,
     engine: Option<String>,
     json: Option<PathBuf>,
@@ -210,6 +213,10 @@ fn parse(args: &[String]) -> Result<Cli, String> {
                 c.sizes = Some((name.to_string(), values));
                 i += 2;
             }
+            "--baseline" => {
+                c.baseline = Some(PathBuf::from(value(i, a)?));
+                i += 2;
+            }
             "--quick" => {
                 c.quick = true;
                 i += 1;
@@ -268,7 +275,16 @@ pub fn main_with_args(args: &[String]) -> i32 {
     };
     if cli.sub == "bench" {
         // the benchmark makes its own pool per thread count
-        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &cli.against, cli.threads_list.clone().unwrap_or(vec![1, 2]), cli.repeat.unwrap_or(1), cli.ranks, cli.sizes.as_ref(), cli.img.as_deref());
+        let o = crate::tools::bench::BenchOptions {
+            against: &cli.against,
+            threads: cli.threads_list.clone().unwrap_or(vec![1, 2]),
+            repeat: cli.repeat.unwrap_or(1),
+            ranks: cli.ranks,
+            sizes: cli.sizes.as_ref(),
+            img: cli.img.as_deref(),
+            baseline: cli.baseline.as_deref(),
+        };
+        return crate::tools::bench::bench_cmd(&cli.decks, &cli.opts.vars, &o);
     }
     // The pool says how many threads (0: rayon's default, the cores or RAYON_NUM_THREADS) and
     // runs the command on one of its workers, whose stack is as large as a main thread's (for

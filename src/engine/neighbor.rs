@@ -635,12 +635,11 @@ impl Neighbor {
                     continue;
                 }
                 let count = atoms.nall();
-                let near = |x: f64| (x < domain.lo[d] + cutmax) as usize + (x >= domain.hi[d] - cutmax) as usize;
-                atoms.reserve(atoms.x.iter().map(|x| near(x[d])).sum());
+                // an atom this near a face has an image beyond the opposite one
+                let near = |x: &[f64; 3]| (x[d] < domain.lo[d] + cutmax, x[d] >= domain.hi[d] - cutmax);
+                atoms.reserve(atoms.x.iter().map(|x| near(x)).map(|(lo, hi)| lo as usize + hi as usize).sum());
                 for k in 0..count {
-                    let xk = atoms.x[k][d];
-                    let near_lo = xk < domain.lo[d] + cutmax;
-                    let near_hi = xk >= domain.hi[d] - cutmax;
+                    let (near_lo, near_hi) = near(&atoms.x[k]);
                     if !near_lo && !near_hi {
                         continue;
                     }

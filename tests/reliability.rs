@@ -218,6 +218,18 @@ fn commands_that_need_more_memory_than_the_machine_are_refused_at_once() {
         expect("run", &[&deck("in.huge_create"), "-var", "style", "box", "-log", "none"], 2, &["create_atoms would make about 2.048e9 atoms: this would need about 2", "GiB of memory (2.048e9 atoms x 136 bytes)"]);
         assert!(t0.elapsed().as_secs_f64() < 2.0, "{:?}", t0.elapsed());
     }
+    // bins of a histogram by the billion (a fuzz case: `compute rdf 4294967296` aborted on the
+    // failed allocation of its first evaluation)
+    if avail * 1024.0 < 1.2e11 {
+        expect("check", &[&deck("in.huge_bins"), "-log", "none"], 2, &[
+            "error: this would need about 128.0 GiB of memory (compute rdf: 4294967296 bins x 4 doubles)",
+            "in.huge_bins:8:19",
+            "error: this would need about 128.0 GiB of memory (fix ave/histo: 4294967296 bins x 4 doubles)",
+            "in.huge_bins:9:37",
+            "error: this would need about 2.91e4 TiB of memory (compute temp/profile: 1.0000e15 bins x 4 doubles)",
+            "in.huge_bins:10:53",
+        ]);
+    }
 }
 
 /// `dmhs check` of a broken deck prints its errors and a closing count, not the half-built

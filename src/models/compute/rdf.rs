@@ -22,6 +22,7 @@ pub struct ComputeRdf {
 impl ComputeRdf {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, w: &World) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
+        let nbin_word = a.peek().cloned();
         let nbin = a.usize_min("Nbin", 1)?;
         let ntypes = w.state.ntypes;
         let mut pairs = Vec::new();
@@ -43,7 +44,12 @@ impl ComputeRdf {
         if pairs.is_empty() {
             pairs.push((1, ntypes, 1, ntypes));
         }
-        Ok(ComputeRdf { id, groupbit, nbin, pairs, cutoff })
+        let rdf = ComputeRdf { id, groupbit, nbin, pairs, cutoff };
+        // each evaluation holds a histogram per pair and the output array
+        let doubles = nbin as f64 * (rdf.pairs.len() + rdf.cols()) as f64;
+        crate::engine::memory::check_fits(doubles * 8.0, &format!("compute rdf: {nbin} bins x {} doubles", rdf.pairs.len() + rdf.cols()))
+            .map_err(|m| a.error_at(nbin_word.as_ref().expect("Nbin was read"), m, "too many bins"))?;
+        Ok(rdf)
     }
 
     fn cols(&self) -> usize {

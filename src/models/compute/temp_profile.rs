@@ -32,6 +32,10 @@ pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, w: &
         let k = (c as u8 - b'x') as usize;
         nbin[k] = a.usize_min(&format!("N{c}"), 1)?;
     }
+    // the bins' velocity sums and counts (4 doubles each)
+    let bins = nbin.iter().map(|&n| n as f64).product::<f64>();
+    crate::engine::memory::check_fits(bins * 4.0 * 8.0, &format!("compute temp/profile: {bins:.4e} bins x 4 doubles"))
+        .map_err(|m| a.error_at(a.last().expect("a bin count was read"), m, "too many bins"))?;
     while let Some(k) = a.peek() {
         a.skip(1);
         match k.text.as_str() {

@@ -111,7 +111,11 @@ impl FixAveHisto {
         if lo >= hi {
             return Err(a.error_at(w_hi.expect("hi was read"), format!("fix ave/histo: lo {lo} must be below hi {hi}"), "hi <= lo"));
         }
+        let nbins_word = a.peek().cloned();
         let nbins = a.usize_min("Nbin", 1)?;
+        // the histograms of one step, the running total and the window's: a few per bin
+        crate::engine::memory::check_fits(nbins as f64 * 4.0 * 8.0, &format!("fix ave/histo: {nbins} bins x 4 doubles"))
+            .map_err(|m| a.error_at(nbins_word.as_ref().expect("Nbin was read"), m, "too many bins"))?;
         let mut raw: Vec<&Word> = Vec::new();
         while let Some(w) = a.peek() {
             if ATOM_VALUES.contains(&w.text.as_str()) || w.text.starts_with("c_") || w.text.starts_with("f_") || w.text.starts_with("v_") {

@@ -78,8 +78,13 @@ fn bad_input_is_a_located_error() {
         ("fix w all wall/lj93 xlo EDGE 1.0 1.0 2.5\n", "periodic dimension"),
         ("fix i all indent 10.0 cone 1 2 3\n", "cone"),
         ("pair_style soft 1.0\npair_coeff 1 1\n", "A"),
+        // LAMMPS reads the window length as an int
+        ("fix a all ave/time 1 1 1 c_thermo_temp ave window 4294967296\n", "window length M must be in 1..=2147483647, found 4294967296"),
     ];
     common::assert_located_errors(base, cases);
+    // the longest window holds only the periods that came (it took 48 GiB at its first period)
+    let deck = format!("{base}fix a all ave/time 1 1 1 c_thermo_temp ave window 2147483647\nthermo_style custom step f_a\nthermo 1\nrun 3\n");
+    dmhs::deck::run_text("window.deck", &deck, &Default::default()).unwrap_or_else(|f| panic!("{}", f.rendered));
     // as LAMMPS: thermo output of a fix ave/time on steps where its values are not current
     let deck = format!("{base}fix a all ave/time 1 1 25 c_thermo_pe\nthermo_style custom step f_a\nthermo 20\nrun 0\n");
     let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().expect("thermo 20 with Nfreq 25");

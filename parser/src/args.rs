@@ -236,8 +236,10 @@ impl<'a> Args<'a> {
         }
         Ok(x)
     }
+    /// A count of at least `lo` that LAMMPS reads as an `int` (at most 2^31 - 1, as its
+    /// `inumeric`, which refuses larger integers as out of range).
     pub fn usize_min(&mut self, what: &str, lo: usize) -> DResult<usize> {
-        Ok(self.i64_in(what, lo as i64, i64::MAX)? as usize)
+        Ok(self.i64_in(what, lo as i64, i32::MAX as i64)? as usize)
     }
     /// One of `choices`; returns its index. Misspellings get a suggestion.
     pub fn choice(&mut self, what: &str, choices: &[&str]) -> DResult<usize> {

@@ -122,8 +122,11 @@ impl Combine {
         match self.ave {
             Ave::One => total.copy_from_slice(sum),
             Ave::Running => total.iter_mut().zip(sum).for_each(|(t, s)| *t += s),
-            Ave::Window(m) => {
-                self.list.resize(m, Vec::new());
+            Ave::Window(_) => {
+                // slots are made as periods arrive (a window of 4e9 periods is legal until run)
+                if self.list.len() <= self.iwindow {
+                    self.list.resize(self.iwindow + 1, Vec::new());
+                }
                 let slot = &mut self.list[self.iwindow];
                 if slot.len() <= r {
                     slot.resize(r + 1, Vec::new());

@@ -129,11 +129,12 @@ fn median(mut v: Vec<f64>) -> f64 {
 type Rounds = Vec<Vec<Option<Timing>>>;
 
 /// What `dmhs bench` runs besides the decks.
+#[derive(Clone, Copy)]
 pub struct BenchOptions<'a> {
     /// reference engines: "lammps", "liggghts"
     pub against: &'a [String],
     /// core counts: dmhs threads, and the reference engines' configurations on as many cores
-    pub threads: Vec<usize>,
+    pub threads: &'a [usize],
     /// interleaved rounds of all engines
     pub repeat: usize,
     /// also dmhs on that many ranks of one thread (the `mpi` build)
@@ -156,8 +157,7 @@ pub struct BenchOptions<'a> {
 /// a chart of particle-steps/s against particles, one line per engine, goes to `img` (default
 /// out/bench) as bench_sizes_DECK.png and .svg.
 pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], o: &BenchOptions) -> i32 {
-    let BenchOptions { against, threads, repeat, ranks, sizes, img, baseline } = o;
-    let (against, threads, repeat, ranks, sizes, img, baseline) = (*against, threads.clone(), *repeat, *ranks, *sizes, *img, *baseline);
+    let BenchOptions { against, threads, repeat, ranks, sizes, img, baseline } = *o;
     if decks.is_empty() {
         eprintln!("dmhs bench: give at least one deck");
         return 2;
@@ -171,7 +171,7 @@ pub fn bench_cmd(decks: &[PathBuf], vars: &[(String, Vec<String>)], o: &BenchOpt
     let cores_of_ranks = ranks.filter(|r| !threads.contains(r));
     let mut engines: Vec<Engine> = vec![];
     // the reference engines run on every core count dmhs runs on
-    let mut reference_cores = threads.clone();
+    let mut reference_cores = threads.to_vec();
     reference_cores.extend(cores_of_ranks);
     if against.iter().any(|a| a == "lammps") {
         for &n in &reference_cores {

@@ -275,9 +275,10 @@ pub fn main_with_args(args: &[String]) -> i32 {
     };
     if cli.sub == "bench" {
         // the benchmark makes its own pool per thread count
+        let threads = cli.threads_list.clone().unwrap_or(vec![1, 2]);
         let o = crate::tools::bench::BenchOptions {
             against: &cli.against,
-            threads: cli.threads_list.clone().unwrap_or(vec![1, 2]),
+            threads: &threads,
             repeat: cli.repeat.unwrap_or(1),
             ranks: cli.ranks,
             sizes: cli.sizes.as_ref(),

@@ -176,14 +176,15 @@ impl Atoms {
     /// Room for `more` atoms beyond those present in every array, so that adding them (ghosts
     /// of a rebuild) does not double each array's capacity: an array that must grow grows to
     /// what is needed plus 1/16 (a few more ghosts at the next rebuild fit without a copy).
+    /// Empty arrays are left alone, as in [`Atoms::permute`]: those of features the atom style
+    /// lacks, and the ghost-only ones before the first ghost.
     pub fn reserve(&mut self, more: usize) {
         fn grow<T>(v: &mut Vec<T>, more: usize, per: usize) {
             let need = v.len() + more * per;
-            if v.capacity() < need {
+            if !v.is_empty() && v.capacity() < need {
                 v.reserve_exact(need - v.len() + need / 16);
             }
         }
-        let ft = self.features;
         grow(&mut self.ghost_owner, more, 1);
         grow(&mut self.ghost_shift, more, 1);
         grow(&mut self.tag, more, 1);
@@ -193,29 +194,19 @@ impl Atoms {
         grow(&mut self.v, more, 1);
         grow(&mut self.f, more, 1);
         grow(&mut self.image, more, 1);
-        if ft.molecule {
-            grow(&mut self.molecule, more, 1);
-        }
-        if ft.charge {
-            grow(&mut self.q, more, 1);
-        }
-        if ft.sphere {
-            grow(&mut self.radius, more, 1);
-            grow(&mut self.rmass, more, 1);
-            grow(&mut self.omega, more, 1);
-            grow(&mut self.torque, more, 1);
-        }
-        if ft.quat {
-            grow(&mut self.quat, more, 1);
-        }
-        if ft.sph {
-            grow(&mut self.rho, more, 1);
-            grow(&mut self.drho, more, 1);
-            grow(&mut self.esph, more, 1);
-            grow(&mut self.desph, more, 1);
-            grow(&mut self.cv, more, 1);
-            grow(&mut self.vest, more, 1);
-        }
+        grow(&mut self.molecule, more, 1);
+        grow(&mut self.q, more, 1);
+        grow(&mut self.radius, more, 1);
+        grow(&mut self.rmass, more, 1);
+        grow(&mut self.omega, more, 1);
+        grow(&mut self.torque, more, 1);
+        grow(&mut self.quat, more, 1);
+        grow(&mut self.rho, more, 1);
+        grow(&mut self.drho, more, 1);
+        grow(&mut self.esph, more, 1);
+        grow(&mut self.desph, more, 1);
+        grow(&mut self.cv, more, 1);
+        grow(&mut self.vest, more, 1);
         for e in self.extra.iter_mut().filter(|e| e.ghosts) {
             grow(&mut e.data, more, e.stride);
         }

@@ -637,7 +637,7 @@ impl Neighbor {
                 let count = atoms.nall();
                 // an atom this near a face has an image beyond the opposite one
                 let near = |x: &[f64; 3]| (x[d] < domain.lo[d] + cutmax, x[d] >= domain.hi[d] - cutmax);
-                atoms.reserve(atoms.x.iter().map(|x| near(x)).map(|(lo, hi)| lo as usize + hi as usize).sum());
+                atoms.reserve(atoms.x.iter().map(&near).map(|(lo, hi)| lo as usize + hi as usize).sum());
                 for k in 0..count {
                     let (near_lo, near_hi) = near(&atoms.x[k]);
                     if !near_lo && !near_hi {

@@ -548,7 +548,7 @@ fn mpiexec_ranks_give_the_serial_run() {
         assert_eq!(n.len(), n1.len());
         assert!(n.iter().zip(&n1).all(|(x, y)| close(*x, *y, 1e-9)), "{np} ranks: the data file differs from the serial one");
     }
-    // bonded chains and a granular pile under real MPI too
+    // bonded chains, a granular pile and a pour under real MPI too
     std::fs::write(dir.path().join("in.melt"), chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97") + "write_data final.data\n").unwrap();
     let rows1 = thermo_rows(&run(1).0);
     let rows2 = thermo_rows(&run(2).0);
@@ -557,6 +557,10 @@ fn mpiexec_ranks_give_the_serial_run() {
     let rows1 = thermo_rows(&run(1).0);
     let rows2 = thermo_rows(&run(2).0);
     assert!(rows1.len() >= 7 && rows1.len() == rows2.len() && rows1.iter().flatten().zip(rows2.iter().flatten()).all(|(x, y)| close(*x, *y, 1e-9)), "granular: {rows2:?} against serial {rows1:?}");
+    std::fs::write(dir.path().join("in.melt"), POUR).unwrap();
+    let rows1 = thermo_rows(&run(1).0);
+    let rows2 = thermo_rows(&run(2).0);
+    assert!(rows1.len() >= 7 && rows1.len() == rows2.len() && rows1.iter().flatten().zip(rows2.iter().flatten()).all(|(x, y)| close(*x, *y, 1e-9)), "pour: {rows2:?} against serial {rows1:?}");
     std::fs::write(dir.path().join("in.melt"), &deck).unwrap();
     // the benchmark times the ranks too
     let out = std::process::Command::new(&bin).args(["bench", "--threads-list", "1", "--ranks", "2", "in.melt"]).env("DMHS_MPIEXEC", &mpiexec).current_dir(dir.path()).output().unwrap();
@@ -1139,4 +1143,123 @@ fn analysis_restraints_and_halt_on_ranks_are_the_serial_run() {
     let (text, _) = serial(&halt);
     assert!(text.contains("Fix halt condition for fix-id 2 met on step"), "{text}");
     compare(&halt, 2);
+}
+
+/// Spheres poured into a z-cylinder (fix pour: polydisperse, a density range, lateral
+/// velocities, a region moving down) land on a frictional floor and on each other, the first
+/// batches among spheres that were in the region when the run began. Every rank sees the
+/// spheres of all ranks near the region and draws the same stream, so each places the serial
+/// run's spheres and keeps those in its sub-domain: the serial run's count, thermo and atoms on
+/// 2 and 4 ranks.
+const POUR: &str = "
+units        lj
+atom_style   sphere
+boundary     p p f
+comm_modify  vel yes
+region       box block -4 4 -4 4 0 10 units box
+create_box   2 box
+neighbor     0.3 bin
+neigh_modify delay 0
+pair_style   gran/hooke/history 2000.0 NULL 50.0 NULL 0.5 1
+pair_coeff   * *
+timestep     0.001
+fix          grav all gravity 1.0 vector 0 0 -1
+fix          1 all nve/sphere
+fix          floor all wall/gran granular hooke 2000.0 50.0 tangential linear_history 571.43 0.5 0.5 damping mass_velocity zplane 0.0 NULL
+region       feed cylinder z 0 0 3.5 4 7 units box
+lattice      sc 0.2
+region       seed block -3 3 -3 3 4.2 6.9 units box
+create_atoms 2 region seed
+fix          ins all pour 150 2 4767548 region feed diam poly 3 0.6 0.3 0.8 0.5 1.0 0.2 dens 1.0 1.5 vol 0.3 20 vel -0.2 0.2 -0.1 0.3 -0.5 rate -0.1
+compute      rot all erotate/sphere
+compute_modify thermo_temp dynamic/dof yes
+thermo_style custom step atoms ke c_rot
+thermo_modify norm no format float %.15g
+thermo       200
+run          1400
+";
+
+#[test]
+fn poured_spheres_on_ranks_are_the_serial_run() {
+    let (text, atoms) = serial(POUR);
+    // the spheres in the region leave room for 44 of the batch's 127
+    assert!(text.contains("Fewer insertions than requested") && atoms.len() == 18 + 44, "{text}");
+    compare(POUR, 2);
+    compare(POUR, 4);
+}
+
+/// Atoms deposited one every 25 steps (fix deposit: `local` height above the highest atom
+/// nearby, `near`, a velocity range) onto an LJ substrate, and one every 60 steps at a `global`
+/// height: the highest atom and the crowding test are over every rank's atoms, so each rank
+/// makes the serial run's attempts and the owner of the new atom takes it. (The serial thermo
+/// is LAMMPS' to 13 digits, the failed deposition included.)
+#[test]
+fn deposited_atoms_on_ranks_are_the_serial_run() {
+    let deck = "
+units        lj
+atom_style   atomic
+boundary     p p f
+lattice      fcc 1.0
+region       box block 0 5 0 5 0 16
+create_box   2 box
+region       substrate block INF INF INF INF INF 3
+create_atoms 1 region substrate
+pair_style   lj/cut 2.5
+pair_coeff   * * 1.0 1.0
+mass         * 1.0
+neigh_modify delay 0
+group        addatoms type 2
+region       mobile block 0 5 0 5 2 INF
+group        mobile region mobile
+velocity     mobile create 0.1 4928459 loop geom
+region       slab block 0 5 0 5 8 9
+fix          1 addatoms nve
+fix          2 mobile nve
+fix          3 addatoms deposit 10 2 25 12345 region slab near 1.2 local 0.6 1.0 2.0 vz -3.0 -2.0 vx -0.1 0.1 attempt 20
+fix          4 addatoms deposit 4 2 60 54321 region slab near 1.0 global 1.0 1.5 vz -2.0 -2.0 units box
+fix          5 addatoms wall/reflect zhi EDGE
+thermo_style custom step atoms temp pe f_3 f_4
+thermo_modify format float %.15g
+thermo       30
+run          300
+";
+    let (text, atoms) = serial(deck);
+    // one of fix 3's depositions finds no uncrowded place in its 20 attempts
+    assert!(atoms.len() == 350 + 14 && text.contains("depositions were unsuccessful"), "10 + 4 deposited on the 350: {} atoms\n{text}", atoms.len());
+    compare(deck, 2);
+    compare(deck, 3);
+}
+
+/// A deposited molecule with bonds would add topology during a run on ranks: refused with the
+/// reason, on every rank, before the run.
+#[test]
+fn depositing_bonded_molecules_on_ranks_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("dimer.mol"), "dimer\n\n2 atoms\n1 bonds\n\nCoords\n\n1 0 0 0\n2 1 0 0\n\nTypes\n\n1 1\n2 1\n\nBonds\n\n1 1 1 2\n").unwrap();
+    let deck = format!(
+        "units lj\natom_style bond\nboundary p p f\nregion box block 0 8 0 8 0 8\ncreate_box 2 box bond/types 1 extra/bond/per/atom 1 extra/special/per/atom 1\n\
+         mass * 1.0\npair_style lj/cut 2.5\npair_coeff * * 1.0 1.0\nbond_style harmonic\nbond_coeff 1 5.0 1.0\nmolecule dimer {}/dimer.mol\n\
+         region slab block 0 8 0 8 5 6\nfix 1 all nve\nfix 3 all deposit 4 1 10 12345 region slab mol dimer\nrun 50\n",
+        dir.path().display()
+    );
+    for e in refusals(&deck, 2) {
+        assert!(e.contains("fix 3 deposit of molecule `dimer` with bonds, angles or dihedrals cannot run on 2 ranks yet"), "{e}");
+    }
+}
+
+/// Shrink-wrapped faces (boundary s and m) follow the atoms of every rank: each rebuild takes
+/// the extent over the ranks, so every rank cuts the same box and the volume column is the
+/// serial one. A pour into a box whose top is `m` (as LAMMPS' examples/pour), and an LJ
+/// cluster evaporating into a box shrink-wrapped in x and y, on 2 and 4 ranks.
+#[test]
+fn shrink_wrapped_boxes_on_ranks_are_the_serial_run() {
+    let pour = POUR.replace("boundary     p p f\n", "boundary     p p fm\n").replace("thermo_style custom step atoms ke c_rot", "thermo_style custom step atoms ke c_rot vol");
+    let melt = MELT.replace("lattice      fcc 0.8442\n", "boundary     s s p\nlattice      fcc 0.8442\n").replace("press atoms", "press atoms vol").replace("check no\n", "check yes\n");
+    let (text, _) = serial(&melt);
+    let vols: Vec<f64> = thermo_rows(&text).iter().map(|r| r[7]).collect();
+    assert!(vols.windows(2).any(|w| w[1] != w[0]), "the box follows the atoms: {vols:?}");
+    for ranks in [2, 4] {
+        compare(&pour, ranks);
+        compare(&melt, ranks);
+    }
 }

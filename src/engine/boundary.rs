@@ -25,24 +25,34 @@ pub fn pad_shrink_faces(domain: &Domain) -> Domain {
 /// Resize shrink-wrapped faces to the atom extent (LAMMPS `Domain::reset_box`).
 /// `initial` is the box as first created (its length sets the margin; `m` keeps it as a bound).
 pub fn reset_shrink_wrap(domain: &mut Domain, initial: &Domain, atoms: &Atoms) {
-    let n = atoms.nlocal;
-    if n == 0 {
+    reset_shrink_wrap_over(domain, initial, atoms, |_| {});
+}
+
+/// [`reset_shrink_wrap`] over the atoms of every rank: `max_over_ranks` takes each element's
+/// largest value over the ranks (a rank alone: nothing to do), so every rank gets the same box.
+pub fn reset_shrink_wrap_over(domain: &mut Domain, initial: &Domain, atoms: &Atoms, max_over_ranks: impl FnOnce(&mut [f64])) {
+    let shrink = |b: BoundaryKind| matches!(b, BoundaryKind::Shrink | BoundaryKind::ShrinkMin);
+    let dims: Vec<usize> = (0..3).filter(|&d| domain.boundary[d][0] != BoundaryKind::Periodic && (shrink(domain.boundary[d][0]) || shrink(domain.boundary[d][1]))).collect();
+    if dims.is_empty() {
         return;
     }
-    for d in 0..3 {
+    // per dimension -lo and hi (a maximum of -x is minus the least x, exactly), then whether
+    // any atom exists
+    let mut extent = [f64::NEG_INFINITY; 7];
+    for x in &atoms.x[..atoms.nlocal] {
+        for &d in &dims {
+            extent[2 * d] = extent[2 * d].max(-x[d]);
+            extent[2 * d + 1] = extent[2 * d + 1].max(x[d]);
+        }
+    }
+    extent[6] = if atoms.nlocal > 0 { 1.0 } else { 0.0 };
+    max_over_ranks(&mut extent);
+    if extent[6] <= 0.0 {
+        return;
+    }
+    for d in dims {
         let [blo, bhi] = domain.boundary[d];
-        if blo == BoundaryKind::Periodic {
-            continue;
-        }
-        let shrink = |b: BoundaryKind| matches!(b, BoundaryKind::Shrink | BoundaryKind::ShrinkMin);
-        if !shrink(blo) && !shrink(bhi) {
-            continue;
-        }
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for x in &atoms.x[..n] {
-            lo = lo.min(x[d]);
-            hi = hi.max(x[d]);
-        }
+        let (lo, hi) = (-extent[2 * d], extent[2 * d + 1]);
         let small = SMALL * (initial.hi[d] - initial.lo[d]);
         match blo {
             BoundaryKind::Shrink => domain.lo[d] = lo - small,

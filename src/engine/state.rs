@@ -284,6 +284,28 @@ impl State {
             _ => v,
         }
     }
+    /// Whether any rank of a distributed run says yes (a rank alone: itself).
+    pub fn any_ranks(&self, yes: bool) -> bool {
+        let mut v = [if yes { 1.0 } else { 0.0 }];
+        self.max_ranks(&mut v);
+        v[0] > 0.0
+    }
+    /// The largest atom ID and molecule ID over every rank's owned atoms: inserted atoms and
+    /// molecules are numbered after them.
+    pub fn max_ids(&self) -> (i64, i64) {
+        // IDs are below 2^53, so exact as doubles
+        let mut v = [self.atoms.max_tag() as f64, self.atoms.max_molecule() as f64];
+        self.max_ranks(&mut v);
+        (v[0] as i64, v[1] as i64)
+    }
+    /// Whether this rank takes an atom inserted at `x` during a run: the one whose sub-domain
+    /// holds it (a rank alone takes every one).
+    pub fn owns_point(&self, x: &[f64; 3]) -> bool {
+        match (&self.decomp, self.distributed, &self.domain) {
+            (Some(d), Some(_), Some(domain)) => d.owner(domain, x) == d.rank(),
+            _ => true,
+        }
+    }
     /// Fresh ghost positions in a distributed run, where ghosts are copies sent by other ranks
     /// (serial ghosts are not read between rebuilds: owned atoms are taken at a shift instead).
     pub fn forward_positions_ranks(&mut self) {

@@ -22,7 +22,7 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
-    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector"];
+    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them).
@@ -90,6 +90,8 @@ impl Simulation {
             Some(r)
         } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
             Some(format!("fix {} ({})", f.id(), f.style()))
+        } else if let Some(r) = self.fixes.iter().find_map(|f| f.ranks_refusal()) {
+            Some(r)
         } else if let Some(f) = self.fixes.iter().find(|f| f.thermo_tally().is_some_and(|t| t.energy || t.virial_on)) {
             Some(format!("fix_modify energy/virial yes (fix {})", f.id()))
         } else if let Some(c) = self.computes.iter().find(|c| !COMPUTES.contains(&c.style())) {
@@ -98,8 +100,6 @@ impl Simulation {
             Some(format!("compute {} ({}) of {} {id}", c.id(), c.style(), if fix { "fix" } else { "compute" }))
         } else if let Some(d) = self.dumps.iter().find(|d| !self.dump_gathers(d)) {
             Some(format!("dump {} (it writes values of computes or fixes)", d.id))
-        } else if self.state.boundary.iter().flatten().any(|b| !matches!(b, crate::engine::domain::BoundaryKind::Periodic | crate::engine::domain::BoundaryKind::Fixed)) {
-            Some("shrink-wrapped boundaries (s, m)".to_string())
         } else {
             None
         };
@@ -165,8 +165,14 @@ impl Simulation {
         if let Some(why) = self.distributed_refusal() {
             return Err(RunError::new(step, why));
         }
-        let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
         let ghost_cut = self.ghost_cutoff();
+        let domain = self.state.domain.as_mut().ok_or_else(|| RunError::new(step, "no simulation box"))?;
+        if let Some(initial) = self.state.box_initial.as_ref() {
+            // shrink-wrapped faces around the atoms before the box is cut: the setup's rebuild
+            // finds the same box, so every atom starts on the rank that owns it
+            crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
+        }
+        let domain = &*domain;
         let d = self.state.decomp.as_mut().expect("a decomposition");
         d.set_procs(choose_grid(d.comm.size(), self.state.procs_user, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?);
         if self.state.balance {

@@ -171,7 +171,9 @@ impl Simulation {
             domain.wrap(x, img);
         }
         if let Some(initial) = self.state.box_initial.as_ref() {
-            crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
+            // a distributed run's faces wrap the atoms of every rank
+            let comm = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some()).map(|d| &d.comm);
+            crate::engine::boundary::reset_shrink_wrap_over(domain, initial, &self.state.atoms, |v| comm.into_iter().for_each(|c| c.max(v)));
         }
         let lost = crate::sim::stability::check_lost(self);
         if self.any_rank(lost.is_err()) {

@@ -244,9 +244,8 @@ impl FixDeposit {
 
 /// The largest atom ID, and the largest molecule ID when molecules are inserted.
 fn max_ids(state: &State, molecules: bool) -> (i64, i64) {
-    let a = &state.atoms;
-    let maxmol = if molecules { a.max_molecule() } else { 0 };
-    (a.max_tag(), maxmol)
+    let (maxtag, maxmol) = state.max_ids();
+    (maxtag, if molecules { maxmol } else { 0 })
 }
 
 impl Fix for FixDeposit {
@@ -343,7 +342,10 @@ impl Fix for FixDeposit {
                         max = a.x[i][vertical];
                     }
                 }
-                coord[vertical] = max + lo + self.random.uniform() * (hi - lo);
+                // the highest atom of every rank (all ranks draw the same coordinates)
+                let mut top = [max];
+                state.max_ranks(&mut top);
+                coord[vertical] = top[0] + lo + self.random.uniform() * (hi - lo);
             }
             // the new atoms: one, or the molecule turned about its centre and wrapped
             let placed: Vec<([f64; 3], [i32; 3])> = match &self.mol {
@@ -368,7 +370,7 @@ impl Fix for FixDeposit {
                     del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < self.nearsq
                 })
             });
-            if crowded {
+            if state.any_ranks(crowded) {
                 continue;
             }
             let mut v = [0.0; 3];
@@ -388,7 +390,7 @@ impl Fix for FixDeposit {
             let first = state.atoms.nlocal;
             match &self.mol {
                 None => {
-                    if keep[0] {
+                    if keep[0] && state.owns_point(&coord) {
                         let mut atom = NewAtom::at(self.maxtag + 1, self.ntype, coord);
                         atom.v = v;
                         state.atoms.push(&atom);
@@ -398,7 +400,11 @@ impl Fix for FixDeposit {
                     if keep.iter().any(|&k| !k) {
                         return Err(err(format!("fix deposit: molecule atom outside the box (at step {step}); dmhs inserts whole molecules only")));
                     }
-                    m.push_copy(state, &placed, self.maxtag, self.maxmol, self.ntype, v);
+                    // on ranks the owner of the centre takes the whole molecule; the rebuild that
+                    // follows sends its atoms on to their own sub-domains
+                    if state.owns_point(&coord) {
+                        m.push_copy(state, &placed, self.maxtag, self.maxmol, self.ntype, v);
+                    }
                     if m.has_topology() {
                         state.special_dirty = true;
                     }
@@ -427,6 +433,10 @@ impl Fix for FixDeposit {
         }
         self.next = (self.ninserted < self.ninsert).then_some(state.step + self.nfreq);
         Ok(())
+    }
+    fn ranks_refusal(&self) -> Option<String> {
+        // every rank keeps the whole topology, and a run's bonded lists are made once
+        self.mol.as_ref().filter(|m| m.has_topology()).map(|m| format!("fix {} deposit of molecule `{}` with bonds, angles or dihedrals", self.id, m.id))
     }
     fn describe(&self) -> String {
         let what = match &self.mol {

@@ -396,6 +396,15 @@ fn outside(domain: &crate::engine::domain::Domain, d: usize, v: f64, lo: f64, hi
     pbc && regular
 }
 
+/// Every rank's `points` (position, radius), joined (a distributed run; otherwise `points`).
+fn gather_points(state: &State, points: Vec<([f64; 3], f64)>) -> Vec<([f64; 3], f64)> {
+    if state.distributed.is_none() {
+        return points;
+    }
+    let flat = points.iter().flat_map(|&(x, r)| [x[0], x[1], x[2], r]).collect();
+    state.allgather_ranks(flat).chunks_exact(4).map(|c| ([c[0], c[1], c[2]], c[3])).collect()
+}
+
 /// Gravity must point along -z (3D) or -y (2D), or particles would not fall through the region.
 fn check_direction(dir: [f64; 3], dimension: usize) -> Result<(), String> {
     let want = if dimension == 3 { [0.0, 0.0, -1.0] } else { [0.0, -1.0, 0.0] };
@@ -470,16 +479,17 @@ impl Fix for FixPour {
         let Some(domain) = state.domain.clone() else { return Ok(()) };
         state.atoms.clear_ghosts();
         if !self.id_next {
-            self.maxtag = state.atoms.max_tag();
-            self.maxmol = state.atoms.max_molecule();
+            (self.maxtag, self.maxmol) = state.max_ids();
         }
         let nnew = self.nper.min(self.ninsert - self.ninserted);
         let bounds = self.current_bounds(state.step, state.dt);
         let (lo_c, hi_c) = bounds;
         let a = &state.atoms;
         // (x, radius) of every particle a new one must not overlap: present ones near the
-        // region, then each one inserted
-        let mut near: Vec<([f64; 3], f64)> = (0..a.nlocal).filter(|&i| self.could_overlap(a.x[i], a.radius[i], bounds, &domain)).map(|i| (a.x[i], a.radius[i])).collect();
+        // region (on every rank of a distributed run, so that all ranks draw and place the
+        // same particles), then each one inserted
+        let near: Vec<([f64; 3], f64)> = (0..a.nlocal).filter(|&i| self.could_overlap(a.x[i], a.radius[i], bounds, &domain)).map(|i| (a.x[i], a.radius[i])).collect();
+        let mut near = gather_points(state, near);
         let nprevious = near.len();
         let maxiter = nnew * self.maxattempt;
         let (mut attempt, mut nsuccess) = (0, 0);
@@ -537,7 +547,7 @@ impl Fix for FixPour {
             match &self.mol {
                 None => {
                     let dens = self.density.0 + self.random.uniform() * (self.density.1 - self.density.0);
-                    if domain.takes_inserted(x) {
+                    if domain.takes_inserted(x) && state.owns_point(&x) {
                         let mut atom = NewAtom::at(self.maxtag + 1, self.ntype, x);
                         atom.v = v;
                         atom.radius = radius;
@@ -552,10 +562,14 @@ impl Fix for FixPour {
                     if !atoms.iter().all(|&(p, _, _)| domain.takes_inserted(p)) {
                         return Err(RunError::new(state.step, format!("fix {} pour: a molecule would be inserted partly outside the box, which dmhs does not support", self.id)));
                     }
-                    let at: Vec<([f64; 3], [i32; 3])> = atoms.iter().map(|&(p, img, _)| (p, img)).collect();
-                    let new = m.push_copy(state, &at, self.maxtag, self.maxmol, self.ntype, v);
-                    for n in new {
-                        state.atoms.mask[n] = 1 | self.groupbit;
+                    // on ranks the owner of the centre takes the whole molecule; the rebuild that
+                    // follows sends its atoms on to their own sub-domains
+                    if state.owns_point(&x) {
+                        let at: Vec<([f64; 3], [i32; 3])> = atoms.iter().map(|&(p, img, _)| (p, img)).collect();
+                        let new = m.push_copy(state, &at, self.maxtag, self.maxmol, self.ntype, v);
+                        for n in new {
+                            state.atoms.mask[n] = 1 | self.groupbit;
+                        }
                     }
                     if let Some(fix_id) = rigid {
                         state.rigid_inserts.push(RigidInsert { fix_id: fix_id.clone(), tagprev: self.maxtag, mol: self.maxmol + m.nmolecules(), xgeom: x, vcm: v, quat });

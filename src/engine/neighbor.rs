@@ -458,6 +458,22 @@ fn zeroed(v: &mut Vec<u32>, n: usize) {
     v.resize(n, 0);
 }
 
+/// `v` as the `total + 1` starts of a counting sort of `keys` into bins `0..total`: the items
+/// of bin b go to `v[b]..v[b + 1]`.
+fn bin_starts(v: &mut Vec<u32>, total: usize, keys: &[u32]) {
+    zeroed(v, total + 1);
+    for &k in keys {
+        v[k as usize + 1] += 1;
+    }
+    // the running sum kept in a register (`v[b + 1] += v[b]` waits for the store of the
+    // step before, which made this loop most of a small system's list build)
+    let mut sum = 0;
+    for c in v.iter_mut() {
+        sum += *c;
+        *c = sum;
+    }
+}
+
 /// Where the ghosts of a build come from.
 pub enum Ghosts<'a> {
     /// Periodic images of the owned atoms, made by the build (one rank).
@@ -610,13 +626,10 @@ impl Neighbor {
         let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
         // counting sort (stable: atoms of one bin keep their order)
         let BinScratch { start, local_start, ghost_start, fill } = &mut self.bins;
-        zeroed(start, grid.total + 1);
-        for &k in &keys {
-            start[k as usize + 1] += 1;
-        }
-        for b in 0..grid.total {
-            start[b + 1] += start[b];
-        }
+        bin_starts(start, grid.total, &keys);
+        // owned atoms of bin b will be the index range local_start[b]..local_start[b+1]
+        local_start.clear();
+        local_start.extend_from_slice(start);
         let mut order = vec![0usize; n];
         for (i, &k) in keys.iter().enumerate() {
             order[start[k as usize] as usize] = i;
@@ -662,24 +675,10 @@ impl Neighbor {
             }
         }
 
-        // owned atoms of bin b are the index range local_start[b]..local_start[b+1];
         // ghosts are counting-sorted into their own bins
         let nall = atoms.nall();
-        zeroed(local_start, grid.total + 1);
-        for &b in keys.iter() {
-            local_start[b as usize + 1] += 1;
-        }
-        for b in 0..grid.total {
-            local_start[b + 1] += local_start[b];
-        }
         let ghost_bin: Vec<u32> = atoms.x[n..].iter().map(|x| grid.bin(x) as u32).collect();
-        zeroed(ghost_start, grid.total + 1);
-        for &b in &ghost_bin {
-            ghost_start[b as usize + 1] += 1;
-        }
-        for b in 0..grid.total {
-            ghost_start[b + 1] += ghost_start[b];
-        }
+        bin_starts(ghost_start, grid.total, &ghost_bin);
         fill.clear();
         fill.extend_from_slice(ghost_start);
         let mut ghosts_by_bin = vec![0u32; nall - n];

@@ -1061,8 +1061,8 @@ run          150
     compare(deck, 3);
 }
 
-/// Under mpiexec: fix move, spring and dt/reset with fix print (appending) and ave/time files,
-/// which rank 0 alone writes; thermo and files as the serial run's.
+/// Under mpiexec: fix move, spring and dt/reset with fix print (appending), ave/time and
+/// ave/chunk files, which rank 0 alone writes; thermo and files as the serial run's.
 #[test]
 #[cfg_attr(not(live_mpi), ignore = "live MPI comparison: DMHS_MPI_BIN (a dmhs built with --features mpi) not set")]
 fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
@@ -1078,12 +1078,14 @@ fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
          fix          dt all dt/reset 10 NULL 0.006 0.02 units box\n\
          fix          av all ave/time 5 4 50 c_thermo_temp c_thermo_pe f_3 file ave.txt\n\
          fix          pr all print 25 \"$(step) $(dt:%.15g) $(temp:%.15g) $(pe:%.15g)\" append print.txt\n\
-         thermo_style custom step dt temp epair etotal f_3 f_av[1] f_av[2]\n\
+         compute      cz all chunk/atom bin/1d z lower 0.25 units reduced\n\
+         fix          ch all ave/chunk 10 5 50 cz vx density/number temp file chunk.txt\n\
+         thermo_style custom step dt temp epair etotal f_3 f_av[1] f_av[2] f_ch[2][3]\n\
          thermo_modify format float %.15g\n",
     );
     std::fs::write(dir.path().join("in.fixes"), &deck).unwrap();
     let run = |np: usize| {
-        for f in ["ave.txt", "print.txt"] {
+        for f in ["ave.txt", "print.txt", "chunk.txt"] {
             let _ = std::fs::remove_file(dir.path().join(f));
         }
         let mut cmd = std::process::Command::new(&mpiexec);
@@ -1091,7 +1093,7 @@ fn mpiexec_moving_groups_print_and_average_as_the_serial_run() {
         let out = cmd.args(["-threads", "1", "-in", "in.fixes", "-log", "none"]).current_dir(dir.path()).output().unwrap_or_else(|e| panic!("{mpiexec}: {e}"));
         let text = String::from_utf8_lossy(&out.stdout).into_owned();
         assert!(out.status.success(), "{np} ranks: {text}\n{}", String::from_utf8_lossy(&out.stderr));
-        let files = ["ave.txt", "print.txt"].map(|f| file_numbers(&dir.path().join(f)).expect("written"));
+        let files = ["ave.txt", "print.txt", "chunk.txt"].map(|f| file_numbers(&dir.path().join(f)).expect("written"));
         (thermo_rows(&text), files)
     };
     let (rows1, files1) = run(1);
@@ -1262,4 +1264,62 @@ fn shrink_wrapped_boxes_on_ranks_are_the_serial_run() {
         compare(&pour, ranks);
         compare(&melt, ranks);
     }
+}
+
+/// Fix ave/chunk on ranks: each rank bins its own atoms (compute chunk/atom bin/1d, bin/2d,
+/// type, and molecule with compress in a region on one rank's side, whose IDs are gathered
+/// from every rank) and the counts and sums are summed over the ranks before the averages;
+/// `ids nfreq` and `ids once` keep each atom's chunk by ID wherever it migrates. Rank 0 alone writes the files,
+/// which hold the serial run's numbers; the f_ID array in the thermo too.
+#[test]
+fn chunk_averages_on_ranks_are_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let melt = |tag: &str| {
+        let p = |name: &str| dir.path().join(format!("{tag}.{name}")).display().to_string();
+        melt_with(&format!(
+            "fix          1 all nve\n\
+             compute      z all chunk/atom bin/1d z lower 0.25 units reduced ids nfreq\n\
+             compute      xy all chunk/atom bin/2d x lower 0.5 y 0.0 2.0 units lattice ids once\n\
+             compute      ke all ke/atom\n\
+             fix          a all ave/chunk 10 5 50 z vx density/number temp c_ke norm sample file {}\n\
+             fix          b all ave/chunk 5 2 50 xy vz density/mass ave running file {}\n\
+             thermo_style custom step temp epair etotal f_a[2][3] f_a[3][6] f_b[4][5] c_z c_xy\n\
+             thermo_modify format float %.15g\n",
+            p("z"),
+            p("xy")
+        ))
+    };
+    for ranks in [2, 3] {
+        let (tag0, tag) = (format!("s{ranks}"), format!("r{ranks}"));
+        compare_decks(&melt(&tag0), &melt(&tag), ranks, 1e-9);
+        for f in ["z", "xy"] {
+            let (a, b) = (dir.path().join(format!("{tag0}.{f}")), dir.path().join(format!("{tag}.{f}")));
+            let (x, y) = (file_numbers(&a).expect("serial file"), file_numbers(&b).expect("file written on ranks"));
+            assert!(x.len() >= 100 && x.len() == y.len(), "{}: {} values against serial {}", b.display(), y.len(), x.len());
+            assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "{} differs from the serial file", b.display());
+        }
+    }
+    // molecules (bonded chains) and types, compressed molecule IDs
+    let chains = |tag: &str| {
+        let p = dir.path().join(format!("{tag}.mol")).display().to_string();
+        chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace(
+            "fix          1 all nve\n",
+            &format!(
+                "fix          1 all nve\n\
+                 group        odd molecule 1:36:2\n\
+                 region       left block 0 4 INF INF INF INF units box\n\
+                 compute      m odd chunk/atom molecule compress yes region left\n\
+                 compute      t all chunk/atom type\n\
+                 fix          m all ave/chunk 10 5 50 m vx vy temp file {p}\n\
+                 fix          t all ave/chunk 25 2 50 t vz\n\
+                 variable     nm equal c_m\n"
+            ),
+        ).replace("thermo_style custom step temp epair ebond eangle edihed etotal press atoms", "thermo_style custom step temp epair ebond etotal press v_nm f_m[3][4] f_t[1][2]\nthermo_modify format float %.15g")
+    };
+    let (text, _) = serial(&chains("c1"));
+    let nm: Vec<f64> = thermo_rows(&text).iter().map(|r| r[6]).collect();
+    assert!(nm.iter().all(|&n| n > 0.0 && n <= 18.0) && nm.iter().any(|&n| n < 18.0), "the odd molecules with atoms in the left region: {nm:?}");
+    compare_decks(&chains("c1"), &chains("c2"), 2, 1e-9);
+    let (x, y) = (file_numbers(&dir.path().join("c1.mol")).unwrap(), file_numbers(&dir.path().join("c2.mol")).unwrap());
+    assert!(x.len() >= 100 && x.len() == y.len() && x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "the molecule chunk file on 2 ranks differs from the serial one");
 }

@@ -298,6 +298,17 @@ impl State {
         self.max_ranks(&mut v);
         (v[0] as i64, v[1] as i64)
     }
+    /// Each owned atom's ID and value, for every atom of every rank (a distributed run; otherwise
+    /// the owned atoms'): values kept by atom ID that must hold wherever the atoms migrate.
+    pub fn values_by_id(&self, value: impl Fn(usize) -> usize) -> std::collections::HashMap<i64, usize> {
+        let a = &self.atoms;
+        if self.distributed.is_none() {
+            return (0..a.nlocal).map(|i| (a.tag[i], value(i))).collect();
+        }
+        // IDs and chunk-like values are below 2^53, so exact as doubles
+        let flat = (0..a.nlocal).flat_map(|i| [a.tag[i] as f64, value(i) as f64]).collect();
+        self.allgather_ranks(flat).chunks_exact(2).map(|p| (p[0] as i64, p[1] as usize)).collect()
+    }
     /// Whether this rank takes an atom inserted at `x` during a run: the one whose sub-domain
     /// holds it (a rank alone takes every one).
     pub fn owns_point(&self, x: &[f64; 3]) -> bool {

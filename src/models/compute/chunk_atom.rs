@@ -319,7 +319,10 @@ impl ComputeChunkAtom {
             Style::Type => ch.nchunk = state.ntypes,
             Style::Molecule => {
                 let hi = (0..ichunk.len()).filter(|&i| !exclude[i]).map(|i| ichunk[i]).max().unwrap_or(-1);
-                ch.nchunk = hi.max(1) as usize;
+                // the largest molecule ID of every rank
+                let mut hi = [hi as f64];
+                state.max_ranks(&mut hi);
+                ch.nchunk = (hi[0] as i64).max(1) as usize;
             }
             Style::Bins { .. } => {}
         }
@@ -333,7 +336,9 @@ impl ComputeChunkAtom {
             }
         }
         if self.compress {
-            ch.hash = (0..ichunk.len()).filter(|&i| !exclude[i]).map(|i| (ichunk[i], 0)).collect();
+            // the IDs present on every rank, ascending
+            let ids: Vec<f64> = (0..ichunk.len()).filter(|&i| !exclude[i]).map(|i| ichunk[i] as f64).collect();
+            ch.hash = state.allgather_ranks(ids).into_iter().map(|id| (id as i64, 0)).collect();
             ch.nchunk = ch.hash.len();
             for (k, (orig, v)) in ch.hash.iter_mut().enumerate() {
                 *v = k + 1;
@@ -464,8 +469,7 @@ impl Compute for ComputeChunkAtom {
         if self.ids == Ids::Once && self.stored.is_none() {
             if let Some(ch) = &self.fixed {
                 if let Ok(ids) = self.ichunk(w.state, ch) {
-                    let a = &w.state.atoms;
-                    self.stored = Some((0..a.nlocal).map(|i| (a.tag[i], ids[i])).collect());
+                    self.stored = Some(w.state.values_by_id(|i| ids[i]));
                 }
             }
         }

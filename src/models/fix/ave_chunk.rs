@@ -154,7 +154,8 @@ impl FixAveChunk {
             values_total: Vec::new(),
             combine: Combine::new(ave),
         };
-        if let Some(w) = out.file {
+        // rank 0 alone writes the file (every rank averages the same sums)
+        if let Some(w) = out.file.filter(|_| state.writes_files()) {
             let path = d.path(&w.text);
             let group = d.cmd.args.get(1).map_or("all", |g| g.text.as_str());
             let mut head = match &out.titles[0] {
@@ -242,6 +243,16 @@ impl FixAveChunk {
                 };
             }
         }
+        if state.distributed.is_some() {
+            // the sums of every rank's atoms
+            let nv = self.values.len();
+            let mut flat: Vec<f64> = count.iter().copied().chain(sums.iter().flatten().copied()).collect();
+            state.sum_ranks(&mut flat);
+            count.copy_from_slice(&flat[..n]);
+            for (m, row) in sums.iter_mut().enumerate() {
+                row.copy_from_slice(&flat[n + m * nv..n + (m + 1) * nv]);
+            }
+        }
         Ok(Sample { new, ids_nfreq: c.ids == Ids::Nfreq, ichunk, count, sums })
     }
 
@@ -271,8 +282,7 @@ impl FixAveChunk {
                 self.lock_forever
             };
             if ids_nfreq && locked && step == self.lock_start {
-                let a = &state.atoms;
-                self.kept_ids = Some((0..a.nlocal).map(|i| (a.tag[i], ichunk[i])).collect());
+                self.kept_ids = Some(state.values_by_id(|i| ichunk[i]));
             } else if !locked {
                 self.kept_ids = None;
             }

@@ -1232,21 +1232,26 @@ run          300
     compare(deck, 3);
 }
 
-/// A deposited molecule with bonds would add topology during a run on ranks: refused with the
-/// reason, on every rank, before the run.
+/// Bonded dimers deposited on ranks (fix deposit mol with a template that has a bond): the
+/// rank that owns a dimer's centre takes its atoms, every rank adds its bond to the topology it
+/// keeps whole, and the special lists and bonded lists follow at the rebuild: the serial run's
+/// bond energy, atoms and thermo on 2 and 3 ranks.
 #[test]
-fn depositing_bonded_molecules_on_ranks_is_refused() {
+fn deposited_bonded_molecules_on_ranks_are_the_serial_run() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("dimer.mol"), "dimer\n\n2 atoms\n1 bonds\n\nCoords\n\n1 0 0 0\n2 1 0 0\n\nTypes\n\n1 1\n2 1\n\nBonds\n\n1 1 1 2\n").unwrap();
+    std::fs::write(dir.path().join("dimer.mol"), "dimer\n\n2 atoms\n1 bonds\n\nCoords\n\n1 -0.5 0 0\n2 0.5 0 0\n\nTypes\n\n1 1\n2 1\n\nBonds\n\n1 1 1 2\n").unwrap();
     let deck = format!(
-        "units lj\natom_style bond\nboundary p p f\nregion box block 0 8 0 8 0 8\ncreate_box 2 box bond/types 1 extra/bond/per/atom 1 extra/special/per/atom 1\n\
-         mass * 1.0\npair_style lj/cut 2.5\npair_coeff * * 1.0 1.0\nbond_style harmonic\nbond_coeff 1 5.0 1.0\nmolecule dimer {}/dimer.mol\n\
-         region slab block 0 8 0 8 5 6\nfix 1 all nve\nfix 3 all deposit 4 1 10 12345 region slab mol dimer\nrun 50\n",
+        "units lj\natom_style bond\nboundary p p f\nregion box block 0 10 0 10 0 8\ncreate_box 1 box bond/types 1 extra/bond/per/atom 1 extra/special/per/atom 1\n\
+         mass * 1.0\npair_style lj/cut 2.5\npair_coeff * * 1.0 1.0\nbond_style harmonic\nbond_coeff 1 50.0 1.1\nmolecule dimer {}/dimer.mol\n\
+         region slab block 0 10 0 10 5 6\nfix 1 all nve\nfix 2 all deposit 10 0 15 12345 region slab near 1.3 mol dimer vz -1.0 -0.5 vx -0.3 0.3 units box\n\
+         fix 3 all wall/reflect zlo EDGE zhi EDGE\nprocessors * * 1\nthermo_style custom step atoms temp epair ebond etotal f_2\nthermo_modify format float %.15g\nthermo 20\nrun 200\n",
         dir.path().display()
     );
-    for e in refusals(&deck, 2) {
-        assert!(e.contains("fix 3 deposit of molecule `dimer` with bonds, angles or dihedrals cannot run on 2 ranks yet"), "{e}");
-    }
+    let (text, atoms) = serial(&deck);
+    let rows = thermo_rows(&text);
+    assert!(atoms.len() == 20 && rows.last().is_some_and(|r| r[4] > 0.0), "10 dimers, stretched bonds: {text}");
+    compare(&deck, 2);
+    compare(&deck, 3);
 }
 
 /// Shrink-wrapped faces (boundary s and m) follow the atoms of every rank: each rebuild takes

@@ -166,6 +166,13 @@ impl Molecule {
             };
             state.atoms.push(&a);
         }
+        self.push_topology(state, tag_offset);
+        first..state.atoms.nlocal
+    }
+
+    /// The bonds, angles and dihedrals of a copy whose atoms have IDs `tag_offset + 1 ...` (every
+    /// rank of a distributed run keeps the whole topology, whichever rank holds the atoms).
+    pub fn push_topology(&self, state: &mut State, tag_offset: i64) {
         let id = |i: usize| tag_offset + i as i64 + 1;
         let topo = &mut state.topo;
         for k in 0..self.natoms() {
@@ -179,7 +186,6 @@ impl Molecule {
                 topo.dihedrals.push(Dihedral::new(t, at.map(id)));
             }
         }
-        first..state.atoms.nlocal
     }
 
     /// The number of molecule IDs a copy uses.

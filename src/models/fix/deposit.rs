@@ -404,6 +404,8 @@ impl Fix for FixDeposit {
                     // follows sends its atoms on to their own sub-domains
                     if state.owns_point(&coord) {
                         m.push_copy(state, &placed, self.maxtag, self.maxmol, self.ntype, v);
+                    } else {
+                        m.push_topology(state, self.maxtag);
                     }
                     if m.has_topology() {
                         state.special_dirty = true;
@@ -433,10 +435,6 @@ impl Fix for FixDeposit {
         }
         self.next = (self.ninserted < self.ninsert).then_some(state.step + self.nfreq);
         Ok(())
-    }
-    fn ranks_refusal(&self) -> Option<String> {
-        // every rank keeps the whole topology, and a run's bonded lists are made once
-        self.mol.as_ref().filter(|m| m.has_topology()).map(|m| format!("fix {} deposit of molecule `{}` with bonds, angles or dihedrals", self.id, m.id))
     }
     fn describe(&self) -> String {
         let what = match &self.mol {

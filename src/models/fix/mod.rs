@@ -406,11 +406,6 @@ pub trait Fix: Send + Sync {
     fn local(&self) -> Option<(&[Vec<f64>], usize, i64)> {
         None
     }
-    /// Why this fix, of a style that runs on ranks, cannot run on several ranks as set up
-    /// (None: it can).
-    fn ranks_refusal(&self) -> Option<String> {
-        None
-    }
     fn describe(&self) -> String {
         format!("fix {} {}", self.id(), self.style())
     }

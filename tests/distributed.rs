@@ -1328,3 +1328,33 @@ fn chunk_averages_on_ranks_are_the_serial_run() {
     let (x, y) = (file_numbers(&dir.path().join("c1.mol")).unwrap(), file_numbers(&dir.path().join("c2.mol")).unwrap());
     assert!(x.len() >= 100 && x.len() == y.len() && x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "the molecule chunk file on 2 ranks differs from the serial one");
 }
+
+/// Fix ave/atom on ranks: each atom's sums live in an array that travels with it, so the
+/// averages of atoms that change rank go on; compute reduce of them sums over the ranks, and a
+/// sorted dump of them, which rank 0 writes from the gathered atoms, is the serial one.
+#[test]
+fn per_atom_averages_on_ranks_are_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = |tag: &str| {
+        let p = dir.path().join(format!("{tag}.dump")).display().to_string();
+        melt_with(&format!(
+            "fix          1 all nve\n\
+             compute      ke all ke/atom\n\
+             fix          aa all ave/atom 5 4 50 x vx c_ke\n\
+             compute      s all reduce sum f_aa[2] f_aa[3]\n\
+             compute      m all reduce max f_aa[1]\n\
+             dump         d all custom 50 {p} id f_aa[1] f_aa[2] f_aa[3]\n\
+             dump_modify  d sort id format float %.15g\n\
+             thermo_style custom step temp epair etotal c_s[1] c_s[2] c_m\n\
+             thermo_modify format float %.15g\n"
+        ))
+    };
+    for ranks in [2, 3] {
+        let (tag0, tag) = (format!("s{ranks}"), format!("r{ranks}"));
+        compare_decks(&deck(&tag0), &deck(&tag), ranks, 1e-9);
+        let (a, b) = (dir.path().join(format!("{tag0}.dump")), dir.path().join(format!("{tag}.dump")));
+        let (x, y) = (file_numbers(&a).expect("serial dump"), file_numbers(&b).expect("dump written on ranks"));
+        assert!(x.len() > 864 * 4 * 5 && x.len() == y.len(), "{}: {} values against serial {}", b.display(), y.len(), x.len());
+        assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "{} differs from the serial dump", b.display());
+    }
+}

@@ -22,11 +22,14 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
-    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk"];
+    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them).
 const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom", "ke/atom"];
+/// Fixes whose per-atom values a dump reads from the gathered atoms (they keep them in an
+/// array that travels with the atoms).
+const GATHERED_FIXES: &[&str] = &["ave/atom"];
 /// (The BPM styles keep each bond's reference state in every rank's topology; see
 /// `bpm::rank_bond_list`.)
 const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse", "bpm/rotational", "bpm/spring", "bpm/spring/plastic"];
@@ -105,20 +108,24 @@ impl Simulation {
             "pair styles {}; bond styles {}; angle styles {}; dihedral styles {}; fixes {}; computes {}",
             PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
         );
-        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values, of compute property/atom and of the broken bonds of a BPM style's store/local (run on one rank)"))
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values, of compute property/atom, dmhs/phase/atom and ke/atom, of fix ave/atom and of the broken bonds of a BPM style's store/local (run on one rank)"))
+    }
+
+    /// Whether rank 0 can write dump `d` from the gathered atoms: its compute and fix columns
+    /// are of computes that read only the atoms' own values and of fixes that keep theirs with
+    /// the atoms. A dump local may read fix STORE/LOCAL, whose rows (broken BPM bonds) every
+    /// rank holds.
+    fn dump_gathers(&self, d: &crate::output::dump::Dump) -> bool {
+        let (peratom, local) = d.model_columns();
+        local.iter().all(|r| r.fix && self.fixes.iter().any(|f| f.id() == r.id && f.style() == "STORE/LOCAL"))
+            && peratom.iter().all(|r| match r.fix {
+                true => self.fixes.iter().any(|f| f.id() == r.id && GATHERED_FIXES.contains(&f.style())),
+                false => self.computes.iter().any(|c| c.id() == r.id && GATHERED_COMPUTES.contains(&c.style())),
+            })
     }
 
     /// Whether a compute may read compute or fix `id` on ranks: one of the allowed computes
     /// with per-atom values (local rows are per rank) or one of the allowed fixes.
-    /// Whether rank 0 can write dump `d` from the gathered atoms: its compute columns are of
-    /// computes that read only the atoms' own values.
-    /// A dump local may read fix STORE/LOCAL, whose rows (broken BPM bonds) every rank holds.
-    fn dump_gathers(&self, d: &crate::output::dump::Dump) -> bool {
-        let (peratom, local) = d.model_columns();
-        local.iter().all(|r| r.fix && self.fixes.iter().any(|f| f.id() == r.id && f.style() == "STORE/LOCAL"))
-            && peratom.iter().all(|r| !r.fix && self.computes.iter().any(|c| c.id() == r.id && GATHERED_COMPUTES.contains(&c.style())))
-    }
-
     fn reads_on_ranks(&self, (fix, id): &(bool, String)) -> bool {
         if *fix {
             self.fixes.iter().any(|f| f.id() == id && FIXES.contains(&f.style()) && f.local().is_none())

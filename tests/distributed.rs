@@ -499,9 +499,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          2 all aveforce 0.0 NULL NULL\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all rdf 20\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("fix 2 (aveforce) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("compute r (rdf) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -1357,4 +1357,36 @@ fn per_atom_averages_on_ranks_are_the_serial_run() {
         assert!(x.len() > 864 * 4 * 5 && x.len() == y.len(), "{}: {} values against serial {}", b.display(), y.len(), x.len());
         assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "{} differs from the serial dump", b.display());
     }
+}
+
+/// Fix aveforce (the group's force summed over the ranks, then shared out), fix adapt (pair soft's
+/// prefactor from a ramp, the same on every rank) and fix balance (a no-op: ranks balance by
+/// default) on ranks: the serial run's thermo and atoms.
+#[test]
+fn aveforce_adapt_and_balance_on_ranks_are_the_serial_run() {
+    let aveforce = melt_with(
+        "region       top block INF INF INF INF 4 INF units lattice\n\
+         group        top region top\n\
+         fix          1 all nve\n\
+         fix          2 top aveforce NULL 0.1 NULL\n\
+         fix          3 all balance 100 1.1 shift xyz 10 1.05\n\
+         thermo_style custom step temp epair etotal press f_2[1] f_2[2] f_2[3]\n\
+         thermo_modify format float %.15g\n",
+    )
+    // the group's own repulsions along y are replaced by their mean: a short run
+    .replace("thermo       50\nrun          150\nrun          100\n", "thermo       5\nrun          20\nrun          15\n");
+    compare(&aveforce, 2);
+    compare(&aveforce, 3);
+    let adapt = melt_with(
+        "fix          1 all nve\n\
+         variable     a equal ramp(0.0,40.0)\n\
+         fix          2 all adapt 1 pair soft a * * v_a\n\
+         thermo_style custom step temp epair etotal press v_a\n\
+         thermo_modify format float %.15g\n",
+    )
+    .replace("pair_style   lj/cut 2.5\npair_coeff   1 1 1.0 1.0 2.5\n", "pair_style   soft 1.12\npair_coeff   * * 0.0\n");
+    let (text, _) = serial(&adapt);
+    assert!(thermo_rows(&text).iter().any(|r| r[2] > 0.0), "the soft energy grows with the prefactor: {text}");
+    compare(&adapt, 2);
+    compare(&adapt, 3);
 }

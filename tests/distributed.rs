@@ -582,8 +582,8 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.two", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all aveforce 0.0 NULL NULL\n"));
-    assert!(text.contains("on 2 ranks: fix 1 (aveforce) cannot run on 2 ranks yet"), "{text}");
+    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all rdf 20\n"));
+    assert!(text.contains("on 2 ranks: compute r (rdf) cannot run on 2 ranks yet"), "{text}");
     // the fixes that run on ranks since issue 19's second part: no refusal line
     let text = check2(MELT.replace(
         "fix          1 all nve\n",

@@ -286,9 +286,19 @@ impl State {
     }
     /// Whether any rank of a distributed run says yes (a rank alone: itself).
     pub fn any_ranks(&self, yes: bool) -> bool {
-        let mut v = [if yes { 1.0 } else { 0.0 }];
-        self.max_ranks(&mut v);
-        v[0] > 0.0
+        match (&self.decomp, self.distributed) {
+            (Some(d), Some(_)) => d.comm.any(yes),
+            _ => yes,
+        }
+    }
+    /// Shrink-wrapped faces around the atoms (LAMMPS' `Domain::reset_box`): those of every rank
+    /// in a distributed run, so that every rank cuts the same box.
+    pub fn shrink_wrap(&mut self) {
+        let Some(initial) = self.box_initial.as_ref() else { return };
+        // the box taken out, so that the extent can be reduced over the ranks through `self`
+        let Some(mut domain) = self.domain.take() else { return };
+        crate::engine::boundary::reset_shrink_wrap_over(&mut domain, initial, &self.atoms, |v| self.max_ranks(v));
+        self.domain = Some(domain);
     }
     /// The largest atom ID and molecule ID over every rank's owned atoms: inserted atoms and
     /// molecules are numbered after them.

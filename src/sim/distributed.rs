@@ -170,14 +170,11 @@ impl Simulation {
         if let Some(why) = self.distributed_refusal() {
             return Err(RunError::new(step, why));
         }
+        // shrink-wrapped faces around the atoms (every rank holds them all here) before the box
+        // is cut: the setup's rebuild finds the same box, so every atom starts on its owner
+        self.state.shrink_wrap();
+        let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
         let ghost_cut = self.ghost_cutoff();
-        let domain = self.state.domain.as_mut().ok_or_else(|| RunError::new(step, "no simulation box"))?;
-        if let Some(initial) = self.state.box_initial.as_ref() {
-            // shrink-wrapped faces around the atoms before the box is cut: the setup's rebuild
-            // finds the same box, so every atom starts on the rank that owns it
-            crate::engine::boundary::reset_shrink_wrap(domain, initial, &self.state.atoms);
-        }
-        let domain = &*domain;
         let d = self.state.decomp.as_mut().expect("a decomposition");
         d.set_procs(choose_grid(d.comm.size(), self.state.procs_user, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?);
         if self.state.balance {
@@ -217,13 +214,6 @@ impl Simulation {
         self.state.lammps_order = Default::default();
     }
 
-    /// Whether any rank says yes (a rank alone: itself).
-    pub(crate) fn any_rank(&self, yes: bool) -> bool {
-        match (&self.state.decomp, self.state.distributed) {
-            (Some(d), Some(_)) => d.comm.any(yes),
-            _ => yes,
-        }
-    }
 
     /// The ranks of a distributed run agree on a step's outcome: if any failed, every rank
     /// fails with the error of the first rank that did (its message names the rank).

@@ -170,13 +170,9 @@ impl Simulation {
             let (x, img) = (&mut self.state.atoms.x[i], &mut self.state.atoms.image[i]);
             domain.wrap(x, img);
         }
-        if let Some(initial) = self.state.box_initial.as_ref() {
-            // a distributed run's faces wrap the atoms of every rank
-            let comm = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some()).map(|d| &d.comm);
-            crate::engine::boundary::reset_shrink_wrap_over(domain, initial, &self.state.atoms, |v| comm.into_iter().for_each(|c| c.max(v)));
-        }
+        self.state.shrink_wrap();
         let lost = crate::sim::stability::check_lost(self);
-        if self.any_rank(lost.is_err()) {
+        if self.state.any_ranks(lost.is_err()) {
             return Err(lost.err().unwrap_or_else(|| RunError::new(step, "another rank lost atoms")));
         }
         let domain = self.state.domain.as_ref().unwrap();
@@ -616,7 +612,7 @@ impl Simulation {
         let requested = std::mem::take(&mut self.state.rebuild_requested) || self.fixes.iter().any(|f| f.next_reneighbor() == Some(step));
         let moved = !requested && self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms);
         // the ranks of a distributed run rebuild together when any of them must
-        if self.any_rank(moved) || requested {
+        if self.state.any_ranks(moved) || requested {
             self.timers.stamp();
             self.fix_hook(|h| h.pre_exchange, |f, s, c| f.pre_exchange(s, c))?;
             self.deliver_rigid_inserts()?;

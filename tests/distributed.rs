@@ -684,6 +684,39 @@ fn bonds_breaking_across_ranks_break_as_in_the_serial_run() {
     compare(&deck, 4);
 }
 
+/// An LJ liquid of two types whose unlike neighbours bond (fix bond/create with limits, angles
+/// and, in `extra`, more keywords) as it runs.
+fn bonding_liquid(extra: &str) -> String {
+    MELT.replace("atom_style   atomic", "atom_style   angle")
+        .replace(
+            "create_box   1 box\ncreate_atoms 1 box\nmass         1 1.0",
+            "create_box   3 box bond/types 1 angle/types 1 extra/bond/per/atom 6 extra/angle/per/atom 20 extra/special/per/atom 30\ncreate_atoms 1 box\nset          group all type/fraction 2 0.5 12345\nmass         * 1.0",
+        )
+        .replace("pair_coeff   1 1 1.0 1.0 2.5", "pair_coeff   * * 1.0 1.0 2.5\nbond_style   harmonic\nbond_coeff   1 50.0 1.1\nangle_style  harmonic\nangle_coeff  1 5.0 109.0\nspecial_bonds lj 0.0 1.0 1.0")
+        .replace("check no", "check yes")
+        .replace("fix          1 all nve\n", &format!("fix          1 all nve\nfix          bc all bond/create 10 1 2 1.05 1 jparam 2 2 atype 1{extra}\n"))
+        .replace("thermo_style custom step temp epair emol etotal press atoms", "thermo_style custom step temp epair ebond eangle etotal press f_bc[1] f_bc[2] bonds angles")
+}
+
+/// Bonds forming across rank boundaries and periodic faces (fix bond/create): each pair is
+/// checked by the owners of its two atoms, every rank makes the same choices, so the same
+/// bonds, angles and type changes appear at the same steps as in the serial run (which prints
+/// LAMMPS' table: 770 bonds and 705 angles at step 250 without `prob`).
+#[test]
+fn bonds_forming_across_ranks_form_as_in_the_serial_run() {
+    let deck = bonding_liquid(" iparam 2 1");
+    let (text, _) = serial(&deck);
+    let last = thermo_rows(&text).last().cloned().unwrap_or_default();
+    assert_eq!(last.get(9).copied(), Some(770.0), "bonds made in the serial run: {last:?}\n{text}");
+    compare(&deck, 2);
+    // types that change at their limit, random acceptance
+    let deck = bonding_liquid(" iparam 2 3 prob 0.7 4321");
+    let (text, _) = serial(&deck);
+    let last = thermo_rows(&text).last().cloned().unwrap_or_default();
+    assert!(last.get(9).is_some_and(|&b| (300.0..770.0).contains(&b)), "bonds made in the serial run: {last:?}\n{text}");
+    compare(&deck, 4);
+}
+
 /// A dump of forces written on ranks: the gathered atoms carry the forces of the last
 /// evaluation (migration does not), so fx fy fz are the serial run's, not zeros.
 #[test]

@@ -92,7 +92,8 @@ fn style_name<'a>(cmd: &'a Command, what: &str, supported: &[&str], allowed: boo
     let a = Args::new(cmd, "");
     let Some(name) = cmd.args.first() else { return Err(a.missing(&format!("a {what} style"))) };
     if !allowed {
-        return Err(Diagnostic::at(cmd.name.span, format!("{}_style needs an atom style with {what}s (bond, angle, molecular, full)", what), "atom style has no such interactions"));
+        let styles = if what == "bond" { "bond, angle, molecular, full" } else if what == "angle" { "angle, molecular, full" } else { "molecular, full" };
+        return Err(Diagnostic::at(cmd.name.span, format!("{what}_style needs an atom style with {what}s ({styles}, or a hybrid with one of them)"), "atom style has no such interactions"));
     }
     if name.text == "none" {
         return Ok(None);

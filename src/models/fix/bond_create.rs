@@ -15,8 +15,12 @@
 //!
 //! With `prob` below 1 the random numbers are dmhs' own (one per atom with a partner, in
 //! atom-ID order): reproducible, not bit-identical to LAMMPS.
+//!
+//! On several ranks, a pair with another rank's atom is checked by both owners (each for its
+//! own atom's bond count) and every rank reads every rank's candidates, so all make the same
+//! choices; the new bonds go into every rank's topology in ID order.
 
-use super::bond_break::{check_special, image, mutual_partners};
+use super::bond_break::{check_special, image, mutual_choices, mutual_partners};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::neighbor::NEIGH_MASK;
 use crate::engine::random_park::RanPark;
@@ -122,6 +126,185 @@ impl FixBondCreate {
             false
         }
     }
+
+    /// The bonds to create (atom IDs), each atom's closest eligible partner where the two
+    /// chose each other, in the local order of the lower-ID atom (one rank holding every atom).
+    fn choose(&mut self, state: &State) -> Vec<(i64, i64)> {
+        let prd = state.domain.as_ref().unwrap().prd();
+        let a = &state.atoms;
+        let n = a.nlocal;
+        let k = a.find_extra(&self.count_name()).expect("bond count array");
+        let count = |i: usize| a.extra[k].data[i] as usize;
+        let owner = |j: usize| if j < n { j } else { a.ghost_owner[j - n] as usize };
+        let bonded = bonded_pairs(state);
+        let mut partner = vec![0i64; n];
+        let mut distsq = vec![f64::INFINITY; n];
+        for chunk in &state.neighbor.list.chunks {
+            for i in chunk.start..chunk.end {
+                if a.mask[i] & self.groupbit == 0 {
+                    continue;
+                }
+                let xi = a.x[i];
+                for &jraw in chunk.neighbors(i) {
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    let jo = owner(j);
+                    if jo == i {
+                        continue;
+                    }
+                    if a.mask[jo] & self.groupbit == 0 || !self.possible(a.typ[i], count(i), a.typ[jo], count(jo)) {
+                        continue;
+                    }
+                    let (ti, tj) = (a.tag[i], a.tag[jo]);
+                    if bonded.contains(&(ti.min(tj), ti.max(tj))) {
+                        continue;
+                    }
+                    // current position of j (ghosts are refreshed only after this hook)
+                    let xj = if j < n { a.x[j] } else { image(a.x[jo], a.ghost_shift[j - n], prd) };
+                    let rsq = dist_sq(xi, xj);
+                    if rsq >= self.cutsq {
+                        continue;
+                    }
+                    if rsq < distsq[i] {
+                        partner[i] = tj;
+                        distsq[i] = rsq;
+                    }
+                    if rsq < distsq[jo] {
+                        partner[jo] = ti;
+                        distsq[jo] = rsq;
+                    }
+                }
+            }
+        }
+        mutual_partners(a, &partner, self.fraction, &mut self.random).into_iter().map(|(i, j)| (a.tag[i], a.tag[j])).collect()
+    }
+
+    /// [`Self::choose`] on the ranks of a distributed run, in ID order. Each rank lists its
+    /// candidate pairs (ID, ID, r^2) with what it can check: a pair of two atoms it owns
+    /// whole, a pair with another rank's ghost for its own atom only (types, group, its own
+    /// bond count); that rank lists the same pair for the other atom, and the pair is a
+    /// candidate when both did. Every rank reads every list in rank order and makes the same
+    /// choices (the first of equally close partners in that order).
+    fn choose_on_ranks(&mut self, state: &mut State) -> Vec<(i64, i64)> {
+        // the ghosts at this step's positions (LAMMPS forwards them here)
+        state.forward_positions_ranks();
+        let a = &state.atoms;
+        let n = a.nlocal;
+        let k = a.find_extra(&self.count_name()).expect("bond count array");
+        let count = |i: usize| a.extra[k].data[i] as usize;
+        let map = a.tag_map();
+        let bonded = bonded_pairs(state);
+        // (ID, ID, r^2, 1 whole / 0 one side)
+        let mut mine: Vec<f64> = vec![];
+        for chunk in &state.neighbor.list.chunks {
+            for i in chunk.start..chunk.end {
+                if a.mask[i] & self.groupbit == 0 {
+                    continue;
+                }
+                for &jraw in chunk.neighbors(i) {
+                    let j = (jraw & NEIGH_MASK) as usize;
+                    let (ti, tj) = (a.tag[i], a.tag[j]);
+                    if ti == tj || a.mask[j] & self.groupbit == 0 || bonded.contains(&(ti.min(tj), ti.max(tj))) {
+                        continue;
+                    }
+                    // a ghost may be a periodic image of an atom this rank owns
+                    let jo = if j < n { Some(j) } else { map.get(tj) };
+                    let whole = match jo {
+                        Some(jo) => self.possible(a.typ[i], count(i), a.typ[jo], count(jo)),
+                        // the other atom's count is checked by its owner (0 passes any limit)
+                        None => self.possible(a.typ[i], count(i), a.typ[j], 0),
+                    };
+                    if !whole {
+                        continue;
+                    }
+                    let rsq = dist_sq(a.x[i], a.x[j]);
+                    if rsq < self.cutsq {
+                        mine.extend([ti as f64, tj as f64, rsq, jo.is_some() as u8 as f64]);
+                    }
+                }
+            }
+        }
+        let all = state.allgather_ranks(mine);
+        // (the atom checked, the other) of the one-sided pairs
+        let checked: HashSet<(i64, i64)> = all.chunks_exact(4).filter(|c| c[3] == 0.0).map(|c| (c[0] as i64, c[1] as i64)).collect();
+        let mut choice: std::collections::BTreeMap<i64, (i64, f64)> = Default::default();
+        for c in all.chunks_exact(4) {
+            let (p, q, rsq) = (c[0] as i64, c[1] as i64, c[2]);
+            if c[3] == 0.0 && !checked.contains(&(q, p)) {
+                continue;
+            }
+            for (t, other) in [(p, q), (q, p)] {
+                let e = choice.entry(t).or_insert((0, f64::INFINITY));
+                if rsq < e.1 {
+                    *e = (other, rsq);
+                }
+            }
+        }
+        mutual_choices(&choice, self.fraction, &mut self.random)
+    }
+
+    /// Create the bonds `created` (atom IDs): count them on the atoms this rank owns, change
+    /// the types of atoms that reach their limit, add the angles of `atype`.
+    fn create(&mut self, state: &mut State, ctx: &FixCtx, created: &[(i64, i64)]) {
+        self.createcount = created.len();
+        self.createcounttotal += created.len();
+        if created.is_empty() {
+            return;
+        }
+        let k = state.atoms.find_extra(&self.count_name()).expect("bond count array");
+        let map = state.atoms.tag_map();
+        for &(ti, tj) in created {
+            state.topo.bonds.push(Bond::new(self.btype, [ti, tj]));
+            for m in [ti, tj].into_iter().filter_map(|t| map.get(t)) {
+                let c = &mut state.atoms.extra[k].data[m];
+                *c += 1.0;
+                let c = *c as usize;
+                let t = &mut state.atoms.typ[m];
+                // LAMMPS: an itype atom converts at imaxbond, any other at jmaxbond
+                if *t == self.itype {
+                    if c == self.imaxbond {
+                        *t = self.inewtype;
+                    }
+                } else if c == self.jmaxbond {
+                    *t = self.jnewtype;
+                }
+            }
+        }
+        if self.atype > 0 && ctx.angle_style.is_some() {
+            // angles centred on an atom of a new bond, made of two of its bonds of which at
+            // least one is new (each once, whatever the order of the outer atoms)
+            let new_bonds: HashSet<(i64, i64)> = created.iter().copied().collect();
+            let mut nbrs: HashMap<i64, Vec<i64>> = HashMap::new();
+            for b in &state.topo.bonds {
+                nbrs.entry(b.atoms[0]).or_default().push(b.atoms[1]);
+                nbrs.entry(b.atoms[1]).or_default().push(b.atoms[0]);
+            }
+            let is_new = |p: i64, q: i64| new_bonds.contains(&(p, q)) || new_bonds.contains(&(q, p));
+            let mut centres: Vec<i64> = created.iter().flat_map(|&(p, q)| [p, q]).collect();
+            centres.sort_unstable();
+            centres.dedup();
+            for c in centres {
+                let list = nbrs.get(&c).cloned().unwrap_or_default();
+                for x in 0..list.len() {
+                    for y in x + 1..list.len() {
+                        if is_new(list[x], c) || is_new(c, list[y]) {
+                            state.topo.angles.push(Angle::new(self.atype, [list[x], c, list[y]]));
+                        }
+                    }
+                }
+            }
+        }
+        state.topology_changed();
+    }
+}
+
+/// Every bonded pair of the topology, (lower ID, higher ID).
+fn bonded_pairs(state: &State) -> HashSet<(i64, i64)> {
+    state.topo.bonds.iter().map(|b| (b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1]))).collect()
+}
+
+fn dist_sq(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let del = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    del[0] * del[0] + del[1] * del[1] + del[2] * del[2]
 }
 
 impl Fix for FixBondCreate {
@@ -181,104 +364,8 @@ impl Fix for FixBondCreate {
         if state.step % self.nevery != 0 {
             return Ok(());
         }
-        let prd = state.domain.as_ref().unwrap().prd();
-        let a = &state.atoms;
-        let n = a.nlocal;
-        let k = a.find_extra(&self.count_name()).expect("bond count array");
-        let count = |i: usize| a.extra[k].data[i] as usize;
-        let owner = |j: usize| if j < n { j } else { a.ghost_owner[j - n] as usize };
-        let mut bonded: HashSet<(i64, i64)> = HashSet::with_capacity(state.topo.bonds.len());
-        for b in &state.topo.bonds {
-            bonded.insert((b.atoms[0].min(b.atoms[1]), b.atoms[0].max(b.atoms[1])));
-        }
-        let mut partner = vec![0i64; n];
-        let mut distsq = vec![f64::INFINITY; n];
-        for chunk in &state.neighbor.list.chunks {
-            for i in chunk.start..chunk.end {
-                if a.mask[i] & self.groupbit == 0 {
-                    continue;
-                }
-                let xi = a.x[i];
-                for &jraw in chunk.neighbors(i) {
-                    let j = (jraw & NEIGH_MASK) as usize;
-                    let jo = owner(j);
-                    if jo == i {
-                        continue;
-                    }
-                    if a.mask[jo] & self.groupbit == 0 || !self.possible(a.typ[i], count(i), a.typ[jo], count(jo)) {
-                        continue;
-                    }
-                    let (ti, tj) = (a.tag[i], a.tag[jo]);
-                    if bonded.contains(&(ti.min(tj), ti.max(tj))) {
-                        continue;
-                    }
-                    // current position of j (ghosts are refreshed only after this hook)
-                    let xj = if j < n { a.x[j] } else { image(a.x[jo], a.ghost_shift[j - n], prd) };
-                    let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
-                    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-                    if rsq >= self.cutsq {
-                        continue;
-                    }
-                    if rsq < distsq[i] {
-                        partner[i] = tj;
-                        distsq[i] = rsq;
-                    }
-                    if rsq < distsq[jo] {
-                        partner[jo] = ti;
-                        distsq[jo] = rsq;
-                    }
-                }
-            }
-        }
-        let created = mutual_partners(a, &partner, self.fraction, &mut self.random);
-        self.createcount = created.len();
-        self.createcounttotal += created.len();
-        if created.is_empty() {
-            return Ok(());
-        }
-        let new_bonds: HashSet<(i64, i64)> = created.iter().map(|&(i, j)| (state.atoms.tag[i], state.atoms.tag[j])).collect();
-        for &(i, j) in &created {
-            let (ti, tj) = (state.atoms.tag[i], state.atoms.tag[j]);
-            state.topo.bonds.push(Bond::new(self.btype, [ti, tj]));
-            for m in [i, j] {
-                let c = &mut state.atoms.extra[k].data[m];
-                *c += 1.0;
-                let c = *c as usize;
-                let t = &mut state.atoms.typ[m];
-                // LAMMPS: an itype atom converts at imaxbond, any other at jmaxbond
-                if *t == self.itype {
-                    if c == self.imaxbond {
-                        *t = self.inewtype;
-                    }
-                } else if c == self.jmaxbond {
-                    *t = self.jnewtype;
-                }
-            }
-        }
-        if self.atype > 0 && ctx.angle_style.is_some() {
-            // angles centred on an atom of a new bond, made of two of its bonds of which at
-            // least one is new (each once, whatever the order of the outer atoms)
-            let mut nbrs: HashMap<i64, Vec<i64>> = HashMap::new();
-            for b in &state.topo.bonds {
-                nbrs.entry(b.atoms[0]).or_default().push(b.atoms[1]);
-                nbrs.entry(b.atoms[1]).or_default().push(b.atoms[0]);
-            }
-            let is_new = |p: i64, q: i64| new_bonds.contains(&(p, q)) || new_bonds.contains(&(q, p));
-            let mut centres: Vec<i64> = new_bonds.iter().flat_map(|&(p, q)| [p, q]).collect();
-            centres.sort_unstable();
-            centres.dedup();
-            for c in centres {
-                let list = nbrs.get(&c).cloned().unwrap_or_default();
-                for x in 0..list.len() {
-                    for y in x + 1..list.len() {
-                        if is_new(list[x], c) || is_new(c, list[y]) {
-                            state.topo.angles.push(Angle::new(self.atype, [list[x], c, list[y]]));
-                        }
-                    }
-                }
-            }
-        }
-        state.topology_changed();
+        let created = if state.distributed.is_some() { self.choose_on_ranks(state) } else { self.choose(state) };
+        self.create(state, ctx, &created);
         Ok(())
     }
     fn vector(&self, _state: &State, i: usize) -> Option<f64> {

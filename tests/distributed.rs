@@ -1423,3 +1423,53 @@ fn aveforce_adapt_and_balance_on_ranks_are_the_serial_run() {
     compare(&adapt, 2);
     compare(&adapt, 3);
 }
+
+/// `processors` with `map` and `grid twolevel|custom` (the layouts LAMMPS 22 Jul 2025 makes: the
+/// grid file of each matches LAMMPS' on 1 to 16 ranks, see src/engine/procmap.rs): other ranks
+/// own the sub-domains, the run is the serial one, and `file` lists each rank's place as LAMMPS
+/// writes it (rank 1's line is LAMMPS' for this box).
+#[test]
+fn processor_maps_and_grids_give_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.txt"), "# 4 ranks\n2 2 1\n0 2 2 1\n1 1 1 1\n2 2 1 1\n3 1 2 1\n").unwrap();
+    for (procs, ranks, place1) in [
+        ("processors * * * map xyz", 4, "1 1 1: 1 2 1"),
+        ("processors * * * grid twolevel 2 * * * map yzx", 4, "1 1 1: 1 2 1"),
+        ("processors * * 1 grid custom grid.txt", 4, "1 1 1: 1 1 1"),
+        ("processors * * * map cart", 2, "1 1 1: 1 1 2"),
+    ] {
+        let file = dir.path().join("procs.out");
+        let line = format!("{procs} file {}\n", file.display()).replace("grid.txt", &dir.path().join("grid.txt").display().to_string());
+        let deck = MELT.replace("create_box", &format!("{line}create_box"));
+        compare_decks(MELT, &deck, ranks, 1e-9);
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(text.starts_with("LAMMPS mapping of processors to 3d grid\npartition = 1\n"), "{procs}: {text}");
+        assert!(text.lines().any(|l| l.starts_with(place1)), "{procs}: rank 1 at {place1}:\n{text}");
+        assert_eq!(text.lines().filter(|l| l.contains(": ")).count(), ranks + 1, "{procs}: {text}");
+    }
+}
+
+/// What the `processors` command refuses, located in the deck: unknown keywords and styles,
+/// LAMMPS' NUMA grid and multi-partition links, core counts that do not multiply to Nc, and
+/// custom grid files that do not hold together (the file's line named).
+#[test]
+fn processors_errors_are_located() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.txt"), "1 1 1\n3 1 1 1\n").unwrap();
+    let bad = dir.path().join("bad.txt").display().to_string();
+    for (line, want) in [
+        ("processors * * * mapp xyz".to_string(), "unknown keyword `mapp`"),
+        ("processors * * * map xxy".to_string(), "unknown map style `xxy`"),
+        ("processors * * * grid numa".to_string(), "grid numa is not supported"),
+        ("processors * * * grid threelevel".to_string(), "unknown grid style"),
+        ("processors * * * part 1 2 multiple".to_string(), "several partitions"),
+        ("processors * * * grid twolevel 4 2 1 1".to_string(), "multiply to Nc = 4"),
+        ("processors * * * grid custom nothere.txt".to_string(), "cannot open processors custom file"),
+        (format!("processors * * * grid custom {bad}"), "bad.txt:2: processor ID 3"),
+        ("processors 2 1 1".to_string(), "cannot be arranged for 1 ranks"),
+    ] {
+        let deck = MELT.replace("create_box", &format!("{line}\ncreate_box"));
+        let err = dmhs::deck::run_text("deck", &deck, &options()).err().unwrap_or_else(|| panic!("{line}: accepted")).rendered;
+        assert!(err.contains(want) && err.contains("deck:6:"), "{line}: expected `{want}`:\n{err}");
+    }
+}

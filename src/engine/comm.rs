@@ -44,6 +44,20 @@ pub trait Comm: Send + Sync {
         self.max(&mut v);
         v[0] > 0.0
     }
+    /// The name of the machine this rank runs on (MPI's processor name).
+    fn processor_name(&self) -> String {
+        host_name()
+    }
+    /// Every rank's [`Comm::processor_name`], in rank order.
+    fn processor_names(&self) -> Vec<String> {
+        let mine = self.processor_name().bytes().map(|b| b as f64).collect();
+        self.allgather(mine).into_iter().map(|v| v.into_iter().map(|b| b as u8 as char).collect()).collect()
+    }
+}
+
+/// This machine's host name (Linux' kernel record; "localhost" where there is none).
+pub fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname").map(|s| s.trim().to_string()).ok().filter(|s| !s.is_empty()).unwrap_or_else(|| "localhost".into())
 }
 
 /// One rank: every operation is the identity.

@@ -4,47 +4,23 @@
 //! of the sub-domain. A pair with a ghost is listed by both owners, each taking its half (as in
 //! a serial run), so forces never travel back: only positions and per-atom state go forward.
 //!
-//! Ranks are numbered as MPI's Cartesian topology numbers them (z fastest).
+//! Ranks sit in the grid as `processors` places them (by default as MPI's Cartesian topology
+//! numbers them, z fastest; src/engine/procmap.rs).
 
 use crate::engine::atoms::Atoms;
 use crate::engine::comm::Comm;
 use crate::engine::contact_history::{ContactHistory, ContactRecord};
 use crate::engine::domain::Domain;
+use crate::engine::procmap::Layout;
 use std::sync::Arc;
-
-/// LAMMPS' choice of the processor grid (`ProcMap::onelevel_grid`): among the factorings
-/// Px Py Pz = n that agree with the user's fixed counts (and Pz = 1 in 2D), the first with the
-/// least sub-domain surface, factorings enumerated with Px outermost and Pz innermost.
-pub fn choose_grid(n: usize, user: [Option<usize>; 3], prd: [f64; 3], dimension: usize) -> Result<[usize; 3], String> {
-    let area = [prd[0] * prd[1], prd[0] * prd[2], prd[1] * prd[2]];
-    let mut best: Option<([usize; 3], f64)> = None;
-    for px in (1..=n).filter(|i| n % i == 0) {
-        let rest = n / px;
-        for py in (1..=rest).filter(|j| rest % j == 0) {
-            let pz = rest / py;
-            let p = [px, py, pz];
-            if dimension == 2 && pz != 1 {
-                continue;
-            }
-            if (0..3).any(|d| user[d].is_some_and(|u| u != p[d])) {
-                continue;
-            }
-            let surf = area[0] / px as f64 / py as f64 + area[1] / px as f64 / pz as f64 + area[2] / py as f64 / pz as f64;
-            let bound = best.map_or(2.0 * (area[0] + area[1] + area[2]), |b| b.1);
-            if surf < bound || best.is_none() {
-                best = Some((p, surf));
-            }
-        }
-    }
-    let fixed = |d: usize| user[d].map_or("*".to_string(), |u| u.to_string());
-    best.map(|b| b.0).ok_or_else(|| format!("processors {} {} {} cannot be arranged for {n} ranks{}", fixed(0), fixed(1), fixed(2), if dimension == 2 { " (Pz must be 1 in 2D)" } else { "" }))
-}
 
 /// The grid and this rank's place in it, the sub-domains, and the ghost exchange plan made at
 /// the last rebuild.
 pub struct Decomp {
     pub comm: Arc<dyn Comm>,
     pub procs: [usize; 3],
+    /// Where each rank sits in the grid (`processors ... map`, `grid`).
+    layout: Layout,
     /// Where the sub-domains are cut along each dimension, as fractions of the box (LAMMPS'
     /// xsplit, ysplit, zsplit): `procs[d] + 1` values from 0 to 1; uniform until balanced.
     splits: [Vec<f64>; 3],
@@ -57,12 +33,16 @@ pub struct Decomp {
 
 impl Decomp {
     pub fn new(comm: Arc<dyn Comm>, procs: [usize; 3]) -> Decomp {
-        Decomp { comm, procs, splits: procs.map(uniform), sends: Vec::new(), recv_counts: Vec::new() }
+        Decomp { comm, procs, layout: Layout::cartesian(procs), splits: procs.map(uniform), sends: Vec::new(), recv_counts: Vec::new() }
     }
-    /// A new processor grid, cut uniformly.
-    pub fn set_procs(&mut self, procs: [usize; 3]) {
-        self.procs = procs;
-        self.splits = procs.map(uniform);
+    /// A new processor grid and placing of the ranks, cut uniformly.
+    pub fn set_layout(&mut self, layout: Layout) {
+        self.procs = layout.procs;
+        self.splits = layout.procs.map(uniform);
+        self.layout = layout;
+    }
+    pub fn layout(&self) -> &Layout {
+        &self.layout
     }
     /// The cuts along dimension `d` (fractions of the box).
     pub fn splits(&self, d: usize) -> &[f64] {
@@ -72,11 +52,10 @@ impl Decomp {
         self.comm.rank()
     }
     pub fn coords(&self, rank: usize) -> [usize; 3] {
-        let [_, py, pz] = self.procs;
-        [rank / (py * pz), (rank / pz) % py, rank % pz]
+        self.layout.place(rank)
     }
     pub fn rank_at(&self, c: [usize; 3]) -> usize {
-        (c[0] * self.procs[1] + c[1]) * self.procs[2] + c[2]
+        self.layout.rank_at(c)
     }
     /// Lower and upper bound of sub-domain `c` along `d` (LAMMPS: lo + prd * split[c], the last
     /// one ending exactly at the box's upper bound).
@@ -580,17 +559,6 @@ fn shifted(mut x: [f64; 3], s: [i8; 3], prd: [f64; 3]) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn grids_minimise_the_surface_as_lammps() {
-        assert_eq!(choose_grid(4, [None; 3], [10.0, 10.0, 10.0], 3).unwrap(), [1, 2, 2]);
-        assert_eq!(choose_grid(2, [None; 3], [10.0, 10.0, 10.0], 3).unwrap(), [1, 1, 2]);
-        assert_eq!(choose_grid(2, [None; 3], [40.0, 10.0, 10.0], 3).unwrap(), [2, 1, 1]);
-        assert_eq!(choose_grid(4, [None; 3], [10.0, 10.0, 1.0], 2).unwrap(), [2, 2, 1]);
-        assert_eq!(choose_grid(8, [Some(8), None, None], [10.0, 10.0, 10.0], 3).unwrap(), [8, 1, 1]);
-        assert!(choose_grid(4, [Some(3), None, None], [10.0; 3], 3).is_err());
-        assert!(choose_grid(2, [Some(1), Some(1), None], [10.0, 10.0, 1.0], 2).is_err());
-    }
 
     #[test]
     fn the_owner_is_the_last_sub_domain_starting_at_or_below_x() {

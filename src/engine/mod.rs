@@ -6,6 +6,7 @@ pub mod boundary;
 pub mod comm;
 pub mod contact_history;
 pub mod decomp;
+pub mod procmap;
 pub mod domain;
 pub mod fields;
 pub mod group_rotation;

@@ -33,6 +33,9 @@ impl Comm for Mpi {
     fn rank(&self) -> usize {
         self.rank
     }
+    fn processor_name(&self) -> String {
+        mpi::environment::processor_name().unwrap_or_else(|_| crate::engine::comm::host_name())
+    }
     fn size(&self) -> usize {
         self.size
     }

@@ -172,8 +172,8 @@ pub struct State {
     /// The ranks of a distributed run (None: one rank). Between runs every rank holds every
     /// atom, as a serial run does; during a run each holds its sub-domain's (`distributed`).
     pub decomp: Option<crate::engine::decomp::Decomp>,
-    /// The `processors` command's Px Py Pz (None: `*`, chosen by the decomposition).
-    pub procs_user: [Option<usize>; 3],
+    /// The `processors` command's settings (Px Py Pz, None: `*`, chosen by the decomposition).
+    pub procs: crate::engine::procmap::ProcSettings,
     /// The atoms are spread over the ranks now, each holding its own (the total in `natoms`).
     pub distributed: Option<usize>,
     /// The interactions by the atom each is stored on, for a distributed run's bonded lists
@@ -237,7 +237,7 @@ impl State {
             halted: false,
             pair_changes: Vec::new(),
             decomp: None,
-            procs_user: [None; 3],
+            procs: Default::default(),
             distributed: None,
             stored_on: None,
         }

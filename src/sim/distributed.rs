@@ -5,7 +5,8 @@
 //! run; a run spreads the atoms over the sub-domains, and its end gathers them again.
 
 use crate::engine::comm::Comm;
-use crate::engine::decomp::{choose_grid, Decomp};
+use crate::engine::decomp::Decomp;
+use crate::engine::procmap::layout;
 use crate::sim::{RunError, Simulation};
 use std::sync::Arc;
 
@@ -138,11 +139,13 @@ impl Simulation {
     /// the processor grid, the atoms each rank would own, and what it cannot run yet.
     pub fn decomposition_plan(&self, n: usize) -> String {
         let Some(domain) = self.state.domain.as_ref() else { return format!("on {n} ranks: no box yet\n") };
-        let procs = match choose_grid(n, self.state.procs_user, domain.prd(), self.state.dimension) {
-            Ok(p) => p,
+        let l = match layout(n, &self.state.procs, domain.prd(), self.state.dimension) {
+            Ok(l) => l,
             Err(e) => return format!("on {n} ranks: {e}\n"),
         };
+        let procs = l.procs;
         let mut d = Decomp::new(Arc::new(crate::engine::comm::Serial), procs);
+        d.set_layout(l);
         if self.state.balance {
             let hist = d.histograms(&self.state.atoms, domain, false);
             d.balance(domain, &hist, self.ghost_cutoff());
@@ -175,8 +178,16 @@ impl Simulation {
         self.state.shrink_wrap();
         let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
         let ghost_cut = self.ghost_cutoff();
+        let grid_file = self.state.procs.file.as_ref().map(|f| self.path(f));
         let d = self.state.decomp.as_mut().expect("a decomposition");
-        d.set_procs(choose_grid(d.comm.size(), self.state.procs_user, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?);
+        d.set_layout(layout(d.comm.size(), &self.state.procs, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?);
+        if let Some(path) = grid_file {
+            // (every rank takes part in gathering the names)
+            let names = d.comm.processor_names();
+            if d.rank() == 0 {
+                crate::output::log::write_atomic(&path, d.layout().file_text(&names).as_bytes()).map_err(|e| RunError::new(step, format!("Cannot open processors output file {}: {e}", path.display())))?;
+            }
+        }
         if self.state.balance {
             // every rank holds every atom here: the same counts, the same cuts
             let hist = d.histograms(&self.state.atoms, domain, false);

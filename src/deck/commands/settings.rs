@@ -227,23 +227,77 @@ pub fn newton(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
     Ok(())
 }
 
+/// `processors Px Py Pz [grid onelevel|twolevel Nc Cx Cy Cz|custom infile] [map
+/// cart|cart/reorder|xyz|xzy|yxz|yzx|zxy|zyx] [file outfile]`: the processor grid of a run on
+/// several ranks (src/engine/procmap.rs). dmhs lays the ranks out at each run's start, so the
+/// command may also follow the box (LAMMPS requires it before).
 pub fn processors(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    use crate::engine::procmap::{layout, read_custom, GridStyle, MapStyle, ProcSettings};
     let ranks = sim.nranks();
-    let mut a = Args::new(cmd, "processors Px Py Pz  (each * or a count; their product the number of ranks)");
-    let mut user = [None; 3];
-    for (d, what) in ["Px", "Py", "Pz"].into_iter().enumerate() {
-        let w = a.word(what)?;
-        if w.text != "*" {
-            let n: usize = w.text.parse().ok().filter(|&n| n > 0).ok_or_else(|| a.error_at(w, format!("{what} must be * or a positive count, not `{}`", w.text), "expected * or a count"))?;
-            user[d] = Some(n);
+    const SYNTAX: &str = "processors Px Py Pz [grid onelevel|twolevel Nc Cx Cy Cz|custom infile] [map cart|cart/reorder|xyz|xzy|yxz|yzx|zxy|zyx] [file outfile]  (each P * or a count; their product the number of ranks)";
+    let mut a = Args::new(cmd, SYNTAX);
+    let mut settings = ProcSettings::default();
+    let counts = |a: &mut Args, names: [&str; 3]| -> DResult<[Option<usize>; 3]> {
+        let mut user = [None; 3];
+        for (d, what) in names.into_iter().enumerate() {
+            let w = a.word(what)?;
+            if w.text != "*" {
+                let n: usize = w.text.parse().ok().filter(|&n| n > 0).ok_or_else(|| a.error_at(w, format!("{what} must be * or a positive count, not `{}`", w.text), "expected * or a count"))?;
+                user[d] = Some(n);
+            }
+        }
+        Ok(user)
+    };
+    settings.user = counts(&mut a, ["Px", "Py", "Pz"])?;
+    while let Some(w) = a.peek() {
+        a.skip(1);
+        match w.text.as_str() {
+            "grid" => {
+                let g = a.word("grid style")?;
+                settings.grid = match g.text.as_str() {
+                    "onelevel" => GridStyle::OneLevel,
+                    "twolevel" => {
+                        let ncores = a.i64_in("Nc (cores per node)", 1, i32::MAX as i64)? as usize;
+                        let user_cores = counts(&mut a, ["Cx", "Cy", "Cz"])?;
+                        if user_cores.iter().all(|c| c.is_some()) && user_cores.iter().map(|c| c.unwrap()).product::<usize>() != ncores {
+                            return Err(a.error_at(g, format!("Cx Cy Cz must multiply to Nc = {ncores}"), "cores per node"));
+                        }
+                        GridStyle::TwoLevel { ncores, user_cores }
+                    }
+                    "numa" => return Err(a.error_at(g, "processors grid numa is not supported: LAMMPS places its NUMA domains by a machine detection dmhs does not reproduce; grid twolevel Nc * * * with the cores per node gives each node a contiguous block the same way", "use grid twolevel")),
+                    "custom" => {
+                        let fw = a.word("infile")?;
+                        let path = sim.path(&fw.text);
+                        let text = std::fs::read_to_string(&path).map_err(|e| a.error_at(fw, format!("cannot open processors custom file `{}`: {e}", path.display()), "this file"))?;
+                        let (procs, places) = read_custom(&text).map_err(|(line, e)| a.error_at(fw, format!("processors custom grid file {}:{line}: {e}", path.display()), "this file"))?;
+                        GridStyle::Custom { procs, places }
+                    }
+                    _ => return Err(a.error_at(g, format!("unknown grid style `{}`", g.text), "expected onelevel, twolevel, numa or custom")),
+                };
+            }
+            "map" => {
+                let m = a.word("map style")?;
+                settings.map = MapStyle::parse(&m.text).ok_or_else(|| a.error_at(m, format!("unknown map style `{}`", m.text), "expected cart, cart/reorder, xyz, xzy, yxz, yzx, zxy or zyx"))?;
+            }
+            "file" => settings.file = Some(a.word("outfile")?.text.clone()),
+            "part" => return Err(a.error_at(w, "processors part links the grids of several partitions (the -partition switch), which dmhs does not run", "one partition")),
+            _ => return Err(a.unknown_keyword(w, &["grid", "map", "part", "file"])),
         }
     }
-    let dimension = sim.state.dimension;
-    if let Err(e) = crate::engine::decomp::choose_grid(ranks, user, [1.0; 3], dimension) {
+    // the counts checked against the ranks this run has
+    if let Err(e) = layout(ranks, &settings, [1.0; 3], sim.state.dimension) {
         return Err(a.error_at(&cmd.args[0], format!("{e} (dmhs runs on {ranks} rank{})", if ranks == 1 { "" } else { "s" }), "a grid of the ranks"));
     }
-    sim.state.procs_user = user;
-    // further keywords (grid, map, part, file) shape MPI layouts dmhs does not offer yet
+    if ranks == 1 {
+        // one rank: the grid is 1 by 1 by 1 whatever the box (a run on ranks writes it when it
+        // lays them out)
+        if let Some(f) = &settings.file {
+            let path = sim.path(f);
+            let text = crate::engine::procmap::Layout::cartesian([1; 3]).file_text(&[crate::engine::comm::host_name()]);
+            crate::output::log::write_atomic(&path, text.as_bytes()).map_err(|e| a.error_at(cmd.args.last().unwrap_or(&cmd.name), format!("Cannot open processors output file {}: {e}", path.display()), "outfile"))?;
+        }
+    }
+    sim.state.procs = settings;
     Ok(())
 }
 
@@ -256,13 +310,17 @@ pub fn comm_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     Ok(())
 }
 
-/// `balance thresh style args ... [keywords]`: LAMMPS' load balancing of MPI sub-domains.
-/// dmhs runs one process, which has nothing to balance (`dmhs check` says so).
+/// `balance thresh style args ... [keywords]`: LAMMPS' load balancing of MPI sub-domains. One
+/// process has nothing to balance; a run on several ranks balances by itself (a note says so).
 pub fn balance(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "balance thresh x|y|z|shift|rcb args ... [keyword value ...]");
     a.f64_where("thresh", "thresh >= 1.0", |t| t >= 1.0)?;
     a.choice("balance style", &["x", "y", "z", "shift", "rcb"])?;
-    sim.out.print("note: balance does nothing: dmhs runs one process, which has nothing to balance");
+    sim.out.print(if sim.nranks() > 1 {
+        "note: balance does nothing now: a run on several ranks balances its sub-domains at its start and whenever one rank owns 1.2x the mean at a rebuild"
+    } else {
+        "note: balance does nothing: dmhs runs one process, which has nothing to balance"
+    });
     Ok(())
 }
 

@@ -499,9 +499,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all rdf 20\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all stress/atom NULL\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("compute r (rdf) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("compute r (stress/atom) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -582,8 +582,8 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.two", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all rdf 20\n"));
-    assert!(text.contains("on 2 ranks: compute r (rdf) cannot run on 2 ranks yet"), "{text}");
+    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all stress/atom NULL\n"));
+    assert!(text.contains("on 2 ranks: compute r (stress/atom) cannot run on 2 ranks yet"), "{text}");
     // the fixes that run on ranks since issue 19's second part: no refusal line
     let text = check2(MELT.replace(
         "fix          1 all nve\n",
@@ -924,6 +924,31 @@ fn bpm_plastic_springs_on_ranks_are_the_serial_run() {
     let deck = std::fs::read_to_string(path).unwrap().replace("thermo       10\n", "thermo       30\nthermo_modify format float %.15g\n");
     compare(&deck, 2);
     compare(&deck, 3);
+}
+
+/// Compute rdf on ranks (a pair across ranks counted by each owner for its own atom, the
+/// histograms and type counts summed over the ranks), averaged by fix ave/time into a file:
+/// the serial run's file. Two types, all pairs and one cross pair, a cutoff of its own.
+#[test]
+fn radial_distribution_functions_on_ranks_are_the_serial_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = |tag: &str| {
+        let path = dir.path().join(format!("{tag}.rdf")).display().to_string();
+        MELT.replace("create_box   1 box\ncreate_atoms 1 box\nmass         1 1.0", "create_box   2 box\ncreate_atoms 1 box\nset          group all type/fraction 2 0.3 4321\nmass         * 1.0")
+            .replace("pair_coeff   1 1 1.0 1.0 2.5", "pair_coeff   * * 1.0 1.0 2.5")
+            .replace("neighbor     0.3 bin", "neighbor     0.5 bin")
+            .replace("fix          1 all nve\n", &format!("fix          1 all nve\ncompute      r all rdf 40 * * 1 2 cutoff 2.4\nfix          av all ave/time 25 2 50 c_r[*] file {path} mode vector\n"))
+    };
+    let file = |tag: &str| dir.path().join(format!("{tag}.rdf"));
+    for ranks in [2, 4] {
+        let (tag0, tag) = (format!("s{ranks}"), format!("r{ranks}"));
+        compare_decks(&deck(&tag0), &deck(&tag), ranks, 1e-9);
+        let (x, y) = (file_numbers(&file(&tag0)).expect("serial file"), file_numbers(&file(&tag)).expect("file written on ranks"));
+        // 5 blocks of 40 rows of 5 columns, and their headers
+        assert!(x.len() > 5 * 40 * 5 && x.len() == y.len(), "{} values against serial {}", y.len(), x.len());
+        assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "the rdf file on {ranks} ranks differs from the serial one");
+        assert!(x.iter().any(|&v| v > 2.0), "a first peak of g(r) above 2");
+    }
 }
 
 /// Fix move of every style on ranks: four groups moved (a cylinder rotated about z, a slab

@@ -103,12 +103,15 @@ impl Compute for ComputeRdf {
             }
         }
         // atoms of each type in the group, and the normalisation counts
-        let mut typecount = vec![0usize; ntypes + 1];
+        let mut counts = vec![0.0; ntypes + 1];
         for i in 0..at.nlocal {
             if at.mask[i] & self.groupbit != 0 {
-                typecount[at.typ[i]] += 1;
+                counts[at.typ[i]] += 1.0;
             }
         }
+        // every rank's atoms (counts below 2^53 are exact as doubles)
+        s.sum_ranks(&mut counts);
+        let typecount: Vec<usize> = counts.iter().map(|&c| c as usize).collect();
         let (mut icount, mut jcount, mut dup) = (vec![0usize; npairs], vec![0usize; npairs], vec![0usize; npairs]);
         for (m, &(ilo, ihi, jlo, jhi)) in self.pairs.iter().enumerate() {
             icount[m] = (ilo..=ihi).map(|t| typecount[t]).sum();
@@ -117,7 +120,8 @@ impl Compute for ComputeRdf {
         }
 
         // a pair of owned atoms is listed once and counted from both ends; a pair with a ghost
-        // is listed by each owned end (LAMMPS' newton off), so counted once per listing
+        // is listed by each owned end (LAMMPS' newton off), so counted once per listing (on
+        // several ranks, by each owner: the histograms are then summed over the ranks)
         let mut hist = vec![vec![0.0f64; nbin]; npairs];
         let (lj, coul) = (s.special_bonds.lj, s.special_bonds.coul);
         for chunk in &nb.list.chunks {
@@ -157,6 +161,10 @@ impl Compute for ComputeRdf {
                 }
             }
         }
+
+        let mut flat: Vec<f64> = hist.concat();
+        s.sum_ranks(&mut flat);
+        let hist: Vec<&[f64]> = flat.chunks_exact(nbin).collect();
 
         let d = s.domain.as_ref().ok_or("no simulation box")?;
         let prd = d.prd();

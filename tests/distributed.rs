@@ -499,9 +499,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all stress/atom NULL\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all displace/atom\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("compute r (stress/atom) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("compute r (displace/atom) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -582,8 +582,8 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.two", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all stress/atom NULL\n"));
-    assert!(text.contains("on 2 ranks: compute r (stress/atom) cannot run on 2 ranks yet"), "{text}");
+    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all displace/atom\n"));
+    assert!(text.contains("on 2 ranks: compute r (displace/atom) cannot run on 2 ranks yet"), "{text}");
     // the fixes that run on ranks since issue 19's second part: no refusal line
     let text = check2(MELT.replace(
         "fix          1 all nve\n",
@@ -949,6 +949,34 @@ fn radial_distribution_functions_on_ranks_are_the_serial_ones() {
         assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "the rdf file on {ranks} ranks differs from the serial one");
         assert!(x.iter().any(|&v| v > 2.0), "a first peak of g(r) above 2");
     }
+}
+
+/// Per-atom energies and stresses on ranks (compute pe/atom, stress/atom, and their sums by
+/// compute reduce): bonds, angles and dihedrals computed once with ghosts send the ghosts'
+/// shares back to the owners, pairs across ranks give each owner its half; the sums equal
+/// the serial run's and the thermo pressure and energies.
+#[test]
+fn per_atom_energies_and_stresses_on_ranks_are_the_serial_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace(
+        "thermo_style custom step temp epair ebond eangle edihed etotal press atoms",
+        "compute      s all stress/atom NULL\n\
+         compute      sb all stress/atom NULL bond angle dihedral\n\
+         compute      pe all pe/atom\n\
+         compute      peb all pe/atom bond angle dihedral\n\
+         compute      sum all reduce sum c_s[1] c_s[2] c_s[3] c_sb[4] c_pe c_peb\n\
+         variable     p equal -(c_sum[1]+c_sum[2]+c_sum[3])/(3*vol)\n\
+         thermo_style custom step temp epair ebond eangle edihed pe press v_p c_sum[4] c_sum[5] c_sum[6]\n\
+         thermo_modify format float %.15g",
+    );
+    let (text, _) = serial(&deck);
+    for r in thermo_rows(&text) {
+        // the stresses' pressure is the thermo pressure; the per-atom energies sum to pe and to
+        // the bonded energies
+        assert!(close(r[7], r[8], 1e-12) && close(r[6], r[10], 1e-12) && close(r[3] + r[4] + r[5], r[11], 1e-12), "{r:?}");
+    }
+    compare(&deck, 2);
+    compare(&deck, 4);
 }
 
 /// Fix move of every style on ranks: four groups moved (a cylinder rotated about z, a slab

@@ -335,24 +335,31 @@ impl Decomp {
     }
 
     /// Forces on ghosts back to their owners, added to theirs (LAMMPS' reverse communication,
-    /// for the bonded interactions a rank computes with ghosts): each block of ghosts returns
-    /// to the rank that sent it, in the order of its send list.
+    /// for the bonded interactions a rank computes with ghosts).
     pub fn reverse_forces(&self, atoms: &mut Atoms) {
-        let mut k = atoms.nlocal;
+        let nlocal = atoms.nlocal;
+        self.reverse_add(nlocal, atoms.f.as_flattened_mut(), 3);
+    }
+
+    /// The ghosts' values of a per-atom array (`width` values per atom, owned atoms then
+    /// ghosts) added to their owners': each block of ghosts returns to the rank that sent it,
+    /// in the order of its send list.
+    pub fn reverse_add(&self, nlocal: usize, data: &mut [f64], width: usize) {
+        let mut k = nlocal;
         let blocks = self
             .recv_counts
             .iter()
             .map(|&n| {
                 k += n;
-                atoms.f[k - n..k].iter().flatten().copied().collect()
+                data[(k - n) * width..k * width].to_vec()
             })
             .collect();
         let back = self.swap(blocks);
         for ((_, list), back) in self.sends.iter().zip(back) {
-            for (&(i, _), fg) in list.iter().zip(back.chunks_exact(3)) {
-                let fi = &mut atoms.f[i as usize];
-                for d in 0..3 {
-                    fi[d] += fg[d];
+            for (&(i, _), g) in list.iter().zip(back.chunks_exact(width)) {
+                let own = &mut data[i as usize * width..(i as usize + 1) * width];
+                for d in 0..width {
+                    own[d] += g[d];
                 }
             }
         }

@@ -458,10 +458,19 @@ pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>
 /// Per-atom energies and virials of the bonded interactions into `out` (compute pe/atom and
 /// stress/atom): a separate pass, run only on steps that need them. As LAMMPS' `ev_tally` of
 /// bonds, angles and dihedrals: each atom of an interaction takes 1/2, 1/3 or 1/4 of it.
-pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engine::tally::PerAtomTally) {
+pub fn bonded_peratom(state: &State, styles: BondedStyles, result: &mut crate::engine::tally::PerAtomTally) {
     use crate::engine::tally::PerAtomTally;
     let lists = &state.bonded_lists;
     let Some(dom) = state.domain.as_ref() else { return };
+    // a distributed run computes each interaction once, on one rank, with ghosts: their shares
+    // go back to the owners (LAMMPS' reverse communication of eatom and vatom)
+    let decomp = state.decomp.as_ref().filter(|_| state.distributed.is_some());
+    let nlocal = state.atoms.nlocal;
+    let mut all = decomp.map(|_| PerAtomTally::new(state.atoms.nall(), result.step));
+    let out = match all.as_mut() {
+        Some(all) => all,
+        None => &mut *result,
+    };
     // every entry at its shifts (chunk entries have none)
     let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
     if let Some(style) = styles.bond {
@@ -490,6 +499,22 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, out: &mut crate::engi
             let r = style.compute(e.typ, vb1, vb2, vb3);
             let v = dihedral_virial(vb1, vb2, vb3, r.f1, r.f3, r.f4);
             e.atoms.iter().for_each(|&i| out.add(PerAtomTally::DIHEDRAL, i as usize, 0.25, r.energy, &v));
+        }
+    }
+    if let (Some(d), Some(all)) = (decomp, all) {
+        const SOURCES: [usize; 3] = [PerAtomTally::BOND, PerAtomTally::ANGLE, PerAtomTally::DIHEDRAL];
+        let mut flat: Vec<f64> = Vec::with_capacity(all.energy[0].len() * 7 * SOURCES.len());
+        for i in 0..all.energy[0].len() {
+            for k in SOURCES {
+                flat.push(all.energy[k][i]);
+                flat.extend_from_slice(&all.virial[k][i]);
+            }
+        }
+        d.reverse_add(nlocal, &mut flat, 7 * SOURCES.len());
+        for (i, vals) in flat.chunks_exact(7 * SOURCES.len()).take(nlocal).enumerate() {
+            for (&k, v) in SOURCES.iter().zip(vals.chunks_exact(7)) {
+                result.add(k, i, 1.0, v[0], &[v[1], v[2], v[3], v[4], v[5], v[6]]);
+            }
         }
     }
 }

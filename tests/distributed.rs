@@ -951,14 +951,19 @@ fn radial_distribution_functions_on_ranks_are_the_serial_ones() {
     }
 }
 
-/// Per-atom energies and stresses on ranks (compute pe/atom, stress/atom, and their sums by
-/// compute reduce): bonds, angles and dihedrals computed once with ghosts send the ghosts'
-/// shares back to the owners, pairs across ranks give each owner its half; the sums equal
-/// the serial run's and the thermo pressure and energies.
+/// Per-atom energies and stresses on ranks (compute pe/atom, stress/atom, their sums by
+/// compute reduce and a dump of them): bonds, angles and dihedrals computed once with ghosts
+/// send the ghosts' shares back to the owners, pairs across ranks give each owner its half;
+/// the sums equal the serial run's and the thermo pressure and energies, the dump is the
+/// serial one (rank 0 writes it with the tallies gathered with the atoms).
 #[test]
 fn per_atom_energies_and_stresses_on_ranks_are_the_serial_ones() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace(
+    let dump = |tag: &str| dir.path().join(format!("{tag}.dump"));
+    let deck = |tag: &str| chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace(
+        "run          150",
+        &format!("dump         d all custom 50 {} id c_s[1] c_s[4] c_sb[2] c_pe c_peb\ndump_modify  d sort id format float %.15g\nrun          150", dump(tag).display()),
+    ).replace(
         "thermo_style custom step temp epair ebond eangle edihed etotal press atoms",
         "compute      s all stress/atom NULL\n\
          compute      sb all stress/atom NULL bond angle dihedral\n\
@@ -969,14 +974,19 @@ fn per_atom_energies_and_stresses_on_ranks_are_the_serial_ones() {
          thermo_style custom step temp epair ebond eangle edihed pe press v_p c_sum[4] c_sum[5] c_sum[6]\n\
          thermo_modify format float %.15g",
     );
-    let (text, _) = serial(&deck);
+    let (text, _) = serial(&deck("check"));
     for r in thermo_rows(&text) {
         // the stresses' pressure is the thermo pressure; the per-atom energies sum to pe and to
         // the bonded energies
         assert!(close(r[7], r[8], 1e-12) && close(r[6], r[10], 1e-12) && close(r[3] + r[4] + r[5], r[11], 1e-12), "{r:?}");
     }
-    compare(&deck, 2);
-    compare(&deck, 4);
+    for ranks in [2, 4] {
+        let (tag0, tag) = (format!("s{ranks}"), format!("r{ranks}"));
+        compare_decks(&deck(&tag0), &deck(&tag), ranks, 1e-9);
+        let (x, y) = (file_numbers(&dump(&tag0)).expect("serial dump"), file_numbers(&dump(&tag)).expect("dump written on ranks"));
+        assert!(x.len() > 6 * 360 * 5 && x.len() == y.len(), "{} values against serial {}", y.len(), x.len());
+        assert!(x.iter().zip(&y).all(|(x, y)| close(*x, *y, 1e-9)), "the dump on {ranks} ranks differs from the serial one");
+    }
 }
 
 /// Fix move of every style on ranks: four groups moved (a cylinder rotated about z, a slab

@@ -77,6 +77,33 @@ impl PerAtomTally {
         PerAtomTally { step, energy: std::array::from_fn(|_| vec![0.0; n]), virial: std::array::from_fn(|_| vec![[0.0; 6]; n]) }
     }
 
+    /// Values per atom in [`PerAtomTally::flat`]: each source's energy and six virials.
+    pub const WIDTH: usize = 28;
+
+    /// The tallies atom by atom, each source's energy then its virial (to send to other ranks).
+    pub fn flat(&self) -> Vec<f64> {
+        let n = self.energy[0].len();
+        let mut out = Vec::with_capacity(n * Self::WIDTH);
+        for i in 0..n {
+            for k in 0..4 {
+                out.push(self.energy[k][i]);
+                out.extend_from_slice(&self.virial[k][i]);
+            }
+        }
+        out
+    }
+
+    /// The tallies of [`PerAtomTally::flat`] values.
+    pub fn from_flat(step: i64, flat: &[f64]) -> PerAtomTally {
+        let mut t = PerAtomTally::new(flat.len() / Self::WIDTH, step);
+        for (i, atom) in flat.chunks_exact(Self::WIDTH).enumerate() {
+            for (k, v) in atom.chunks_exact(7).enumerate() {
+                t.add(k, i, 1.0, v[0], &[v[1], v[2], v[3], v[4], v[5], v[6]]);
+            }
+        }
+        t
+    }
+
     /// Add a share `w` of energy `e` and virial `v` to atom `i` of source `k`.
     #[inline]
     pub fn add(&mut self, k: usize, i: usize, w: f64, e: f64, v: &[f64; 6]) {

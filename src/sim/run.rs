@@ -914,8 +914,12 @@ impl Simulation {
         let step = self.state.step;
         let d = self.state.decomp.as_ref().expect("a decomposition");
         let mut whole = d.gathered(&self.state.atoms);
+        // the per-atom energies and virials of this step, in the same rank order (dumps of
+        // compute pe/atom and stress/atom)
+        let mut tally = self.state.peratom.as_ref().map(|t| crate::engine::tally::PerAtomTally::from_flat(t.step, &d.comm.allgather(t.flat()).concat()));
         let rank0 = d.rank() == 0;
         std::mem::swap(&mut self.state.atoms, &mut whole);
+        std::mem::swap(&mut self.state.peratom, &mut tally);
         let natoms = self.state.distributed.take();
         let mut result = Ok(());
         {
@@ -934,6 +938,7 @@ impl Simulation {
         }
         self.state.distributed = natoms;
         std::mem::swap(&mut self.state.atoms, &mut whole);
+        std::mem::swap(&mut self.state.peratom, &mut tally);
         result
     }
 

@@ -502,18 +502,12 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, result: &mut crate::e
         }
     }
     if let (Some(d), Some(all)) = (decomp, all) {
-        const SOURCES: [usize; 3] = [PerAtomTally::BOND, PerAtomTally::ANGLE, PerAtomTally::DIHEDRAL];
-        let mut flat: Vec<f64> = Vec::with_capacity(all.energy[0].len() * 7 * SOURCES.len());
-        for i in 0..all.energy[0].len() {
-            for k in SOURCES {
-                flat.push(all.energy[k][i]);
-                flat.extend_from_slice(&all.virial[k][i]);
-            }
-        }
-        d.reverse_add(nlocal, &mut flat, 7 * SOURCES.len());
-        for (i, vals) in flat.chunks_exact(7 * SOURCES.len()).take(nlocal).enumerate() {
-            for (&k, v) in SOURCES.iter().zip(vals.chunks_exact(7)) {
-                result.add(k, i, 1.0, v[0], &[v[1], v[2], v[3], v[4], v[5], v[6]]);
+        let mut flat = all.flat();
+        d.reverse_add(nlocal, &mut flat, PerAtomTally::WIDTH);
+        let mine = PerAtomTally::from_flat(result.step, &flat[..nlocal * PerAtomTally::WIDTH]);
+        for k in [PerAtomTally::BOND, PerAtomTally::ANGLE, PerAtomTally::DIHEDRAL] {
+            for i in 0..nlocal {
+                result.add(k, i, 1.0, mine.energy[k][i], &mine.virial[k][i]);
             }
         }
     }

@@ -989,6 +989,31 @@ fn per_atom_energies_and_stresses_on_ranks_are_the_serial_ones() {
     }
 }
 
+/// The temperatures with a bias on ranks (temp/com, temp/partial, temp/region, temp/ramp,
+/// temp/profile: their sums, centre-of-mass velocity and bin averages over the ranks), one of
+/// them thermostatting the run (fix nvt with fix_modify temp) and one in the stress/atom's
+/// kinetic term: the serial run's thermo.
+#[test]
+fn biased_temperatures_on_ranks_are_the_serial_ones() {
+    let deck = melt_with(
+        "velocity     all set 0.5 NULL NULL sum yes\n\
+         region       mid block INF INF 2.0 8.0 INF INF units box\n\
+         compute      tc all temp/com\n\
+         compute      tp all temp/partial 1 1 0\n\
+         compute      tr all temp/region mid\n\
+         compute      tm all temp/ramp vx 0 0.4 y 0 10.0 units box\n\
+         compute      tf all temp/profile 1 0 0 y 4\n\
+         compute      s all stress/atom tc ke\n\
+         compute      ks all reduce sum c_s[1]\n\
+         fix          1 all nvt temp 1.2 1.2 0.5\n\
+         fix_modify   1 temp tc\n\
+         thermo_style custom step temp c_tc c_tp c_tr c_tm c_tf c_ks etotal\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deck, 2);
+    compare(&deck, 3);
+}
+
 /// Fix move of every style on ranks: four groups moved (a cylinder rotated about z, a slab
 /// moved linearly across the periodic faces, one wiggled, one by variables) among nve atoms;
 /// the original positions travel with the atoms at migration and are gathered between runs.

@@ -24,7 +24,8 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
     "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create"];
-const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom"];
+const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",
+    "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them, or the step's per-atom energies and
 /// virials, gathered with them).

@@ -353,7 +353,9 @@ run          200
     }
 }
 
-/// An SPH fluid (density summation, Tait pressure, fix sph) with a sorted dump. At the first
+/// An SPH fluid (density summation, Tait pressure, fix sph) with a sorted dump (positions,
+/// velocities, compute sph/rho/atom, sph/e/atom and displace/atom, evaluated by rank 0 on the
+/// gathered atoms). At the first
 /// setup of fix sph a ghost keeps the velocity estimate it had when it was made (LAMMPS' own
 /// order), so in LAMMPS step 0 of a first run depends on which neighbours are ghosts (measured:
 /// LAMMPS' press at step 0 is 0.16084 on one rank and 0.15994 on two for this fluid without
@@ -379,7 +381,10 @@ fix          3 all addforce 0.002 0.0 0.0
 region       wall block INF INF 0 1.5 INF INF units box
 fix          4 all setforce NULL 0.0 NULL region wall
 timestep     0.005
-dump         d all custom 100 dump.sph id x y vx vy
+compute      rho all sph/rho/atom
+compute      e all sph/e/atom
+compute      dx all displace/atom
+dump         d all custom 100 dump.sph id x y vx vy c_rho c_e c_dx[1] c_dx[4]
 dump_modify  d sort id
 thermo_style custom step ke pe f_3[1] f_4[2]
 thermo       50
@@ -433,7 +438,7 @@ fn an_sph_fluid_and_its_dump_on_four_ranks() {
 /// for owned atoms of the serial run, periodic images for its ghosts.
 #[test]
 fn an_sph_setup_with_stale_ghost_estimates_on_ranks_is_the_serial_setup() {
-    let deck = SPH.replace("run          0 post no\n", "").replace("dump         d all custom 100 dump.sph id x y vx vy\ndump_modify  d sort id\n", "").replace("thermo_style custom step ke pe", "thermo_style custom step ke pe press pxy").replace("thermo       50", "thermo       1").replace("run          200", "run          3");
+    let deck = SPH.replace("run          0 post no\n", "").replace("dump         d all custom 100 dump.sph id x y vx vy c_rho c_e c_dx[1] c_dx[4]\ndump_modify  d sort id\n", "").replace("thermo_style custom step ke pe", "thermo_style custom step ke pe press pxy").replace("thermo       50", "thermo       1").replace("run          200", "run          3");
     let (text0, atoms0) = serial(&deck);
     let rows0 = thermo_rows(&text0);
     assert_eq!(rows0.len(), 4, "{text0}");
@@ -499,9 +504,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all displace/atom\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          r all spring/self 1.0\nfix_modify   r energy yes\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("compute r (displace/atom) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("fix_modify energy/virial yes (fix r) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -582,8 +587,8 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.two", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      r all displace/atom\n"));
-    assert!(text.contains("on 2 ranks: compute r (displace/atom) cannot run on 2 ranks yet"), "{text}");
+    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          r all spring/self 1.0\nfix_modify   r energy yes\n"));
+    assert!(text.contains("on 2 ranks: fix_modify energy/virial yes (fix r) cannot run on 2 ranks yet"), "{text}");
     // the fixes that run on ranks since issue 19's second part: no refusal line
     let text = check2(MELT.replace(
         "fix          1 all nve\n",

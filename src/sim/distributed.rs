@@ -25,11 +25,12 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
     "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",
-    "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile"];
+    "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom",
+    "erotate/sphere/atom", "contact/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them, or the step's per-atom energies and
 /// virials, gathered with them).
-const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom", "ke/atom", "pe/atom", "stress/atom"];
+const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom", "ke/atom", "pe/atom", "stress/atom", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom", "erotate/sphere/atom"];
 /// Fixes whose per-atom values a dump reads from the gathered atoms (they keep them in an
 /// array that travels with the atoms).
 const GATHERED_FIXES: &[&str] = &["ave/atom"];
@@ -111,7 +112,7 @@ impl Simulation {
             "pair styles {}; bond styles {}; angle styles {}; dihedral styles {}; fixes {}; computes {}",
             PAIRS.join(", "), BONDS.join(", "), ANGLES.join(", "), DIHEDRALS.join(", "), FIXES.join(", "), COMPUTES.join(", ")
         );
-        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values, of compute property/atom, dmhs/phase/atom, ke/atom, pe/atom and stress/atom, of fix ave/atom and of the broken bonds of a BPM style's store/local (run on one rank)"))
+        what.map(|w| format!("{w} cannot run on {ranks} ranks yet; a run on several ranks supports atomic, bonded, granular and SPH systems with {supported}, and dumps of atom values, of the per-atom computes that read an atom's own values (property/atom, ke/atom, pe/atom, stress/atom, displace/atom, the sph/*/atom computes, ...), of fix ave/atom and of the broken bonds of a BPM style's store/local (run on one rank)"))
     }
 
     /// Whether rank 0 can write dump `d` from the gathered atoms: its compute and fix columns

@@ -268,7 +268,7 @@ fix          2 all gravity 1.0 vector 0 0 -1
 fix          3 all wall/gran {wall} zplane 0.0 NULL
 compute      erot all erotate/sphere
 compute      ts all temp/sphere
-thermo_style custom step ke c_erot c_ts press atoms
+thermo_style custom step ke c_erot c_ts press f_2 atoms
 thermo       100
 timestep     0.002
 run          800

@@ -123,7 +123,8 @@ impl Fix for FixGravity {
                 egrav -= m * (xacc * x[0] + yacc * x[1] + zacc * x[2]);
             }
         }
-        Some(egrav)
+        // every rank's atoms
+        Some(state.summed_over_ranks(egrav))
     }
     fn extensive(&self, _index: Option<usize>) -> bool {
         true

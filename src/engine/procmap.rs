@@ -239,6 +239,9 @@ pub fn layout(n: usize, settings: &ProcSettings, prd: [f64; 3], dimension: usize
             if procs[0] * procs[1] * procs[2] != n || !fits(procs, &settings.user) {
                 return Err(format!("the custom grid {} by {} by {} does not fit {n} ranks and processors {}", procs[0], procs[1], procs[2], fixed(&settings.user)));
             }
+            if dimension == 2 && procs[2] != 1 {
+                return Err(format!("the custom grid {} by {} by {}: Processor count in z must be 1 for 2d simulation", procs[0], procs[1], procs[2]));
+            }
             Layout::from_places(*procs, places.clone())
         }
     }
@@ -349,6 +352,9 @@ mod tests {
         let s = ProcSettings { grid: GridStyle::Custom { procs, places }, ..Default::default() };
         assert_eq!(layout(2, &s, [10.0; 3], 3).unwrap().rank_at([0, 0, 0]), 1);
         assert!(layout(4, &s, [10.0; 3], 3).is_err());
+        let (procs, places) = read_custom("1 1 2\n0 1 1 1\n1 1 1 2\n").unwrap();
+        let s = ProcSettings { grid: GridStyle::Custom { procs, places }, ..Default::default() };
+        assert!(layout(2, &s, [10.0; 3], 3).is_ok() && layout(2, &s, [10.0, 10.0, 1.0], 2).is_err());
         assert_eq!(read_custom("2 1 1\n0 1 1 1\n0 2 1 1\n").unwrap_err().0, 3);
         assert_eq!(read_custom("2 1 1\n0 1 1 1\n1 3 1 1\n").unwrap_err().0, 3);
         assert!(read_custom("2 1 1\n0 1 1 1\n").is_err());

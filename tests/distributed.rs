@@ -305,6 +305,20 @@ fn an_error_on_one_rank_stops_every_rank_without_hanging() {
     }
 }
 
+/// A fix's error in the setup of a run on one rank only (fix wall/lj93 finds an atom of that
+/// rank on its surface) stops every rank with that error instead of leaving the others
+/// waiting (they hung before 2026-12-05).
+#[test]
+fn a_setup_error_on_one_rank_stops_every_rank() {
+    let deck = MELT.replace("lattice      fcc 0.8442\n", "boundary     p p f\nlattice      fcc 0.8442\n")
+        .replace("region       box block 0 6 0 6 0 6", "region       box block 0 6 0 6 0 6.25")
+        .replace("fix          1 all nve\n", "fix          1 all nve\nfix          w all wall/lj93 zlo EDGE 1.0 1.0 2.5\nprocessors   1 1 2\n");
+    for (rank, r) in on_ranks(&deck, 2).iter().enumerate() {
+        let e = r.as_ref().err().unwrap_or_else(|| panic!("rank {rank} ran"));
+        assert!(e.contains("on rank 0 of 2") && e.contains("on or inside the wall surface"), "rank {rank}: {e}");
+    }
+}
+
 #[test]
 fn a_settled_pile_is_balanced_over_the_ranks() {
     // the spheres settle into the lowest sixth of the box, which a uniform cut along z would
@@ -504,9 +518,9 @@ fn the_lava_scene_on_two_ranks_is_the_serial_run() {
 
 #[test]
 fn what_is_not_distributed_yet_is_refused_on_every_rank() {
-    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          r all spring/self 1.0\nfix_modify   r energy yes\n");
+    let deck = MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      cn all coord/atom cutoff 1.5\ndump         r all custom 50 dump.cn id c_cn\n");
     for e in refusals(&deck, 2) {
-        assert!(e.contains("fix_modify energy/virial yes (fix r) cannot run on 2 ranks yet"), "{e}");
+        assert!(e.contains("dump r (it writes values of computes or fixes) cannot run on 2 ranks yet"), "{e}");
     }
 }
 
@@ -587,8 +601,8 @@ fn check_prints_the_grid_and_the_atoms_of_each_rank() {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["check", "in.two", "--ranks", "2"]).current_dir(dir.path()).output().unwrap();
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\nfix          r all spring/self 1.0\nfix_modify   r energy yes\n"));
-    assert!(text.contains("on 2 ranks: fix_modify energy/virial yes (fix r) cannot run on 2 ranks yet"), "{text}");
+    let text = check2(MELT.replace("fix          1 all nve\n", "fix          1 all nve\ncompute      cn all coord/atom cutoff 1.5\ndump         r all custom 50 dump.cn id c_cn\n"));
+    assert!(text.contains("on 2 ranks: dump r (it writes values of computes or fixes) cannot run on 2 ranks yet"), "{text}");
     // the fixes that run on ranks since issue 19's second part: no refusal line
     let text = check2(MELT.replace(
         "fix          1 all nve\n",
@@ -1017,6 +1031,28 @@ fn biased_temperatures_on_ranks_are_the_serial_ones() {
     );
     compare(&deck, 2);
     compare(&deck, 3);
+}
+
+/// Fix energies and virials in the thermo on ranks (`fix_modify energy yes virial yes` of wall
+/// fixes and addforce): each fix's scalar is already global, its virial is summed over the
+/// ranks, so pe, etotal and press are the serial run's.
+#[test]
+fn fix_energies_and_virials_on_ranks_are_the_serial_ones() {
+    let deck = MELT.replace("lattice      fcc 0.8442\n", "boundary     p p f\nlattice      fcc 0.8442\n")
+        .replace("region       box block 0 6 0 6 0 6", "region       box block 0 6 0 6 -0.45 6.45")
+        .replace("fix          1 all nve\n", "fix          1 all nve\n\
+             fix          w all wall/lj93 zlo EDGE 1.0 1.0 2.5 zhi EDGE 1.0 1.0 2.5\n\
+             fix_modify   w energy yes virial yes\n\
+             fix          push all addforce 0.02 0.0 -0.01\n\
+             fix_modify   push energy yes virial yes\n")
+        .replace("thermo_style custom step temp epair emol etotal press atoms", "thermo_style custom step temp epair pe etotal press pxy pzz f_w f_push\nthermo_modify format float %.15g")
+        .replace("check no", "check yes");
+    let (text, _) = serial(&deck);
+    let rows = thermo_rows(&text);
+    // the fixes count in pe: pe = epair + f_w + f_push
+    assert!(rows.iter().all(|r| close(r[3], r[2] + r[8] + r[9], 1e-12)), "{text}");
+    compare(&deck, 2);
+    compare(&deck, 4);
 }
 
 /// Fix move of every style on ranks: four groups moved (a cylinder rotated about z, a slab

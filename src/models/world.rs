@@ -60,12 +60,15 @@ impl<'a> World<'a> {
         self.fix_energy().map_or(e, |f| e + f)
     }
     /// The virial of compute pressure: the force field's, then each fix's under `fix_modify
-    /// virial yes`, in definition order (LAMMPS' ComputePressure::virial_compute).
+    /// virial yes`, in definition order (LAMMPS' ComputePressure::virial_compute); a fix's over
+    /// every rank of a distributed run (each tallies its own atoms').
     pub fn virial(&self) -> [f64; 6] {
         let mut v = self.state.energies.virial;
         for t in self.fixes.iter().filter_map(|f| f.thermo_tally()).filter(|t| t.virial_on) {
+            let mut fv = t.virial;
+            self.state.sum_ranks(&mut fv);
             for k in 0..6 {
-                v[k] += t.virial[k];
+                v[k] += fv[k];
             }
         }
         v

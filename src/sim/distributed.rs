@@ -97,8 +97,6 @@ impl Simulation {
             Some(r)
         } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
             Some(format!("fix {} ({})", f.id(), f.style()))
-        } else if let Some(f) = self.fixes.iter().find(|f| f.thermo_tally().is_some_and(|t| t.energy || t.virial_on)) {
-            Some(format!("fix_modify energy/virial yes (fix {})", f.id()))
         } else if let Some(c) = self.computes.iter().find(|c| !COMPUTES.contains(&c.style())) {
             Some(format!("compute {} ({})", c.id(), c.style()))
         } else if let Some((c, (fix, id))) = self.computes.iter().find_map(|c| c.reads().into_iter().find(|r| !self.reads_on_ranks(r)).map(|r| (c, r))) {

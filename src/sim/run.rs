@@ -783,7 +783,10 @@ impl Simulation {
                 crate::output::format::g(self.state.dt)
             ));
         }
-        self.setup(opts.pre)?;
+        // the ranks of a distributed run stop together when one fails in setup (a fix's check
+        // of the atoms it owns), as they do after a step
+        let set_up = self.setup(opts.pre);
+        self.agree(set_up)?;
         if self.want_capture && self.capture_setup.is_none() {
             // crosscheck: the forces after the setup of the first run, as lammps_driver.py's
             // dump writes them (`first yes`)

@@ -8,7 +8,7 @@
 use dmhs::deck::{run_file, run_text, DeckOptions};
 use std::path::{Path, PathBuf};
 
-const DECKS: [&str; 6] = ["min_lj_cg", "min_chains_sd", "min_fire_2d", "min_cluster_cg", "min_cluster_walls", "min_indent_2d"];
+const DECKS: [&str; 9] = ["min_lj_cg", "min_chains_sd", "min_fire_2d", "min_cluster_cg", "min_cluster_walls", "min_indent_2d", "min_relax_2d", "min_relax_iso", "min_relax_aniso"];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -159,7 +159,8 @@ fn min_style_resets_min_modify() {
 }
 
 /// Bad input is a located error naming what is wrong; fixes LAMMPS would apply while
-/// minimizing and dmhs does not are refused.
+/// minimizing and dmhs does not are refused; fix box/relax's settings are checked as LAMMPS
+/// checks them (tilts need a triclinic box, which dmhs does not have).
 #[test]
 fn bad_input_is_a_located_error() {
     let n = BASE.lines().count() + 1;
@@ -181,6 +182,17 @@ fn bad_input_is_a_located_error() {
         ("variable f equal 1.0\nfix a all addforce v_f 0.0 0.0\nminimize 0 0 10 100\n", "variable force"),
         ("fix a all setforce 1.0 0.0 0.0\nminimize 0 0 10 100\n", "non-zero forces"),
         ("min_style fire\nmin_modify dtgrow 0.9\nminimize 0 0 10 100\n", "dtgrow"),
+        ("fix b all box/relax\n", "missing a pressure keyword"),
+        ("fix b all box/relax iso\n", "missing iso pressure"),
+        ("fix b all box/relax iso 1.0 vmax 0\n", "vmax must be > 0"),
+        ("fix b all box/relax iso 1.0 nreset -1\n", "nreset"),
+        ("fix b all box/relax iso 1.0 bogus 2\n", "unknown keyword `bogus`"),
+        ("fix b all box/relax iso 1.0 dilate some\n", "some"),
+        ("fix b all box/relax tri 1.0\n", "non-triclinic"),
+        ("fix b all box/relax x 1.0 xy 0.5\n", "non-triclinic"),
+        ("fix b all box/relax x 1.0 couple xyz\n", "pressure settings"),
+        ("fix b all box/relax x 1.0 y 2.0 z 3.0 couple xy\n", "same target pressure"),
+        ("fix b all box/relax iso 1.0\nmin_style fire\nminimize 0 0 10 100\n", "damped dynamics"),
     ];
     for (extra, want) in cases {
         let deck = format!("{BASE}{extra}");

@@ -378,6 +378,8 @@ pub struct Neighbor {
     pub list: NeighList,
     /// Positions at the last build (for the distance check).
     xhold: Vec<[f64; 3]>,
+    /// The box at the last build (for the distance check while a fix changes the box).
+    box_hold: ([f64; 3], [f64; 3]),
     /// Steps since the last build.
     pub ago: i64,
     pub nbuilds: u64,
@@ -504,6 +506,16 @@ pub enum NeighError {
 impl Neighbor {
     /// LAMMPS `Neighbor::decide`: is a rebuild due on this step?
     pub fn decide(&mut self, settings: &NeighborSettings, atoms: &Atoms) -> bool {
+        self.decide_in(settings, atoms, None)
+    }
+
+    /// [`Neighbor::decide`] while a fix changes the box between builds (LAMMPS' boxcheck): an
+    /// atom may move only half of what the skin leaves after the box's corners moved.
+    pub fn decide_in_moving_box(&mut self, settings: &NeighborSettings, atoms: &Atoms, domain: &Domain) -> bool {
+        self.decide_in(settings, atoms, Some(domain))
+    }
+
+    fn decide_in(&mut self, settings: &NeighborSettings, atoms: &Atoms, moving: Option<&Domain>) -> bool {
         self.ago += 1;
         if self.ago >= settings.delay && self.ago % settings.every == 0 {
             if settings.once {
@@ -512,8 +524,22 @@ impl Neighbor {
             if !settings.check {
                 return true;
             }
-            let trigger = 0.5 * settings.skin;
-            let triggersq = trigger * trigger;
+            let triggersq = match moving {
+                None => {
+                    let trigger = 0.5 * settings.skin;
+                    trigger * trigger
+                }
+                Some(d) => {
+                    let (lo, hi) = &self.box_hold;
+                    let corner = |a: &[f64; 3], b: &[f64; 3]| {
+                        let (dx, dy, dz) = (a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+                        (dx * dx + dy * dy + dz * dz).sqrt()
+                    };
+                    let delta = 0.5 * (settings.skin - (corner(&d.lo, lo) + corner(&d.hi, hi)));
+                    let delta = if delta < 0.0 { 0.0 } else { delta };
+                    delta * delta
+                }
+            };
             let m = atoms.nlocal.min(self.xhold.len());
             let (x, hold) = (&atoms.x[..m], &self.xhold[..m]);
             let moved = crate::engine::par::any_index(x.len(), |i| {
@@ -862,6 +888,7 @@ impl Neighbor {
         debug_assert_eq!(self.list.check_slab_invariant(), Ok(()));
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);
+        self.box_hold = (domain.lo, domain.hi);
         self.ago = 0;
         self.nbuilds += 1;
         Ok(order)

@@ -126,14 +126,16 @@ fn parse(args: &[String]) -> Result<Cli, String> {
             }
             "-var" | "-v" => {
                 let name = value(i, a)?.clone();
-                let mut vals = vec![];
-                let mut k = i + 2;
+                // the first value is taken whatever it starts with (`-var zlo -0.1`), the
+                // others up to the next word starting with `-`, as LAMMPS reads them
+                let Some(first) = args.get(i + 2) else {
+                    return Err(format!("-var {name} needs at least one value"));
+                };
+                let mut vals = vec![first.clone()];
+                let mut k = i + 3;
                 while k < args.len() && !args[k].starts_with('-') {
                     vals.push(args[k].clone());
                     k += 1;
-                }
-                if vals.is_empty() {
-                    return Err(format!("-var {name} needs at least one value"));
                 }
                 c.opts.vars.push((name, vals));
                 i = k;
@@ -422,4 +424,21 @@ fn check_cmd(cli: &Cli) -> i32 {
 /// Directory of a deck (relative paths inside it resolve there, as when LAMMPS runs in it).
 pub fn deck_dir(deck: &Path) -> PathBuf {
     deck.parent().filter(|p| !p.as_os_str().is_empty()).map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse;
+
+    /// `-var NAME V1 V2 ...`: the first value whatever it starts with, the rest up to the next
+    /// option (LAMMPS' reading of its command line).
+    #[test]
+    fn var_values_as_lammps_reads_them() {
+        let args: Vec<String> = ["-var", "zlo", "-0.1", "-var", "style", "x", "1.0", "-log", "none", "-v", "n", "-5", "7"].iter().map(|s| s.to_string()).collect();
+        let c = parse(&args).unwrap();
+        let vars: Vec<(String, Vec<String>)> = c.opts.vars.clone();
+        let want: Vec<(String, Vec<String>)> = vec![("zlo".into(), vec!["-0.1".into()]), ("style".into(), vec!["x".into(), "1.0".into()]), ("n".into(), vec!["-5".into(), "7".into()])];
+        assert_eq!(vars, want);
+        assert!(parse(&["-var".to_string(), "x".to_string()]).is_err());
+    }
 }

@@ -4,6 +4,7 @@
 pub mod adapt;
 pub mod addforce;
 pub mod aveforce;
+pub mod box_relax;
 pub mod ave_atom;
 pub mod ave_chunk;
 pub mod ave_histo;
@@ -176,6 +177,27 @@ pub enum MinRole {
     Refused(String),
 }
 
+/// A fix that adds global degrees of freedom to the minimizer (LAMMPS' MIN_ENERGY fixes: fix
+/// box/relax). `fextra` and `hextra` are the fix's own slice of the minimizer's extra force and
+/// search direction.
+pub trait MinExtra {
+    /// How many degrees of freedom (LAMMPS' min_dof).
+    fn min_dof(&self) -> usize;
+    /// Their energy, and their forces into `fextra`, from the virial of the last force
+    /// evaluation (LAMMPS' min_energy).
+    fn min_energy(&mut self, state: &State, virial: &[f64; 6], fextra: &mut [f64]) -> Result<f64, String>;
+    /// Keep their values where a line search starts (LAMMPS' min_store).
+    fn min_store(&mut self, state: &State) -> Result<(), String>;
+    /// Set them to the stored start plus alpha hextra, moving what depends on them (LAMMPS'
+    /// min_step).
+    fn min_step(&mut self, state: &mut State, alpha: f64, hextra: &[f64]) -> Result<(), String>;
+    /// The largest alpha they allow along hextra (LAMMPS' max_alpha).
+    fn max_alpha(&self, hextra: &[f64]) -> f64;
+    /// After a successful line search: renew the reference state if due (`begin` is the first
+    /// step of the minimization); true if it was renewed (LAMMPS' min_reset_ref).
+    fn min_reset_ref(&mut self, state: &State, begin: i64) -> Result<bool, String>;
+}
+
 /// What a fix may add to thermo's energy and pressure (LAMMPS' energy_global_flag and
 /// virial_global_flag; `fix_modify energy yes` and `virial yes` switch them on, both off by
 /// default for every fix dmhs has). Only fixes that own one accept `fix_modify energy`.
@@ -232,6 +254,10 @@ pub trait Fix: Send + Sync {
     }
     fn id(&self) -> &str;
     fn style(&self) -> &str;
+    /// Extra degrees of freedom of the minimizer (fix box/relax); None for the other fixes.
+    fn min_extra(&mut self) -> Option<&mut dyn MinExtra> {
+        None
+    }
     /// The fix changes the box or the sub-domains (LAMMPS' box_change flags): thermo style one
     /// then prints the volume.
     fn changes_box(&self) -> bool {
@@ -464,6 +490,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("setforce", |d, state| Ok(Box::new(setforce::FixSetForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("adapt", |d, state| Ok(Box::new(adapt::FixAdapt::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("aveforce", |d, state| Ok(Box::new(aveforce::FixAveForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("box/relax", |d, state| Ok(Box::new(box_relax::FixBoxRelax::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

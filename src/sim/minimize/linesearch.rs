@@ -26,9 +26,11 @@ pub(super) fn iterate(sim: &mut Simulation, m: &mut Min, maxiter: i64) -> Result
     let n = sim.state.atoms.nlocal;
     let f0 = sim.state.atoms.f[..n].to_vec();
     m.vectors = vec![vec![[0.0; 3]; n], f0.clone(), f0];
-    // CG restarts every ndof iterations
-    let nlimit = (3 * sim.state.natoms() as i64).min(i32::MAX as i64).max(1);
-    let mut gg = Min::fnorm_sqr(sim);
+    m.gextra.clone_from(&m.fextra);
+    m.hextra.clone_from(&m.fextra);
+    // CG restarts every ndof iterations (the extra degrees of freedom count)
+    let nlimit = (3 * sim.state.natoms() as i64 + m.fextra.len() as i64).min(i32::MAX as i64).max(1);
+    let mut gg = m.fnorm_sqr(sim);
     for _ in 0..maxiter {
         sim.state.step += 1;
         m.niter += 1;
@@ -55,6 +57,7 @@ pub(super) fn iterate(sim: &mut Simulation, m: &mut Min, maxiter: i64) -> Result
                     return Ok(Stop::Ftol);
                 }
                 m.vectors[H].copy_from_slice(&f[..n]);
+                m.hextra.clone_from(&m.fextra);
             }
             _ => {
                 let (mut ff, mut fg) = (0.0, 0.0);
@@ -64,6 +67,10 @@ pub(super) fn iterate(sim: &mut Simulation, m: &mut Min, maxiter: i64) -> Result
                         ff += f[i][k] * f[i][k];
                         fg += f[i][k] * g[i][k];
                     }
+                }
+                for (fe, ge) in m.fextra.iter().zip(&m.gextra) {
+                    ff += fe * fe;
+                    fg += fe * ge;
                 }
                 if m.force_converged(sim, Some(ff)) {
                     return Ok(Stop::Ftol);
@@ -83,6 +90,10 @@ pub(super) fn iterate(sim: &mut Simulation, m: &mut Min, maxiter: i64) -> Result
                         h[i][k] = g[i][k] + beta * h[i][k];
                     }
                 }
+                for ((ge, he), fe) in m.gextra.iter_mut().zip(m.hextra.iter_mut()).zip(&m.fextra) {
+                    *ge = *fe;
+                    *he = *ge + beta * *he;
+                }
                 // not downhill: restart along the force
                 let mut gh = 0.0;
                 for &i in &order {
@@ -90,8 +101,12 @@ pub(super) fn iterate(sim: &mut Simulation, m: &mut Min, maxiter: i64) -> Result
                         gh += g[i][k] * h[i][k];
                     }
                 }
+                for (ge, he) in m.gextra.iter().zip(&m.hextra) {
+                    gh += ge * he;
+                }
                 if gh <= 0.0 {
                     h.copy_from_slice(g);
+                    m.hextra.clone_from(&m.gextra);
                 }
             }
         }
@@ -104,8 +119,9 @@ pub(super) fn iterate(sim: &mut Simulation, m: &mut Min, maxiter: i64) -> Result
     Ok(Stop::MaxIter)
 }
 
-/// f.h (divided by the atom count under thermo_modify norm yes) and the largest |h|.
-fn projection(sim: &Simulation, m: &Min) -> (f64, f64) {
+/// f.h with the extra degrees of freedom (divided by the atom count under thermo_modify
+/// norm yes), the largest alpha the direction allows and the largest |h|.
+fn projection(sim: &mut Simulation, m: &Min) -> (f64, f64, f64) {
     let f = &sim.state.atoms.f;
     let h = &m.vectors[H];
     let order = Min::order(sim);
@@ -114,6 +130,9 @@ fn projection(sim: &Simulation, m: &Min) -> (f64, f64) {
         for k in 0..3 {
             fdoth += f[i][k] * h[i][k];
         }
+    }
+    for (fe, he) in m.fextra.iter().zip(&m.hextra) {
+        fdoth += fe * he;
     }
     if m.normflag {
         fdoth /= m.natoms;
@@ -125,7 +144,16 @@ fn projection(sim: &Simulation, m: &Min) -> (f64, f64) {
             hmax = if hmax > a { hmax } else { a };
         }
     }
-    (fdoth, hmax)
+    let mut alpha = alpha_max(m.set.dmax, hmax);
+    if !m.fextra.is_empty() {
+        let extra = m.max_alpha_extra(sim);
+        alpha = if alpha < extra { alpha } else { extra };
+        for he in &m.hextra {
+            let a = he.abs();
+            hmax = if hmax > a { hmax } else { a };
+        }
+    }
+    (fdoth, alpha, hmax)
 }
 
 /// The largest alpha: no coordinate moves more than dmax, and alpha <= ALPHA_MAX.
@@ -138,18 +166,32 @@ fn alpha_max(dmax: f64, hmax: f64) -> f64 {
     }
 }
 
-/// Keep the positions where the line search starts.
-fn store_start(sim: &Simulation, m: &mut Min) {
+/// Keep the box, the positions and the extra degrees of freedom where the line search starts.
+fn store_start(sim: &mut Simulation, m: &mut Min) -> Result<(), RunError> {
     let n = sim.state.atoms.nlocal;
     m.vectors[X0].copy_from_slice(&sim.state.atoms.x[..n]);
+    if !m.fextra.is_empty() {
+        m.store_extra(sim)?;
+    } else {
+        m.box0 = Some(sim.state.domain.as_ref().expect("a box").prd());
+    }
+    Ok(())
 }
 
-/// Positions x0 + alpha h (x0 itself when alpha is 0), their energy and forces.
+/// Positions x0 + alpha h (x0 itself when alpha is 0) and the extra degrees of freedom
+/// likewise, their energy and forces.
 fn alpha_step(sim: &mut Simulation, m: &mut Min, alpha: f64, reset: bool) -> Result<f64, RunError> {
     let n = sim.state.atoms.nlocal;
+    if !m.fextra.is_empty() {
+        m.step_extra(sim, 0.0)?;
+    }
     let x = &mut sim.state.atoms.x;
     x[..n].copy_from_slice(&m.vectors[X0]);
     if alpha > 0.0 {
+        if !m.fextra.is_empty() {
+            m.step_extra(sim, alpha)?;
+        }
+        let x = &mut sim.state.atoms.x;
         let h = &m.vectors[H];
         for i in 0..n {
             for k in 0..3 {
@@ -164,22 +206,22 @@ fn alpha_step(sim: &mut Simulation, m: &mut Min, alpha: f64, reset: bool) -> Res
 /// Backtracking line search: halve alpha from its largest value until the energy decreases
 /// enough. None: success.
 fn backtrack(sim: &mut Simulation, m: &mut Min, eoriginal: f64) -> Result<Option<Stop>, RunError> {
-    let (fdoth, hmax) = projection(sim, m);
+    let (fdoth, mut alpha, hmax) = projection(sim, m);
     if fdoth <= 0.0 {
         return Ok(Some(Stop::Downhill));
     }
-    let mut alpha = alpha_max(m.set.dmax, hmax);
     m.alpha_final = alpha;
     if hmax == 0.0 {
         return Ok(Some(Stop::ZeroForce));
     }
-    store_start(sim, m);
+    store_start(sim, m)?;
     loop {
         m.ecurrent = alpha_step(sim, m, alpha, true)?;
         let de_ideal = -BACKTRACK_SLOPE * alpha * fdoth;
         let de = m.ecurrent - eoriginal;
         if de <= de_ideal {
             m.alpha_final = alpha;
+            m.reset_ref(sim)?;
             return Ok(None);
         }
         alpha *= ALPHA_REDUCE;
@@ -195,15 +237,14 @@ fn backtrack(sim: &mut Simulation, m: &mut Min, eoriginal: f64) -> Result<Option
 /// quadratic model made from the projected forces at two alphas, then step to the zero of the
 /// projected force (secant). None: success.
 fn quadratic(sim: &mut Simulation, m: &mut Min, eoriginal: f64) -> Result<Option<Stop>, RunError> {
-    let (fdoth, hmax) = projection(sim, m);
+    let (fdoth, alphamax, hmax) = projection(sim, m);
     if fdoth <= 0.0 {
         return Ok(Some(Stop::Downhill));
     }
-    let alphamax = alpha_max(m.set.dmax, hmax);
     if hmax == 0.0 {
         return Ok(Some(Stop::ZeroForce));
     }
-    store_start(sim, m);
+    store_start(sim, m)?;
     let mut alpha = alphamax;
     let (mut fhprev, mut engprev, mut alphaprev) = (fdoth, eoriginal, 0.0);
     loop {
@@ -218,6 +259,10 @@ fn quadratic(sim: &mut Simulation, m: &mut Min, eoriginal: f64) -> Result<Option
                     ff += f[i][k] * f[i][k];
                     fh += f[i][k] * h[i][k];
                 }
+            }
+            for (fe, he) in m.fextra.iter().zip(&m.hextra) {
+                ff += fe * fe;
+                fh += fe * he;
             }
         }
         if m.normflag {
@@ -235,12 +280,14 @@ fn quadratic(sim: &mut Simulation, m: &mut Min, eoriginal: f64) -> Result<Option
         if relerr <= QUADRATIC_TOL && alpha0 > 0.0 && alpha0 < alphamax {
             m.ecurrent = alpha_step(sim, m, alpha0, true)?;
             if m.ecurrent - eoriginal < EMACH {
+                m.reset_ref(sim)?;
                 return Ok(None);
             }
         }
         let de_ideal = -BACKTRACK_SLOPE * alpha * fdoth;
         let de = m.ecurrent - eoriginal;
         if de <= de_ideal {
+            m.reset_ref(sim)?;
             return Ok(None);
         }
         fhprev = fh;

@@ -180,6 +180,16 @@ pub(crate) struct Min {
     pub last: i64,
     /// Per-atom vectors kept by the style (x0, g, h of the line search; fire uses none).
     pub vectors: Vec<Vec<[f64; 3]>>,
+    /// Fixes with extra global degrees of freedom (fix box/relax), in definition order, each
+    /// with the offset of its own in the extra vectors.
+    extra: Vec<(usize, usize)>,
+    /// The extra degrees of freedom's forces, previous forces and search direction (LAMMPS'
+    /// fextra, gextra, hextra).
+    fextra: Vec<f64>,
+    gextra: Vec<f64>,
+    hextra: Vec<f64>,
+    /// The box where the line search started (LAMMPS' FixMinimize::store_box).
+    box0: Option<[f64; 3]>,
 }
 
 impl Min {
@@ -188,8 +198,9 @@ impl Min {
         sim.state.lammps_order.indices(sim.state.atoms.nlocal).into_owned()
     }
 
-    /// Squared 2-norm of the forces (LAMMPS' fnorm_sqr: one running sum over the 3N vector).
-    pub fn fnorm_sqr(sim: &Simulation) -> f64 {
+    /// Squared 2-norm of the forces (LAMMPS' fnorm_sqr: one running sum over the 3N vector,
+    /// then the extra degrees of freedom's).
+    pub fn fnorm_sqr(&self, sim: &Simulation) -> f64 {
         let f = &sim.state.atoms.f;
         let mut s = 0.0;
         for i in Self::order(sim) {
@@ -197,11 +208,14 @@ impl Min {
                 s += c * c;
             }
         }
+        for c in &self.fextra {
+            s += c * c;
+        }
         s
     }
 
     /// Largest squared force component (LAMMPS' fnorm_inf).
-    pub fn fnorm_inf(sim: &Simulation) -> f64 {
+    pub fn fnorm_inf(&self, sim: &Simulation) -> f64 {
         let f = &sim.state.atoms.f;
         let mut m: f64 = 0.0;
         for i in Self::order(sim) {
@@ -210,15 +224,24 @@ impl Min {
                 m = if v > m { v } else { m };
             }
         }
+        for c in &self.fextra {
+            let v = c * c;
+            m = if v > m { v } else { m };
+        }
         m
     }
 
-    /// Largest squared force of one atom (LAMMPS' fnorm_max).
-    pub fn fnorm_max(sim: &Simulation) -> f64 {
+    /// Largest squared force of one atom, or of one extra degree of freedom (LAMMPS'
+    /// fnorm_max).
+    pub fn fnorm_max(&self, sim: &Simulation) -> f64 {
         let f = &sim.state.atoms.f;
         let mut m: f64 = 0.0;
         for i in Self::order(sim) {
             let v = f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2];
+            m = if v > m { v } else { m };
+        }
+        for c in &self.fextra {
+            let v = c * c;
             m = if v > m { v } else { m };
         }
         m
@@ -231,22 +254,80 @@ impl Min {
             return false;
         }
         let fdotf = match self.set.norm {
-            Norm::Max => Self::fnorm_max(sim),
-            Norm::Inf => Self::fnorm_inf(sim),
-            Norm::Two => two.unwrap_or_else(|| Self::fnorm_sqr(sim)),
+            Norm::Max => self.fnorm_max(sim),
+            Norm::Inf => self.fnorm_inf(sim),
+            Norm::Two => two.unwrap_or_else(|| self.fnorm_sqr(sim)),
         };
         fdotf < self.opts.ftol * self.opts.ftol
     }
 
     /// The potential energy of the last evaluation (with the fixes' under `fix_modify energy
-    /// yes`, as LAMMPS' thermo_pe), normalised as thermo's.
-    fn energy(&self, sim: &Simulation) -> f64 {
-        let e = sim.world().pe();
-        if self.normflag {
-            e / self.natoms
-        } else {
-            e
+    /// yes`, as LAMMPS' thermo_pe) plus the extra degrees of freedom's (whose forces it sets),
+    /// normalised as thermo's.
+    fn energy(&mut self, sim: &mut Simulation) -> Result<f64, RunError> {
+        let mut e = sim.world().pe();
+        if !self.extra.is_empty() {
+            let virial = sim.world().virial();
+            let mut eng = 0.0;
+            for &(k, off) in &self.extra {
+                let fix = sim.fixes[k].min_extra().expect("a fix with extra degrees of freedom");
+                let n = fix.min_dof();
+                eng += fix.min_energy(&sim.state, &virial, &mut self.fextra[off..off + n]).map_err(|m| RunError::new(sim.state.step, m))?;
+            }
+            e += eng;
         }
+        Ok(if self.normflag { e / self.natoms } else { e })
+    }
+
+    /// The extra degrees of freedom keep their values where the line search starts, and the
+    /// box is kept (LAMMPS' store_box and min_store).
+    fn store_extra(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        self.box0 = Some(sim.state.domain.as_ref().expect("a box").prd());
+        for &(k, _) in &self.extra {
+            let step = sim.state.step;
+            let fix = sim.fixes[k].min_extra().expect("a fix with extra degrees of freedom");
+            fix.min_store(&sim.state).map_err(|m| RunError::new(step, m))?;
+        }
+        Ok(())
+    }
+
+    /// The extra degrees of freedom at their stored start plus alpha hextra (LAMMPS'
+    /// Modify::min_step).
+    fn step_extra(&mut self, sim: &mut Simulation, alpha: f64) -> Result<(), RunError> {
+        let step = sim.state.step;
+        for &(k, off) in &self.extra {
+            let fix = sim.fixes[k].min_extra().expect("a fix with extra degrees of freedom");
+            let n = fix.min_dof();
+            fix.min_step(&mut sim.state, alpha, &self.hextra[off..off + n]).map_err(|m| RunError::new(step, m))?;
+        }
+        Ok(())
+    }
+
+    /// The largest alpha the extra degrees of freedom allow (LAMMPS' Modify::max_alpha).
+    fn max_alpha_extra(&self, sim: &mut Simulation) -> f64 {
+        let mut alpha = 1.0e20;
+        for &(k, off) in &self.extra {
+            let fix = sim.fixes[k].min_extra().expect("a fix with extra degrees of freedom");
+            let one = fix.max_alpha(&self.hextra[off..off + fix.min_dof()]);
+            alpha = if alpha < one { alpha } else { one };
+        }
+        alpha
+    }
+
+    /// After a successful line search: the fixes renew their reference state if due, and the
+    /// energy and forces are evaluated again if one did (LAMMPS' min_reset_ref).
+    fn reset_ref(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
+        let step = sim.state.step;
+        let begin = self.last - self.opts.maxiter;
+        let mut renewed = false;
+        for &(k, _) in &self.extra {
+            let fix = sim.fixes[k].min_extra().expect("a fix with extra degrees of freedom");
+            renewed |= fix.min_reset_ref(&sim.state, begin).map_err(|m| RunError::new(step, m))?;
+        }
+        if renewed {
+            self.ecurrent = self.energy_force(sim, true)?;
+        }
+        Ok(())
     }
 
     /// LAMMPS' Min::energy_force: reneighbour if an atom moved more than half the skin (else
@@ -255,7 +336,11 @@ impl Min {
     /// nearby image (LAMMPS' fix MINIMIZE reset_coords).
     pub fn energy_force(&mut self, sim: &mut Simulation, reset: bool) -> Result<f64, RunError> {
         let step = sim.state.step;
-        if sim.state.neighbor.decide(&sim.state.neigh_settings, &sim.state.atoms) {
+        let rebuild = match (self.extra.is_empty(), sim.state.domain.as_ref()) {
+            (false, Some(d)) => sim.state.neighbor.decide_in_moving_box(&sim.state.neigh_settings, &sim.state.atoms, d),
+            _ => sim.state.neighbor.decide(&sim.state.neigh_settings, &sim.state.atoms),
+        };
+        if rebuild {
             sim.timers.stamp();
             let n = sim.state.atoms.nlocal;
             let order = sim.rebuild_at(false)?;
@@ -282,7 +367,7 @@ impl Min {
         }
         sim.compute_forces(true, true)?;
         self.post_force(sim)?;
-        Ok(self.energy(sim))
+        self.energy(sim)
     }
 
     fn post_force(&self, sim: &mut Simulation) -> Result<(), RunError> {
@@ -294,11 +379,11 @@ impl Min {
         Ok(())
     }
 
-    /// x0 of an atom that was wrapped is moved by the box length, so that x0 + alpha h is
-    /// the wrapped atom's line (LAMMPS' minimum image of x - x0).
+    /// x0 of an atom that was wrapped is moved by the length of the line search's starting
+    /// box, so that x0 + alpha h is the wrapped atom's line (LAMMPS' minimum image of x - x0).
     fn reset_coords(&mut self, sim: &Simulation) {
         let d = sim.state.domain.as_ref().expect("a box");
-        let prd = d.prd();
+        let prd = self.box0.unwrap_or_else(|| d.prd());
         let x = &sim.state.atoms.x;
         for (i, x0) in self.vectors[0].iter_mut().enumerate() {
             for k in 0..3 {
@@ -372,8 +457,42 @@ impl Simulation {
     fn minimize_inner(&mut self, opts: &MinimizeOptions, set: MinSettings, fixes: Vec<usize>, first: i64, last: i64) -> Result<(), RunError> {
         let natoms = self.state.natoms() as f64;
         let normflag = crate::output::thermo::normalize(&self.thermo, &self.state);
-        let mut m = Min { opts: *opts, set, normflag, natoms, fixes, ecurrent: 0.0, eprevious: 0.0, einitial: 0.0, niter: 0, neval: 0, alpha_final: 0.0, last, vectors: Vec::new() };
+        // the fixes' extra global degrees of freedom (fix box/relax)
+        let mut extra = Vec::new();
+        let mut nextra = 0;
+        for (k, f) in self.fixes.iter_mut().enumerate() {
+            if let Some(e) = f.min_extra() {
+                extra.push((k, nextra));
+                nextra += e.min_dof();
+            }
+        }
+        let mut m = Min {
+            opts: *opts,
+            set,
+            normflag,
+            natoms,
+            fixes,
+            ecurrent: 0.0,
+            eprevious: 0.0,
+            einitial: 0.0,
+            niter: 0,
+            neval: 0,
+            alpha_final: 0.0,
+            last,
+            vectors: Vec::new(),
+            extra,
+            fextra: vec![0.0; nextra],
+            gextra: vec![0.0; nextra],
+            hextra: vec![0.0; nextra],
+            box0: None,
+        };
         self.out.print(&format!("Setting up {} style minimization ...\n  Unit style    : {}\n  Current step  : {}", m.set.style.name(), self.state.units.name(), first));
+        if nextra > 0 {
+            if m.set.style == MinStyle::Fire {
+                return Err(RunError::setup(first, "cannot use a damped dynamics min style (fire) with fix box/relax: use min_style cg or sd".to_string().into()));
+            }
+            self.out.print(&format!("WARNING: Energy due to {nextra} extra global DOFs will be included in minimizer energies"));
+        }
         let mut fire = match m.set.style {
             MinStyle::Fire => Some(fire::Fire::new(self, &m)),
             _ => None,
@@ -389,10 +508,10 @@ impl Simulation {
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
         self.out.print(&self.thermo.header());
         self.output_now(true, last, false)?;
-        m.ecurrent = m.energy(self);
+        m.ecurrent = m.energy(self)?;
         m.einitial = m.ecurrent;
-        let fnorm2_init = Min::fnorm_sqr(self).sqrt();
-        let fnorminf_init = Min::fnorm_inf(self).sqrt();
+        let fnorm2_init = m.fnorm_sqr(self).sqrt();
+        let fnorminf_init = m.fnorm_inf(self).sqrt();
 
         self.timers.reset();
         let t0 = Instant::now();
@@ -409,8 +528,8 @@ impl Simulation {
         }
         let loop_time = t0.elapsed().as_secs_f64();
         let efinal = m.ecurrent;
-        let fnorm2_final = Min::fnorm_sqr(self).sqrt();
-        let fnorminf_final = Min::fnorm_inf(self).sqrt();
+        let fnorm2_final = m.fnorm_sqr(self).sqrt();
+        let fnorminf_final = m.fnorm_inf(self).sqrt();
         self.last_loop_seconds = loop_time;
         self.last_loop_steps = nsteps;
         let g8 = crate::output::format::g8;

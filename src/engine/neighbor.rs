@@ -103,6 +103,14 @@ impl SpecialTable {
             }
         }
     }
+    /// Atom `itag`'s partners and their levels (0: a 1-2 partner whose bond broke).
+    pub fn partners_of(&self, itag: i64) -> impl Iterator<Item = (i64, u8)> + '_ {
+        let range = match self.keys.key(itag) {
+            Some(t) if t + 1 < self.offsets.len() => self.offsets[t] as usize..self.offsets[t + 1] as usize,
+            _ => 0..0,
+        };
+        self.partners[range].iter().copied()
+    }
     /// The special level (0: none, 1-3) of atom `jtag` in atom `itag`'s list.
     #[inline]
     pub(crate) fn level(&self, itag: i64, jtag: i64) -> u8 {

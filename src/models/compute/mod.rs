@@ -6,6 +6,7 @@ pub mod bond_local;
 pub mod chunk_atom;
 pub mod com;
 pub mod contact_atom;
+pub mod cluster_atom;
 pub mod coord_atom;
 pub mod displace_atom;
 pub mod dmhs_phase_atom;
@@ -293,6 +294,9 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("nbond/atom", |d, w| Ok(Box::new(nbond_atom::ComputeNBondAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("coord/atom", |d, w| Ok(Box::new(coord_atom::ComputeCoordAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("cluster/atom", |d, w| Ok(Box::new(cluster_atom::ComputeClusterAtom::from_lammps(d.id, d.groupbit, "cluster/atom", d.args, d.cmd, w)?))),
+    ("fragment/atom", |d, w| Ok(Box::new(cluster_atom::ComputeClusterAtom::from_lammps(d.id, d.groupbit, "fragment/atom", d.args, d.cmd, w)?))),
+    ("aggregate/atom", |d, w| Ok(Box::new(cluster_atom::ComputeClusterAtom::from_lammps(d.id, d.groupbit, "aggregate/atom", d.args, d.cmd, w)?))),
     ("contact/atom", |d, w| Ok(Box::new(contact_atom::ComputeContactAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("erotate/sphere/atom", |d, w| Ok(Box::new(erotate_sphere_atom::ComputeErotateSphereAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

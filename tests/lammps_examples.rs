@@ -1,6 +1,7 @@
 //! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
 //! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
-//! aveforce (aveforce_flow) and fix adapt (adapt_soft; the thermo table at every printed step against
+//! aveforce (aveforce_flow), fix adapt (adapt_soft) and fix deform (deform_erate_volume,
+//! deform_wiggle_2d; the thermo table at every printed step against
 //! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
 //! Volume column when the box can change, region IDs with '-'; and the located errors.
 
@@ -9,7 +10,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::{root, table};
 
-const DECKS: [&str; 3] = ["aveforce_flow", "adapt_soft", "addforce_atom"];
+const DECKS: [&str; 5] = ["aveforce_flow", "adapt_soft", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -93,6 +94,39 @@ fn bad_aveforce_is_a_located_error() {
         ("fix 3 all aveforce 0.0 0.0 0.0 region nowhere\n", "region `nowhere` does not exist"),
         ("fix 3 all aveforce 0.0 0.0 0.0 every 2\n", "unknown keyword `every`"),
     ] {
+        let text = deck("p p p", line);
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}
+
+/// fix deform's settings are checked as LAMMPS checks them (tilts need a triclinic box, which
+/// dmhs does not have; remap v is not supported); a second fix deform, or a run that would
+/// turn a length negative, stops at the run command.
+#[test]
+fn bad_deform_is_a_located_error() {
+    for (line, want) in [
+        ("fix 3 all deform 0 x erate 0.1\n", "N must be in 1"),
+        ("fix 3 all deform 1 x stretch 0.1\n", "Illegal fix deform command argument: stretch"),
+        ("fix 3 all deform 1 xy erate 0.1\n", "triclinic"),
+        ("fix 3 all deform 1 x erate\n", "missing engineering strain rate"),
+        ("fix 3 all deform 1 x wiggle 0.1 0\n", "period must be > 0"),
+        ("fix 3 all deform 1 x variable len v_rate\n", "Illegal fix deform variable name len"),
+        ("fix 3 all deform 1 x volume\n", "volume setting is invalid"),
+        ("fix 3 all deform 1 x erate 0.1 remap v\n", "remap v"),
+        ("fix 3 all deform 1 x erate 0.1 units metal\n", "metal"),
+        ("fix 3 all deform 1 x erate 0.1 every 2\n", "unknown keyword `every`"),
+    ] {
+        let text = deck("p p p", line);
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+    let text = deck("s p p", "fix 3 all deform 1 x erate 0.1\n");
+    let f = run_text("bad.deck", &text, &opts()).err().expect("deform on a shrink-wrapped face");
+    assert!(f.rendered.contains("shrink-wrapped"), "{}", f.rendered);
+    for (line, want) in [("fix 3 all deform 1 x erate 0.1\nfix 4 all deform 1 y erate 0.1\nrun 10\n", "More than one fix deform"), ("fix 3 all deform 1 x erate -2.0\nrun 100\n", "Final box dimension due to fix deform is < 0.0")] {
         let text = deck("p p p", line);
         let n = text.lines().count();
         let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));

@@ -5,6 +5,7 @@ pub mod adapt;
 pub mod addforce;
 pub mod aveforce;
 pub mod box_relax;
+pub mod deform;
 pub mod ave_atom;
 pub mod ave_chunk;
 pub mod ave_histo;
@@ -491,6 +492,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("adapt", |d, state| Ok(Box::new(adapt::FixAdapt::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("aveforce", |d, state| Ok(Box::new(aveforce::FixAveForce::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("box/relax", |d, state| Ok(Box::new(box_relax::FixBoxRelax::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("deform", |d, state| Ok(Box::new(deform::FixDeform::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("freeze", |d, state| Ok(Box::new(freeze::FixFreeze::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("enforce2d", |d, _| Ok(Box::new(enforce2d::FixEnforce2d::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("viscous", |d, state| Ok(Box::new(viscous::FixViscous::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

@@ -340,7 +340,7 @@ impl Simulation {
     /// rigid fix, after each list build, as LAMMPS' granular pairs and walls refresh theirs
     /// (neighbor->ago == 0).
     fn refresh_rigid_mass(&mut self) {
-        let build = self.state.neighbor.nbuilds;
+        let build = self.state.neighbor.list.generation;
         if self.rigid_mass_build == Some(build) {
             return;
         }
@@ -546,7 +546,10 @@ impl Simulation {
         }
         if pre || !self.state.lists_valid {
             self.timers.stamp();
+            // the setup's build is not counted (LAMMPS' Verlet::setup zeroes ncalls after it)
+            let builds = self.state.neighbor.nbuilds;
             self.rebuild_at(true)?;
+            self.state.neighbor.nbuilds = builds;
             self.timers.charge(Stage::Neigh);
         } else {
             self.forward_ghosts(true);

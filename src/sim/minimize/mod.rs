@@ -500,6 +500,8 @@ impl Simulation {
         // setup: lists, forces and energies of the current state, the fixes' min_setup
         self.timers.stamp();
         self.rebuild_at(true)?;
+        // the setup's build is not counted (LAMMPS' Min::setup zeroes ncalls after it)
+        self.state.neighbor.nbuilds = 0;
         self.timers.charge(Stage::Neigh);
         self.state.natoms_expected = self.state.atoms.nlocal;
         self.compute_forces(true, false)?;

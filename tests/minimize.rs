@@ -150,6 +150,20 @@ fn velocities_time_step_and_step_counter() {
     assert!(r.sim.state.atoms.v.iter().any(|v| v[0] != 0.0), "fire leaves its velocities");
 }
 
+/// `min_modify norm max` with fix box/relax: LAMMPS' fnorm_max reads every third extra degree
+/// of freedom only (fextra[0], [3], ...). On this perfect crystal with a y target far off, LAMMPS
+/// 22 Jul 2025 stops on the force tolerance after 111 iterations (its energies within 3e-14 of
+/// these); reading all three box forces, dmhs took 350.
+#[test]
+fn norm_max_reads_every_third_extra_dof() {
+    let deck = "units lj\nlattice fcc 0.8442\nregion box block 0 5 0 5 0 5\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+                pair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\npair_modify shift yes\nthermo 0\n\
+                fix 3 all box/relax x 0.0 y 3.0 z 0.0 vmax 1.0e-3\nmin_modify norm max\nminimize 0.0 10.0 2000 100000\n";
+    let stats = run(deck).sim.min_stats.expect("minimization stats");
+    assert_eq!((stats.stop, stats.niter, stats.neval), (dmhs::sim::minimize::Stop::Ftol, 111, 111));
+    assert!((stats.efinal - -7.79405051988021).abs() < 1e-12, "{}", stats.efinal);
+}
+
 /// min_style makes a new minimizer: min_modify settings go back to LAMMPS' defaults.
 #[test]
 fn min_style_resets_min_modify() {

@@ -231,8 +231,8 @@ impl Min {
         m
     }
 
-    /// Largest squared force of one atom, or of one extra degree of freedom (LAMMPS'
-    /// fnorm_max).
+    /// Largest squared force of one atom, or of an extra degree of freedom (LAMMPS' fnorm_max,
+    /// which reads every third of them: fextra[0], [3], ...; its quirk kept).
     pub fn fnorm_max(&self, sim: &Simulation) -> f64 {
         let f = &sim.state.atoms.f;
         let mut m: f64 = 0.0;
@@ -240,7 +240,7 @@ impl Min {
             let v = f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2];
             m = if v > m { v } else { m };
         }
-        for c in &self.fextra {
+        for c in self.fextra.iter().step_by(3) {
             let v = c * c;
             m = if v > m { v } else { m };
         }

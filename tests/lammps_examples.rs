@@ -1,7 +1,7 @@
 //! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
 //! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
-//! aveforce (aveforce_flow), fix adapt (adapt_soft) and fix deform (deform_erate_volume,
-//! deform_wiggle_2d; the thermo table at every printed step against
+//! aveforce (aveforce_flow), fix adapt (adapt_soft), fix deform (deform_erate_volume,
+//! deform_wiggle_2d) and compute msd/chunk (msd_chunk_chains; the thermo table at every printed step against
 //! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
 //! Volume column when the box can change, region IDs with '-'; and the located errors.
 
@@ -10,7 +10,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::{root, table};
 
-const DECKS: [&str; 5] = ["aveforce_flow", "adapt_soft", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d"];
+const DECKS: [&str; 6] = ["aveforce_flow", "adapt_soft", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -127,6 +127,22 @@ fn bad_deform_is_a_located_error() {
     let f = run_text("bad.deck", &text, &opts()).err().expect("deform on a shrink-wrapped face");
     assert!(f.rendered.contains("shrink-wrapped"), "{}", f.rendered);
     for (line, want) in [("fix 3 all deform 1 x erate 0.1\nfix 4 all deform 1 y erate 0.1\nrun 10\n", "More than one fix deform"), ("fix 3 all deform 1 x erate -2.0\nrun 100\n", "Final box dimension due to fix deform is < 0.0")] {
+        let text = deck("p p p", line);
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}
+
+/// compute msd/chunk needs a compute chunk/atom.
+#[test]
+fn bad_msd_chunk_is_a_located_error() {
+    for (line, want) in [
+        ("compute m all msd/chunk\n", "missing chunkID"),
+        ("compute m all msd/chunk nope\n", "Chunk/atom compute `nope` does not exist"),
+        ("compute t all temp\ncompute m all msd/chunk t\n", "does not use chunk/atom compute"),
+        ("compute c all chunk/atom type\ncompute m all msd/chunk c extra\n", "unexpected argument"),
+    ] {
         let text = deck("p p p", line);
         let n = text.lines().count();
         let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));

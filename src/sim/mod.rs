@@ -136,14 +136,29 @@ impl Simulation {
     }
 
     /// The once-per-run setup of computes `which` (all: None), e.g. a temperature's count of
-    /// degrees of freedom (LAMMPS' compute setup; a compute's setup reads no other compute).
+    /// degrees of freedom (LAMMPS' compute setup); a compute's setup sees the computes defined
+    /// before it (msd/chunk reads its chunk/atom).
     pub fn setup_computes(&mut self, which: Option<usize>) {
         let mut computes = std::mem::take(&mut self.computes);
-        let world = World { state: &self.state, computes: &[], fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
-        for (k, c) in computes.iter_mut().enumerate() {
-            if which.map_or(true, |w| w == k) {
-                c.setup(&world);
+        for k in 0..computes.len() {
+            if which.is_some_and(|w| w != k) {
+                continue;
             }
+            let (before, rest) = computes.split_at_mut(k);
+            let world = World { state: &self.state, computes: before, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+            rest[0].setup(&world);
+        }
+        self.computes = computes;
+    }
+
+    /// The computes' setup that needs the atoms as the setup's list build left them
+    /// ([`crate::models::compute::Compute::setup_after_build`]).
+    pub(crate) fn setup_computes_after_build(&mut self) {
+        let mut computes = std::mem::take(&mut self.computes);
+        for k in 0..computes.len() {
+            let (before, rest) = computes.split_at_mut(k);
+            let world = World { state: &self.state, computes: before, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+            rest[0].setup_after_build(&world);
         }
         self.computes = computes;
     }

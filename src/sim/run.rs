@@ -554,6 +554,7 @@ impl Simulation {
         } else {
             self.forward_ghosts(true);
         }
+        self.setup_computes_after_build();
         self.state.natoms_expected = self.state.atoms.nlocal;
         self.timers.stamp();
         // LAMMPS quirk reproduced: ghosts are made (borders) before fixes' setup_pre_force, and

@@ -16,6 +16,7 @@ pub mod gyration;
 pub mod ke;
 pub mod ke_atom;
 pub mod msd;
+pub mod msd_chunk;
 pub mod nbond_atom;
 pub mod pe;
 pub mod pe_atom;
@@ -236,6 +237,9 @@ pub trait Compute: Send + Sync {
     /// Recompute what LAMMPS computes once per run (a temperature's degrees of freedom); called
     /// before each run and by `velocity`.
     fn setup(&mut self, _w: &World) {}
+    /// Once per run after the setup's list build, with the atoms wrapped and sorted (LAMMPS'
+    /// compute setup comes after Verlet::setup's build; msd/chunk keeps its reference there).
+    fn setup_after_build(&mut self, _w: &World) {}
     /// `compute_modify extra/dof` and `dynamic/dof` (only temperatures use them; LAMMPS accepts
     /// them for every compute).
     fn modify_dof(&mut self, _extra: Option<f64>, _dynamic: Option<bool>) {}
@@ -305,6 +309,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("vacf", |d, w| Ok(Box::new(vacf::ComputeVacf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("msd/chunk", |d, w| Ok(Box::new(msd_chunk::ComputeMsdChunk::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("bond/local", |d, w| Ok(Box::new(bond_local::ComputeBondLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

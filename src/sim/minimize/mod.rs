@@ -503,6 +503,7 @@ impl Simulation {
         // the setup's build is not counted (LAMMPS' Min::setup zeroes ncalls after it)
         self.state.neighbor.nbuilds = 0;
         self.timers.charge(Stage::Neigh);
+        self.setup_computes_after_build();
         self.state.natoms_expected = self.state.atoms.nlocal;
         self.compute_forces(true, false)?;
         m.post_force(self)?;

@@ -26,6 +26,17 @@ fn deck(boundary: &str, extra: &str) -> String {
     )
 }
 
+/// Each periodic `deck` with `prefix + line` fails with an error located at its last line whose
+/// text contains `want`.
+fn assert_located_at_last_line(prefix: &str, cases: &[(&str, &str)]) {
+    for (line, want) in cases {
+        let text = deck("p p p", &format!("{prefix}{line}"));
+        let n = text.lines().count();
+        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
+        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
+    }
+}
+
 fn header(text: &str) -> Vec<String> {
     let line = text.lines().find(|l| l.trim_start().starts_with("Step")).expect("a thermo header");
     line.split_whitespace().map(String::from).collect()
@@ -88,17 +99,12 @@ fn aveforce_sets_the_average_force() {
 
 #[test]
 fn bad_aveforce_is_a_located_error() {
-    for (line, want) in [
+    assert_located_at_last_line("", &[
         ("fix 3 all aveforce 0.0 0.0\n", "fz"),
         ("fix 3 all aveforce 0.0 zero 0.0\n", "fy"),
         ("fix 3 all aveforce 0.0 0.0 0.0 region nowhere\n", "region `nowhere` does not exist"),
         ("fix 3 all aveforce 0.0 0.0 0.0 every 2\n", "unknown keyword `every`"),
-    ] {
-        let text = deck("p p p", line);
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
+    ]);
 }
 
 /// fix deform's settings are checked as LAMMPS checks them (tilts need a triclinic box, which
@@ -106,7 +112,7 @@ fn bad_aveforce_is_a_located_error() {
 /// turn a length negative, stops at the run command.
 #[test]
 fn bad_deform_is_a_located_error() {
-    for (line, want) in [
+    assert_located_at_last_line("", &[
         ("fix 3 all deform 0 x erate 0.1\n", "N must be in 1"),
         ("fix 3 all deform 1 x stretch 0.1\n", "Illegal fix deform command argument: stretch"),
         ("fix 3 all deform 1 xy erate 0.1\n", "triclinic"),
@@ -117,44 +123,32 @@ fn bad_deform_is_a_located_error() {
         ("fix 3 all deform 1 x erate 0.1 remap v\n", "remap v"),
         ("fix 3 all deform 1 x erate 0.1 units metal\n", "metal"),
         ("fix 3 all deform 1 x erate 0.1 every 2\n", "unknown keyword `every`"),
-    ] {
-        let text = deck("p p p", line);
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
+    ]);
     let text = deck("s p p", "fix 3 all deform 1 x erate 0.1\n");
     let f = run_text("bad.deck", &text, &opts()).err().expect("deform on a shrink-wrapped face");
     assert!(f.rendered.contains("shrink-wrapped"), "{}", f.rendered);
-    for (line, want) in [("fix 3 all deform 1 x erate 0.1\nfix 4 all deform 1 y erate 0.1\nrun 10\n", "More than one fix deform"), ("fix 3 all deform 1 x erate -2.0\nrun 100\n", "Final box dimension due to fix deform is < 0.0")] {
-        let text = deck("p p p", line);
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
+    assert_located_at_last_line(
+        "",
+        &[("fix 3 all deform 1 x erate 0.1\nfix 4 all deform 1 y erate 0.1\nrun 10\n", "More than one fix deform"), ("fix 3 all deform 1 x erate -2.0\nrun 100\n", "Final box dimension due to fix deform is < 0.0")],
+    );
 }
 
 /// compute msd/chunk needs a compute chunk/atom.
 #[test]
 fn bad_msd_chunk_is_a_located_error() {
-    for (line, want) in [
+    assert_located_at_last_line("", &[
         ("compute m all msd/chunk\n", "missing chunkID"),
         ("compute m all msd/chunk nope\n", "Chunk/atom compute `nope` does not exist"),
         ("compute t all temp\ncompute m all msd/chunk t\n", "does not use chunk/atom compute"),
         ("compute c all chunk/atom type\ncompute m all msd/chunk c extra\n", "unexpected argument"),
-    ] {
-        let text = deck("p p p", line);
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
+    ]);
 }
 
 /// fix addforce's `energy` keyword: an atom-style variable, with variable forces only; its
 /// variables checked when the run starts (LAMMPS' init), at the run command.
 #[test]
 fn bad_addforce_is_a_located_error() {
-    for (line, want) in [
+    assert_located_at_last_line("", &[
         ("fix 3 all addforce 0.1 0.0 0.0 energy v_e
 ", "Cannot use variable energy with constant force"),
         ("variable f equal 0.1
@@ -162,25 +156,18 @@ fix 3 all addforce v_f 0.0 0.0 energy e
 ", "energy takes v_name"),
         ("fix 3 all addforce 0.1 0.0 0.0 every 0
 ", "every"),
-    ] {
-        let text = deck("p p p", line);
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
-    for (line, want) in [
+    ]);
+    // checked when the run starts
+    assert_located_at_last_line("", &[
         ("fix 3 all addforce v_nothere 0.0 0.0
+run 2
 ", "Variable name for fix addforce does not exist"),
         ("variable f equal 0.1
 variable e equal 1.0
 fix 3 all addforce v_f 0.0 0.0 energy v_e
+run 2
 ", "energy v_e must be atom-style"),
-    ] {
-        let text = deck("p p p", &format!("{line}run 2\n"));
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
+    ]);
 }
 
 /// An atom-style addforce is a trap about the box centre: min_style cg with `energy v_E` and
@@ -220,18 +207,13 @@ fn adapt_resets_only_with_reset_yes() {
 #[test]
 fn bad_adapt_is_a_located_error() {
     let base = "pair_style soft 1.0\npair_coeff * * 1.0\nvariable p equal 2.0\n";
-    for (line, want) in [
+    assert_located_at_last_line(base, &[
         ("fix 3 all adapt 1 kspace v_p\n", "`kspace` is not supported"),
         ("fix 3 all adapt -1 pair soft a * * v_p\n", ">= 0"),
         ("fix 3 all adapt 1 pair soft a * * 2.0\n", "v_name"),
         ("fix 3 all adapt 1 pair soft a * * v_p every 2\n", "unknown keyword `every`"),
         ("fix 3 all adapt 1\n", "missing"),
-    ] {
-        let text = deck("p p p", &format!("{base}{line}"));
-        let n = text.lines().count();
-        let f = run_text("bad.deck", &text, &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
-        assert!(f.rendered.contains(&format!("bad.deck:{n}:")) && f.rendered.contains(want), "{line}: {}", f.rendered);
-    }
+    ]);
     // what only a run can check: the pair style and its parameter
     for (line, want) in [("fix 3 all adapt 1 pair lj/cut epsilon * * v_p\nrun 0\n", "lj/cut does not exist"), ("fix 3 all adapt 1 pair soft d * * v_p\nrun 0\n", "no parameter `d`")] {
         let f = run_text("bad.deck", &deck("p p p", &format!("{base}{line}")), &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));

@@ -263,6 +263,10 @@ impl<'a> Args<'a> {
     pub fn yes_no(&mut self, what: &str) -> DResult<bool> {
         Ok(self.choice(what, &["no", "yes"])? == 1)
     }
+    /// A LAMMPS logical (utils::logical): `yes`/`no`, `on`/`off`, `true`/`false`, `1`/`0`.
+    pub fn logical(&mut self, what: &str) -> DResult<bool> {
+        Ok(self.choice(what, &["yes", "no", "on", "off", "true", "false", "1", "0"])? % 2 == 0)
+    }
     /// `on`/`off`.
     pub fn on_off(&mut self, what: &str) -> DResult<bool> {
         Ok(self.choice(what, &["off", "on"])? == 1)

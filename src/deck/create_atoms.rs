@@ -265,7 +265,7 @@ impl CreateAtoms {
                     let it = a.i64_in("basis atom type", 1, ntypes as i64)? as usize;
                     basis_types[ib - 1] = it;
                 }
-                "remap" => remap = logical(&mut a, "remap")?,
+                "remap" => remap = a.logical("remap")?,
                 "units" => lattice_units = a.choice("units", &["lattice", "box"])? == 0,
                 "overlap" | "maxtry" if !is_random => {
                     return Err(a.error_at(
@@ -669,11 +669,6 @@ fn copy_rotation(ran: &mut crate::engine::random_mars::RanMars, dimension: usize
     crate::engine::molecule::rotation(r, ran.uniform() * std::f64::consts::TAU)
 }
 
-/// Parse a LAMMPS logical (`yes/no`, `on/off`, `true/false`, `1/0`).
-fn logical(a: &mut Args, what: &str) -> DResult<bool> {
-    let k = a.choice(what, &["yes", "no", "on", "off", "true", "false", "1", "0"])?;
-    Ok(k % 2 == 0)
-}
 
 
 /// Parse and run a `create_atoms` command in one call.

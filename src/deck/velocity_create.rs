@@ -441,16 +441,16 @@ impl Velocity {
             a.skip(1);
             match kw.text.as_str() {
                 "dist" => opts.gaussian = a.choice("dist", &["uniform", "gaussian"])? == 1,
-                "sum" => opts.sum = logical(&mut a, "sum")?,
-                "mom" => opts.mom = logical(&mut a, "mom")?,
-                "rot" => opts.rot = logical(&mut a, "rot")?,
+                "sum" => opts.sum = a.logical("sum")?,
+                "mom" => opts.mom = a.logical("mom")?,
+                "rot" => opts.rot = a.logical("rot")?,
                 "temp" => opts.temp = Some(a.str("temperature compute ID")?.to_string()),
                 "loop" => {
                     opts.loop_mode = [LoopMode::All, LoopMode::Local, LoopMode::Geom]
                         [a.choice("loop", &["all", "local", "geom"])?];
                 }
                 "units" => opts.lattice_units = a.choice("units", &["lattice", "box"])? == 0,
-                "bias" => opts.bias = logical(&mut a, "bias")?,
+                "bias" => opts.bias = a.logical("bias")?,
                 "rigid" => {
                     return Err(a.error_at(
                         kw,
@@ -589,11 +589,6 @@ impl Velocity {
     }
 }
 
-/// Parse a LAMMPS logical (`yes/no`, `on/off`, `true/false`, `1/0`).
-fn logical(a: &mut Args, what: &str) -> DResult<bool> {
-    let k = a.choice(what, &["yes", "no", "on", "off", "true", "false", "1", "0"])?;
-    Ok(k % 2 == 0)
-}
 
 #[cfg(test)]
 mod tests {

@@ -260,6 +260,32 @@ mod tests {
     }
 }
 
+/// A point carried along when the (orthogonal) box changes: its box fractions in the old box,
+/// then their place in the new one (LAMMPS' x2lamda and lamda2x, term by term, so that the
+/// round-off is LAMMPS'; the zero tilt terms are kept: an atom at the low face stays at +0).
+pub struct Dilation {
+    lo_old: [f64; 3],
+    hinv_old: [f64; 3],
+    lo_new: [f64; 3],
+    h_new: [f64; 3],
+}
+
+impl Dilation {
+    pub fn new(old: &Domain, new: &Domain) -> Dilation {
+        let (p, q) = (old.prd(), new.prd());
+        Dilation { lo_old: old.lo, hinv_old: [1.0 / p[0], 1.0 / p[1], 1.0 / p[2]], lo_new: new.lo, h_new: q }
+    }
+    pub fn apply(&self, x: &mut [f64; 3]) {
+        let (lo, hinv) = (&self.lo_old, &self.hinv_old);
+        let d = [x[0] - lo[0], x[1] - lo[1], x[2] - lo[2]];
+        let l = [hinv[0] * d[0] + 0.0 * d[1] + 0.0 * d[2], hinv[1] * d[1] + 0.0 * d[2], hinv[2] * d[2]];
+        let (lo, h) = (&self.lo_new, &self.h_new);
+        x[0] = h[0] * l[0] + 0.0 * l[1] + 0.0 * l[2] + lo[0];
+        x[1] = h[1] * l[1] + 0.0 * l[2] + lo[1];
+        x[2] = h[2] * l[2] + lo[2];
+    }
+}
+
 /// [`Domain::unmap`] for callers that hold only the box lengths `prd` (orthogonal boxes).
 pub fn unmap_prd(x: [f64; 3], image: [i32; 3], prd: [f64; 3]) -> [f64; 3] {
     [x[0] + image[0] as f64 * prd[0], x[1] + image[1] as f64 * prd[1], x[2] + image[2] as f64 * prd[2]]

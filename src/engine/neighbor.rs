@@ -517,13 +517,10 @@ impl Neighbor {
         self.decide_in(settings, atoms, None)
     }
 
-    /// [`Neighbor::decide`] while a fix changes the box between builds (LAMMPS' boxcheck): an
-    /// atom may move only half of what the skin leaves after the box's corners moved.
-    pub fn decide_in_moving_box(&mut self, settings: &NeighborSettings, atoms: &Atoms, domain: &Domain) -> bool {
-        self.decide_in(settings, atoms, Some(domain))
-    }
-
-    fn decide_in(&mut self, settings: &NeighborSettings, atoms: &Atoms, moving: Option<&Domain>) -> bool {
+    /// [`Neighbor::decide`]; `moving`: the box now, when a fix changes it between builds
+    /// (LAMMPS' boxcheck): an atom may then move only half of what the skin leaves after the
+    /// box's corners moved.
+    pub fn decide_in(&mut self, settings: &NeighborSettings, atoms: &Atoms, moving: Option<&Domain>) -> bool {
         self.ago += 1;
         if self.ago >= settings.delay && self.ago % settings.every == 0 {
             if settings.once {

@@ -616,12 +616,8 @@ impl Simulation {
         let requested = std::mem::take(&mut self.state.rebuild_requested) || self.fixes.iter().any(|f| f.next_reneighbor() == Some(step));
         // a fix that changes the box (fix deform) shrinks the distance that triggers a rebuild
         // by how far the box's corners moved (LAMMPS' boxcheck)
-        let moving_box = self.fixes.iter().any(|f| f.changes_box());
-        let moved = !requested
-            && match (moving_box, self.state.domain.as_ref()) {
-                (true, Some(d)) => self.state.neighbor.decide_in_moving_box(&self.state.neigh_settings, &self.state.atoms, d),
-                _ => self.state.neighbor.decide(&self.state.neigh_settings, &self.state.atoms),
-            };
+        let moving = self.state.domain.as_ref().filter(|_| self.fixes.iter().any(|f| f.changes_box()));
+        let moved = !requested && self.state.neighbor.decide_in(&self.state.neigh_settings, &self.state.atoms, moving);
         // the ranks of a distributed run rebuild together when any of them must
         if self.state.any_ranks(moved) || requested {
             self.timers.stamp();

@@ -45,7 +45,7 @@ impl ComputeClusterAtom {
             while let Some(k) = a.peek() {
                 a.skip(1);
                 match k.text.as_str() {
-                    "single" => single = matches!(a.choice("single", &["yes", "no", "on", "off", "true", "false", "1", "0"])?, 0 | 2 | 4 | 6),
+                    "single" => single = a.logical("single")?,
                     _ => return Err(a.unknown_keyword(k, &["single"])),
                 }
             }

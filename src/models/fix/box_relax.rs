@@ -6,6 +6,7 @@
 //! (all, or the group's with `dilate partial`) with it in box-fraction coordinates.
 
 use super::{Fix, FixCtx, FixHooks, MinExtra};
+use crate::engine::domain::Dilation;
 use crate::engine::state::State;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -52,11 +53,6 @@ pub struct FixBoxRelax {
     /// The box where the line search started (LAMMPS' boxlo0/boxhi0 of min_store).
     lo0: [f64; 3],
     hi0: [f64; 3],
-}
-
-/// LAMMPS' utils::logical.
-fn logical(a: &mut Args, what: &str) -> DResult<bool> {
-    Ok(matches!(a.choice(what, &["yes", "no", "on", "off", "true", "false", "1", "0"])?, 0 | 2 | 4 | 6))
 }
 
 impl FixBoxRelax {
@@ -119,7 +115,7 @@ impl FixBoxRelax {
                 "nreset" => nreset = a.i64_in("nreset", 0, i32::MAX as i64)?,
                 k @ ("scaleyz" | "scalexz" | "scalexy") => {
                     let c = ["scaleyz", "scalexz", "scalexy"].iter().position(|s| *s == k).unwrap_or(0);
-                    scale[c] = logical(&mut a, k)?;
+                    scale[c] = a.logical(k)?;
                 }
                 "fixedpoint" => {
                     for v in fixedpoint.iter_mut() {
@@ -216,8 +212,8 @@ impl FixBoxRelax {
         }
     }
 
-    /// LAMMPS' compute_sigma: the reference box is the current one, and sigma = V0 h0^-1
-    /// P_dev h0^-T from the deviatoric target P_dev.
+    /// The reference box is the current one (LAMMPS' xprdinit.. and vol0), and with a
+    /// deviatoric target sigma = V0 h0^-1 P_dev h0^-T (LAMMPS' compute_sigma).
     fn reference(&mut self, state: &State) -> Result<(), String> {
         let prd = state.domain()?.prd();
         self.prdinit = [prd[0], prd[1], if self.dimension == 2 { 1.0 } else { prd[2] }];
@@ -392,23 +388,6 @@ impl FixBoxRelax {
     }
 }
 
-/// Box-fraction coordinates of `x` in the box (lo, 1/prd) (LAMMPS' x2lamda on an orthogonal
-/// box, term by term).
-fn x2lamda(x: &mut [f64; 3], lo: &[f64; 3], hinv: &[f64; 3]) {
-    let d = [x[0] - lo[0], x[1] - lo[1], x[2] - lo[2]];
-    x[0] = hinv[0] * d[0] + 0.0 * d[1] + 0.0 * d[2];
-    x[1] = hinv[1] * d[1] + 0.0 * d[2];
-    x[2] = hinv[2] * d[2];
-}
-
-/// Back from box fractions in the box (lo, prd) (LAMMPS' lamda2x).
-fn lamda2x(x: &mut [f64; 3], lo: &[f64; 3], h: &[f64; 3]) {
-    let l = *x;
-    x[0] = h[0] * l[0] + 0.0 * l[1] + 0.0 * l[2] + lo[0];
-    x[1] = h[1] * l[1] + 0.0 * l[2] + lo[1];
-    x[2] = h[2] * l[2] + lo[2];
-}
-
 impl MinExtra for FixBoxRelax {
     fn min_dof(&self) -> usize {
         match self.pstyle {
@@ -439,16 +418,8 @@ impl MinExtra for FixBoxRelax {
             }
         }
         let d = state.domain.as_mut().ok_or("fix box/relax: no box")?;
-        let prd = d.prd();
-        let hinv = [1.0 / prd[0], 1.0 / prd[1], 1.0 / prd[2]];
-        let lo = d.lo;
-        let atoms = &mut state.atoms;
-        let n = atoms.x.len();
-        let moves = |i: usize| self.allremap || atoms.mask[i] & self.groupbit != 0;
-        let moved: Vec<usize> = (0..n).filter(|&i| moves(i)).collect();
-        for &i in &moved {
-            x2lamda(&mut atoms.x[i], &lo, &hinv);
-        }
+        let old = d.clone();
+        let prd = old.prd();
         for k in 0..3 {
             if self.p_flag[k] {
                 let (lo0, hi0) = (self.lo0[k], self.hi0[k]);
@@ -459,9 +430,13 @@ impl MinExtra for FixBoxRelax {
                 }
             }
         }
-        let (lo, h) = (d.lo, d.prd());
-        for &i in &moved {
-            lamda2x(&mut atoms.x[i], &lo, &h);
+        // the atoms (all, or the group's with dilate partial; ghosts too, as LAMMPS) follow
+        let dilation = Dilation::new(&old, d);
+        let atoms = &mut state.atoms;
+        for (x, &mask) in atoms.x.iter_mut().zip(&atoms.mask) {
+            if self.allremap || mask & self.groupbit != 0 {
+                dilation.apply(x);
+            }
         }
         Ok(())
     }
@@ -508,14 +483,9 @@ impl Fix for FixBoxRelax {
     fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
         self.pv2e = 1.0 / state.units.nktv2p;
         let prd = state.domain()?.prd();
-        self.prdinit = [prd[0], prd[1], if self.dimension == 2 { 1.0 } else { prd[2] }];
-        self.vol0 = self.prdinit[0] * self.prdinit[1] * self.prdinit[2];
         self.h0 = [prd[0], prd[1], prd[2], 0.0, 0.0, 0.0];
         self.press_target();
-        if self.deviatoric {
-            self.reference(state)?;
-        }
-        Ok(())
+        self.reference(state)
     }
     fn min_extra(&mut self) -> Option<&mut dyn MinExtra> {
         Some(self)

@@ -6,7 +6,7 @@
 //! x` (default) the atoms of the group follow the box in box-fraction coordinates.
 
 use super::{Fix, FixCtx, FixHooks};
-use crate::engine::domain::BoundaryKind;
+use crate::engine::domain::{BoundaryKind, Dilation};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -125,7 +125,7 @@ impl FixDeform {
                     };
                 }
                 "flip" => {
-                    a.choice("flip", &["yes", "no", "on", "off", "true", "false", "1", "0"])?;
+                    a.logical("flip")?;
                 }
                 "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
                 _ => return Err(a.unknown_keyword(w, &["remap", "flip", "units"])),
@@ -244,29 +244,23 @@ impl FixDeform {
             self.set[i].lo_target = mid - shift;
             self.set[i].hi_target = mid + shift;
         }
-        // the atoms of the group in box fractions of the old box, then of the new one
         let dom = state.domain.as_mut().ok_or_else(|| RunError::new(step, "fix deform: no box"))?;
-        let (lo_old, prd_old) = (dom.lo, dom.prd());
-        let hinv = [1.0 / prd_old[0], 1.0 / prd_old[1], 1.0 / prd_old[2]];
         for i in 0..3 {
             if self.set[i].style != Style::None {
                 dom.lo[i] = self.set[i].lo_target;
                 dom.hi[i] = self.set[i].hi_target;
             }
         }
-        let (lo_new, prd_new) = (dom.lo, dom.prd());
+        let prd_new = dom.prd();
         if (0..3).any(|k| !(prd_new[k] > 0.0)) {
             return Err(RunError::new(step, format!("fix deform {}: the box length became {:?} (not positive)", self.id, prd_new)));
         }
+        // the group's owned atoms follow the box in box fractions
         if self.remap {
+            let dilation = Dilation::new(&d, dom);
             let at = &mut state.atoms;
             for i in (0..at.nlocal).filter(|&i| at.mask[i] & self.groupbit != 0) {
-                let x = &mut at.x[i];
-                let dl = [x[0] - lo_old[0], x[1] - lo_old[1], x[2] - lo_old[2]];
-                let l = [hinv[0] * dl[0] + 0.0 * dl[1] + 0.0 * dl[2], hinv[1] * dl[1] + 0.0 * dl[2], hinv[2] * dl[2]];
-                x[0] = prd_new[0] * l[0] + 0.0 * l[1] + 0.0 * l[2] + lo_new[0];
-                x[1] = prd_new[1] * l[1] + 0.0 * l[2] + lo_new[1];
-                x[2] = prd_new[2] * l[2] + lo_new[2];
+                dilation.apply(&mut at.x[i]);
             }
         }
         Ok(())

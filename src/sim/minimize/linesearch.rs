@@ -170,27 +170,20 @@ fn alpha_max(dmax: f64, hmax: f64) -> f64 {
 fn store_start(sim: &mut Simulation, m: &mut Min) -> Result<(), RunError> {
     let n = sim.state.atoms.nlocal;
     m.vectors[X0].copy_from_slice(&sim.state.atoms.x[..n]);
-    if !m.fextra.is_empty() {
-        m.store_extra(sim)?;
-    } else {
-        m.box0 = Some(sim.state.domain.as_ref().expect("a box").prd());
-    }
-    Ok(())
+    // LAMMPS' FixMinimize::store_box: wrapped atoms' x0 are re-imaged with this box
+    m.box0 = Some(sim.state.domain.as_ref().expect("a box").prd());
+    m.store_extra(sim)
 }
 
 /// Positions x0 + alpha h (x0 itself when alpha is 0) and the extra degrees of freedom
 /// likewise, their energy and forces.
 fn alpha_step(sim: &mut Simulation, m: &mut Min, alpha: f64, reset: bool) -> Result<f64, RunError> {
     let n = sim.state.atoms.nlocal;
-    if !m.fextra.is_empty() {
-        m.step_extra(sim, 0.0)?;
-    }
+    m.step_extra(sim, 0.0)?;
     let x = &mut sim.state.atoms.x;
     x[..n].copy_from_slice(&m.vectors[X0]);
     if alpha > 0.0 {
-        if !m.fextra.is_empty() {
-            m.step_extra(sim, alpha)?;
-        }
+        m.step_extra(sim, alpha)?;
         let x = &mut sim.state.atoms.x;
         let h = &m.vectors[H];
         for i in 0..n {

@@ -279,10 +279,9 @@ impl Min {
         Ok(if self.normflag { e / self.natoms } else { e })
     }
 
-    /// The extra degrees of freedom keep their values where the line search starts, and the
-    /// box is kept (LAMMPS' store_box and min_store).
+    /// The extra degrees of freedom keep their values where the line search starts (LAMMPS'
+    /// min_store).
     fn store_extra(&mut self, sim: &mut Simulation) -> Result<(), RunError> {
-        self.box0 = Some(sim.state.domain.as_ref().expect("a box").prd());
         for &(k, _) in &self.extra {
             let step = sim.state.step;
             let fix = sim.fixes[k].min_extra().expect("a fix with extra degrees of freedom");
@@ -336,11 +335,8 @@ impl Min {
     /// nearby image (LAMMPS' fix MINIMIZE reset_coords).
     pub fn energy_force(&mut self, sim: &mut Simulation, reset: bool) -> Result<f64, RunError> {
         let step = sim.state.step;
-        let rebuild = match (self.extra.is_empty(), sim.state.domain.as_ref()) {
-            (false, Some(d)) => sim.state.neighbor.decide_in_moving_box(&sim.state.neigh_settings, &sim.state.atoms, d),
-            _ => sim.state.neighbor.decide(&sim.state.neigh_settings, &sim.state.atoms),
-        };
-        if rebuild {
+        let moving = sim.state.domain.as_ref().filter(|_| !self.extra.is_empty());
+        if sim.state.neighbor.decide_in(&sim.state.neigh_settings, &sim.state.atoms, moving) {
             sim.timers.stamp();
             let n = sim.state.atoms.nlocal;
             let order = sim.rebuild_at(false)?;

@@ -5,7 +5,7 @@
 //!   bpm/rotational), the style's stored flag, each atom's bond-list order after bonds broke,
 //!   and LAMMPS' atom order (the order of the bond sums);
 //! * thermostats: fix nvt's chain (eta, eta_dot), the energy of temp/berendsen and
-//!   temp/rescale.
+//!   temp/rescale; fix nph's barostat.
 //!
 //! Each case also drops the state from the file and checks that the continuation then differs,
 //! so the test sees what it claims to.
@@ -107,4 +107,12 @@ fn berendsen_energy_continues() {
 #[test]
 fn rescale_energy_continues() {
     check("in.thermo_rescale", None, 300, 300, FIXES, drop_fixes);
+}
+
+/// fix nph's barostat (box velocities, their chain, the reference box and temperature) and the
+/// box itself; the deck scales about a fixed point of its own (the default, the box centre when
+/// the fix is defined, moves with the restarted box, in LAMMPS too).
+#[test]
+fn barostat_continues_bit_for_bit() {
+    check("in.nph_deviatoric", None, 150, 150, FIXES, drop_fixes);
 }

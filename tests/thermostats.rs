@@ -110,7 +110,6 @@ fn thermostat_errors_are_located() {
         ("fix 2 all nvt temp 0.0 0.1 1.0", "must be > 0.0"),
         ("fix 2 all nvt tchain 3", "needs temperature control"),
         ("fix 2 all nvt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "pressure control"),
-        ("fix 2 all npt temp 0.1 0.1 1.0 iso 1.0 1.0 1.0", "barostat"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\nfix_modify 2 temp nothere", "compute `nothere` does not exist"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute ke all ke\nfix_modify 2 temp ke", "is not a temperature fix_modify temp takes"),
         ("fix 2 all langevin 0.1 0.1 1.0 5\ncompute tp all temp/partial 0 1 2", "zflag"),

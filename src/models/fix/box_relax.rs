@@ -5,6 +5,7 @@
 //! areas. The box is dilated about `fixedpoint` from the line search's starting box, the atoms
 //! (all, or the group's with `dilate partial`) with it in box-fraction coordinates.
 
+use super::box_stress::{strain_trace, Couple};
 use super::{Fix, FixCtx, FixHooks, MinExtra};
 use crate::engine::domain::Dilation;
 use crate::engine::state::State;
@@ -18,16 +19,6 @@ pub const SYNTAX: &str = "fix ID group box/relax iso|aniso|tri P | x|y|z|xy|xz|y
 enum PStyle {
     Iso,
     Aniso,
-}
-
-/// `couple`: which diagonal pressures are averaged.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Couple {
-    None,
-    Xyz,
-    Xy,
-    Yz,
-    Xz,
 }
 
 pub struct FixBoxRelax {
@@ -108,7 +99,7 @@ impl FixBoxRelax {
                     }
                 }
                 "couple" => {
-                    pcouple = [Couple::Xyz, Couple::Xy, Couple::Yz, Couple::Xz, Couple::None][a.choice("couple", &["xyz", "xy", "yz", "xz", "none"])?];
+                    pcouple = Couple::parse(&mut a)?;
                 }
                 "dilate" => allremap = a.choice("dilate", &["all", "partial"])? == 0,
                 "vmax" => vmax = a.positive_f64("vmax")?,
@@ -128,16 +119,10 @@ impl FixBoxRelax {
             }
         }
         let bad = |m: &str| a.error_command(m.to_string(), "fix box/relax");
-        if dimension == 2 && matches!(pcouple, Couple::Yz | Couple::Xz) {
+        if dimension == 2 && pcouple.needs_3d() {
             return Err(bad("invalid fix box/relax command for a 2d simulation: couple yz or xz"));
         }
-        let pressure_settings = match pcouple {
-            Couple::Xyz => !p_flag[0] || !p_flag[1] || (dimension == 3 && !p_flag[2]),
-            Couple::Xy => !p_flag[0] || !p_flag[1],
-            Couple::Yz => !p_flag[1] || !p_flag[2],
-            Couple::Xz => !p_flag[0] || !p_flag[2],
-            Couple::None => false,
-        };
+        let pressure_settings = pcouple.lacks_target(&p_flag, dimension);
         if pressure_settings {
             return Err(bad("invalid fix box/relax pressure settings: a coupled dimension has no target"));
         }
@@ -156,13 +141,7 @@ impl FixBoxRelax {
             return Err(a.error_at(w, "cannot relax Pxy/Pxz/Pyz in fix box/relax with a non-triclinic box (dmhs has orthogonal boxes only)", "needs a triclinic box"));
         }
         let same = |i: usize, j: usize| p_target[i] == p_target[j];
-        let couple_mismatch = match pcouple {
-            Couple::Xyz if dimension == 3 => !same(0, 1) || !same(0, 2),
-            Couple::Xyz | Couple::Xy => !same(0, 1),
-            Couple::Yz => !same(1, 2),
-            Couple::Xz => !same(0, 2),
-            Couple::None => false,
-        };
+        let couple_mismatch = pcouple.mismatch(dimension, same);
         if couple_mismatch {
             return Err(bad("fix box/relax: the coupled dimensions must have the same target pressure"));
         }
@@ -286,25 +265,7 @@ impl FixBoxRelax {
                 let inv = 1.0 / (p[0] * p[1]);
                 [virial[0] * inv * nktv2p, virial[1] * inv * nktv2p, 0.0]
             };
-            match self.pcouple {
-                Couple::Xyz => {
-                    let ave = 1.0 / 3.0 * (t[0] + t[1] + t[2]);
-                    [ave; 3]
-                }
-                Couple::Xy => {
-                    let ave = 0.5 * (t[0] + t[1]);
-                    [ave, ave, t[2]]
-                }
-                Couple::Yz => {
-                    let ave = 0.5 * (t[1] + t[2]);
-                    [t[0], ave, ave]
-                }
-                Couple::Xz => {
-                    let ave = 0.5 * (t[0] + t[2]);
-                    [ave, t[1], ave]
-                }
-                Couple::None => t,
-            }
+            self.pcouple.apply(t)
         };
         if pc.iter().any(|v| !v.is_finite()) {
             return Err("fix box/relax: non-numeric pressure - simulation unstable".into());
@@ -364,16 +325,11 @@ impl FixBoxRelax {
     /// LAMMPS' compute_strain_energy: 0.5 Tr(sigma h h^T) in energy units.
     fn strain_energy(&self, h: &[f64; 6]) -> f64 {
         let s = &self.sigma;
-        let (d0, d1, d2) = if self.dimension == 3 {
-            (
-                s[0] * (h[0] * h[0] + h[5] * h[5] + h[4] * h[4]) + s[5] * (h[1] * h[5] + h[3] * h[4]) + s[4] * (h[2] * h[4]),
-                s[5] * (h[5] * h[1] + h[4] * h[3]) + s[1] * (h[1] * h[1] + h[3] * h[3]) + s[3] * (h[2] * h[3]),
-                s[4] * (h[4] * h[2]) + s[3] * (h[3] * h[2]) + s[2] * (h[2] * h[2]),
-            )
-        } else {
-            (s[0] * (h[0] * h[0] + h[5] * h[5]) + s[5] * h[1] * h[5], s[5] * h[5] * h[1] + s[1] * h[1] * h[1], 0.0)
-        };
-        0.5 * (d0 + d1 + d2) * self.pv2e
+        if self.dimension == 3 {
+            return strain_trace(s, h) * self.pv2e;
+        }
+        let (d0, d1) = (s[0] * (h[0] * h[0] + h[5] * h[5]) + s[5] * h[1] * h[5], s[5] * h[5] * h[1] + s[1] * h[1] * h[1]);
+        0.5 * (d0 + d1 + 0.0) * self.pv2e
     }
 
     /// LAMMPS' compute_deviatoric: the diagonal of h sigma (the deviatoric force on the

@@ -5,6 +5,7 @@ pub mod adapt;
 pub mod addforce;
 pub mod aveforce;
 pub mod box_relax;
+pub mod box_stress;
 pub mod deform;
 pub mod ave_atom;
 pub mod ave_chunk;
@@ -35,7 +36,7 @@ pub mod moves;
 pub mod nve;
 pub mod nve_bpm_sphere;
 pub mod nve_sphere;
-pub mod nvt;
+pub mod nh;
 pub mod pour;
 pub mod sampling;
 pub mod print;
@@ -539,7 +540,9 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("temp/rescale", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("temp/csvr", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
-    ("nvt", |d, _| Ok(Box::new(nvt::FixNvt::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("nvt", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("npt", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("nph", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
@@ -566,9 +569,6 @@ pub struct Defined<'a> {
 
 /// Build a fix from `fix ID group style args...`; `defined` are the fixes and computes so far.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], defined: Defined, state: &mut State) -> DResult<Box<dyn Fix>> {
-    if matches!(style.text.as_str(), "npt" | "nph") {
-        return Err(dmhs_parser::Args::from_words(&[], cmd.span, "").error_at(style, format!("fix {} (a barostat) is not supported: dmhs keeps the box fixed", style.text), "thermostats: nvt, langevin, temp/berendsen, temp/rescale"));
-    }
     match STYLES.iter().find(|(n, _)| *n == style.text) {
         Some((_, ctor)) => ctor(FixDef { cmd, fixes: defined.fixes, computes: defined.computes, base_dir: defined.base_dir, id: id.text.clone(), groupbit, style, args }, state),
         None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),

@@ -1,0 +1,75 @@
+//! What the box-changing pressure fixes share (fix npt/nph and fix box/relax, LAMMPS' FixNH and
+//! FixBoxRelax): the coupling of the diagonal pressures and the strain energy of a deviatoric
+//! target.
+
+use dmhs_parser::{Args, DResult};
+
+/// `couple`: which diagonal pressures are averaged into one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Couple {
+    None,
+    Xyz,
+    Xy,
+    Yz,
+    Xz,
+}
+
+impl Couple {
+    /// `couple none|xyz|xy|yz|xz`.
+    pub fn parse(a: &mut Args) -> DResult<Couple> {
+        Ok([Couple::Xyz, Couple::Xy, Couple::Yz, Couple::Xz, Couple::None][a.choice("couple", &["xyz", "xy", "yz", "xz", "none"])?])
+    }
+    /// The pressures with the coupled ones replaced by their mean (LAMMPS' couple()).
+    pub fn apply(self, t: [f64; 3]) -> [f64; 3] {
+        match self {
+            Couple::Xyz => [1.0 / 3.0 * (t[0] + t[1] + t[2]); 3],
+            Couple::Xy => {
+                let ave = 0.5 * (t[0] + t[1]);
+                [ave, ave, t[2]]
+            }
+            Couple::Yz => {
+                let ave = 0.5 * (t[1] + t[2]);
+                [t[0], ave, ave]
+            }
+            Couple::Xz => {
+                let ave = 0.5 * (t[0] + t[2]);
+                [ave, t[1], ave]
+            }
+            Couple::None => t,
+        }
+    }
+    /// A coupled dimension without a pressure target (z only in 3D for xyz).
+    pub fn lacks_target(self, p_flag: &[bool], dimension: usize) -> bool {
+        match self {
+            Couple::Xyz => !p_flag[0] || !p_flag[1] || (dimension == 3 && !p_flag[2]),
+            Couple::Xy => !p_flag[0] || !p_flag[1],
+            Couple::Yz => !p_flag[1] || !p_flag[2],
+            Couple::Xz => !p_flag[0] || !p_flag[2],
+            Couple::None => false,
+        }
+    }
+    /// Coupled dimensions whose settings differ (`same(i, j)`: those of i and j agree).
+    pub fn mismatch(self, dimension: usize, same: impl Fn(usize, usize) -> bool) -> bool {
+        match self {
+            Couple::Xyz if dimension == 3 => !same(0, 1) || !same(0, 2),
+            Couple::Xyz | Couple::Xy => !same(0, 1),
+            Couple::Yz => !same(1, 2),
+            Couple::Xz => !same(0, 2),
+            Couple::None => false,
+        }
+    }
+    /// couple yz and xz need a third dimension.
+    pub fn needs_3d(self) -> bool {
+        matches!(self, Couple::Yz | Couple::Xz)
+    }
+}
+
+/// 0.5 Tr(sigma h h^T) for the box matrix h and sigma, both upper triangles in Voigt order
+/// (xx yy zz yz xz xy), in pressure x volume units (LAMMPS' compute_strain_energy before the
+/// unit conversion).
+pub fn strain_trace(s: &[f64; 6], h: &[f64; 6]) -> f64 {
+    let d0 = s[0] * (h[0] * h[0] + h[5] * h[5] + h[4] * h[4]) + s[5] * (h[1] * h[5] + h[3] * h[4]) + s[4] * (h[2] * h[4]);
+    let d1 = s[5] * (h[5] * h[1] + h[4] * h[3]) + s[1] * (h[1] * h[1] + h[3] * h[3]) + s[3] * (h[2] * h[3]);
+    let d2 = s[4] * (h[4] * h[2]) + s[3] * (h[3] * h[2]) + s[2] * (h[2] * h[2]);
+    0.5 * (d0 + d1 + d2)
+}

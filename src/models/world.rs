@@ -54,6 +54,11 @@ impl<'a> World<'a> {
         on.peek()?;
         Some(on.fold(0.0, |e, f| e + f.scalar(self.state).unwrap_or(0.0)))
     }
+    /// The energy the thermostats and barostats exchanged with their reservoirs (LAMMPS'
+    /// Modify::energy_couple: the scalars of the fixes with ecouple_flag, in definition order).
+    pub fn ecouple(&self) -> f64 {
+        self.fixes.iter().filter(|f| f.couples_energy()).fold(0.0, |e, f| e + f.scalar(self.state).unwrap_or(0.0))
+    }
     /// thermo's pe (LAMMPS' compute thermo_pe): the force field's energy, then the fixes'.
     pub fn pe(&self) -> f64 {
         let e = self.state.potential_energy();

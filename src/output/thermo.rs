@@ -93,6 +93,8 @@ pub const KEYWORDS: &[(&str, &str)] = &[
     ("pe", "PotEng"),
     ("ke", "KinEng"),
     ("etotal", "TotEng"),
+    ("ecouple", "Ecouple"),
+    ("econserve", "Econserve"),
     ("evdwl", "E_vdwl"),
     ("ecoul", "E_coul"),
     ("epair", "E_pair"),
@@ -213,6 +215,12 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "etotal" => {
                 let (t, dof) = temp_compute(w, thermo)?;
                 ext(w.pe()) + ext(t * 0.5 * dof * w.state.units.boltz)
+            }
+            "ecouple" => ext(w.ecouple()),
+            // LAMMPS adds the coupling energy to the total energy
+            "econserve" => {
+                let (t, dof) = temp_compute(w, thermo)?;
+                ext(w.ecouple()) + (ext(w.pe()) + ext(t * 0.5 * dof * w.state.units.boltz))
             }
             "evdwl" => ext(e.pair.evdwl),
             "ecoul" => ext(e.pair.ecoul),

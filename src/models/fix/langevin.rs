@@ -302,6 +302,9 @@ impl Fix for FixLangevin {
     }
     /// Energy added to the group by the thermostat, with the sign LAMMPS reports (minus the
     /// energy given to the reservoir), at the last full step.
+    fn couples_energy(&self) -> bool {
+        true
+    }
     fn scalar(&self, state: &State) -> Option<f64> {
         if !self.tally || !self.tallied {
             return Some(0.0);

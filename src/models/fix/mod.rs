@@ -383,6 +383,11 @@ pub trait Fix: Send + Sync {
     fn add_rigid_molecule(&mut self, _state: &State, _insert: &crate::engine::molecule::RigidInsert) -> Result<(), String> {
         Err(format!("fix {} ({}) does not make rigid bodies of inserted molecules", self.id(), self.style()))
     }
+    /// The fix's scalar is energy it exchanged with a reservoir (LAMMPS' ecouple_flag: the
+    /// thermostats and barostats), summed by thermo's `ecouple` and `econserve`.
+    fn couples_energy(&self) -> bool {
+        false
+    }
     /// Degrees of freedom this fix removes from atoms of a group (for temperature).
     fn dof_removed(&self, _state: &State, _groupbit: u32) -> f64 {
         0.0

@@ -763,6 +763,9 @@ impl Fix for FixNh {
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }
+    fn couples_energy(&self) -> bool {
+        true
+    }
     fn changes_box(&self) -> bool {
         self.baro.is_some()
     }

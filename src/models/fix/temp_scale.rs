@@ -139,6 +139,9 @@ impl Fix for FixTempScale {
         };
         self.temp.scale(state, self.groupbit, factor)
     }
+    fn couples_energy(&self) -> bool {
+        true
+    }
     fn scalar(&self, _state: &State) -> Option<f64> {
         Some(self.energy)
     }

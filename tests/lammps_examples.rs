@@ -1,6 +1,6 @@
 //! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
 //! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
-//! aveforce (aveforce_flow), fix adapt (adapt_soft), fix deform (deform_erate_volume,
+//! aveforce (aveforce_flow), fix adapt (adapt_soft, adapt_lj), fix deform (deform_erate_volume,
 //! deform_wiggle_2d) and compute msd/chunk (msd_chunk_chains; the thermo table at every printed step against
 //! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
 //! Volume column when the box can change, region IDs with '-'; and the located errors.
@@ -10,7 +10,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::{root, table};
 
-const DECKS: [&str; 6] = ["aveforce_flow", "adapt_soft", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
+const DECKS: [&str; 7] = ["aveforce_flow", "adapt_soft", "adapt_lj", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 

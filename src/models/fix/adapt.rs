@@ -3,8 +3,8 @@
 //! every N steps before the forces (N = 0: setup only), then back to their values before the
 //! run with `reset yes` (LAMMPS' default is no); `scale yes` multiplies the original value instead. As
 //! LAMMPS, the pair style then re-derives its mixed and cached values (Pair::reinit). Only
-//! `pair` attributes of styles that expose the parameter (soft: a); kspace, atom, bond and
-//! angle attributes are located errors.
+//! `pair` attributes of styles that expose the parameter (soft: a; lj/cut: epsilon, sigma);
+//! kspace, atom, bond and angle attributes are located errors.
 
 use super::value::FixValue;
 use super::{Fix, FixCtx, FixHooks, MinRole};

@@ -72,6 +72,30 @@ impl PairStyle for LjCut {
         "lj/cut"
     }
 
+    /// fix adapt's `epsilon` and `sigma` (LAMMPS' PairLJCut::extract); a mixed pair is mixed
+    /// again from the adapted pairs of like types at init, as LAMMPS' init_one.
+    fn adapt_get(&self, param: &str, i: usize, j: usize) -> Option<f64> {
+        let c = (i.max(j) <= self.coeff.n).then(|| self.coeff.get(i, j))?;
+        match param {
+            "epsilon" => Some(c.epsilon),
+            "sigma" => Some(c.sigma),
+            _ => None,
+        }
+    }
+    fn adapt_set(&mut self, param: &str, i: usize, j: usize, value: f64) -> bool {
+        if i.max(j) > self.coeff.n {
+            return false;
+        }
+        let mut c = *self.coeff.get(i, j);
+        match param {
+            "epsilon" => c.epsilon = value,
+            "sigma" => c.sigma = value,
+            _ => return false,
+        }
+        self.coeff.set(i, j, c);
+        true
+    }
+
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         self.coeff.grow(ihi.max(jhi)).map_err(|e| args.error_command(e, "too many atom types for this pair style"))?;
         args.syntax = COEFF_SYNTAX;

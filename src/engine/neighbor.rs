@@ -313,6 +313,8 @@ pub struct NeighList {
     pub chunks: Vec<ChunkList>,
     /// Squared list cutoff (cutoff + skin)^2 per type pair, row-major over `0..=ntypes`.
     pub cutneighsq: Vec<f64>,
+    /// Squared force cutoff per type pair, as the list was built for (LAMMPS' pair cutsq).
+    pub cutsq: Vec<f64>,
     pub ntypes: usize,
     /// Some entry carries a special-bond level.
     pub has_special: bool,
@@ -376,7 +378,7 @@ impl NeighList {
 
     /// Everything but the entries.
     fn clone_header(&self) -> NeighList {
-        NeighList { chunks: Vec::new(), cutneighsq: self.cutneighsq.clone(), ntypes: self.ntypes, has_special: self.has_special, generation: self.generation }
+        NeighList { chunks: Vec::new(), cutneighsq: self.cutneighsq.clone(), cutsq: self.cutsq.clone(), ntypes: self.ntypes, has_special: self.has_special, generation: self.generation }
     }
 }
 
@@ -603,11 +605,13 @@ impl Neighbor {
         // list cutoffs per type pair
         let stride = ntypes + 1;
         let mut cutneighsq = vec![0.0; stride * stride];
+        let mut cutsq = vec![0.0; stride * stride];
         let mut cutmax: f64 = 0.0;
         self.cutforce = 0.0;
         for it in 1..=ntypes {
             for jt in 1..=ntypes {
                 let c = cut_pair(it, jt);
+                cutsq[it * stride + jt] = c * c;
                 self.cutforce = self.cutforce.max(c);
                 if c > 0.0 {
                     let cn = c + settings.skin;
@@ -889,7 +893,7 @@ impl Neighbor {
         let has_special = use_special && chunks.iter().any(|c| c.raw().iter().any(|&j| j > NEIGH_MASK));
         // unique over the process, so no derived list can mistake a new build for its own
         let generation = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        self.list = NeighList { chunks, cutneighsq, ntypes, has_special, generation };
+        self.list = NeighList { chunks, cutneighsq, cutsq, ntypes, has_special, generation };
         debug_assert_eq!(self.list.check_slab_invariant(), Ok(()));
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);

@@ -93,7 +93,7 @@ impl ComputeBondLocal {
 }
 
 /// The bond rows as LAMMPS lists them: (atom 1, atom 2, bond record), local indices.
-fn listed_bonds(w: &World, groupbit: u32) -> Vec<(usize, usize, usize)> {
+pub(super) fn listed_bonds(w: &World, groupbit: u32) -> Vec<(usize, usize, usize)> {
     let s = w.state;
     let a = &s.atoms;
     let map = a.tag_map();

@@ -23,6 +23,7 @@ pub mod pe_atom;
 pub mod pressure;
 pub mod property;
 pub mod property_atom;
+pub mod property_local;
 pub mod rdf;
 pub mod reduce;
 pub mod sph_atom;
@@ -313,6 +314,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("displace/atom", |d, w| Ok(Box::new(displace_atom::ComputeDisplaceAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("bond/local", |d, w| Ok(Box::new(bond_local::ComputeBondLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("property/local", |d, w| Ok(Box::new(property_local::ComputePropertyLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("chunk/atom", |d, w| Ok(Box::new(chunk_atom::ComputeChunkAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("gyration", |d, _| Ok(Box::new(gyration::ComputeGyration::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -1602,3 +1602,31 @@ fn processors_errors_are_located() {
         assert!(err.contains(want) && err.contains("deck:6:"), "{line}: expected `{want}`:\n{err}");
     }
 }
+
+/// Barostats and fix deform on ranks: the box changes identically on every rank (the pressure,
+/// temperature and virial are sums over the ranks), the sub-domains follow it as fractions of
+/// the box, and the runs are the serial run's.
+#[test]
+fn barostats_and_deform_on_ranks_are_the_serial_run() {
+    let npt = melt_with(
+        "fix          1 all npt temp 2.0 2.0 0.5 iso 1.0 3.0 1.0\n\
+         thermo_style custom step temp epair etotal press vol f_1 f_1[7]\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&npt, 2);
+    compare(&npt, 4);
+    let nph = melt_with(
+        "fix          1 all nph x 2.0 2.0 1.0 y 1.0 1.0 1.0 z 3.0 3.0 1.0 ptemp 2.0 fixedpoint 0 0 0\n\
+         thermo_style custom step temp epair etotal press pxx pyy pzz lx ly lz f_1\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&nph, 2);
+    let deform = melt_with(
+        "fix          1 all nve\n\
+         fix          2 all deform 1 x erate 0.05 y volume remap x\n\
+         thermo_style custom step temp epair etotal press lx ly lz\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deform, 2);
+    compare(&deform, 4);
+}

@@ -21,7 +21,7 @@ const PAIRS: &[&str] = &[
 /// (GROUP: a dynamic group's update, per owned atom; atom values by ID stop the run on ranks.)
 const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
-    "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt",
+    "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt", "npt", "nph", "deform",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
     "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",

@@ -4,7 +4,8 @@
 //! pairs with special bonds), from lammps-refs/refs/NAME/local.* or LAMMPS run now. Bonds,
 //! angles and dihedrals row for row (LAMMPS' order); pairs as sets per step, each pair with its
 //! atoms' types (LAMMPS' row order and orientation come from its own binning). And the
-//! located errors.
+//! located errors, and the run summary's "Neighs" count against LAMMPS' (the same pairs, counted
+//! as LAMMPS' half list does).
 
 use dmhs::deck::{run_file, DeckOptions};
 
@@ -172,5 +173,41 @@ fn property_local_errors_are_located() {
         let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
         assert_eq!(o.status.code(), Some(2), "{to}: {out}");
         assert!(out.contains(want) && out.contains("in.pl:"), "{to}: expected `{want}`:\n{out}");
+    }
+}
+
+/// The last "Neighs:" count LAMMPS 22 Jul 2025 prints for three decks (lammps-refs/regenerate.sh
+/// leaves its logs in refs/NAME/log.lammps): bead-spring chains under a barostat, a granular bed,
+/// chains with excluded special pairs.
+const NEIGHS: [(&str, &str); 3] = [("npt_chains_com", "709"), ("property_local_gran", "1301"), ("property_local_topo", "677")];
+
+fn last_neighs(text: &str) -> Option<String> {
+    text.lines().filter(|l| l.starts_with("Neighs:")).last().and_then(|l| l.split_whitespace().nth(1)).map(String::from)
+}
+
+/// The run summary's neighbour count is LAMMPS' (its half list with `newton on`: special pairs of
+/// weight 0 left out, a pair across a periodic boundary once).
+#[test]
+fn summary_neighbour_count_is_lammps() {
+    for (name, theirs) in NEIGHS {
+        let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(deck(name).parent().unwrap().to_path_buf()), ..Default::default() };
+        let run = run_file(&deck(name), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+        let ours = last_neighs(run.sim.out.captured.as_deref().unwrap());
+        println!("{name}: Neighs dmhs {ours:?}, LAMMPS {theirs}");
+        assert_eq!(ours.as_deref(), Some(theirs), "{name}");
+    }
+}
+
+/// The counts of [`NEIGHS`] are what LAMMPS prints now.
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn live_neighbour_counts() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
+        return;
+    }
+    for (name, count) in NEIGHS {
+        let tmp = tempfile::tempdir().unwrap();
+        dmhs::tools::lammps::run_driver(&deck(name), &[], tmp.path()).unwrap();
+        assert_eq!(last_neighs(&std::fs::read_to_string(tmp.path().join("log.lammps")).unwrap()).as_deref(), Some(count), "{name}");
     }
 }

@@ -348,6 +348,29 @@ impl NeighList {
     pub fn npairs(&self) -> usize {
         self.chunks.iter().map(|c| c.len()).sum()
     }
+    /// The pairs as LAMMPS' half list (`newton on`) counts them for its "Neighs" line: special
+    /// pairs whose weights `lj` and `coul` are both 0 left out (LAMMPS does not list them), and
+    /// a pair with a ghost, which each owner lists here, counted half on each side.
+    pub fn lammps_count(&self, nlocal: usize, lj: &[f64; 4], coul: &[f64; 4]) -> f64 {
+        let mut owned = 0usize;
+        let mut ghost = 0usize;
+        for c in &self.chunks {
+            for i in c.start..c.end {
+                for &e in c.neighbors(i) {
+                    let level = special_level(e);
+                    if lj[level] == 0.0 && coul[level] == 0.0 {
+                        continue;
+                    }
+                    if ((e & NEIGH_MASK) as usize) < nlocal {
+                        owned += 1;
+                    } else {
+                        ghost += 1;
+                    }
+                }
+            }
+        }
+        owned as f64 + 0.5 * ghost as f64
+    }
 
     /// The entries whose type pair `keep` marks (row-major over `0..=ntypes`), in the same
     /// chunks and order (LAMMPS' skip lists for hybrid sub-styles).

@@ -50,6 +50,17 @@ pub struct Thermo {
     pub press_id: String,
     /// The last column is the Volume that [`Thermo::init_volume_column`] added.
     pub volume_added: bool,
+    /// How a step's values are laid out (`thermo_style multi|yaml`, `thermo_modify line`).
+    pub line: LineStyle,
+}
+
+/// LAMMPS' thermo line layouts: one line of columns under a header; blocks of `Label = value`
+/// three to a line under a step and CPU line; YAML (a keywords list, then one list per step).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LineStyle {
+    One,
+    Multi,
+    Yaml,
 }
 
 impl Default for Thermo {
@@ -70,6 +81,7 @@ impl Default for Thermo {
             temp_id: "thermo_temp".into(),
             press_id: "thermo_press".into(),
             volume_added: false,
+            line: LineStyle::One,
         }
     }
 }
@@ -289,15 +301,27 @@ impl Thermo {
         }
     }
 
-    /// The header line (custom/one style).
-    pub fn header(&self) -> String {
-        let mut h = String::new();
-        for c in &self.columns {
-            h += &center(&c.label, if c.int { 11 } else { 14 });
-            h.push(' ');
+    /// The header printed before a run's first values: the column labels (one line), the
+    /// keywords list (yaml), nothing (multi).
+    pub fn header(&self) -> Option<String> {
+        match self.line {
+            LineStyle::Multi => None,
+            LineStyle::Yaml => Some(format!("---\nkeywords: [{}]\ndata:", self.columns.iter().map(|c| format!("'{}', ", c.label)).collect::<String>())),
+            LineStyle::One => {
+                let mut h = String::new();
+                for c in &self.columns {
+                    h += &center(&c.label, if c.int { 11 } else { 14 });
+                    h.push(' ');
+                }
+                h.pop();
+                Some(h)
+            }
         }
-        h.pop();
-        h
+    }
+
+    /// What ends a run's output (yaml: the end of the document).
+    pub fn footer(&self) -> Option<&'static str> {
+        (self.line == LineStyle::Yaml).then_some("...")
     }
 
     fn format_of(&self, k: usize, int: bool) -> String {
@@ -316,19 +340,53 @@ impl Thermo {
                 return f.clone();
             }
         }
-        if int { "%10d ".to_string() } else { "% -14.8g".to_string() }
+        match (self.line, int) {
+            (LineStyle::One, true) => "%10d ".to_string(),
+            (LineStyle::One, false) => "% -14.8g".to_string(),
+            (LineStyle::Multi, true) => "%14d".to_string(),
+            (LineStyle::Multi, false) => "%14.4f".to_string(),
+            (LineStyle::Yaml, true) => "%d".to_string(),
+            (LineStyle::Yaml, false) => "%.15g".to_string(),
+        }
     }
 
-    /// Format one line of values (already computed, in column order).
-    pub fn format_line(&self, values: &[f64]) -> String {
-        let mut line = String::new();
-        for (k, (c, &v)) in self.columns.iter().zip(values).enumerate() {
+    /// Format one step's values (already computed, in column order); `step` and `cpu` (the
+    /// seconds of the run so far) head a multi block.
+    pub fn format_line(&self, values: &[f64], step: i64, cpu: f64) -> String {
+        let text = |k: usize, c: &Column, v: f64| {
             let fmt = self.format_of(k, c.int);
             let s = if c.int { format_printf(&fmt, v.round()) } else { format_printf(&fmt, v) };
-            line += &s.unwrap_or_else(|_| format!("{v}"));
-            line.push(' ');
+            s.unwrap_or_else(|_| format!("{v}"))
+        };
+        let mut line = String::new();
+        match self.line {
+            LineStyle::One => {
+                for (k, (c, &v)) in self.columns.iter().zip(values).enumerate() {
+                    line += &text(k, c, v);
+                    line.push(' ');
+                }
+                line.pop();
+            }
+            LineStyle::Multi => {
+                let cpu = format_printf("%12.7g", cpu).unwrap_or_else(|_| format!("{cpu}"));
+                line += &format!("------------ Step {step:14} ----- CPU = {cpu} (sec) -------------");
+                for (k, (c, &v)) in self.columns.iter().zip(values).enumerate() {
+                    if k % 3 == 0 {
+                        line.push('\n');
+                    }
+                    line += &format!("{:<8} = {} ", c.label, text(k, c, v));
+                }
+                line.pop();
+            }
+            LineStyle::Yaml => {
+                line += "  - [";
+                for (k, (c, &v)) in self.columns.iter().zip(values).enumerate() {
+                    line += &text(k, c, v);
+                    line += ", ";
+                }
+                line.push(']');
+            }
         }
-        line.pop();
         line
     }
 }

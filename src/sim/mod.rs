@@ -46,6 +46,8 @@ pub struct Simulation {
     pub timers: Timers,
     /// Seconds of the last run's loop, for `Loop time` and benchmarks.
     pub last_loop_seconds: f64,
+    /// When the current run's (or minimization's) loop started.
+    pub loop_start: Option<std::time::Instant>,
     pub last_loop_steps: i64,
     /// A run failed (exit code 1 rather than 2 for a deck error).
     pub runtime_failed: bool,
@@ -104,6 +106,7 @@ impl Simulation {
             out: Output::default(),
             timers: Timers::default(),
             last_loop_seconds: 0.0,
+            loop_start: None,
             last_loop_steps: 0,
             runtime_failed: false,
             base_dir: None,

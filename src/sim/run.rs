@@ -808,7 +808,9 @@ impl Simulation {
             let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
             self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
         }
-        self.out.print(&self.thermo.header());
+        if let Some(h) = self.thermo.header() {
+            self.out.print(&h);
+        }
         let first_output = self.output_step(true, last);
         self.agree(first_output)?;
 
@@ -819,6 +821,7 @@ impl Simulation {
             p.reset_model_seconds();
         }
         let t0 = Instant::now();
+        self.loop_start = Some(t0);
         let progress = crate::output::progress::Progress::new(nsteps as u64, self.out.screen);
         let mut result = Ok(());
         for _ in 0..nsteps {
@@ -860,6 +863,10 @@ impl Simulation {
         }
         progress.finish();
         let loop_time = t0.elapsed().as_secs_f64();
+        self.loop_start = None;
+        if let Some(f) = self.thermo.footer() {
+            self.out.print(f);
+        }
         let done = self.state.step - first;
         // LAMMPS' update_time at the end of a run: the time origin moves to the last step
         (self.state.atime, self.state.atimestep) = (self.state.time(), self.state.step);
@@ -899,7 +906,9 @@ impl Simulation {
         let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
         if thermo_now {
             let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
-            let line = self.thermo.format_line(&vals);
+            // a multi block's CPU: the seconds of the run so far (0 at its setup, as LAMMPS)
+            let cpu = if setup { 0.0 } else { self.loop_start.map_or(0.0, |t| t.elapsed().as_secs_f64()) };
+            let line = self.thermo.format_line(&vals, step, cpu);
             self.out.print(&line);
             if self.thermo.flush {
                 self.out.flush();

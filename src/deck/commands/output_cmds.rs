@@ -3,7 +3,7 @@
 use super::need_box;
 use crate::output::dump::Dump;
 use crate::sim::Simulation;
-use crate::output::thermo::{parse_column, parse_columns};
+use crate::output::thermo::{parse_column, parse_columns, LineStyle};
 use dmhs_parser::{Args, Command, DResult, SourceMap};
 
 pub fn thermo(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
@@ -22,7 +22,7 @@ pub fn thermo(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 }
 
 pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "thermo_style one | custom keyword1 keyword2 ...");
+    let mut a = Args::new(cmd, "thermo_style one | multi | yaml | custom keyword1 keyword2 ...");
     let style = a.choice("thermo style", &["one", "custom", "multi", "yaml"])?;
     match style {
         0 => {
@@ -49,8 +49,19 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             sim.thermo.columns = cols;
             sim.thermo.custom = true;
         }
-        _ => return Err(a.error_at(&cmd.args[0], format!("thermo_style {} is not supported yet", cmd.args[0].text), "supported: one, custom")),
+        // LAMMPS' keyword lists of the two styles
+        2 => {
+            a.finish()?;
+            sim.thermo.columns = parse_columns(&["etotal", "ke", "temp", "pe", "ebond", "eangle", "edihed", "eimp", "evdwl", "ecoul", "elong", "press"]).unwrap();
+            sim.thermo.custom = false;
+        }
+        _ => {
+            a.finish()?;
+            sim.thermo.columns = parse_columns(&["step", "temp", "ke", "pe", "ebond", "eangle", "edihed", "eimp", "evdwl", "ecoul", "elong", "press"]).unwrap();
+            sim.thermo.custom = false;
+        }
     }
+    sim.thermo.line = [LineStyle::One, LineStyle::One, LineStyle::Multi, LineStyle::Yaml][style];
     sim.thermo.volume_added = false;
     // a new style resets thermo_modify formats, as in LAMMPS
     sim.thermo.format_line = None;
@@ -130,10 +141,11 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
                     Some(_) => sim.thermo.press_id = idw.text.clone(),
                 }
             }
-            "warn" | "line" | "every" => {
+            "line" => sim.thermo.line = [LineStyle::One, LineStyle::Multi, LineStyle::Yaml][a.choice("line", &["one", "multi", "yaml"])?],
+            "warn" | "every" => {
                 return Err(a.error_at(w, format!("thermo_modify {} is not supported yet", w.text), "not supported"));
             }
-            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush", "temp", "press"])),
+            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush", "temp", "press", "line"])),
         }
     }
     Ok(())

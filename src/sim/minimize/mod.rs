@@ -505,7 +505,9 @@ impl Simulation {
         m.post_force(self)?;
         let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
         self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
-        self.out.print(&self.thermo.header());
+        if let Some(h) = self.thermo.header() {
+            self.out.print(&h);
+        }
         self.output_now(true, last, false)?;
         m.ecurrent = m.energy(self)?;
         m.einitial = m.ecurrent;
@@ -514,6 +516,7 @@ impl Simulation {
 
         self.timers.reset();
         let t0 = Instant::now();
+        self.loop_start = Some(t0);
         let stop = match fire.as_mut() {
             Some(fire) => fire.iterate(self, &mut m, opts.maxiter)?,
             None => linesearch::iterate(self, &mut m, opts.maxiter)?,
@@ -526,6 +529,10 @@ impl Simulation {
             self.output_now(true, self.state.step, true)?;
         }
         let loop_time = t0.elapsed().as_secs_f64();
+        self.loop_start = None;
+        if let Some(f) = self.thermo.footer() {
+            self.out.print(f);
+        }
         let efinal = m.ecurrent;
         let fnorm2_final = m.fnorm_sqr(self).sqrt();
         let fnorminf_final = m.fnorm_inf(self).sqrt();

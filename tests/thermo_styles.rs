@@ -1,4 +1,4 @@
-//! thermo_style multi and yaml, and thermo_modify line, laid out as LAMMPS 22 Jul 2025 lays them
+//! thermo_style multi and yaml, thermo_modify line, colname and format ranges, laid out as LAMMPS 22 Jul 2025 lays them
 //! out: the text below is LAMMPS' output for lammps-refs/decks/in.thermo_nvt with the style
 //! changed and `run 200` (the CPU seconds of the multi header lines left out), and LAMMPS run
 //! now when present.
@@ -85,12 +85,40 @@ fn live_styles_are_lammps() {
     if dmhs::tools::lammps::python_for_live_test().is_none() {
         return;
     }
-    for (style, start, want) in [("thermo_style multi", "------------ Step", MULTI), ("thermo_style custom step temp pe f_1\nthermo_modify line yaml format float %.10g", "---", YAML)] {
+    for (style, start, want) in [
+        ("thermo_style multi", "------------ Step", MULTI),
+        ("thermo_style custom step temp pe f_1\nthermo_modify line yaml format float %.10g", "---", YAML),
+        ("thermo_style custom step temp pe f_1 f_2\nthermo_modify colname f_1 E_lower colname -1 E_upper format 2*3 %9.5f colname 2 T", "   Step", COLNAME),
+    ] {
         let tmp = tempfile::tempdir().unwrap();
         let path = tmp.path().join("in.styles");
         std::fs::write(&path, deck(style)).unwrap();
         dmhs::tools::lammps::run_driver(&path, &[], tmp.path()).unwrap();
         let log = std::fs::read_to_string(tmp.path().join("log.lammps")).unwrap();
         assert_eq!(block(&log, start), want, "{style}");
+    }
+}
+
+/// `thermo_modify colname` (by keyword, by number from either end) and `format N*M`: LAMMPS'
+/// header and rows for the nvt deck.
+const COLNAME: &str = "   Step           T            PotEng        E_lower        E_upper    
+         0    0.08057  -6.72984  0              0            
+       100    0.05706  -6.67042 -0.013383718   -0.021605047  
+       200    0.07802  -6.65817 -0.043882767   -0.066577866  
+";
+
+#[test]
+fn colname_and_format_ranges_are_lammps() {
+    let text = dmhs("thermo_style custom step temp pe f_1 f_2\nthermo_modify colname f_1 E_lower colname -1 E_upper format 2*3 %9.5f colname 2 T");
+    assert_eq!(block(&text, "   Step"), COLNAME);
+}
+
+/// A colname or format that names no column is a located error.
+#[test]
+fn bad_colname_is_located() {
+    for (line, want) in [("thermo_modify colname c_nothere X", "Invalid thermo_modify colname argument: c_nothere"), ("thermo_modify colname 9 X", "Invalid thermo_modify colname argument: 9"), ("thermo_modify format 3*9 %g", "Invalid thermo_modify format argument: 3*9")] {
+        let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+        let err = run_text("in.bad", &deck(&format!("thermo_style custom step temp pe f_1 f_2\n{line}")), &opts).err().expect("an error");
+        assert!(err.rendered.contains(want) && err.rendered.contains("in.bad:"), "{line}: {}", err.rendered);
     }
 }

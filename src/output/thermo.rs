@@ -21,9 +21,12 @@ pub enum Field {
 #[derive(Clone, Debug)]
 pub struct Column {
     pub field: Field,
-    /// Header text.
+    /// Header text (`thermo_modify colname` may replace it).
     pub label: String,
     pub int: bool,
+    /// The keyword as the thermo style gave it (`thermo_modify colname` and `format` find
+    /// columns by it).
+    pub word: String,
 }
 
 #[derive(Clone, Debug)]
@@ -172,11 +175,11 @@ pub fn parse_column(word: &str) -> Result<Column, String> {
     } else if let Some(r) = word.strip_prefix("v_") {
         Field::Variable(r.to_string())
     } else if let Some((_, label)) = KEYWORDS.iter().find(|(k, _)| *k == word) {
-        return Ok(Column { field: Field::Keyword(word.to_string()), label: label.to_string(), int: INT_KEYWORDS.contains(&word) });
+        return Ok(Column { field: Field::Keyword(word.to_string()), label: label.to_string(), int: INT_KEYWORDS.contains(&word), word: word.to_string() });
     } else {
         return Err(format!("unknown thermo keyword `{word}`"));
     };
-    Ok(Column { field, label: word.to_string(), int: false })
+    Ok(Column { field, label: word.to_string(), int: false, word: word.to_string() })
 }
 
 pub fn parse_columns(words: &[&str]) -> Result<Vec<Column>, String> {

@@ -101,14 +101,26 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
                     "line" => sim.thermo.format_line = Some(a.printf_line("format string")?),
                     "int" => sim.thermo.format_int = Some(a.printf_format("format string")?.to_string()),
                     "float" => sim.thermo.format_float = Some(a.printf_format("format string")?.to_string()),
-                    n => match n.parse::<usize>() {
-                        Ok(k) if k >= 1 && k <= sim.thermo.columns.len() => {
-                            let f = a.printf_format("format string")?.to_string();
-                            sim.thermo.format_column.retain(|(c, _)| *c != k);
-                            sim.thermo.format_column.push((k, f));
+                    n => {
+                        let cols = column_range(&sim.thermo, n).ok_or_else(|| a.error_at(which, format!("Invalid thermo_modify format argument: {n}"), format!("line, int, float, none, a column 1..{} (or N*M, or negative from the end) or a keyword of the style", initial_columns(&sim.thermo))))?;
+                        let f = a.printf_format("format string")?.to_string();
+                        for k in cols {
+                            sim.thermo.format_column.retain(|(c, _)| *c != k + 1);
+                            sim.thermo.format_column.push((k + 1, f.clone()));
                         }
-                        _ => return Err(a.error_at(which, format!("expected line, int, float, none or a column 1..{}", sim.thermo.columns.len()), "bad format kind")),
-                    },
+                    }
+                }
+            }
+            "colname" => {
+                let which = a.word("column (a number or keyword) or `default`")?;
+                if which.text == "default" {
+                    for c in &mut sim.thermo.columns {
+                        c.label = parse_column(&c.word).map(|d| d.label).unwrap_or_else(|_| c.word.clone());
+                    }
+                } else {
+                    let k = column_range(&sim.thermo, &which.text).filter(|r| r.len() == 1).map(|r| r[0]);
+                    let k = k.ok_or_else(|| a.error_at(which, format!("Invalid thermo_modify colname argument: {}", which.text), format!("a column 1..{} (negative from the end) or a keyword of the style", initial_columns(&sim.thermo))))?;
+                    sim.thermo.columns[k].label = a.word("column name")?.text.clone();
                 }
             }
             "temp" => {
@@ -145,7 +157,7 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
             "warn" | "every" => {
                 return Err(a.error_at(w, format!("thermo_modify {} is not supported yet", w.text), "not supported"));
             }
-            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush", "temp", "press", "line"])),
+            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush", "temp", "press", "line", "colname"])),
         }
     }
     Ok(())
@@ -217,4 +229,27 @@ pub fn write_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
     d.write(&world, &mut ev).map_err(|e| a.error_at(&cmd.args[2], e, "while writing"))
+}
+
+/// The columns the thermo style gave (without the Volume a run adds).
+fn initial_columns(t: &crate::output::thermo::Thermo) -> usize {
+    t.columns.len() - usize::from(t.volume_added)
+}
+
+/// The 0-based columns `key` names for thermo_modify format and colname (LAMMPS' key2col and
+/// bounds): a number from 1 (negative: from the end), N*M, or a keyword of the style (its last
+/// column with that keyword).
+fn column_range(t: &crate::output::thermo::Thermo, key: &str) -> Option<Vec<usize>> {
+    let n = initial_columns(t) as i64;
+    if let Some((lo, hi)) = key.split_once('*') {
+        let lo = if lo.is_empty() { 1 } else { lo.parse::<i64>().ok()? };
+        let hi = if hi.is_empty() { n } else { hi.parse::<i64>().ok()? };
+        return (1 <= lo && lo <= hi && hi <= n).then(|| (lo - 1..hi).map(|k| k as usize).collect());
+    }
+    let k = match key.parse::<i64>() {
+        Ok(k) if k < 0 => n + k,
+        Ok(k) => k - 1,
+        Err(_) => t.columns[..n as usize].iter().rposition(|c| c.word == key)? as i64,
+    };
+    (0..n).contains(&k).then(|| vec![k as usize])
 }

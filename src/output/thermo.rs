@@ -422,7 +422,7 @@ mod tests {
     fn header_matches_lammps_layout() {
         let t = Thermo::default();
         assert_eq!(
-            t.header(),
+            t.header().unwrap(),
             "   Step          Temp          E_pair         E_mol          TotEng         Press     "
         );
     }

@@ -212,6 +212,8 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
         let ext = |v: f64| if norm { v / n } else { v };
         let e = &w.state.energies;
         let box_value = |f: &dyn Fn(&crate::engine::domain::Domain) -> f64| w.state.domain().map(f);
+        // thermo's ke: the temperature's dof kT / 2
+        let kinetic = || temp_compute(w, thermo).map(|(t, dof)| t * 0.5 * dof * w.state.units.boltz);
         Ok(match name {
             "step" => w.state.step as f64,
             "elapsed" => (w.state.step - w.state.run_window.map(|w| w.0).unwrap_or(w.state.step)) as f64,
@@ -223,20 +225,11 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "temp" => temp_compute(w, thermo)?.0,
             "press" => press_compute(w, thermo)?.scalar(w)?,
             "pe" => ext(w.pe()),
-            "ke" => {
-                let (t, dof) = temp_compute(w, thermo)?;
-                ext(t * 0.5 * dof * w.state.units.boltz)
-            }
-            "etotal" => {
-                let (t, dof) = temp_compute(w, thermo)?;
-                ext(w.pe()) + ext(t * 0.5 * dof * w.state.units.boltz)
-            }
+            "ke" => ext(kinetic()?),
+            "etotal" => ext(w.pe()) + ext(kinetic()?),
             "ecouple" => ext(w.ecouple()),
             // LAMMPS adds the coupling energy to the total energy
-            "econserve" => {
-                let (t, dof) = temp_compute(w, thermo)?;
-                ext(w.ecouple()) + (ext(w.pe()) + ext(t * 0.5 * dof * w.state.units.boltz))
-            }
+            "econserve" => ext(w.ecouple()) + (ext(w.pe()) + ext(kinetic()?)),
             "evdwl" => ext(e.pair.evdwl),
             "ecoul" => ext(e.pair.ecoul),
             "epair" => ext(e.pair.evdwl + e.pair.ecoul),

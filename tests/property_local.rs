@@ -9,6 +9,7 @@
 
 use dmhs::deck::{run_file, DeckOptions};
 
+#[allow(unused)]
 mod thermo_tables;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

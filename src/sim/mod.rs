@@ -166,6 +166,12 @@ impl Simulation {
         self.computes = computes;
     }
 
+    /// The seconds of the current run's loop so far; between runs, the last run's (LAMMPS'
+    /// timer total, read by thermo's `cpu`).
+    pub fn cpu_seconds(&self) -> f64 {
+        self.loop_start.map_or(self.last_loop_seconds, |t| t.elapsed().as_secs_f64())
+    }
+
     /// The read-only view of the whole simulation.
     pub fn world(&self) -> World<'_> {
         World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() }

@@ -66,10 +66,11 @@ impl Simulation {
     /// Run `work` on fix `k` with the state and a context in which expressions see every fix
     /// (the running one passes itself), every compute and every variable.
     pub(crate) fn with_fix<R>(&mut self, k: usize, work: impl FnOnce(&mut dyn Fix, &mut State, &mut FixCtx) -> R) -> R {
+        let cpu = self.cpu_seconds();
         let (before, rest) = self.fixes.split_at_mut(k);
         let (fix, after) = rest.split_first_mut().expect("fix index in range");
         let (before, after): (&[Box<dyn Fix>], &[Box<dyn Fix>]) = (before, after);
-        let mut expressions = HookExpressions { computes: &self.computes, before, after, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
+        let mut expressions = HookExpressions { computes: &self.computes, before, after, thermo: &self.thermo, variables: &mut self.variables, cpu };
         let mut ctx = FixCtx { others: [before, after], pair: self.pair.as_deref(), bond_style: self.bond_style.as_deref(), angle_style: self.angle_style.as_deref(), expressions: &mut expressions };
         work(fix.as_mut(), &mut self.state, &mut ctx)
     }
@@ -902,12 +903,13 @@ impl Simulation {
     pub(crate) fn output_now(&mut self, setup: bool, last: i64, all_dumps: bool) -> Result<(), RunError> {
         let step = self.state.step;
         let thermo_now = setup || step == last || (self.thermo.every > 0 && step % self.thermo.every == 0);
+        // thermo's cpu and a multi block's CPU: the seconds of the run so far, 0 at its setup
+        // (LAMMPS' compute_cpu)
+        let cpu = if setup { 0.0 } else { self.cpu_seconds() };
         let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
-        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
+        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
         if thermo_now {
             let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
-            // a multi block's CPU: the seconds of the run so far (0 at its setup, as LAMMPS)
-            let cpu = if setup { 0.0 } else { self.loop_start.map_or(0.0, |t| t.elapsed().as_secs_f64()) };
             let line = self.thermo.format_line(&vals, step, cpu);
             self.out.print(&line);
             if self.thermo.flush {

@@ -70,7 +70,7 @@ impl Default for Thermo {
     fn default() -> Self {
         Thermo {
             every: 0,
-            columns: parse_columns(&["step", "temp", "epair", "emol", "etotal", "press"]).unwrap(),
+            columns: parse_columns(STYLE_ONE).unwrap(),
             custom: false,
             norm: None,
             format_line: None,
@@ -91,6 +91,11 @@ impl Default for Thermo {
 
 /// Keywords whose values are integers.
 const INT_KEYWORDS: &[&str] = &["step", "elapsed", "elaplong", "atoms", "bonds", "angles", "dihedrals", "impropers", "nbuild", "ndanger", "part"];
+
+/// The keywords of LAMMPS' thermo styles one, multi and yaml.
+pub const STYLE_ONE: &[&str] = &["step", "temp", "epair", "emol", "etotal", "press"];
+pub const STYLE_MULTI: &[&str] = &["etotal", "ke", "temp", "pe", "ebond", "eangle", "edihed", "eimp", "evdwl", "ecoul", "elong", "press"];
+pub const STYLE_YAML: &[&str] = &["step", "temp", "ke", "pe", "ebond", "eangle", "edihed", "eimp", "evdwl", "ecoul", "elong", "press"];
 
 /// All thermo keywords dmhs knows, with their header labels.
 pub const KEYWORDS: &[(&str, &str)] = &[

@@ -3,7 +3,7 @@
 use super::need_box;
 use crate::output::dump::Dump;
 use crate::sim::Simulation;
-use crate::output::thermo::{parse_column, parse_columns, LineStyle};
+use crate::output::thermo::{parse_column, parse_columns, LineStyle, STYLE_MULTI, STYLE_ONE, STYLE_YAML};
 use dmhs_parser::{Args, Command, DResult, SourceMap};
 
 pub fn thermo(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
@@ -25,11 +25,6 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     let mut a = Args::new(cmd, "thermo_style one | multi | yaml | custom keyword1 keyword2 ...");
     let style = a.choice("thermo style", &["one", "custom", "multi", "yaml"])?;
     match style {
-        0 => {
-            a.finish()?;
-            sim.thermo.columns = parse_columns(&["step", "temp", "epair", "emol", "etotal", "press"]).unwrap();
-            sim.thermo.custom = false;
-        }
         1 => {
             if a.is_empty() {
                 return Err(a.missing("at least one keyword"));
@@ -49,15 +44,10 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             sim.thermo.columns = cols;
             sim.thermo.custom = true;
         }
-        // LAMMPS' keyword lists of the two styles
-        2 => {
-            a.finish()?;
-            sim.thermo.columns = parse_columns(&["etotal", "ke", "temp", "pe", "ebond", "eangle", "edihed", "eimp", "evdwl", "ecoul", "elong", "press"]).unwrap();
-            sim.thermo.custom = false;
-        }
+        // one, multi, yaml: LAMMPS' keyword list of the style
         _ => {
             a.finish()?;
-            sim.thermo.columns = parse_columns(&["step", "temp", "ke", "pe", "ebond", "eangle", "edihed", "eimp", "evdwl", "ecoul", "elong", "press"]).unwrap();
+            sim.thermo.columns = parse_columns([STYLE_ONE, STYLE_ONE, STYLE_MULTI, STYLE_YAML][style]).unwrap();
             sim.thermo.custom = false;
         }
     }

@@ -53,23 +53,30 @@ impl Compute for ComputePressure {
         let tc = self.temp(w)?;
         let t = tc.scalar(w)?;
         let dof = tc.dof(w).unwrap_or(0.0);
-        let v = &w.virial();
-        let vol = w.state.domain()?.volume();
-        let inv = 1.0 / vol;
         let u = &w.state.units;
-        Ok(if w.state.dimension == 3 {
-            (dof * u.boltz * t + v[0] + v[1] + v[2]) / 3.0 * inv * u.nktv2p
-        } else {
-            (dof * u.boltz * t + v[0] + v[1]) / 2.0 * inv * u.nktv2p
-        })
+        Ok(scalar_pressure(w.state.dimension, dof * u.boltz * t, &w.virial(), w.state.domain()?.volume(), u.nktv2p))
     }
     fn vector(&self, w: &World) -> Result<Vec<f64>, String> {
         let tc = self.temp(w)?;
         // the temperature compute's kinetic tensor (temp/sphere's has the rotational part)
         let k = tc.vector(w)?;
-        let v = &w.virial();
-        let inv = 1.0 / w.state.domain()?.volume();
-        let n = w.state.units.nktv2p;
-        Ok((0..6).map(|c| (k[c] + v[c]) * inv * n).collect())
+        Ok(tensor_pressure(&k, &w.virial(), w.state.domain()?.volume(), w.state.units.nktv2p).to_vec())
     }
+}
+
+/// P = (N_dof kB T + the virial's trace) / (dim V) * nktv2p, `dof_kt` = N_dof kB T, `volume` the
+/// area in 2D (LAMMPS' ComputePressure::compute_scalar, its order of operations).
+pub fn scalar_pressure(dimension: usize, dof_kt: f64, v: &[f64; 6], volume: f64, nktv2p: f64) -> f64 {
+    let inv = 1.0 / volume;
+    if dimension == 3 {
+        (dof_kt + v[0] + v[1] + v[2]) / 3.0 * inv * nktv2p
+    } else {
+        (dof_kt + v[0] + v[1]) / 2.0 * inv * nktv2p
+    }
+}
+
+/// The pressure tensor (kinetic tensor `k` + virial) / V * nktv2p (xx yy zz xy xz yz).
+pub fn tensor_pressure(k: &[f64], v: &[f64; 6], volume: f64, nktv2p: f64) -> [f64; 6] {
+    let inv = 1.0 / volume;
+    std::array::from_fn(|c| (k[c] + v[c]) * inv * nktv2p)
 }

@@ -13,7 +13,6 @@
 //! it), so the same set of pairs in another order and orientation.
 
 use super::Compute;
-use crate::engine::neighbor::{special_level, NEIGH_MASK};
 use crate::models::world::World;
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -126,8 +125,9 @@ impl ComputePropertyLocal {
     }
 
     /// The pairs of group atoms within the force cutoff of their types (or overlapping), special
-    /// pairs of weight 0 left out, each once: an owned pair as listed; a pair with a ghost from the side of the lower ID (an atom
-    /// with its own image: from the side the image lies above, in z, y, x).
+    /// pairs of weight 0 left out (as [`super::group_pairs`] gives them), each once: an owned
+    /// pair as listed; a pair with a ghost from the side of the lower ID (an atom with its own
+    /// image: from the side the image lies above, in z, y, x).
     fn pairs(&self, w: &World) -> Result<Vec<Row>, String> {
         let s = w.state;
         let a = &s.atoms;
@@ -138,49 +138,31 @@ impl ComputePropertyLocal {
         if !s.lists_valid {
             return Err(format!("compute property/local {} needs neighbour lists: it can be read only during or after a run", self.id));
         }
-        let (lj, coul) = (s.special_bonds.lj, s.special_bonds.coul);
         let stride = list.ntypes + 1;
-        let n = a.nlocal;
         let mut rows = Vec::new();
-        for c in &list.chunks {
-            for i in c.start..c.end {
-                if a.mask[i] & self.groupbit == 0 {
-                    continue;
-                }
-                let xi = a.x[i];
-                for &raw in c.neighbors(i) {
-                    // special pairs of weight 0 are not in LAMMPS' lists
-                    let level = special_level(raw);
-                    if lj[level] == 0.0 && coul[level] == 0.0 {
-                        continue;
-                    }
-                    let j = (raw & NEIGH_MASK) as usize;
-                    if a.mask[j] & self.groupbit == 0 {
-                        continue;
-                    }
-                    let xj = a.x[j];
-                    if j >= n {
-                        let above = (xj[2], xj[1], xj[0]) > (xi[2], xi[1], xi[0]);
-                        let keep = if a.tag[i] == a.tag[j] { above } else { a.tag[i] < a.tag[j] };
-                        if !keep {
-                            continue;
-                        }
-                    }
-                    let d = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
-                    let rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                    let (ti, tj) = (a.typ[i], a.typ[j]);
-                    let inside = if self.radius_cut {
-                        let radsum = a.radius[i] + a.radius[j];
-                        rsq < radsum * radsum
-                    } else {
-                        rsq < list.cutsq[ti * stride + tj]
-                    };
-                    if inside {
-                        rows.push(Row { ids: [a.tag[i], a.tag[j], 0, 0], types: [ti as i64, tj as i64] });
-                    }
+        super::group_pairs(s, self.groupbit, self.groupbit, |i, j, rsq, both_in_group, _| {
+            if !both_in_group {
+                return;
+            }
+            if j >= a.nlocal {
+                let (xi, xj) = (a.x[i], a.x[j]);
+                let above = (xj[2], xj[1], xj[0]) > (xi[2], xi[1], xi[0]);
+                let keep = if a.tag[i] == a.tag[j] { above } else { a.tag[i] < a.tag[j] };
+                if !keep {
+                    return;
                 }
             }
-        }
+            let (ti, tj) = (a.typ[i], a.typ[j]);
+            let inside = if self.radius_cut {
+                let radsum = a.radius[i] + a.radius[j];
+                rsq < radsum * radsum
+            } else {
+                rsq < list.cutsq[ti * stride + tj]
+            };
+            if inside {
+                rows.push(Row { ids: [a.tag[i], a.tag[j], 0, 0], types: [ti as i64, tj as i64] });
+            }
+        });
         Ok(rows)
     }
 

@@ -15,6 +15,8 @@ use super::box_stress::{strain_trace, Couple};
 use super::thermostat::{run_fraction, GroupTemp};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::domain::Dilation;
+use crate::models::compute::pressure::{scalar_pressure, tensor_pressure};
+use crate::models::compute::temp_bias;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
@@ -425,32 +427,20 @@ impl FixNh {
     /// scalar for ISO, the tensor otherwise), coupled as `couple` says.
     fn measure_pressure(&mut self, state: &State, ctx: &mut FixCtx) -> Result<(), RunError> {
         let virial = ctx.eval(state, &*self, |w, _| Ok(w.virial()))?;
-        let dim3 = self.dimension == 3;
-        let prd = state.domain().map_err(|e| RunError::new(state.step, e))?.prd();
+        let volume = self.volume(state)?;
         let (boltz, nktv2p) = (state.units.boltz, state.units.nktv2p);
-        let Some(b) = self.baro.as_ref() else { return Ok(()) };
-        if b.pstyle == PStyle::Iso {
+        let Some(pstyle) = self.baro.as_ref().map(|b| b.pstyle) else { return Ok(()) };
+        if pstyle == PStyle::Iso {
             let t = self.temp.compute(state)?;
-            let dof = self.temp.dof;
-            let p = if dim3 {
-                let inv = 1.0 / (prd[0] * prd[1] * prd[2]);
-                (dof * boltz * t + virial[0] + virial[1] + virial[2]) / 3.0 * inv * nktv2p
-            } else {
-                let inv = 1.0 / (prd[0] * prd[1]);
-                (dof * boltz * t + virial[0] + virial[1]) / 2.0 * inv * nktv2p
-            };
+            let p = scalar_pressure(self.dimension, self.temp.dof * boltz * t, &virial, volume, nktv2p);
             let b = self.baro.as_mut().expect("a barostat");
             b.p_current = [p; 3];
         } else {
             let ke = self.temp.spec.tensor(state).map_err(|e| RunError::new(state.step, e))?;
-            let inv = if dim3 { 1.0 / (prd[0] * prd[1] * prd[2]) } else { 1.0 / (prd[0] * prd[1]) };
-            let mut t = [0.0; 3];
-            for k in 0..(if dim3 { 3 } else { 2 }) {
-                t[k] = (ke[k] + virial[k]) * inv * nktv2p;
-            }
+            let t = tensor_pressure(&ke, &virial, volume, nktv2p);
             let b = self.baro.as_mut().expect("a barostat");
             b.mvv_current = ke;
-            b.p_current = b.pcouple.apply(t);
+            b.p_current = b.pcouple.apply([t[0], t[1], t[2]]);
         }
         let b = self.baro.as_ref().expect("a barostat");
         if b.p_current.iter().any(|p| !p.is_finite()) {
@@ -467,26 +457,20 @@ impl FixNh {
         let factor = [0, 1, 2].map(|k| (-dt4 * (b.omega_dot[k] + b.mtk_term2)).exp());
         let bias = self.temp.spec.field(state, self.groupbit).map_err(|e| RunError::new(state.step, e))?;
         let a = &mut state.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit != 0 {
-                let v = &mut a.v[i];
-                if let Some(bias) = &bias {
-                    for k in 0..3 {
-                        v[k] -= bias[i][k];
-                    }
-                }
-                for k in 0..3 {
-                    v[k] *= factor[k];
-                }
-                for k in 0..3 {
-                    v[k] *= factor[k];
-                }
-                if let Some(bias) = &bias {
-                    for k in 0..3 {
-                        v[k] += bias[i][k];
-                    }
-                }
+        let n = a.nlocal;
+        if let Some(bias) = &bias {
+            temp_bias::remove(&mut a.v[..n], &a.mask[..n], self.groupbit, bias);
+        }
+        for (v, _) in a.v[..n].iter_mut().zip(&a.mask[..n]).filter(|(_, &m)| m & self.groupbit != 0) {
+            for k in 0..3 {
+                v[k] *= factor[k];
             }
+            for k in 0..3 {
+                v[k] *= factor[k];
+            }
+        }
+        if let Some(bias) = &bias {
+            temp_bias::restore(&mut a.v[..n], &a.mask[..n], self.groupbit, bias);
         }
         Ok(())
     }
@@ -573,10 +557,9 @@ impl FixNh {
         Ok(())
     }
 
-    /// Volume in 3D, area in 2D, as LAMMPS multiplies the box lengths.
+    /// Volume in 3D, area in 2D.
     fn volume(&self, state: &State) -> Result<f64, RunError> {
-        let p = state.domain().map_err(|e| RunError::new(state.step, e))?.prd();
-        Ok(if self.dimension == 3 { p[0] * p[1] * p[2] } else { p[0] * p[1] })
+        Ok(state.domain().map_err(|e| RunError::new(state.step, e))?.volume())
     }
 
     /// Half step of the box velocities from the pressure difference (LAMMPS' nh_omega_dot).
@@ -780,7 +763,7 @@ impl Fix for FixNh {
     fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
         self.temp.count_dof(state, ctx);
         self.tdrag_factor = 1.0 - (state.dt * self.t_freq() * self.drag / self.nc_tchain as f64);
-        let (style, dimension, drag) = (self.style, self.dimension, self.drag);
+        let (style, drag) = (self.style, self.drag);
         let Some(b) = self.baro.as_mut() else { return Ok(()) };
         if let Some(f) = ctx.other_fixes().find(|f| f.style() == "deform") {
             return Err(format!("fix {style} with fix deform {}: dmhs does not combine a barostat with fix deform", f.id()));
@@ -791,8 +774,9 @@ impl Fix for FixNh {
         b.p_freq_max = b.p_freq.iter().fold(0.0, |m: f64, &f| m.max(f));
         b.pdrag_factor = 1.0 - (state.dt * b.p_freq_max * drag / b.nc_pchain as f64);
         if b.vol0 == 0.0 {
-            let p = state.domain()?.prd();
-            b.vol0 = if dimension == 3 { p[0] * p[1] * p[2] } else { p[0] * p[1] };
+            let d = state.domain()?;
+            let p = d.prd();
+            b.vol0 = d.volume();
             b.h0_inv = [1.0 / p[0], 1.0 / p[1], 1.0 / p[2], 0.0, 0.0, 0.0];
         }
         Ok(())

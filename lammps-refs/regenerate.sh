@@ -50,6 +50,9 @@ for name in "${names[@]+"${names[@]}"}"; do
         # compute property/local: its dump local files (tests/property_local.rs)
         property_local_gran) extra=(--var pairsfile "$out/local.pairs" --var cutfile "$out/local.cut") ;;
         property_local_topo) extra=(--var bondsfile "$out/local.bonds" --var anglesfile "$out/local.angles" --var dihedralsfile "$out/local.dihedrals" --var pairsfile "$out/local.pairs") ;;
+        # compute pair/local: its dump local files (tests/pair_local.rs)
+        pair_local_chains|pair_local_hertz) extra=(--var pairsfile "$out/local.pairs") ;;
+        pair_local_gran) extra=(--var pairsfile "$out/local.pairs" --var cutfile "$out/local.cut") ;;
     esac
     "$py" "$here/lammps_driver.py" "$here/decks/in.$name" --out "$out" "${extra[@]+"${extra[@]}"}"
     # bond/break, bond/create and thermostat decks: the thermo table of the last run (event counts
@@ -59,7 +62,7 @@ for name in "${names[@]+"${names[@]}"}"; do
     # shrink-wrapped box, shrink_wrap_press; the reduced contacts arrays of wall/gran/region,
     # gran_region_contacts, tests/granular_region.rs)
     case "$name" in
-        bond*|thermo_*|region_varshape|gran_region_varshape|rigid*|deposit_mol|walls_family|walls_region|walls_colloid|fix_modify_*|shrink_wrap_press|gran_region_contacts|gran_contact_atom|gran_jkr_walls|group_dynamic_property|aveforce_*|addforce_*|deform_*|msd_chunk_*|fix_momentum_rigid|adapt_*|npt_*|nph_*|property_local_*) awk '/^ +Step/{p = 1; $1 = $1; t = "# " $0 "\n"; next} p && /^Loop time/{p = 0} p{t = t $0 "\n"} END{printf "%s", t}' \
+        bond*|thermo_*|region_varshape|gran_region_varshape|rigid*|deposit_mol|walls_family|walls_region|walls_colloid|fix_modify_*|shrink_wrap_press|gran_region_contacts|gran_contact_atom|gran_jkr_walls|group_dynamic_property|aveforce_*|addforce_*|deform_*|msd_chunk_*|fix_momentum_rigid|adapt_*|npt_*|nph_*|property_local_*|pair_local_*) awk '/^ +Step/{p = 1; $1 = $1; t = "# " $0 "\n"; next} p && /^Loop time/{p = 0} p{t = t $0 "\n"} END{printf "%s", t}' \
                    "$out/log.lammps" > "$out/thermo.txt" ;;
         # the minimization's thermo table and its summary (tests/minimize.rs)
         min_*) awk '/^minimize /{m = 1} m && /^ +Step/{n++; if (n == 1) {p = 1; $1 = $1; print "# " $0; next}} p && /^Loop time/{p = 0} p; /^Minimization stats/{q = 1} q && /^ *$/{q = 0} q {print "## " $0}' \

@@ -157,6 +157,16 @@ impl ContactHistory {
         self.pending = Some(all);
     }
 
+    /// The touch flag and values stored for the entry of owned atom i that lists j (LAMMPS'
+    /// lookup in pair single); None when i's entries do not hold j.
+    pub fn entry(&self, i: usize, j: usize) -> Option<(bool, &[f64])> {
+        let (c, chunk) = self.list.iter().enumerate().find(|(_, ch)| (ch.start..ch.end).contains(&i))?;
+        let k = chunk.neighbors(i).iter().position(|&e| (e & NEIGH_MASK) as usize == j)?;
+        let e = chunk.first_entry(i) + k;
+        let h = self.chunks.get(c)?;
+        Some((h.touch.get(e).is_some_and(|&t| t != 0), h.values.get(e * self.size..(e + 1) * self.size)?))
+    }
+
     /// Number of contacts currently touching.
     pub fn ntouching(&self) -> usize {
         self.chunks.iter().map(|c| c.touch.iter().filter(|&&t| t != 0).count()).sum()

@@ -38,6 +38,9 @@ pub struct World<'a> {
     /// The bond style (compute bond/local's energies and forces); None where a view is made
     /// without the force field (inside a fix's hook, while a fix is built).
     pub bond: Option<&'a dyn BondStyle>,
+    /// The pair style (compute pair/local's single); None where the view is made without the
+    /// force field, or while the pair style is computing.
+    pub pair: Option<&'a dyn crate::models::pair::PairStyle>,
 }
 
 impl<'a> World<'a> {

@@ -148,7 +148,7 @@ impl Simulation {
                 continue;
             }
             let (before, rest) = computes.split_at_mut(k);
-            let world = World { state: &self.state, computes: before, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+            let world = World { state: &self.state, computes: before, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
             rest[0].setup(&world);
         }
         self.computes = computes;
@@ -160,7 +160,7 @@ impl Simulation {
         let mut computes = std::mem::take(&mut self.computes);
         for k in 0..computes.len() {
             let (before, rest) = computes.split_at_mut(k);
-            let world = World { state: &self.state, computes: before, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+            let world = World { state: &self.state, computes: before, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
             rest[0].setup_after_build(&world);
         }
         self.computes = computes;
@@ -174,13 +174,13 @@ impl Simulation {
 
     /// The read-only view of the whole simulation.
     pub fn world(&self) -> World<'_> {
-        World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() }
+        World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() }
     }
 
     /// The values of the thermo columns now.
     pub fn thermo_values(&mut self) -> Result<Vec<f64>, String> {
         let thermo = &self.thermo;
-        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
         crate::output::thermo::values(thermo, &world, &mut Eval { world, thermo, variables: &mut self.variables, cpu: self.last_loop_seconds })
     }
 
@@ -210,7 +210,7 @@ impl Simulation {
     /// The evaluation context of expressions, and the view it reads.
     pub fn eval(&mut self) -> Eval<'_> {
         Eval {
-            world: World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() },
+            world: World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() },
             thermo: &self.thermo,
             variables: &mut self.variables,
             cpu: self.last_loop_seconds,

@@ -292,24 +292,8 @@ impl Simulation {
         );
         let rate_fields: Vec<(usize, Field)> = crate::engine::fields::RATES.iter().chain(crate::engine::fields::PAIR_SUMS).filter_map(|&fl| self.state.atoms.field(fl).map(|k| (k, fl))).collect();
         let mut rates: Vec<Vec<f64>> = rate_fields.iter().map(|&(k, _)| std::mem::take(&mut self.state.atoms.extra[k].data)).collect();
-        let input = PairInput {
-            atoms: &self.state.atoms,
-            list: &self.state.neighbor.list,
-            special_lj: self.state.special_bonds.lj,
-            special_coul: self.state.special_bonds.coul,
-            eflag,
-            ntypes: self.state.ntypes,
-            type_filter: None,
-            type_mass: &self.state.type_mass,
-            dt: self.state.dt,
-            step: self.state.step,
-            advance,
-            dimension: self.state.dimension,
-            newton_pair: self.state.newton_pair,
-            sides: self.state.lammps_order.sides(),
-            rigid_mass: (!self.state.rigid_mass.is_empty()).then_some(&self.state.rigid_mass[..]),
-            freeze_bit: self.fixes.iter().find(|f| f.style() == "freeze").map_or(0, |f| f.groupbit()),
-        };
+        let freeze_bit = self.fixes.iter().find(|f| f.style() == "freeze").map_or(0, |f| f.groupbit());
+        let input = PairInput::of_state(&self.state, freeze_bit, eflag, advance);
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields, peratom };
         // a pass over few pairs (sparse contacts) is not worth sharing among threads
@@ -906,7 +890,7 @@ impl Simulation {
         // thermo's cpu and a multi block's CPU: the seconds of the run so far, 0 at its setup
         // (LAMMPS' compute_cpu)
         let cpu = if setup { 0.0 } else { self.cpu_seconds() };
-        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
         let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
         if thermo_now {
             let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
@@ -944,7 +928,7 @@ impl Simulation {
         let natoms = self.state.distributed.take();
         let mut result = Ok(());
         {
-            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref() };
+            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
             let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu: self.last_loop_seconds };
             for &k in due {
                 if rank0 {

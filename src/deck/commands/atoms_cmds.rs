@@ -578,7 +578,7 @@ pub(crate) fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, w
             return Err(Diagnostic::at(w.span, format!("Variable {} for {what} is invalid style", w.text), format!("an {style}-style variable")).with_help(format!("{what} takes atom-style variables only (as LAMMPS)")))
         }
     }
-    let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref() };
+    let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref(), pair: sim.pair.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
     crate::models::atom_formula::atom_variable_drawing(name, &world, &mut ev, Some(&mut sim.random_atom)).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
 }

@@ -216,7 +216,7 @@ pub fn write_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         }
         d.modify(&mut m)?;
     }
-    let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref() };
+    let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref(), pair: sim.pair.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
     d.write(&world, &mut ev).map_err(|e| a.error_at(&cmd.args[2], e, "while writing"))
 }

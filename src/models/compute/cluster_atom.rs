@@ -107,7 +107,7 @@ impl Compute for ComputeClusterAtom {
                 return Err(format!("compute {} {} needs neighbour lists: it can be read only during or after a run", self.style(), self.id));
             }
             let cutsq = self.cutoff * self.cutoff;
-            super::group_pairs(s, g, g, |i, j, rsq, in_i, _| {
+            super::group_pairs(s, g, g, |i, j, rsq, in_i, _, _| {
                 if in_i && rsq < cutsq {
                     if let Some(o) = owner(j) {
                         union(&mut parent, i, o);

@@ -58,7 +58,7 @@ impl Compute for ComputeContactAtom {
         }
         let at = &s.atoms;
         let mut contact = vec![0.0; at.nlocal];
-        super::group_pairs(s, self.groupbit, self.jgroupbit, |i, j, rsq, count_i, count_j| {
+        super::group_pairs(s, self.groupbit, self.jgroupbit, |i, j, rsq, count_i, count_j, _| {
             let radsum = at.radius[i] + at.radius[j];
             if rsq <= radsum * radsum {
                 if count_i {

@@ -82,7 +82,7 @@ impl Compute for ComputeCoordAtom {
                 }
             }
         };
-        super::group_pairs(s, self.groupbit, self.jgroupbit, |i, j, rsq, count_i, count_j| {
+        super::group_pairs(s, self.groupbit, self.jgroupbit, |i, j, rsq, count_i, count_j, _| {
             if rsq < cutsq {
                 if count_i {
                     add(i, at.typ[j]);

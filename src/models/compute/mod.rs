@@ -23,6 +23,7 @@ pub mod pe_atom;
 pub mod pressure;
 pub mod property;
 pub mod property_atom;
+pub mod pair_local;
 pub mod property_local;
 pub mod rdf;
 pub mod reduce;
@@ -315,6 +316,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("rdf", |d, w| Ok(Box::new(rdf::ComputeRdf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("bond/local", |d, w| Ok(Box::new(bond_local::ComputeBondLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("property/local", |d, w| Ok(Box::new(property_local::ComputePropertyLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("pair/local", |d, w| Ok(Box::new(pair_local::ComputePairLocal::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("chunk/atom", |d, w| Ok(Box::new(chunk_atom::ComputeChunkAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("gyration", |d, _| Ok(Box::new(gyration::ComputeGyration::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("com", |d, _| Ok(Box::new(com::ComputeCom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
@@ -328,10 +330,10 @@ const STYLES: &[(&str, ComputeCtor)] = &[
 
 /// Each pair of the pair style's neighbour list between an atom of group `gi` and one of group
 /// `gj`, special pairs of weight 0 left out (as LAMMPS' lists leave them out): `visit(i, j,
-/// rsq, count_i, count_j)`, where `count_i` says owned atom i is in `gi` and j in `gj`, and
+/// rsq, count_i, count_j, level)` (level: the pair's special level), where `count_i` says owned atom i is in `gi` and j in `gj`, and
 /// `count_j` the same the other way round for an owned j. A pair of owned atoms is listed
 /// once; a pair with a ghost is listed by each owned end, which counts for itself.
-pub fn group_pairs(s: &State, gi: u32, gj: u32, mut visit: impl FnMut(usize, usize, f64, bool, bool)) {
+pub fn group_pairs(s: &State, gi: u32, gj: u32, mut visit: impl FnMut(usize, usize, f64, bool, bool, usize)) {
     use crate::engine::neighbor::{special_level, NEIGH_MASK};
     let at = &s.atoms;
     let (lj, coul) = (s.special_bonds.lj, s.special_bonds.coul);
@@ -352,11 +354,40 @@ pub fn group_pairs(s: &State, gi: u32, gj: u32, mut visit: impl FnMut(usize, usi
                 let count_j = j < at.nlocal && mj & gi != 0 && mi & gj != 0;
                 if count_i || count_j {
                     let (dx, dy, dz) = (xi[0] - at.x[j][0], xi[1] - at.x[j][1], xi[2] - at.x[j][2]);
-                    visit(i, j, dx * dx + dy * dy + dz * dz, count_i, count_j);
+                    visit(i, j, dx * dx + dy * dy + dz * dz, count_i, count_j, level);
                 }
             }
         }
     }
+}
+
+/// Each pair of group atoms in the pair style's neighbour list once (compute property/local and
+/// pair/local): `visit(i, j, rsq, level)` with the pair's special level. A pair of owned atoms
+/// as listed; a pair with a ghost from the atom LAMMPS' binning lists it from (its partner's
+/// ghost then carries the ghost's values, as in LAMMPS), or where the sides are not known (on
+/// several ranks) from the lower atom ID, an atom with its own image from the side the image
+/// lies above (in z, then y, then x).
+pub fn group_pairs_once(s: &State, groupbit: u32, mut visit: impl FnMut(usize, usize, f64, usize)) {
+    let at = &s.atoms;
+    group_pairs(s, groupbit, groupbit, |i, j, rsq, both, _, level| {
+        if !both {
+            return;
+        }
+        if j >= at.nlocal {
+            let keep = match s.lammps_order.sides() {
+                Some(sides) => sides.first(i, j, &at.x),
+                None => {
+                    let (xi, xj) = (at.x[i], at.x[j]);
+                    let above = (xj[2], xj[1], xj[0]) > (xi[2], xi[1], xi[0]);
+                    if at.tag[i] == at.tag[j] { above } else { at.tag[i] < at.tag[j] }
+                }
+            };
+            if !keep {
+                return;
+            }
+        }
+        visit(i, j, rsq, level);
+    });
 }
 
 /// Build a compute from `compute ID group style args...`.

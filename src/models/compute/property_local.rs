@@ -124,10 +124,8 @@ impl ComputePropertyLocal {
         Ok(ComputePropertyLocal { id, groupbit, kind, attrs, radius_cut })
     }
 
-    /// The pairs of group atoms within the force cutoff of their types (or overlapping), special
-    /// pairs of weight 0 left out (as [`super::group_pairs`] gives them), each once: an owned
-    /// pair as listed; a pair with a ghost from the side of the lower ID (an atom with its own
-    /// image: from the side the image lies above, in z, y, x).
+    /// The pairs of group atoms within the force cutoff of their types (or overlapping), each
+    /// once, special pairs of weight 0 left out ([`super::group_pairs_once`]).
     fn pairs(&self, w: &World) -> Result<Vec<Row>, String> {
         let s = w.state;
         let a = &s.atoms;
@@ -140,18 +138,7 @@ impl ComputePropertyLocal {
         }
         let stride = list.ntypes + 1;
         let mut rows = Vec::new();
-        super::group_pairs(s, self.groupbit, self.groupbit, |i, j, rsq, both_in_group, _| {
-            if !both_in_group {
-                return;
-            }
-            if j >= a.nlocal {
-                let (xi, xj) = (a.x[i], a.x[j]);
-                let above = (xj[2], xj[1], xj[0]) > (xi[2], xi[1], xi[0]);
-                let keep = if a.tag[i] == a.tag[j] { above } else { a.tag[i] < a.tag[j] };
-                if !keep {
-                    return;
-                }
-            }
+        super::group_pairs_once(s, self.groupbit, |i, j, rsq, _| {
             let (ti, tj) = (a.typ[i], a.typ[j]);
             let inside = if self.radius_cut {
                 let radsum = a.radius[i] + a.radius[j];

@@ -37,7 +37,7 @@ impl FixAveAtom {
         let attrs = ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"];
         let mut values = Vec::new();
         {
-            let world = crate::models::world::World { state, computes: d.computes, fixes: crate::models::world::FixesView::all(d.fixes), bond: None };
+            let world = crate::models::world::World { state, computes: d.computes, fixes: crate::models::world::FixesView::all(d.fixes), bond: None, pair: None };
             while let Some(w) = a.peek() {
                 a.skip(1);
                 if let Some(k) = attrs.iter().position(|n| *n == w.text) {

@@ -69,7 +69,7 @@ impl FixAveChunk {
         let mut a = Args::from_words(d.args, d.cmd.span, SYNTAX);
         let sampling = Sampling::parse(&mut a, "ave/chunk")?;
         let cw = a.word("chunk/atom compute ID")?;
-        let world = World { state, computes: d.computes, fixes: crate::models::world::FixesView::all(d.fixes), bond: None };
+        let world = World { state, computes: d.computes, fixes: crate::models::world::FixesView::all(d.fixes), bond: None, pair: None };
         let chunk = world.compute(&cw.text).ok_or_else(|| a.error_at(cw, format!("compute `{}` for fix ave/chunk does not exist", cw.text), "unknown compute"))?;
         let chunk = chunk.as_chunk().ok_or_else(|| a.error_at(cw, format!("fix ave/chunk needs a compute chunk/atom; `{}` is compute {}", cw.text, chunk.style()), "not chunk/atom"))?;
         let attrs = ["vx", "vy", "vz", "fx", "fy", "fz", "density/number", "density/mass", "mass", "temp"];

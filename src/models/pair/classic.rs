@@ -92,6 +92,24 @@ impl Classic {
     /// The contact with shear history `shear` (updated when `update`; LAMMPS' `shearupdate`).
     #[inline(always)]
     pub fn with_history<T: Real>(&self, c: &Contact<T>, shear: &mut [T; 3], update: bool, dt: f64) -> ContactForce<T> {
+        let (k, fs, _) = self.history_parts(c, shear, update, dt);
+        force(c, k.ccel, k.rinv, fs)
+    }
+
+    /// LAMMPS' single of gran/hooke/history and gran/hertz/history (compute pair/local): the
+    /// contact with the stored shear, not advanced. fpair is the normal force over r (ccel);
+    /// the extra values are F_t (3), |F_t| as the friction limit left it, v_n (3) and v_t (3).
+    pub fn single(&self, c: &Contact, shear: [f64; 3]) -> (f64, [f64; 10]) {
+        let mut shear = shear;
+        let (k, fs, fsmag) = self.history_parts(c, &mut shear, false, 0.0);
+        let vn = [0, 1, 2].map(|d| c.del[d] * k.vnnr * k.rsqinv);
+        let vt = [0, 1, 2].map(|d| (c.vi[d] - c.vj[d]) - vn[d]);
+        (k.ccel, [fs[0], fs[1], fs[2], fsmag, vn[0], vn[1], vn[2], vt[0], vt[1], vt[2]])
+    }
+
+    /// The normal part, the tangential force and its magnitude after the friction limit.
+    #[inline(always)]
+    fn history_parts<T: Real>(&self, c: &Contact<T>, shear: &mut [T; 3], update: bool, dt: f64) -> (Normal<T>, [T; 3], T) {
         let k = Normal::of(self, c);
         let s = T::splat;
         let [delx, dely, delz] = c.del;
@@ -125,7 +143,7 @@ impl Classic {
         let slide = fn_.lt(fsmag);
         if !T::any(slide) {
             // every contact sticks (the common case in a bed at rest): nothing to rescale
-            return force(c, k.ccel, k.rinv, fs);
+            return (k, fs, fsmag);
         }
         let shrmag = (unrotated[0] * unrotated[0] + unrotated[1] * unrotated[1] + unrotated[2] * unrotated[2]).sqrt();
         let rescale = slide & shrmag.ne(s(0.0));
@@ -135,7 +153,8 @@ impl Classic {
             shear[d] = T::select(rescale, set_back, shear[d]);
         }
         let fs = fs.map(|f| T::select(slide, T::select(rescale, f * ratio, s(0.0)), f));
-        force(c, k.ccel, k.rinv, fs)
+        let fsmag = T::select(slide, T::select(rescale, fsmag * ratio, s(0.0)), fsmag);
+        (k, fs, fsmag)
     }
 
     /// The contact without history (gran/hooke: tangential damping limited by friction).
@@ -164,6 +183,8 @@ struct Normal<T> {
     polyhertz: Option<T>,
     /// relative tangential velocity at the contact point
     vtr: [T; 3],
+    /// (v_i - v_j) . (x_i - x_j)
+    vnnr: T,
 }
 
 impl<T: Real> Normal<T> {
@@ -199,7 +220,7 @@ impl<T: Real> Normal<T> {
             vt[1] - (delx * wr[2] - delz * wr[0]),
             vt[2] - (dely * wr[0] - delx * wr[1]),
         ];
-        Normal { r, rinv, rsqinv, meff, ccel, polyhertz, vtr }
+        Normal { r, rinv, rsqinv, meff, ccel, polyhertz, vtr, vnnr }
     }
 }
 

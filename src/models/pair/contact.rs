@@ -47,6 +47,24 @@ pub fn effective_mass(mi: f64, mj: f64, frozen_i: bool, frozen_j: bool) -> f64 {
     meff
 }
 
+/// The [`Contact`] of listed pair i-j as the pair loop makes it, for a style's `single`
+/// (compute pair/local): the state of the atoms now.
+pub fn contact_of<'a>(input: &'a PairInput, i: usize, j: usize, rsq: f64) -> Contact<'a> {
+    let a = input.atoms;
+    let rmass = input.rigid_mass.unwrap_or(&a.rmass[..]);
+    Contact {
+        del: [a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1], a.x[i][2] - a.x[j][2]],
+        rsq,
+        radi: a.radius[i],
+        radj: a.radius[j],
+        vi: &a.v[i],
+        vj: &a.v[j],
+        omegai: &a.omega[i],
+        omegaj: &a.omega[j],
+        meff: effective_mass(rmass[i], rmass[j], input.frozen(i), input.frozen(j)),
+    }
+}
+
 /// A contact's result: the force on i (j gets its negative) and the torques on i and j.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ContactForce<T = f64> {

@@ -186,6 +186,25 @@ impl PairStyle for GranHookeHistory {
     fn describe(&self) -> String {
         self.settings.describe(self.style)
     }
+    /// F_t (3), |F_t|, v_n (3), v_t (3): LAMMPS' svector.
+    fn single_extra(&self) -> Option<usize> {
+        Some(10)
+    }
+    /// LAMMPS' single: zero apart, else [`Classic::single`] with the stored shear (special
+    /// weights are not applied, as in LAMMPS).
+    fn single(&self, input: &PairInput, i: usize, j: usize, rsq: f64, _factor_coul: f64, _factor_lj: f64) -> Result<super::Single, String> {
+        let mut out = super::Single::default();
+        let a = input.atoms;
+        let radsum = a.radius[i] + a.radius[j];
+        if rsq >= radsum * radsum {
+            return Ok(out);
+        }
+        let shear = self.history.entry(i, j).map_or([0.0; 3], |(_, h)| [h[0], h[1], h[2]]);
+        let (ccel, extra) = self.settings.single(&super::contact::contact_of(input, i, j, rsq), shear);
+        out.fpair = ccel;
+        out.extra[..10].copy_from_slice(&extra);
+        Ok(out)
+    }
 }
 
 /// Carry a history store over a list rebuild: pairs that overlap now keep their contact.

@@ -268,6 +268,47 @@ impl PairStyle for Hybrid {
         Ok(())
     }
 
+    /// hybrid: the largest of the sub-styles' (one style per type pair); hybrid/overlay: their
+    /// sum, each sub-style's values in its place (LAMMPS' copy_svector of both).
+    fn single_extra(&self) -> Option<usize> {
+        let extras: Vec<usize> = self.styles.iter().filter_map(|s| s.single_extra()).collect();
+        if extras.is_empty() {
+            return None;
+        }
+        Some(if self.overlay { extras.iter().sum() } else { extras.iter().copied().max().unwrap_or(0) })
+    }
+
+    /// LAMMPS' PairHybrid::single: the sum over the sub-styles of the type pair that reach rsq
+    /// (each checked against its own cutoff); a sub-style it does not reach leaves zeros.
+    fn single(&self, input: &PairInput, i: usize, j: usize, rsq: f64, factor_coul: f64, factor_lj: f64) -> Result<super::Single, String> {
+        let s = self.ntypes + 1;
+        let (ti, tj) = (input.atoms.typ[i], input.atoms.typ[j]);
+        if !self.assigned.iter().any(|a| a[ti * s + tj]) {
+            return Err("Invoked pair single on pair style none".into());
+        }
+        let mut out = super::Single::default();
+        let mut at = 0;
+        for (k, style) in self.styles.iter().enumerate() {
+            let width = if self.overlay { style.single_extra().unwrap_or(0) } else { 0 };
+            let cut = style.cutoff(ti, tj);
+            if self.assigned[k][ti * s + tj] && rsq < cut * cut {
+                if style.single_extra().is_none() {
+                    return Err(format!("Pair hybrid sub-style {} does not support single call (compute pair/local)", style.style()));
+                }
+                let one = style.single(&Self::sub_input(&self.sublists, k, input), i, j, rsq, factor_coul, factor_lj)?;
+                out.eng += one.eng;
+                out.fpair += one.fpair;
+                let n = style.single_extra().unwrap_or(0);
+                if at + n > super::MAX_SINGLE_EXTRA {
+                    return Err(format!("compute pair/local: the sub-styles of pair hybrid/overlay give more than {} extra values together", super::MAX_SINGLE_EXTRA));
+                }
+                out.extra[at..at + n].copy_from_slice(&one.extra[..n]);
+            }
+            at += width;
+        }
+        Ok(out)
+    }
+
     fn rebuilt(&mut self, input: &PairInput, order: &[usize]) {
         self.refresh_sublists(input);
         for (k, style) in self.styles.iter_mut().enumerate() {

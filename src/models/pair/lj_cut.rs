@@ -175,6 +175,13 @@ impl PairStyle for LjCut {
         super::peratom::central_peratom(self, input, out);
         Ok(())
     }
+    fn single_extra(&self) -> Option<usize> {
+        Some(0)
+    }
+    fn single(&self, input: &PairInput, i: usize, j: usize, rsq: f64, _factor_coul: f64, factor_lj: f64) -> Result<super::Single, String> {
+        let t = &input.atoms.typ;
+        Ok(super::central_single(self, t[i], t[j], rsq, factor_lj, &(), &()))
+    }
 
     fn well_stiffness(&self) -> Option<f64> {
         let n = self.coeff.n;

@@ -160,7 +160,30 @@ pub struct PairInput<'a> {
     pub freeze_bit: u32,
 }
 
-impl PairInput<'_> {
+impl<'a> PairInput<'a> {
+    /// The input of the engine's pair style on `state` (its list, special weights and masses),
+    /// with fix freeze's group bit (0: none).
+    pub fn of_state(state: &'a crate::engine::state::State, freeze_bit: u32, eflag: bool, advance: bool) -> PairInput<'a> {
+        PairInput {
+            atoms: &state.atoms,
+            list: &state.neighbor.list,
+            special_lj: state.special_bonds.lj,
+            special_coul: state.special_bonds.coul,
+            eflag,
+            ntypes: state.ntypes,
+            type_filter: None,
+            type_mass: &state.type_mass,
+            dt: state.dt,
+            step: state.step,
+            advance,
+            dimension: state.dimension,
+            newton_pair: state.newton_pair,
+            sides: state.lammps_order.sides(),
+            rigid_mass: (!state.rigid_mass.is_empty()).then_some(&state.rigid_mass[..]),
+            freeze_bit,
+        }
+    }
+
     /// Whether atom `i` (owned or ghost) is in fix freeze's group.
     #[inline(always)]
     pub fn frozen(&self, i: usize) -> bool {
@@ -326,6 +349,42 @@ pub trait PairStyle: Send + Sync {
     fn dt_limits(&self) -> Vec<crate::models::Limit> {
         vec![]
     }
+    /// How many extra values [`PairStyle::single`] gives (LAMMPS' single_extra, the `pN` of
+    /// compute pair/local); None: the style has no single (LAMMPS' single_enable 0).
+    fn single_extra(&self) -> Option<usize> {
+        None
+    }
+    /// LAMMPS' Pair::single: the interaction of the listed pair i-j at `rsq` with the special
+    /// weights, as the style reports one pair (compute pair/local): its energy, its force over
+    /// r and its extra values. Contact styles read the stored history without advancing it.
+    /// Err: why the pair cannot be evaluated.
+    fn single(&self, _input: &PairInput, _i: usize, _j: usize, _rsq: f64, _factor_coul: f64, _factor_lj: f64) -> Result<Single, String> {
+        Err(format!("Pair style {} does not support compute pair/local", self.style()))
+    }
+}
+
+/// The most extra values of [`PairStyle::single`] (pair granular's 12).
+pub const MAX_SINGLE_EXTRA: usize = 12;
+
+/// One pair as [`PairStyle::single`] reports it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Single {
+    pub eng: f64,
+    /// The force on i over r (LAMMPS' fforce): F_i = fpair (x_i - x_j).
+    pub fpair: f64,
+    /// The style's extra values (LAMMPS' svector), the first `single_extra` of them.
+    pub extra: [f64; MAX_SINGLE_EXTRA],
+}
+
+/// [`PairStyle::single`] of a central kernel: the force loop's formula for one pair (0 outside
+/// the cutoff, as the loop does not reach it).
+pub fn central_single<K: CentralKernel>(kernel: &K, ti: usize, tj: usize, rsq: f64, factor: f64, si: &K::Site, sj: &K::Site) -> Single {
+    let p = &kernel.row(ti)[tj];
+    if rsq >= K::cutsq(p, si, sj) {
+        return Single::default();
+    }
+    let (fpair, eng) = K::eval::<true>(p, rsq, factor, si, sj);
+    Single { eng, fpair, extra: [0.0; MAX_SINGLE_EXTRA] }
 }
 
 /// What stability estimates need from SPH styles.

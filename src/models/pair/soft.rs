@@ -133,6 +133,13 @@ impl PairStyle for Soft {
         super::peratom::central_peratom(self, input, out);
         Ok(())
     }
+    fn single_extra(&self) -> Option<usize> {
+        Some(0)
+    }
+    fn single(&self, input: &PairInput, i: usize, j: usize, rsq: f64, _factor_coul: f64, factor_lj: f64) -> Result<super::Single, String> {
+        let t = &input.atoms.typ;
+        Ok(super::central_single(self, t[i], t[j], rsq, factor_lj, &(), &()))
+    }
 
     fn data_coeffs(&self, it: usize) -> Option<String> {
         let c = self.coeff.get(it, it);

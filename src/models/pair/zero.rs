@@ -78,4 +78,11 @@ impl PairStyle for PairZero {
     fn tally_peratom(&mut self, _input: &PairInput, _out: &mut crate::engine::tally::PerAtomTally) -> Result<(), String> {
         Ok(())
     }
+    /// LAMMPS' PairZero::single: no energy, no force.
+    fn single_extra(&self) -> Option<usize> {
+        Some(0)
+    }
+    fn single(&self, _input: &PairInput, _i: usize, _j: usize, _rsq: f64, _factor_coul: f64, _factor_lj: f64) -> Result<super::Single, String> {
+        Ok(super::Single::default())
+    }
 }

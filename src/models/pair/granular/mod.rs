@@ -585,6 +585,25 @@ pub fn granular_contact(m: &GranModel, g: &Contact, wall: bool, history: &mut [f
 /// per-atom state first); None: from the normal model.
 #[inline(always)]
 pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64, fnormal: Option<f64>) -> ContactForce {
+    granular_contact_parts(m, g, wall, history, update, dt, fnormal).0
+}
+
+/// The parts of a contact that LAMMPS' pair granular `single` reports besides its force.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactParts {
+    /// The normal force: the normal model's, damping added, clamped at 0 with limit_damping.
+    pub fntot: f64,
+    pub rinv: f64,
+    /// The tangential force (fs), the rolling "force" (fr) and the twisting torque's magnitude.
+    pub fs: [f64; 3],
+    pub fr: [f64; 3],
+    pub magtortwist: f64,
+}
+
+/// [`granular_contact_with`] with the [`ContactParts`] of the same evaluation (inlined into
+/// the force loops, which drop them).
+#[inline(always)]
+pub fn granular_contact_parts(m: &GranModel, g: &Contact, wall: bool, history: &mut [f64], update: bool, dt: f64, fnormal: Option<f64>) -> (ContactForce, ContactParts) {
     let (radi, radj) = (g.radi, g.radj);
     let meff = g.meff;
     let (radsum, reff) = radsum_reff(radi, radj, wall);
@@ -633,6 +652,7 @@ pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &m
     // tangential force
     let ht = &mut history[m.history_index[TANGENTIAL]..m.history_index[ROLLING]];
     let fs = m.tangential.force(&TangentialIn { nx: &nx, full, vtr: &vtr, fncrit, damp_prefactor, a, update, dt }, ht);
+    let mut parts = ContactParts { fntot, rinv, fs, ..ContactParts::default() };
 
     let f = [fntot * nx[0] + fs[0], fntot * nx[1] + fs[1], fntot * nx[2] + fs[2]];
     // torque direction -(n x F_t), scaled by the lever
@@ -660,6 +680,7 @@ pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &m
             ];
             let h = &mut history[m.history_index[ROLLING]..m.history_index[TWISTING]];
             let fr = rolling.force(&RollingIn { vrl: &vrl, nx: &nx, full, fncrit, update, dt }, h);
+            parts.fr = fr;
             let tr = [reff * (nx[1] * fr[2] - nx[2] * fr[1]), reff * (nx[2] * fr[0] - nx[0] * fr[2]), reff * (nx[0] * fr[1] - nx[1] * fr[0])];
             add_opposite(&mut out, tr, wall);
         }
@@ -668,10 +689,11 @@ pub fn granular_contact_with(m: &GranModel, g: &Contact, wall: bool, history: &m
             let h = &mut history[m.history_index[TWISTING]..m.history_index[HEAT]];
             let tangential_damp = m.tangential.xt() * damp_prefactor;
             let mt = twisting.torque(&TwistingIn { magtwist, fncrit, a, tangential_damp, update, dt }, h);
+            parts.magtortwist = mt;
             add_opposite(&mut out, [mt * nx[0], mt * nx[1], mt * nx[2]], wall);
         }
     }
-    out
+    (out, parts)
 }
 
 /// LAMMPS FixGranularMDR::setup_pre_force's checks: the mdr model is one model for every
@@ -952,6 +974,40 @@ impl PairStyle for Granular {
     }
     fn histories(&mut self) -> Vec<&mut ContactHistory> {
         vec![&mut self.history]
+    }
+    /// fs (3), |fs|, fr (3), |fr|, the twisting torque, x_i - x_j (3): LAMMPS' svector.
+    fn single_extra(&self) -> Option<usize> {
+        Some(12)
+    }
+    /// LAMMPS' PairGranular::single: the contact with its stored history, not advanced (a copy:
+    /// LAMMPS 22 Jul 2025 writes a sliding twisting spring back, dmhs leaves the history as the
+    /// force loop left it); fpair is the normal force (damping included) over r.
+    fn single(&self, input: &PairInput, i: usize, j: usize, rsq: f64, _factor_coul: f64, factor_lj: f64) -> Result<super::Single, String> {
+        let mut out = super::Single::default();
+        if factor_lj == 0.0 {
+            return Ok(out);
+        }
+        if self.mdr.is_some() {
+            return Err("compute pair/local with pair granular's mdr model is not supported (its normal force needs the per-atom state of the step)".into());
+        }
+        let a = input.atoms;
+        let m = self.models.params(a.typ[i], a.typ[j]);
+        let hsize = self.models.history_size();
+        let mut hist = [0.0; MAX_HISTORY];
+        let mut was = false;
+        if let Some((touch, values)) = self.history.entry(i, j) {
+            was = touch;
+            hist[..hsize].copy_from_slice(&values[..hsize]);
+        }
+        if !m.normal.touch(rsq, a.radius[i], a.radius[j], was) {
+            return Ok(out);
+        }
+        let g = super::contact::contact_of(input, i, j, rsq);
+        let (_, p) = granular_contact_parts(m, &g, false, &mut hist[..hsize], false, input.dt, None);
+        out.fpair = p.fntot * p.rinv;
+        let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        out.extra[..12].copy_from_slice(&[p.fs[0], p.fs[1], p.fs[2], len(p.fs), p.fr[0], p.fr[1], p.fr[2], len(p.fr), p.magtortwist, g.del[0], g.del[1], g.del[2]]);
+        Ok(out)
     }
     fn atom_fields(&self) -> &'static [crate::engine::fields::Field] {
         if self.uses_mdr() { &crate::engine::fields::MDR_FIELDS } else { &[] }

@@ -1,0 +1,192 @@
+//! compute pair/local against LAMMPS: the dump local files of the lammps-refs decks
+//! pair_local_chains (lj/cut + soft under hybrid/overlay, special weights, a group),
+//! pair_local_gran (pair granular hertz/material, mindlin, rolling, twisting: p1..p12, `cutoff
+//! radius` and the type cutoff) and pair_local_hertz (gran/hertz/history: p1..p10, every 100
+//! steps), from lammps-refs/refs/NAME/local.* or LAMMPS run now. Each row carries the pair's atom
+//! IDs (compute property/local in the same dump); rows are matched by pair, a row LAMMPS lists
+//! from the other atom turned round (the columns that change sign with the pair negated), and
+//! every column compared relative to its largest value. And the located errors.
+
+use dmhs::deck::{run_file, DeckOptions};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn deck(name: &str) -> PathBuf {
+    root().join("lammps-refs/decks").join(format!("in.{name}"))
+}
+
+/// A dump file of a deck and the value columns (from 1, after index and the two IDs) that
+/// change sign when the pair is turned round: dx dy dz, fx fy fz, the tangential force and
+/// x_i - x_j of pair granular, the tangential force and relative velocities of the classic
+/// styles.
+const FILES: [(&str, &str, &[usize]); 4] = [
+    ("pair_local_chains", "pairs", &[2, 3, 4, 7, 8, 9]),
+    ("pair_local_gran", "pairs", &[2, 3, 4, 5, 6, 7, 14, 15, 16]),
+    ("pair_local_gran", "cut", &[]),
+    ("pair_local_hertz", "pairs", &[2, 3, 4, 6, 7, 8, 10, 11, 12, 13, 14, 15]),
+];
+
+/// Largest column difference relative to the column's largest |value| (the LAMMPS run's
+/// round-off growth over 100-300 steps: at most 3.4e-11 measured).
+const TOLERANCE: f64 = 1e-10;
+
+type Rows = BTreeMap<(i64, i64), Vec<f64>>;
+
+/// The snapshots of a dump local file (`index c_ids[1] c_ids[2] values...`): step -> rows by
+/// pair (lower ID first).
+fn snapshots(text: &str, turned: &[usize]) -> BTreeMap<i64, Rows> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = BTreeMap::new();
+    let mut k = 0;
+    while k < lines.len() {
+        if !lines[k].starts_with("ITEM: TIMESTEP") {
+            k += 1;
+            continue;
+        }
+        let step: i64 = lines[k + 1].trim().parse().unwrap();
+        let n: usize = lines[k + 3].trim().parse().unwrap();
+        let mut rows = Rows::new();
+        for l in &lines[k + 9..k + 9 + n] {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            let (i, j): (i64, i64) = (w[1].parse().unwrap(), w[2].parse().unwrap());
+            let mut v: Vec<f64> = w[3..].iter().map(|x| x.parse().unwrap()).collect();
+            if i > j {
+                for &c in turned {
+                    v[c - 1] = -v[c - 1];
+                }
+            }
+            assert!(rows.insert((i.min(j), i.max(j)), v).is_none(), "pair {i} {j} listed twice");
+        }
+        out.insert(step, rows);
+        k += 9 + n;
+    }
+    out
+}
+
+fn file_vars(name: &str, dir: &Path) -> Vec<(String, Vec<String>)> {
+    FILES.iter().filter(|f| f.0 == name).map(|f| (format!("{}file", f.1), vec![dir.join(format!("local.{}", f.1)).to_string_lossy().into_owned()])).collect()
+}
+
+fn dmhs_run(name: &str, dir: &Path) {
+    let opts = DeckOptions { screen: false, base_dir: Some(deck(name).parent().unwrap().to_path_buf()), vars: file_vars(name, dir), ..Default::default() };
+    run_file(&deck(name), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+}
+
+/// Every file: the same steps, the same pairs, every column within [`TOLERANCE`]; the step-0
+/// snapshots (the same positions in both) equal to the last bit.
+fn check(reference: impl Fn(&str) -> PathBuf) {
+    let mut bad = vec![];
+    for name in ["pair_local_chains", "pair_local_gran", "pair_local_hertz"] {
+        let tmp = tempfile::tempdir().unwrap();
+        dmhs_run(name, tmp.path());
+        for (_, suffix, turned) in FILES.iter().filter(|f| f.0 == name) {
+            let theirs = snapshots(&std::fs::read_to_string(reference(name).join(format!("local.{suffix}"))).unwrap(), turned);
+            let ours = snapshots(&std::fs::read_to_string(tmp.path().join(format!("local.{suffix}"))).unwrap(), turned);
+            assert_eq!(ours.keys().collect::<Vec<_>>(), theirs.keys().collect::<Vec<_>>(), "{name}.{suffix}: steps");
+            for (step, t) in &theirs {
+                let o = &ours[step];
+                assert!(t.len() >= 50, "{name}.{suffix}: too few rows to test anything");
+                if t.keys().ne(o.keys()) {
+                    bad.push(format!("{name}.{suffix} step {step}: {} pairs against LAMMPS' {}", o.len(), t.len()));
+                    continue;
+                }
+                let ncol = t.values().next().unwrap().len();
+                let worst: Vec<f64> = (0..ncol)
+                    .map(|c| {
+                        let scale = t.values().map(|v| v[c].abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+                        t.iter().map(|(k, v)| (v[c] - o[k][c]).abs()).fold(0.0, f64::max) / scale
+                    })
+                    .collect();
+                println!("{name}.{suffix} step {step}: {} pairs, largest difference per column {}", t.len(), worst.iter().map(|w| format!("{w:.1e}")).collect::<Vec<_>>().join(" "));
+                let limit = if *step == 0 { 0.0 } else { TOLERANCE };
+                if let Some(c) = worst.iter().position(|&w| w > limit) {
+                    bad.push(format!("{name}.{suffix} step {step}: column {} differs by {:.1e} of its largest value", c + 1, worst[c]));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+#[test]
+fn stored_pair_rows() {
+    check(|name| root().join("lammps-refs/refs").join(name));
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn live_pair_rows() {
+    if dmhs::tools::lammps::python_for_live_test().is_none() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    for name in ["pair_local_chains", "pair_local_gran", "pair_local_hertz"] {
+        let out = tmp.path().join(name);
+        std::fs::create_dir_all(&out).unwrap();
+        dmhs::tools::lammps::run_driver(&deck(name), &file_vars(name, &out), &out).unwrap();
+    }
+    check(|name| tmp.path().join(name));
+}
+
+/// `deck` with `line` replaced by `to`, in a scratch folder beside the data file it reads.
+fn edited(name: &str, edits: &[(&str, &str)]) -> (tempfile::TempDir, PathBuf) {
+    let mut text = std::fs::read_to_string(deck(name)).unwrap();
+    for (line, to) in edits {
+        let was = text.clone();
+        text = text.replacen(line, to, 1);
+        assert_ne!(text, was, "{line}");
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("in.pl");
+    std::fs::write(&path, &text).unwrap();
+    std::fs::copy(root().join("lammps-refs/decks/chains_periodic_full.data"), tmp.path().join("chains_periodic_full.data")).unwrap();
+    (tmp, path)
+}
+
+/// Bad compute pair/local commands are located errors (`dmhs check`).
+#[test]
+fn pair_local_errors_are_located() {
+    let line = "compute      pl rest pair/local dist dx dy dz eng force fx fy fz";
+    for (to, want) in [
+        ("compute pl rest pair/local", "a value"),
+        ("compute pl rest pair/local energy", "Invalid keyword `energy`"),
+        ("compute pl rest pair/local p0", "pN needs N >= 1"),
+        ("compute pl rest pair/local dist sphere", "sphere"),
+        ("compute pl rest pair/local dist cutoff sphere", "cutoff"),
+        ("compute pl rest pair/local dist cutoff radius", "requires atom attribute radius"),
+    ] {
+        let (tmp, path) = edited("pair_local_chains", &[(line, to)]);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_dmhs")).arg("check").arg(&path).current_dir(tmp.path()).output().unwrap();
+        let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert_eq!(o.status.code(), Some(2), "{to}: {out}");
+        assert!(out.contains(want) && out.contains("in.pl:"), "{to}: expected `{want}`:\n{out}");
+    }
+}
+
+/// What the pair style cannot give stops the run with LAMMPS' reason: an extra value it does not
+/// have, a style without single.
+#[test]
+fn pair_local_refusals_at_run_time() {
+    let hertz = "pair_style   gran/hertz/history 2e4 NULL 50.0 NULL 0.4 1";
+    for (name, edits, want) in [
+        ("pair_local_hertz", vec![("p9 p10 cutoff radius", "p9 p10 p11 cutoff radius")], "does not have extra field requested by compute pair/local (p11; pair style gran/hertz/history has 10)"),
+        (
+            "pair_local_chains",
+            vec![("compute      pl rest pair/local dist dx dy dz eng force fx fy fz", "compute pl rest pair/local dist p1"), ("c_pl[5]", "c_pl[2]")],
+            "(p1; pair style hybrid/overlay has 0)",
+        ),
+        ("pair_local_hertz", vec![(hertz, "pair_style gran/hooke 2e4 NULL 50.0 NULL 0.4 1")], "Pair style gran/hooke does not support compute pair/local"),
+    ] {
+        let (tmp, path) = edited(name, &edits);
+        let opts = DeckOptions { screen: false, base_dir: Some(tmp.path().to_path_buf()), ..Default::default() };
+        let err = match run_file(&path, &opts) {
+            Ok(_) => panic!("{name}: {edits:?} ran"),
+            Err(f) => f.rendered,
+        };
+        assert!(err.contains(want), "{name}: expected `{want}`:\n{err}");
+    }
+}

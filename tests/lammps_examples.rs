@@ -1,6 +1,6 @@
 //! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
 //! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
-//! aveforce (aveforce_flow), fix adapt (adapt_soft, adapt_lj), fix deform (deform_erate_volume,
+//! aveforce (aveforce_flow), fix adapt (adapt_soft, adapt_lj, adapt_diameter), fix deform (deform_erate_volume,
 //! deform_wiggle_2d) and compute msd/chunk (msd_chunk_chains; the thermo table at every printed step against
 //! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
 //! Volume column when the box can change, region IDs with '-'; and the located errors.
@@ -10,7 +10,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::{root, table};
 
-const DECKS: [&str; 7] = ["aveforce_flow", "adapt_soft", "adapt_lj", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
+const DECKS: [&str; 8] = ["aveforce_flow", "adapt_soft", "adapt_lj", "adapt_diameter", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -204,6 +204,33 @@ fn adapt_resets_only_with_reset_yes() {
     assert!((pe - 0.340219080803117).abs() < 1e-12, "{pe}");
 }
 
+/// After adapt_diameter, `reset yes` gives the small spheres back the radii and charges they had
+/// when the fix was defined, and their masses LAMMPS' restore factor (under `scale yes` the last
+/// scale itself, so the masses grow again rather than return): the sums of a `run 0` after the
+/// deck are LAMMPS 22 Jul 2025's on the same deck and lines (normalized by the atom count, lj;
+/// the mass sum to its last printed digit, the atoms summed in another order).
+#[test]
+fn adapt_atom_reset_restores_as_lammps() {
+    let deck = std::fs::read_to_string(root().join("lammps-refs/decks/in.adapt_diameter")).unwrap();
+    let text = format!("{deck}unfix swell\nunfix lean\nthermo_style custom step c_sums[1] c_sums[2] c_sums[3]\nthermo_modify format float %.15g\nrun 0\n");
+    let r = run_text("adapt.deck", &text, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let (_, rows) = table(r.sim.out.captured.as_deref().unwrap());
+    let lammps = [0.432244897959188, 0.823058983356695, 0.199443413729128];
+    for (ours, theirs) in rows[0][1..].iter().zip(lammps) {
+        assert!((ours - theirs).abs() <= 2e-15 * theirs, "{:?} against LAMMPS' {lammps:?}", &rows[0][1..]);
+    }
+}
+
+/// LAMMPS adapts diameters only of a dynamic sphere style (`atom_style sphere 1`).
+#[test]
+fn adapt_diameter_needs_dynamic_radii() {
+    let deck = std::fs::read_to_string(root().join("lammps-refs/decks/in.adapt_diameter")).unwrap();
+    let text = deck.replacen("atom_style   hybrid sphere 1 charge", "atom_style   hybrid sphere charge", 1);
+    assert_ne!(text, deck);
+    let f = run_text("adapt.deck", &text, &opts()).err().expect("a static sphere style is refused");
+    assert!(f.rendered.contains("atom_style sphere is not dynamic"), "{}", f.rendered);
+}
+
 #[test]
 fn bad_adapt_is_a_located_error() {
     let base = "pair_style soft 1.0\npair_coeff * * 1.0\nvariable p equal 2.0\n";
@@ -214,8 +241,17 @@ fn bad_adapt_is_a_located_error() {
         ("fix 3 all adapt 1 pair soft a * * v_p every 2\n", "unknown keyword `every`"),
         ("fix 3 all adapt 1\n", "missing"),
     ]);
-    // what only a run can check: the pair style and its parameter
-    for (line, want) in [("fix 3 all adapt 1 pair lj/cut epsilon * * v_p\nrun 0\n", "lj/cut does not exist"), ("fix 3 all adapt 1 pair soft d * * v_p\nrun 0\n", "no parameter `d`")] {
+    assert_located_at_last_line(base, &[("fix 3 all adapt 1 atom radius v_p\n", "diameter"), ("fix 3 all adapt 1 atom charge 0.5\n", "v_name")]);
+    // what only a run can check: the pair style and its parameter, the atom attributes, the
+    // variable's style
+    for (line, want) in [
+        ("fix 3 all adapt 1 pair lj/cut epsilon * * v_p\nrun 0\n", "lj/cut does not exist"),
+        ("fix 3 all adapt 1 pair soft d * * v_p\nrun 0\n", "no parameter `d`"),
+        ("fix 3 all adapt 1 atom diameter v_p\nrun 0\n", "requires atom attribute diameter"),
+        ("fix 3 all adapt 1 atom charge v_p\nrun 0\n", "requires atom attribute charge"),
+        ("variable a atom 2.0*x\nfix 3 all adapt 1 pair soft a * * v_a\nrun 0\n", "Variable a for fix adapt is invalid style"),
+        ("fix 3 all adapt 1 pair soft a * * v_nothing\nrun 0\n", "Variable name nothing for fix adapt does not exist"),
+    ] {
         let f = run_text("bad.deck", &deck("p p p", &format!("{base}{line}")), &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
         assert!(f.rendered.contains(want), "{line}: {}", f.rendered);
     }

@@ -188,6 +188,11 @@ impl Default for State {
 }
 
 impl State {
+    /// `atom_style sphere 1` (or bpm/sphere 1): radii may change during a run (LAMMPS'
+    /// radvary, which fix adapt's atom diameter requires).
+    pub fn radius_dynamic(&self) -> bool {
+        self.atom_style.windows(2).any(|w| matches!(w[0].as_str(), "sphere" | "bpm/sphere") && w[1] == "1")
+    }
     pub fn new() -> State {
         let units = Units::new(UnitStyle::Lj);
         State {

@@ -38,7 +38,7 @@ fn bad_elements_are_errors() {
             ("variable a equal C_no[1]\nthermo_style custom step v_a\n", "Invalid compute ID 'no' in variable formula"),
             ("variable a equal F_no[1]\nthermo_style custom step v_a\n", "Invalid fix ID 'no' in variable formula"),
             ("variable a equal C_ke\nthermo_style custom step v_a\n", "upper-case C_/F_"),
-            ("variable v vector 1\nvariable a equal v_v[1]\nthermo_style custom step v_a\n", "vector-style variable"),
+            ("variable v vector 1\nvariable a equal v_v[2]\nthermo_style custom step v_a\n", "vector-style variable v is accessed out-of-range"),
         ],
     );
 }

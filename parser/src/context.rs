@@ -53,6 +53,10 @@ pub trait EvalContext {
     fn atom_variable_element(&mut self, name: &str, _atom: i64) -> Result<f64, String> {
         Err(format!("Variable {name}: per-atom values are not available here"))
     }
+    /// The values of vector-style variable `name` (LAMMPS' Variable::compute_vector).
+    fn vector_variable(&mut self, name: &str) -> Result<Vec<f64>, String> {
+        Err(format!("Variable {name}: vector-style variables are not available here"))
+    }
     /// Group and region functions: `count(group)`, `mass(group)`, `xcm(group,x)`, `bound(group,xmin)`, ...
     /// `None`: not a group function.
     fn group_function(&mut self, _name: &str, _args: &[String]) -> Option<Result<f64, String>> {

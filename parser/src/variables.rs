@@ -524,7 +524,12 @@ pub fn retrieve(ctx: &mut dyn EvalContext, name: &str) -> Result<Option<String>,
         Style::Str(s) => Some(s),
         Style::Getenv(v) => Some(std::env::var(&v).unwrap_or_default()),
         Style::Internal(v) => Some(numfmt::format_g(v, 15)),
-        Style::Atom(_) | Style::Vector(_) => None,
+        Style::Atom(_) => None,
+        // LAMMPS: "[v1,v2,...]", each value in fmt's shortest form
+        Style::Vector(_) => {
+            let v = ctx.vector_variable(name)?;
+            Some(format!("[{}]", v.iter().map(|&x| numfmt::shortest(x)).collect::<Vec<_>>().join(",")))
+        }
         Style::Equal(text) => Some(numfmt::format_g(eval_formula(ctx, name, &text)?, 15)),
         Style::Format { var, fmt } => {
             match ctx.variables().style(&var) {

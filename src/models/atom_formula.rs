@@ -11,16 +11,18 @@ use crate::models::world::World;
 use dmhs_parser::expr::{self, Expr, Index, MathFn, Node};
 use dmhs_parser::EvalContext;
 
-enum V {
+/// A formula node's value: one number for every element, or one per element (per atom here,
+/// per vector element in [`super::vector_formula`]).
+pub(crate) enum V {
     Scalar(f64),
-    Atoms(Vec<f64>),
+    Many(Vec<f64>),
 }
 
 impl V {
-    fn at(&self, i: usize) -> f64 {
+    pub(crate) fn at(&self, i: usize) -> f64 {
         match self {
             V::Scalar(x) => *x,
-            V::Atoms(v) => v[i],
+            V::Many(v) => v[i],
         }
     }
 }
@@ -41,7 +43,7 @@ pub fn atom_variable_drawing(name: &str, w: &World, ctx: &mut dyn EvalContext, r
     let n = w.state.atoms.nlocal;
     match eval_variable(name, w, ctx, 0, rng)? {
         V::Scalar(x) => Ok(vec![x; n]),
-        V::Atoms(v) => Ok(v),
+        V::Many(v) => Ok(v),
     }
 }
 
@@ -77,16 +79,17 @@ fn number(x: f64) -> Expr {
     Expr { node: Node::Number(x), offset: 0, len: 0 }
 }
 
-/// `op` of the children's values, atom by atom where any of them is per-atom.
-fn per_atom(e: &Expr, kids: Vec<V>, n: usize, ctx: &mut dyn EvalContext, rebuild: impl Fn(Vec<Expr>) -> Node) -> Result<V, String> {
-    let any = kids.iter().any(|k| matches!(k, V::Atoms(_)));
+/// `op` of the children's values, element by element (`n` of them) where any of them has one
+/// value per element: each element gets the scalar evaluator's operations on its numbers.
+pub(crate) fn per_atom(e: &Expr, kids: Vec<V>, n: usize, ctx: &mut dyn EvalContext, rebuild: impl Fn(Vec<Expr>) -> Node) -> Result<V, String> {
+    let any = kids.iter().any(|k| matches!(k, V::Many(_)));
     let count = if any { n } else { 1 };
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
         let node = rebuild(kids.iter().map(|k| number(k.at(i))).collect());
         out.push(expr::eval(&Expr { node, offset: e.offset, len: e.len }, ctx).map_err(|e| e.message)?);
     }
-    Ok(if any { V::Atoms(out) } else { V::Scalar(out[0]) })
+    Ok(if any { V::Many(out) } else { V::Scalar(out[0]) })
 }
 
 fn peratom_ref(prefix: &str, id: &str, indices: &[Index], w: &World) -> Option<Result<V, String>> {
@@ -100,7 +103,7 @@ fn peratom_ref(prefix: &str, id: &str, indices: &[Index], w: &World) -> Option<R
     Some((|| {
         let r = PerAtomRef::parse(&name, w).expect("c_ or f_")?;
         let p = r.values(w)?;
-        Ok(V::Atoms((0..w.state.atoms.nlocal).map(|i| r.get(&p, i)).collect()))
+        Ok(V::Many((0..w.state.atoms.nlocal).map(|i| r.get(&p, i)).collect()))
     })())
 }
 
@@ -128,7 +131,7 @@ fn draw(f: MathFn, args: &[Expr], w: &World, ctx: &mut dyn EvalContext, depth: u
         // the seed is read once, when the generator is made
         let seed = match eval_tree(&args[2], w, ctx, depth, Some(&mut *rng))? {
             V::Scalar(s) => s as i32,
-            V::Atoms(_) => 0,
+            V::Many(_) => 0,
         };
         if seed <= 0 {
             return Err("Invalid math function in variable formula".into());
@@ -154,7 +157,7 @@ fn draw(f: MathFn, args: &[Expr], w: &World, ctx: &mut dyn EvalContext, depth: u
             r.uniform() * (y - x) + x
         };
     }
-    Ok(V::Atoms(out))
+    Ok(V::Many(out))
 }
 
 fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut rng: Option<&mut AtomRandom>) -> Result<V, String> {
@@ -178,7 +181,7 @@ fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut r
                 let (t, f) = (eval_tree(&args[1], w, ctx, depth, rng.as_deref_mut())?, eval_tree(&args[2], w, ctx, depth, rng)?);
                 return Ok(match c {
                     V::Scalar(c) => if c != 0.0 { t } else { f },
-                    V::Atoms(c) => V::Atoms((0..n).map(|i| if c[i] != 0.0 { t.at(i) } else { f.at(i) }).collect()),
+                    V::Many(c) => V::Many((0..n).map(|i| if c[i] != 0.0 { t.at(i) } else { f.at(i) }).collect()),
                 });
             }
             let mut k = Vec::with_capacity(args.len());
@@ -193,7 +196,7 @@ fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut r
         Node::AtomVector(name) => {
             let f = Field::parse(name).ok_or_else(|| format!("`{name}` is not a per-atom value dmhs knows"))?;
             f.check(w.state)?;
-            Ok(V::Atoms((0..n).map(|i| f.value(w.state, i)).collect()))
+            Ok(V::Many((0..n).map(|i| f.value(w.state, i)).collect()))
         }
         _ => scalar(e, ctx),
     }

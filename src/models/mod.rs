@@ -7,6 +7,7 @@ pub mod compute;
 pub mod fix;
 pub mod pair;
 pub mod styles;
+pub mod vector_formula;
 pub mod world;
 
 /// One time-step limit of a model (shown by `dmhs check` and warned about at the start of a run).

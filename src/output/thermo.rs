@@ -16,6 +16,8 @@ pub enum Field {
     ComputeArray(String, usize, usize),
     FixArray(String, usize, usize),
     Variable(String),
+    /// `v_name[i]`: element i (1-based) of a vector-style variable.
+    VariableElement(String, usize),
 }
 
 #[derive(Clone, Debug)]
@@ -178,7 +180,11 @@ pub fn parse_column(word: &str) -> Result<Column, String> {
             (id, i) => Field::Fix(id, i.first().copied()),
         }
     } else if let Some(r) = word.strip_prefix("v_") {
-        Field::Variable(r.to_string())
+        match indexed(r)? {
+            (name, i) if i.is_empty() => Field::Variable(name),
+            (name, i) if i.len() == 1 => Field::VariableElement(name, i[0]),
+            _ => return Err(format!("bad index in `{word}`: a variable takes one index, v_name[i]")),
+        }
     } else if let Some((_, label)) = KEYWORDS.iter().find(|(k, _)| *k == word) {
         return Ok(Column { field: Field::Keyword(word.to_string()), label: label.to_string(), int: INT_KEYWORDS.contains(&word), word: word.to_string() });
     } else {
@@ -407,6 +413,13 @@ pub fn values(thermo: &Thermo, w: &World, ev: &mut dyn EvalContext) -> Result<Ve
             Field::ComputeArray(id, i, j) => ev.compute_array_value(id, *i, *j)?,
             Field::FixArray(id, i, j) => per_atom(ev.fix_array_value(id, *i, *j)?, w.fix(id).is_some_and(|f| f.array_extensive())),
             Field::Variable(name) => dmhs_parser::variables::compute_equal(ev, name)?,
+            Field::VariableElement(name, i) => {
+                if ev.variables().style(name) != Some("vector") {
+                    return Err(format!("Thermo custom variable {name} is not vector-style (v_{name}[{i}])"));
+                }
+                let v = ev.vector_variable(name)?;
+                *v.get(i - 1).ok_or_else(|| format!("Thermo custom variable v_{name}[{i}]: the vector has {} values", v.len()))?
+            }
         };
         out.push(v);
     }

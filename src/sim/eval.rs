@@ -124,6 +124,10 @@ impl EvalContext for Eval<'_> {
         let values = crate::models::atom_formula::atom_variable(name, &w, self)?;
         crate::models::compute::by_atom_id(w.state, atom, |i| values[i])
     }
+    fn vector_variable(&mut self, name: &str) -> Result<Vec<f64>, String> {
+        let w = self.world;
+        crate::models::vector_formula::vector_variable(name, &w, self)
+    }
     fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
         crate::models::compute::group_function(self.world.state, name, args)
     }

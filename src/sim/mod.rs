@@ -247,6 +247,9 @@ impl EvalContext for Simulation {
     fn atom_variable_element(&mut self, name: &str, atom: i64) -> Result<f64, String> {
         self.eval().atom_variable_element(name, atom)
     }
+    fn vector_variable(&mut self, name: &str) -> Result<Vec<f64>, String> {
+        self.eval().vector_variable(name)
+    }
     fn group_function(&mut self, name: &str, args: &[String]) -> Option<Result<f64, String>> {
         self.eval().group_function(name, args)
     }

@@ -73,10 +73,15 @@ pub fn eval(e: &Expr, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
                         let atom = index_value(e, index, ctx)?;
                         ctx.atom_variable_element(name, atom).map_err(|m| e.err(m))
                     }
-                    Some("vector") => Err(e.err(format!(
-                        "Variable {name}: an element of a vector-style variable (v_{name}[i]) is not supported by dmhs"
-                    ))
-                    .bare()),
+                    Some("vector") => {
+                        // LAMMPS: an index out of range is an error, the index an integer >= 1
+                        let i = index_value(e, index, ctx)?;
+                        let v = ctx.vector_variable(name).map_err(|m| e.err(m).bare())?;
+                        if i < 1 || i as usize > v.len() {
+                            return Err(e.err(format!("Variable formula vector-style variable {name} is accessed out-of-range (index {i} of {})", v.len())).bare());
+                        }
+                        Ok(v[i as usize - 1])
+                    }
                     Some(_) => Err(e.err(format!("Variable {name}: Mismatched variable in variable formula"))
                         .bare()
                         .with_help(format!("v_{name} is a single value; remove the brackets"))),
@@ -591,7 +596,7 @@ fn special_function(name: &str, args: &[String], ctx: &mut dyn EvalContext) -> O
             if variables::style_of(ctx, v) != Some("vector") {
                 return Err("Mis-matched special function variable in variable formula".into());
             }
-            return Err(format!("{name}(v_{v}): vector-style variables are not evaluated by dmhs"));
+            ctx.vector_variable(v)?
         } else {
             return Err("Invalid special function in variable formula".into());
         };

@@ -7,9 +7,10 @@
 //! granular styles' tangential force and relative velocities).
 //!
 //! The pairs are compute property/local's (each once, special pairs of weight 0 left out), in
-//! dmhs' list order and orientation: LAMMPS' rows come from a list of its own binning, so the
-//! same set of pairs in another order, and a pair may be listed from its other atom (dx, fx,
-//! the tangential parts change sign with it).
+//! dmhs' list order: LAMMPS' rows come from a list of its own binning, so the same set of pairs
+//! in another order, and a pair of owned atoms may be listed from its other atom (dx, fx, the
+//! tangential parts change sign with it); a pair with a periodic image comes from the atom
+//! LAMMPS lists it from, whose partner is a ghost with the ghost's velocity.
 
 use super::Compute;
 use crate::models::pair::PairInput;
@@ -119,7 +120,7 @@ impl Compute for ComputePairLocal {
             _ => return Err(format!("compute pair/local {}: No pair style is defined for compute pair/local", self.id)),
         };
         if self.single {
-            let Some(extra) = pair.single_extra() else {
+            let Some(extra) = pair.single_extra().map(|n| n.min(crate::models::pair::MAX_SINGLE_EXTRA)) else {
                 return Err(format!("compute pair/local {}: Pair style {} does not support compute pair/local", self.id, pair.style()));
             };
             if let Some(n) = self.values.iter().find_map(|v| match v {

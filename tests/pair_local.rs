@@ -190,3 +190,36 @@ fn pair_local_refusals_at_run_time() {
         assert!(err.contains(want), "{name}: expected `{want}`:\n{err}");
     }
 }
+
+/// compute pair/local read inside a fix's hook (fix ave/histo `kind local`, every 10 steps) and
+/// by compute reduce in thermo: LAMMPS 22 Jul 2025's numbers on the same deck (the smallest pair
+/// distance and the histogram's counts and extremes, `thermo_modify format float %.15g`).
+#[test]
+fn pair_local_in_fix_hooks_and_reduce() {
+    let deck = "units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 box\n\
+        mass 1 1.0\nvelocity all create 1.5 87287 loop geom\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n\
+        compute dist all pair/local dist eng\ncompute mind all reduce min c_dist[1] inputs local\n\
+        fix h all ave/histo 10 1 10 0.8 2.5 4 c_dist[1] mode vector kind local\n\
+        thermo_style custom step c_mind f_h[1] f_h[2] f_h[3] f_h[4]\nthermo 50\nthermo_modify format float %.15g\nrun 100\n";
+    let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let run = dmhs::deck::run_text("histo.deck", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let text = run.sim.out.captured.clone().unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("Step"))
+        .skip(1)
+        .take_while(|l| !l.starts_with("Loop"))
+        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+        .collect();
+    let lammps = [
+        [0.0, 1.18765385658167, 6912.0, 0.0, 1.18765385658167, 2.37530771316334],
+        [50.0, 0.904086757727591, 7025.0, 0.0, 0.904086757727591, 2.49999018306676],
+        [100.0, 0.932292441058103, 7040.0, 0.0, 0.932292441058103, 2.49997093545024],
+    ];
+    assert_eq!(rows.len(), 3, "{text}");
+    for (ours, theirs) in rows.iter().zip(lammps) {
+        for (a, b) in ours.iter().zip(theirs) {
+            assert!((a - b).abs() <= 2e-15 * b.abs(), "{ours:?} against LAMMPS' {theirs:?}");
+        }
+    }
+}

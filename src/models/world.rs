@@ -36,10 +36,10 @@ pub struct World<'a> {
     pub computes: &'a [Box<dyn Compute>],
     pub fixes: FixesView<'a>,
     /// The bond style (compute bond/local's energies and forces); None where a view is made
-    /// without the force field (inside a fix's hook, while a fix is built).
+    /// without the force field (while a fix is built, inside the expressions of a run's setup).
     pub bond: Option<&'a dyn BondStyle>,
     /// The pair style (compute pair/local's single); None where the view is made without the
-    /// force field, or while the pair style is computing.
+    /// force field, as for `bond`.
     pub pair: Option<&'a dyn crate::models::pair::PairStyle>,
 }
 

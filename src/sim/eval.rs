@@ -148,17 +148,20 @@ pub struct HookExpressions<'a> {
     pub thermo: &'a Thermo,
     pub variables: &'a mut Variables,
     pub cpu: f64,
+    /// The force field, for the computes that read it (bond/local, pair/local).
+    pub bond: Option<&'a dyn crate::models::bonded::BondStyle>,
+    pub pair: Option<&'a dyn crate::models::pair::PairStyle>,
 }
 
 impl Expressions for HookExpressions<'_> {
     fn equal(&mut self, state: &State, running: &dyn Fix, name: &str) -> Result<f64, String> {
         let fixes = FixesView { before: self.before, running: Some(running), after: self.after };
-        let mut ev = Eval { world: World { state, computes: self.computes, fixes, bond: None, pair: None }, thermo: self.thermo, variables: self.variables, cpu: self.cpu };
+        let mut ev = Eval { world: World { state, computes: self.computes, fixes, bond: self.bond, pair: self.pair }, thermo: self.thermo, variables: self.variables, cpu: self.cpu };
         dmhs_parser::variables::compute_equal(&mut ev, name)
     }
     fn with_eval(&mut self, state: &State, running: &dyn Fix, work: &mut dyn FnMut(&World, &mut dyn EvalContext) -> Result<(), String>) -> Result<(), String> {
         let fixes = FixesView { before: self.before, running: Some(running), after: self.after };
-        let world = World { state, computes: self.computes, fixes, bond: None, pair: None };
+        let world = World { state, computes: self.computes, fixes, bond: self.bond, pair: self.pair };
         let mut ev = Eval { world, thermo: self.thermo, variables: self.variables, cpu: self.cpu };
         work(&world, &mut ev)
     }

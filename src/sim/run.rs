@@ -70,7 +70,8 @@ impl Simulation {
         let (before, rest) = self.fixes.split_at_mut(k);
         let (fix, after) = rest.split_first_mut().expect("fix index in range");
         let (before, after): (&[Box<dyn Fix>], &[Box<dyn Fix>]) = (before, after);
-        let mut expressions = HookExpressions { computes: &self.computes, before, after, thermo: &self.thermo, variables: &mut self.variables, cpu };
+        let (pair, bond) = (self.pair.as_deref(), self.bond_style.as_deref());
+        let mut expressions = HookExpressions { computes: &self.computes, before, after, thermo: &self.thermo, variables: &mut self.variables, cpu, bond, pair };
         let mut ctx = FixCtx { others: [before, after], pair: self.pair.as_deref(), bond_style: self.bond_style.as_deref(), angle_style: self.angle_style.as_deref(), expressions: &mut expressions };
         work(fix.as_mut(), &mut self.state, &mut ctx)
     }

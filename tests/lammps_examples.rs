@@ -231,6 +231,26 @@ fn adapt_diameter_needs_dynamic_radii() {
     assert!(f.rendered.contains("atom_style sphere is not dynamic"), "{}", f.rendered);
 }
 
+/// write_restart and read_restart keep `atom_style sphere 1` (the flag was taken for a style
+/// name: "settings.atom_style `sphere 1` is not an atom style") and the adapted radii.
+#[test]
+fn restart_keeps_a_dynamic_sphere_style() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("r.restart");
+    let write = format!(
+        "units lj\natom_style sphere 1\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nlattice sc 0.5\ncreate_atoms 1 box\n\
+         set type 1 diameter 0.8 density 1.0\npair_style zero 1.0\npair_coeff * *\nvariable d equal 0.9\nfix 1 all nve/sphere\n\
+         fix g all adapt 1 atom diameter v_d\nrun 0\nwrite_restart {}\n",
+        file.display()
+    );
+    run_text("w.deck", &write, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let read = format!("read_restart {}\nfix g all adapt 1 atom diameter v_d\nvariable d equal 1.0\nrun 0\n", file.display());
+    let r = run_text("r.deck", &read, &opts()).unwrap_or_else(|f| panic!("{}", f.rendered));
+    assert_eq!(r.sim.state.atom_style, ["sphere", "1"]);
+    let a = &r.sim.state.atoms;
+    assert!(a.nlocal > 0 && a.radius[..a.nlocal].iter().all(|&x| x == 0.5), "{:?}", &a.radius[..3]);
+}
+
 #[test]
 fn bad_adapt_is_a_located_error() {
     let base = "pair_style soft 1.0\npair_coeff * * 1.0\nvariable p equal 2.0\n";

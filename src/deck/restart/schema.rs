@@ -538,7 +538,9 @@ fn check_bounds(name: &str, b: &Bounds, dimension: u32) -> Result<(), String> {
 
 /// The features of an atom style given as the words of the command.
 fn atom_style_features(words: &[String]) -> Result<AtomFeatures, String> {
-    let styles: Vec<&str> = match words {
+    // `sphere 1` / `bpm/sphere 1`: the dynamic-radius flag is not a style
+    let words: Vec<String> = words.iter().enumerate().filter(|(k, w)| !(*w == "1" && *k > 0 && matches!(words[k - 1].as_str(), "sphere" | "bpm/sphere"))).map(|(_, w)| w.clone()).collect();
+    let styles: Vec<&str> = match &words[..] {
         [h, subs @ ..] if h == "hybrid" && !subs.is_empty() => subs.iter().map(String::as_str).collect(),
         [s] if s != "hybrid" => vec![s.as_str()],
         _ => return Err(format!("settings.atom_style `{}` is not an atom style", words.join(" "))),

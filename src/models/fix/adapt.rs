@@ -54,10 +54,10 @@ pub struct FixAdapt {
     scale: bool,
     mass: bool,
     /// The value of the last diameter and charge change under `scale yes` (LAMMPS'
-    /// previous_diam_scale, previous_chg_scale; 1 at each run's init unless just restarted).
+    /// previous_diam_scale, previous_chg_scale; 1 at each run's init: LAMMPS 22 Jul 2025 writes
+    /// them to restart files, yet a run after read_restart starts again from 1, measured).
     previous_diam: f64,
     previous_chg: f64,
-    restarted: bool,
     /// With `reset yes`: each atom's radius and charge when the fix was defined (0 outside the
     /// group, as LAMMPS' store fix), by atom ID.
     stored_radius: HashMap<i64, f64>,
@@ -108,7 +108,7 @@ impl FixAdapt {
         if items.is_empty() {
             return Err(a.missing("an attribute (pair pstyle pparam I J v_name, or atom diameter|charge v_name)"));
         }
-        let mut fix = FixAdapt { id, groupbit, nevery, items, reset, scale, mass, previous_diam: 1.0, previous_chg: 1.0, restarted: false, stored_radius: HashMap::new(), stored_q: HashMap::new() };
+        let mut fix = FixAdapt { id, groupbit, nevery, items, reset, scale, mass, previous_diam: 1.0, previous_chg: 1.0, stored_radius: HashMap::new(), stored_q: HashMap::new() };
         // LAMMPS' post_constructor: the values reset yes restores, stored when the fix is made
         if reset {
             let at = &state.atoms;
@@ -268,11 +268,8 @@ impl Fix for FixAdapt {
                 }
             }
         }
-        if !self.restarted {
-            self.previous_diam = 1.0;
-            self.previous_chg = 1.0;
-        }
-        self.restarted = false;
+        self.previous_diam = 1.0;
+        self.previous_chg = 1.0;
         Ok(())
     }
     fn setup_pre_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -300,15 +297,6 @@ impl Fix for FixAdapt {
                 // restores twice)
                 Target::Diameter { .. } | Target::Charge => self.restore_atoms(state),
             }
-        }
-    }
-    /// `scale yes` with atom items: the last scales (LAMMPS' write_restart of the fix).
-    fn write_restart(&self) -> Option<Vec<f64>> {
-        (self.scale && (self.diameter().is_some() || self.charges())).then(|| vec![self.previous_diam, self.previous_chg])
-    }
-    fn restart(&mut self, values: &[f64]) {
-        if let [d, c] = values {
-            (self.previous_diam, self.previous_chg, self.restarted) = (*d, *c, true);
         }
     }
 }

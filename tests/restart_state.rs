@@ -116,3 +116,28 @@ fn rescale_energy_continues() {
 fn barostat_continues_bit_for_bit() {
     check("in.nph_deviatoric", None, 150, 150, FIXES, drop_fixes);
 }
+
+/// `pair_style granular` named again after read_restart keeps the style's contact histories
+/// (LAMMPS keeps the style when the same one is named, changing only its settings): a settling
+/// bed with mindlin, rolling and twisting springs continues bit for bit; without the histories
+/// in the file it does not. (Before, the new style started without contacts.)
+#[test]
+fn granular_contacts_survive_a_repeated_pair_style() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = setup_part("in.pair_local_gran");
+    let a = dir.path().join("in.a");
+    std::fs::write(&a, format!("{setup}run 60\nwrite_restart state.restart\nrun 60\n")).unwrap();
+    let whole = run(&a);
+    let again: Vec<&str> = setup.lines().filter(|l| ["variable", "fix", "comm_modify", "pair_style", "pair_coeff", "timestep", "thermo"].iter().any(|k| l.starts_with(k))).collect();
+    let c = dir.path().join("in.c");
+    std::fs::write(&c, format!("read_restart state.restart\n{}\nrun 60\n", again.join("\n"))).unwrap();
+    assert!(again.iter().any(|l| l.starts_with("pair_style")));
+    assert_eq!(run(&c), whole, "the restarted run differs from the uninterrupted one");
+    let path = dir.path().join("state.restart");
+    let mut file: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    for h in file["contact_histories"].as_array_mut().unwrap() {
+        h["contacts"] = Value::Array(vec![]);
+    }
+    std::fs::write(&path, serde_json::to_string(&file).unwrap()).unwrap();
+    assert!(run(&c) != whole, "without the contacts the continuation should differ");
+}

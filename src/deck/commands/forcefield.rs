@@ -14,7 +14,15 @@ pub fn pair_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         sim.pair_span = None;
         return Ok(());
     }
-    sim.pair = Some(new_pair_style(name, &cmd.args[1..], cmd)?);
+    let mut pair = new_pair_style(name, &cmd.args[1..], cmd)?;
+    // LAMMPS keeps the style when the same one is named again (only its settings change): its
+    // contact histories, restored by read_restart or built by a run, carry on
+    if let Some(old) = sim.pair.as_mut().filter(|old| old.style() == pair.style() && old.sub_styles() == pair.sub_styles()) {
+        for (from, to) in old.histories().into_iter().zip(pair.histories()) {
+            to.restore(from.records());
+        }
+    }
+    sim.pair = Some(pair);
     sim.pair_span = Some(cmd.span);
     sim.state.lists_valid = false;
     Ok(())

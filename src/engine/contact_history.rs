@@ -66,6 +66,8 @@ pub struct ContactHistory {
     list: Vec<ChunkList>,
     /// Contacts from a restart file, applied at the next rebuild.
     pending: Option<Vec<ContactRecord>>,
+    /// `pending` came from the same style named again, not from a restart file.
+    carried: bool,
 }
 
 impl ContactHistory {
@@ -78,7 +80,11 @@ impl ContactHistory {
     /// (`keep.len()` values). A new size drops the stored contacts (they are aligned again at
     /// the next rebuild); contacts pending from a restart file stay, and must have that size.
     pub fn set_layout(&mut self, keep: Vec<bool>) -> Result<(), String> {
-        if let Some(r) = self.pending.as_ref().and_then(|p| p.iter().find(|r| r.values.len() != keep.len())) {
+        let mismatch = self.pending.as_ref().and_then(|p| p.iter().find(|r| r.values.len() != keep.len()));
+        if mismatch.is_some() && self.carried {
+            // a style named again with other models: its old contacts do not fit, start afresh
+            self.pending = None;
+        } else if let Some(r) = mismatch {
             return Err(format!("the restart file's contact histories keep {} values per contact; this pair style keeps {}", r.values.len(), keep.len()));
         }
         if keep.len() != self.size {
@@ -144,6 +150,14 @@ impl ContactHistory {
     /// Contacts to apply at the next rebuild (from a restart file), replacing the stored ones.
     pub fn restore(&mut self, records: Vec<ContactRecord>) {
         self.pending = Some(records);
+        self.carried = false;
+    }
+
+    /// The contacts of the same style named again (`pair_style`): applied as [`Self::restore`]
+    /// does, or dropped if the new style's models keep another number of values.
+    pub fn carry(&mut self, records: Vec<ContactRecord>) {
+        self.pending = Some(records);
+        self.carried = true;
     }
 
     /// Contacts that arrived with atoms from other ranks (a distributed run), applied with the

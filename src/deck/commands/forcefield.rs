@@ -19,7 +19,7 @@ pub fn pair_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     // contact histories, restored by read_restart or built by a run, carry on
     if let Some(old) = sim.pair.as_mut().filter(|old| old.style() == pair.style() && old.sub_styles() == pair.sub_styles()) {
         for (from, to) in old.histories().into_iter().zip(pair.histories()) {
-            to.restore(from.records());
+            to.carry(from.records());
         }
     }
     sim.pair = Some(pair);

@@ -293,7 +293,7 @@ impl Simulation {
         );
         let rate_fields: Vec<(usize, Field)> = crate::engine::fields::RATES.iter().chain(crate::engine::fields::PAIR_SUMS).filter_map(|&fl| self.state.atoms.field(fl).map(|k| (k, fl))).collect();
         let mut rates: Vec<Vec<f64>> = rate_fields.iter().map(|&(k, _)| std::mem::take(&mut self.state.atoms.extra[k].data)).collect();
-        let freeze_bit = self.fixes.iter().find(|f| f.style() == "freeze").map_or(0, |f| f.groupbit());
+        let freeze_bit = crate::models::fix::freeze_bit(self.fixes.iter().map(|f| f.as_ref()));
         let input = PairInput::of_state(&self.state, freeze_bit, eflag, advance);
         let fields = rate_fields.iter().zip(rates.iter_mut()).map(|(&(_, fl), v)| (fl, &mut v[..])).collect();
         let mut out = PairOutput { f: &mut f, torque: &mut torque, drho: &mut drho, desph: &mut desph, fields, peratom };

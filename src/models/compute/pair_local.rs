@@ -133,7 +133,7 @@ impl Compute for ComputePairLocal {
         if !s.lists_valid {
             return Err(format!("compute pair/local {} needs neighbour lists: it can be read only during or after a run", self.id));
         }
-        let freeze_bit = w.fixes.iter().find(|f| f.style() == "freeze").map_or(0, |f| f.groupbit());
+        let freeze_bit = crate::models::fix::freeze_bit(w.fixes.iter());
         let input = PairInput::of_state(s, freeze_bit, true, false);
         let stride = list.ntypes + 1;
         let mut rows = Vec::new();

@@ -470,6 +470,12 @@ pub fn drift(x: &mut [f64; 3], dt: f64, v: &[f64; 3]) {
     x[2] += dt * v[2];
 }
 
+/// The group bit of fix freeze among `fixes` (0: none), which granular contacts read
+/// (LAMMPS' freeze_group_bit).
+pub fn freeze_bit<'a>(mut fixes: impl Iterator<Item = &'a dyn Fix>) -> u32 {
+    fixes.find(|f| f.style() == "freeze").map_or(0, |f| f.groupbit())
+}
+
 /// What `fix ID group style args...` gives a fix's constructor.
 pub struct FixDef<'a> {
     pub cmd: &'a Command,

@@ -587,8 +587,11 @@ impl Neighbor {
     }
 
     /// Rebuild: sort owned atoms into slab order, make ghosts, build the half list.
-    /// `cutsq_pair(i, j)` is the squared interaction cutoff per type pair (0 = no interaction).
-    /// Returns the permutation applied to owned atoms (`new k <- old order[k]`).
+    /// `cut_pair(i, j)` is the interaction cutoff per type pair (0 = no interaction): the
+    /// list holds the pairs within it plus the skin, or with `sizes` (LAMMPS' size lists of
+    /// granular styles) the pairs within their current radii sum plus the skin, found within
+    /// the type cutoffs' reach. Returns the permutation applied to owned atoms
+    /// (`new k <- old order[k]`).
     #[allow(clippy::too_many_arguments)]
     pub fn build(
         &mut self,
@@ -597,9 +600,10 @@ impl Neighbor {
         settings: &NeighborSettings,
         ntypes: usize,
         cut_pair: &dyn Fn(usize, usize) -> f64,
+        sizes: bool,
         special: &SpecialTable,
     ) -> Result<Vec<usize>, NeighError> {
-        self.build_with(atoms, domain, settings, ntypes, cut_pair, special, Ghosts::Periodic)
+        self.build_with(atoms, domain, settings, ntypes, cut_pair, sizes, special, Ghosts::Periodic)
     }
 
     /// [`Neighbor::build`] with the ghosts made as `ghosts` says.
@@ -611,6 +615,7 @@ impl Neighbor {
         settings: &NeighborSettings,
         ntypes: usize,
         cut_pair: &dyn Fn(usize, usize) -> f64,
+        sizes: bool,
         special: &SpecialTable,
         mut ghosts: Ghosts,
     ) -> Result<Vec<usize>, NeighError> {
@@ -791,6 +796,9 @@ impl Neighbor {
         }
         let acting_cache = &self.acting;
         let plain = excl.is_empty() && !use_special;
+        let skin = settings.skin;
+        // a size list reads every atom's radius (ghosts' too)
+        let radius: &[f64] = if sizes { &a.radius[..nall] } else { &[] };
         let chunks: Result<Vec<ChunkList>, usize> = crate::engine::par::team::map(bounds.windows(2).collect::<Vec<_>>(), |w| {
                 let (start, end) = (w[0], w[1]);
                 let mut offsets = Vec::with_capacity(end - start + 1);
@@ -819,7 +827,13 @@ impl Neighbor {
                         let dy = xi[1] - xj[1];
                         let dz = xi[2] - xj[2];
                         let rsq = dx * dx + dy * dy + dz * dz;
-                        if rsq > row[a.typ[j]] {
+                        let reach = if sizes {
+                            let cut = radius[i] + radius[j] + skin;
+                            cut * cut
+                        } else {
+                            row[a.typ[j]]
+                        };
+                        if rsq > reach {
                             return;
                         }
                         if !excl.is_empty() && excl.excluded(a, i, j) {
@@ -865,16 +879,27 @@ impl Neighbor {
                         let slots = &mut neigh[len..];
                         // slices taken before the loop: read through `a`, their addresses
                         // were reloaded after every store
-                        let (xs, ts) = (&a.x[j0..j1], &a.typ[j0..j1]);
+                        let xs = &a.x[j0..j1];
                         let mut kept = 0usize;
-                        for (k, (xj, &tj)) in xs.iter().zip(ts).enumerate() {
+                        let rsq = |xj: &[f64; 3]| {
                             let dx = xi[0] - xj[0];
                             let dy = xi[1] - xj[1];
                             let dz = xi[2] - xj[2];
-                            let rsq = dx * dx + dy * dy + dz * dz;
-                            // kept <= k: the write lands in `slots`
-                            slots[kept.min(k)] = (j0 + k) as u32;
-                            kept += (rsq <= row[tj]) as usize;
+                            dx * dx + dy * dy + dz * dz
+                        };
+                        // kept <= k: the write lands in `slots`
+                        if sizes {
+                            let ri = radius[i];
+                            for (k, (xj, &rj)) in xs.iter().zip(&radius[j0..j1]).enumerate() {
+                                let cut = ri + rj + skin;
+                                slots[kept.min(k)] = (j0 + k) as u32;
+                                kept += (rsq(xj) <= cut * cut) as usize;
+                            }
+                        } else {
+                            for (k, (xj, &tj)) in xs.iter().zip(&a.typ[j0..j1]).enumerate() {
+                                slots[kept.min(k)] = (j0 + k) as u32;
+                                kept += (rsq(xj) <= row[tj]) as usize;
+                            }
                         }
                         len += kept;
                         neigh.truncate(len);
@@ -1065,10 +1090,78 @@ mod tests {
                 atoms.push(&NewAtom::at(k as i64 + 1, 1, [rand() * len[0], rand() * len[1], rand() * len[2]]));
             }
             let mut neighbor = Neighbor::default();
-            neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 1.2, &SpecialTable::default()).unwrap();
+            neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 1.2, false, &SpecialTable::default()).unwrap();
             assert!(neighbor.list.chunks.len() >= 2, "{len:?}: {} chunks", neighbor.list.chunks.len());
             assert_eq!(neighbor.list.check_slab_invariant(), Ok(()));
         }
+    }
+
+    /// A size list (granular styles) holds exactly the pairs within their radii sum + skin,
+    /// images across the periodic faces included, and a sphere grown past its type's cutoff
+    /// is listed with the partners it reaches within the type cutoffs' reach.
+    #[test]
+    fn size_lists_hold_the_pairs_within_their_radii_sum_and_skin() {
+        let mut seed = 777u64;
+        let mut rand = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let len = [7.0, 6.0, 5.0];
+        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let mut atoms = Atoms::new(AtomFeatures { sphere: true, ..AtomFeatures::default() });
+        for k in 0..400 {
+            let mut a = NewAtom::at(k as i64 + 1, 1, [rand() * len[0], rand() * len[1], rand() * len[2]]);
+            // radii up to 0.5 (the type cutoff 1.0 covers them), three grown to 0.6
+            a.radius = if k % 130 == 7 { 0.6 } else { 0.3 + 0.2 * rand() };
+            atoms.push(&a);
+        }
+        let skin = 0.3;
+        let mut neighbor = Neighbor::default();
+        neighbor.build(&mut atoms, &domain, &NeighborSettings::new(skin), 1, &|_, _| 1.0, true, &SpecialTable::default()).unwrap();
+        let (n, a) = (atoms.nlocal, &atoms);
+        let owner = |j: usize| if j < n { j } else { a.ghost_owner[j - n] as usize };
+        let mut listed = std::collections::BTreeSet::new();
+        for c in &neighbor.list.chunks {
+            for i in c.start..c.end {
+                for &e in c.neighbors(i) {
+                    let j = (e & NEIGH_MASK) as usize;
+                    let rsq: f64 = (0..3).map(|d| (a.x[i][d] - a.x[j][d]).powi(2)).sum();
+                    let cut = a.radius[i] + a.radius[j] + skin;
+                    assert!(rsq <= cut * cut, "{i} {j} listed beyond their radii sum + skin");
+                    // a pair across a periodic face is listed by both owners
+                    listed.insert((a.tag[i].min(a.tag[owner(j)]), a.tag[i].max(a.tag[owner(j)])));
+                }
+            }
+        }
+        // every pair within reach, by the minimum image
+        let mut expected = 0;
+        let mut grown = 0;
+        let mut beyond = 0;
+        for i in 0..n {
+            for j in i + 1..n {
+                let rsq: f64 = (0..3)
+                    .map(|d| {
+                        let dx = a.x[i][d] - a.x[j][d];
+                        (dx - len[d] * (dx / len[d]).round()).powi(2)
+                    })
+                    .sum();
+                let cut = a.radius[i] + a.radius[j] + skin;
+                let is_listed = listed.contains(&(a.tag[i].min(a.tag[j]), a.tag[i].max(a.tag[j])));
+                if rsq <= cut * cut && rsq.sqrt() <= 1.0 + skin {
+                    expected += 1;
+                    grown += (a.radius[i] == 0.6 || a.radius[j] == 0.6) as usize;
+                    assert!(is_listed, "{} {} not listed", a.tag[i], a.tag[j]);
+                } else if rsq <= cut * cut {
+                    // beyond the type cutoffs' reach: listed where the bins reach it
+                    beyond += is_listed as usize;
+                }
+            }
+        }
+        assert_eq!(listed.len(), expected + beyond);
+        assert!(grown > 0);
+        // the type-cutoff list holds more
+        neighbor.build(&mut atoms, &domain, &NeighborSettings::new(skin), 1, &|_, _| 1.0, false, &SpecialTable::default()).unwrap();
+        assert!(neighbor.list.lammps_count(n, &[1.0; 4], &[1.0; 4]) > expected as f64 * 1.2);
     }
 
     /// Special levels looked up among atom i's acting partners (read once per atom, carried
@@ -1117,7 +1210,7 @@ mod tests {
         let mut per_pair = SpecialTable::from_lists(&ids, lists, flags, false);
         let settings = NeighborSettings::new(0.3);
         let entries = |atoms: &mut Atoms, neighbor: &mut Neighbor, table: &SpecialTable| {
-            neighbor.build(atoms, &domain, &settings, 1, &|_, _| 1.2, table).unwrap();
+            neighbor.build(atoms, &domain, &settings, 1, &|_, _| 1.2, false, table).unwrap();
             let mut e: Vec<(i64, i64, usize)> = Vec::new();
             for c in &neighbor.list.chunks {
                 for i in c.start..c.end {
@@ -1164,7 +1257,7 @@ mod tests {
         atoms.push(&NewAtom::at(1, 1, [1.0, 1.0, 2.0e9]));
         atoms.push(&NewAtom::at(2, 1, [2.0, 1.0, 2.0e9]));
         let mut neighbor = Neighbor::default();
-        neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, &SpecialTable::default()).unwrap();
+        neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, false, &SpecialTable::default()).unwrap();
         let pairs: usize = neighbor.list.chunks.iter().map(|c| c.neigh.len()).sum();
         assert_eq!(pairs, 1);
     }
@@ -1181,7 +1274,7 @@ mod tests {
                 atoms.push(&NewAtom::at(k as i64 + 1, 1, x));
             }
             let mut neighbor = Neighbor::default();
-            neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, &SpecialTable::default()).unwrap();
+            neighbor.build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, false, &SpecialTable::default()).unwrap();
             let pairs: usize = neighbor.list.chunks.iter().map(|c| c.neigh.len()).sum();
             assert_eq!(pairs, 1, "box {l}");
         }
@@ -1189,7 +1282,7 @@ mod tests {
         let mut atoms = Atoms::new(AtomFeatures::default());
         atoms.push(&NewAtom::at(1, 1, [-1e308, 1.0, 1.0]));
         atoms.push(&NewAtom::at(2, 1, [1e308, 1.0, 1.0]));
-        let e = Neighbor::default().build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, &SpecialTable::default());
+        let e = Neighbor::default().build(&mut atoms, &domain, &NeighborSettings::new(0.3), 1, &|_, _| 2.5, false, &SpecialTable::default());
         assert!(matches!(e, Err(NeighError::TooLarge { cut, .. }) if cut == 2.8), "{e:?}");
     }
 }

@@ -204,6 +204,8 @@ impl Simulation {
         self.state.lammps_order.before_rebuild(&self.state.atoms);
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
+        // (a granular style without radii stops at its init, never here)
+        let sizes = pair.is_some_and(|p| p.size_list()) && self.state.atoms.features.sphere;
         let ghosts = match (&mut self.state.decomp, self.state.distributed) {
             (Some(d), Some(_)) => Some((d.subdomain(domain, d.rank()), d)),
             _ => None,
@@ -213,9 +215,9 @@ impl Simulation {
                 let comm_cutoff = self.state.comm_cutoff;
                 let mut make = |atoms: &mut crate::engine::atoms::Atoms, cut: f64| d.borders(atoms, domain, cut.max(comm_cutoff));
                 let given = crate::engine::neighbor::Ghosts::Given { sub, make: &mut make };
-                self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table, given)
+                self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, given)
             }
-            None => self.state.neighbor.build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, &self.state.special_table),
+            None => self.state.neighbor.build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table),
         };
         let thick = match (&self.state.decomp, self.state.distributed) {
             (Some(d), Some(_)) => d.check_thickness(domain, self.state.neighbor.cutneighmax.max(self.state.comm_cutoff)).map_err(|e| RunError::new(step, e)),

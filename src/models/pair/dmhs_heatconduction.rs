@@ -166,7 +166,7 @@ mod tests {
         let dom = crate::engine::domain::Domain { dimension: 3, lo: [-5.0; 3], hi: [5.0; 3], boundary: [[crate::engine::domain::BoundaryKind::Fixed; 2]; 3] };
         let settings = crate::engine::neighbor::NeighborSettings::new(0.1);
         let cut = |i: usize, j: usize| hc.cutoff(i, j);
-        nb.build(&mut atoms, &dom, &settings, 2, &cut, &Default::default()).unwrap();
+        nb.build(&mut atoms, &dom, &settings, 2, &cut, false, &Default::default()).unwrap();
         let (mut f, mut tq, mut drho, mut de) = (vec![[0.0; 3]; 2], vec![], vec![0.0; 2], vec![0.0; 2]);
         let input = PairInput {
             atoms: &atoms,

@@ -171,6 +171,9 @@ impl PairStyle for GranHookeHistory {
     fn cutoff(&self, it: usize, jt: usize) -> f64 {
         self.types.cutoff(it, jt)
     }
+    fn size_list(&self) -> bool {
+        true
+    }
     fn tallies_in_loop(&self) -> bool {
         true
     }

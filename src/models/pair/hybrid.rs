@@ -248,6 +248,13 @@ impl PairStyle for Hybrid {
             .fold(0.0, f64::max)
     }
 
+    /// A size list when every sub-style asks for one (the others' type cutoffs hold their
+    /// pairs otherwise: a granular sub-style beside them gets the type-cutoff list, a
+    /// superset of LAMMPS' size list, the same forces).
+    fn size_list(&self) -> bool {
+        self.styles.iter().all(|s| s.size_list())
+    }
+
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally {
         self.refresh_between_builds(input);
         let mut total = Tally::default();

@@ -249,6 +249,12 @@ pub trait PairStyle: Send + Sync {
     fn init(&mut self, ntypes: usize, modify: &PairModify, active: Option<&[bool]>) -> Result<(), String>;
     /// Interaction cutoff for a type pair after `init` (0 = no interaction).
     fn cutoff(&self, it: usize, jt: usize) -> f64;
+    /// Whether the style's neighbour list holds the pairs within their radii sum + skin at
+    /// each build (LAMMPS' size lists, which granular styles request) instead of the type
+    /// cutoff + skin: a sphere that grew since the run began is listed as in LAMMPS.
+    fn size_list(&self) -> bool {
+        false
+    }
     /// Add forces (and torques, density and energy rates) on owned atoms to `out`; return the
     /// tallies when `input.eflag`. `&mut self` lets a style keep state such as contact history.
     fn compute(&mut self, input: &PairInput, out: &mut PairOutput) -> Tally;

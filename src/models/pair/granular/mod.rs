@@ -944,6 +944,9 @@ impl PairStyle for Granular {
             self.types.cutoff(it, jt) + m.normal.pulloff_distance(r(it), r(jt))
         }
     }
+    fn size_list(&self) -> bool {
+        true
+    }
     fn tallies_in_loop(&self) -> bool {
         true
     }

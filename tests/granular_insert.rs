@@ -104,3 +104,19 @@ fn gravity_turned_after_pour_stops_the_run() {
     assert_eq!(code, 2, "{out}");
     assert!(out.contains("gravity"), "{out}");
 }
+
+/// The run summary's "Neighs" of granular decks is LAMMPS' size-list count: the pairs within
+/// their current radii sum + skin, a pair with a periodic image counted once per side under
+/// `newton off` (gran_pour) and once under `newton on` (adapt_diameter, whose spheres grow).
+/// The counts are LAMMPS 22 Jul 2025's (`lmp -in in.NAME` in lammps-refs/decks).
+#[test]
+fn granular_neighbour_counts_are_lammps_size_list_counts() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks");
+    for (name, lammps) in [("gran_pour", vec![140]), ("adapt_diameter", vec![1311, 1878])] {
+        let o = Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["-in", &format!("in.{name}"), "-log", "none", "-threads", "1"]).current_dir(&dir).output().unwrap();
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{name}: {out}{}", String::from_utf8_lossy(&o.stderr));
+        let neighs: Vec<i64> = out.lines().filter_map(|l| l.strip_prefix("Neighs:")).map(|l| l.split_whitespace().next().unwrap().parse().unwrap()).collect();
+        assert_eq!(neighs, lammps, "{name}");
+    }
+}

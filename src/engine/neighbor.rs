@@ -348,10 +348,11 @@ impl NeighList {
     pub fn npairs(&self) -> usize {
         self.chunks.iter().map(|c| c.len()).sum()
     }
-    /// The pairs as LAMMPS' half list (`newton on`) counts them for its "Neighs" line: special
-    /// pairs whose weights `lj` and `coul` are both 0 left out (LAMMPS does not list them), and
-    /// a pair with a ghost, which each owner lists here, counted half on each side.
-    pub fn lammps_count(&self, nlocal: usize, lj: &[f64; 4], coul: &[f64; 4]) -> f64 {
+    /// The pairs as LAMMPS' half list counts them for its "Neighs" line: special pairs whose
+    /// weights `lj` and `coul` are both 0 left out (LAMMPS does not list them), and a pair with
+    /// a ghost, which each owner lists here, counted half on each side under `newton on` (LAMMPS
+    /// stores it once) and whole under `newton off` (LAMMPS stores it on both sides too).
+    pub fn lammps_count(&self, nlocal: usize, lj: &[f64; 4], coul: &[f64; 4], newton_pair: bool) -> f64 {
         let mut owned = 0usize;
         let mut ghost = 0usize;
         for c in &self.chunks {
@@ -369,7 +370,7 @@ impl NeighList {
                 }
             }
         }
-        owned as f64 + 0.5 * ghost as f64
+        owned as f64 + if newton_pair { 0.5 } else { 1.0 } * ghost as f64
     }
 
     /// The entries whose type pair `keep` marks (row-major over `0..=ntypes`), in the same
@@ -1161,7 +1162,7 @@ mod tests {
         assert!(grown > 0);
         // the type-cutoff list holds more
         neighbor.build(&mut atoms, &domain, &NeighborSettings::new(skin), 1, &|_, _| 1.0, false, &SpecialTable::default()).unwrap();
-        assert!(neighbor.list.lammps_count(n, &[1.0; 4], &[1.0; 4]) > expected as f64 * 1.2);
+        assert!(neighbor.list.lammps_count(n, &[1.0; 4], &[1.0; 4], true) > expected as f64 * 1.2);
     }
 
     /// Special levels looked up among atom i's acting partners (read once per atom, carried

@@ -258,7 +258,7 @@ impl Simulation {
     /// The sum, minimum and maximum over the ranks of each count.
     pub(crate) fn rank_counts(&self) -> Option<RankCounts> {
         let d = self.state.decomp.as_ref().filter(|_| self.state.distributed.is_some())?;
-        let local = [self.state.atoms.nlocal as f64, self.state.atoms.nghost() as f64, self.state.neighbor.list.lammps_count(self.state.atoms.nlocal, &self.state.special_bonds.lj, &self.state.special_bonds.coul)];
+        let local = [self.state.atoms.nlocal as f64, self.state.atoms.nghost() as f64, self.state.neighbor.list.lammps_count(self.state.atoms.nlocal, &self.state.special_bonds.lj, &self.state.special_bonds.coul, self.state.newton_pair)];
         let (mut sum, mut max, mut min) = (local, local, local);
         d.comm.sum(&mut sum);
         d.comm.max(&mut max);

@@ -978,7 +978,7 @@ impl Simulation {
         let counts = counts.unwrap_or_else(|| {
             let one = |x: usize| [x as f64; 3];
             let stages = [crate::engine::timing::Spread::default(); 6];
-            crate::sim::distributed::RankCounts { nlocal: one(self.state.atoms.nlocal), nghost: one(self.state.atoms.nghost()), neighs: [self.state.neighbor.list.lammps_count(self.state.atoms.nlocal, &self.state.special_bonds.lj, &self.state.special_bonds.coul); 3], stages }
+            crate::sim::distributed::RankCounts { nlocal: one(self.state.atoms.nlocal), nghost: one(self.state.atoms.nghost()), neighs: [self.state.neighbor.list.lammps_count(self.state.atoms.nlocal, &self.state.special_bonds.lj, &self.state.special_bonds.coul, self.state.newton_pair); 3], stages }
         });
         let ranks = self.nranks() as f64;
         let g = crate::output::format::g;

@@ -7,6 +7,7 @@
 //! from the other atom turned round (the columns that change sign with the pair negated), and
 //! every column compared relative to its largest value. And the located errors.
 
+mod common;
 use dmhs::deck::{run_file, DeckOptions};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -67,13 +68,14 @@ fn snapshots(text: &str, turned: &[usize]) -> BTreeMap<i64, Rows> {
     out
 }
 
-fn file_vars(name: &str, dir: &Path) -> Vec<(String, Vec<String>)> {
-    FILES.iter().filter(|f| f.0 == name).map(|f| (format!("{}file", f.1), vec![dir.join(format!("local.{}", f.1)).to_string_lossy().into_owned()])).collect()
+/// The dump files deck `name` writes (the suffixes of its `SUFFIXfile` variables).
+fn suffixes(name: &str) -> Vec<&'static str> {
+    FILES.iter().filter(|f| f.0 == name).map(|f| f.1).collect()
 }
 
+/// dmhs on deck `name` with its dump files under `dir/local.*`.
 fn dmhs_run(name: &str, dir: &Path) {
-    let opts = DeckOptions { screen: false, base_dir: Some(deck(name).parent().unwrap().to_path_buf()), vars: file_vars(name, dir), ..Default::default() };
-    run_file(&deck(name), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    common::run_with_local_files(&deck(name), &suffixes(name), dir);
 }
 
 /// Every file: the same steps, the same pairs, every column within [`TOLERANCE`]; the step-0
@@ -127,7 +129,7 @@ fn live_pair_rows() {
     for name in ["pair_local_chains", "pair_local_gran", "pair_local_hertz"] {
         let out = tmp.path().join(name);
         std::fs::create_dir_all(&out).unwrap();
-        dmhs::tools::lammps::run_driver(&deck(name), &file_vars(name, &out), &out).unwrap();
+        dmhs::tools::lammps::run_driver(&deck(name), &common::local_file_vars(&suffixes(name), &out), &out).unwrap();
     }
     check(|name| tmp.path().join(name));
 }

@@ -7,10 +7,11 @@
 //! located errors, and the run summary's "Neighs" count against LAMMPS' (the same pairs, counted
 //! as LAMMPS' half list does).
 
-use dmhs::deck::{run_file, DeckOptions};
 
 #[allow(unused)]
 mod thermo_tables;
+mod common;
+use dmhs::deck::{run_file, DeckOptions};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -81,15 +82,14 @@ fn normalized(rows: &[Vec<String>], how: Rows) -> Vec<Vec<String>> {
     }
 }
 
-/// The deck's dump file variables (`SUFFIXfile`, /dev/null by default) set to `dir/local.SUFFIX`.
-fn file_vars(name: &str, dir: &Path) -> Vec<(String, Vec<String>)> {
-    FILES.iter().filter(|f| f.0 == name).map(|f| (format!("{}file", f.1), vec![dir.join(format!("local.{}", f.1)).to_string_lossy().into_owned()])).collect()
+/// The dump files deck `name` writes (the suffixes of its `SUFFIXfile` variables).
+fn suffixes(name: &str) -> Vec<&'static str> {
+    FILES.iter().filter(|f| f.0 == name).map(|f| f.1).collect()
 }
 
 /// dmhs on deck `name` with its dump files under `dir/local.*`.
 fn dmhs_run(name: &str, dir: &Path) {
-    let opts = DeckOptions { screen: false, base_dir: Some(deck(name).parent().unwrap().to_path_buf()), vars: file_vars(name, dir), ..Default::default() };
-    run_file(&deck(name), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    common::run_with_local_files(&deck(name), &suffixes(name), dir);
 }
 
 /// Every file of every deck: the same steps, the same rows.
@@ -145,7 +145,7 @@ fn live_local_rows() {
     for name in ["property_local_gran", "property_local_topo"] {
         let out = tmp.path().join(name);
         std::fs::create_dir_all(&out).unwrap();
-        dmhs::tools::lammps::run_driver(&deck(name), &file_vars(name, &out), &out).unwrap();
+        dmhs::tools::lammps::run_driver(&deck(name), &common::local_file_vars(&suffixes(name), &out), &out).unwrap();
     }
     check(|name| tmp.path().join(name));
 }

@@ -1,5 +1,6 @@
 //! Shared by the tests that compare files dmhs writes with the files LAMMPS writes for the
-//! same deck (tests/averages.rs, tests/chunks.rs, tests/peratom.rs).
+//! same deck (tests/averages.rs, tests/chunks.rs, tests/peratom.rs, tests/pair_local.rs,
+//! tests/property_local.rs).
 //!
 //! Tolerance: comment lines and the layout (line count, words per line, words that are not
 //! numbers) must be identical; a number may differ by 1e-5 relative (plus 1e-12 absolute)
@@ -108,4 +109,19 @@ pub fn assert_located_errors(base: &str, cases: &[(&str, &str)]) {
         let f = dmhs::deck::run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {extra}"));
         assert!(f.rendered.contains("bad.deck:") && f.rendered.contains(want), "{extra}: {}", f.rendered);
     }
+}
+
+/// Runs `deck` in dmhs (in-process, its own folder as the base) with `-var SUFFIXfile
+/// dir/local.SUFFIX` for each suffix: the dump local files the deck writes, named as
+/// lammps-refs/regenerate.sh names LAMMPS' (`pairsfile`, `cutfile`, ...).
+pub fn run_with_local_files(deck: &Path, suffixes: &[&str], dir: &Path) {
+    let vars = local_file_vars(suffixes, dir);
+    let opts = dmhs::deck::DeckOptions { screen: false, base_dir: Some(deck.parent().unwrap().to_path_buf()), vars, ..Default::default() };
+    dmhs::deck::run_file(deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+}
+
+/// The variables `SUFFIXfile` = `dir/local.SUFFIX` of [`run_with_local_files`] (for the LAMMPS
+/// run of the same deck too).
+pub fn local_file_vars(suffixes: &[&str], dir: &Path) -> Vec<(String, Vec<String>)> {
+    suffixes.iter().map(|s| (format!("{s}file"), vec![dir.join(format!("local.{s}")).to_string_lossy().into_owned()])).collect()
 }

@@ -122,3 +122,76 @@ fn bad_colname_is_located() {
         assert!(err.rendered.contains(want) && err.rendered.contains("in.bad:"), "{line}: {}", err.rendered);
     }
 }
+
+/// An LJ melt whose thermo interval comes from variables: logfreq, then stride, then a
+/// variable beyond the run's end (two runs of 20).
+const VARIABLE_THERMO: &str = "\
+units lj
+atom_style atomic
+lattice fcc 0.8442
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+velocity all create 1.44 87287 loop geom
+pair_style lj/cut 2.5
+pair_coeff 1 1 1.0 1.0 2.5
+fix 1 all nve
+variable s equal logfreq(10,3,10)
+thermo v_s
+thermo_style custom step pe
+run 250
+variable t equal stride(300,400,30)
+thermo v_t
+run 150
+variable u equal 1000
+thermo v_u
+run 20
+run 20
+";
+
+/// The steps of the thermo lines of every run (`Step` headers split the runs).
+fn thermo_steps(text: &str) -> Vec<Vec<i64>> {
+    let mut runs: Vec<Vec<i64>> = vec![];
+    let mut on = false;
+    for l in text.lines() {
+        if l.trim_start().starts_with("Step") {
+            runs.push(vec![]);
+            on = true;
+        } else if l.starts_with("Loop time") {
+            on = false;
+        } else if on {
+            runs.last_mut().unwrap().push(l.split_whitespace().next().unwrap().parse().unwrap());
+        }
+    }
+    runs
+}
+
+/// `thermo v_name`: a line at the setup of every run, then at the steps the equal-style
+/// variable gives after each line, capped at the run's last step except the first (so a first
+/// step beyond the run prints no last line): LAMMPS 22 Jul 2025's steps for the same deck, and
+/// LAMMPS run now when present.
+#[test]
+fn variable_thermo_intervals_are_lammps() {
+    let lammps: Vec<Vec<i64>> = vec![vec![0, 10, 20, 30, 100, 200, 250], vec![250, 300, 330, 360, 390, 400], vec![400], vec![420]];
+    let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let run = run_text("in.vthermo", VARIABLE_THERMO, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    assert_eq!(thermo_steps(run.sim.out.captured.as_deref().unwrap()), lammps);
+    if dmhs::tools::lammps::python_for_live_test().is_some() {
+        let tmp = tempfile::tempdir().unwrap();
+        let path = tmp.path().join("in.vthermo");
+        std::fs::write(&path, VARIABLE_THERMO).unwrap();
+        dmhs::tools::lammps::run_driver(&path, &[], tmp.path()).unwrap();
+        assert_eq!(thermo_steps(&std::fs::read_to_string(tmp.path().join("log.lammps")).unwrap()), lammps);
+    }
+    // LAMMPS' errors: a missing variable, another style, a step not after the current one
+    for (lines, want) in [
+        ("thermo v_nope", "Variable name nope for thermo every does not exist"),
+        ("variable a atom x\nthermo v_a", "Variable a for thermo every is invalid style"),
+        ("variable b equal step\nthermo v_b", "Thermo every variable b returned a bad timestep"),
+    ] {
+        let text = VARIABLE_THERMO.replacen("thermo v_s\n", &format!("{lines}\n"), 1);
+        let err = run_text("in.bad", &text, &opts).err().expect("an error");
+        assert!(err.rendered.contains(want) && err.rendered.contains("in.bad:"), "{lines}: {}", err.rendered);
+    }
+}

@@ -78,7 +78,11 @@ impl Simulation {
             s += &format!("  {}\n", c.describe());
         }
         s += "outputs:\n";
-        s += &format!("  thermo every {} steps: {}\n", self.thermo.every, self.thermo.columns.iter().map(|c| c.label.as_str()).collect::<Vec<_>>().join(" "));
+        let every = match &self.thermo.every_var {
+            Some(v) => format!("at the steps variable {v} gives"),
+            None => format!("every {} steps", self.thermo.every),
+        };
+        s += &format!("  thermo {every}: {}\n", self.thermo.columns.iter().map(|c| c.label.as_str()).collect::<Vec<_>>().join(" "));
         for d in &self.dumps {
             s += &format!("  dump {} {} every {} -> {}\n", d.id, d.style, d.every, d.path.display());
         }

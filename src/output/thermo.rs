@@ -33,7 +33,14 @@ pub struct Column {
 
 #[derive(Clone, Debug)]
 pub struct Thermo {
+    /// `thermo N` (0: only the first and last steps of a run).
     pub every: i64,
+    /// `thermo v_name`: an equal-style variable gives the step of each next output (LAMMPS'
+    /// var_thermo); `every` is then 0.
+    pub every_var: Option<String>,
+    /// The step of the next output under `every_var`, set at a run's setup and after each
+    /// output.
+    pub next: i64,
     pub columns: Vec<Column>,
     pub custom: bool,
     /// `thermo_modify norm`; None: LAMMPS' default (yes for lj units).
@@ -72,6 +79,8 @@ impl Default for Thermo {
     fn default() -> Self {
         Thermo {
             every: 0,
+            every_var: None,
+            next: 0,
             columns: parse_columns(STYLE_ONE).unwrap(),
             custom: false,
             norm: None,

@@ -132,6 +132,14 @@ impl Simulation {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
         self.init_thermo_columns();
+        // LAMMPS' Output::init
+        if let Some(v) = &self.thermo.every_var {
+            match self.variables.style(v) {
+                None => return Err(format!("Variable name {v} for thermo every does not exist").into()),
+                Some("equal" | "internal" | "timer") => {}
+                Some(_) => return Err(format!("Variable {v} for thermo every is invalid style (it must be equal-style)").into()),
+            }
+        }
         // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
         for c in &self.thermo.columns {
             use crate::output::thermo::Field;
@@ -874,10 +882,18 @@ impl Simulation {
     /// Energies are needed on thermo steps, the last step, dump steps and the steps on which a
     /// fix reads values (fix ave/time, fix print).
     pub(crate) fn output_due(&self, step: i64, last: i64) -> bool {
-        step == last
-            || (self.thermo.every > 0 && step % self.thermo.every == 0)
+        self.thermo_due(step, last)
             || self.dumps.iter().any(|d| d.due(step, false))
             || self.fixes.iter().any(|f| f.wants_energy(step))
+    }
+
+    /// Whether a thermo line is printed at `step` (after the run's setup line): at the steps
+    /// `thermo v_name` gives, else every N steps and the run's last step.
+    fn thermo_due(&self, step: i64, last: i64) -> bool {
+        match self.thermo.every_var {
+            Some(_) => step == self.thermo.next,
+            None => step == last || (self.thermo.every > 0 && step % self.thermo.every == 0),
+        }
     }
 
     /// Thermo line and dumps for the current step.
@@ -889,18 +905,28 @@ impl Simulation {
     /// minimization that stopped early, as LAMMPS' Min::run).
     pub(crate) fn output_now(&mut self, setup: bool, last: i64, all_dumps: bool) -> Result<(), RunError> {
         let step = self.state.step;
-        let thermo_now = setup || step == last || (self.thermo.every > 0 && step % self.thermo.every == 0);
+        let thermo_now = setup || self.thermo_due(step, last);
         // thermo's cpu and a multi block's CPU: the seconds of the run so far, 0 at its setup
         // (LAMMPS' compute_cpu)
         let cpu = if setup { 0.0 } else { self.cpu_seconds() };
-        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
-        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
         if thermo_now {
+            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
+            let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
             let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
             let line = self.thermo.format_line(&vals, step, cpu);
             self.out.print(&line);
             if self.thermo.flush {
                 self.out.flush();
+            }
+            // the next output step, from the variable after each output (LAMMPS' Output::setup
+            // and write: only the later ones are capped at the run's last step)
+            if let Some(v) = &self.thermo.every_var {
+                let next = dmhs_parser::variables::compute_equal(&mut ev, v).map_err(|e| RunError::new(step, format!("thermo every variable {v}: {e}")))?;
+                if !(next > step as f64) {
+                    return Err(RunError::new(step, format!("Thermo every variable {v} returned a bad timestep ({next}): it must be after the current step {step}")));
+                }
+                let next = if next >= i64::MAX as f64 { i64::MAX } else { next as i64 };
+                self.thermo.next = if setup { next } else { next.min(last) };
             }
         }
         let due: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].due(step, setup) || (all_dumps && self.dumps[k].last_written != Some(step))).collect();
@@ -910,6 +936,8 @@ impl Simulation {
         if self.state.distributed.is_some() {
             return self.write_dumps_gathered(&due);
         }
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
+        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
         for k in due {
             self.dumps[k].write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
         }

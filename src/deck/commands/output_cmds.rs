@@ -7,17 +7,23 @@ use crate::output::thermo::{parse_column, parse_columns, LineStyle, STYLE_MULTI,
 use dmhs_parser::{Args, Command, DResult, SourceMap};
 
 pub fn thermo(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "thermo N");
+    let mut a = Args::new(cmd, "thermo N | v_name");
     let w = a.word("N")?;
-    if w.text.starts_with("v_") {
-        return Err(a.error_at(w, "a variable thermo interval is not supported yet", "use a number"));
+    // the variable is looked up when a run starts (LAMMPS' Output::init)
+    if let Some(name) = w.text.strip_prefix("v_") {
+        let name = name.to_string();
+        a.finish()?;
+        sim.thermo.every = 0;
+        sim.thermo.every_var = Some(name);
+        return Ok(());
     }
-    let n = dmhs_parser::args::word_i64(w, "N").map_err(|d| d.with_help("syntax: thermo N"))?;
+    let n = dmhs_parser::args::word_i64(w, "N").map_err(|d| d.with_help("syntax: thermo N | v_name"))?;
     if n < 0 {
         return Err(a.error_at(w, "thermo N must be >= 0", "negative"));
     }
     a.finish()?;
     sim.thermo.every = n;
+    sim.thermo.every_var = None;
     Ok(())
 }
 

@@ -124,3 +124,79 @@ fn vtu_files_are_read_by_meshio() {
         assert!(o.status.success() && text.contains("VTU OK"), "{file}: {text}");
     }
 }
+
+/// Three dumps over three runs: every 7 with `first yes`, every v_s (logfreq, then stride),
+/// every v_s with `first yes`.
+const DUMP_INTERVALS: &str = "\
+units lj
+atom_style atomic
+lattice fcc 0.8442
+region box block 0 3 0 3 0 3
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+velocity all create 1.44 87287 loop geom
+pair_style lj/cut 2.5
+pair_coeff 1 1 1.0 1.0 2.5
+fix 1 all nve
+thermo 50
+dump a all custom 7 a.dump id x
+dump_modify a first yes
+variable s equal logfreq(3,2,10)
+dump b all custom 1 b.dump id x
+dump_modify b every v_s
+dump c all custom 1 c.dump id x
+dump_modify c every v_s first yes
+run 10
+run 10
+variable t equal stride(25,60,9)
+dump_modify b every v_t
+run 40
+";
+
+/// The steps of a dump file's snapshots.
+fn snapshot_steps(path: &std::path::Path) -> Vec<i64> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    lines.windows(2).filter(|w| w[0] == "ITEM: TIMESTEP").map(|w| w[1].parse().unwrap()).collect()
+}
+
+/// `dump_modify every v_name` and `first yes` schedule snapshots as LAMMPS' Output: at a run's
+/// setup a variable dump writes only with `first yes` before its first snapshot, then at the
+/// steps the variable gives after setup and after each snapshot; `first yes` does not write
+/// again at a later run's setup. The steps are LAMMPS 22 Jul 2025's for the same deck (and
+/// LAMMPS run now when present).
+#[test]
+fn dump_intervals_are_lammps() {
+    let lammps: [(&str, Vec<i64>); 3] = [("a", vec![0, 7, 14, 21, 28, 35, 42, 49, 56]), ("b", vec![3, 6, 25, 34, 43, 52]), ("c", vec![0, 3, 6, 30, 60])];
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("in.intervals");
+    std::fs::write(&path, DUMP_INTERVALS).unwrap();
+    let opts = DeckOptions { screen: false, base_dir: Some(tmp.path().to_path_buf()), ..Default::default() };
+    run_file(&path, &opts).map_err(|f| f.rendered).unwrap();
+    for (name, steps) in &lammps {
+        assert_eq!(&snapshot_steps(&tmp.path().join(format!("{name}.dump"))), steps, "dump {name}");
+    }
+    if dmhs::tools::lammps::python_for_live_test().is_some() {
+        // LAMMPS runs in the deck's folder: its dumps replace dmhs'
+        let out = tempfile::tempdir().unwrap();
+        for name in ["a", "b", "c"] {
+            std::fs::remove_file(tmp.path().join(format!("{name}.dump"))).unwrap();
+        }
+        dmhs::tools::lammps::run_driver(&path, &[], out.path()).unwrap();
+        for (name, steps) in &lammps {
+            assert_eq!(&snapshot_steps(&tmp.path().join(format!("{name}.dump"))), steps, "LAMMPS dump {name}");
+        }
+    }
+    // LAMMPS' errors for a bad variable
+    for (lines, want) in [
+        ("dump_modify b every v_nope", "Variable name nope for dump b every does not exist"),
+        ("variable a atom x\ndump_modify b every v_a", "Variable a for dump b every is invalid style"),
+        ("variable z equal step\ndump_modify b every v_z", "Dump b every variable z returned a bad timestep"),
+    ] {
+        let text = DUMP_INTERVALS.replacen("dump_modify b every v_s\n", &format!("{lines}\n"), 1);
+        std::fs::write(&path, text).unwrap();
+        let err = run_file(&path, &opts).err().expect("an error");
+        assert!(err.rendered.contains(want) && err.rendered.contains("in.intervals:"), "{lines}: {}", err.rendered);
+    }
+}

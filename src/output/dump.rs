@@ -30,6 +30,11 @@ pub struct Dump {
     pub groupbit: u32,
     pub style: String,
     pub every: i64,
+    /// `dump_modify every v_name`: an equal-style variable gives the step of each next
+    /// snapshot (LAMMPS' var_dump), evaluated at each run's setup and after each snapshot.
+    pub every_var: Option<String>,
+    /// The step of the next snapshot under `every_var`.
+    pub next: i64,
     pub path: PathBuf,
     names: Vec<String>,
     columns: Vec<Column>,
@@ -86,6 +91,8 @@ impl Dump {
             groupbit,
             style: style.clone(),
             every,
+            every_var: None,
+            next: 0,
             path: crate::output::log::resolve_path(base_dir, &fw.text),
             names: vec![],
             columns: vec![],
@@ -209,7 +216,19 @@ impl Dump {
                         },
                     }
                 }
-                "every" => self.every = a.i64_in("every", 1, i64::MAX)?,
+                "every" => {
+                    let n = a.word("every")?;
+                    // the variable is looked up when a run starts (LAMMPS' Output::init)
+                    if let Some(v) = n.text.strip_prefix("v_") {
+                        self.every_var = Some(v.to_string());
+                    } else {
+                        self.every = dmhs_parser::args::word_i64(n, "every")?;
+                        if self.every < 1 {
+                            return Err(a.error_at(n, "dump_modify every must be >= 1", "expected N >= 1 or v_name"));
+                        }
+                        self.every_var = None;
+                    }
+                }
                 "first" => self.first = a.yes_no("first")?,
                 "header" => self.header = a.yes_no("header")?,
                 "append" => self.append = a.yes_no("append")?,
@@ -230,12 +249,19 @@ impl Dump {
         Ok(())
     }
 
-    /// Should a snapshot be written at this step?
+    /// Should a snapshot be written at this step? At a run's setup (LAMMPS' Output::setup):
+    /// with `first yes` if the dump never wrote, or at a multiple of N (not under `every
+    /// v_name`); later at multiples of N or at the step the variable gave. Never twice at one
+    /// step (the last step of the run before).
     pub fn due(&self, step: i64, setup: bool) -> bool {
         if self.last_written == Some(step) {
             return false;
         }
-        step % self.every == 0 || (setup && self.first)
+        let on_schedule = match self.every_var {
+            Some(_) => !setup && step == self.next,
+            None => step % self.every == 0,
+        };
+        on_schedule || (setup && self.first && self.last_written.is_none())
     }
 
     fn format_of(&self, k: usize, int: bool) -> String {

@@ -140,6 +140,15 @@ impl Simulation {
                 Some(_) => return Err(format!("Variable {v} for thermo every is invalid style (it must be equal-style)").into()),
             }
         }
+        for d in &self.dumps {
+            if let Some(v) = &d.every_var {
+                match self.variables.style(v) {
+                    None => return Err(format!("Variable name {v} for dump {} every does not exist", d.id).into()),
+                    Some("equal" | "internal" | "timer") => {}
+                    Some(_) => return Err(format!("Variable {v} for dump {} every is invalid style (it must be equal-style)", d.id).into()),
+                }
+            }
+        }
         // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
         for c in &self.thermo.columns {
             use crate::output::thermo::Field;
@@ -930,16 +939,29 @@ impl Simulation {
             }
         }
         let due: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].due(step, setup) || (all_dumps && self.dumps[k].last_written != Some(step))).collect();
-        if due.is_empty() {
-            return Ok(());
+        if !due.is_empty() {
+            if self.state.distributed.is_some() {
+                self.write_dumps_gathered(&due)?;
+            } else {
+                let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
+                let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
+                for &k in &due {
+                    self.dumps[k].write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
+                }
+            }
         }
-        if self.state.distributed.is_some() {
-            return self.write_dumps_gathered(&due);
-        }
-        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
-        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
-        for k in due {
-            self.dumps[k].write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
+        // `every v_name`: the next snapshot's step, at setup and after each snapshot (LAMMPS'
+        // calculate_next_dump)
+        let renew: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].every_var.is_some() && (setup || due.contains(&k))).collect();
+        for k in renew {
+            let v = self.dumps[k].every_var.clone().unwrap_or_default();
+            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
+            let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
+            let next = dmhs_parser::variables::compute_equal(&mut ev, &v).map_err(|e| RunError::new(step, format!("dump {} every variable {v}: {e}", self.dumps[k].id)))?;
+            if !(next > step as f64) {
+                return Err(RunError::new(step, format!("Dump {} every variable {v} returned a bad timestep: {next} (it must be after the current step {step})", self.dumps[k].id)));
+            }
+            self.dumps[k].next = if next >= i64::MAX as f64 { i64::MAX } else { next as i64 };
         }
         Ok(())
     }

@@ -84,7 +84,11 @@ impl Simulation {
         };
         s += &format!("  thermo {every}: {}\n", self.thermo.columns.iter().map(|c| c.label.as_str()).collect::<Vec<_>>().join(" "));
         for d in &self.dumps {
-            s += &format!("  dump {} {} every {} -> {}\n", d.id, d.style, d.every, d.path.display());
+            let every = match &d.every_var {
+                Some(v) => format!("at the steps variable {v} gives"),
+                None => format!("every {}", d.every),
+            };
+            s += &format!("  dump {} {} {every} -> {}\n", d.id, d.style, d.path.display());
         }
         s
     }

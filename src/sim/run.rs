@@ -930,11 +930,11 @@ impl Simulation {
             // the next output step, from the variable after each output (LAMMPS' Output::setup
             // and write: only the later ones are capped at the run's last step)
             if let Some(v) = &self.thermo.every_var {
-                let next = dmhs_parser::variables::compute_equal(&mut ev, v).map_err(|e| RunError::new(step, format!("thermo every variable {v}: {e}")))?;
-                if !(next > step as f64) {
-                    return Err(RunError::new(step, format!("Thermo every variable {v} returned a bad timestep ({next}): it must be after the current step {step}")));
+                let value = dmhs_parser::variables::compute_equal(&mut ev, v).map_err(|e| RunError::new(step, format!("thermo every variable {v}: {e}")))?;
+                let next = whole_step(value);
+                if next <= step {
+                    return Err(RunError::new(step, format!("Thermo every variable {v} returned a bad timestep ({value}): it must be after the current step {step}")));
                 }
-                let next = if next >= i64::MAX as f64 { i64::MAX } else { next as i64 };
                 self.thermo.next = if setup { next } else { next.min(last) };
             }
         }
@@ -957,11 +957,12 @@ impl Simulation {
             let v = self.dumps[k].every_var.clone().unwrap_or_default();
             let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
             let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
-            let next = dmhs_parser::variables::compute_equal(&mut ev, &v).map_err(|e| RunError::new(step, format!("dump {} every variable {v}: {e}", self.dumps[k].id)))?;
-            if !(next > step as f64) {
-                return Err(RunError::new(step, format!("Dump {} every variable {v} returned a bad timestep: {next} (it must be after the current step {step})", self.dumps[k].id)));
+            let value = dmhs_parser::variables::compute_equal(&mut ev, &v).map_err(|e| RunError::new(step, format!("dump {} every variable {v}: {e}", self.dumps[k].id)))?;
+            let next = whole_step(value);
+            if next <= step {
+                return Err(RunError::new(step, format!("Dump {} every variable {v} returned a bad timestep: {value} (it must be after the current step {step})", self.dumps[k].id)));
             }
-            self.dumps[k].next = if next >= i64::MAX as f64 { i64::MAX } else { next as i64 };
+            self.dumps[k].next = next;
         }
         Ok(())
     }
@@ -1052,4 +1053,10 @@ impl Simulation {
 fn clear<T: Copy + Send + Sync>(v: &mut [T], zero: T) {
     use crate::engine::par::{ranges, AtomsMut};
     ranges(v.len(), 1024, AtomsMut::new(v), |r, mut w| w.slice(r).fill(zero));
+}
+
+/// A variable's value as the step of the next output: truncated toward zero as LAMMPS'
+/// static_cast<bigint> (10.7 is step 10), saturating; NaN is 0.
+fn whole_step(value: f64) -> i64 {
+    value as i64
 }

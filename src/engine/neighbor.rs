@@ -1075,15 +1075,19 @@ mod tests {
     use crate::engine::atoms::{AtomFeatures, NewAtom};
     use crate::engine::domain::BoundaryKind;
 
+    /// Uniform numbers in [0, 1) from a 64-bit LCG: random test systems, the same each run.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// Lists of random periodic boxes, thin and wide, keep the slab invariant (in debug builds
     /// the builder asserts it too).
     #[test]
     fn every_owned_partner_lies_in_the_same_or_the_next_chunk() {
-        let mut seed = 12345u64;
-        let mut rand = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = uniform(12345);
         for (len, n) in [([6.0, 6.0, 6.0], 300), ([40.0, 5.0, 5.0], 2000), ([3.1, 3.1, 30.0], 500)] {
             let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
             let mut atoms = Atoms::new(AtomFeatures::default());
@@ -1102,11 +1106,7 @@ mod tests {
     /// is listed with the partners it reaches within the type cutoffs' reach.
     #[test]
     fn size_lists_hold_the_pairs_within_their_radii_sum_and_skin() {
-        let mut seed = 777u64;
-        let mut rand = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = uniform(777);
         let len = [7.0, 6.0, 5.0];
         let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
         let mut atoms = Atoms::new(AtomFeatures { sphere: true, ..AtomFeatures::default() });
@@ -1170,11 +1170,7 @@ mod tests {
     /// atoms' lists, also after a build that reuses the rows and after a 1-2 pair is removed.
     #[test]
     fn acting_partners_give_the_entries_of_the_per_pair_search() {
-        let mut seed = 777u64;
-        let mut rand = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = uniform(777);
         let len = [7.0, 6.0, 6.5];
         let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
         // chains of 10 atoms, IDs in chain order, a random walk of steps near 1

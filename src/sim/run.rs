@@ -132,21 +132,13 @@ impl Simulation {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
         }
         self.init_thermo_columns();
-        // LAMMPS' Output::init
-        if let Some(v) = &self.thermo.every_var {
+        // LAMMPS' Output::init: output intervals given by variables
+        let intervals = self.thermo.every_var.iter().map(|v| (v, "thermo".to_string())).chain(self.dumps.iter().filter_map(|d| d.every_var.as_ref().map(|v| (v, format!("dump {}", d.id)))));
+        for (v, what) in intervals {
             match self.variables.style(v) {
-                None => return Err(format!("Variable name {v} for thermo every does not exist").into()),
+                None => return Err(format!("Variable name {v} for {what} every does not exist").into()),
                 Some("equal" | "internal" | "timer") => {}
-                Some(_) => return Err(format!("Variable {v} for thermo every is invalid style (it must be equal-style)").into()),
-            }
-        }
-        for d in &self.dumps {
-            if let Some(v) = &d.every_var {
-                match self.variables.style(v) {
-                    None => return Err(format!("Variable name {v} for dump {} every does not exist", d.id).into()),
-                    Some("equal" | "internal" | "timer") => {}
-                    Some(_) => return Err(format!("Variable {v} for dump {} every is invalid style (it must be equal-style)", d.id).into()),
-                }
+                Some(_) => return Err(format!("Variable {v} for {what} every is invalid style (it must be equal-style)").into()),
             }
         }
         // LAMMPS' Thermo::init: a fix in a thermo column must be current on thermo steps
@@ -930,39 +922,27 @@ impl Simulation {
             // the next output step, from the variable after each output (LAMMPS' Output::setup
             // and write: only the later ones are capped at the run's last step)
             if let Some(v) = &self.thermo.every_var {
-                let value = dmhs_parser::variables::compute_equal(&mut ev, v).map_err(|e| RunError::new(step, format!("thermo every variable {v}: {e}")))?;
-                let next = whole_step(value);
-                if next <= step {
-                    return Err(RunError::new(step, format!("Thermo every variable {v} returned a bad timestep ({value}): it must be after the current step {step}")));
-                }
+                let next = next_output_step(&mut ev, v, step).map_err(|e| RunError::new(step, format!("Thermo every variable {v} {e}")))?;
                 self.thermo.next = if setup { next } else { next.min(last) };
             }
         }
         let due: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].due(step, setup) || (all_dumps && self.dumps[k].last_written != Some(step))).collect();
-        if !due.is_empty() {
-            if self.state.distributed.is_some() {
-                self.write_dumps_gathered(&due)?;
-            } else {
-                let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
-                let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
-                for &k in &due {
-                    self.dumps[k].write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
-                }
-            }
+        let distributed = self.state.distributed.is_some();
+        if distributed && !due.is_empty() {
+            self.write_dumps_gathered(&due)?;
         }
-        // `every v_name`: the next snapshot's step, at setup and after each snapshot (LAMMPS'
-        // calculate_next_dump)
-        let renew: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].every_var.is_some() && (setup || due.contains(&k))).collect();
-        for k in renew {
-            let v = self.dumps[k].every_var.clone().unwrap_or_default();
-            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
-            let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
-            let value = dmhs_parser::variables::compute_equal(&mut ev, &v).map_err(|e| RunError::new(step, format!("dump {} every variable {v}: {e}", self.dumps[k].id)))?;
-            let next = whole_step(value);
-            if next <= step {
-                return Err(RunError::new(step, format!("Dump {} every variable {v} returned a bad timestep: {value} (it must be after the current step {step})", self.dumps[k].id)));
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
+        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
+        for (k, d) in self.dumps.iter_mut().enumerate() {
+            let written = due.contains(&k);
+            if written && !distributed {
+                d.write(&world, &mut ev).map_err(|e| RunError::new(step, e))?;
             }
-            self.dumps[k].next = next;
+            // `every v_name`: the next snapshot's step, at setup and after each snapshot
+            // (LAMMPS' calculate_next_dump)
+            if let Some(v) = d.every_var.as_ref().filter(|_| setup || written) {
+                d.next = next_output_step(&mut ev, v, step).map_err(|e| RunError::new(step, format!("Dump {} every variable {v} {e}", d.id)))?;
+            }
         }
         Ok(())
     }
@@ -1055,8 +1035,14 @@ fn clear<T: Copy + Send + Sync>(v: &mut [T], zero: T) {
     ranges(v.len(), 1024, AtomsMut::new(v), |r, mut w| w.slice(r).fill(zero));
 }
 
-/// A variable's value as the step of the next output: truncated toward zero as LAMMPS'
-/// static_cast<bigint> (10.7 is step 10), saturating; NaN is 0.
-fn whole_step(value: f64) -> i64 {
-    value as i64
+/// The step of the next output (thermo or a dump) that variable `v` gives at `step`: its value
+/// truncated toward zero as LAMMPS' static_cast<bigint> (10.7 is step 10; saturating, NaN is
+/// 0), which must lie after `step`. The error completes "... every variable NAME ".
+fn next_output_step(ev: &mut Eval, v: &str, step: i64) -> Result<i64, String> {
+    let value = dmhs_parser::variables::compute_equal(ev, v).map_err(|e| format!("could not be evaluated: {e}"))?;
+    let next = value as i64;
+    if next <= step {
+        return Err(format!("returned a bad timestep ({value}): it must be after the current step {step}"));
+    }
+    Ok(next)
 }

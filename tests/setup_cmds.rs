@@ -46,6 +46,9 @@ fn setup_command_errors_are_located() {
         (rot, "displace_atoms top rotate 3 3 3 1 1", "needs 7 arguments"),
         (rot, "displace_atoms top rotate 3 3 3 1 1 0.5 33 units cubits", "units"),
         ("displace_atoms all random 0.1 0.1 0.1 12345", "displace_atoms all random 0.1 0.1 0.1 0", "seed"),
+        ("variable mx equal 0.03", "variable mx string 0.03", "Variable for displace_atoms is invalid style"),
+        ("move v_mx v_my", "move v_nope v_my", "Variable name for displace_atoms does not exist: v_nope"),
+        ("move v_mx v_my 0.01", "move v_mx v_my dz", "expected a number for dz"),
         (cb, "change_box all xy final 0 1", "dmhs boxes are orthogonal"),
         (cb, "change_box all x volume", "volume is not supported"),
         (cb, "change_box all x delta -0.5 0.5 remap wobble", "unknown keyword `wobble`"),
@@ -70,4 +73,19 @@ fn two_freeze_fixes_are_refused_at_run() {
     let (code, out) = check(&deck);
     assert_ne!(code, 0, "{out}");
     assert!(out.contains("more than one fix freeze"), "{out}");
+}
+
+#[test]
+fn displace_atoms_move_in_2d_ignores_the_z_word() {
+    // LAMMPS 22 Jul 2025 neither reads nor applies move's dz in 2d (x stays in the plane at z = 0)
+    let deck = "dimension 2\nboundary p p p\nregion box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 1 1 0\nmass 1 1\n\
+                variable a atom x\ndisplace_atoms all move 2 v_a v_nope units box\ndisplace_atoms all move 0 0 3 units box\n\
+                write_dump all custom out.dump id x y z modify format float %g\n";
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("in.2d"), deck).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["-in", "in.2d", "-log", "none"]).current_dir(tmp.path()).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dump = std::fs::read_to_string(tmp.path().join("out.dump")).unwrap();
+    // y moved by the x that x's move left (3), as LAMMPS
+    assert_eq!(dump.lines().last().unwrap(), "1 3 4 0", "{dump}");
 }

@@ -7,7 +7,7 @@ use crate::engine::random_park::RanPark;
 use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 
-const SYNTAX: &str = "displace_atoms group-ID move dx dy dz | ramp ddim dlo dhi dim clo chi | random dx dy dz seed | rotate Px Py Pz Rx Ry Rz theta  [units box|lattice]";
+const SYNTAX: &str = "displace_atoms group-ID move dx dy dz (numbers or v_name) | ramp ddim dlo dhi dim clo chi | random dx dy dz seed | rotate Px Py Pz Rx Ry Rz theta  [units box|lattice]";
 
 /// How many arguments each style takes before its keywords.
 const STYLES: &[(&str, usize)] = &[("move", 3), ("ramp", 6), ("random", 4), ("rotate", 7)];
@@ -31,18 +31,21 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     let mut p = Args::from_words(params, cmd.span, SYNTAX);
     let dim = sim.state.dimension;
     sim.state.atoms.clear_ghosts();
-    let at = &mut sim.state.atoms;
-    let members: Vec<usize> = (0..at.nlocal).filter(|&i| at.mask[i] & bit != 0).collect();
-    match STYLES[style].0 {
-        "move" => {
-            let delta = [scale[0] * p.f64("dx")?, scale[1] * p.f64("dy")?, scale[2] * p.f64("dz")?];
-            check_z(dim, delta[2], &params[2], "displace atoms")?;
+    let members: Vec<usize> = (0..sim.state.atoms.nlocal).filter(|&i| sim.state.atoms.mask[i] & bit != 0).collect();
+    if STYLES[style].0 == "move" {
+        // one direction after the other, each variable evaluated on the positions the earlier
+        // directions moved (LAMMPS); in 2d the z word is not read at all
+        for (k, w) in params.iter().enumerate().take(dim) {
+            let step = move_step(sim, w, ["dx", "dy", "dz"][k])?;
+            let x = &mut sim.state.atoms.x;
             for &i in &members {
-                for k in 0..3 {
-                    at.x[i][k] += delta[k];
-                }
+                x[i][k] += scale[k] * step.at(i);
             }
         }
+    }
+    let at = &mut sim.state.atoms;
+    match STYLES[style].0 {
+        "move" => {}
         "ramp" => {
             let ddim = p.choice("ddim", &["x", "y", "z"])?;
             let (dlo, dhi) = (scale[ddim] * p.f64("dlo")?, scale[ddim] * p.f64("dhi")?);
@@ -108,6 +111,37 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     }
     sim.state.lists_valid = false;
     Ok(())
+}
+
+/// One direction's displacement of `move`, unscaled.
+enum Step {
+    One(f64),
+    PerAtom(Vec<f64>),
+}
+
+impl Step {
+    fn at(&self, i: usize) -> f64 {
+        match self {
+            Step::One(d) => *d,
+            Step::PerAtom(v) => v[i],
+        }
+    }
+}
+
+/// It is read from the direction's word: a number, or `v_name` of an equal-style variable
+/// (one value) or an atom-style one (a value per owned atom).
+fn move_step(sim: &mut Simulation, w: &Word, what: &str) -> DResult<Step> {
+    let Some(name) = w.text.strip_prefix("v_") else {
+        return Args::from_words(std::slice::from_ref(w), w.span, SYNTAX).f64(what).map(Step::One);
+    };
+    match sim.variables.style(name) {
+        None => Err(Diagnostic::at(w.span, format!("Variable name for displace_atoms does not exist: {}", w.text), "no such variable")),
+        Some("atom") => Ok(Step::PerAtom(crate::deck::commands::atoms_cmds::atom_variable_values(sim, w, name, "displace_atoms")?)),
+        Some("equal" | "internal" | "timer" | "python") => {
+            dmhs_parser::variables::compute_equal(sim, name).map(Step::One).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
+        }
+        Some(style) => Err(Diagnostic::at(w.span, format!("Variable for displace_atoms is invalid style: {} is {style}-style", w.text), "an equal- or atom-style variable is needed")),
+    }
 }
 
 /// LAMMPS refuses a z displacement in 2d.

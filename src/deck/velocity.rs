@@ -92,15 +92,11 @@ pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) 
 }
 
 /// A `velocity set` component `v_name`: an equal-style variable's value or an atom-style one's
-/// values over the local atoms (LAMMPS' errors for a missing variable or another style).
+/// values over the local atoms.
 fn set_variable(sim: &mut Simulation, w: &Word) -> DResult<SetArg> {
-    let name = &w.text[2..];
-    match sim.variables.style(name) {
-        None => Err(Diagnostic::at(w.span, format!("Variable name for velocity set does not exist: {}", w.text), "no such variable")),
-        Some("atom") => Ok(SetArg::PerAtom(crate::deck::commands::atoms_cmds::atom_variable_values(sim, w, name, "velocity set")?)),
-        Some("equal" | "internal" | "timer" | "python") => {
-            dmhs_parser::variables::compute_equal(sim, name).map(SetArg::Value).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
-        }
-        Some(style) => Err(Diagnostic::at(w.span, format!("Variable for velocity set is invalid style: {} is {style}-style", w.text), "an equal- or atom-style variable is needed")),
-    }
+    use crate::deck::commands::atoms_cmds::{equal_or_atom_variable, SetValue};
+    Ok(match equal_or_atom_variable(sim, w, "velocity set")? {
+        SetValue::One(x) => SetArg::Value(x),
+        SetValue::PerAtom(v) => SetArg::PerAtom(v),
+    })
 }

@@ -534,13 +534,15 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
 }
 
 /// A numeric `set` value: one number, or an atom-style variable's value for each owned atom.
-enum SetValue {
+/// A value given as a number (or an equal-style variable) or as an atom-style variable's values
+/// over the owned atoms.
+pub(crate) enum SetValue {
     One(f64),
     PerAtom(Vec<f64>),
 }
 
 impl SetValue {
-    fn at(&self, i: usize) -> f64 {
+    pub(crate) fn at(&self, i: usize) -> f64 {
         match self {
             SetValue::One(x) => *x,
             SetValue::PerAtom(v) => v[i],
@@ -581,6 +583,21 @@ pub(crate) fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, w
     let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref(), pair: sim.pair.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
     crate::models::atom_formula::atom_variable_drawing(name, &world, &mut ev, Some(&mut sim.random_atom)).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
+}
+
+/// The value of `v_name` at `w` for command `what` (velocity set, displace_atoms): an
+/// equal-style variable's value or an atom-style one's values over the owned atoms, with
+/// LAMMPS' errors for a missing variable or another style.
+pub(crate) fn equal_or_atom_variable(sim: &mut Simulation, w: &Word, what: &str) -> DResult<SetValue> {
+    let name = &w.text[2..];
+    match sim.variables.style(name) {
+        None => Err(Diagnostic::at(w.span, format!("Variable name for {what} does not exist: {}", w.text), "no such variable")),
+        Some("atom") => Ok(SetValue::PerAtom(atom_variable_values(sim, w, name, what)?)),
+        Some("equal" | "internal" | "timer" | "python") => {
+            dmhs_parser::variables::compute_equal(sim, name).map(SetValue::One).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
+        }
+        Some(style) => Err(Diagnostic::at(w.span, format!("Variable for {what} is invalid style: {} is {style}-style", w.text), "an equal- or atom-style variable is needed")),
+    }
 }
 
 /// LAMMPS' error for a value it refuses, at the value's word (and the atom, for a variable).

@@ -3,6 +3,7 @@
 //! into a periodic box with its image flags updated.
 
 use super::need_box;
+use super::atoms_cmds::{equal_or_atom_variable, SetValue};
 use crate::engine::random_park::RanPark;
 use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
@@ -113,34 +114,12 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     Ok(())
 }
 
-/// One direction's displacement of `move`, unscaled.
-enum Step {
-    One(f64),
-    PerAtom(Vec<f64>),
-}
-
-impl Step {
-    fn at(&self, i: usize) -> f64 {
-        match self {
-            Step::One(d) => *d,
-            Step::PerAtom(v) => v[i],
-        }
-    }
-}
-
-/// It is read from the direction's word: a number, or `v_name` of an equal-style variable
-/// (one value) or an atom-style one (a value per owned atom).
-fn move_step(sim: &mut Simulation, w: &Word, what: &str) -> DResult<Step> {
-    let Some(name) = w.text.strip_prefix("v_") else {
-        return Args::from_words(std::slice::from_ref(w), w.span, SYNTAX).f64(what).map(Step::One);
-    };
-    match sim.variables.style(name) {
-        None => Err(Diagnostic::at(w.span, format!("Variable name for displace_atoms does not exist: {}", w.text), "no such variable")),
-        Some("atom") => Ok(Step::PerAtom(crate::deck::commands::atoms_cmds::atom_variable_values(sim, w, name, "displace_atoms")?)),
-        Some("equal" | "internal" | "timer" | "python") => {
-            dmhs_parser::variables::compute_equal(sim, name).map(Step::One).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
-        }
-        Some(style) => Err(Diagnostic::at(w.span, format!("Variable for displace_atoms is invalid style: {} is {style}-style", w.text), "an equal- or atom-style variable is needed")),
+/// One direction's displacement of `move`, unscaled: a number, or `v_name` of an equal-style
+/// variable (one value) or an atom-style one (a value per owned atom).
+fn move_step(sim: &mut Simulation, w: &Word, what: &str) -> DResult<SetValue> {
+    match w.text.starts_with("v_") {
+        true => equal_or_atom_variable(sim, w, "displace_atoms"),
+        false => Args::from_words(std::slice::from_ref(w), w.span, SYNTAX).f64(what).map(SetValue::One),
     }
 }
 

@@ -1,5 +1,8 @@
 //! Quaternion arithmetic of LAMMPS' MathExtra, in its order of operations (so orientations
-//! integrated here have LAMMPS' bits). A quaternion is (w, i, j, k).
+//! integrated here have LAMMPS' bits). A quaternion is (w, i, j, k). The functions a lane
+//! kernel uses (bpm/rotational's) are written over [`Real`], for one value or a batch.
+
+use crate::engine::par::lanes::Real;
 
 pub type Quat = [f64; 4];
 
@@ -90,31 +93,31 @@ pub fn matvec(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
 
 /// `norm3`: scale a vector to unit length (one reciprocal, three products); a zero vector
 /// stays zero.
-pub fn norm3(v: &mut [f64; 3]) {
+#[inline]
+pub fn norm3<T: Real>(v: &mut [T; 3]) {
     let val = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if val > 0.0 {
-        let scale = 1.0 / val.sqrt();
-        for c in v.iter_mut() {
-            *c *= scale;
-        }
+    let nonzero = T::splat(0.0).lt(val);
+    let scale = T::splat(1.0) / val.sqrt();
+    for c in v.iter_mut() {
+        *c = T::select(nonzero, *c * scale, *c);
     }
 }
 
 /// `cross3`: a x b.
 #[inline]
-pub fn cross3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+pub fn cross3<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// `qconjugate`: the inverse of a unit quaternion.
 #[inline]
-pub fn qconjugate(q: &Quat) -> Quat {
+pub fn qconjugate<T: Real>(q: &[T; 4]) -> [T; 4] {
     [q[0], -q[1], -q[2], -q[3]]
 }
 
 /// `quatquat`: the product a * b.
 #[inline]
-pub fn quatquat(a: &Quat, b: &Quat) -> Quat {
+pub fn quatquat<T: Real>(a: &[T; 4], b: &[T; 4]) -> [T; 4] {
     [
         a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
         a[0] * b[1] + b[0] * a[1] + a[2] * b[3] - a[3] * b[2],
@@ -125,7 +128,7 @@ pub fn quatquat(a: &Quat, b: &Quat) -> Quat {
 
 /// `quatrotvec`: the vector v rotated by q, q (0, v) q* (the product with (0, v) first).
 #[inline]
-pub fn quatrotvec(q: &Quat, v: &[f64; 3]) -> [f64; 3] {
+pub fn quatrotvec<T: Real>(q: &[T; 4], v: &[T; 3]) -> [T; 3] {
     let t = [
         -q[1] * v[0] - q[2] * v[1] - q[3] * v[2],
         q[0] * v[0] + q[2] * v[2] - q[3] * v[1],

@@ -243,6 +243,8 @@ pub trait Real: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Se
     fn select(m: Self::Mask, yes: Self, no: Self) -> Self;
     /// Whether the mask is true in any lane (a branch that no lane takes can be skipped).
     fn any(m: Self::Mask) -> bool;
+    /// `f` of each lane (a library function with no lane form, e.g. the C library's `acos`).
+    fn map(self, f: impl Fn(f64) -> f64) -> Self;
 }
 
 impl Real for f64 {
@@ -278,6 +280,10 @@ impl Real for f64 {
     #[inline(always)]
     fn any(m: bool) -> bool {
         m
+    }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> f64 {
+        f(self)
     }
 }
 
@@ -322,6 +328,10 @@ impl Real for L {
     #[inline(always)]
     fn any(m: Mask) -> bool {
         imp::sign_bits(&m.0) != 0
+    }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> L {
+        lanes(|l| f(self.0[l]))
     }
 }
 

@@ -19,9 +19,10 @@
 //! by 1 - B^4 with `smooth yes` (the default). LAMMPS tallies no energy for this style (0) and
 //! the virial of the force on atom 2 (`ev_tally_xyz`).
 
-use super::bpm::{Bpm, BondOut, BpmAtoms, BpmStyle};
+use super::bpm::{BondIn, Bpm, BondOut, BpmAtoms, BpmStyle};
 use super::{fmt_g, BondStyle, SingleBond, TypeTable, Vec3};
-use crate::engine::quat::{cross3, norm3, qconjugate, quatquat, quatrotvec, Quat};
+use crate::engine::par::lanes::{lanes, transpose4, Real, L, LANES};
+use crate::engine::quat::{cross3, norm3, qconjugate, quatquat, quatrotvec};
 use crate::engine::state::State;
 use crate::engine::topology::BOND_HISTORY;
 use dmhs_parser::{Args, DResult};
@@ -33,19 +34,40 @@ pub const SETTINGS_SYNTAX: &str =
 const MY_SQRT2: f64 = std::f64::consts::SQRT_2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Params {
-    kr: f64,
-    ks: f64,
-    kt: f64,
-    kb: f64,
-    fcr: f64,
-    fcs: f64,
-    tct: f64,
-    tcb: f64,
-    gnorm: f64,
-    gslide: f64,
-    groll: f64,
-    gtwist: f64,
+struct Params<T = f64> {
+    kr: T,
+    ks: T,
+    kt: T,
+    kb: T,
+    fcr: T,
+    fcs: T,
+    tct: T,
+    tcb: T,
+    gnorm: T,
+    gslide: T,
+    groll: T,
+    gtwist: T,
+}
+
+impl Params {
+    /// The coefficients of a batch of bonds, lane by lane.
+    fn lanes(p: [&Params; LANES]) -> Params<L> {
+        let g = |f: fn(&Params) -> f64| lanes(|l| f(p[l]));
+        Params {
+            kr: g(|p| p.kr),
+            ks: g(|p| p.ks),
+            kt: g(|p| p.kt),
+            kb: g(|p| p.kb),
+            fcr: g(|p| p.fcr),
+            fcs: g(|p| p.fcs),
+            tct: g(|p| p.tct),
+            tcb: g(|p| p.tcb),
+            gnorm: g(|p| p.gnorm),
+            gslide: g(|p| p.gslide),
+            groll: g(|p| p.groll),
+            gtwist: g(|p| p.gtwist),
+        }
+    }
 }
 
 #[derive(Debug, Default)]
@@ -54,50 +76,61 @@ pub struct BondBpmRotational {
     pub bpm: Bpm,
 }
 
-/// `acos` of a cosine clamped to [-1, 1].
-fn acos_limit(c: f64) -> f64 {
-    c.clamp(-1.0, 1.0).acos()
+/// `acos` of a cosine clamped to [-1, 1] (the C library's, lane by lane).
+#[inline(always)]
+fn acos_limit<T: Real>(c: T) -> T {
+    c.map(|c| c.clamp(-1.0, 1.0).acos())
 }
 
 /// A negative value becomes 0 (a NaN stays, as LAMMPS' `if (x < 0.0) x = 0.0`).
-fn clamp_negative(x: f64) -> f64 {
-    if x < 0.0 { 0.0 } else { x }
+#[inline(always)]
+fn clamp_negative<T: Real>(x: T) -> T {
+    T::select(x.lt(T::splat(0.0)), T::splat(0.0), x)
 }
 
-fn dot3(a: &Vec3, b: &Vec3) -> f64 {
+#[inline(always)]
+fn dot3<T: Real>(a: &[T; 3], b: &[T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn len3(a: &Vec3) -> f64 {
+#[inline(always)]
+fn len3<T: Real>(a: &[T; 3]) -> T {
     dot3(a, a).sqrt()
 }
-fn scale3(s: f64, a: &Vec3) -> Vec3 {
+#[inline(always)]
+fn scale3<T: Real>(s: T, a: &[T; 3]) -> [T; 3] {
     [s * a[0], s * a[1], s * a[2]]
 }
-fn add3(a: &Vec3, b: &Vec3) -> Vec3 {
+#[inline(always)]
+fn add3<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
-fn sub3(a: &Vec3, b: &Vec3) -> Vec3 {
+#[inline(always)]
+fn sub3<T: Real>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-/// The springs of one bond: the force on atom 2 from atom 1, the torques on 2 and on 1, and
-/// the breaking criterion B.
-struct Elastic {
-    f12: Vec3,
-    t12: Vec3,
-    t21: Vec3,
-    breaking: f64,
+/// The springs of one bond (or a batch): the force on atom 2 from atom 1, the torques on 2 and
+/// on 1, and the breaking criterion B.
+struct Elastic<T = f64> {
+    f12: [T; 3],
+    t12: [T; 3],
+    t21: [T; 3],
+    breaking: T,
 }
 
+/// What one bond (or a batch) adds before smoothing: the springs and dampers.
 impl BondBpmRotational {
     /// LAMMPS' elastic_forces: `r = x1 - x2` (length `r_mag`), `r0` the reference vector.
+    /// Written once for a bond and a batch: every branch of LAMMPS' code is a select.
     #[allow(clippy::too_many_arguments)]
-    fn elastic(&self, p: &Params, q1: &Quat, q2: &Quat, r_mag: f64, r0_mag: f64, r_mag_inv: f64, r: &Vec3, r0: &Vec3) -> Elastic {
-        let r0_mag_inv = 1.0 / r0_mag;
+    #[inline(always)]
+    fn elastic<T: Real>(&self, p: &Params<T>, q1: &[T; 4], q2: &[T; 4], r_mag: T, r0_mag: T, r_mag_inv: T, r: &[T; 3], r0: &[T; 3]) -> Elastic<T> {
+        let (zero, one) = (T::splat(0.0), T::splat(1.0));
+        let r0_mag_inv = one / r0_mag;
         let (mut kr, mut ks) = (p.kr, p.ks);
         if self.bpm.normalize {
-            kr *= r0_mag_inv;
-            ks *= r0_mag_inv;
+            kr = kr * r0_mag_inv;
+            ks = ks * r0_mag_inv;
         }
         // normal force, with rb the bond vector in atom 2's frame
         let q2inv = qconjugate(q2);
@@ -113,52 +146,45 @@ impl BondBpmRotational {
         let mut fs = scale3(ks * r_mag * gamma, &s);
         let mut t = cross3(r0, &rb);
         norm3(&mut t);
-        let mut ts = scale3(0.5 * r_mag * ks * r_mag * gamma, &t);
+        let mut ts = scale3(T::splat(0.5) * r_mag * ks * r_mag * gamma, &t);
 
-        // mq turns the z axis onto rb (Wang & Mora's X'Y'Z' representation of rotations)
-        let mut mq = [0.0; 4];
+        // mq turns the z axis onto rb (Wang & Mora's X'Y'Z' representation of rotations); its
+        // x and y parts stay 0 where rb lies on the z axis
+        let half_sqrt2 = T::splat(MY_SQRT2 * 0.5);
         let temp = clamp_negative(r_mag + rb[2]);
-        mq[0] = MY_SQRT2 * 0.5 * (temp * r_mag_inv).sqrt();
+        let mq0 = half_sqrt2 * (temp * r_mag_inv).sqrt();
         let temp = (rb[0] * rb[0] + rb[1] * rb[1]).sqrt();
-        if temp != 0.0 {
-            mq[1] = -MY_SQRT2 * 0.5 / temp;
-            let temp = clamp_negative(r_mag - rb[2]);
-            mq[1] *= (temp * r_mag_inv).sqrt();
-            mq[2] = -mq[1];
-            mq[1] *= rb[1];
-            mq[2] *= rb[0];
-        }
+        let off_axis = temp.ne(zero);
+        let mut mq1 = -half_sqrt2 / temp;
+        let temp2 = clamp_negative(r_mag - rb[2]);
+        mq1 = mq1 * (temp2 * r_mag_inv).sqrt();
+        let mq2 = -mq1;
+        let mq = [mq0, T::select(off_axis, mq1 * rb[1], zero), T::select(off_axis, mq2 * rb[0], zero), zero];
         // the relative rotation of the atoms in that frame
         let qp21 = quatquat(&q2inv, q1);
         let q21 = quatquat(&quatquat(&qconjugate(&mq), &qp21), &mq);
 
-        // twist angle about the bond
+        // twist angle about the bond (0 where q21 has no w-k part or no k part)
         let temp = (q21[0] * q21[0] + q21[3] * q21[3]).sqrt();
-        let mut psi = if temp != 0.0 { 2.0 * acos_limit(q21[0] / temp) } else { 0.0 };
-        if q21[3] < 0.0 {
-            psi = -psi;
-        }
-        if q21[3] == 0.0 {
-            psi = 0.0;
-        }
+        let mut psi = T::select(temp.ne(zero), T::splat(2.0) * acos_limit(q21[0] / temp), zero);
+        psi = T::select(q21[3].lt(zero), -psi, psi);
+        psi = T::select(q21[3].ne(zero), psi, zero);
         // bend angle and its direction in the plane normal to the bond
         let c = q21[0] * q21[0] - q21[1] * q21[1] - q21[2] * q21[2] + q21[3] * q21[3];
         let theta = acos_limit(c);
         let mag_out_plane = q21[0] * q21[0] + q21[3] * q21[3];
         let mag_in_plane = q21[1] * q21[1] + q21[2] * q21[2];
-        let (cos_phi, sin_phi) = if mag_in_plane == 0.0 {
-            (0.0, 0.0)
-        } else if mag_out_plane == 0.0 {
-            (q21[2] / mag_in_plane.sqrt(), -q21[1] / mag_in_plane.sqrt())
-        } else {
-            let norm = (mag_out_plane * mag_in_plane).sqrt();
-            ((q21[1] * q21[3] + q21[0] * q21[2]) / norm, (q21[2] * q21[3] - q21[0] * q21[1]) / norm)
-        };
+        let in_root = mag_in_plane.sqrt();
+        let norm = (mag_out_plane * mag_in_plane).sqrt();
+        let general = ((q21[1] * q21[3] + q21[0] * q21[2]) / norm, (q21[2] * q21[3] - q21[0] * q21[1]) / norm);
+        let (in_plane, out_of_plane) = (mag_in_plane.ne(zero), mag_out_plane.ne(zero));
+        let cos_phi = T::select(in_plane, T::select(out_of_plane, general.0, q21[2] / in_root), zero);
+        let sin_phi = T::select(in_plane, T::select(out_of_plane, general.1, -q21[1] / in_root), zero);
 
-        let tbp = [-p.kb * theta * sin_phi, p.kb * theta * cos_phi, 0.0];
-        let ttp = [0.0, 0.0, p.kt * psi];
-        let fsp = [-0.5 * ks * r_mag * theta * cos_phi, -0.5 * ks * r_mag * theta * sin_phi, 0.0];
-        let tsp = [0.25 * ks * r_mag * r_mag * theta * sin_phi, -0.25 * ks * r_mag * r_mag * theta * cos_phi, 0.0];
+        let tbp = [-p.kb * theta * sin_phi, p.kb * theta * cos_phi, zero];
+        let ttp = [zero, zero, p.kt * psi];
+        let fsp = [T::splat(-0.5) * ks * r_mag * theta * cos_phi, T::splat(-0.5) * ks * r_mag * theta * sin_phi, zero];
+        let tsp = [T::splat(0.25) * ks * r_mag * r_mag * theta * sin_phi, T::splat(-0.25) * ks * r_mag * r_mag * theta * cos_phi, zero];
 
         // back from the bond frame, then from atom 2's frame
         fs = add3(&fs, &quatrotvec(&mq, &fsp));
@@ -177,7 +203,9 @@ impl BondBpmRotational {
     /// LAMMPS' damping_forces, added to `e`: relative normal and sliding velocities, rolling and
     /// twisting spins.
     #[allow(clippy::too_many_arguments)]
-    fn damping(p: &Params, e: &mut Elastic, rhat: &Vec3, r: &Vec3, v1: &Vec3, v2: &Vec3, w1: &Vec3, w2: &Vec3) {
+    #[inline(always)]
+    fn damping<T: Real>(p: &Params<T>, e: &mut Elastic<T>, rhat: &[T; 3], r: &[T; 3], v1: &[T; 3], v2: &[T; 3], w1: &[T; 3], w2: &[T; 3]) {
+        let (half, minus_one) = (T::splat(0.5), T::splat(-1.0));
         let vn1 = scale3(dot3(v1, rhat), rhat);
         let vn2 = scale3(dot3(v2, rhat), rhat);
         let tmp = scale3(p.gnorm, &sub3(&vn1, &vn2));
@@ -185,34 +213,35 @@ impl BondBpmRotational {
 
         let vt1 = sub3(v1, &vn1);
         let vt2 = sub3(v2, &vn2);
-        let tmp = scale3(0.5, &sub3(&vt2, &vt1));
-        let s1 = sub3(&scale3(-0.5, &cross3(w1, r)), &tmp);
-        let s2 = add3(&scale3(0.5, &cross3(w2, r)), &tmp);
+        let tmp = scale3(half, &sub3(&vt2, &vt1));
+        let s1 = sub3(&scale3(T::splat(-0.5), &cross3(w1, r)), &tmp);
+        let s2 = add3(&scale3(half, &cross3(w2, r)), &tmp);
         let tmp = scale3(p.gslide, &sub3(&s1, &s2));
         e.f12 = add3(&e.f12, &tmp);
-        let tdamp = scale3(0.5, &cross3(r, &tmp));
+        let tdamp = scale3(half, &cross3(r, &tmp));
         e.t12 = add3(&e.t12, &tdamp);
         e.t21 = add3(&e.t21, &tdamp);
 
         let vroll = sub3(&cross3(w1, rhat), &cross3(w2, rhat));
-        let tdamp = scale3(0.5 * p.groll, &cross3(r, &vroll));
+        let tdamp = scale3(half * p.groll, &cross3(r, &vroll));
         e.t12 = add3(&e.t12, &tdamp);
-        e.t21 = add3(&e.t21, &scale3(-1.0, &tdamp));
+        e.t21 = add3(&e.t21, &scale3(minus_one, &tdamp));
 
         let wn1 = scale3(dot3(w1, rhat), rhat);
         let wn2 = scale3(dot3(w2, rhat), rhat);
-        let tdamp = scale3(0.5 * p.gtwist, &sub3(&wn1, &wn2));
+        let tdamp = scale3(half * p.gtwist, &sub3(&wn1, &wn2));
         e.t12 = add3(&e.t12, &tdamp);
-        e.t21 = add3(&e.t21, &scale3(-1.0, &tdamp));
+        e.t21 = add3(&e.t21, &scale3(minus_one, &tdamp));
     }
 
     /// The factor 1 - B^4 of `smooth yes`.
-    fn smoothing(&self, breaking: f64) -> f64 {
+    #[inline(always)]
+    fn smoothing<T: Real>(&self, breaking: T) -> T {
         if self.bpm.smooth {
             let s = breaking * breaking;
-            1.0 - s * s
+            T::splat(1.0) - s * s
         } else {
-            1.0
+            T::splat(1.0)
         }
     }
 
@@ -258,6 +287,38 @@ impl BpmStyle for BondBpmRotational {
         let f1 = e.f12.map(|c| -(c * smooth));
         let virial = [r[0] * f1[0], r[1] * f1[1], r[2] * f1[2], r[0] * f1[1], r[0] * f1[2], r[1] * f1[2]];
         Some(BondOut { f1, t1: e.t21.map(|c| c * smooth), t2: e.t12.map(|c| c * smooth), energy: 0.0, virial, history: None })
+    }
+    /// The same arithmetic as [`BpmStyle::bond`], [`LANES`] bonds at once (a short batch repeats
+    /// its last bond in the spare lanes).
+    fn bonds(&self, b: &[BondIn; LANES], n: usize, atoms: &BpmAtoms) -> [Option<BondOut>; LANES] {
+        let lane = |l: usize| &b[l.min(n - 1)];
+        let p = Params::lanes(std::array::from_fn(|l| self.types.get(lane(l).typ)));
+        let hist = transpose4(std::array::from_fn(|l| &lane(l).hist));
+        let r0_mag = hist[0];
+        let r0 = [hist[1] * r0_mag, hist[2] * r0_mag, hist[3] * r0_mag];
+        let vec = |f: &dyn Fn(usize) -> Vec3| -> [L; 3] { std::array::from_fn(|c| lanes(|l| f(l)[c])) };
+        let r = vec(&|l| lane(l).del);
+        let r_mag = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        let r_mag_inv = L::splat(1.0) / r_mag;
+        let rhat = scale3(r_mag_inv, &r);
+        let q1 = transpose4(std::array::from_fn(|l| &atoms.quat[lane(l).i1]));
+        let q2 = transpose4(std::array::from_fn(|l| &atoms.quat[lane(l).i2]));
+        let mut e = self.elastic(&p, &q1, &q2, r_mag, r0_mag, r_mag_inv, &r, &r0);
+        let (v1, v2) = (vec(&|l| atoms.v[lane(l).i1]), vec(&|l| atoms.v[lane(l).i2]));
+        let (w1, w2) = (vec(&|l| atoms.omega[lane(l).i1]), vec(&|l| atoms.omega[lane(l).i2]));
+        Self::damping(&p, &mut e, &rhat, &r, &v1, &v2, &w1, &w2);
+        let smooth = self.smoothing(e.breaking);
+        let f1 = e.f12.map(|c| -(c * smooth));
+        let (t1, t2) = (e.t21.map(|c| c * smooth), e.t12.map(|c| c * smooth));
+        let at = |v: &[L; 3], l: usize| [v[0][l], v[1][l], v[2][l]];
+        std::array::from_fn(|l| {
+            if l >= n || (e.breaking[l] >= 1.0 && self.bpm.break_bonds) {
+                return None;
+            }
+            let (r, f1) = (at(&r, l), at(&f1, l));
+            let virial = [r[0] * f1[0], r[1] * f1[1], r[2] * f1[2], r[0] * f1[1], r[0] * f1[2], r[1] * f1[2]];
+            Some(BondOut { f1, t1: at(&t1, l), t2: at(&t2, l), energy: 0.0, virial, history: None })
+        })
     }
 }
 

@@ -19,6 +19,7 @@
 use super::{Vec3, Virial};
 use crate::engine::bonded_lists::{Entry, Listed};
 use crate::engine::fields::Field;
+use crate::engine::par::lanes::LANES;
 use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use crate::engine::topology::BOND_HISTORY;
@@ -260,11 +261,27 @@ pub trait BpmStyle: Sync {
     /// One bond of type `btype` with reference state `hist`, atoms `i1` (the lower ID) and
     /// `i2`, `del = x1 - x2`. `None`: the bond breaks (never with `break no`).
     fn bond(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms) -> Option<BondOut>;
+    /// Up to [`LANES`] bonds (`b[..n]`) at once, each as [`BpmStyle::bond`] gives it (a style
+    /// with a lane kernel evaluates them together); the entries from `n` on are `None`.
+    fn bonds(&self, b: &[BondIn; LANES], n: usize, atoms: &BpmAtoms) -> [Option<BondOut>; LANES] {
+        std::array::from_fn(|l| if l < n { self.bond(b[l].typ, &b[l].hist, b[l].i1, b[l].i2, b[l].del, atoms) } else { None })
+    }
     /// [`BpmStyle::bond`] with the volume sums of its atoms (styles with `volume/factor yes`).
     #[allow(clippy::too_many_arguments)]
     fn bond_volume(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms, _vol: VolSums) -> Option<BondOut> {
         self.bond(btype, hist, i1, i2, del, atoms)
     }
+}
+
+/// One bond as [`BpmStyle::bond`] takes it: type, reference state, atoms (`i1` the lower ID),
+/// `del = x1 - x2`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BondIn {
+    pub typ: usize,
+    pub hist: [f64; BOND_HISTORY],
+    pub i1: usize,
+    pub i2: usize,
+    pub del: Vec3,
 }
 
 /// The side of [`BpmStyle`] the engine calls through a `dyn BondStyle`
@@ -399,7 +416,8 @@ struct Done {
     out: Option<BondOut>,
 }
 
-/// Bonds evaluated per parallel task.
+/// Bonds evaluated per thread in a block (in four parallel tasks: `ranges` shares a loop of
+/// four or more).
 const CHUNK: usize = 1024;
 
 /// The bond pass of a BPM style: stores unset reference states, evaluates the bonds (in
@@ -450,25 +468,36 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let mut buf = vec![Done::default(); block.min(list.len())];
     for part_list in list.chunks(block) {
         let done = &mut buf[..part_list.len()];
-        ranges(part_list.len(), CHUNK, AtomsMut::new(done), |r, mut w| {
-            for k in r {
-                let e = &part_list[k].entry;
-                let (i, p, del, swapped) = ordered(e, x, tag, prd);
-                let mut hist = part_list[k].history;
-                let mut stored = None;
-                if hist[0] < EPSILON || hist[0].is_nan() {
-                    hist = style.reference(del);
-                    stored = Some(hist);
-                }
-                let out = match &vols {
-                    None => style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
-                    Some(v) => {
-                        let [i1, i2] = i.map(|k| k as usize);
-                        let sums = VolSums { vol: v.vol[i1] + v.vol[i2], vol0: v.vol0[i1] + v.vol0[i2], invdim: v.invdim };
-                        style.bond_volume(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms, sums)
+        ranges(part_list.len(), CHUNK / 4, AtomsMut::new(done), |r, mut w| {
+            // LANES bonds at a time (the style's lane kernel, if it has one)
+            let mut k = r.start;
+            while k < r.end {
+                let n = (r.end - k).min(LANES);
+                let mut ins = [BondIn::default(); LANES];
+                let mut seen = [Done::default(); LANES];
+                for j in 0..n {
+                    let e = &part_list[k + j].entry;
+                    let (i, p, del, swapped) = ordered(e, x, tag, prd);
+                    let mut hist = part_list[k + j].history;
+                    let mut stored = None;
+                    if hist[0] < EPSILON || hist[0].is_nan() {
+                        hist = style.reference(del);
+                        stored = Some(hist);
                     }
+                    ins[j] = BondIn { typ: e.typ, hist, i1: i[0] as usize, i2: i[1] as usize, del };
+                    seen[j] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out: None };
+                }
+                let outs = match &vols {
+                    None => style.bonds(&ins, n, &atoms),
+                    Some(v) => std::array::from_fn(|j| {
+                        let b = &ins[j];
+                        (j < n).then(|| VolSums { vol: v.vol[b.i1] + v.vol[b.i2], vol0: v.vol0[b.i1] + v.vol0[b.i2], invdim: v.invdim }).and_then(|sums| style.bond_volume(b.typ, &b.hist, b.i1, b.i2, b.del, &atoms, sums))
+                    }),
                 };
-                w[k] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out };
+                for j in 0..n {
+                    w[k + j] = Done { out: outs[j], ..seen[j] };
+                }
+                k += n;
             }
         });
         for (l, d) in part_list.iter().zip(done.iter()) {

@@ -6,6 +6,7 @@
 //! half-step omega). Second half: the two kicks again. LAMMPS' order of operations per atom.
 
 use super::{Fix, FixCtx, FixHooks};
+use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::quat::richardson_sphere;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -46,23 +47,30 @@ impl FixNveBpmSphere {
         let dtv = state.dt;
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         let dtq = 0.5 * dtv;
+        let (groupbit, inertia) = (self.groupbit, self.inertia);
         let a = &mut state.atoms;
-        for i in 0..a.nlocal {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
+        let n = a.nlocal;
+        let (f, torque, rmass, radius, mask) = (&a.f[..n], &a.torque[..n], &a.rmass[..n], &a.radius[..n], &a.mask[..n]);
+        let windows = (AtomsMut::new(&mut a.x[..n]), AtomsMut::new(&mut a.v[..n]), AtomsMut::new(&mut a.omega[..n]), AtomsMut::new(&mut a.quat[..n]));
+        // atoms are independent: ranges of them on the team
+        ranges(n, 1024, windows, |r, (mut x, mut v, mut omega, mut quat)| {
+            for i in r {
+                if mask[i] & groupbit == 0 {
+                    continue;
+                }
+                let dtfm = dtf / rmass[i];
+                super::kick(&mut v[i], dtfm, &f[i]);
+                if first {
+                    super::drift(&mut x[i], dtv, &v[i]);
+                }
+                let particle_inertia = inertia * (radius[i] * radius[i] * rmass[i]);
+                let dtirotate = dtf / particle_inertia;
+                super::kick(&mut omega[i], dtirotate, &torque[i]);
+                if first {
+                    richardson_sphere(&mut quat[i], &omega[i], dtq);
+                }
             }
-            let dtfm = dtf / a.rmass[i];
-            super::kick(&mut a.v[i], dtfm, &a.f[i]);
-            if first {
-                super::drift(&mut a.x[i], dtv, &a.v[i]);
-            }
-            let particle_inertia = self.inertia * (a.radius[i] * a.radius[i] * a.rmass[i]);
-            let dtirotate = dtf / particle_inertia;
-            super::kick(&mut a.omega[i], dtirotate, &a.torque[i]);
-            if first {
-                richardson_sphere(&mut a.quat[i], &a.omega[i], dtq);
-            }
-        }
+        });
     }
 }
 

@@ -261,6 +261,7 @@ impl BondBpmRotational {
 
 impl BpmStyle for BondBpmRotational {
     const TORQUES: bool = true;
+    const LANE_KERNEL: bool = true;
     fn bpm(&self) -> &Bpm {
         &self.bpm
     }
@@ -290,7 +291,8 @@ impl BpmStyle for BondBpmRotational {
     }
     /// The same arithmetic as [`BpmStyle::bond`], [`LANES`] bonds at once (a short batch repeats
     /// its last bond in the spare lanes).
-    fn bonds(&self, b: &[BondIn; LANES], n: usize, atoms: &BpmAtoms) -> [Option<BondOut>; LANES] {
+    #[inline(always)]
+    fn bonds(&self, b: &[BondIn; LANES], n: usize, atoms: &BpmAtoms, mut emit: impl FnMut(usize, Option<BondOut>)) {
         let lane = |l: usize| &b[l.min(n - 1)];
         let p = Params::lanes(std::array::from_fn(|l| self.types.get(lane(l).typ)));
         let hist = transpose4(std::array::from_fn(|l| &lane(l).hist));
@@ -311,14 +313,15 @@ impl BpmStyle for BondBpmRotational {
         let f1 = e.f12.map(|c| -(c * smooth));
         let (t1, t2) = (e.t21.map(|c| c * smooth), e.t12.map(|c| c * smooth));
         let at = |v: &[L; 3], l: usize| [v[0][l], v[1][l], v[2][l]];
-        std::array::from_fn(|l| {
-            if l >= n || (e.breaking[l] >= 1.0 && self.bpm.break_bonds) {
-                return None;
+        for l in 0..n {
+            if e.breaking[l] >= 1.0 && self.bpm.break_bonds {
+                emit(l, None);
+                continue;
             }
             let (r, f1) = (at(&r, l), at(&f1, l));
             let virial = [r[0] * f1[0], r[1] * f1[1], r[2] * f1[2], r[0] * f1[1], r[0] * f1[2], r[1] * f1[2]];
-            Some(BondOut { f1, t1: at(&t1, l), t2: at(&t2, l), energy: 0.0, virial, history: None })
-        })
+            emit(l, Some(BondOut { f1, t1: at(&t1, l), t2: at(&t2, l), energy: 0.0, virial, history: None }));
+        }
     }
 }
 

@@ -261,10 +261,14 @@ pub trait BpmStyle: Sync {
     /// One bond of type `btype` with reference state `hist`, atoms `i1` (the lower ID) and
     /// `i2`, `del = x1 - x2`. `None`: the bond breaks (never with `break no`).
     fn bond(&self, btype: usize, hist: &[f64; BOND_HISTORY], i1: usize, i2: usize, del: Vec3, atoms: &BpmAtoms) -> Option<BondOut>;
-    /// Up to [`LANES`] bonds (`b[..n]`) at once, each as [`BpmStyle::bond`] gives it (a style
-    /// with a lane kernel evaluates them together); the entries from `n` on are `None`.
-    fn bonds(&self, b: &[BondIn; LANES], n: usize, atoms: &BpmAtoms) -> [Option<BondOut>; LANES] {
-        std::array::from_fn(|l| if l < n { self.bond(b[l].typ, &b[l].hist, b[l].i1, b[l].i2, b[l].del, atoms) } else { None })
+    /// The style evaluates [`LANES`] bonds at once ([`BpmStyle::bonds`]).
+    const LANE_KERNEL: bool = false;
+    /// Bonds `b[..n]` (n <= [`LANES`]) at once, each as [`BpmStyle::bond`] gives it, handed to
+    /// `emit(l, out)` in order. Called only for a style with [`BpmStyle::LANE_KERNEL`].
+    fn bonds(&self, b: &[BondIn; LANES], n: usize, atoms: &BpmAtoms, mut emit: impl FnMut(usize, Option<BondOut>)) {
+        for (l, b) in b.iter().enumerate().take(n) {
+            emit(l, self.bond(b.typ, &b.hist, b.i1, b.i2, b.del, atoms));
+        }
     }
     /// [`BpmStyle::bond`] with the volume sums of its atoms (styles with `volume/factor yes`).
     #[allow(clippy::too_many_arguments)]
@@ -419,6 +423,8 @@ struct Done {
 /// Bonds evaluated per thread in a block (in four parallel tasks: `ranges` shares a loop of
 /// four or more).
 const CHUNK: usize = 1024;
+/// Bonds evaluated in a block on one thread.
+const ALONE: usize = 64;
 
 /// The bond pass of a BPM style: stores unset reference states, evaluates the bonds (in
 /// parallel) and adds their forces, torques, energies and virials in serial LAMMPS' order
@@ -461,20 +467,46 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let newton = state.newton_bond && !distributed;
     let part = if newton { 1.0 } else { 0.5 };
     // LAMMPS' dvol0: a broken bond's reference volume leaves its atoms' vol0 after the pass
-    let mut dvol0 = SideSums::new(state.atoms.nlocal);
+    let mut dvol0 = SideSums::new(if vols.is_some() { state.atoms.nlocal } else { 0 });
     // the bonds are evaluated (in parallel) and added (in order) a block at a time, so the
     // evaluated bonds are read back from cache, not from memory
-    let block = CHUNK * crate::engine::par::threads();
+    // (one thread: a block small enough that the evaluated bonds stay in the first-level cache)
+    let block = match crate::engine::par::threads() {
+        1 => ALONE,
+        t => CHUNK * t,
+    };
     let mut buf = vec![Done::default(); block.min(list.len())];
     for part_list in list.chunks(block) {
         let done = &mut buf[..part_list.len()];
         ranges(part_list.len(), CHUNK / 4, AtomsMut::new(done), |r, mut w| {
-            // LANES bonds at a time (the style's lane kernel, if it has one)
+            if !S::LANE_KERNEL || vols.is_some() {
+                for k in r {
+                    let e = &part_list[k].entry;
+                    let (i, p, del, swapped) = ordered(e, x, tag, prd);
+                    let mut hist = part_list[k].history;
+                    let mut stored = None;
+                    if hist[0] < EPSILON || hist[0].is_nan() {
+                        hist = style.reference(del);
+                        stored = Some(hist);
+                    }
+                    let out = match &vols {
+                        None => style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
+                        Some(v) => {
+                            let [i1, i2] = i.map(|k| k as usize);
+                            let sums = VolSums { vol: v.vol[i1] + v.vol[i2], vol0: v.vol0[i1] + v.vol0[i2], invdim: v.invdim };
+                            style.bond_volume(e.typ, &hist, i1, i2, del, &atoms, sums)
+                        }
+                    };
+                    w[k] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out };
+                }
+                return;
+            }
+            // LANES bonds at a time through the style's lane kernel
             let mut k = r.start;
             while k < r.end {
                 let n = (r.end - k).min(LANES);
                 let mut ins = [BondIn::default(); LANES];
-                let mut seen = [Done::default(); LANES];
+                let mut seen = [([0u32; 2], [[0.0; 3]; 2], false, None); LANES];
                 for j in 0..n {
                     let e = &part_list[k + j].entry;
                     let (i, p, del, swapped) = ordered(e, x, tag, prd);
@@ -485,18 +517,12 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
                         stored = Some(hist);
                     }
                     ins[j] = BondIn { typ: e.typ, hist, i1: i[0] as usize, i2: i[1] as usize, del };
-                    seen[j] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out: None };
+                    seen[j] = (i, p, swapped, stored);
                 }
-                let outs = match &vols {
-                    None => style.bonds(&ins, n, &atoms),
-                    Some(v) => std::array::from_fn(|j| {
-                        let b = &ins[j];
-                        (j < n).then(|| VolSums { vol: v.vol[b.i1] + v.vol[b.i2], vol0: v.vol0[b.i1] + v.vol0[b.i2], invdim: v.invdim }).and_then(|sums| style.bond_volume(b.typ, &b.hist, b.i1, b.i2, b.del, &atoms, sums))
-                    }),
-                };
-                for j in 0..n {
-                    w[k + j] = Done { out: outs[j], ..seen[j] };
-                }
+                style.bonds(&ins, n, &atoms, |j, out| {
+                    let (atoms, x, swapped, stored) = seen[j];
+                    w[k + j] = Done { atoms, x, swapped, r0: ins[j].hist[0], stored, out };
+                });
                 k += n;
             }
         });

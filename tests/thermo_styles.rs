@@ -195,3 +195,31 @@ fn variable_thermo_intervals_are_lammps() {
         assert!(err.rendered.contains(want) && err.rendered.contains("in.bad:"), "{lines}: {}", err.rendered);
     }
 }
+
+/// Warnings past `thermo_modify warn N` are not printed, as LAMMPS 22 Jul 2025's Error::warning:
+/// its log of this deck prints the replicate warning after `always`, none after `warn 1` (the
+/// count is already 1), the notice at the next thermo output, one after `default` (count reset),
+/// none after a negative limit. LAMMPS' notice reads "8 vs 1": it also counts the three run-setup
+/// warnings it suppressed (no integrating fix, no atom sorting, no ghost atoms), which dmhs
+/// does not issue.
+#[test]
+fn warning_limit_is_lammps() {
+    let deck = "units lj\nboundary p p f\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nmass 1 1.0\n\
+                thermo_modify warn always\nreplicate 1 1 2\nthermo_modify warn 1\nreplicate 1 1 2\nreplicate 1 1 2\nreplicate 1 1 2\n\
+                thermo_style custom step atoms\nrun 0\nreplicate 1 1 2\nrun 0\nthermo_modify warn default\nreplicate 1 1 2\n\
+                thermo_modify warn -3\nreplicate 1 1 2\nrun 0\n";
+    let opts = DeckOptions { screen: false, capture_text: true, echo: Some((true, true)), ..Default::default() };
+    let run = run_text("in.warn", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let text = run.sim.out.captured.clone().unwrap();
+    let seen: Vec<&str> = text.lines().filter(|l| l.starts_with("WARNING") || l.starts_with("replicate") || l.starts_with("thermo_modify") || l.starts_with("run")).collect();
+    let warn = "WARNING: Replicating in a non-periodic dimension";
+    #[rustfmt::skip]
+    let want = [
+        "thermo_modify warn always", "replicate 1 1 2", warn, "thermo_modify warn 1", "replicate 1 1 2", "replicate 1 1 2", "replicate 1 1 2",
+        "run 0", "WARNING: Too many warnings: 4 vs 1. All future warnings will be suppressed", "replicate 1 1 2", "run 0",
+        "thermo_modify warn default", "replicate 1 1 2", warn, "thermo_modify warn -3", "replicate 1 1 2", "run 0",
+    ];
+    assert_eq!(seen, want, "{text}");
+    let bad = run_text("in.bad", "thermo_modify warn lots\n", &DeckOptions { screen: false, ..Default::default() }).err().expect("an error");
+    assert!(bad.rendered.contains("in.bad:1") && bad.rendered.contains("warn"), "{}", bad.rendered);
+}

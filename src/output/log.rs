@@ -14,11 +14,45 @@ pub struct Output {
     /// A rank other than 0 of a distributed run: it writes no screen text and no log (rank 0
     /// writes them, as LAMMPS' rank 0 does).
     pub muted: bool,
+    pub warnings: Warnings,
+}
+
+/// LAMMPS' count of warnings and its limit (`thermo_modify warn`): every line printed that
+/// starts with `WARNING: ` counts, and one past the limit is not printed.
+#[derive(Clone, Copy, Debug)]
+pub struct Warnings {
+    pub count: u64,
+    /// The most printed: 0 every one (`always`), negative none (`ignore`); LAMMPS' default 100.
+    pub max: i64,
+    /// The "Too many warnings" notice was printed (once per thermo style, as LAMMPS).
+    pub noticed: bool,
+}
+
+impl Default for Warnings {
+    fn default() -> Self {
+        Warnings { count: 0, max: 100, noticed: false }
+    }
+}
+
+impl Warnings {
+    /// Count one warning; whether it is printed (LAMMPS' Error::warning).
+    fn admit(&mut self) -> bool {
+        self.count += 1;
+        self.max == 0 || (self.max > 0 && self.count <= self.max as u64)
+    }
 }
 
 impl Output {
     pub fn new(screen: bool) -> Output {
-        Output { screen, log: None, captured: None, muted: false }
+        Output { screen, log: None, captured: None, muted: false, warnings: Warnings::default() }
+    }
+    /// LAMMPS' notice at a thermo output once the warnings passed their limit.
+    pub fn warnings_notice(&mut self) {
+        let w = self.warnings;
+        if w.max > 0 && !w.noticed && w.count > w.max as u64 {
+            self.warnings.noticed = true;
+            self.emit(&format!("WARNING: Too many warnings: {} vs {}. All future warnings will be suppressed", w.count, w.max), true, true);
+        }
     }
     /// Open (or append to) a log file; `None` closes the current log.
     pub fn set_log(&mut self, path: Option<&Path>, append: bool) -> std::io::Result<()> {
@@ -42,6 +76,12 @@ impl Output {
         self.print_to(text, true, true);
     }
     pub fn print_to(&mut self, text: &str, screen: bool, log: bool) {
+        if text.starts_with("WARNING: ") && !self.warnings.admit() {
+            return;
+        }
+        self.emit(text, screen, log);
+    }
+    fn emit(&mut self, text: &str, screen: bool, log: bool) {
         if self.muted {
             return;
         }

@@ -911,6 +911,7 @@ impl Simulation {
         // (LAMMPS' compute_cpu)
         let cpu = if setup { 0.0 } else { self.cpu_seconds() };
         if thermo_now {
+            self.out.warnings_notice();
             let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
             let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
             let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;

@@ -59,7 +59,8 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     }
     sim.thermo.line = [LineStyle::One, LineStyle::One, LineStyle::Multi, LineStyle::Yaml][style];
     sim.thermo.volume_added = false;
-    // a new style resets thermo_modify formats, as in LAMMPS
+    // a new style resets thermo_modify formats and the warnings notice, as in LAMMPS
+    sim.out.warnings.noticed = false;
     sim.thermo.format_line = None;
     sim.thermo.format_int = None;
     sim.thermo.format_float = None;
@@ -68,7 +69,7 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
 }
 
 pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "thermo_modify keyword value ...  (norm yes|no, format line|int|float|N|none str, lost error|warn|ignore, flush yes|no, temp ID, press ID)");
+    let mut a = Args::new(cmd, "thermo_modify keyword value ...  (norm yes|no, format line|int|float|N|none str, lost error|warn|ignore, warn ignore|always|reset|default|N, flush yes|no, temp ID, press ID)");
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }
@@ -84,6 +85,20 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
             }
             "lost/bond" => {
                 a.choice("lost/bond", &["error", "warn", "ignore"])?;
+            }
+            "warn" => {
+                let w = &mut sim.out.warnings;
+                match a.peek().map(|v| v.text.as_str()) {
+                    Some("ignore") => w.max = -1,
+                    Some("always") => w.max = 0,
+                    Some("reset") => (w.count, w.noticed) = (0, false),
+                    Some("default") => (w.count, w.noticed, w.max) = (0, false, 100),
+                    _ => {
+                        w.max = a.i64_in("warn", i32::MIN as i64, i32::MAX as i64).map_err(|d| d.with_help("thermo_modify warn ignore|always|reset|default|N"))?;
+                        continue;
+                    }
+                }
+                a.skip(1);
             }
             "format" => {
                 let which = a.word("format kind")?;
@@ -150,10 +165,10 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
                 }
             }
             "line" => sim.thermo.line = [LineStyle::One, LineStyle::Multi, LineStyle::Yaml][a.choice("line", &["one", "multi", "yaml"])?],
-            "warn" | "every" => {
+            "every" => {
                 return Err(a.error_at(w, format!("thermo_modify {} is not supported yet", w.text), "not supported"));
             }
-            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "flush", "temp", "press", "line", "colname"])),
+            _ => return Err(a.unknown_keyword(w, &["norm", "format", "lost", "lost/bond", "warn", "flush", "temp", "press", "line", "colname"])),
         }
     }
     Ok(())

@@ -1,4 +1,5 @@
-//! compute pe/atom and compute stress/atom give LAMMPS' per-atom energies and stresses:
+//! compute pe/atom and compute stress/atom give LAMMPS' per-atom energies and stresses (and
+//! compute heat/flux, which sums them with ke/atom, LAMMPS' heat flux):
 //! tests/peratom/in.peratom (10 bead-spring chains with pair, bond, angle and dihedral terms,
 //! 100 steps) is run by dmhs and its files (sums by compute reduce, a fix ave/chunk by chain
 //! and a dump of every column at %.15g) are compared with LAMMPS' files of the same deck, stored
@@ -65,6 +66,10 @@ fn unsupported_input_is_an_error() {
         ("compute s all stress/atom nope\n", "compute `nope` for compute stress/atom does not exist"),
         ("compute s all stress/atom thermo_pe\n", "does not compute a temperature"),
         ("compute s all stress/atom NULL ke pair maybe\n", "maybe"),
+        ("compute k all ke/atom\ncompute f all heat/flux k k\n", "takes 3 compute IDs"),
+        ("compute k all ke/atom\ncompute f all heat/flux k nope k\n", "Could not find compute heat/flux compute ID nope"),
+        ("compute k all ke/atom\ncompute f all heat/flux k k k\n", "Compute heat/flux compute ID k does not compute pe/atom"),
+        ("compute k all ke/atom\ncompute p all pe/atom\ncompute f all heat/flux p p k\n", "does not compute ke/atom"),
     ];
     common::assert_located_errors(base, cases);
 }

@@ -13,6 +13,7 @@ pub mod dmhs_phase_atom;
 pub mod erotate_sphere;
 pub mod erotate_sphere_atom;
 pub mod gyration;
+pub mod heat_flux;
 pub mod ke;
 pub mod ke_atom;
 pub mod msd;
@@ -308,6 +309,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pe/atom", |d, _| Ok(Box::new(pe_atom::ComputePeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("stress/atom", |d, w| Ok(Box::new(stress_atom::ComputeStressAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("heat/flux", |d, w| Ok(Box::new(heat_flux::ComputeHeatFlux::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("vacf", |d, w| Ok(Box::new(vacf::ComputeVacf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("msd", |d, w| Ok(Box::new(msd::ComputeMsd::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

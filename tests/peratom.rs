@@ -1,5 +1,6 @@
 //! compute pe/atom and compute stress/atom give LAMMPS' per-atom energies and stresses (and
-//! compute heat/flux, which sums them with ke/atom, LAMMPS' heat flux):
+//! compute heat/flux, which sums them with ke/atom, LAMMPS' heat flux; compute centro/atom in
+//! tests/peratom/centro):
 //! tests/peratom/in.peratom (10 bead-spring chains with pair, bond, angle and dihedral terms,
 //! 100 steps) is run by dmhs and its files (sums by compute reduce, a fix ave/chunk by chain
 //! and a dump of every column at %.15g) are compared with LAMMPS' files of the same deck, stored
@@ -67,6 +68,10 @@ fn unsupported_input_is_an_error() {
         ("compute s all stress/atom thermo_pe\n", "does not compute a temperature"),
         ("compute s all stress/atom NULL ke pair maybe\n", "maybe"),
         ("compute k all ke/atom\ncompute f all heat/flux k k\n", "takes 3 compute IDs"),
+        ("compute c all centro/atom 5\n", "Illegal neighbor value for compute centro/atom"),
+        ("compute c all centro/atom hcp\n", "Illegal compute centro/atom lattice hcp"),
+        ("compute c all centro/atom fcc axes yes\n", "axes yes is not supported"),
+        ("compute c all centro/atom fcc wobble no\n", "wobble"),
         ("compute k all ke/atom\ncompute f all heat/flux k nope k\n", "Could not find compute heat/flux compute ID nope"),
         ("compute k all ke/atom\ncompute f all heat/flux k k k\n", "Compute heat/flux compute ID k does not compute pe/atom"),
         ("compute k all ke/atom\ncompute p all pe/atom\ncompute f all heat/flux p p k\n", "does not compute ke/atom"),
@@ -79,7 +84,7 @@ fn unsupported_input_is_an_error() {
 /// the bpm/rotational blocks with gran/hooke/history, 250 steps) dump pe/atom and stress/atom at
 /// %.17g and sum them by compute reduce; compared with LAMMPS' files as above. Measured: sph and
 /// bpm identical, granular within 5e-13 relative (the order of a pair's halves).
-const LOOPS: [&str; 3] = ["granular", "sph", "bpm"];
+const LOOPS: [&str; 4] = ["granular", "sph", "bpm", "centro"];
 const LOOP_FILES: [&str; 2] = ["sums.txt", "peratom.dump"];
 
 #[test]

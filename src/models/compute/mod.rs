@@ -3,6 +3,7 @@
 //! registry. Computes only read the simulation.
 
 pub mod bond_local;
+pub mod centro_atom;
 pub mod chunk_atom;
 pub mod com;
 pub mod contact_atom;
@@ -309,6 +310,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("pe", |d, _| Ok(Box::new(pe::ComputePe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("pe/atom", |d, _| Ok(Box::new(pe_atom::ComputePeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("stress/atom", |d, w| Ok(Box::new(stress_atom::ComputeStressAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("centro/atom", |d, _| Ok(Box::new(centro_atom::ComputeCentroAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("heat/flux", |d, w| Ok(Box::new(heat_flux::ComputeHeatFlux::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("pressure", |d, w| Ok(Box::new(pressure::ComputePressure::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("vacf", |d, w| Ok(Box::new(vacf::ComputeVacf::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),

@@ -478,23 +478,29 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     let mut buf = vec![Done::default(); block.min(list.len())];
     for part_list in list.chunks(block) {
         let done = &mut buf[..part_list.len()];
+        // a listed bond's atoms (lower ID first), their positions, `del`, whether swapped, its
+        // reference state (stored now if it was unset)
+        let prep = |l: &Listed| {
+            let (i, p, del, swapped) = ordered(&l.entry, x, tag, prd);
+            let mut hist = l.history;
+            let mut stored = None;
+            if hist[0] < EPSILON || hist[0].is_nan() {
+                hist = style.reference(del);
+                stored = Some(hist);
+            }
+            (i, p, del, swapped, hist, stored)
+        };
         ranges(part_list.len(), CHUNK / 4, AtomsMut::new(done), |r, mut w| {
             if !S::LANE_KERNEL || vols.is_some() {
                 for k in r {
-                    let e = &part_list[k].entry;
-                    let (i, p, del, swapped) = ordered(e, x, tag, prd);
-                    let mut hist = part_list[k].history;
-                    let mut stored = None;
-                    if hist[0] < EPSILON || hist[0].is_nan() {
-                        hist = style.reference(del);
-                        stored = Some(hist);
-                    }
+                    let (i, p, del, swapped, hist, stored) = prep(&part_list[k]);
+                    let typ = part_list[k].entry.typ;
                     let out = match &vols {
-                        None => style.bond(e.typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
+                        None => style.bond(typ, &hist, i[0] as usize, i[1] as usize, del, &atoms),
                         Some(v) => {
                             let [i1, i2] = i.map(|k| k as usize);
                             let sums = VolSums { vol: v.vol[i1] + v.vol[i2], vol0: v.vol0[i1] + v.vol0[i2], invdim: v.invdim };
-                            style.bond_volume(e.typ, &hist, i1, i2, del, &atoms, sums)
+                            style.bond_volume(typ, &hist, i1, i2, del, &atoms, sums)
                         }
                     };
                     w[k] = Done { atoms: i, x: p, swapped, r0: hist[0], stored, out };
@@ -508,15 +514,8 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
                 let mut ins = [BondIn::default(); LANES];
                 let mut seen = [([0u32; 2], [[0.0; 3]; 2], false, None); LANES];
                 for j in 0..n {
-                    let e = &part_list[k + j].entry;
-                    let (i, p, del, swapped) = ordered(e, x, tag, prd);
-                    let mut hist = part_list[k + j].history;
-                    let mut stored = None;
-                    if hist[0] < EPSILON || hist[0].is_nan() {
-                        hist = style.reference(del);
-                        stored = Some(hist);
-                    }
-                    ins[j] = BondIn { typ: e.typ, hist, i1: i[0] as usize, i2: i[1] as usize, del };
+                    let (i, p, del, swapped, hist, stored) = prep(&part_list[k + j]);
+                    ins[j] = BondIn { typ: part_list[k + j].entry.typ, hist, i1: i[0] as usize, i2: i[1] as usize, del };
                     seen[j] = (i, p, swapped, stored);
                 }
                 style.bonds(&ins, n, &atoms, |j, out| {

@@ -118,7 +118,6 @@ struct Elastic<T = f64> {
     breaking: T,
 }
 
-/// What one bond (or a batch) adds before smoothing: the springs and dampers.
 impl BondBpmRotational {
     /// LAMMPS' elastic_forces: `r = x1 - x2` (length `r_mag`), `r0` the reference vector.
     /// Written once for a bond and a batch: every branch of LAMMPS' code is a select.

@@ -58,3 +58,34 @@ fn create_bonds_errors_are_located() {
         assert!(out.contains(want) && out.contains("in.cb:"), "{to}: expected `{want}`:\n{out}");
     }
 }
+
+/// bond_style zero as LAMMPS 22 Jul 2025: bonds without force or energy, r0 reported by
+/// write_data (`1 1.5`, `2 0` for this deck), extra coefficient words refused unless `nocoeff`;
+/// write_data with a type left without coefficients is LAMMPS' error.
+#[test]
+fn bond_style_zero_is_lammps() {
+    let deck = "units lj\natom_style bond\nregion box block 0 5 0 5 0 5\ncreate_box 1 box bond/types 2 extra/bond/per/atom 2\n\
+                create_atoms 1 single 1 1 1\ncreate_atoms 1 single 2 1 1\ncreate_atoms 1 single 3 1.2 1\nmass 1 1.0\n\
+                bond_style zero\nbond_coeff 1 1.5\nbond_coeff 2\ncreate_bonds single/bond 1 1 2\ncreate_bonds single/bond 2 2 3\n\
+                pair_style zero 2.5\npair_coeff * *\nvelocity all create 1.0 1234\nfix 1 all nve\n\
+                thermo_style custom step ebond\nrun 10\nwrite_data out.data\n";
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("in.bz"), deck).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dmhs")).args(["-in", "in.bz", "-log", "none"]).current_dir(tmp.path()).output().unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.lines().any(|l| l.split_whitespace().collect::<Vec<_>>() == ["10", "0"]), "{out}");
+    let data = std::fs::read_to_string(tmp.path().join("out.data")).unwrap();
+    assert!(data.contains("Bond Coeffs # zero\n\n1 1.5\n2 0\n"), "{data}");
+    for (from, to, code, want) in [
+        ("bond_coeff 1 1.5\n", "bond_coeff 1 1.5 2\n", 2, "unexpected argument `2`"),
+        ("bond_style zero\n", "bond_style zero wobble\n", 2, "wobble"),
+        // write_data checks the coefficients as LAMMPS' init does (it panicked on the unset type)
+        ("bond_coeff 2\n", "", 2, "All bond coeffs are not set (missing for type 2)"),
+        ("bond_style zero\nbond_coeff 1 1.5\n", "bond_style zero nocoeff\nbond_coeff 1 1.5 2 3\n", 0, ""),
+    ] {
+        let (c, text) = check(&deck.replace(from, to));
+        assert_eq!(c, code, "{to}: {text}");
+        assert!(text.contains(want) && (code == 0 || text.contains("in.cb:")), "{to}: {text}");
+    }
+}

@@ -305,5 +305,21 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
 
 pub fn write_data(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
+    // LAMMPS' write_data runs init first: every type of a bonded style needs its coefficients
+    let t = &sim.state.topo;
+    let (nb, na, nd) = (t.nbondtypes, t.nangletypes, t.ndihedraltypes);
+    let unset = |r: Result<(), String>| r.map_err(|e| Diagnostic::at(cmd.span, e, "write_data needs every coefficient"));
+    if let Some(s) = sim.bond_style.as_mut() {
+        s.set_types(nb);
+        unset(s.check_all_set())?;
+    }
+    if let Some(s) = sim.angle_style.as_mut() {
+        s.set_types(na);
+        unset(s.check_all_set())?;
+    }
+    if let Some(s) = sim.dihedral_style.as_mut() {
+        s.set_types(nd);
+        unset(s.check_all_set())?;
+    }
     crate::deck::data::write_data(sim, cmd).map_err(|e| Diagnostic::at(cmd.span, e, "write_data failed"))
 }

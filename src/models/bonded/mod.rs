@@ -22,6 +22,7 @@ pub mod bond_bpm_spring_plastic;
 pub mod bond_fene;
 pub mod bond_fene_expand;
 pub mod bond_harmonic;
+pub mod bond_zero;
 pub mod bond_morse;
 pub mod dihedral_harmonic;
 pub mod dihedral_quadratic;
@@ -215,6 +216,7 @@ type DihedralCtor = fn() -> Box<dyn DihedralStyle>;
 
 const BOND_STYLES: &[(&str, BondCtor)] = &[
     ("harmonic", || Box::new(bond_harmonic::BondHarmonic::default())),
+    ("zero", || Box::new(bond_zero::BondZero::default())),
     ("fene", || Box::new(bond_fene::BondFene::default())),
     ("fene/expand", || Box::new(bond_fene_expand::BondFeneExpand::default())),
     ("morse", || Box::new(bond_morse::BondMorse::default())),

@@ -89,16 +89,17 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
             "warn" => {
                 let w = &mut sim.out.warnings;
                 match a.peek().map(|v| v.text.as_str()) {
-                    Some("ignore") => w.max = -1,
-                    Some("always") => w.max = 0,
-                    Some("reset") => (w.count, w.noticed) = (0, false),
-                    Some("default") => (w.count, w.noticed, w.max) = (0, false, 100),
-                    _ => {
-                        w.max = a.i64_in("warn", i32::MIN as i64, i32::MAX as i64).map_err(|d| d.with_help("thermo_modify warn ignore|always|reset|default|N"))?;
-                        continue;
+                    Some(k @ ("ignore" | "always" | "reset" | "default")) => {
+                        a.skip(1);
+                        match k {
+                            "ignore" => w.max = -1,
+                            "always" => w.max = 0,
+                            "reset" => (w.count, w.noticed) = (0, false),
+                            _ => (w.count, w.noticed, w.max) = (0, false, 100),
+                        }
                     }
+                    _ => w.max = a.i64_in("warn", i32::MIN as i64, i32::MAX as i64).map_err(|d| d.with_help("thermo_modify warn ignore|always|reset|default|N"))?,
                 }
-                a.skip(1);
             }
             "format" => {
                 let which = a.word("format kind")?;

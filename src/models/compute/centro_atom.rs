@@ -66,9 +66,7 @@ impl Compute for ComputeCentroAtom {
         if s.neighbor.cutforce <= 0.0 {
             return Err(format!("compute centro/atom {} requires a pair style be defined", self.id));
         }
-        if !s.lists_valid {
-            return Err(format!("compute centro/atom {} needs neighbour lists: it can be read only during or after a run", self.id));
-        }
+        super::need_lists(s, self)?;
         let at = &s.atoms;
         let cutsq = s.neighbor.cutforce * s.neighbor.cutforce;
         // every neighbour within the cutoff of each group atom: (rsq, atom)

@@ -103,9 +103,7 @@ impl Compute for ComputeClusterAtom {
             if s.neighbor.cutforce <= 0.0 || self.cutoff > s.neighbor.cutforce {
                 return Err(format!("compute {} {}: Compute {} cutoff is longer than pairwise cutoff", self.style(), self.id, self.style()));
             }
-            if !s.lists_valid {
-                return Err(format!("compute {} {} needs neighbour lists: it can be read only during or after a run", self.style(), self.id));
-            }
+            super::need_lists(s, self)?;
             let cutsq = self.cutoff * self.cutoff;
             super::group_pairs(s, g, g, |i, j, rsq, in_i, _, _| {
                 if in_i && rsq < cutsq {

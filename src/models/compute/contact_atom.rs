@@ -53,9 +53,7 @@ impl Compute for ComputeContactAtom {
         if s.neighbor.cutforce <= 0.0 {
             return Err(format!("compute contact/atom {}: Compute contact/atom requires a pair style be defined", self.id));
         }
-        if !s.lists_valid {
-            return Err(format!("compute contact/atom {} needs neighbour lists: it can be read only during or after a run", self.id));
-        }
+        super::need_lists(s, self)?;
         let at = &s.atoms;
         let mut contact = vec![0.0; at.nlocal];
         super::group_pairs(s, self.groupbit, self.jgroupbit, |i, j, rsq, count_i, count_j, _| {

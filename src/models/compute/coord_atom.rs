@@ -68,9 +68,7 @@ impl Compute for ComputeCoordAtom {
         if s.neighbor.cutforce <= 0.0 || self.cutoff > s.neighbor.cutforce {
             return Err(format!("compute coord/atom {}: Compute coord/atom cutoff is longer than pairwise cutoff", self.id));
         }
-        if !s.lists_valid {
-            return Err(format!("compute coord/atom {} needs neighbour lists: it can be read only during or after a run", self.id));
-        }
+        super::need_lists(s, self)?;
         let at = &s.atoms;
         let cols = self.types.len();
         let cutsq = self.cutoff * self.cutoff;

@@ -332,6 +332,15 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("dmhs/phase/atom", |d, w| Ok(Box::new(dmhs_phase_atom::ComputeDmhsPhaseAtom::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, w)?))),
 ];
 
+/// A compute that reads the pair style's neighbour list (through [`group_pairs`]) can be read
+/// only when the lists are built: during or after a run.
+pub fn need_lists(s: &State, c: &dyn Compute) -> Result<(), String> {
+    match s.lists_valid {
+        true => Ok(()),
+        false => Err(format!("compute {} {} needs neighbour lists: it can be read only during or after a run", c.style(), c.id())),
+    }
+}
+
 /// Each pair of the pair style's neighbour list between an atom of group `gi` and one of group
 /// `gj`, special pairs of weight 0 left out (as LAMMPS' lists leave them out): `visit(i, j,
 /// rsq, count_i, count_j, level)` (level: the pair's special level), where `count_i` says owned atom i is in `gi` and j in `gj`, and

@@ -130,9 +130,7 @@ impl Compute for ComputePairLocal {
                 return Err(format!("compute pair/local {}: Pair style does not have extra field requested by compute pair/local (p{n}; pair style {} has {extra})", self.id, pair.style()));
             }
         }
-        if !s.lists_valid {
-            return Err(format!("compute pair/local {} needs neighbour lists: it can be read only during or after a run", self.id));
-        }
+        super::need_lists(s, self)?;
         let freeze_bit = crate::models::fix::freeze_bit(w.fixes.iter());
         let input = PairInput::of_state(s, freeze_bit, true, false);
         let stride = list.ntypes + 1;

@@ -133,9 +133,7 @@ impl ComputePropertyLocal {
         if s.neighbor.cutforce <= 0.0 {
             return Err(format!("compute property/local {}: No pair style is defined for compute property/local", self.id));
         }
-        if !s.lists_valid {
-            return Err(format!("compute property/local {} needs neighbour lists: it can be read only during or after a run", self.id));
-        }
+        super::need_lists(s, self)?;
         let stride = list.ntypes + 1;
         let mut rows = Vec::new();
         super::group_pairs_once(s, self.groupbit, |i, j, rsq, _| {

@@ -72,9 +72,7 @@ impl Compute for ComputeRdf {
     }
     fn array(&self, w: &World) -> Result<Vec<Vec<f64>>, String> {
         let s = w.state;
-        if !s.lists_valid {
-            return Err(format!("compute rdf {} needs neighbour lists: it can be read only during or after a run", self.id));
-        }
+        super::need_lists(s, self)?;
         let nb = &s.neighbor;
         let skin = s.neigh_settings.skin;
         let cut = match self.cutoff {

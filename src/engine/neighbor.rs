@@ -796,7 +796,6 @@ impl Neighbor {
             self.acting.update(special, &order, &atoms.tag[..n]);
         }
         let acting_cache = &self.acting;
-        let plain = excl.is_empty() && !use_special;
         let skin = settings.skin;
         // a size list reads every atom's radius (ghosts' too)
         let radius: &[f64] = if sizes { &a.radius[..nall] } else { &[] };
@@ -822,6 +821,21 @@ impl Neighbor {
                     let row = &cutneighsq[ti * stride..(ti + 1) * stride];
                     let bi = bin_of[i] as i64;
                     let acting: &[(i64, u8)] = if by_acting { acting_cache.of(i) } else { &[] };
+                    // what special bonds do to the pair with atom j (`far_image`: j is a ghost
+                    // beyond half the box, asked only for a pair the bonds would change)
+                    let special_action = |j: usize, far_image: &dyn Fn() -> bool| {
+                        if by_acting {
+                            // most atoms have no or few acting partners: the test is skipped or short
+                            match acting.iter().find(|p| p.0 == a.tag[j]) {
+                                Some(&(_, level)) => special.flag_action(level, far_image),
+                                None => PairAction::Keep,
+                            }
+                        } else if use_special {
+                            special.action(a.tag[i], a.tag[j], far_image())
+                        } else {
+                            PairAction::Keep
+                        }
+                    };
                     let consider = |j: usize, neigh: &mut Vec<u32>| {
                         let xj = a.x[j];
                         let dx = xi[0] - xj[0];
@@ -841,18 +855,7 @@ impl Neighbor {
                             return;
                         }
                         let mut entry = j as u32;
-                        let action = if by_acting {
-                            // most atoms have no or few acting partners: the test is skipped or short
-                            match acting.iter().find(|p| p.0 == a.tag[j]) {
-                                Some(&(_, level)) => special.flag_action(level, || j >= n && minimum_image_check(domain, [dx, dy, dz])),
-                                None => PairAction::Keep,
-                            }
-                        } else if use_special {
-                            special.action(a.tag[i], a.tag[j], j >= n && minimum_image_check(domain, [dx, dy, dz]))
-                        } else {
-                            PairAction::Keep
-                        };
-                        match action {
+                        match special_action(j, &|| j >= n && minimum_image_check(domain, [dx, dy, dz])) {
                             PairAction::Keep => {}
                             PairAction::Exclude => return,
                             PairAction::Weighted(level) => entry |= (level as u32) << SPECIAL_SHIFT,
@@ -861,54 +864,70 @@ impl Neighbor {
                             neigh.push(entry);
                         }
                     };
-                    // candidates of a contiguous index range: without exclusions or special
-                    // bonds every candidate is written and kept only if within the cutoff
-                    // (branch-free: the hit rate is about 1 in 4, badly predicted)
-                    let range = |j0: usize, j1: usize, neigh: &mut Vec<u32>| {
-                        if !plain {
-                            for j in j0..j1 {
-                                consider(j, neigh);
-                            }
-                            return;
-                        }
-                        if j1 <= j0 || !room(neigh, j1 - j0) {
-                            return;
-                        }
-                        // room for every candidate, written in place and kept by advancing len
-                        let mut len = neigh.len();
-                        neigh.resize(len + (j1 - j0), 0);
-                        let slots = &mut neigh[len..];
-                        // slices taken before the loop: read through `a`, their addresses
-                        // were reloaded after every store
-                        let xs = &a.x[j0..j1];
-                        let mut kept = 0usize;
-                        let rsq = |xj: &[f64; 3]| {
-                            let dx = xi[0] - xj[0];
-                            let dy = xi[1] - xj[1];
-                            let dz = xi[2] - xj[2];
-                            dx * dx + dy * dy + dz * dz
-                        };
-                        // kept <= k: the write lands in `slots`
-                        if sizes {
-                            let ri = radius[i];
-                            for (k, (xj, &rj)) in xs.iter().zip(&radius[j0..j1]).enumerate() {
-                                let cut = ri + rj + skin;
-                                slots[kept.min(k)] = (j0 + k) as u32;
-                                kept += (rsq(xj) <= cut * cut) as usize;
-                            }
-                        } else {
-                            for (k, (xj, &tj)) in xs.iter().zip(&a.typ[j0..j1]).enumerate() {
-                                slots[kept.min(k)] = (j0 + k) as u32;
-                                kept += (rsq(xj) <= row[tj]) as usize;
-                            }
-                        }
-                        len += kept;
-                        neigh.truncate(len);
+                    // owned partners, each span a contiguous index range: later atoms of the own
+                    // row, then the forward rows
+                    let spans = || {
+                        std::iter::once((i + 1, local_start[(bi + own_row_end) as usize + 1] as usize))
+                            .chain(forward.iter().map(|&(r0, r1)| (local_start[(bi + r0) as usize] as usize, local_start[(bi + r1) as usize + 1] as usize)))
                     };
-                    // owned partners: later atoms of the own row, then the forward rows
-                    range(i + 1, local_start[(bi + own_row_end) as usize + 1] as usize, &mut neigh);
-                    for &(r0, r1) in &forward {
-                        range(local_start[(bi + r0) as usize] as usize, local_start[(bi + r1) as usize + 1] as usize, &mut neigh);
+                    if !excl.is_empty() {
+                        for (j0, j1) in spans() {
+                            (j0..j1).for_each(|j| consider(j, &mut neigh));
+                        }
+                    } else {
+                        // without exclusions every candidate of the atom is written and kept only
+                        // if within the cutoff (branch-free: the hit rate is about 1 in 4, badly
+                        // predicted), into room made once per atom; special bonds then act on
+                        // the few kept
+                        let total: usize = spans().map(|(j0, j1)| j1.saturating_sub(j0)).sum();
+                        if total > 0 && room(&mut neigh, total) {
+                            let len = neigh.len();
+                            neigh.resize(len + total, 0);
+                            let slots = &mut neigh[len..];
+                            let rsq = |xj: &[f64; 3]| {
+                                let dx = xi[0] - xj[0];
+                                let dy = xi[1] - xj[1];
+                                let dz = xi[2] - xj[2];
+                                dx * dx + dy * dy + dz * dz
+                            };
+                            // kept <= k (the candidates before this one): the write lands in `slots`
+                            let (mut kept, mut k) = (0usize, 0usize);
+                            for (j0, j1) in spans().filter(|(j0, j1)| j1 > j0) {
+                                // slices taken before the loop: read through `a`, their
+                                // addresses were reloaded after every store
+                                let xs = &a.x[j0..j1];
+                                if sizes {
+                                    let ri = radius[i];
+                                    for (m, (xj, &rj)) in xs.iter().zip(&radius[j0..j1]).enumerate() {
+                                        let cut = ri + rj + skin;
+                                        slots[kept.min(k + m)] = (j0 + m) as u32;
+                                        kept += (rsq(xj) <= cut * cut) as usize;
+                                    }
+                                } else {
+                                    for (m, (xj, &tj)) in xs.iter().zip(&a.typ[j0..j1]).enumerate() {
+                                        slots[kept.min(k + m)] = (j0 + m) as u32;
+                                        kept += (rsq(xj) <= row[tj]) as usize;
+                                    }
+                                }
+                                k += j1 - j0;
+                            }
+                            if use_special {
+                                // in place and in order, as `consider` would have kept them
+                                let mut out = 0;
+                                for r in 0..kept {
+                                    let j = slots[r];
+                                    // an owned partner is never a far image
+                                    slots[out] = match special_action(j as usize, &|| false) {
+                                        PairAction::Keep => j,
+                                        PairAction::Exclude => continue,
+                                        PairAction::Weighted(level) => j | (level as u32) << SPECIAL_SHIFT,
+                                    };
+                                    out += 1;
+                                }
+                                kept = out;
+                            }
+                            neigh.truncate(len + kept);
+                        }
                     }
                     // ghost partners: every bin in reach (ghosts lie within cutmax outside a
                     // face, so only atoms that near a face can see one)

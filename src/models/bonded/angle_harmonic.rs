@@ -4,7 +4,11 @@
 //! exactly as LAMMPS does (so `write_data` prints `RAD2DEG * theta0`, which may differ from
 //! the input in the last digit before `%g` rounding).
 
+use super::pass::{apply_angles_in_lanes, BondedTally, Kernels};
 use super::{fmt_g, AngleForces, AngleStyle, TypeTable, Vec3, DEG2RAD, RAD2DEG};
+use crate::engine::bonded_lists::Entry;
+use crate::engine::par::lanes::{lanes, Real};
+use crate::engine::par::AtomsMut;
 use dmhs_parser::{Args, DResult};
 
 const SYNTAX: &str = "angle_coeff N K theta0";
@@ -47,32 +51,14 @@ impl AngleStyle for AngleHarmonic {
     #[inline(always)]
     fn compute(&self, atype: usize, del1: Vec3, del2: Vec3) -> AngleForces {
         let p = self.types.get(atype);
-        let rsq1 = del1[0] * del1[0] + del1[1] * del1[1] + del1[2] * del1[2];
-        let r1 = rsq1.sqrt();
-        let rsq2 = del2[0] * del2[0] + del2[1] * del2[1] + del2[2] * del2[2];
-        let r2 = rsq2.sqrt();
-
-        // cosine, clamped against rounding; 1/sin with sin bounded below by SMALL
-        let mut c = del1[0] * del2[0] + del1[1] * del2[1] + del1[2] * del2[2];
-        c /= r1 * r2;
-        c = c.clamp(-1.0, 1.0);
-        let mut s = (1.0 - c * c).sqrt();
-        if s < SMALL {
-            s = SMALL;
-        }
-        let s = 1.0 / s;
-
-        let dtheta = c.acos() - p.theta0;
-        let tk = p.k * dtheta;
-        let energy = tk * dtheta;
-
-        let a = -2.0 * tk * s;
-        let a11 = a * c / rsq1;
-        let a12 = -a / (r1 * r2);
-        let a22 = a * c / rsq2;
-        let f1 = [a11 * del1[0] + a12 * del2[0], a11 * del1[1] + a12 * del2[1], a11 * del1[2] + a12 * del2[2]];
-        let f3 = [a22 * del2[0] + a12 * del1[0], a22 * del2[1] + a12 * del1[1], a22 * del2[2] + a12 * del1[2]];
+        let (f1, f3, energy) = kernel(p.k, p.theta0, del1, del2);
         AngleForces { f1, f3, energy }
+    }
+    fn apply(&self, entries: &[Entry<3>], k: &Kernels, f: &mut AtomsMut<Vec3>, t: &mut BondedTally) {
+        apply_angles_in_lanes(entries, k, f, t, |typ, del1, del2| {
+            let p = typ.map(|t| self.types.get(t));
+            kernel(lanes(|l| p[l].k), lanes(|l| p[l].theta0), del1, del2)
+        })
     }
     fn equilibrium_angle(&self, atype: usize) -> f64 {
         self.types.get(atype).theta0
@@ -81,6 +67,40 @@ impl AngleStyle for AngleHarmonic {
         let p = self.types.get(atype);
         format!("{} {}", fmt_g(p.k), fmt_g(RAD2DEG * p.theta0))
     }
+}
+
+/// LAMMPS' angle_harmonic force on atoms 1 and 3 and the energy, for one angle (`f64`) or
+/// four (`L`, lane by lane the same operations): `del1 = x1 - x2`, `del2 = x3 - x2`.
+#[inline(always)]
+fn kernel<R: Real>(k: R, theta0: R, del1: [R; 3], del2: [R; 3]) -> ([R; 3], [R; 3], R) {
+    let rsq1 = del1[0] * del1[0] + del1[1] * del1[1] + del1[2] * del1[2];
+    let r1 = rsq1.sqrt();
+    let rsq2 = del2[0] * del2[0] + del2[1] * del2[1] + del2[2] * del2[2];
+    let r2 = rsq2.sqrt();
+
+    // cosine, clamped against rounding (a NaN stays NaN, as with f64::clamp); 1/sin with sin
+    // bounded below by SMALL
+    let c = del1[0] * del2[0] + del1[1] * del2[1] + del1[2] * del2[2];
+    let c = c / (r1 * r2);
+    let (one, minus_one) = (R::splat(1.0), R::splat(-1.0));
+    let c = R::select(c.lt(minus_one), minus_one, c);
+    let c = R::select(one.lt(c), one, c);
+    let s = (one - c * c).sqrt();
+    let small = R::splat(SMALL);
+    let s = R::select(s.lt(small), small, s);
+    let s = one / s;
+
+    let dtheta = c.map(f64::acos) - theta0;
+    let tk = k * dtheta;
+    let energy = tk * dtheta;
+
+    let a = R::splat(-2.0) * tk * s;
+    let a11 = a * c / rsq1;
+    let a12 = -a / (r1 * r2);
+    let a22 = a * c / rsq2;
+    let f1 = [a11 * del1[0] + a12 * del2[0], a11 * del1[1] + a12 * del2[1], a11 * del1[2] + a12 * del2[2]];
+    let f3 = [a22 * del2[0] + a12 * del1[0], a22 * del2[1] + a12 * del1[1], a22 * del2[2] + a12 * del1[2]];
+    (f1, f3, energy)
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 //! copy is (`x + shift * L`), so displacements match LAMMPS bit for bit.
 
 use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
+use crate::engine::par::lanes::{transpose4, L, LANES};
 use crate::engine::par::{alone, slab_phase, window_phase, AtomsMut, PARALLEL_MIN_WORK};
 use crate::engine::state::{RunError, State};
 use crate::engine::bonded_lists::{chunk, slab, wide_chunk, BondedLists, Entry, WIDE};
@@ -93,8 +94,11 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
         let prd = domain.prd();
         let x = &state.atoms.x;
         let step = state.step;
-        let find = |tag: i64, what: &str| -> Result<u32, RunError> {
-            map.get(tag).map(|i| i as u32).ok_or_else(|| RunError::new(step, format!("{what} atom {tag} is missing")))
+        let find = |tag: i64| map.get(tag).map(|i| i as u32);
+        // the error of a record whose atoms are not all here (the first missing one named)
+        let missing = |tags: &[i64], what: &str| {
+            let tag = tags.iter().find(|&&t| map.get(t).is_none()).copied().unwrap_or(0);
+            RunError::new(step, format!("{what} atom {tag} is missing"))
         };
         // shift of atom `o` that brings it closest to atom `r`, per periodic dimension
         let closest = |r: usize, o: usize| -> [i8; 3] {
@@ -114,48 +118,57 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
         let (mut bonds, mut angles, mut dihedrals) = (vec![], vec![], vec![]);
         if styles.bond.is_some() {
             bonds = in_blocks(&t.bonds, |rec, b| {
-                let i = [find(b.atoms[0], "bond")?, find(b.atoms[1], "bond")?];
-                Ok(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ, rec: rec as u32 })
-            }, |b| b.off)?;
+                let i = [find(b.atoms[0])?, find(b.atoms[1])?];
+                Some(Entry { atoms: i, shift: [[0; 3], closest(i[0] as usize, i[1] as usize)], typ: b.typ, rec: rec as u32 })
+            }, |b| b.off)
+            .map_err(|rec| missing(&t.bonds[rec].atoms, "bond"))?;
         }
         if styles.angle.is_some() {
             angles = in_blocks(&t.angles, |rec, a| {
-                let i = [find(a.atoms[0], "angle")?, find(a.atoms[1], "angle")?, find(a.atoms[2], "angle")?];
+                let i = [find(a.atoms[0])?, find(a.atoms[1])?, find(a.atoms[2])?];
                 let r = i[1] as usize;
-                Ok(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ, rec: rec as u32 })
-            }, |a| a.off)?;
+                Some(Entry { atoms: i, shift: [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize)], typ: a.typ, rec: rec as u32 })
+            }, |a| a.off)
+            .map_err(|rec| missing(&t.angles[rec].atoms, "angle"))?;
         }
         if styles.dihedral.is_some() {
             dihedrals = in_blocks(&t.dihedrals, |rec, d| {
-                let i = [find(d.atoms[0], "dihedral")?, find(d.atoms[1], "dihedral")?, find(d.atoms[2], "dihedral")?, find(d.atoms[3], "dihedral")?];
+                let i = [find(d.atoms[0])?, find(d.atoms[1])?, find(d.atoms[2])?, find(d.atoms[3])?];
                 let r = i[1] as usize;
                 let shift = [closest(r, i[0] as usize), [0; 3], closest(r, i[2] as usize), closest(r, i[3] as usize)];
-                Ok(Entry { atoms: i, shift, typ: d.typ, rec: rec as u32 })
-            }, |d| d.off)?;
+                Some(Entry { atoms: i, shift, typ: d.typ, rec: rec as u32 })
+            }, |d| d.off)
+            .map_err(|rec| missing(&t.dihedrals[rec].atoms, "dihedral"))?;
         }
-        let lammps_bonds = if bpm { crate::models::bonded::bpm::lammps_bond_list(state, &bonds) } else { vec![] };
-        state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, lammps_bonds);
+        let lammps_bonds = if bpm { crate::models::bonded::bpm::lammps_bond_list(state, &bonds.concat()) } else { vec![] };
+        let old = std::mem::take(&mut state.bonded_lists);
+        state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, lammps_bonds, old);
         Ok(())
     }
 
 /// `entry(rec, record)` of every record not `off`, in record order, made in blocks of records on
-/// the team; the error of the first failing record.
-fn in_blocks<R: Sync, E: Send>(records: &[R], entry: impl Fn(usize, &R) -> Result<E, RunError> + Sync, off: impl Fn(&R) -> bool + Sync) -> Result<Vec<E>, RunError> {
+/// the team (the blocks' entries one after the other); `Err(rec)`: the first record without one.
+fn in_blocks<R: Sync, E: Send>(records: &[R], entry: impl Fn(usize, &R) -> Option<E> + Sync, off: impl Fn(&R) -> bool + Sync) -> Result<Vec<Vec<E>>, usize> {
     const BLOCK: usize = 4096;
     let blocks: Vec<usize> = (0..records.len().div_ceil(BLOCK)).collect();
-    let parts = crate::engine::par::team::map(blocks, |b| {
+    crate::engine::par::team::map(blocks, |b| {
         let lo = b * BLOCK;
-        records[lo..(lo + BLOCK).min(records.len())].iter().enumerate().filter(|(_, r)| !off(r)).map(|(k, r)| entry(lo + k, r)).collect::<Result<Vec<E>, RunError>>()
-    });
-    let mut out = Vec::with_capacity(records.len());
-    for part in parts {
-        out.extend(part?);
-    }
-    Ok(out)
+        let block = &records[lo..(lo + BLOCK).min(records.len())];
+        let mut out = Vec::with_capacity(block.len());
+        for (k, r) in block.iter().enumerate() {
+            if !off(r) {
+                out.push(entry(lo + k, r).ok_or(lo + k)?);
+            }
+        }
+        Ok(out)
+    })
+    .into_iter()
+    .collect()
 }
 
 /// The entries grouped by the chunks of the neighbour list (see [`slab`]).
-fn slabbed(state: &State, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[Entry<4>], lammps_bonds: Vec<crate::engine::bonded_lists::Listed>) -> BondedLists {
+/// `old`: the lists they replace (their memory is reused).
+fn slabbed(state: &State, bonds: &[Vec<Entry<2>>], angles: &[Vec<Entry<3>>], dihedrals: &[Vec<Entry<4>>], lammps_bonds: Vec<crate::engine::bonded_lists::Listed>, old: BondedLists) -> BondedLists {
     let chunks = &state.neighbor.list.chunks;
     let mut chunk_of = vec![0u32; state.atoms.nlocal];
     for (c, ch) in chunks.iter().enumerate() {
@@ -163,9 +176,9 @@ fn slabbed(state: &State, bonds: &[Entry<2>], angles: &[Entry<3>], dihedrals: &[
     }
     let n = chunks.len();
     BondedLists {
-        bonds: slab(bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
-        angles: slab(angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
-        dihedrals: slab(dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
+        bonds: slab(bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n, old.bonds),
+        angles: slab(angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n, old.angles),
+        dihedrals: slab(dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n, old.dihedrals),
         lammps_bonds,
     }
 }
@@ -226,7 +239,8 @@ fn build_distributed(state: &mut State, styles: BondedStyles) -> Result<(), RunE
             dihedrals.push(e);
         }
     }
-    state.bonded_lists = slabbed(state, &bonds, &angles, &dihedrals, vec![]);
+    let old = std::mem::take(&mut state.bonded_lists);
+    state.bonded_lists = slabbed(state, &[bonds], &[angles], &[dihedrals], vec![], old);
     Ok(())
 }
 
@@ -440,6 +454,52 @@ pub fn apply_angles<S: AngleStyle + ?Sized>(style: &S, entries: &[Entry<3>], k: 
     }
 }
 
+/// [`apply_angles`] four angles at a time: `kernel(types, del1, del2)` gives each lane's force
+/// on atoms 1 and 3 and its energy, from the same operations as the style's `compute`; forces
+/// and tallies are added in entry order, so the sums are those of [`apply_angles`]. A last
+/// partial batch repeats its first angle in the unused lanes, whose results are dropped.
+pub fn apply_angles_in_lanes(
+    entries: &[Entry<3>],
+    k: &Kernels,
+    f: &mut AtomsMut<[f64; 3]>,
+    tally: &mut BondedTally,
+    kernel: impl Fn([usize; LANES], [L; 3], [L; 3]) -> ([L; 3], [L; 3], L),
+) {
+    for batch in entries.chunks(LANES) {
+        let e = |l: usize| batch.get(l).unwrap_or(&batch[0]);
+        // each lane's displacements as a row, turned into lanes in registers (lanes written one
+        // value at a time were read back whole: a store-forwarding stall)
+        let mut rows1 = [[0.0; 4]; LANES];
+        let mut rows2 = [[0.0; 4]; LANES];
+        for l in 0..LANES {
+            let e = e(l);
+            let x2 = k.pos(e.atoms[1], e.shift[1]);
+            let (d1, d2) = (sub(k.pos(e.atoms[0], e.shift[0]), x2), sub(k.pos(e.atoms[2], e.shift[2]), x2));
+            rows1[l] = [d1[0], d1[1], d1[2], 0.0];
+            rows2[l] = [d2[0], d2[1], d2[2], 0.0];
+        }
+        let [d1x, d1y, d1z, _] = transpose4([&rows1[0], &rows1[1], &rows1[2], &rows1[3]]);
+        let [d2x, d2y, d2z, _] = transpose4([&rows2[0], &rows2[1], &rows2[2], &rows2[3]]);
+        let (f1, f3, energy) = kernel(std::array::from_fn(|l| e(l).typ), [d1x, d1y, d1z], [d2x, d2y, d2z]);
+        // the middle atom's force as AngleForces::f2 makes it
+        let f2 = [-(f1[0] + f3[0]), -(f1[1] + f3[1]), -(f1[2] + f3[2])];
+        let f1 = transpose4([&f1[0].0, &f1[1].0, &f1[2].0, &energy.0]);
+        let f2 = transpose4([&f2[0].0, &f2[1].0, &f2[2].0, &energy.0]);
+        let f3 = transpose4([&f3[0].0, &f3[1].0, &f3[2].0, &energy.0]);
+        for (l, e) in batch.iter().enumerate() {
+            let row = |v: &L| [v[0], v[1], v[2]];
+            add_force(f, e.atoms[0], row(&f1[l]));
+            add_force(f, e.atoms[1], row(&f2[l]));
+            add_force(f, e.atoms[2], row(&f3[l]));
+            if k.eflag {
+                tally.eangle += f1[l][3];
+                let (d1, d2) = (&rows1[l], &rows2[l]);
+                add_virial(&mut tally.virial, angle_virial([d1[0], d1[1], d1[2]], [d2[0], d2[1], d2[2]], row(&f1[l]), row(&f3[l])));
+            }
+        }
+    }
+}
+
 pub fn apply_dihedrals<S: DihedralStyle + ?Sized>(style: &S, entries: &[Entry<4>], k: &Kernels, f: &mut AtomsMut<[f64; 3]>, tally: &mut BondedTally) {
     for e in entries {
         let p: [[f64; 3]; 4] = std::array::from_fn(|m| k.pos(e.atoms[m], e.shift[m]));
@@ -509,6 +569,60 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, result: &mut crate::e
             for i in 0..nlocal {
                 result.add(k, i, 1.0, mine.energy[k][i], &mine.virial[k][i]);
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::bonded::test_util::words;
+    use crate::models::bonded::new_angle_style;
+    use dmhs_parser::{Args, Span};
+
+    /// A small generator of reproducible numbers in [0, 1).
+    fn uniform(seed: &mut u64) -> f64 {
+        *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (*seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    #[test]
+    fn angles_in_lanes_give_the_bits_of_one_at_a_time() {
+        let mut style = new_angle_style("harmonic").unwrap();
+        style.set_types(2);
+        for (t, coeff) in [(1, "2.0 180.0"), (2, "35.5 109.47")] {
+            let w = words(coeff);
+            style.coeff(t, t, &mut Args::from_words(&w, Span::default(), "")).unwrap();
+        }
+        let mut seed = 7;
+        let mut x: Vec<[f64; 3]> = (0..40).map(|_| [0.0; 3].map(|_| 3.0 * uniform(&mut seed))).collect();
+        // a straight angle (the clamp of the cosine and the bound on the sine) and a folded one
+        x.extend([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]);
+        let n = x.len() as u32;
+        let mut entries: Vec<Entry<3>> = (0..61)
+            .map(|k| {
+                // three distinct atoms (an arm of length zero has no direction: NaN, whose
+                // sign bit is the compiler's choice of operand order)
+                let a = (uniform(&mut seed) * 40.0) as u32;
+                let atoms = [a, (a + 1 + (uniform(&mut seed) * 19.0) as u32) % 40, (a + 20 + (uniform(&mut seed) * 19.0) as u32) % 40];
+                let shift = if k % 5 == 0 { [[1, 0, -1], [0; 3], [0, 1, 0]] } else { [[0; 3]; 3] };
+                Entry { atoms, shift, typ: 1 + k % 2, rec: k as u32 }
+            })
+            .collect();
+        entries.push(Entry { atoms: [n - 4, n - 3, n - 2], shift: [[0; 3]; 3], typ: 1, rec: 61 });
+        entries.push(Entry { atoms: [n - 4, n - 3, n - 4], shift: [[0; 3]; 3], typ: 2, rec: 62 });
+        entries.push(Entry { atoms: [n - 1, n - 3, n - 2], shift: [[0; 3]; 3], typ: 2, rec: 63 });
+        let k = Kernels { x: &x, prd: [3.0, 3.5, 4.0], shifts: true, eflag: true, bond: None, angle: None, dihedral: None };
+        // every length of a last partial batch
+        for len in [entries.len(), entries.len() - 1, entries.len() - 2, entries.len() - 3, 1] {
+            let (mut f_one, mut f_lanes) = (vec![[0.0; 3]; x.len()], vec![[0.0; 3]; x.len()]);
+            let (mut t_one, mut t_lanes) = (BondedTally::default(), BondedTally::default());
+            apply_angles(style.as_ref(), &entries[..len], &k, &mut AtomsMut::new(&mut f_one), &mut t_one);
+            style.apply(&entries[..len], &k, &mut AtomsMut::new(&mut f_lanes), &mut t_lanes);
+            let bits = |f: &[[f64; 3]]| f.iter().flat_map(|v| v.map(f64::to_bits)).collect::<Vec<_>>();
+            assert_eq!(bits(&f_lanes), bits(&f_one), "forces, {len} angles");
+            assert_eq!(t_lanes.eangle.to_bits(), t_one.eangle.to_bits());
+            assert_eq!(t_lanes.virial.map(f64::to_bits), t_one.virial.map(f64::to_bits));
         }
     }
 }

@@ -7,7 +7,7 @@ use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleSty
 use crate::engine::par::lanes::{transpose4, L, LANES};
 use crate::engine::par::{alone, slab_phase, window_phase, AtomsMut, PARALLEL_MIN_WORK};
 use crate::engine::state::{RunError, State};
-use crate::engine::bonded_lists::{chunk, slab, wide_chunk, BondedLists, Entry, WIDE};
+use crate::engine::bonded_lists::{chunk, slab, wide_chunk, BondedLists, Entry, Slabbed, WIDE};
 use crate::engine::topology::StoredOn;
 
 /// Energies and virial of the bonded pass.
@@ -175,12 +175,24 @@ fn slabbed(state: &State, bonds: &[Vec<Entry<2>>], angles: &[Vec<Entry<3>>], dih
         chunk_of[ch.start..ch.end].iter_mut().for_each(|x| *x = c as u32);
     }
     let n = chunks.len();
-    BondedLists {
-        bonds: slab(bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n, old.bonds),
-        angles: slab(angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n, old.angles),
-        dihedrals: slab(dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n, old.dihedrals),
-        lammps_bonds,
+    // the three kinds on the team, each into its slot
+    use std::sync::Mutex;
+    let BondedLists { bonds: old_bonds, angles: old_angles, dihedrals: old_dihedrals, .. } = old;
+    let slots = (Mutex::new(Some(old_bonds)), Mutex::new(Some(old_angles)), Mutex::new(Some(old_dihedrals)));
+    fn redo<E: Copy, const N: usize>(slot: &Mutex<Option<Slabbed<E>>>, parts: &[Vec<E>], atoms: impl Fn(&E) -> [u32; N], shifted: impl Fn(&E) -> bool, chunk_of: &[u32], n: usize) {
+        let mut slot = slot.lock().unwrap_or_else(|e| e.into_inner());
+        let old = slot.take().unwrap_or_default();
+        *slot = Some(slab(parts, atoms, shifted, chunk_of, n, old));
     }
+    crate::engine::par::team::run(3, &|kind| match kind {
+        0 => redo(&slots.0, bonds, |e: &Entry<2>| e.atoms, Entry::shifted, &chunk_of, n),
+        1 => redo(&slots.1, angles, |e: &Entry<3>| e.atoms, Entry::shifted, &chunk_of, n),
+        _ => redo(&slots.2, dihedrals, |e: &Entry<4>| e.atoms, Entry::shifted, &chunk_of, n),
+    });
+    fn done<E>(s: Mutex<Option<Slabbed<E>>>) -> Slabbed<E> {
+        s.into_inner().unwrap_or_else(|e| e.into_inner()).unwrap_or_default()
+    }
+    BondedLists { bonds: done(slots.0), angles: done(slots.1), dihedrals: done(slots.2), lammps_bonds }
 }
 
 /// A distributed run's bonded lists, as LAMMPS lists them with `newton_bond on`: each

@@ -15,11 +15,24 @@ use dmhs_parser::{Args, DResult, EvalContext, Word};
 
 pub const SYNTAX: &str = "fix ID group ave/time Nevery Nrepeat Nfreq value ... [mode scalar|vector] [ave one|running|window M] [start S] [off col] [overwrite] [format F] [file F] [title1 T] [title2 T] [title3 T]";
 
+/// Where a value comes from (shared with fix ave/correlate).
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Source {
+pub(super) enum Source {
     Compute,
     Fix,
     Variable,
+}
+
+impl Source {
+    /// The producer of a value word (`c_ID[i]`, `f_ID`, `v_name`, ...) and its ID.
+    pub(super) fn of(text: &str) -> (Source, &str) {
+        let source = match &text[..2] {
+            "c_" => Source::Compute,
+            "f_" => Source::Fix,
+            _ => Source::Variable,
+        };
+        (source, text[2..].split('[').next().unwrap_or(""))
+    }
 }
 
 /// One input value.
@@ -50,9 +63,27 @@ pub struct FixAveTime {
     combine: Combine,
 }
 
+/// The value words at the front of `a` (`c_`, `f_`, `v_`), at least one (shared with fix
+/// ave/correlate).
+pub(super) fn global_values<'a>(a: &mut Args<'a>) -> DResult<Vec<&'a Word>> {
+    let mut raw = Vec::new();
+    while let Some(w) = a.peek() {
+        if w.text.starts_with("c_") || w.text.starts_with("f_") || w.text.starts_with("v_") {
+            raw.push(w);
+            a.skip(1);
+        } else {
+            break;
+        }
+    }
+    if raw.is_empty() {
+        return Err(a.missing("a value (c_ID, c_ID[i], f_ID, f_ID[i] or v_name)"));
+    }
+    Ok(raw)
+}
+
 /// Expand `c_ID[*]`, `c_ID[n*]`, `c_ID[*m]`, `c_ID[n*m]` into `c_ID[k]` for k in the range
 /// (LAMMPS' utils::expand_args), where `len` is the number of elements of that value.
-fn expand(w: &Word, len: Option<usize>, a: &Args) -> DResult<Vec<String>> {
+pub(super) fn expand(w: &Word, len: Option<usize>, a: &Args) -> DResult<Vec<String>> {
     let t = &w.text;
     let (Some(open), true) = (t.find('['), t.ends_with(']')) else { return Ok(vec![t.clone()]) };
     let inner = &t[open + 1..t.len() - 1];
@@ -76,18 +107,7 @@ impl FixAveTime {
     pub fn from_lammps(d: FixDef, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(d.args, d.cmd.span, SYNTAX);
         let mut sampling = Sampling::parse(&mut a, "ave/time")?;
-        let mut raw = Vec::new();
-        while let Some(w) = a.peek() {
-            if w.text.starts_with("c_") || w.text.starts_with("f_") || w.text.starts_with("v_") {
-                raw.push(w);
-                a.skip(1);
-            } else {
-                break;
-            }
-        }
-        if raw.is_empty() {
-            return Err(a.missing("a value (c_ID, c_ID[i], f_ID, f_ID[i] or v_name)"));
-        }
+        let raw = global_values(&mut a)?;
         let (mut vector_mode, mut ave, mut out, mut offs) = (false, Ave::One, FileOptions::default(), Vec::new());
         while let Some(w) = a.peek() {
             a.skip(1);
@@ -106,12 +126,7 @@ impl FixAveTime {
         let mut values = Vec::new();
         let mut names = Vec::new();
         for w in raw {
-            let source = match &w.text[..2] {
-                "c_" => Source::Compute,
-                "f_" => Source::Fix,
-                _ => Source::Variable,
-            };
-            let name = w.text[2..].split('[').next().unwrap_or("");
+            let (source, name) = Source::of(&w.text);
             let compute = d.computes.iter().find(|c| c.id() == name);
             let fix = d.fixes.iter().find(|f| f.id() == name);
             let len = match (source, vector_mode) {

@@ -10,6 +10,7 @@ pub mod deform;
 pub mod ave_atom;
 pub mod ave_chunk;
 pub mod ave_histo;
+pub mod ave_correlate;
 pub mod ave_time;
 pub mod balance;
 pub mod bond_break;
@@ -517,6 +518,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("ave/atom", |d, state| Ok(Box::new(ave_atom::FixAveAtom::from_lammps(d, state)?))),
     ("ave/chunk", |d, state| Ok(Box::new(ave_chunk::FixAveChunk::from_lammps(d, state)?))),
     ("ave/time", |d, state| Ok(Box::new(ave_time::FixAveTime::from_lammps(d, state)?))),
+    ("ave/correlate", |d, state| Ok(Box::new(ave_correlate::FixAveCorrelate::from_lammps(d, state)?))),
     ("print", |d, state| Ok(Box::new(print::FixPrint::from_lammps(d, state)?))),
     ("recenter", |d, state| Ok(Box::new(recenter::FixRecenter::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("spring/rg", |d, _| Ok(Box::new(spring_rg::FixSpringRg::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -8,7 +8,7 @@
 //! become its global array, Nrepeat rows of (time delta, count, C of each pair), and go to the
 //! file; `ave one` then starts the sums again from the latest sample.
 
-use super::ave_time::Source;
+use super::ave_time::{global_value, Source};
 use super::sampling::{format_value, AveFile};
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::state::{RunError, State};
@@ -228,26 +228,8 @@ impl FixAveCorrelate {
 
     /// One sample of every value.
     fn sample(&self, w: &World, ev: &mut dyn EvalContext) -> Result<Vec<f64>, String> {
-        self.values
-            .iter()
-            .map(|v| match v.source {
-                Source::Compute => {
-                    let c = w.compute(&v.id).ok_or_else(|| format!("Compute ID {} for fix ave/correlate does not exist", v.id))?;
-                    match v.index {
-                        None => c.scalar(w),
-                        Some(i) => c.vector(w)?.get(i - 1).copied().ok_or_else(|| format!("compute `{}` vector index {i} is out of range", v.id)),
-                    }
-                }
-                Source::Fix => {
-                    let f = w.fix(&v.id).ok_or_else(|| format!("Fix ID {} for fix ave/correlate does not exist", v.id))?;
-                    match v.index {
-                        None => f.scalar(w.state).ok_or_else(|| format!("Fix ave/correlate fix {} does not calculate a scalar", v.id)),
-                        Some(i) => f.vector(w.state, i).ok_or_else(|| format!("Fix ave/correlate fix {} does not calculate a vector", v.id)),
-                    }
-                }
-                Source::Variable => dmhs_parser::variables::compute_equal(ev, &v.id).map_err(|e| format!("variable `{}`: {e}", v.id)),
-            })
-            .collect()
+        let who = format!("fix ave/correlate {}", self.id);
+        self.values.iter().map(|v| global_value(v.source, &v.id, v.index, w, ev, &who)).collect()
     }
 
     /// Add the products the newest sample makes with itself and each older one.
@@ -351,7 +333,8 @@ impl Fix for FixAveCorrelate {
         match j {
             1 => Some(k as f64 * self.nevery as f64),
             2 => Some(self.saved_count[k] as f64),
-            _ => self.saved[k].get(j.checked_sub(3)?).map(|&x| if self.saved_count[k] > 0 { x } else { 0.0 }),
+            // (zero for a lag without samples: `invoke` saves it so)
+            _ => self.saved[k].get(j.checked_sub(3)?).copied(),
         }
     }
     fn size_array(&self) -> Option<(usize, usize)> {

@@ -103,6 +103,33 @@ pub(super) fn expand(w: &Word, len: Option<usize>, a: &Args) -> DResult<Vec<Stri
     Ok((lo..=hi).map(|k| format!("{}[{k}]", &t[..open])).collect())
 }
 
+/// One global value now: `c_ID`, `c_ID[i]`, `f_ID`, `f_ID[i]` (1-based `index`) or equal-style
+/// `v_name`; `who` names the reading fix in errors (`fix ave/time ID`). Shared with fix
+/// ave/correlate.
+pub(super) fn global_value(source: Source, id: &str, index: Option<usize>, w: &World, ev: &mut dyn EvalContext, who: &str) -> Result<f64, String> {
+    match source {
+        Source::Compute => {
+            let c = w.compute(id).ok_or_else(|| format!("compute `{id}` for {who} does not exist"))?;
+            match index {
+                None => c.scalar(w),
+                Some(i) => {
+                    let vec = c.vector(w)?;
+                    vec.get(i - 1).copied().ok_or_else(|| format!("compute `{id}` vector has {} values, index {i} is out of range", vec.len()))
+                }
+            }
+        }
+        Source::Fix => {
+            let f = w.fix(id).ok_or_else(|| format!("fix `{id}` for {who} does not exist"))?;
+            let missing = |what: String| format!("fix `{id}` ({}) has no {what}", f.style());
+            match index {
+                None => f.scalar(w.state).ok_or_else(|| missing("global scalar".into())),
+                Some(i) => f.vector(w.state, i).ok_or_else(|| missing(format!("global vector element {i}"))),
+            }
+        }
+        Source::Variable => dmhs_parser::variables::compute_equal(ev, id).map_err(|e| format!("variable `{id}`: {e}")),
+    }
+}
+
 impl FixAveTime {
     pub fn from_lammps(d: FixDef, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(d.args, d.cmd.span, SYNTAX);
@@ -219,32 +246,27 @@ impl FixAveTime {
 
     /// One sample of every value: one column per value (one row in scalar mode).
     fn sample(&self, w: &World, ev: &mut dyn EvalContext) -> Result<Vec<Vec<f64>>, String> {
+        let who = format!("fix ave/time {}", self.id);
         let mut cols = Vec::with_capacity(self.values.len());
         for v in &self.values {
+            if !self.vector_mode {
+                cols.push(vec![global_value(v.source, &v.id, v.index, w, ev, &who)?]);
+                continue;
+            }
             let col = match v.source {
                 Source::Compute => {
-                    let c = w.compute(&v.id).ok_or_else(|| format!("compute `{}` for fix ave/time {} does not exist", v.id, self.id))?;
-                    match (self.vector_mode, v.index) {
-                        (false, None) => vec![c.scalar(w)?],
-                        (false, Some(i)) => {
-                            let vec = c.vector(w)?;
-                            vec![*vec.get(i - 1).ok_or_else(|| format!("compute `{}` vector has {} values, index {i} is out of range", v.id, vec.len()))?]
-                        }
-                        (true, None) => c.vector(w)?,
-                        (true, Some(j)) => {
+                    let c = w.compute(&v.id).ok_or_else(|| format!("compute `{}` for {who} does not exist", v.id))?;
+                    match v.index {
+                        None => c.vector(w)?,
+                        Some(j) => {
                             let rows = c.array(w)?;
                             rows.iter().map(|r| r.get(j - 1).copied().ok_or_else(|| format!("compute `{}` array has {} columns, column {j} is out of range", v.id, r.len()))).collect::<Result<_, _>>()?
                         }
                     }
                 }
                 Source::Fix => {
-                    let f = w.fix(&v.id).ok_or_else(|| format!("fix `{}` for fix ave/time {} does not exist", v.id, self.id))?;
-                    let missing = |what: String| format!("fix `{}` ({}) has no {what}", v.id, f.style());
-                    match (self.vector_mode, v.index) {
-                        (false, None) => vec![f.scalar(w.state).ok_or_else(|| missing("global scalar".into()))?],
-                        (false, Some(i)) => vec![f.vector(w.state, i).ok_or_else(|| missing(format!("global vector element {i}")))?],
-                        (true, _) => (1..=f.size_vector()).map(|i| f.vector(w.state, i).ok_or_else(|| missing(format!("global vector element {i}")))).collect::<Result<_, _>>()?,
-                    }
+                    let f = w.fix(&v.id).ok_or_else(|| format!("fix `{}` for {who} does not exist", v.id))?;
+                    (1..=f.size_vector()).map(|i| f.vector(w.state, i).ok_or_else(|| format!("fix `{}` ({}) has no global vector element {i}", v.id, f.style()))).collect::<Result<_, _>>()?
                 }
                 Source::Variable => vec![dmhs_parser::variables::compute_equal(ev, &v.id).map_err(|e| format!("variable `{}`: {e}", v.id))?],
             };

@@ -65,7 +65,7 @@ fn bad_input_is_a_located_error() {
         ("fix a all ave/chunk 1 1 10 thermo_temp vx\n", "needs a compute chunk/atom"),
         ("fix a all ave/chunk 3 2 10 c vx\n", "inconsistent fix ave/chunk"),
         ("fix a all ave/chunk 1 1 10 c\n", "a value"),
-        ("fix a all ave/chunk 1 1 10 c vx v_x\n", "atom-style variables"),
+        ("fix a all ave/chunk 1 1 10 c vx v_x\n", "Variable name x for fix ave/chunk does not exist"),
         ("fix a all ave/chunk 1 1 10 c c_thermo_temp\n", "does not compute per-atom values"),
         ("fix a all ave/chunk 1 1 10 c vx bias thermo_temp\n", "bias is not supported"),
         ("fix a all ave/chunk 1 1 10 c vx overwrite\n", "ave running"),

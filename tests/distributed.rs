@@ -665,6 +665,28 @@ fn walls_indenters_and_thermostats_on_ranks_are_the_serial_run() {
     compare(&region, 2);
 }
 
+/// Heat exchange on ranks (fix heat with a constant and an atom-style flux, fix ehex, fix
+/// thermal/conductivity, whose swaps pair atoms of different ranks as LAMMPS' global ranking
+/// does) and fix ave/correlate of their values: the serial run's thermo and atoms.
+#[test]
+fn heat_exchange_on_ranks_is_the_serial_run() {
+    let deck = melt_with(
+        "fix          1 all nve\n\
+         region       hot block 0 1 INF INF INF INF units lattice\n\
+         region       cold block 3 4 INF INF INF INF units lattice\n\
+         variable     flux atom -0.5-0.1*y\n\
+         fix          hot all heat 1 2.0 region hot\n\
+         fix          cold all heat 3 v_flux region cold\n\
+         fix          eh all ehex 2 1.0 region hot\n\
+         fix          mp all thermal/conductivity 10 z 6 swap 2\n\
+         fix          cor all ave/correlate 10 4 50 c_thermo_temp f_mp type auto/upper\n\
+         thermo_style custom step temp epair etotal press f_hot f_cold f_eh f_mp f_cor[3][3] f_cor[2][5]\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deck, 2);
+    compare(&deck, 4);
+}
+
 #[test]
 fn centres_of_mass_reductions_and_group_functions_on_ranks_are_the_serial_ones() {
     let deck = melt_with(

@@ -1,7 +1,7 @@
 //! `fix ID group ave/atom Nevery Nrepeat Nfreq value ...`: per-atom averages of x y z vx vy vz
-//! fx fy fz, per-atom compute values (`c_ID`, `c_ID[i]`, `[*]` expands) and per-atom fix values
-//! (`f_ID`, `f_ID[i]`) over Nrepeat samples Nevery steps apart, ending on multiples of Nfreq, as
-//! LAMMPS' fix ave/atom. The result, `f_ID` or `f_ID[i]`, is read by dumps and compute reduce.
+//! fx fy fz, per-atom compute values (`c_ID`, `c_ID[i]`, `[*]` expands), per-atom fix values
+//! (`f_ID`, `f_ID[i]`) and atom-style variables (`v_name`) over Nrepeat samples Nevery steps
+//! apart, ending on multiples of Nfreq, as LAMMPS' fix ave/atom. The result, `f_ID` or `f_ID[i]`, is read by dumps and compute reduce.
 //! The sums travel with the atoms (an extra per-atom array), so sorting does not mix them up.
 
 use super::sampling::Sampling;
@@ -10,13 +10,15 @@ use crate::engine::state::{RunError, State};
 use crate::models::compute::{PerAtom, PerAtomRef};
 use dmhs_parser::{Args, DResult};
 
-pub const SYNTAX: &str = "fix ID group ave/atom Nevery Nrepeat Nfreq value ...  (x y z vx vy vz fx fy fz c_ID c_ID[i] f_ID f_ID[i])";
+pub const SYNTAX: &str = "fix ID group ave/atom Nevery Nrepeat Nfreq value ...  (x y z vx vy vz fx fy fz c_ID c_ID[i] f_ID f_ID[i] v_name)";
 
 #[derive(Clone, Debug)]
 enum Value {
     /// Position (0..3), velocity (3..6) or force (6..9) component.
     Attr(usize),
     PerAtom(PerAtomRef),
+    /// An atom-style variable, evaluated at each sample.
+    Variable(String),
 }
 
 pub struct FixAveAtom {
@@ -44,8 +46,9 @@ impl FixAveAtom {
                     values.push(Value::Attr(k));
                     continue;
                 }
-                if w.text.starts_with("v_") {
-                    return Err(a.error_at(w, "fix ave/atom: atom-style variables are not supported", "variable"));
+                if let Some(name) = w.text.strip_prefix("v_") {
+                    values.push(Value::Variable(name.to_string()));
+                    continue;
                 }
                 // c_ID[*] and f_ID[*]: every column
                 let names = match w.text.strip_suffix("[*]") {
@@ -82,11 +85,16 @@ impl FixAveAtom {
         }
         let step = state.step;
         // the per-atom values of computes and fixes, read before the sums are borrowed
-        let inputs: Vec<Option<PerAtom>> = ctx.eval(state, self, |w, _| {
+        let inputs: Vec<Option<PerAtom>> = ctx.eval(state, self, |w, ev| {
             self.values
                 .iter()
                 .map(|v| match v {
                     Value::PerAtom(r) => r.values(w).map(Some),
+                    Value::Variable(name) => match ev.variables().style(name) {
+                        None => Err(format!("Variable name {name} for fix ave/atom does not exist")),
+                        Some("atom") => crate::models::atom_formula::atom_variable(name, w, ev).map(|data| Some(PerAtom { cols: 1, data })),
+                        Some(_) => Err(format!("Fix ave/atom variable {name} is not atom-style variable")),
+                    },
                     Value::Attr(_) => Ok(None),
                 })
                 .collect()
@@ -109,6 +117,7 @@ impl FixAveAtom {
                     Value::Attr(c) if *c < 6 => a.v[i][c - 3],
                     Value::Attr(c) => a.f[i][c - 6],
                     Value::PerAtom(r) => r.get(inputs[m].as_ref().expect("read above"), i),
+                    Value::Variable(_) => inputs[m].as_ref().expect("read above").get(i, 0),
                 };
             }
         }

@@ -1,9 +1,9 @@
 //! `fix ID group ave/chunk Nevery Nrepeat Nfreq chunkID value ... [norm all|sample|none]
 //! [ave one|running|window M] [adof N] [cdof N] [file F] [overwrite] [format F] [title1 T]
 //! [title2 T] [title3 T]`: per-chunk averages (chunks of a compute chunk/atom) of vx vy vz fx fy
-//! fz, density/number, density/mass, mass, temp and per-atom computes and fixes (`c_ID`,
-//! `c_ID[i]`, `f_ID`, `f_ID[i]`; `[*]` expands), over Nrepeat samples Nevery steps apart ending
-//! on multiples of Nfreq, as LAMMPS' fix ave/chunk: the same samples, sums over the atoms in
+//! fz, density/number, density/mass, mass, temp, per-atom computes and fixes (`c_ID`,
+//! `c_ID[i]`, `f_ID`, `f_ID[i]`; `[*]` expands) and atom-style variables (`v_name`), over
+//! Nrepeat samples Nevery steps apart ending on multiples of Nfreq, as LAMMPS' fix ave/chunk: the same samples, sums over the atoms in
 //! LAMMPS' order, the same normalisations and the same file (`%g` per value).
 //!
 //! While a period of several samples runs (or for ever with ave running/window) the chunks are
@@ -19,7 +19,7 @@ use crate::models::world::World;
 use dmhs_parser::{Args, DResult};
 use std::collections::HashMap;
 
-pub const SYNTAX: &str = "fix ID group ave/chunk Nevery Nrepeat Nfreq chunkID value ... (vx vy vz fx fy fz density/number density/mass mass temp c_ID c_ID[i] f_ID f_ID[i]) [norm all|sample|none] [ave one|running|window M] [adof N] [cdof N] [file F] [overwrite] [format F] [title1 T] [title2 T] [title3 T]";
+pub const SYNTAX: &str = "fix ID group ave/chunk Nevery Nrepeat Nfreq chunkID value ... (vx vy vz fx fy fz density/number density/mass mass temp c_ID c_ID[i] f_ID f_ID[i] v_name) [norm all|sample|none] [ave one|running|window M] [adof N] [cdof N] [file F] [overwrite] [format F] [title1 T] [title2 T] [title3 T]";
 
 #[derive(Clone, Debug)]
 enum Value {
@@ -30,6 +30,8 @@ enum Value {
     Mass,
     Temp,
     PerAtom(PerAtomRef),
+    /// An atom-style variable, evaluated at each sample.
+    Variable(String),
 }
 
 pub struct FixAveChunk {
@@ -85,8 +87,9 @@ impl FixAveChunk {
                     _ => Value::Temp,
                 });
                 names.push(w.text.clone());
-            } else if w.text.starts_with("v_") {
-                return Err(a.error_at(w, "fix ave/chunk: atom-style variables are not supported", "variable"));
+            } else if let Some(name) = w.text.strip_prefix("v_") {
+                values.push(Value::Variable(name.to_string()));
+                names.push(w.text.clone());
             } else if w.text.starts_with("c_") || w.text.starts_with("f_") {
                 // c_ID[*] and f_ID[*]: every column
                 let expanded = match w.text.strip_suffix("[*]") {
@@ -109,7 +112,7 @@ impl FixAveChunk {
             a.skip(1);
         }
         if values.is_empty() {
-            return Err(a.missing("a value (vx vy vz fx fy fz density/number density/mass mass temp c_ID c_ID[i] f_ID f_ID[i])"));
+            return Err(a.missing("a value (vx vy vz fx fy fz density/number density/mass mass temp c_ID c_ID[i] f_ID f_ID[i] v_name)"));
         }
         let dimension = state.domain.as_ref().map_or(3, |d| d.dimension);
         let (mut norm_sample, mut noscale, mut ave, mut adof, mut cdof) = (false, false, Ave::One, dimension as f64, 0.0);
@@ -201,7 +204,7 @@ impl FixAveChunk {
 
     /// One sample: the chunks (new at the start of a period unless locked), the atoms' chunk IDs,
     /// and per chunk the atom count and the sums of the values.
-    fn sample(&self, w: &World, first: bool) -> Result<Sample, String> {
+    fn sample(&self, w: &World, ev: &mut dyn dmhs_parser::EvalContext, first: bool) -> Result<Sample, String> {
         let c = w.compute(&self.chunk_id).and_then(|c| c.as_chunk()).ok_or_else(|| format!("compute chunk/atom `{}` for fix ave/chunk {} does not exist", self.chunk_id, self.id))?;
         let state = w.state;
         let new = match (&self.chunks, first && !self.lock_forever) {
@@ -220,6 +223,11 @@ impl FixAveChunk {
             .iter()
             .map(|v| match v {
                 Value::PerAtom(r) => r.values(w).map(Some),
+                Value::Variable(name) => match ev.variables().style(name) {
+                    None => Err(format!("Variable name {name} for fix ave/chunk does not exist")),
+                    Some("atom") => crate::models::atom_formula::atom_variable(name, w, ev).map(|data| Some(PerAtom { cols: 1, data })),
+                    Some(_) => Err(format!("Fix ave/chunk variable {name} is not atom-style variable")),
+                },
                 _ => Ok(None),
             })
             .collect::<Result<_, _>>()?;
@@ -240,6 +248,7 @@ impl FixAveChunk {
                         (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * state.mass(i)
                     }
                     Value::PerAtom(r) => r.get(inputs[m].as_ref().expect("read above"), i),
+                    Value::Variable(_) => inputs[m].as_ref().expect("read above").get(i, 0),
                 };
             }
         }
@@ -262,7 +271,7 @@ impl FixAveChunk {
         }
         let step = state.step;
         let first = self.sampling.irepeat == 0;
-        let Sample { new, ids_nfreq, ichunk, count: count_one, sums: mut values_one } = ctx.eval(state, self, |w, _| self.sample(w, first))?;
+        let Sample { new, ids_nfreq, ichunk, count: count_one, sums: mut values_one } = ctx.eval(state, self, |w, ev| self.sample(w, ev, first))?;
         if let Some(ch) = new {
             self.chunks = Some(ch);
         }

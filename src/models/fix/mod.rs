@@ -28,6 +28,8 @@ pub mod freeze;
 pub mod gravity;
 pub mod group_dynamic;
 pub mod halt;
+pub mod ehex;
+pub mod heat;
 pub mod heat_flow;
 pub mod indent;
 pub mod langevin;
@@ -52,6 +54,7 @@ pub mod spring_self;
 pub mod store_local;
 pub mod temp_csvr;
 pub mod temp_scale;
+pub mod thermal_conductivity;
 pub mod thermostat;
 pub mod vector;
 pub mod viscous;
@@ -557,6 +560,9 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("npt", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("nph", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("ehex", |d, state| Ok(Box::new(ehex::FixEhex::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("thermal/conductivity", |d, _| Ok(Box::new(thermal_conductivity::FixThermalConductivity::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("heat", |d, state| Ok(Box::new(heat::FixHeat::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
     ("rigid", |d, _| Ok(Box::new(rigid_small::FixRigidSmall::refuse_rigid(d.args, d.cmd, d.style)?))),

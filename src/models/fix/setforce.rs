@@ -42,15 +42,20 @@ pub fn parse_components(args: &[Word], cmd: &Command, syntax: &'static str, stat
         let w = a.word(what)?;
         value[k] = FixValue::parse(w, what, true).map_err(|d| d.with_help(format!("syntax: {syntax}")))?;
     }
+    Ok((value, region_keyword(&mut a, state)?))
+}
+
+/// The trailing `[region R]` of a fix whose only keyword it is.
+pub fn region_keyword(a: &mut Args, state: &State) -> DResult<Option<String>> {
     let mut region = None;
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
-            "region" => region = Some(find_region(&mut a, state)?),
+            "region" => region = Some(find_region(a, state)?),
             _ => return Err(a.unknown_keyword(w, &["region"])),
         }
     }
-    Ok((value, region))
+    Ok(region)
 }
 
 impl FixSetForce {

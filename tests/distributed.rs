@@ -666,7 +666,7 @@ fn walls_indenters_and_thermostats_on_ranks_are_the_serial_run() {
 }
 
 /// Heat exchange on ranks (fix heat with a constant and an atom-style flux, fix ehex, fix
-/// thermal/conductivity, whose swaps pair atoms of different ranks as LAMMPS' global ranking
+/// thermal/conductivity and fix viscosity, whose swaps pair atoms of different ranks as LAMMPS' global ranking
 /// does) and fix ave/correlate of their values: the serial run's thermo and atoms.
 #[test]
 fn heat_exchange_on_ranks_is_the_serial_run() {
@@ -679,8 +679,9 @@ fn heat_exchange_on_ranks_is_the_serial_run() {
          fix          cold all heat 3 v_flux region cold\n\
          fix          eh all ehex 2 1.0 region hot\n\
          fix          mp all thermal/conductivity 10 z 6 swap 2\n\
+         fix          vs all viscosity 10 x z 6 swap 3\n\
          fix          cor all ave/correlate 10 4 50 c_thermo_temp f_mp type auto/upper\n\
-         thermo_style custom step temp epair etotal press f_hot f_cold f_eh f_mp f_cor[3][3] f_cor[2][5]\n\
+         thermo_style custom step temp epair etotal press f_hot f_cold f_eh f_mp f_vs f_cor[3][3] f_cor[2][5]\n\
          thermo_modify format float %.15g\n",
     );
     compare(&deck, 2);

@@ -1,6 +1,7 @@
-//! Heat exchange for thermal conductivity (LAMMPS' examples/KAPPA): fix heat (constant, equal-
-//! and atom-style flux), fix ehex (eHEX/a, and plain HEX with `hex`), fix thermal/conductivity
-//! (Muller-Plathe swaps), and fix ave/chunk and fix ave/atom of an atom-style variable (the
+//! Heat and momentum exchange for thermal conductivity and viscosity (LAMMPS' examples/KAPPA and
+//! examples/VISCOSITY): fix heat (constant, equal- and atom-style flux), fix ehex (eHEX/a, and
+//! plain HEX with `hex`), fix thermal/conductivity and fix viscosity (Muller-Plathe swaps, with
+//! `swap` and `vtarget`), and fix ave/chunk and fix ave/atom of an atom-style variable (the
 //! examples' temperature profile).
 //!
 //! tests/heat_exchange/in.heat_exchange runs them on a gas of dimers (bonds only, pair zero, so
@@ -37,7 +38,7 @@ fn files_are_the_stored_lammps_files() {
     let last = std::fs::read_to_string(tmp.path().join("values.txt")).unwrap().lines().last().unwrap().to_string();
     let v: Vec<f64> = last.split_whitespace().map(|w| w.parse().unwrap()).collect();
     assert_eq!(v[0], 400.0, "{last}");
-    assert!(v[3] > 1.0 && v[4] < 1.0 && v[5] > 1.0 && v[6] > 1.0 && v[7] < 1.0 && v[8] > 100.0, "{last}");
+    assert!(v[3] > 1.0 && v[4] < 1.0 && v[5] > 1.0 && v[6] > 1.0 && v[7] < 1.0 && v[8] > 100.0 && v[9] < -100.0 && v[10] < -10.0, "{last}");
 }
 
 #[test]
@@ -80,7 +81,7 @@ fn table(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
 
 /// fix heat and fix ehex on the whole of an ideal gas add exactly eflux * N * dt every N steps
 /// (the velocities scale about the centre of mass, whose drift keeps its energy); fix
-/// thermal/conductivity moves energy but keeps the total.
+/// thermal/conductivity and fix viscosity move energy or momentum but keep the total energy.
 #[test]
 fn the_heat_added_is_the_flux_times_the_time() {
     let base = kinetic_energies("");
@@ -93,9 +94,10 @@ fn the_heat_added_is_the_flux_times_the_time() {
             assert!((e - want).abs() < 1e-11 * base[0], "{fix}: step {step}: ke {e}, want {want}");
         }
     }
-    let swapped = kinetic_energies("fix h all thermal/conductivity 2 y 6 swap 4");
-    for e in &swapped {
-        assert!((e - base[0]).abs() < 1e-12 * base[0], "swaps keep the energy: {e} against {}", base[0]);
+    for fix in ["fix h all thermal/conductivity 2 y 6 swap 4", "fix h all viscosity 2 x z 6 swap 3"] {
+        for e in &kinetic_energies(fix) {
+            assert!((e - base[0]).abs() < 1e-12 * base[0], "{fix}: swaps keep the energy: {e} against {}", base[0]);
+        }
     }
 }
 
@@ -119,6 +121,11 @@ fn bad_input_is_a_located_error() {
         ("fix m all thermal/conductivity 10 z 2\n", "Nbin (number of slabs)"),
         ("fix m all thermal/conductivity 10 z 20 swap 0\n", "Nswap"),
         ("fix m all thermal/conductivity 10 z 20 exchange 3\n", "exchange"),
+        ("fix m all viscosity 10 x w 20\n", "pdim"),
+        ("fix m all viscosity 10 x y 9\n", "Nbin must be even"),
+        ("fix m all viscosity 10 x y 20 vtarget -1\n", "Fix viscosity vtarget value must be positive"),
+        ("fix m all viscosity 10 x y 20 vtarget\n", "vtarget (a positive velocity or INF)"),
+        ("fix m all viscosity 10 x y 20 swap 2 bogus\n", "bogus"),
         ("fix a all ave/chunk 10 1 10 layers v_e\n", "Fix ave/chunk variable e is not atom-style variable"),
         ("fix a all ave/chunk 10 1 10 layers v_nope\n", "Variable name nope for fix ave/chunk does not exist"),
         ("fix a all ave/atom 10 1 10 v_e\n", "Fix ave/atom variable e is not atom-style variable"),

@@ -23,7 +23,7 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt", "npt", "nph", "deform",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
-    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create", "heat", "ehex", "thermal/conductivity", "ave/correlate"];
+    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create", "heat", "ehex", "thermal/conductivity", "viscosity", "ave/correlate"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",
     "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom",
     "erotate/sphere/atom", "contact/atom"];

@@ -47,6 +47,7 @@ pub mod property_atom;
 pub mod recenter;
 pub mod rigid_small;
 pub mod setforce;
+pub mod slab_swaps;
 pub mod sph;
 pub mod spring;
 pub mod spring_rg;
@@ -57,6 +58,7 @@ pub mod temp_scale;
 pub mod thermal_conductivity;
 pub mod thermostat;
 pub mod vector;
+pub mod viscosity;
 pub mod viscous;
 pub mod wall_gran;
 pub mod wall_colloid;
@@ -561,6 +563,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("nph", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("ehex", |d, state| Ok(Box::new(ehex::FixEhex::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
+    ("viscosity", |d, _| Ok(Box::new(viscosity::FixViscosity::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("thermal/conductivity", |d, _| Ok(Box::new(thermal_conductivity::FixThermalConductivity::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("heat", |d, state| Ok(Box::new(heat::FixHeat::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

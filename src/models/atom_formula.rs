@@ -38,6 +38,16 @@ pub fn atom_variable(name: &str, w: &World, ctx: &mut dyn EvalContext) -> Result
     atom_variable_drawing(name, w, ctx, None)
 }
 
+/// [`atom_variable`] as an input of fix `style` (ave/atom, ave/chunk), which LAMMPS requires to
+/// exist and to be atom-style, with its messages.
+pub fn atom_variable_input(style: &str, name: &str, w: &World, ctx: &mut dyn EvalContext) -> Result<Vec<f64>, String> {
+    match ctx.variables().style(name) {
+        None => Err(format!("Variable name {name} for fix {style} does not exist")),
+        Some("atom") => atom_variable(name, w, ctx),
+        Some(_) => Err(format!("Fix {style} variable {name} is not atom-style variable")),
+    }
+}
+
 /// [`atom_variable`], drawing `random()` and `normal()` from `rng` (None: refused).
 pub fn atom_variable_drawing(name: &str, w: &World, ctx: &mut dyn EvalContext, rng: Option<&mut AtomRandom>) -> Result<Vec<f64>, String> {
     let n = w.state.atoms.nlocal;

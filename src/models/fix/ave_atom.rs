@@ -1,8 +1,9 @@
 //! `fix ID group ave/atom Nevery Nrepeat Nfreq value ...`: per-atom averages of x y z vx vy vz
 //! fx fy fz, per-atom compute values (`c_ID`, `c_ID[i]`, `[*]` expands), per-atom fix values
 //! (`f_ID`, `f_ID[i]`) and atom-style variables (`v_name`) over Nrepeat samples Nevery steps
-//! apart, ending on multiples of Nfreq, as LAMMPS' fix ave/atom. The result, `f_ID` or `f_ID[i]`, is read by dumps and compute reduce.
-//! The sums travel with the atoms (an extra per-atom array), so sorting does not mix them up.
+//! apart, ending on multiples of Nfreq, as LAMMPS' fix ave/atom. The result, `f_ID` or
+//! `f_ID[i]`, is read by dumps and compute reduce. The sums travel with the atoms (an extra
+//! per-atom array), so sorting does not mix them up.
 
 use super::sampling::Sampling;
 use super::{Fix, FixCtx, FixDef, FixHooks};
@@ -90,11 +91,7 @@ impl FixAveAtom {
                 .iter()
                 .map(|v| match v {
                     Value::PerAtom(r) => r.values(w).map(Some),
-                    Value::Variable(name) => match ev.variables().style(name) {
-                        None => Err(format!("Variable name {name} for fix ave/atom does not exist")),
-                        Some("atom") => crate::models::atom_formula::atom_variable(name, w, ev).map(|data| Some(PerAtom { cols: 1, data })),
-                        Some(_) => Err(format!("Fix ave/atom variable {name} is not atom-style variable")),
-                    },
+                    Value::Variable(name) => crate::models::atom_formula::atom_variable_input("ave/atom", name, w, ev).map(|data| Some(PerAtom { cols: 1, data })),
                     Value::Attr(_) => Ok(None),
                 })
                 .collect()

@@ -3,8 +3,9 @@
 //! [title2 T] [title3 T]`: per-chunk averages (chunks of a compute chunk/atom) of vx vy vz fx fy
 //! fz, density/number, density/mass, mass, temp, per-atom computes and fixes (`c_ID`,
 //! `c_ID[i]`, `f_ID`, `f_ID[i]`; `[*]` expands) and atom-style variables (`v_name`), over
-//! Nrepeat samples Nevery steps apart ending on multiples of Nfreq, as LAMMPS' fix ave/chunk: the same samples, sums over the atoms in
-//! LAMMPS' order, the same normalisations and the same file (`%g` per value).
+//! Nrepeat samples Nevery steps apart ending on multiples of Nfreq, as LAMMPS' fix ave/chunk:
+//! the same samples, sums over the atoms in LAMMPS' order, the same normalisations and the same
+//! file (`%g` per value).
 //!
 //! While a period of several samples runs (or for ever with ave running/window) the chunks are
 //! those of its first sample, as LAMMPS locks the compute; with `ids nfreq` the atoms' chunk IDs
@@ -223,11 +224,7 @@ impl FixAveChunk {
             .iter()
             .map(|v| match v {
                 Value::PerAtom(r) => r.values(w).map(Some),
-                Value::Variable(name) => match ev.variables().style(name) {
-                    None => Err(format!("Variable name {name} for fix ave/chunk does not exist")),
-                    Some("atom") => crate::models::atom_formula::atom_variable(name, w, ev).map(|data| Some(PerAtom { cols: 1, data })),
-                    Some(_) => Err(format!("Fix ave/chunk variable {name} is not atom-style variable")),
-                },
+                Value::Variable(name) => crate::models::atom_formula::atom_variable_input("ave/chunk", name, w, ev).map(|data| Some(PerAtom { cols: 1, data })),
                 _ => Ok(None),
             })
             .collect::<Result<_, _>>()?;

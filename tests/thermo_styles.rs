@@ -199,9 +199,10 @@ fn variable_thermo_intervals_are_lammps() {
 /// Warnings past `thermo_modify warn N` are not printed, as LAMMPS 22 Jul 2025's Error::warning:
 /// its log of this deck prints the replicate warning after `always`, none after `warn 1` (the
 /// count is already 1), the notice at the next thermo output, one after `default` (count reset),
-/// none after a negative limit. LAMMPS' notice reads "8 vs 1": it also counts the three run-setup
-/// warnings it suppressed (no integrating fix, no atom sorting, no ghost atoms), which dmhs
-/// does not issue.
+/// none after a negative limit. LAMMPS' notice reads "8 vs 1": besides the replicate warnings
+/// and thermo_style's (previous thermo_modify settings lost), both counted here, it counts the
+/// three run-setup warnings it suppressed (no integrating fix, no atom sorting, no ghost atoms),
+/// which dmhs does not issue.
 #[test]
 fn warning_limit_is_lammps() {
     let deck = "units lj\nboundary p p f\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nmass 1 1.0\n\
@@ -216,10 +217,28 @@ fn warning_limit_is_lammps() {
     #[rustfmt::skip]
     let want = [
         "thermo_modify warn always", "replicate 1 1 2", warn, "thermo_modify warn 1", "replicate 1 1 2", "replicate 1 1 2", "replicate 1 1 2",
-        "run 0", "WARNING: Too many warnings: 4 vs 1. All future warnings will be suppressed", "replicate 1 1 2", "run 0",
+        "run 0", "WARNING: Too many warnings: 5 vs 1. All future warnings will be suppressed", "replicate 1 1 2", "run 0",
         "thermo_modify warn default", "replicate 1 1 2", warn, "thermo_modify warn -3", "replicate 1 1 2", "run 0",
     ];
     assert_eq!(seen, want, "{text}");
     let bad = run_text("in.bad", "thermo_modify warn lots\n", &DeckOptions { screen: false, ..Default::default() }).err().expect("an error");
     assert!(bad.rendered.contains("in.bad:1") && bad.rendered.contains("warn"), "{}", bad.rendered);
+}
+
+/// A new thermo_style drops every thermo_modify setting (norm, temp, flush, lost, ...), with
+/// LAMMPS' warning; the pressure compute keeps the temperature `thermo_modify temp` gave it.
+/// The rows are LAMMPS 22 Jul 2025's for this deck.
+#[test]
+fn a_new_thermo_style_drops_thermo_modify_settings() {
+    let deck = "units lj\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+                velocity all create 1.0 87287\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\n\
+                compute t2 all temp/partial 1 1 0\nthermo_modify norm no temp t2 flush yes lost warn\n\
+                thermo_style custom step temp pe ke press\nrun 0\nthermo_modify norm no temp t2\nrun 0\n";
+    let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let run = run_text("deck", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let text = run.sim.out.captured.clone().unwrap();
+    assert_eq!(text.matches("WARNING: New thermo_style command, previous thermo_modify settings will be lost").count(), 1, "{text}");
+    let rows: Vec<&str> = text.lines().filter(|l| l.trim_start().starts_with("0 ")).map(|l| l.trim()).collect();
+    let want = ["0   1             -6.7733681      1.4861111     -5.6573178", "0   1.0366051     -731.52375      110.91675     -5.6573178"];
+    assert_eq!(rows, want, "{text}");
 }

@@ -64,6 +64,9 @@ pub struct Thermo {
     pub volume_added: bool,
     /// How a step's values are laid out (`thermo_style multi|yaml`, `thermo_modify line`).
     pub line: LineStyle,
+    /// thermo_modify changed this style (a new thermo_style then warns that the changes are
+    /// lost, as LAMMPS).
+    pub modified: bool,
 }
 
 /// LAMMPS' thermo line layouts: one line of columns under a header; blocks of `Label = value`
@@ -96,6 +99,7 @@ impl Default for Thermo {
             press_id: "thermo_press".into(),
             volume_added: false,
             line: LineStyle::One,
+            modified: false,
         }
     }
 }

@@ -130,6 +130,9 @@ impl Simulation {
         }
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
+            if let Some(w) = self.fixes[k].init_warning(&self.fixes[k + 1..]) {
+                self.out.print(&format!("WARNING: {w}"));
+            }
         }
         self.init_thermo_columns();
         // LAMMPS' Output::init: output intervals given by variables

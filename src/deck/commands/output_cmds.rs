@@ -30,6 +30,13 @@ pub fn thermo(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "thermo_style one | multi | yaml | custom keyword1 keyword2 ...");
     let style = a.choice("thermo style", &["one", "custom", "multi", "yaml"])?;
+    // LAMMPS makes a new Thermo: every thermo_modify setting (norm, formats, lost, flush, temp,
+    // press, line, colname) returns to its default; `thermo N` stays
+    if sim.thermo.modified {
+        sim.out.print("WARNING: New thermo_style command, previous thermo_modify settings will be lost");
+    }
+    let old = std::mem::take(&mut sim.thermo);
+    sim.thermo = crate::output::thermo::Thermo { every: old.every, every_var: old.every_var, next: old.next, ..Default::default() };
     match style {
         1 => {
             if a.is_empty() {
@@ -58,13 +65,8 @@ pub fn thermo_style(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
         }
     }
     sim.thermo.line = [LineStyle::One, LineStyle::One, LineStyle::Multi, LineStyle::Yaml][style];
-    sim.thermo.volume_added = false;
-    // a new style resets thermo_modify formats and the warnings notice, as in LAMMPS
+    // and the warnings notice, as in LAMMPS
     sim.out.warnings.noticed = false;
-    sim.thermo.format_line = None;
-    sim.thermo.format_int = None;
-    sim.thermo.format_float = None;
-    sim.thermo.format_column.clear();
     Ok(())
 }
 
@@ -73,6 +75,7 @@ pub fn thermo_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }
+    sim.thermo.modified = true;
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {

@@ -278,6 +278,10 @@ pub trait Fix: Send + Sync {
     fn init(&mut self, _state: &State, _ctx: &FixCtx) -> Result<(), String> {
         Ok(())
     }
+    /// A warning LAMMPS prints when a run starts, given the fixes defined after this one.
+    fn init_warning(&self, _later: &[Box<dyn Fix>]) -> Option<String> {
+        None
+    }
     /// Called once per run before the forces of step 0 are computed (LAMMPS `setup_pre_force`).
     fn setup_pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         Ok(())

@@ -25,6 +25,12 @@ pub fn parse_nswap(a: &mut Args) -> DResult<usize> {
     Ok(a.i64_in("Nswap (atom pairs swapped each time)", 1, i64::MAX)? as usize)
 }
 
+/// LAMMPS' warning when a fix ave/chunk comes after the exchanging fix `style`: its profile is
+/// then sampled right after the swaps.
+pub fn ave_chunk_after(style: &str, later: &[Box<dyn super::Fix>]) -> Option<String> {
+    later.iter().any(|f| f.style() == "ave/chunk").then(|| format!("Fix {style} comes before fix ave/chunk"))
+}
+
 /// One swap candidate: its ranking key (the lowest goes first), velocity, mass and local index.
 #[derive(Clone, Copy, Debug)]
 pub struct Candidate {

@@ -129,6 +129,7 @@ fn bad_input_is_a_located_error() {
         ("fix a all ave/chunk 10 1 10 layers v_e\n", "Fix ave/chunk variable e is not atom-style variable"),
         ("fix a all ave/chunk 10 1 10 layers v_nope\n", "Variable name nope for fix ave/chunk does not exist"),
         ("fix a all ave/atom 10 1 10 v_e\n", "Fix ave/atom variable e is not atom-style variable"),
+        ("fix s all ave/spatial 20 50 1000 y center 0.05 vx units reduced\n", "was removed from LAMMPS"),
     ];
     common::assert_located_errors(base, cases);
 }

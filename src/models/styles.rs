@@ -21,8 +21,17 @@ fn kind_of(category: &str) -> Option<StyleKind> {
     })
 }
 
+/// Styles LAMMPS has removed (LAMMPS 22 Jul 2025 refuses them too), and what replaces them.
+const REMOVED: &[(&str, &str, &str)] = &[
+    ("fix", "ave/spatial", "use `compute ID group chunk/atom bin/1d|bin/2d|bin/3d ...` and `fix ID group ave/chunk Nevery Nrepeat Nfreq chunkID value ...` (LAMMPS' examples/KAPPA and VISCOSITY decks do so now)"),
+    ("fix", "ave/spatial/sphere", "use `compute ID group chunk/atom bin/sphere ...` and `fix ID group ave/chunk ...`"),
+];
+
 /// The error for `category` style `name` that is not in `supported`.
 pub fn unsupported_style(category: &str, word: &Word, name: &str, supported: &[&str]) -> Diagnostic {
+    if let Some((_, _, instead)) = REMOVED.iter().find(|(c, n, _)| *c == category && *n == name) {
+        return Diagnostic::at(word.span, format!("{category} style `{name}` was removed from LAMMPS (\"This {category} style is no longer available\")"), "removed style").with_help(*instead);
+    }
     let known = kind_of(category).map(|k| is_lammps_style(k, name)).unwrap_or(false);
     let mut d = if known {
         Diagnostic::at(word.span, format!("{category} style `{name}` is a LAMMPS style that dmhs does not support"), "not supported by dmhs")

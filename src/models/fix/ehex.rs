@@ -82,7 +82,7 @@ impl Fix for FixEhex {
             .collect();
         // the reservoir's momentum, kinetic energy, mass, force sum and sum of f.v (LAMMPS'
         // com_properties)
-        let order = state.lammps_order.indices(a.nlocal).into_owned();
+        let order = state.lammps_order.indices(a.nlocal);
         let mut s = [0.0; 9];
         for &i in order.iter().filter(|&&i| selected[i]) {
             let (m, v, f) = (state.mass(i), a.v[i], a.f[i]);

@@ -98,7 +98,7 @@ impl Fix for FixHeat {
         let fail = |m: &str| RunError::new(step, format!("fix heat {}: {m}", self.id));
         let eflux = ctx.value_per_atom(state, self, &self.eflux)?;
         let region = region_now(&state.regions, step, &self.id, &self.region)?;
-        let order = state.lammps_order.indices(state.atoms.nlocal).into_owned();
+        let order = state.lammps_order.indices(state.atoms.nlocal);
         let a = &state.atoms;
         let bit = self.groupbit;
         let selected: Vec<bool> = (0..a.nlocal).map(|i| a.mask[i] & bit != 0 && region.is_none_or(|r| r.matches(a.x[i]))).collect();

@@ -42,7 +42,7 @@ pub struct Candidate {
 
 /// Offer `c` to `list`, which keeps the `n` lowest keys in order: it goes after the candidates
 /// with a lower key, so before its ties (LAMMPS' insertion).
-pub fn offer(list: &mut Vec<Candidate>, n: usize, c: Candidate) {
+fn offer(list: &mut Vec<Candidate>, n: usize, c: Candidate) {
     if list.len() == n && c.key >= list[n - 1].key {
         return;
     }
@@ -54,6 +54,7 @@ pub fn offer(list: &mut Vec<Candidate>, n: usize, c: Candidate) {
 /// The two slabs along `dim` of a box cut into `nbin` (the bottom one and the one at nbin/2):
 /// which of them holds a coordinate, mapped into a periodic box first.
 pub struct Slabs {
+    dim: usize,
     lo: f64,
     hi: f64,
     prd: f64,
@@ -68,6 +69,7 @@ impl Slabs {
         let (lo, hi) = (d.lo[dim], d.hi[dim]);
         let binsize = (hi - lo) / nbin as f64;
         Some(Slabs {
+            dim,
             lo,
             hi,
             prd: d.prd()[dim],
@@ -77,7 +79,7 @@ impl Slabs {
         })
     }
     /// (in the bottom slab, in the middle slab) for coordinate `x`.
-    pub fn of(&self, mut x: f64) -> (bool, bool) {
+    fn of(&self, mut x: f64) -> (bool, bool) {
         if x < self.lo && self.periodic {
             x += self.prd;
         } else if x >= self.hi && self.periodic {
@@ -85,6 +87,28 @@ impl Slabs {
         }
         let inside = |s: [f64; 2]| x >= s[0] && x < s[1];
         (inside(self.bottom), inside(self.middle))
+    }
+    /// The `nswap` best candidates of the group in the bottom slab and in the middle one, the
+    /// atoms walked in LAMMPS' order; `key(slab, v, m)` ranks an atom of slab 0 (bottom) or 1
+    /// (middle), None leaving it out.
+    pub fn candidates(&self, state: &State, groupbit: u32, nswap: usize, key: impl Fn(usize, [f64; 3], f64) -> Option<f64>) -> [Vec<Candidate>; 2] {
+        let mut lists = [Vec::with_capacity(nswap + 1), Vec::with_capacity(nswap + 1)];
+        let a = &state.atoms;
+        for &i in state.lammps_order.indices(a.nlocal).iter() {
+            if a.mask[i] & groupbit == 0 {
+                continue;
+            }
+            let slab = match self.of(a.x[i][self.dim]) {
+                (true, _) => 0,
+                (_, true) => 1,
+                _ => continue,
+            };
+            let (v, m) = (a.v[i], state.mass(i));
+            if let Some(key) = key(slab, v, m) {
+                offer(&mut lists[slab], nswap, Candidate { key, v, m, i });
+            }
+        }
+        lists
     }
 }
 

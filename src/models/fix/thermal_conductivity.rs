@@ -8,7 +8,7 @@
 //! Atoms are ranked in LAMMPS' atom order (ties as LAMMPS breaks them), and on several ranks
 //! the pairs are those LAMMPS' global ranking picks.
 
-use super::slab_swaps::{offer, pairs, parse_nbin, parse_nswap, Candidate, Slabs};
+use super::slab_swaps::{pairs, parse_nbin, parse_nswap, Candidate, Slabs};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
@@ -68,22 +68,10 @@ impl Fix for FixThermalConductivity {
         }
         let Some(slabs) = Slabs::new(state, self.edim, self.nbin) else { return Ok(()) };
         // the hottest atoms of the bottom slab (key -ke) and the coldest of the middle one (ke)
-        let (mut hot, mut cold) = (Vec::with_capacity(self.nswap + 1), Vec::with_capacity(self.nswap + 1));
-        let a = &state.atoms;
-        for &i in state.lammps_order.indices(a.nlocal).iter() {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            let (bottom, middle) = slabs.of(a.x[i][self.edim]);
-            let (v, m) = (a.v[i], state.mass(i));
+        let [hot, cold] = slabs.candidates(state, self.groupbit, self.nswap, |slab, v, m| {
             let ke = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * (0.5 * m);
-            if bottom {
-                offer(&mut hot, self.nswap, Candidate { key: -ke, v, m, i });
-            }
-            if middle {
-                offer(&mut cold, self.nswap, Candidate { key: ke, v, m, i });
-            }
-        }
+            Some(if slab == 0 { -ke } else { ke })
+        });
         let mut eswap = 0.0;
         for p in pairs(state, self.nswap, &hot, &cold) {
             let (h, c) = (p.first, p.second);

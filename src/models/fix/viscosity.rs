@@ -9,7 +9,7 @@
 //! ranked in LAMMPS' atom order, and on several ranks the pairs are those LAMMPS' global ranking
 //! picks.
 
-use super::slab_swaps::{offer, pairs, parse_nbin, parse_nswap, Candidate, Slabs, BIG};
+use super::slab_swaps::{pairs, parse_nbin, parse_nswap, Slabs, BIG};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::args::word_f64;
@@ -79,24 +79,13 @@ impl Fix for FixViscosity {
             return Ok(());
         }
         let Some(slabs) = Slabs::new(state, self.pdim, self.nbin) else { return Ok(()) };
-        let vd = self.vdim;
+        let (vd, vt) = (self.vdim, self.vtarget);
         // the bottom slab's atoms moving along +vdim closest to +vtarget, the middle slab's
         // moving along -vdim closest to -vtarget
-        let (mut pos, mut neg) = (Vec::with_capacity(self.nswap + 1), Vec::with_capacity(self.nswap + 1));
-        let a = &state.atoms;
-        for &i in state.lammps_order.indices(a.nlocal).iter() {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            let (bottom, middle) = slabs.of(a.x[i][self.pdim]);
-            let (v, m) = (a.v[i], state.mass(i));
-            if bottom && v[vd] >= 0.0 {
-                offer(&mut pos, self.nswap, Candidate { key: (v[vd] - self.vtarget).abs(), v, m, i });
-            }
-            if middle && v[vd] <= 0.0 {
-                offer(&mut neg, self.nswap, Candidate { key: (v[vd] + self.vtarget).abs(), v, m, i });
-            }
-        }
+        let [pos, neg] = slabs.candidates(state, self.groupbit, self.nswap, |slab, v, _| match slab {
+            0 => (v[vd] >= 0.0).then(|| (v[vd] - vt).abs()),
+            _ => (v[vd] <= 0.0).then(|| (v[vd] + vt).abs()),
+        });
         let mut pswap = 0.0;
         for p in pairs(state, self.nswap, &pos, &neg) {
             let (q, n) = (p.first, p.second);

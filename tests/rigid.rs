@@ -1,17 +1,19 @@
-//! fix rigid/small against LAMMPS beyond the trajectories (those are in tests/lammps_parity.rs):
-//! the thermo tables of rigid_small_clumps (3d), rigid_small_2d (enforce2d) and
-//! rigid_small_gran (clumps of spheres on a granular floor: the body mass in the granular
-//! damping, compute temp/sphere), whose pressure and its tensor carry the bodies' constraint
-//! virial (LAMMPS' set_xv/set_v tally, on by default), every printed step, against
-//! lammps-refs/refs/NAME/thermo.txt (and LAMMPS run now, when present). And the located
-//! refusals of what the fix does not support.
+//! fix rigid/small, rigid/nve/small and rigid/nvt/small against LAMMPS beyond the trajectories
+//! (those are in tests/lammps_parity.rs): the thermo tables of rigid_small_clumps (3d),
+//! rigid_small_2d (enforce2d), rigid_small_gran (clumps of spheres on a granular floor: the body
+//! mass in the granular damping, compute temp/sphere), rigid_nve_small_clumps and
+//! rigid_nvt_small_clumps (the NO_SQUISH step and its Nose-Hoover chains, f_1 the extended
+//! system's energy, ecouple), rigid_nvt_small_2d and rigid_deposit (fix deposit rigid), whose
+//! pressure and its tensor carry the bodies' constraint virial (LAMMPS' set_xv/set_v tally, on
+//! by default), every printed step, against lammps-refs/refs/NAME/thermo.txt (and LAMMPS run
+//! now, when present). And the located refusals of what the fixes do not support.
 
 use dmhs::deck::{run_text, DeckOptions};
 
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 3] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran"];
+const DECKS: [&str; 7] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -40,10 +42,39 @@ fn fix_modify_virial_switches_the_constraint_virial() {
 
 #[test]
 fn unsupported_uses_are_located_errors() {
-    for (cmd, want) in [("fix_modify 1 energy yes", "does not support fix_modify energy"), ("fix 2 all rigid molecule", "fix rigid is not supported"), ("fix 2 all rigid/small molecule langevin 1 1 1 5", "langevin")] {
+    for (cmd, want) in [
+        ("fix_modify 1 energy yes", "does not support fix_modify energy"),
+        ("fix 2 all rigid molecule", "fix rigid is not supported"),
+        ("fix 2 all rigid/small molecule langevin 1 1 1 5", "langevin"),
+        ("fix 2 all rigid/nve/small molecule temp 1 1 1", "illegal fix rigid/nve/small keyword `temp`"),
+        ("fix 2 all rigid/nvt/small molecule", "did not set temp for fix rigid/nvt/small"),
+        ("fix 2 all rigid/nvt/small molecule temp 1 0 1", "target temperature for fix rigid/nvt/small cannot be 0.0"),
+        ("fix 2 all rigid/nvt/small molecule temp 1 1 0", "period must be > 0.0"),
+        ("fix 2 all rigid/nvt/small molecule temp 1 1 1 tparam 4 1 4", "t_order must be 3 or 5"),
+        ("fix 2 all rigid/nvt/small molecule temp 1 1 1 iso 1 1 1", "rigid/npt/small and rigid/nph/small"),
+    ] {
         let deck = format!("{BASE}{cmd}\nrun 0\n");
         let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
         let line = BASE.lines().count() + 1;
         assert!(f.rendered.contains(&format!("bad.deck:{line}:")) && f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
+    }
+}
+
+/// fix deposit `rigid`: LAMMPS' three refusals (no molecule template, no such fix, another
+/// template than the rigid fix's).
+#[test]
+fn deposit_rigid_refusals() {
+    let base = "units lj\natom_style bond\nboundary p p f\nregion box block 0 5 0 5 0 10\ncreate_box 3 box\nmass * 1.0\n\
+molecule tri rigid_tri.mol\nmolecule other rigid_tri.mol\nregion slab block 0 5 0 5 5 6\npair_style lj/cut 2.5\npair_coeff * * 1.0 1.0\n";
+    let opts = DeckOptions { screen: false, base_dir: Some(thermo_tables::root().join("lammps-refs/decks")), ..Default::default() };
+    for (fixes, want) in [
+        ("fix 1 all rigid/nve/small molecule mol tri\nfix 3 all deposit 1 1 10 1 region slab rigid 1\n", "cannot use fix deposit rigid and not molecule"),
+        ("fix 1 all rigid/nve/small molecule mol tri\nfix 3 all deposit 1 0 10 1 region slab mol tri rigid 9\n", "fix deposit rigid fix ID 9 does not exist"),
+        ("fix 1 all rigid/nve/small molecule mol other\nfix 3 all deposit 1 0 10 1 region slab mol tri rigid 1\n", "not using same molecule template ID"),
+        ("fix 1 all nve\nfix 3 all deposit 1 0 10 1 region slab mol tri rigid 1\n", "is not a rigid/small fix"),
+    ] {
+        let deck = format!("{base}{fixes}run 10\n");
+        let f = run_text("bad.deck", &deck, &opts).err().unwrap_or_else(|| panic!("accepted: {fixes}"));
+        assert!(f.rendered.contains(want), "{fixes}: expected `{want}`:\n{}", f.rendered);
     }
 }

@@ -302,3 +302,49 @@ pub fn richardson(q: &mut Quat, m: &[f64; 3], w: &mut [f64; 3], moments: &[f64; 
     *w = mq_to_omega(m, &qhalf, moments);
     second_half_and_extrapolate(q, &qfull, qhalf, w, dtq);
 }
+
+/// `quatvec`: the product a * (0, b).
+pub fn quatvec(a: &Quat, b: &[f64; 3]) -> Quat {
+    [
+        -a[1] * b[0] - a[2] * b[1] - a[3] * b[2],
+        a[0] * b[0] + a[2] * b[2] - a[3] * b[1],
+        a[0] * b[1] + a[3] * b[0] - a[1] * b[2],
+        a[0] * b[2] + a[1] * b[1] - a[2] * b[0],
+    ]
+}
+
+/// `invquatvec`: the vector part of inv(a) * b for a four-component b.
+pub fn invquatvec(a: &Quat, b: &Quat) -> [f64; 3] {
+    [
+        -a[1] * b[0] + a[0] * b[1] + a[3] * b[2] - a[2] * b[3],
+        -a[2] * b[0] - a[3] * b[1] + a[0] * b[2] + a[1] * b[3],
+        -a[3] * b[0] + a[2] * b[1] - a[1] * b[2] + a[0] * b[3],
+    ]
+}
+
+/// `no_squish_rotate`: the free rotation about body axis k (1, 2, 3) over `dt` of the
+/// orientation q and its conjugate momentum p (Miller et al. 2002); a zero moment does not turn.
+pub fn no_squish_rotate(k: usize, p: &mut Quat, q: &mut Quat, inertia: &[f64; 3], dt: f64) {
+    // the permutation P_k applied to p and q
+    let perm = |v: &Quat| -> Quat {
+        match k {
+            1 => [-v[1], v[0], v[3], -v[2]],
+            2 => [-v[2], -v[3], v[0], v[1]],
+            _ => [-v[3], v[2], -v[1], v[0]],
+        }
+    };
+    let (kp, kq) = (perm(p), perm(q));
+    let mut phi = p[0] * kq[0] + p[1] * kq[1] + p[2] * kq[2] + p[3] * kq[3];
+    if inertia[k - 1] == 0.0 {
+        phi = 0.0;
+    } else {
+        phi /= 4.0 * inertia[k - 1];
+    }
+    let (c_phi, s_phi) = ((dt * phi).cos(), (dt * phi).sin());
+    for c in 0..4 {
+        p[c] = c_phi * p[c] + s_phi * kp[c];
+    }
+    for c in 0..4 {
+        q[c] = c_phi * q[c] + s_phi * kq[c];
+    }
+}

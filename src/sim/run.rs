@@ -130,7 +130,7 @@ impl Simulation {
         }
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
-            if let Some(w) = self.fixes[k].init_warning(&self.fixes[k + 1..]) {
+            if let Some(w) = self.fixes[k].init_warning([&self.fixes[..k], &self.fixes[k + 1..]]) {
                 self.out.print(&format!("WARNING: {w}"));
             }
         }

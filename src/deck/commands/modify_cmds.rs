@@ -161,8 +161,8 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 }
             }
             "dynamic/dof" => {
-                // dmhs' fixes count no degrees of freedom of their own: the setting changes nothing
-                a.yes_no("dynamic/dof")?;
+                let on = a.yes_no("dynamic/dof")?;
+                sim.fixes[k].set_dynamic_dof(on);
             }
             "respa" => return Err(a.error_at(kw, "fix_modify respa: dmhs has no rRESPA integrator (run_style respa)", "not supported")),
             "bodyforces" => {

@@ -3,8 +3,9 @@
 //! `mol template-ID` (then `type` is an offset added to the template's types), `molfrac 1.0`,
 //! `id max|next`, `global lo hi`, `local lo hi delta`, `near R`, `attempt Q`, `rate V`,
 //! `vx lo hi`, `vy lo hi`, `vz lo hi`, `orient rx ry rz`, `units lattice|box`,
-//! `gaussian xmid ymid zmid sigma`, `target tx ty tz`. `rigid`, `shake`, `var`/`set` and
-//! templates of several molecules are refused.
+//! `gaussian xmid ymid zmid sigma`, `target tx ty tz`, `rigid fix-ID` (each molecule a body of
+//! that rigid/small fix, made from the same template: LAMMPS' set_molecule). `shake`, `var`/`set`
+//! and templates of several molecules are refused.
 //!
 //! Everything random comes from LAMMPS' Park-Miller stream (`seed`, 30 numbers discarded) in
 //! LAMMPS' order of draws, so the inserted atoms are LAMMPS' own: per attempt a position in the
@@ -15,12 +16,13 @@
 
 use super::{Fix, FixCtx, FixDef, FixHooks};
 use crate::engine::atoms::NewAtom;
-use crate::engine::molecule::Molecule;
+use crate::engine::molecule::{Molecule, RigidInsert};
+use crate::engine::quat::{axisangle_to_quat, norm3, quat_to_mat};
 use crate::engine::random_park::RanPark;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult};
 
-const SYNTAX: &str = "fix ID group deposit N type M seed region ID [mol template-ID] [molfrac 1.0] [id max|next] [global lo hi] [local lo hi delta] [near R] [attempt Q] [rate V] [vx lo hi] [vy lo hi] [vz lo hi] [orient rx ry rz] [units lattice|box] [gaussian xmid ymid zmid sigma] [target tx ty tz]";
+const SYNTAX: &str = "fix ID group deposit N type M seed region ID [mol template-ID] [molfrac 1.0] [id max|next] [global lo hi] [local lo hi delta] [near R] [attempt Q] [rate V] [vx lo hi] [vy lo hi] [vz lo hi] [orient rx ry rz] [units lattice|box] [gaussian xmid ymid zmid sigma] [target tx ty tz] [rigid fix-ID]";
 
 /// Where a new particle's height comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -44,6 +46,8 @@ pub struct FixDeposit {
     lo: [f64; 3],
     hi: [f64; 3],
     mol: Option<Molecule>,
+    /// `rigid fix-ID`: the rigid fix that makes each inserted molecule a body.
+    rigid: Option<String>,
     id_next: bool,
     height: Height,
     nearsq: f64,
@@ -84,7 +88,8 @@ impl FixDeposit {
         let mut lattice_units = true;
         let mut gaussian = None;
         let mut target = None;
-        const KEYWORDS: [&str; 16] = ["region", "mol", "molfrac", "id", "global", "local", "near", "attempt", "rate", "vx", "vy", "vz", "orient", "units", "gaussian", "target"];
+        let mut rigid = None;
+        const KEYWORDS: [&str; 17] = ["region", "mol", "molfrac", "id", "global", "local", "near", "attempt", "rate", "vx", "vy", "vz", "orient", "units", "gaussian", "target", "rigid"];
         while let Some(k) = a.peek() {
             a.skip(1);
             match k.text.as_str() {
@@ -144,11 +149,15 @@ impl FixDeposit {
                     gaussian = Some((c, a.f64("sigma")?));
                 }
                 "target" => target = Some([a.f64("tx")?, a.f64("ty")?, a.f64("tz")?]),
-                "rigid" | "shake" | "var" | "set" => {
+                "rigid" => rigid = Some(a.word("rigid fix ID")?),
+                "shake" | "var" | "set" => {
                     return Err(a.error_at(k, format!("fix deposit `{}` is not supported", k.text), "not supported"));
                 }
                 _ => return Err(a.unknown_keyword(k, &KEYWORDS)),
             }
+        }
+        if let (Some(w), None) = (rigid, &mol) {
+            return Err(a.error_at(w, "cannot use fix deposit rigid and not molecule", "needs `mol TEMPLATE`"));
         }
         if let Some(m) = &mol {
             let maxt = m.max_type() as i64;
@@ -198,6 +207,7 @@ impl FixDeposit {
             lo,
             hi,
             mol,
+            rigid: rigid.map(|w| w.text.clone()),
             id_next,
             height,
             nearsq,
@@ -261,9 +271,16 @@ impl Fix for FixDeposit {
     fn hooks(&self) -> FixHooks {
         FixHooks { pre_exchange: true, ..FixHooks::default() }
     }
-    fn init(&mut self, state: &State, _ctx: &FixCtx) -> Result<(), String> {
+    fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
         if !state.regions.iter().any(|r| r.id == self.region) {
             return Err(format!("region ID {} for fix deposit does not exist", self.region));
+        }
+        if let Some(id) = &self.rigid {
+            let f = ctx.other_fixes().find(|f| f.id() == id).ok_or_else(|| format!("fix deposit rigid fix ID {id} does not exist"))?;
+            let Some(template) = f.rigid_template() else { return Err(format!("fix deposit rigid fix {id} ({}) is not a rigid/small fix", f.style())) };
+            if Some(template) != self.mol.as_ref().map(|m| m.id.as_str()) {
+                return Err("fix deposit and fix rigid/small not using same molecule template ID".into());
+            }
         }
         Ok(())
     }
@@ -348,18 +365,21 @@ impl Fix for FixDeposit {
                 coord[vertical] = top[0] + lo + self.random.uniform() * (hi - lo);
             }
             // the new atoms: one, or the molecule turned about its centre and wrapped
+            let mut quat = [1.0, 0.0, 0.0, 0.0];
             let placed: Vec<([f64; 3], [i32; 3])> = match &self.mol {
                 None => vec![(coord, [0; 3])],
                 Some(m) => {
                     // one molecule per template: LAMMPS' molfrac draw picks it
                     self.random.uniform();
-                    let r = match self.orient {
+                    let mut r = match self.orient {
                         _ if dimension == 2 => [0.0, 0.0, 1.0],
                         Some(r) => r,
                         None => [self.random.uniform() - 0.5, self.random.uniform() - 0.5, self.random.uniform() - 0.5],
                     };
                     let theta = self.random.uniform() * std::f64::consts::TAU;
-                    m.place(&crate::engine::molecule::rotation(r, theta), coord, &domain)
+                    norm3(&mut r);
+                    quat = axisangle_to_quat(&r, theta);
+                    m.place(&quat_to_mat(&quat), coord, &domain)
                 }
             };
             let a = &state.atoms;
@@ -409,6 +429,9 @@ impl Fix for FixDeposit {
                     }
                     if m.has_topology() {
                         state.special_dirty = true;
+                    }
+                    if let Some(fix_id) = &self.rigid {
+                        state.rigid_inserts.push(RigidInsert { fix_id: fix_id.clone(), tagprev: self.maxtag, mol: self.maxmol + m.nmolecules(), xgeom: coord, vcm: v, quat });
                     }
                 }
             }

@@ -45,6 +45,7 @@ pub mod sampling;
 pub mod print;
 pub mod property_atom;
 pub mod recenter;
+pub mod rigid_nh_small;
 pub mod rigid_small;
 pub mod setforce;
 pub mod slab_swaps;
@@ -278,8 +279,9 @@ pub trait Fix: Send + Sync {
     fn init(&mut self, _state: &State, _ctx: &FixCtx) -> Result<(), String> {
         Ok(())
     }
-    /// A warning LAMMPS prints when a run starts, given the fixes defined after this one.
-    fn init_warning(&self, _later: &[Box<dyn Fix>]) -> Option<String> {
+    /// A warning LAMMPS prints when a run starts, given the fixes defined before and after
+    /// this one.
+    fn init_warning(&self, _others: [&[Box<dyn Fix>]; 2]) -> Option<String> {
         None
     }
     /// Called once per run before the forces of step 0 are computed (LAMMPS `setup_pre_force`).
@@ -386,6 +388,14 @@ pub trait Fix: Send + Sync {
     /// A rigid fix: per atom (owned and ghost), the mass of its rigid body, 0 outside bodies
     /// (LAMMPS' extract "body" and "masstotal", read by granular pairs and walls).
     fn rigid_body_mass(&self, _state: &State) -> Option<Vec<f64>> {
+        None
+    }
+    /// `fix_modify ID dynamic/dof yes|no` (LAMMPS' Fix::dynamic): fixes that count degrees of
+    /// freedom of their own recount them every step. Others ignore it.
+    fn set_dynamic_dof(&mut self, _on: bool) {}
+    /// A rigid fix: the molecule template its inserted bodies are made from (`mol TEMPLATE`;
+    /// LAMMPS' extract("onemol")), `Some("")` without one. `None`: not a rigid fix.
+    fn rigid_template(&self) -> Option<&str> {
         None
     }
     /// A rigid fix: make a body of a molecule another fix has just inserted (LAMMPS'
@@ -572,6 +582,8 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("heat", |d, state| Ok(Box::new(heat::FixHeat::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
+    ("rigid/nve/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve/small", d.args, d.cmd, state)?))),
+    ("rigid/nvt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt/small", d.args, d.cmd, state)?))),
     ("rigid", |d, _| Ok(Box::new(rigid_small::FixRigidSmall::refuse_rigid(d.args, d.cmd, d.style)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];

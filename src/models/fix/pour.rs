@@ -230,7 +230,7 @@ impl FixPour {
         if let Some(w) = rigid {
             let Some((_, r)) = mol.as_mut() else { return Err(a.error_at(w, "fix pour rigid needs `mol TEMPLATE`", "not molecule insertion")) };
             let f = d.fixes.iter().find(|f| f.id() == w.text).ok_or_else(|| a.error_at(w, format!("fix pour rigid fix `{}` does not exist", w.text), "unknown fix"))?;
-            if f.style() != "rigid/small" {
+            if f.rigid_template().is_none() {
                 return Err(a.error_at(w, format!("fix pour rigid: fix `{}` is {}, not rigid/small", w.text, f.style()), "not rigid/small"));
             }
             *r = Some(w.text.clone());
@@ -442,6 +442,12 @@ impl Fix for FixPour {
         }
         self.nfreq = nfreq;
         self.next = (self.ninserted < self.ninsert).then_some(state.step + 1);
+        if let Some((m, Some(id))) = &self.mol {
+            let template = ctx.other_fixes().find(|f| f.id() == id).and_then(|f| f.rigid_template());
+            if template != Some(m.id.as_str()) {
+                return Err("fix pour and fix rigid/small not using same molecule template ID".into());
+            }
+        }
         Ok(())
     }
     fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {

@@ -12,7 +12,11 @@
 //! is wrapped into a periodic box on each list rebuild, as LAMMPS' pre_neighbor does.
 //! With `fix enforce2d` (defined after this fix) the out-of-plane body values are zeroed at
 //! its post_force, as LAMMPS' FixRigidSmall::enforce2d.
+//!
+//! `rigid/nve/small` and `rigid/nvt/small` are this fix with another step (rigid_nh_small.rs).
 
+use super::rigid_nh_small::{Chains, RigidNh, Steps};
+use super::thermostat::run_fraction;
 use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
 use crate::engine::molecule::{RigidInsert, RigidTemplate};
@@ -21,7 +25,7 @@ use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 use std::collections::HashMap;
 
-pub const SYNTAX: &str = "fix ID group rigid/small molecule [mol TEMPLATE]";
+pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small molecule [mol TEMPLATE] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder]";
 
 /// Moment of inertia prefactor of a solid sphere.
 const SINERTIA: f64 = 0.4;
@@ -43,6 +47,8 @@ pub struct Body {
     pub ey: [f64; 3],
     pub ez: [f64; 3],
     pub quat: Quat,
+    /// The conjugate quaternion momentum (rigid/nve/small and rigid/nvt/small).
+    pub conjqm: Quat,
     /// Image flags of the wrapped centre (LAMMPS' body image).
     pub image: [i32; 3],
     /// Atoms: point particles and finite-size ones (for the degrees of freedom).
@@ -70,6 +76,8 @@ pub struct FixRigidSmall {
     template: Option<(String, RigidTemplate)>,
     /// The constraint forces' virial (LAMMPS' virial_global_flag, on by default for rigid fixes).
     tally: ThermoTally,
+    /// rigid/nve/small and rigid/nvt/small: the NO_SQUISH step (and its thermostat).
+    nh: Option<RigidNh>,
 }
 
 impl FixRigidSmall {
@@ -87,8 +95,27 @@ impl FixRigidSmall {
             return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
         }
         let mut template = None;
+        let nvt = style == "rigid/nvt/small";
+        let mut temp = None;
+        let (mut t_chain, mut t_iter, mut t_order) = (10, 1, 3);
         while let Some(w) = a.peek() {
             let what = match w.text.as_str() {
+                "temp" if nvt => {
+                    a.skip(1);
+                    temp = Some((w, a.f64("Tstart")?, a.f64("Tstop")?, a.f64("Tdamp")?));
+                    continue;
+                }
+                "tparam" if nvt => {
+                    a.skip(1);
+                    t_chain = a.i64_in("Tchain (thermostat chain length, 1 or more)", 1, 1000)? as usize;
+                    t_iter = a.i64_in("Titer (thermostat iterations, 1 or more)", 1, 1000)? as usize;
+                    let w = a.peek().cloned();
+                    t_order = a.i64("Torder (3 or 5)")? as usize;
+                    if t_order != 3 && t_order != 5 {
+                        return Err(a.error_at(&w.unwrap(), "fix rigid nvt/small t_order must be 3 or 5", "expected 3 or 5"));
+                    }
+                    continue;
+                }
                 "mol" => {
                     a.skip(1);
                     let t = a.word("molecule template ID")?;
@@ -101,12 +128,30 @@ impl FixRigidSmall {
                 "langevin" => "fix rigid/small langevin (a thermostat) is not supported yet",
                 "infile" => "fix rigid/small infile is not supported yet",
                 "reinit" => "fix rigid/small reinit is not supported yet (bodies are set up at every run, LAMMPS' default)",
-                "temp" | "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "tparam" | "pchain" => "this fix rigid/small keyword (thermostat/barostat variants) is not supported",
-                _ => return Err(a.unknown_keyword(w, &["mol"])),
+                "temp" | "tparam" => "this keyword belongs to rigid/nvt/small and rigid/npt/small (a thermostat)",
+                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "this keyword belongs to rigid/npt/small and rigid/nph/small (a barostat), which dmhs does not have",
+                _ => return Err(a.unknown_keyword(w, if nvt { &["mol", "temp", "tparam"] } else { &["mol"] })),
             };
-            return Err(a.error_at(w, what, "not supported"));
+            return Err(a.error_at(w, format!("illegal fix {style} keyword `{}`: {what}", w.text), "not this style's keyword"));
         }
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally: ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() } })
+        let nh = match style {
+            "rigid/nve/small" => Some(RigidNh::new(None)),
+            "rigid/nvt/small" => {
+                let Some((w, t_start, t_stop, t_period)) = temp else {
+                    return Err(a.missing("`temp Tstart Tstop Tdamp` (did not set temp for fix rigid/nvt/small)"));
+                };
+                if t_start < 0.0 || t_stop <= 0.0 {
+                    return Err(a.error_at(w, "target temperature for fix rigid/nvt/small cannot be 0.0", "Tstart >= 0 and Tstop > 0"));
+                }
+                if t_period <= 0.0 {
+                    return Err(a.error_at(w, "fix rigid/nvt/small period must be > 0.0", "Tdamp > 0"));
+                }
+                Some(RigidNh::new(Some(Chains::new(t_start, t_stop, t_period, t_chain, t_iter, t_order))))
+            }
+            _ => None,
+        };
+        let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh })
     }
 
     /// `fix rigid` (one set of bodies summed over all ranks) is refused: LAMMPS' fix rigid
@@ -418,6 +463,9 @@ impl Fix for FixRigidSmall {
         for v in self.tally.virial.iter_mut() {
             *v *= 2.0;
         }
+        if let Some(nh) = self.nh.as_mut() {
+            nh.setup(&mut self.bodies, state.dimension, state.units.boltz, run_fraction(state), state.dt);
+        }
         // fix enforce2d's setup (its post_force) follows
         if self.enforce2d {
             self.zero_out_of_plane();
@@ -428,6 +476,12 @@ impl Fix for FixRigidSmall {
         let dtv = state.dt;
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         let dtq = 0.5 * state.dt;
+        if let Some(nh) = self.nh.as_mut() {
+            let u = &state.units;
+            nh.initial_integrate(&mut self.bodies, &Steps { dtv, dtf, dtq }, state.dimension, u.boltz, u.mvv2e, run_fraction(state));
+            self.tally.v_init();
+            return self.set_atoms(state, true).map_err(|e| self.err(state, e));
+        }
         for b in self.bodies.iter_mut() {
             let dtfm = dtf / b.mass;
             for k in 0..3 {
@@ -461,6 +515,10 @@ impl Fix for FixRigidSmall {
         }
         self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
         let dtf = 0.5 * state.dt * state.units.ftm2v;
+        if let Some(nh) = self.nh.as_mut() {
+            nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt });
+            return self.set_atoms(state, false).map_err(|e| self.err(state, e));
+        }
         for b in self.bodies.iter_mut() {
             let dtfm = dtf / b.mass;
             for k in 0..3 {
@@ -476,6 +534,9 @@ impl Fix for FixRigidSmall {
     /// The temperature of the bodies (LAMMPS' compute_scalar): translational and rotational
     /// (in the body frame) kinetic energy over 6 degrees of freedom per body.
     fn scalar(&self, state: &State) -> Option<f64> {
+        if let Some(nh) = &self.nh {
+            return Some(nh.scalar(&self.bodies, state.units.boltz, state.units.mvv2e));
+        }
         let mut t = 0.0;
         for b in &self.bodies {
             let vcm = b.vcm;
@@ -489,6 +550,9 @@ impl Fix for FixRigidSmall {
         }
         let tfactor = state.units.mvv2e / (6.0 * self.bodies.len() as f64 * state.units.boltz);
         Some(t * tfactor)
+    }
+    fn rigid_template(&self) -> Option<&str> {
+        Some(self.template.as_ref().map_or("", |(id, _)| id.as_str()))
     }
     fn rigid_body_mass(&self, state: &State) -> Option<Vec<f64>> {
         let a = &state.atoms;
@@ -570,8 +634,26 @@ impl Fix for FixRigidSmall {
     fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
         Some(&mut self.tally)
     }
+    /// rigid/nvt/small's chains (LAMMPS' restart_global); the bodies are set up anew.
     fn write_restart(&self) -> Option<Vec<f64>> {
-        None
+        self.nh.as_ref().filter(|nh| nh.chains.is_some()).map(|nh| nh.write_restart())
+    }
+    fn restart(&mut self, values: &[f64]) {
+        if let Some(nh) = self.nh.as_mut() {
+            nh.restart(values);
+        }
+    }
+    /// rigid/nvt/small's scalar is the energy of the extended system (extensive).
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        self.nh.as_ref().is_some_and(|nh| nh.chains.is_some())
+    }
+    fn couples_energy(&self) -> bool {
+        self.nh.as_ref().is_some_and(|nh| nh.chains.is_some())
+    }
+    fn set_dynamic_dof(&mut self, on: bool) {
+        if let Some(nh) = self.nh.as_mut() {
+            nh.dynamic = on;
+        }
     }
     fn describe(&self) -> String {
         format!("fix {} {}: {} rigid bodies", self.id, self.style, self.bodies.len())

@@ -59,7 +59,7 @@ impl Fix for FixThermalConductivity {
     fn global_freq(&self) -> i64 {
         self.nevery
     }
-    fn init_warning(&self, later: &[Box<dyn Fix>]) -> Option<String> {
+    fn init_warning(&self, [_, later]: [&[Box<dyn Fix>]; 2]) -> Option<String> {
         super::slab_swaps::ave_chunk_after("thermal/conductivity", later)
     }
     fn end_of_step(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {

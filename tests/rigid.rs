@@ -13,7 +13,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 7] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_deposit"];
+const DECKS: [&str; 8] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -45,7 +45,8 @@ fn unsupported_uses_are_located_errors() {
     for (cmd, want) in [
         ("fix_modify 1 energy yes", "does not support fix_modify energy"),
         ("fix 2 all rigid molecule", "fix rigid is not supported"),
-        ("fix 2 all rigid/small molecule langevin 1 1 1 5", "langevin"),
+        ("fix 2 all rigid/nve/small molecule langevin 1 1 1 5", "belongs to rigid/small"),
+        ("fix 2 all rigid/small molecule langevin 1 1 0 5", "langevin period must be > 0.0"),
         ("fix 2 all rigid/nve/small molecule temp 1 1 1", "illegal fix rigid/nve/small keyword `temp`"),
         ("fix 2 all rigid/nvt/small molecule", "did not set temp for fix rigid/nvt/small"),
         ("fix 2 all rigid/nvt/small molecule temp 1 0 1", "target temperature for fix rigid/nvt/small cannot be 0.0"),

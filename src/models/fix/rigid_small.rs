@@ -14,6 +14,10 @@
 //! its post_force, as LAMMPS' FixRigidSmall::enforce2d.
 //!
 //! `rigid/nve/small` and `rigid/nvt/small` are this fix with another step (rigid_nh_small.rs).
+//! `langevin Tstart Tstop Tperiod seed` (rigid/small only) adds to each body's force and torque,
+//! at its final half step, a drag and a random kick drawn at post_force (LAMMPS'
+//! apply_langevin_thermostat: Marsaglia's stream seeded with `seed`, six draws per body in body
+//! order).
 
 use super::rigid_nh_small::{Chains, RigidNh, Steps};
 use super::thermostat::run_fraction;
@@ -21,11 +25,12 @@ use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
 use crate::engine::molecule::{RigidInsert, RigidTemplate};
 use crate::engine::quat::{self, Quat};
+use crate::engine::random_mars::RanMars;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 use std::collections::HashMap;
 
-pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small molecule [mol TEMPLATE] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder]";
+pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small molecule [mol TEMPLATE] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder]";
 
 /// Moment of inertia prefactor of a solid sphere.
 const SINERTIA: f64 = 0.4;
@@ -78,6 +83,24 @@ pub struct FixRigidSmall {
     tally: ThermoTally,
     /// rigid/nve/small and rigid/nvt/small: the NO_SQUISH step (and its thermostat).
     nh: Option<RigidNh>,
+    /// `langevin`: the bodies' thermostat.
+    langevin: Option<BodyLangevin>,
+    /// Each molecule's place in LAMMPS' body array, fixed when the fix is defined (LAMMPS'
+    /// create_bodies: bodies in the local order of their owning atoms, kept through sorts);
+    /// bodies inserted later follow, by molecule ID.
+    rank: HashMap<i64, usize>,
+}
+
+/// `langevin Tstart Tstop Tperiod seed`: the force and torque of each body's thermostat,
+/// drawn at post_force (the torque in the body frame), added to the body's sums at the final
+/// half step.
+struct BodyLangevin {
+    t_start: f64,
+    t_stop: f64,
+    t_period: f64,
+    random: RanMars,
+    /// Per body: force (3) and torque (3).
+    extra: Vec<[f64; 6]>,
 }
 
 impl FixRigidSmall {
@@ -97,6 +120,7 @@ impl FixRigidSmall {
         let mut template = None;
         let nvt = style == "rigid/nvt/small";
         let mut temp = None;
+        let mut langevin = None;
         let (mut t_chain, mut t_iter, mut t_order) = (10, 1, 3);
         while let Some(w) = a.peek() {
             let what = match w.text.as_str() {
@@ -125,12 +149,24 @@ impl FixRigidSmall {
                     template = Some((t.text.clone(), body));
                     continue;
                 }
-                "langevin" => "fix rigid/small langevin (a thermostat) is not supported yet",
+                "langevin" if style == "rigid/small" => {
+                    a.skip(1);
+                    let (t_start, t_stop) = (a.f64("Tstart")?, a.f64("Tstop")?);
+                    let pw = a.peek().cloned();
+                    let t_period = a.f64("Tperiod")?;
+                    if t_period <= 0.0 {
+                        return Err(a.error_at(&pw.unwrap(), "fix rigid/small langevin period must be > 0.0", "Tperiod > 0"));
+                    }
+                    let seed = a.i64_in("random seed (> 0)", 1, i64::from(i32::MAX))? as i32;
+                    langevin = Some(BodyLangevin { t_start, t_stop, t_period, random: RanMars::new(seed), extra: Vec::new() });
+                    continue;
+                }
+                "langevin" => "this keyword belongs to rigid/small (LAMMPS allows its Langevin thermostat there only)",
                 "infile" => "fix rigid/small infile is not supported yet",
                 "reinit" => "fix rigid/small reinit is not supported yet (bodies are set up at every run, LAMMPS' default)",
                 "temp" | "tparam" => "this keyword belongs to rigid/nvt/small and rigid/npt/small (a thermostat)",
                 "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "this keyword belongs to rigid/npt/small and rigid/nph/small (a barostat), which dmhs does not have",
-                _ => return Err(a.unknown_keyword(w, if nvt { &["mol", "temp", "tparam"] } else { &["mol"] })),
+                _ => return Err(a.unknown_keyword(w, if nvt { &["mol", "temp", "tparam"] } else { &["mol", "langevin"] })),
             };
             return Err(a.error_at(w, format!("illegal fix {style} keyword `{}`: {what}", w.text), "not this style's keyword"));
         }
@@ -151,7 +187,45 @@ impl FixRigidSmall {
             _ => None,
         };
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh })
+        let rank = Self::creation_order(state, groupbit);
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank })
+    }
+
+    /// LAMMPS' create_bodies: each molecule of the group is owned by its atom closest to the
+    /// centre of the molecule's bounding box (unwrapped; the smaller ID on a tie), and the
+    /// bodies are numbered in the local order of their owners.
+    fn creation_order(state: &State, groupbit: u32) -> HashMap<i64, usize> {
+        let a = &state.atoms;
+        let Some(domain) = state.domain.as_ref() else { return HashMap::new() };
+        let group: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0).collect();
+        let mut bbox: HashMap<i64, ([f64; 3], [f64; 3])> = HashMap::new();
+        for &i in &group {
+            let u = domain.unmap(a.x[i], a.image[i]);
+            let e = bbox.entry(a.molecule[i]).or_insert((u, u));
+            for k in 0..3 {
+                e.0[k] = e.0[k].min(u[k]);
+                e.1[k] = e.1[k].max(u[k]);
+            }
+        }
+        let mut close: HashMap<i64, (f64, i64)> = HashMap::new();
+        for &i in &group {
+            let (lo, hi) = bbox[&a.molecule[i]];
+            let u = domain.unmap(a.x[i], a.image[i]);
+            let d: [f64; 3] = std::array::from_fn(|k| u[k] - 0.5 * (lo[k] + hi[k]));
+            let rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            let e = close.entry(a.molecule[i]).or_insert((f64::INFINITY, i64::MAX));
+            if rsq < e.0 || (rsq == e.0 && a.tag[i] < e.1) {
+                *e = (rsq, a.tag[i]);
+            }
+        }
+        let mut rank = HashMap::new();
+        for &i in state.lammps_order.indices(a.nlocal).iter() {
+            if a.mask[i] & groupbit != 0 && close[&a.molecule[i]].1 == a.tag[i] {
+                let n = rank.len();
+                rank.insert(a.molecule[i], n);
+            }
+        }
+        rank
     }
 
     /// `fix rigid` (one set of bodies summed over all ranks) is refused: LAMMPS' fix rigid
@@ -168,8 +242,8 @@ impl FixRigidSmall {
         if a.features.per_atom_mass() { a.rmass[i] } else { state.type_mass[a.typ[i]] }
     }
 
-    /// The bodies of the group's molecules, in the order LAMMPS creates them (first atom of
-    /// each molecule in local order), with their membership counts; nothing else set.
+    /// The bodies of the group's molecules, in LAMMPS' body order (`rank`), with their
+    /// membership counts; nothing else set.
     fn assign(&self, state: &State) -> (Vec<Body>, HashMap<i64, Member>) {
         let a = &state.atoms;
         let mut bodies: Vec<Body> = Vec::new();
@@ -192,6 +266,16 @@ impl FixRigidSmall {
             }
             members.insert(a.tag[i], Member { body: b, displace: [0.0; 3], sphere });
         }
+        let mut order: Vec<usize> = (0..bodies.len()).collect();
+        order.sort_by_key(|&b| self.rank.get(&bodies[b].mol).map_or((1, bodies[b].mol), |&r| (0, r as i64)));
+        let mut place = vec![0; bodies.len()];
+        for (new, &old) in order.iter().enumerate() {
+            place[old] = new;
+        }
+        for m in members.values_mut() {
+            m.body = place[m.body];
+        }
+        let bodies = order.iter().map(|&b| bodies[b].clone()).collect();
         (bodies, members)
     }
 
@@ -363,6 +447,20 @@ impl FixRigidSmall {
         Ok(())
     }
 
+    /// The thermostat's force and torque on each body (after forces_and_torques at the final
+    /// half step; not at setup, as LAMMPS).
+    fn add_langevin(&mut self) {
+        let Some(l) = &self.langevin else { return };
+        for (b, e) in self.bodies.iter_mut().zip(&l.extra) {
+            for k in 0..3 {
+                b.fcm[k] += e[k];
+            }
+            for k in 0..3 {
+                b.torque[k] += e[3 + k];
+            }
+        }
+    }
+
     /// Positions (`with_x`) and velocities of the body atoms from their bodies (LAMMPS'
     /// set_xv and set_v); spheres take the body's angular velocity. Each call tallies half the
     /// virial of the constraint forces, m dv / dtf - f at the unwrapped position before the
@@ -408,6 +506,11 @@ impl FixRigidSmall {
 
     /// LAMMPS' FixRigidSmall::enforce2d, called from fix enforce2d's post_force.
     fn zero_out_of_plane(&mut self) {
+        if let Some(l) = self.langevin.as_mut() {
+            for e in l.extra.iter_mut() {
+                (e[2], e[3], e[4]) = (0.0, 0.0, 0.0);
+            }
+        }
         for b in self.bodies.iter_mut() {
             b.xcm[2] = 0.0;
             b.vcm[2] = 0.0;
@@ -437,7 +540,7 @@ impl Fix for FixRigidSmall {
         self.groupbit
     }
     fn hooks(&self) -> FixHooks {
-        FixHooks { initial_integrate: true, pre_exchange: true, final_integrate: true, ..FixHooks::default() }
+        FixHooks { initial_integrate: true, pre_exchange: true, post_force: self.langevin.is_some(), final_integrate: true, ..FixHooks::default() }
     }
     fn min_role(&self) -> MinRole {
         MinRole::Refused(format!("fix {} ({}) is not supported in minimize", self.id, self.style))
@@ -500,6 +603,39 @@ impl Fix for FixRigidSmall {
         self.tally.v_init();
         self.set_atoms(state, true).map_err(|e| self.err(state, e))
     }
+    /// LAMMPS' apply_langevin_thermostat: drag on the half-step vcm and omega, and uniform
+    /// kicks scaled to the target temperature of the run's ramp.
+    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let Some(l) = self.langevin.as_mut() else { return Ok(()) };
+        let (begin, end) = state.run_window.unwrap_or((state.step, state.step));
+        let delta = (state.step - begin) as f64 / (end - begin) as f64;
+        let t_target = l.t_start + delta * (l.t_stop - l.t_start);
+        let tsqrt = t_target.sqrt();
+        let u = &state.units;
+        let dt = state.dt;
+        l.extra.resize(self.bodies.len(), [0.0; 6]);
+        for (b, e) in self.bodies.iter().zip(l.extra.iter_mut()) {
+            let gamma1 = -b.mass / l.t_period / u.ftm2v;
+            let gamma2 = b.mass.sqrt() * tsqrt * (24.0 * u.boltz / l.t_period / dt / u.mvv2e).sqrt() / u.ftm2v;
+            for k in 0..3 {
+                e[k] = gamma1 * b.vcm[k] + gamma2 * (l.random.uniform() - 0.5);
+            }
+            // the torque in the body frame, where the moments are
+            let gamma1 = -1.0 / l.t_period / u.ftm2v;
+            let gamma2 = tsqrt * (24.0 * u.boltz / l.t_period / dt / u.mvv2e).sqrt() / u.ftm2v;
+            let wbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.omega);
+            let mut tbody = [0.0; 3];
+            for k in 0..3 {
+                tbody[k] = b.inertia[k] * gamma1 * wbody[k] + b.inertia[k].sqrt() * gamma2 * (l.random.uniform() - 0.5);
+            }
+            let t = quat::matvec_cols(&b.ex, &b.ey, &b.ez, &tbody);
+            e[3..].copy_from_slice(&t);
+            if state.dimension == 2 {
+                (e[2], e[3], e[4]) = (0.0, 0.0, 0.0);
+            }
+        }
+        Ok(())
+    }
     fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         // LAMMPS' pre_neighbor: centres back into the box (atoms' images follow their wrap)
         let domain = state.domain().map_err(|e| self.err(state, e))?.clone();
@@ -514,6 +650,7 @@ impl Fix for FixRigidSmall {
             self.zero_out_of_plane();
         }
         self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
+        self.add_langevin();
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         if let Some(nh) = self.nh.as_mut() {
             nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt });

@@ -89,6 +89,15 @@ pub struct FixRigidSmall {
     /// create_bodies: bodies in the local order of their owning atoms, kept through sorts);
     /// bodies inserted later follow, by molecule ID.
     rank: HashMap<i64, usize>,
+    /// The members by local index (`slot`), valid while the owned atoms' IDs are `tags`: the
+    /// per-step passes read this, not the map by ID.
+    local: LocalMembers,
+}
+
+#[derive(Default)]
+struct LocalMembers {
+    tags: Vec<i64>,
+    slot: Vec<Option<Member>>,
 }
 
 /// `langevin Tstart Tstop Tperiod seed`: the force and torque of each body's thermostat,
@@ -188,7 +197,7 @@ impl FixRigidSmall {
         };
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
         let rank = Self::creation_order(state, groupbit);
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank })
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, local: LocalMembers::default() })
     }
 
     /// LAMMPS' create_bodies: each molecule of the group is owned by its atom closest to the
@@ -408,11 +417,22 @@ impl FixRigidSmall {
         }
         self.bodies = bodies;
         self.members = members;
+        self.local.tags.clear();
         Ok(())
     }
 
     /// Force and torque on each body from its atoms (LAMMPS' compute_forces_and_torques).
+    /// The members of the owned atoms by local index, renewed when the atoms' IDs changed.
+    fn refresh_local(&mut self, state: &State) {
+        let tags = &state.atoms.tag[..state.atoms.nlocal];
+        if self.local.tags.as_slice() != tags {
+            self.local.tags = tags.to_vec();
+            self.local.slot = tags.iter().map(|t| self.members.get(t).copied()).collect();
+        }
+    }
+
     fn forces_and_torques(&mut self, state: &State) -> Result<(), String> {
+        self.refresh_local(state);
         let domain = state.domain()?;
         let a = &state.atoms;
         for b in self.bodies.iter_mut() {
@@ -421,7 +441,7 @@ impl FixRigidSmall {
         }
         let order = state.lammps_order.indices(a.nlocal);
         for &i in order.iter() {
-            let Some(m) = self.members.get(&a.tag[i]) else { continue };
+            let Some(m) = self.local.slot[i] else { continue };
             let b = &mut self.bodies[m.body];
             let f = a.f[i];
             for k in 0..3 {
@@ -435,7 +455,7 @@ impl FixRigidSmall {
         }
         if self.members.values().any(|m| m.sphere) {
             for &i in order.iter() {
-                let Some(m) = self.members.get(&a.tag[i]) else { continue };
+                let Some(m) = self.local.slot[i] else { continue };
                 if m.sphere {
                     let t = &mut self.bodies[m.body].torque;
                     for k in 0..3 {
@@ -466,14 +486,15 @@ impl FixRigidSmall {
     /// virial of the constraint forces, m dv / dtf - f at the unwrapped position before the
     /// move, in LAMMPS' local order (the other half comes from the other call of the step).
     fn set_atoms(&mut self, state: &mut State, with_x: bool) -> Result<(), String> {
+        self.refresh_local(state);
         let prd = state.domain()?.prd();
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         let per_atom_mass = state.atoms.features.per_atom_mass();
         let order = state.lammps_order.indices(state.atoms.nlocal);
         let a = &mut state.atoms;
-        let (members, bodies, tally) = (&self.members, &self.bodies, &mut self.tally);
+        let (members, bodies, tally) = (&self.local.slot, &self.bodies, &mut self.tally);
         for &i in order.iter() {
-            let Some(m) = members.get(&a.tag[i]) else { continue };
+            let Some(m) = members[i] else { continue };
             let b = &bodies[m.body];
             let xbox = Self::xcmimage(a.image[i], b.image);
             let x0 = [a.x[i][0] + xbox[0] as f64 * prd[0], a.x[i][1] + xbox[1] as f64 * prd[1], a.x[i][2] + xbox[2] as f64 * prd[2]];
@@ -730,6 +751,7 @@ impl Fix for FixRigidSmall {
         let b = self.bodies.len() - 1;
         for (m, &displace) in t.dxbody.iter().enumerate() {
             self.members.insert(ins.tagprev + m as i64 + 1, Member { body: b, displace, sphere: t.spheres });
+            self.local.tags.clear();
         }
         Ok(())
     }

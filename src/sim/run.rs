@@ -329,7 +329,7 @@ impl Simulation {
         for ins in std::mem::take(&mut self.state.rigid_inserts) {
             let step = self.state.step;
             let Some(f) = self.fixes.iter_mut().find(|f| f.id() == ins.fix_id) else {
-                return Err(RunError::new(step, format!("fix pour rigid: fix {} does not exist", ins.fix_id)));
+                return Err(RunError::new(step, format!("the rigid fix {} of inserted molecules does not exist", ins.fix_id)));
             };
             f.add_rigid_molecule(&self.state, &ins).map_err(|e| RunError::new(step, e))?;
         }

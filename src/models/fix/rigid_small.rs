@@ -170,11 +170,11 @@ impl FixRigidSmall {
                     langevin = Some(BodyLangevin { t_start, t_stop, t_period, random: RanMars::new(seed), extra: Vec::new() });
                     continue;
                 }
-                "langevin" => "this keyword belongs to rigid/small (LAMMPS allows its Langevin thermostat there only)",
-                "infile" => "fix rigid/small infile is not supported yet",
-                "reinit" => "fix rigid/small reinit is not supported yet (bodies are set up at every run, LAMMPS' default)",
-                "temp" | "tparam" => "this keyword belongs to rigid/nvt/small and rigid/npt/small (a thermostat)",
-                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "this keyword belongs to rigid/npt/small and rigid/nph/small (a barostat), which dmhs does not have",
+                "infile" => return Err(a.error_at(w, format!("fix {style} infile is not supported yet"), "not supported")),
+                "reinit" => return Err(a.error_at(w, format!("fix {style} reinit is not supported yet (bodies are set up at every run, LAMMPS' default)"), "not supported")),
+                "langevin" => "it belongs to rigid/small (LAMMPS allows the bodies' Langevin thermostat there only)",
+                "temp" | "tparam" => "it belongs to rigid/nvt/small and rigid/npt/small (a thermostat)",
+                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "it belongs to rigid/npt/small and rigid/nph/small (a barostat), which dmhs does not have",
                 _ => return Err(a.unknown_keyword(w, if nvt { &["mol", "temp", "tparam"] } else { &["mol", "langevin"] })),
             };
             return Err(a.error_at(w, format!("illegal fix {style} keyword `{}`: {what}", w.text), "not this style's keyword"));
@@ -421,7 +421,6 @@ impl FixRigidSmall {
         Ok(())
     }
 
-    /// Force and torque on each body from its atoms (LAMMPS' compute_forces_and_torques).
     /// The members of the owned atoms by local index, renewed when the atoms' IDs changed.
     fn refresh_local(&mut self, state: &State) {
         let tags = &state.atoms.tag[..state.atoms.nlocal];
@@ -431,6 +430,7 @@ impl FixRigidSmall {
         }
     }
 
+    /// Force and torque on each body from its atoms (LAMMPS' compute_forces_and_torques).
     fn forces_and_torques(&mut self, state: &State) -> Result<(), String> {
         self.refresh_local(state);
         let domain = state.domain()?;

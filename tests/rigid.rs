@@ -1,9 +1,10 @@
-//! fix rigid/small, rigid/nve/small and rigid/nvt/small against LAMMPS beyond the trajectories
+//! fix rigid/small and its nve, nvt, npt and nph forms against LAMMPS beyond the trajectories
 //! (those are in tests/lammps_parity.rs): the thermo tables of rigid_small_clumps (3d),
 //! rigid_small_2d (enforce2d), rigid_small_gran (clumps of spheres on a granular floor: the body
-//! mass in the granular damping, compute temp/sphere), rigid_nve_small_clumps and
-//! rigid_nvt_small_clumps (the NO_SQUISH step and its Nose-Hoover chains, f_1 the extended
-//! system's energy, ecouple), rigid_nvt_small_2d and rigid_deposit (fix deposit rigid), whose
+//! mass in the granular damping, compute temp/sphere), rigid_small_langevin, rigid_nve_small_clumps
+//! and rigid_nvt_small_clumps (the NO_SQUISH step and its Nose-Hoover chains, f_1 the extended
+//! system's energy, ecouple), rigid_nvt_small_2d, rigid_npt_small_clumps and rigid_nph_small_2d
+//! (the barostat), and rigid_deposit (fix deposit rigid), whose
 //! pressure and its tensor carry the bodies' constraint virial (LAMMPS' set_xv/set_v tally, on
 //! by default), every printed step, against lammps-refs/refs/NAME/thermo.txt (and LAMMPS run
 //! now, when present). And the located refusals of what the fixes do not support.
@@ -13,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 8] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_deposit"];
+const DECKS: [&str; 10] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -53,6 +54,15 @@ fn unsupported_uses_are_located_errors() {
         ("fix 2 all rigid/nvt/small molecule temp 1 1 0", "period must be > 0.0"),
         ("fix 2 all rigid/nvt/small molecule temp 1 1 1 tparam 4 1 4", "t_order must be 3 or 5"),
         ("fix 2 all rigid/nvt/small molecule temp 1 1 1 iso 1 1 1", "rigid/npt/small and rigid/nph/small"),
+        ("fix 2 all rigid/nph/small molecule temp 1 1 1 iso 1 1 1", "illegal fix rigid/nph/small keyword `temp`"),
+        ("fix 2 all rigid/nph/small molecule", "pressure control must be used with fix rigid/nph/small"),
+        ("fix 2 all rigid/npt/small molecule iso 1 1 1", "did not set temp for fix rigid/npt/small"),
+        ("fix 2 all rigid/npt/small molecule temp 0 1 1 iso 1 1 1", "target temperature for fix rigid/npt/small cannot be 0.0"),
+        ("fix 2 all rigid/nph/small molecule x 1 1 1 couple xyz", "pressure settings"),
+        ("fix 2 all rigid/nph/small molecule x 1 1 1 y 2 2 1 couple xy", "pressure settings"),
+        ("fix 2 all rigid/nph/small molecule iso -1 1 1", "cannot be < 0.0"),
+        ("fix 2 all rigid/nph/small molecule iso 1 1 0", "damping parameters must be > 0.0"),
+        ("fix 2 all rigid/nph/small molecule iso 1 1 1 dilate nogroup", "dilate group ID `nogroup` does not exist"),
     ] {
         let deck = format!("{BASE}{cmd}\nrun 0\n");
         let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));

@@ -584,6 +584,8 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state)?))),
     ("rigid/nve/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve/small", d.args, d.cmd, state)?))),
     ("rigid/nvt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt/small", d.args, d.cmd, state)?))),
+    ("rigid/npt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt/small", d.args, d.cmd, state)?))),
+    ("rigid/nph/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph/small", d.args, d.cmd, state)?))),
     ("rigid", |d, _| Ok(Box::new(rigid_small::FixRigidSmall::refuse_rigid(d.args, d.cmd, d.style)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];

@@ -1,31 +1,31 @@
-//! The integrator of `fix rigid/nve/small` and `fix rigid/nvt/small` (LAMMPS' FixRigidNHSmall,
-//! 22 Jul 2025; Kamberaj et al., J. Chem. Phys. 122, 224114 (2005); Miller et al., J. Chem.
-//! Phys. 116, 8649 (2002)). The bodies are set up and their atoms placed as by rigid/small
-//! (rigid_small.rs); what differs is the step: the orientation moves with its conjugate
-//! quaternion momentum by the NO_SQUISH splitting (free rotations about body axes 3, 2, 1, 2, 3),
-//! and with `temp Tstart Tstop Tdamp` the bodies' translational and rotational kinetic energies
-//! each drive a Nose-Hoover chain (`tparam Tchain Titer Torder`, default 10 1 3), integrated with
-//! Yoshida-Suzuki weights, which scale the momenta at each half step. The barostatted
-//! rigid/npt/small and rigid/nph/small are not here.
+//! The integrator of `fix rigid/nve/small`, `rigid/nvt/small`, `rigid/npt/small` and
+//! `rigid/nph/small` (LAMMPS' FixRigidNHSmall, 22 Jul 2025; Kamberaj et al., J. Chem. Phys. 122,
+//! 224114 (2005); Miller et al., J. Chem. Phys. 116, 8649 (2002)). The bodies are set up and
+//! their atoms placed as by rigid/small (rigid_small.rs); what differs is the step: the
+//! orientation moves with its conjugate quaternion momentum by the NO_SQUISH splitting (free
+//! rotations about body axes 3, 2, 1, 2, 3). With `temp Tstart Tstop Tdamp` the bodies'
+//! translational and rotational kinetic energies each drive a Nose-Hoover chain (`tparam Tchain
+//! Titer Torder`, default 10 1 3); with `iso|aniso|x|y|z Pstart Pstop Pdamp` a barostat
+//! (its own chain, `pchain`, default 10) scales the box about its centre by half steps around
+//! the placing of the atoms, and the bodies' momenta with it. The chains are integrated with
+//! Yoshida-Suzuki weights.
 
+use super::box_stress::Couple;
 use super::rigid_small::Body;
+use crate::engine::domain::Dilation;
 use crate::engine::quat;
+use crate::engine::state::State;
 
 /// Principal moments below this count no rotational degree of freedom (LAMMPS' EPSILON).
 const EPSILON: f64 = 1.0e-7;
 
-/// A Nose-Hoover chain pair, one on the translational and one on the rotational kinetic energy.
+/// `temp Tstart Tstop Tdamp`: a Nose-Hoover chain on the translational and one on the
+/// rotational kinetic energy.
 #[derive(Clone, Debug)]
 pub struct Chains {
     pub t_start: f64,
     pub t_stop: f64,
     pub t_freq: f64,
-    pub t_iter: usize,
-    /// Yoshida-Suzuki weights (3 or 5).
-    w: Vec<f64>,
-    wdti1: Vec<f64>,
-    wdti2: Vec<f64>,
-    wdti4: Vec<f64>,
     q_t: Vec<f64>,
     q_r: Vec<f64>,
     eta_t: Vec<f64>,
@@ -34,39 +34,86 @@ pub struct Chains {
     eta_dot_r: Vec<f64>,
     f_eta_t: Vec<f64>,
     f_eta_r: Vec<f64>,
-    t_target: f64,
 }
 
 impl Chains {
-    /// `temp Tstart Tstop Tdamp` with `tparam Tchain Titer Torder` (checked by the caller).
-    pub fn new(t_start: f64, t_stop: f64, t_period: f64, t_chain: usize, t_iter: usize, t_order: usize) -> Self {
-        let w = if t_order == 3 {
-            let w0 = 1.0 / (2.0 - 2.0f64.powf(1.0 / 3.0));
-            vec![w0, 1.0 - 2.0 * w0, w0]
-        } else {
-            let w0 = 1.0 / (4.0 - 4.0f64.powf(1.0 / 3.0));
-            vec![w0, w0, 1.0 - 4.0 * w0, w0, w0]
-        };
-        let zeros = vec![0.0; t_chain];
-        Chains {
-            t_start,
-            t_stop,
-            t_freq: 1.0 / t_period,
-            t_iter,
-            wdti1: vec![0.0; w.len()],
-            wdti2: vec![0.0; w.len()],
-            wdti4: vec![0.0; w.len()],
-            w,
-            q_t: zeros.clone(),
-            q_r: zeros.clone(),
-            eta_t: zeros.clone(),
-            eta_r: zeros.clone(),
-            eta_dot_t: zeros.clone(),
-            eta_dot_r: zeros.clone(),
-            f_eta_t: zeros.clone(),
-            f_eta_r: zeros,
-            t_target: 0.0,
+    pub fn new(t_start: f64, t_stop: f64, t_period: f64, t_chain: usize) -> Self {
+        let z = vec![0.0; t_chain];
+        Chains { t_start, t_stop, t_freq: 1.0 / t_period, q_t: z.clone(), q_r: z.clone(), eta_t: z.clone(), eta_r: z.clone(), eta_dot_t: z.clone(), eta_dot_r: z.clone(), f_eta_t: z.clone(), f_eta_r: z }
+    }
+}
+
+/// `iso|aniso|x|y|z Pstart Pstop Pdamp`, `couple`, `dilate`, `pchain`: the barostat.
+#[derive(Clone, Debug)]
+pub struct Baro {
+    pub p_start: [f64; 3],
+    pub p_stop: [f64; 3],
+    pub p_flag: [bool; 3],
+    p_freq: [f64; 3],
+    pub couple: Couple,
+    /// The scalar pressure is coupled (LAMMPS' pstyle ISO: couple xyz, or xy in 2d).
+    pub iso: bool,
+    /// `dilate group`: the group bit of the atoms remapped with the box (None: all).
+    pub dilate: Option<u32>,
+    epsilon_mass: [f64; 3],
+    epsilon: [f64; 3],
+    epsilon_dot: [f64; 3],
+    q_b: Vec<f64>,
+    eta_b: Vec<f64>,
+    eta_dot_b: Vec<f64>,
+    f_eta_b: Vec<f64>,
+    p_target: [f64; 3],
+    p_hydro: f64,
+    /// The coupled current pressure, measured by the caller.
+    pub p_current: [f64; 3],
+    p_freq_max: f64,
+    pdim: usize,
+    vol0: f64,
+    mtk_term1: f64,
+    mtk_term2: f64,
+}
+
+impl Baro {
+    pub fn new(p_start: [f64; 3], p_stop: [f64; 3], p_period: [f64; 3], p_flag: [bool; 3], couple: Couple, dilate: Option<u32>, p_chain: usize, dimension: usize) -> Self {
+        let p_freq = std::array::from_fn(|k| if p_flag[k] { 1.0 / p_period[k] } else { 0.0 });
+        let iso = matches!(couple, Couple::Xyz) || (dimension == 2 && matches!(couple, Couple::Xy));
+        let z = vec![0.0; p_chain];
+        Baro {
+            p_start,
+            p_stop,
+            p_flag,
+            p_freq,
+            couple,
+            iso,
+            dilate,
+            epsilon_mass: [0.0; 3],
+            epsilon: [0.0; 3],
+            epsilon_dot: [0.0; 3],
+            q_b: z.clone(),
+            eta_b: z.clone(),
+            eta_dot_b: z.clone(),
+            f_eta_b: z,
+            p_target: [0.0; 3],
+            p_hydro: 0.0,
+            p_current: [0.0; 3],
+            p_freq_max: 0.0,
+            pdim: p_flag.iter().filter(|&&f| f).count(),
+            vol0: 0.0,
+            mtk_term1: 0.0,
+            mtk_term2: 0.0,
         }
+    }
+
+    /// LAMMPS' compute_press_target.
+    fn press_target(&mut self, fraction: f64) {
+        self.p_hydro = 0.0;
+        for i in 0..3 {
+            if self.p_flag[i] {
+                self.p_target[i] = self.p_start[i] + fraction * (self.p_stop[i] - self.p_start[i]);
+                self.p_hydro += self.p_target[i];
+            }
+        }
+        self.p_hydro /= self.pdim as f64;
     }
 }
 
@@ -77,22 +124,53 @@ fn maclaurin_series(x: f64) -> f64 {
     1.0 + (1.0 / 6.0) * x2 + (1.0 / 120.0) * x4 + (1.0 / 5040.0) * x2 * x4 + (1.0 / 362880.0) * x4 * x4
 }
 
-/// Half a step of a chain's velocity `k` driven by its force, damped by the next link
-/// (`s * s` and `s * ms`: LAMMPS' exact exponential of the coupled update).
-fn chain_kick(eta_dot: f64, f_eta: f64, next_eta_dot: f64, wdti2: f64, wdti4: f64) -> f64 {
+/// Half a step of a chain link's velocity driven by its force and damped by the next link's
+/// velocity, exp(-c tmp) per quarter (c = 1 for the thermostats' chains, 1/2 for the barostat's
+/// in LAMMPS).
+fn chain_kick(eta_dot: f64, f_eta: f64, next_eta_dot: f64, wdti2: f64, wdti4: f64, c: f64) -> f64 {
     let tmp = wdti4 * next_eta_dot;
     let ms = maclaurin_series(tmp);
-    let s = (-1.0 * tmp).exp();
+    let s = (-c * tmp).exp();
     let s2 = s * s;
     eta_dot * s2 + wdti2 * f_eta * s * ms
+}
+
+/// One Yoshida-Suzuki sweep of a chain of masses `q` and forces `f` (LAMMPS' loops of
+/// nhc_temp_integrate and nhc_press_integrate), `kt` the target of links beyond the first.
+fn chain_sweep(eta: &mut [f64], eta_dot: &mut [f64], f_eta: &mut [f64], q: &[f64], kt: f64, (w1, w2, w4): (f64, f64, f64), c: f64) {
+    let n = eta.len();
+    eta_dot[n - 1] += w2 * f_eta[n - 1];
+    for k in 1..n {
+        eta_dot[n - k - 1] = chain_kick(eta_dot[n - k - 1], f_eta[n - k - 1], eta_dot[n - k], w2, w4, c);
+    }
+    for k in 0..n {
+        eta[k] += w1 * eta_dot[k];
+    }
+    for k in 1..n {
+        f_eta[k] = q[k - 1] * eta_dot[k - 1] * eta_dot[k - 1] - kt;
+        f_eta[k] /= q[k];
+    }
+    for k in 0..n - 1 {
+        eta_dot[k] = chain_kick(eta_dot[k], f_eta[k], eta_dot[k + 1], w2, w4, c);
+        f_eta[k + 1] = (q[k] * eta_dot[k] * eta_dot[k] - kt) / q[k + 1];
+    }
+    eta_dot[n - 1] += w2 * f_eta[n - 1];
 }
 
 /// The state of the NO_SQUISH integrator over the fix's bodies.
 #[derive(Clone, Debug)]
 pub struct RigidNh {
     pub chains: Option<Chains>,
+    pub baro: Option<Baro>,
     /// `fix_modify dynamic/dof yes`: recount the degrees of freedom every step.
     pub dynamic: bool,
+    t_iter: usize,
+    /// Yoshida-Suzuki weights (3 or 5) and their step fractions.
+    w: Vec<f64>,
+    wdti1: Vec<f64>,
+    wdti2: Vec<f64>,
+    wdti4: Vec<f64>,
+    t_target: f64,
     nf_t: i64,
     nf_r: i64,
     akin_t: f64,
@@ -107,8 +185,21 @@ pub struct Steps {
 }
 
 impl RigidNh {
-    pub fn new(chains: Option<Chains>) -> Self {
-        RigidNh { chains, dynamic: false, nf_t: 0, nf_r: 0, akin_t: 0.0, akin_r: 0.0 }
+    /// `tparam`'s Titer and Torder (checked by the caller: 1 or more; 3 or 5).
+    pub fn new(chains: Option<Chains>, baro: Option<Baro>, t_iter: usize, t_order: usize) -> Self {
+        let w = if t_order == 3 {
+            let w0 = 1.0 / (2.0 - 2.0f64.powf(1.0 / 3.0));
+            vec![w0, 1.0 - 2.0 * w0, w0]
+        } else {
+            let w0 = 1.0 / (4.0 - 4.0f64.powf(1.0 / 3.0));
+            vec![w0, w0, 1.0 - 4.0 * w0, w0, w0]
+        };
+        let n = w.len();
+        RigidNh { chains, baro, dynamic: false, t_iter, w, wdti1: vec![0.0; n], wdti2: vec![0.0; n], wdti4: vec![0.0; n], t_target: 0.0, nf_t: 0, nf_r: 0, akin_t: 0.0, akin_r: 0.0 }
+    }
+
+    fn stat(&self) -> bool {
+        self.chains.is_some() || self.baro.is_some()
     }
 
     /// Translational and rotational degrees of freedom of the bodies (LAMMPS' compute_dof).
@@ -123,6 +214,10 @@ impl RigidNh {
         };
     }
 
+    fn g_f(&self) -> i64 {
+        self.nf_t + self.nf_r
+    }
+
     fn kinetic(&mut self, bodies: &[Body]) {
         let (mut t, mut r) = (0.0, 0.0);
         for b in bodies {
@@ -132,10 +227,28 @@ impl RigidNh {
         (self.akin_t, self.akin_r) = (t, r);
     }
 
+    fn temp_target(&mut self, fraction: f64) {
+        if let Some(c) = &self.chains {
+            self.t_target = c.t_start + fraction * (c.t_stop - c.t_start);
+        }
+    }
+
+    /// LAMMPS' FixRigidNHSmall::init for the barostat: its largest frequency and the
+    /// reference volume (kept from the first run).
+    pub fn init(&mut self, volume: f64) {
+        if let Some(b) = self.baro.as_mut() {
+            b.p_freq_max = b.p_freq.iter().fold(0.0, |m: f64, &f| m.max(f));
+            if b.vol0 == 0.0 {
+                b.vol0 = volume;
+            }
+        }
+    }
+
     /// LAMMPS' FixRigidNHSmall::setup after rigid/small's: the degrees of freedom, each body's
-    /// conjugate quaternion momentum from its angular momentum, and the chains' masses and
-    /// forces at the run's starting temperature.
-    pub fn setup(&mut self, bodies: &mut [Body], dimension: usize, boltz: f64, fraction: f64, dt: f64) {
+    /// conjugate quaternion momentum from its angular momentum, the target temperature (nph:
+    /// `t_now`, the temperature of group all, 1 if zero), the chains' and the barostat's masses
+    /// and forces; the barostat's first box force from `p_current` (set by the caller).
+    pub fn setup(&mut self, bodies: &mut [Body], dimension: usize, u: &crate::engine::units::Units, fraction: f64, dt: f64, t_now: f64, volume: f64) {
         self.compute_dof(bodies, dimension);
         for b in bodies.iter_mut() {
             let mbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.angmom);
@@ -144,61 +257,115 @@ impl RigidNh {
                 *c *= 2.0;
             }
         }
-        if self.chains.is_some() {
+        if self.stat() {
             self.kinetic(bodies);
         }
-        let (nf_t, nf_r) = (self.nf_t as f64, self.nf_r as f64);
-        let Some(c) = self.chains.as_mut() else { return };
-        c.t_target = c.t_start + fraction * (c.t_stop - c.t_start);
-        let kt = boltz * c.t_target;
-        let t_mass = kt / (c.t_freq * c.t_freq);
-        c.q_t[0] = nf_t * t_mass;
-        c.q_r[0] = nf_r * t_mass;
-        for i in 1..c.q_t.len() {
-            c.q_t[i] = t_mass;
-            c.q_r[i] = t_mass;
+        if self.chains.is_some() {
+            self.temp_target(fraction);
+        } else if self.baro.is_some() {
+            self.t_target = if t_now == 0.0 { 1.0 } else { t_now };
         }
-        for i in 1..c.q_t.len() {
-            c.f_eta_t[i] = (c.q_t[i - 1] * c.eta_dot_t[i - 1] * c.eta_dot_t[i - 1] - kt) / c.q_t[i];
-            c.f_eta_r[i] = (c.q_r[i - 1] * c.eta_dot_r[i - 1] * c.eta_dot_r[i - 1] - kt) / c.q_r[i];
+        if let Some(b) = self.baro.as_mut() {
+            b.press_target(fraction);
         }
-        for j in 0..c.w.len() {
-            c.wdti1[j] = c.w[j] * dt / c.t_iter as f64;
-            c.wdti2[j] = c.wdti1[j] / 2.0;
-            c.wdti4[j] = c.wdti1[j] / 4.0;
+        let (nf_t, nf_r, g_f) = (self.nf_t as f64, self.nf_r as f64, self.g_f());
+        let kt = u.boltz * self.t_target;
+        if let Some(c) = self.chains.as_mut() {
+            let t_mass = kt / (c.t_freq * c.t_freq);
+            c.q_t[0] = nf_t * t_mass;
+            c.q_r[0] = nf_r * t_mass;
+            for i in 1..c.q_t.len() {
+                c.q_t[i] = t_mass;
+                c.q_r[i] = t_mass;
+            }
+            for i in 1..c.q_t.len() {
+                c.f_eta_t[i] = (c.q_t[i - 1] * c.eta_dot_t[i - 1] * c.eta_dot_t[i - 1] - kt) / c.q_t[i];
+                c.f_eta_r[i] = (c.q_r[i - 1] * c.eta_dot_r[i - 1] * c.eta_dot_r[i - 1] - kt) / c.q_r[i];
+            }
+        }
+        if let Some(b) = self.baro.as_mut() {
+            for i in 0..3 {
+                if b.p_flag[i] {
+                    b.epsilon_mass[i] = (g_f + dimension as i64) as f64 * kt / (b.p_freq[i] * b.p_freq[i]);
+                    b.epsilon[i] = b.vol0.ln() / dimension as f64;
+                }
+            }
+            let tb_mass = kt / (b.p_freq_max * b.p_freq_max);
+            b.q_b[0] = (dimension * dimension) as f64 * tb_mass;
+            for i in 1..b.q_b.len() {
+                b.q_b[i] = tb_mass;
+                b.f_eta_b[i] = (b.q_b[i] * b.eta_dot_b[i - 1] * b.eta_dot_b[i - 1] - kt) / b.q_b[i];
+            }
+        }
+        if self.stat() {
+            for j in 0..self.w.len() {
+                self.wdti1[j] = self.w[j] * dt / self.t_iter as f64;
+                self.wdti2[j] = self.wdti1[j] / 2.0;
+                self.wdti4[j] = self.wdti1[j] / 4.0;
+            }
+        }
+        if self.baro.is_some() {
+            self.epsilon_dot(u, 0.5 * dt, volume, fraction);
         }
     }
 
-    /// The chains' damping of the translational and rotational momenta over half a step.
-    fn scales(&self, dtq: f64) -> Option<(f64, f64)> {
-        let c = self.chains.as_ref()?;
-        Some(((-dtq * c.eta_dot_t[0]).exp(), (-dtq * c.eta_dot_r[0]).exp()))
+    /// The momenta's half-step scaling by the chains and the box (LAMMPS' scale_t, scale_r).
+    fn scales(&self, dtq: f64) -> ([f64; 3], f64) {
+        let (mut scale_t, mut scale_r) = ([1.0; 3], 1.0);
+        if let Some(c) = &self.chains {
+            scale_t = [(-dtq * c.eta_dot_t[0]).exp(); 3];
+            scale_r = (-dtq * c.eta_dot_r[0]).exp();
+        }
+        if let Some(b) = &self.baro {
+            for k in 0..3 {
+                scale_t[k] *= (-dtq * (b.epsilon_dot[k] + b.mtk_term2)).exp();
+            }
+            scale_r *= (-dtq * (b.pdim as f64 * b.mtk_term2)).exp();
+        }
+        (scale_t, scale_r)
     }
 
     /// The first half of the step (LAMMPS' initial_integrate, steps 1.1 to 1.13 of Kamberaj
-    /// et al.), then the chains' full step. The caller then places the atoms (set_xv).
-    pub fn initial_integrate(&mut self, bodies: &mut [Body], s: &Steps, dimension: usize, boltz: f64, mvv2e: f64, fraction: f64) {
+    /// et al.), then the chains' full step. The caller then remaps the box (with a barostat),
+    /// places the atoms (set_xv) and remaps again.
+    pub fn initial_integrate(&mut self, bodies: &mut [Body], s: &Steps, dimension: usize, u: &crate::engine::units::Units, fraction: f64) {
         let dtf2 = s.dtf * 2.0;
-        let scale = self.scales(s.dtq);
+        let (scale_t, scale_r) = self.scales(s.dtq);
+        let scale_v: Option<[f64; 3]> = self.baro.as_ref().map(|b| {
+            std::array::from_fn(|k| {
+                let tmp = s.dtq * b.epsilon_dot[k];
+                s.dtv * tmp.exp() * maclaurin_series(tmp)
+            })
+        });
+        let stat = self.stat();
         for b in bodies.iter_mut() {
             let dtfm = s.dtf / b.mass;
             for k in 0..3 {
                 b.vcm[k] += dtfm * b.fcm[k];
             }
-            if let Some((scale_t, _)) = scale {
+            if stat {
                 for k in 0..3 {
-                    b.vcm[k] *= scale_t;
+                    b.vcm[k] *= scale_t[k];
                 }
             }
-            for k in 0..3 {
-                b.xcm[k] += s.dtv * b.vcm[k];
+            match scale_v {
+                None => {
+                    for k in 0..3 {
+                        b.xcm[k] += s.dtv * b.vcm[k];
+                    }
+                }
+                Some(v) => {
+                    for k in 0..3 {
+                        b.xcm[k] += v[k] * b.vcm[k];
+                    }
+                }
             }
             let tbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.torque);
             let fquat = quat::quatvec(&b.quat, &tbody);
             for c in 0..4 {
                 b.conjqm[c] += dtf2 * fquat[c];
             }
-            if let Some((_, scale_r)) = scale {
+            if stat {
                 for c in 0..4 {
                     b.conjqm[c] *= scale_r;
                 }
@@ -209,25 +376,33 @@ impl RigidNh {
             [b.ex, b.ey, b.ez] = quat::q_to_exyz(&b.quat);
             Self::angmom_from_conjqm(b);
         }
-        if self.chains.is_some() {
+        if stat {
             self.kinetic(bodies);
+        }
+        if self.chains.is_some() {
+            self.temp_target(fraction);
             if self.dynamic {
                 self.compute_dof(bodies, dimension);
             }
-            self.nhc_temp_integrate(boltz, mvv2e, fraction);
+            self.nhc_temp_integrate(u);
+        }
+        if self.baro.is_some() {
+            self.nhc_press_integrate(u, dimension);
         }
     }
 
     /// The second half kick (LAMMPS' final_integrate), after the bodies' forces and torques
-    /// are summed. The caller then sets the atoms' velocities (set_v).
+    /// are summed. The caller then sets the atoms' velocities (set_v) and, with a barostat,
+    /// measures the pressure and calls [`RigidNh::end_of_final`].
     pub fn final_integrate(&mut self, bodies: &mut [Body], s: &Steps) {
         let dtf2 = s.dtf * 2.0;
-        let scale = self.scales(s.dtq);
+        let (scale_t, scale_r) = self.scales(s.dtq);
+        let stat = self.stat();
         for b in bodies.iter_mut() {
             let dtfm = s.dtf / b.mass;
-            if let Some((scale_t, _)) = scale {
+            if stat {
                 for k in 0..3 {
-                    b.vcm[k] *= scale_t;
+                    b.vcm[k] *= scale_t[k];
                 }
             }
             for k in 0..3 {
@@ -235,20 +410,89 @@ impl RigidNh {
             }
             let tbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.torque);
             let fquat = quat::quatvec(&b.quat, &tbody);
-            match scale {
-                Some((_, scale_r)) => {
-                    for c in 0..4 {
-                        b.conjqm[c] = scale_r * b.conjqm[c] + dtf2 * fquat[c];
-                    }
+            if stat {
+                for c in 0..4 {
+                    b.conjqm[c] = scale_r * b.conjqm[c] + dtf2 * fquat[c];
                 }
-                None => {
-                    for c in 0..4 {
-                        b.conjqm[c] += dtf2 * fquat[c];
-                    }
+            } else {
+                for c in 0..4 {
+                    b.conjqm[c] += dtf2 * fquat[c];
                 }
             }
             Self::angmom_from_conjqm(b);
         }
+        if self.baro.is_some() {
+            self.kinetic(bodies);
+        }
+    }
+
+    /// After the pressure was measured into `baro.p_current`: the target pressure and the box
+    /// velocity's half step (the end of LAMMPS' final_integrate).
+    pub fn end_of_final(&mut self, u: &crate::engine::units::Units, dtq: f64, volume: f64, fraction: f64) {
+        self.epsilon_dot(u, dtq, volume, fraction);
+    }
+
+    /// LAMMPS' compute_press_target then nh_epsilon_dot.
+    fn epsilon_dot(&mut self, u: &crate::engine::units::Units, dtq: f64, volume: f64, fraction: f64) {
+        let g_f = self.g_f();
+        let (akin_t, akin_r) = (self.akin_t, self.akin_r);
+        let Some(b) = self.baro.as_mut() else { return };
+        b.press_target(fraction);
+        if g_f == 0 {
+            return;
+        }
+        b.mtk_term1 = (akin_t + akin_r) * u.mvv2e / g_f as f64;
+        let scale = (-1.0 * dtq * b.eta_dot_b[0]).exp();
+        for i in 0..3 {
+            if b.p_flag[i] {
+                let mut f_epsilon = (b.p_current[i] - b.p_hydro) * volume / u.nktv2p + b.mtk_term1;
+                f_epsilon /= b.epsilon_mass[i];
+                b.epsilon_dot[i] += dtq * f_epsilon;
+                b.epsilon_dot[i] *= scale;
+            }
+        }
+        b.mtk_term2 = 0.0;
+        for i in 0..3 {
+            if b.p_flag[i] {
+                b.mtk_term2 += b.epsilon_dot[i];
+            }
+        }
+        b.mtk_term2 /= g_f as f64;
+    }
+
+    /// LAMMPS' remap: half a step of the box about its centre, the atoms (all, or the dilate
+    /// group's) and the bodies' centres with it in box fractions.
+    pub fn remap(&mut self, state: &mut State, bodies: &mut [Body], dtq: f64) -> Result<(), String> {
+        let Some(b) = self.baro.as_mut() else { return Ok(()) };
+        for i in 0..3 {
+            b.epsilon[i] += dtq * b.epsilon_dot[i];
+        }
+        let dom = state.domain.as_mut().ok_or("no simulation box")?;
+        let old = dom.clone();
+        for i in 0..3 {
+            if b.p_flag[i] {
+                let (oldlo, oldhi) = (dom.lo[i], dom.hi[i]);
+                let ctr = 0.5 * (oldlo + oldhi);
+                let expfac = (dtq * b.epsilon_dot[i]).exp();
+                dom.lo[i] = (oldlo - ctr) * expfac + ctr;
+                dom.hi[i] = (oldhi - ctr) * expfac + ctr;
+            }
+        }
+        let prd = dom.prd();
+        if (0..3).any(|k| !(prd[k] > 0.0) || !prd[k].is_finite()) {
+            return Err(format!("the box length became {prd:?} - simulation unstable"));
+        }
+        let dilation = Dilation::new(&old, dom);
+        let a = &mut state.atoms;
+        for i in 0..a.nlocal {
+            if b.dilate.is_none_or(|bit| a.mask[i] & bit != 0) {
+                dilation.apply(&mut a.x[i]);
+            }
+        }
+        for body in bodies.iter_mut() {
+            dilation.apply(&mut body.xcm);
+        }
+        Ok(())
     }
 
     /// Angular momentum (space frame) and angular velocity from the conjugate momentum.
@@ -263,60 +507,68 @@ impl RigidNh {
 
     /// LAMMPS' nhc_temp_integrate (Kamberaj et al.'s update_nhcp): the chains advance a full
     /// step, driven by the bodies' kinetic energies.
-    fn nhc_temp_integrate(&mut self, boltz: f64, mvv2e: f64, fraction: f64) {
-        let (nf_t, nf_r) = (self.nf_t as f64, self.nf_r as f64);
-        let (akin_t, akin_r) = (self.akin_t, self.akin_r);
-        let Some(c) = self.chains.as_mut() else { return };
-        c.t_target = c.t_start + fraction * (c.t_stop - c.t_start);
-        if self.nf_t + self.nf_r == 0 {
+    fn nhc_temp_integrate(&mut self, u: &crate::engine::units::Units) {
+        if self.g_f() == 0 {
             return;
         }
+        let (nf_t, nf_r) = (self.nf_t as f64, self.nf_r as f64);
+        let (akin_t, akin_r, t_target, t_iter) = (self.akin_t, self.akin_r, self.t_target, self.t_iter);
+        let Some(c) = self.chains.as_mut() else { return };
         let n = c.q_t.len();
-        let kt = boltz * c.t_target;
+        let kt = u.boltz * t_target;
         let (gfkt_t, gfkt_r) = (nf_t * kt, nf_r * kt);
-        let t_mass = boltz * c.t_target / (c.t_freq * c.t_freq);
+        let t_mass = u.boltz * t_target / (c.t_freq * c.t_freq);
         c.q_t[0] = nf_t * t_mass;
         c.q_r[0] = nf_r * t_mass;
         for i in 1..n {
             c.q_t[i] = t_mass;
             c.q_r[i] = t_mass;
         }
-        c.f_eta_t[0] = (akin_t * mvv2e - gfkt_t) / c.q_t[0];
-        c.f_eta_r[0] = (akin_r * mvv2e - gfkt_r) / c.q_r[0];
-        for _ in 0..c.t_iter {
-            for j in 0..c.w.len() {
-                let (w1, w2, w4) = (c.wdti1[j], c.wdti2[j], c.wdti4[j]);
-                c.eta_dot_t[n - 1] += w2 * c.f_eta_t[n - 1];
-                c.eta_dot_r[n - 1] += w2 * c.f_eta_r[n - 1];
-                for k in 1..n {
-                    c.eta_dot_t[n - k - 1] = chain_kick(c.eta_dot_t[n - k - 1], c.f_eta_t[n - k - 1], c.eta_dot_t[n - k], w2, w4);
-                    c.eta_dot_r[n - k - 1] = chain_kick(c.eta_dot_r[n - k - 1], c.f_eta_r[n - k - 1], c.eta_dot_r[n - k], w2, w4);
-                }
-                for k in 0..n {
-                    c.eta_t[k] += w1 * c.eta_dot_t[k];
-                    c.eta_r[k] += w1 * c.eta_dot_r[k];
-                }
-                for k in 1..n {
-                    c.f_eta_t[k] = c.q_t[k - 1] * c.eta_dot_t[k - 1] * c.eta_dot_t[k - 1] - kt;
-                    c.f_eta_t[k] /= c.q_t[k];
-                    c.f_eta_r[k] = c.q_r[k - 1] * c.eta_dot_r[k - 1] * c.eta_dot_r[k - 1] - kt;
-                    c.f_eta_r[k] /= c.q_r[k];
-                }
-                for k in 0..n - 1 {
-                    c.eta_dot_t[k] = chain_kick(c.eta_dot_t[k], c.f_eta_t[k], c.eta_dot_t[k + 1], w2, w4);
-                    c.f_eta_t[k + 1] = (c.q_t[k] * c.eta_dot_t[k] * c.eta_dot_t[k] - kt) / c.q_t[k + 1];
-                    c.eta_dot_r[k] = chain_kick(c.eta_dot_r[k], c.f_eta_r[k], c.eta_dot_r[k + 1], w2, w4);
-                    c.f_eta_r[k + 1] = (c.q_r[k] * c.eta_dot_r[k] * c.eta_dot_r[k] - kt) / c.q_r[k + 1];
-                }
-                c.eta_dot_t[n - 1] += w2 * c.f_eta_t[n - 1];
-                c.eta_dot_r[n - 1] += w2 * c.f_eta_r[n - 1];
+        c.f_eta_t[0] = (akin_t * u.mvv2e - gfkt_t) / c.q_t[0];
+        c.f_eta_r[0] = (akin_r * u.mvv2e - gfkt_r) / c.q_r[0];
+        for _ in 0..t_iter {
+            for j in 0..self.w.len() {
+                let w = (self.wdti1[j], self.wdti2[j], self.wdti4[j]);
+                chain_sweep(&mut c.eta_t, &mut c.eta_dot_t, &mut c.f_eta_t, &c.q_t, kt, w, 1.0);
+                chain_sweep(&mut c.eta_r, &mut c.eta_dot_r, &mut c.f_eta_r, &c.q_r, kt, w, 1.0);
+            }
+        }
+    }
+
+    /// LAMMPS' nhc_press_integrate (Kamberaj et al.'s update_nhcb): the barostat's chain,
+    /// driven by the box's kinetic energy.
+    fn nhc_press_integrate(&mut self, u: &crate::engine::units::Units, dimension: usize) {
+        let (g_f, t_target, t_iter) = (self.g_f(), self.t_target, self.t_iter);
+        let Some(b) = self.baro.as_mut() else { return };
+        let kt = u.boltz * t_target;
+        let tb_mass = kt / (b.p_freq_max * b.p_freq_max);
+        b.q_b[0] = (dimension * dimension) as f64 * tb_mass;
+        for i in 1..b.q_b.len() {
+            b.q_b[i] = tb_mass;
+            b.f_eta_b[i] = b.q_b[i - 1] * b.eta_dot_b[i - 1] * b.eta_dot_b[i - 1] - kt;
+            b.f_eta_b[i] /= b.q_b[i];
+        }
+        let mut kecurrent = 0.0;
+        for i in 0..3 {
+            if b.p_flag[i] {
+                b.epsilon_mass[i] = (g_f + dimension as i64) as f64 * kt / (b.p_freq[i] * b.p_freq[i]);
+                kecurrent += b.epsilon_mass[i] * b.epsilon_dot[i] * b.epsilon_dot[i];
+            }
+        }
+        kecurrent /= b.pdim as f64;
+        b.f_eta_b[0] = (kecurrent - kt) / b.q_b[0];
+        for _ in 0..t_iter {
+            for j in 0..self.w.len() {
+                let w = (self.wdti1[j], self.wdti2[j], self.wdti4[j]);
+                chain_sweep(&mut b.eta_b, &mut b.eta_dot_b, &mut b.f_eta_b, &b.q_b, kt, w, 0.5);
             }
         }
     }
 
     /// The energy of the extended system (LAMMPS' compute_scalar): the bodies' translational
-    /// and quaternion kinetic energies, and with a thermostat the chains' energies.
-    pub fn scalar(&self, bodies: &[Body], boltz: f64, mvv2e: f64) -> f64 {
+    /// and quaternion kinetic energies, the chains' energies, the barostat's (its kinetic
+    /// energy, P0 V and its chain).
+    pub fn scalar(&self, bodies: &[Body], u: &crate::engine::units::Units, volume: f64) -> f64 {
         let (mut ke_t, mut ke_q) = (0.0, 0.0);
         for b in bodies {
             let (v, q) = (b.vcm, b.quat);
@@ -338,9 +590,9 @@ impl RigidNh {
                 ke_q += tmp;
             }
         }
-        let mut energy = (ke_t + ke_q) * mvv2e;
+        let mut energy = (ke_t + ke_q) * u.mvv2e;
+        let kt = u.boltz * self.t_target;
         if let Some(c) = &self.chains {
-            let kt = boltz * c.t_target;
             energy += kt * (self.nf_t as f64 * c.eta_t[0] + self.nf_r as f64 * c.eta_r[0]);
             for i in 1..c.eta_t.len() {
                 energy += kt * (c.eta_t[i] + c.eta_r[i]);
@@ -350,11 +602,27 @@ impl RigidNh {
                 energy += 0.5 * c.q_r[i] * (c.eta_dot_r[i] * c.eta_dot_r[i]);
             }
         }
+        if let Some(b) = &self.baro {
+            let mut e = 0.0;
+            for i in 0..3 {
+                if b.p_flag[i] {
+                    e += b.epsilon_mass[i] * b.epsilon_dot[i] * b.epsilon_dot[i];
+                }
+            }
+            energy += e * (0.5 / b.pdim as f64);
+            let p0 = (b.p_target[0] + b.p_target[1] + b.p_target[2]) / 3.0;
+            energy += p0 * volume / u.nktv2p;
+            for i in 0..b.eta_b.len() {
+                energy += kt * b.eta_b[i];
+                energy += 0.5 * b.q_b[i] * (b.eta_dot_b[i] * b.eta_dot_b[i]);
+            }
+        }
         energy
     }
 
-    /// LAMMPS' write_restart: the thermostat flag, then the chain length and per link eta_t,
-    /// eta_r, eta_dot_t, eta_dot_r, then the barostat flag (0).
+    /// LAMMPS' write_restart: the thermostat flag, its chain length and per link eta_t, eta_r,
+    /// eta_dot_t, eta_dot_r; the barostat flag, epsilon, epsilon_dot, its chain length and per
+    /// link eta_b, eta_dot_b.
     pub fn write_restart(&self) -> Vec<f64> {
         let mut list = vec![];
         match &self.chains {
@@ -366,23 +634,51 @@ impl RigidNh {
             }
             None => list.push(0.0),
         }
-        list.push(0.0);
+        match &self.baro {
+            Some(b) => {
+                list.push(1.0);
+                list.extend(b.epsilon);
+                list.extend(b.epsilon_dot);
+                list.push(b.eta_b.len() as f64);
+                for i in 0..b.eta_b.len() {
+                    list.extend([b.eta_b[i], b.eta_dot_b[i]]);
+                }
+            }
+            None => list.push(0.0),
+        }
         list
     }
 
-    /// LAMMPS' restart: the chains come back when their length matches.
+    /// LAMMPS' restart: the chains come back when their lengths match.
     pub fn restart(&mut self, list: &[f64]) {
-        let Some(c) = self.chains.as_mut() else { return };
-        if list.first() != Some(&1.0) || list.len() < 2 {
-            return;
+        let mut it = list.iter().copied();
+        let Some(tflag) = it.next() else { return };
+        if tflag != 0.0 {
+            let Some(m) = it.next() else { return };
+            let values: Vec<f64> = it.by_ref().take(4 * m as usize).collect();
+            if let Some(c) = self.chains.as_mut().filter(|c| c.eta_t.len() == m as usize && values.len() == 4 * m as usize) {
+                for i in 0..c.eta_t.len() {
+                    let v = &values[4 * i..4 * i + 4];
+                    (c.eta_t[i], c.eta_r[i], c.eta_dot_t[i], c.eta_dot_r[i]) = (v[0], v[1], v[2], v[3]);
+                }
+            }
         }
-        let m = list[1] as usize;
-        if m != c.eta_t.len() || list.len() < 2 + 4 * m {
-            return;
-        }
-        for i in 0..m {
-            let v = &list[2 + 4 * i..6 + 4 * i];
-            (c.eta_t[i], c.eta_r[i], c.eta_dot_t[i], c.eta_dot_r[i]) = (v[0], v[1], v[2], v[3]);
+        let Some(pflag) = it.next() else { return };
+        if pflag != 0.0 {
+            let eps: Vec<f64> = it.by_ref().take(6).collect();
+            let Some(m) = it.next() else { return };
+            let values: Vec<f64> = it.by_ref().take(2 * m as usize).collect();
+            if eps.len() == 6 {
+                if let Some(b) = self.baro.as_mut() {
+                    b.epsilon.copy_from_slice(&eps[..3]);
+                    b.epsilon_dot.copy_from_slice(&eps[3..]);
+                }
+            }
+            if let Some(b) = self.baro.as_mut().filter(|b| b.eta_b.len() == m as usize && values.len() == 2 * m as usize) {
+                for i in 0..b.eta_b.len() {
+                    (b.eta_b[i], b.eta_dot_b[i]) = (values[2 * i], values[2 * i + 1]);
+                }
+            }
         }
     }
 }

@@ -13,13 +13,15 @@
 //! With `fix enforce2d` (defined after this fix) the out-of-plane body values are zeroed at
 //! its post_force, as LAMMPS' FixRigidSmall::enforce2d.
 //!
-//! `rigid/nve/small` and `rigid/nvt/small` are this fix with another step (rigid_nh_small.rs).
+//! `rigid/nve/small`, `rigid/nvt/small`, `rigid/npt/small` and `rigid/nph/small` are this fix
+//! with another step (rigid_nh_small.rs).
 //! `langevin Tstart Tstop Tperiod seed` (rigid/small only) adds to each body's force and torque,
 //! at its final half step, a drag and a random kick drawn at post_force (LAMMPS'
 //! apply_langevin_thermostat: Marsaglia's stream seeded with `seed`, six draws per body in body
 //! order).
 
-use super::rigid_nh_small::{Chains, RigidNh, Steps};
+use super::box_stress::Couple;
+use super::rigid_nh_small::{Baro, Chains, RigidNh, Steps};
 use super::thermostat::run_fraction;
 use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
@@ -30,7 +32,7 @@ use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 use std::collections::HashMap;
 
-pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small molecule [mol TEMPLATE] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder]";
+pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small|rigid/npt/small|rigid/nph/small molecule [mol TEMPLATE] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
 
 /// Moment of inertia prefactor of a solid sphere.
 const SINERTIA: f64 = 0.4;
@@ -127,7 +129,15 @@ impl FixRigidSmall {
             return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
         }
         let mut template = None;
-        let nvt = style == "rigid/nvt/small";
+        // LAMMPS' ^rigid/n.t/small (a thermostat) and ^rigid/np./small (a barostat)
+        let nvt = matches!(style, "rigid/nvt/small" | "rigid/npt/small");
+        let npx = matches!(style, "rigid/npt/small" | "rigid/nph/small");
+        let dim = state.dimension;
+        let (mut p_start, mut p_stop, mut p_period, mut p_flag) = ([0.0; 3], [0.0; 3], [0.0; 3], [false; 3]);
+        let mut couple = Couple::None;
+        let mut dilate = None;
+        let mut p_chain = 10;
+        let mut press_word = None;
         let mut temp = None;
         let mut langevin = None;
         let (mut t_chain, mut t_iter, mut t_order) = (10, 1, 3);
@@ -147,6 +157,48 @@ impl FixRigidSmall {
                     if t_order != 3 && t_order != 5 {
                         return Err(a.error_at(&w.unwrap(), "fix rigid nvt/small t_order must be 3 or 5", "expected 3 or 5"));
                     }
+                    continue;
+                }
+                "iso" | "aniso" | "x" | "y" | "z" if npx => {
+                    a.skip(1);
+                    press_word.get_or_insert(w);
+                    let (start, stop, period) = (a.f64("Pstart")?, a.f64("Pstop")?, a.f64("Pdamp")?);
+                    let dims: &[usize] = match w.text.as_str() {
+                        "iso" | "aniso" => &[0, 1, 2],
+                        "x" => &[0],
+                        "y" => &[1],
+                        _ => &[2],
+                    };
+                    for &k in dims {
+                        (p_start[k], p_stop[k], p_period[k], p_flag[k]) = (start, stop, period, true);
+                    }
+                    if w.text == "iso" {
+                        couple = Couple::Xyz;
+                    }
+                    if matches!(w.text.as_str(), "iso" | "aniso") && dim == 2 {
+                        (p_start[2], p_stop[2], p_period[2], p_flag[2]) = (0.0, 0.0, 0.0, false);
+                    }
+                    continue;
+                }
+                "couple" if npx => {
+                    a.skip(1);
+                    couple = Couple::parse(&mut a)?;
+                    continue;
+                }
+                "dilate" if npx => {
+                    a.skip(1);
+                    let g = a.word("dilate group ID (or all)")?;
+                    dilate = if g.text == "all" {
+                        None
+                    } else {
+                        let k = state.groups.find(&g.text).ok_or_else(|| a.error_at(g, format!("fix {style} dilate group ID `{}` does not exist", g.text), "unknown group"))?;
+                        Some(1u32 << k)
+                    };
+                    continue;
+                }
+                "pchain" if npx => {
+                    a.skip(1);
+                    p_chain = a.i64_in("pchain (barostat chain length, 1 or more)", 1, 1000)? as usize;
                     continue;
                 }
                 "mol" => {
@@ -174,30 +226,100 @@ impl FixRigidSmall {
                 "reinit" => return Err(a.error_at(w, format!("fix {style} reinit is not supported yet (bodies are set up at every run, LAMMPS' default)"), "not supported")),
                 "langevin" => "it belongs to rigid/small (LAMMPS allows the bodies' Langevin thermostat there only)",
                 "temp" | "tparam" => "it belongs to rigid/nvt/small and rigid/npt/small (a thermostat)",
-                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "it belongs to rigid/npt/small and rigid/nph/small (a barostat), which dmhs does not have",
-                _ => return Err(a.unknown_keyword(w, if nvt { &["mol", "temp", "tparam"] } else { &["mol", "langevin"] })),
+                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "it belongs to rigid/npt/small and rigid/nph/small (a barostat)",
+                _ => {
+                    let mut known = vec!["mol"];
+                    if style == "rigid/small" {
+                        known.push("langevin");
+                    }
+                    if nvt {
+                        known.extend(["temp", "tparam"]);
+                    }
+                    if npx {
+                        known.extend(["iso", "aniso", "x", "y", "z", "couple", "dilate", "pchain"]);
+                    }
+                    return Err(a.unknown_keyword(w, &known));
+                }
             };
             return Err(a.error_at(w, format!("illegal fix {style} keyword `{}`: {what}", w.text), "not this style's keyword"));
         }
-        let nh = match style {
-            "rigid/nve/small" => Some(RigidNh::new(None)),
-            "rigid/nvt/small" => {
-                let Some((w, t_start, t_stop, t_period)) = temp else {
-                    return Err(a.missing("`temp Tstart Tstop Tdamp` (did not set temp for fix rigid/nvt/small)"));
-                };
-                if t_start < 0.0 || t_stop <= 0.0 {
-                    return Err(a.error_at(w, "target temperature for fix rigid/nvt/small cannot be 0.0", "Tstart >= 0 and Tstop > 0"));
+        let chains = match temp {
+            Some((w, t_start, t_stop, t_period)) => {
+                // rigid/nvt/small allows Tstart = 0, rigid/npt/small does not
+                if (style == "rigid/npt/small" && t_start <= 0.0) || t_start < 0.0 || t_stop <= 0.0 {
+                    return Err(a.error_at(w, format!("target temperature for fix {style} cannot be 0.0"), "Tstart >= 0 and Tstop > 0"));
                 }
                 if t_period <= 0.0 {
-                    return Err(a.error_at(w, "fix rigid/nvt/small period must be > 0.0", "Tdamp > 0"));
+                    return Err(a.error_at(w, format!("fix {style} period must be > 0.0"), "Tdamp > 0"));
                 }
-                Some(RigidNh::new(Some(Chains::new(t_start, t_stop, t_period, t_chain, t_iter, t_order))))
+                Some(Chains::new(t_start, t_stop, t_period, t_chain))
             }
-            _ => None,
+            None if nvt => return Err(a.missing(&format!("`temp Tstart Tstop Tdamp` (did not set temp for fix {style})"))),
+            None => None,
         };
+        let baro = match press_word {
+            Some(w) => Some(Self::barostat(&a, w, style, state, (p_start, p_stop, p_period, p_flag), couple, dilate, p_chain)?),
+            None if npx => return Err(a.missing(&format!("`iso|aniso|x|y|z Pstart Pstop Pdamp` (pressure control must be used with fix {style})"))),
+            None => None,
+        };
+        let nh = (style != "rigid/small").then(|| RigidNh::new(chains, baro, t_iter, t_order));
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
         let rank = Self::creation_order(state, groupbit);
         Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, local: LocalMembers::default() })
+    }
+
+    /// LAMMPS' checks of the barostat's settings (FixRigidNHSmall's constructor).
+    #[allow(clippy::too_many_arguments)]
+    fn barostat(a: &Args, w: &Word, style: &str, state: &State, (p_start, p_stop, p_period, p_flag): ([f64; 3], [f64; 3], [f64; 3], [bool; 3]), couple: Couple, dilate: Option<u32>, p_chain: usize) -> DResult<Baro> {
+        let dim = state.dimension;
+        let bad = |m: String| Err(a.error_at(w, m, "invalid barostat settings"));
+        if dim == 2 && (p_flag[2] || matches!(couple, Couple::Yz | Couple::Xz)) {
+            return bad(format!("invalid fix {style} command for a 2d simulation"));
+        }
+        let needs: &[usize] = match couple {
+            Couple::Xyz if dim == 3 => &[0, 1, 2],
+            Couple::Xyz | Couple::Xy => &[0, 1],
+            Couple::Yz => &[1, 2],
+            Couple::Xz => &[0, 2],
+            Couple::None => &[],
+        };
+        let same = |i: usize, j: usize| p_start[i] == p_start[j] && p_stop[i] == p_stop[j] && p_period[i] == p_period[j];
+        if needs.iter().any(|&k| !p_flag[k]) || needs.windows(2).any(|p| !same(p[0], p[1])) {
+            return bad(format!("invalid fix {style} command pressure settings"));
+        }
+        if (0..3).any(|k| p_flag[k] && !state.domain.as_ref().is_some_and(|d| d.periodic(k))) {
+            return bad(format!("cannot use fix {style} on a non-periodic dimension"));
+        }
+        if (0..3).any(|k| p_flag[k] && p_period[k] <= 0.0) {
+            return bad(format!("fix {style} damping parameters must be > 0.0"));
+        }
+        if (0..3).any(|k| p_start[k] < 0.0 || p_stop[k] < 0.0) {
+            return bad(format!("target pressure for fix {style} cannot be < 0.0"));
+        }
+        Ok(Baro::new(p_start, p_stop, p_period, p_flag, couple, dilate, p_chain, dim))
+    }
+
+    /// The pressure the barostat reads (LAMMPS' compute fixID_press on compute fixID_temp,
+    /// group all, coupled) and that temperature.
+    fn measure_pressure(&self, state: &State, ctx: &mut FixCtx) -> Result<([f64; 3], f64), RunError> {
+        let Some(b) = self.nh.as_ref().and_then(|nh| nh.baro.as_ref()) else { return Ok(([0.0; 3], 0.0)) };
+        let (virial, fix_dof) = ctx.eval(state, self, |w, _| Ok((w.virial(), w.fix_dof(1))))?;
+        let spec = crate::models::compute::temp_bias::TempSpec::plain(1);
+        let dof = spec.dof(state, fix_dof);
+        let (t, _) = spec.temperature(state, dof).map_err(|e| self.err(state, e))?;
+        let volume = state.domain().map_err(|e| self.err(state, e))?.volume();
+        let u = &state.units;
+        let p = if b.iso {
+            [crate::models::compute::pressure::scalar_pressure(state.dimension, dof * u.boltz * t, &virial, volume, u.nktv2p); 3]
+        } else {
+            let ke = spec.tensor(state).map_err(|e| self.err(state, e))?;
+            let t = crate::models::compute::pressure::tensor_pressure(&ke, &virial, volume, u.nktv2p);
+            b.couple.apply([t[0], t[1], t[2]])
+        };
+        if p.iter().any(|x| !x.is_finite()) {
+            return Err(self.err(state, "non-numeric pressure - simulation unstable".into()));
+        }
+        Ok((p, t))
     }
 
     /// LAMMPS' create_bodies: each molecule of the group is owned by its atom closest to the
@@ -571,12 +693,21 @@ impl Fix for FixRigidSmall {
             return Err(format!("fix enforce2d {} must be defined after fix {} ({})", f.id(), self.id, self.style));
         }
         self.enforce2d = state.dimension == 2 && ctx.others[1].iter().any(|f| f.style() == "enforce2d");
+        if let Some(nh) = self.nh.as_mut().filter(|nh| nh.baro.is_some()) {
+            if let Some(f) = ctx.other_fixes().find(|f| f.style() == "deform" || f.changes_box()) {
+                return Err(format!("fix {} ({}) with fix {} ({}): dmhs does not combine a rigid barostat with another fix that changes the box", self.id, self.style, f.id(), f.style()));
+            }
+            if let Some(f) = ctx.other_fixes().find(|f| f.rigid_template().is_some()) {
+                return Err(format!("fix {} ({}) with fix {} ({}): the barostat moves only its own bodies with the box", self.id, self.style, f.id(), f.style()));
+            }
+            nh.init(state.domain()?.volume());
+        }
         Ok(())
     }
     fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         self.setup_bodies(state).map_err(|e| self.err(state, e))
     }
-    fn setup(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+    fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
         for b in self.bodies.iter_mut() {
             b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
@@ -587,8 +718,13 @@ impl Fix for FixRigidSmall {
         for v in self.tally.virial.iter_mut() {
             *v *= 2.0;
         }
+        let (p_current, t_now) = self.measure_pressure(state, ctx)?;
+        let volume = state.domain().map_err(|e| self.err(state, e))?.volume();
         if let Some(nh) = self.nh.as_mut() {
-            nh.setup(&mut self.bodies, state.dimension, state.units.boltz, run_fraction(state), state.dt);
+            if let Some(b) = nh.baro.as_mut() {
+                b.p_current = p_current;
+            }
+            nh.setup(&mut self.bodies, state.dimension, &state.units, run_fraction(state), state.dt, t_now, volume);
         }
         // fix enforce2d's setup (its post_force) follows
         if self.enforce2d {
@@ -601,10 +737,13 @@ impl Fix for FixRigidSmall {
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         let dtq = 0.5 * state.dt;
         if let Some(nh) = self.nh.as_mut() {
-            let u = &state.units;
-            nh.initial_integrate(&mut self.bodies, &Steps { dtv, dtf, dtq }, state.dimension, u.boltz, u.mvv2e, run_fraction(state));
+            nh.initial_integrate(&mut self.bodies, &Steps { dtv, dtf, dtq }, state.dimension, &state.units, run_fraction(state));
             self.tally.v_init();
-            return self.set_atoms(state, true).map_err(|e| self.err(state, e));
+            // a barostat scales the box by half a step before and after the atoms are placed
+            nh.remap(state, &mut self.bodies, dtq).map_err(|e| RunError::new(state.step, format!("fix {} ({}): {e}", self.id, self.style)))?;
+            self.set_atoms(state, true).map_err(|e| self.err(state, e))?;
+            let nh = self.nh.as_mut().expect("checked above");
+            return nh.remap(state, &mut self.bodies, dtq).map_err(|e| RunError::new(state.step, format!("fix {} ({}): {e}", self.id, self.style)));
         }
         for b in self.bodies.iter_mut() {
             let dtfm = dtf / b.mass;
@@ -665,7 +804,7 @@ impl Fix for FixRigidSmall {
         }
         Ok(())
     }
-    fn final_integrate(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+    fn final_integrate(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         // fix enforce2d's post_force came between the two halves
         if self.enforce2d {
             self.zero_out_of_plane();
@@ -675,7 +814,15 @@ impl Fix for FixRigidSmall {
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         if let Some(nh) = self.nh.as_mut() {
             nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt });
-            return self.set_atoms(state, false).map_err(|e| self.err(state, e));
+            self.set_atoms(state, false).map_err(|e| self.err(state, e))?;
+            if self.nh.as_ref().is_some_and(|nh| nh.baro.is_some()) {
+                let (p_current, _) = self.measure_pressure(state, ctx)?;
+                let volume = state.domain().map_err(|e| self.err(state, e))?.volume();
+                let nh = self.nh.as_mut().expect("checked above");
+                nh.baro.as_mut().expect("checked above").p_current = p_current;
+                nh.end_of_final(&state.units, 0.5 * state.dt, volume, run_fraction(state));
+            }
+            return Ok(());
         }
         for b in self.bodies.iter_mut() {
             let dtfm = dtf / b.mass;
@@ -693,7 +840,8 @@ impl Fix for FixRigidSmall {
     /// (in the body frame) kinetic energy over 6 degrees of freedom per body.
     fn scalar(&self, state: &State) -> Option<f64> {
         if let Some(nh) = &self.nh {
-            return Some(nh.scalar(&self.bodies, state.units.boltz, state.units.mvv2e));
+            let volume = state.domain.as_ref().map_or(0.0, |d| d.volume());
+            return Some(nh.scalar(&self.bodies, &state.units, volume));
         }
         let mut t = 0.0;
         for b in &self.bodies {
@@ -793,21 +941,30 @@ impl Fix for FixRigidSmall {
     fn thermo_tally_mut(&mut self) -> Option<&mut ThermoTally> {
         Some(&mut self.tally)
     }
-    /// rigid/nvt/small's chains (LAMMPS' restart_global); the bodies are set up anew.
+    /// The thermostat's and barostat's chains (LAMMPS' restart_global); the bodies are set up
+    /// anew.
     fn write_restart(&self) -> Option<Vec<f64>> {
-        self.nh.as_ref().filter(|nh| nh.chains.is_some()).map(|nh| nh.write_restart())
+        self.nh.as_ref().filter(|nh| nh.chains.is_some() || nh.baro.is_some()).map(|nh| nh.write_restart())
     }
     fn restart(&mut self, values: &[f64]) {
         if let Some(nh) = self.nh.as_mut() {
             nh.restart(values);
         }
     }
-    /// rigid/nvt/small's scalar is the energy of the extended system (extensive).
+    /// The thermostatted or barostatted styles' scalar is the energy of the extended system
+    /// (extensive, and in ecouple).
     fn extensive(&self, _index: Option<usize>) -> bool {
-        self.nh.as_ref().is_some_and(|nh| nh.chains.is_some())
+        self.nh.as_ref().is_some_and(|nh| nh.chains.is_some() || nh.baro.is_some())
     }
     fn couples_energy(&self) -> bool {
-        self.nh.as_ref().is_some_and(|nh| nh.chains.is_some())
+        self.extensive(None)
+    }
+    fn changes_box(&self) -> bool {
+        self.nh.as_ref().is_some_and(|nh| nh.baro.is_some())
+    }
+    /// The barostat reads the virial every step (LAMMPS' pressure->addstep(ntimestep+1)).
+    fn wants_energy(&self, _step: i64) -> bool {
+        self.changes_box()
     }
     fn set_dynamic_dof(&mut self, on: bool) {
         if let Some(nh) = self.nh.as_mut() {

@@ -63,6 +63,8 @@ fn unsupported_uses_are_located_errors() {
         ("fix 2 all rigid/nph/small molecule iso -1 1 1", "cannot be < 0.0"),
         ("fix 2 all rigid/nph/small molecule iso 1 1 0", "damping parameters must be > 0.0"),
         ("fix 2 all rigid/nph/small molecule iso 1 1 1 dilate nogroup", "dilate group ID `nogroup` does not exist"),
+        ("compute k all ke/rigid", "rigid fix ID"),
+        ("compute k all erotate/rigid 1 extra", "extra"),
     ] {
         let deck = format!("{BASE}{cmd}\nrun 0\n");
         let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
@@ -87,5 +89,16 @@ molecule tri rigid_tri.mol\nmolecule other rigid_tri.mol\nregion slab block 0 5 
         let deck = format!("{base}{fixes}run 10\n");
         let f = run_text("bad.deck", &deck, &opts).err().unwrap_or_else(|| panic!("accepted: {fixes}"));
         assert!(f.rendered.contains(want), "{fixes}: expected `{want}`:\n{}", f.rendered);
+    }
+}
+
+/// compute ke/rigid and erotate/rigid name a rigid fix: another fix or none stops the run with
+/// LAMMPS' reasons.
+#[test]
+fn rigid_energy_computes_need_a_rigid_fix() {
+    for (cmd, want) in [("compute k all ke/rigid 9", "fix ID 9 for compute ke/rigid does not exist"), ("fix 3 all nve\ncompute k all erotate/rigid 3", "compute erotate/rigid with non-rigid fix-ID 3")] {
+        let deck = format!("{BASE}{cmd}\nthermo_style custom step c_k\nrun 0\n");
+        let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
+        assert!(f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
     }
 }

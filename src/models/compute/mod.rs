@@ -29,6 +29,7 @@ pub mod pair_local;
 pub mod property_local;
 pub mod rdf;
 pub mod reduce;
+pub mod rigid_energy;
 pub mod sph_atom;
 pub mod stress_atom;
 pub mod temp;
@@ -300,6 +301,8 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("ke/atom", |d, _| Ok(Box::new(ke_atom::ComputeKeAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("erotate/sphere", |d, w| Ok(Box::new(erotate_sphere::ComputeErotateSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
+    ("ke/rigid", |d, _| Ok(Box::new(rigid_energy::ComputeRigidEnergy::from_lammps(d.id, d.groupbit, rigid_energy::Part::Translational, d.args, d.cmd)?))),
+    ("erotate/rigid", |d, _| Ok(Box::new(rigid_energy::ComputeRigidEnergy::from_lammps(d.id, d.groupbit, rigid_energy::Part::Rotational, d.args, d.cmd)?))),
     ("nbond/atom", |d, w| Ok(Box::new(nbond_atom::ComputeNBondAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("coord/atom", |d, w| Ok(Box::new(coord_atom::ComputeCoordAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("cluster/atom", |d, w| Ok(Box::new(cluster_atom::ComputeClusterAtom::from_lammps(d.id, d.groupbit, "cluster/atom", d.args, d.cmd, w)?))),

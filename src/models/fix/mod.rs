@@ -390,6 +390,11 @@ pub trait Fix: Send + Sync {
     fn rigid_body_mass(&self, _state: &State) -> Option<Vec<f64>> {
         None
     }
+    /// A rigid fix: its bodies' translational and rotational kinetic energies without mvv2e,
+    /// 1/2 sum M vcm^2 and 1/2 sum I w_body^2 (LAMMPS' extract_ke, extract_erotational).
+    fn rigid_kinetic(&self) -> Option<[f64; 2]> {
+        None
+    }
     /// `fix_modify ID dynamic/dof yes|no` (LAMMPS' Fix::dynamic): fixes that count degrees of
     /// freedom of their own recount them every step. Others ignore it.
     fn set_dynamic_dof(&mut self, _on: bool) {}

@@ -63,6 +63,19 @@ pub struct Body {
     pub nsphere: usize,
 }
 
+impl Body {
+    /// The angular velocity in the body frame, from the angular momentum and the principal
+    /// moments (0 about an axis without one).
+    fn wbody(&self) -> [f64; 3] {
+        let rot = quat::quat_to_mat(&self.quat);
+        let mut wbody = quat::transpose_matvec(&rot, &self.angmom);
+        for k in 0..3 {
+            wbody[k] = if self.inertia[k] == 0.0 { 0.0 } else { wbody[k] / self.inertia[k] };
+        }
+        wbody
+    }
+}
+
 /// A body atom: its body and its displacement from the centre in the body frame.
 #[derive(Clone, Copy, Debug)]
 struct Member {
@@ -847,15 +860,21 @@ impl Fix for FixRigidSmall {
         for b in &self.bodies {
             let vcm = b.vcm;
             t += b.mass * (vcm[0] * vcm[0] + vcm[1] * vcm[1] + vcm[2] * vcm[2]);
-            let rot = quat::quat_to_mat(&b.quat);
-            let mut wbody = quat::transpose_matvec(&rot, &b.angmom);
-            for k in 0..3 {
-                wbody[k] = if b.inertia[k] == 0.0 { 0.0 } else { wbody[k] / b.inertia[k] };
-            }
+            let wbody = b.wbody();
             t += b.inertia[0] * wbody[0] * wbody[0] + b.inertia[1] * wbody[1] * wbody[1] + b.inertia[2] * wbody[2] * wbody[2];
         }
         let tfactor = state.units.mvv2e / (6.0 * self.bodies.len() as f64 * state.units.boltz);
         Some(t * tfactor)
+    }
+    fn rigid_kinetic(&self) -> Option<[f64; 2]> {
+        let (mut ke, mut erot) = (0.0, 0.0);
+        for b in &self.bodies {
+            let v = b.vcm;
+            ke += b.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            let wbody = b.wbody();
+            erot += b.inertia[0] * wbody[0] * wbody[0] + b.inertia[1] * wbody[1] * wbody[1] + b.inertia[2] * wbody[2] * wbody[2];
+        }
+        Some([0.5 * ke, 0.5 * erot])
     }
     fn rigid_template(&self) -> Option<&str> {
         Some(self.template.as_ref().map_or("", |(id, _)| id.as_str()))

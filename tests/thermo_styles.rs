@@ -199,10 +199,10 @@ fn variable_thermo_intervals_are_lammps() {
 /// Warnings past `thermo_modify warn N` are not printed, as LAMMPS 22 Jul 2025's Error::warning:
 /// its log of this deck prints the replicate warning after `always`, none after `warn 1` (the
 /// count is already 1), the notice at the next thermo output, one after `default` (count reset),
-/// none after a negative limit. LAMMPS' notice reads "8 vs 1": besides the replicate warnings
-/// and thermo_style's (previous thermo_modify settings lost), both counted here, it counts the
-/// three run-setup warnings it suppressed (no integrating fix, no atom sorting, no ghost atoms),
-/// which dmhs does not issue.
+/// none after a negative limit. LAMMPS' notice reads "8 vs 1": besides the replicate warnings,
+/// thermo_style's (previous thermo_modify settings lost) and Verlet's (no fix with time
+/// integration), all counted here, it counts two run-setup warnings of a deck without a pair
+/// style that dmhs does not issue (atom sorting disabled, no ghost atoms).
 #[test]
 fn warning_limit_is_lammps() {
     let deck = "units lj\nboundary p p f\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nmass 1 1.0\n\
@@ -217,7 +217,7 @@ fn warning_limit_is_lammps() {
     #[rustfmt::skip]
     let want = [
         "thermo_modify warn always", "replicate 1 1 2", warn, "thermo_modify warn 1", "replicate 1 1 2", "replicate 1 1 2", "replicate 1 1 2",
-        "run 0", "WARNING: Too many warnings: 5 vs 1. All future warnings will be suppressed", "replicate 1 1 2", "run 0",
+        "run 0", "WARNING: Too many warnings: 6 vs 1. All future warnings will be suppressed", "replicate 1 1 2", "run 0",
         "thermo_modify warn default", "replicate 1 1 2", warn, "thermo_modify warn -3", "replicate 1 1 2", "run 0",
     ];
     assert_eq!(seen, want, "{text}");
@@ -241,4 +241,18 @@ fn a_new_thermo_style_drops_thermo_modify_settings() {
     let rows: Vec<&str> = text.lines().filter(|l| l.trim_start().starts_with("0 ")).map(|l| l.trim()).collect();
     let want = ["0   1             -6.7733681      1.4861111     -5.6573178", "0   1.0366051     -731.52375      110.91675     -5.6573178"];
     assert_eq!(rows, want, "{text}");
+}
+
+/// A run without a fix that moves atoms warns, as LAMMPS' Verlet::init; `run ... pre no`
+/// (no init) and minimize do not.
+#[test]
+fn a_run_without_time_integration_warns() {
+    let base = "units lj\nlattice fcc 0.8442\nregion b block 0 2 0 2 0 2\ncreate_box 1 b\ncreate_atoms 1 box\nmass 1 1\npair_style lj/cut 2.5\npair_coeff 1 1 1 1\n";
+    let warn = "WARNING: No fixes with time integration, atoms won't move";
+    for (rest, count) in [("run 1\n", 1), ("run 1\nrun 1 pre no\n", 1), ("fix 1 all nve\nrun 1\n", 0), ("minimize 0 0 10 10\n", 0), ("run 1\nrun 1\n", 2)] {
+        let opts = DeckOptions { screen: false, capture_text: true, ..Default::default() };
+        let run = run_text("in.warn", &format!("{base}{rest}"), &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+        let text = run.sim.out.captured.clone().unwrap();
+        assert_eq!(text.matches(warn).count(), count, "{rest}:\n{text}");
+    }
 }

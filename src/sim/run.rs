@@ -742,6 +742,10 @@ impl Simulation {
         let counts = brief.then_some((self.state.neighbor.nbuilds, self.state.neighbor.ndanger));
         self.state.run_window = Some((start, stop));
         self.init_run().map_err(|e| RunError::setup(self.state.step, e))?;
+        // LAMMPS' Verlet::init (skipped with `pre no`)
+        if !brief && !self.fixes.iter().any(|f| f.time_integrate()) {
+            self.out.print("WARNING: No fixes with time integration, atoms won't move");
+        }
         if let Some((nbuilds, ndanger)) = counts {
             (self.state.neighbor.nbuilds, self.state.neighbor.ndanger) = (nbuilds, ndanger);
         }

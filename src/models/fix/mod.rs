@@ -390,6 +390,11 @@ pub trait Fix: Send + Sync {
     fn rigid_body_mass(&self, _state: &State) -> Option<Vec<f64>> {
         None
     }
+    /// The fix moves atoms in time (LAMMPS' time_integrate: the nve family, the Nose-Hoover
+    /// fixes, the rigid fixes, fix move, fix sph); a run with none warns that atoms won't move.
+    fn time_integrate(&self) -> bool {
+        false
+    }
     /// A rigid fix: its bodies' translational and rotational kinetic energies without mvv2e,
     /// 1/2 sum M vcm^2 and 1/2 sum I w_body^2 (LAMMPS' extract_ke, extract_erotational).
     fn rigid_kinetic(&self) -> Option<[f64; 2]> {

@@ -305,6 +305,9 @@ impl Fix for FixMove {
     fn groupbit(&self) -> u32 {
         self.groupbit
     }
+    fn time_integrate(&self) -> bool {
+        true
+    }
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }

@@ -695,6 +695,9 @@ impl Fix for FixRigidSmall {
     fn groupbit(&self) -> u32 {
         self.groupbit
     }
+    fn time_integrate(&self) -> bool {
+        true
+    }
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, pre_exchange: true, post_force: self.langevin.is_some(), final_integrate: true, ..FixHooks::default() }
     }

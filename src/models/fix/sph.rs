@@ -119,6 +119,9 @@ impl Fix for FixSph {
     fn groupbit(&self) -> u32 {
         self.groupbit
     }
+    fn time_integrate(&self) -> bool {
+        true
+    }
     fn hooks(&self) -> FixHooks {
         FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
     }

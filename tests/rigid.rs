@@ -102,3 +102,27 @@ fn rigid_energy_computes_need_a_rigid_fix() {
         assert!(f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
     }
 }
+
+/// rigid/npt/small's chains and box state travel through write_restart/read_restart: the
+/// continued run prints LAMMPS 22 Jul 2025's rows for this deck (its log, 8 digits).
+#[test]
+fn rigid_barostat_restart_is_lammps() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("rnpt.restart");
+    let fix = "fix 1 all rigid/npt/small molecule temp 1.5 1.5 0.05 x 0.2 0.2 0.5 y 0.2 0.2 0.5 z 0.1 0.1 0.5 couple xy tparam 4 1 3 pchain 3\n";
+    let pair = "pair_style lj/cut 1.122462048309373\npair_coeff * * 1.0 0.9\nneigh_modify every 1 delay 0 check yes exclude molecule/intra all\n";
+    let deck = format!(
+        "units lj\natom_style angle\nboundary p p p\nread_data rigid_clumps.data\n{pair}neighbor 0.3 bin\n{fix}timestep 0.0005\nrun 200\nwrite_restart {f}\nclear\nread_restart {f}\n{pair}{fix}thermo_style custom step temp press vol f_1\nthermo 50\nrun 100\n",
+        f = file.display()
+    );
+    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(thermo_tables::root().join("lammps-refs/decks")), ..Default::default() };
+    let run = run_text("in.restart", &deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let rows = table(run.sim.out.captured.as_deref().unwrap()).1;
+    let lammps = [[200.0, 1.6843836, 0.074194793, 1320.6079, 6.753716], [250.0, 1.6832797, 0.044436864, 1320.4623, 6.6880978], [300.0, 1.6182764, 0.047026311, 1315.596, 6.6239891]];
+    assert_eq!(rows.len(), lammps.len(), "{rows:?}");
+    for (ours, theirs) in rows.iter().zip(&lammps) {
+        for (a, b) in ours.iter().zip(theirs) {
+            assert!((a - b).abs() <= 5e-8 * b.abs().max(1e-300), "{ours:?} against LAMMPS {theirs:?}");
+        }
+    }
+}

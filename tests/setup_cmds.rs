@@ -89,3 +89,19 @@ fn displace_atoms_move_in_2d_ignores_the_z_word() {
     // y moved by the x that x's move left (3), as LAMMPS
     assert_eq!(dump.lines().last().unwrap(), "1 3 4 0", "{dump}");
 }
+
+/// `clear` starts a new simulation inside the deck, as LAMMPS': the variables stay, the units,
+/// box, atoms, groups and fixes are gone (the same IDs can be defined again). The printed lines
+/// are LAMMPS 22 Jul 2025's for this deck.
+#[test]
+fn clear_keeps_only_the_variables() {
+    let deck = "variable a equal 2.5\nunits si\nregion b block 0 4 0 4 0 4\ncreate_box 1 b\ncreate_atoms 1 single 1 1 1\nmass 1 1.0\ngroup g id 1\nfix 1 all nve\n\
+                clear\nprint \"a=${a}\"\nregion b block 0 2 0 2 0 2\ncreate_box 1 b\nprint \"atoms=$(atoms) dt=$(dt)\"\nfix 1 all nve\ngroup g id 1\nprint \"count=$(count(g))\"\n";
+    let opts = dmhs::deck::DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let run = dmhs::deck::run_text("in.clear", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let text = run.sim.out.captured.clone().unwrap();
+    let printed: Vec<&str> = text.lines().filter(|l| l.starts_with("a=") || l.starts_with("atoms=") || l.starts_with("count=")).collect();
+    assert_eq!(printed, ["a=2.5", "atoms=0 dt=0.0050000000000000001041", "count=0"], "{text}");
+    let bad = dmhs::deck::run_text("in.bad", "clear now\n", &Default::default()).err().expect("an error");
+    assert!(bad.rendered.contains("in.bad:1"), "{}", bad.rendered);
+}

@@ -25,6 +25,7 @@ type Handler = fn(&mut Simulation, &Command, &mut SourceMap) -> DResult<()>;
 /// Every command the engine implements, with its handler.
 const COMMANDS: &[(&str, Handler)] = &[
     ("units", settings::units),
+    ("clear", settings::clear),
     ("dimension", settings::dimension),
     ("boundary", settings::boundary),
     ("atom_style", settings::atom_style),

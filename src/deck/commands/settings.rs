@@ -495,3 +495,31 @@ pub fn dmhs_stability(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
     }
     Ok(())
 }
+
+/// `clear`: atoms, box, styles, fixes, computes, groups, regions and settings back to a new
+/// simulation's, as LAMMPS' clear (a new LAMMPS instance inside the same input); the variables
+/// (and atom-style random()'s generator), the log and screen, and the deck's options (base
+/// folder, crosscheck capture, check mode, stability guard) stay.
+pub fn clear(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
+    Args::new(cmd, "clear").finish()?;
+    if sim.state.decomp.is_some() {
+        return Err(Diagnostic::at(cmd.span, "clear is not supported on several ranks (mpiexec) yet", "not under mpiexec"));
+    }
+    let mut fresh = Simulation::new();
+    std::mem::swap(&mut fresh.variables, &mut sim.variables);
+    std::mem::swap(&mut fresh.random_atom, &mut sim.random_atom);
+    std::mem::swap(&mut fresh.out, &mut sim.out);
+    std::mem::swap(&mut fresh.command_log, &mut sim.command_log);
+    std::mem::swap(&mut fresh.capture_setup, &mut sim.capture_setup);
+    std::mem::swap(&mut fresh.capture_checkpoints, &mut sim.capture_checkpoints);
+    std::mem::swap(&mut fresh.guard, &mut sim.guard);
+    fresh.base_dir = sim.base_dir.take();
+    fresh.want_capture = sim.want_capture;
+    fresh.capture_first_step = sim.capture_first_step;
+    fresh.check_only = sim.check_only;
+    fresh.checked_runs = sim.checked_runs;
+    fresh.runtime_failed = sim.runtime_failed;
+    fresh.cancel = sim.cancel.clone();
+    *sim = fresh;
+    Ok(())
+}

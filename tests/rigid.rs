@@ -126,3 +126,18 @@ fn rigid_barostat_restart_is_lammps() {
         }
     }
 }
+
+/// A `velocity create` after fix rigid/small and before the first run counts no rigid degrees
+/// of freedom (LAMMPS' FixRigidSmall::dof before its bodies are set up), so the velocities are
+/// LAMMPS': the step-0 temperature, with the bodies' dof removed, is LAMMPS 22 Jul 2025's
+/// 1.0179873874876 (its log of this deck, %.15g) and the kinetic energy 0.742282470043043.
+#[test]
+fn velocity_before_the_first_run_counts_no_rigid_dof() {
+    let deck = "units lj\natom_style angle\nboundary p p p\nread_data rigid_clumps.data\npair_style lj/cut 1.122462048309373\npair_coeff * * 1.0 0.9\n\
+                neighbor 0.3 bin\nneigh_modify every 1 delay 0 check yes exclude molecule/intra all\nfix 1 all rigid/small molecule\nvelocity all create 1.0 12345\n\
+                timestep 0.0005\nthermo_style custom step temp ke\nthermo_modify format float %.15g\nrun 0\n";
+    let opts = DeckOptions { screen: false, capture_text: true, base_dir: Some(thermo_tables::root().join("lammps-refs/decks")), ..Default::default() };
+    let run = run_text("in.vel", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let rows = table(run.sim.out.captured.as_deref().unwrap()).1;
+    assert_eq!(rows[0][1..], [1.0179873874876, 0.742282470043043], "{rows:?}");
+}

@@ -104,6 +104,9 @@ pub struct FixRigidSmall {
     /// create_bodies: bodies in the local order of their owning atoms, kept through sorts);
     /// bodies inserted later follow, by molecule ID.
     rank: HashMap<i64, usize>,
+    /// A run has begun, which sets the bodies up (LAMMPS' setupflag): before, they remove no
+    /// degrees of freedom from temperatures (a `velocity create` before the first run).
+    set_up: bool,
     /// The members by local index (`slot`), valid while the owned atoms' IDs are `tags`: the
     /// per-step passes read this, not the map by ID.
     local: LocalMembers,
@@ -278,7 +281,7 @@ impl FixRigidSmall {
         let nh = (style != "rigid/small").then(|| RigidNh::new(chains, baro, t_iter, t_order));
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
         let rank = Self::creation_order(state, groupbit);
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, local: LocalMembers::default() })
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default() })
     }
 
     /// LAMMPS' checks of the barostat's settings (FixRigidNHSmall's constructor).
@@ -709,6 +712,7 @@ impl Fix for FixRigidSmall {
             return Err(format!("fix enforce2d {} must be defined after fix {} ({})", f.id(), self.id, self.style));
         }
         self.enforce2d = state.dimension == 2 && ctx.others[1].iter().any(|f| f.style() == "enforce2d");
+        self.set_up = true;
         if let Some(nh) = self.nh.as_mut().filter(|nh| nh.baro.is_some()) {
             if let Some(f) = ctx.other_fixes().find(|f| f.style() == "deform" || f.changes_box()) {
                 return Err(format!("fix {} ({}) with fix {} ({}): dmhs does not combine a rigid barostat with another fix that changes the box", self.id, self.style, f.id(), f.style()));
@@ -926,8 +930,13 @@ impl Fix for FixRigidSmall {
         Ok(())
     }
     fn dof_removed(&self, state: &State, groupbit: u32) -> f64 {
-        // LAMMPS' FixRigidSmall::dof: each body wholly in the temperature group keeps 6 (3d;
-        // 5 if linear) or 3 (2d) degrees of freedom of its 3N+6M (2N+3M)
+        // LAMMPS' FixRigidSmall::dof: none before the bodies are set up (LAMMPS warns "Cannot
+        // count rigid body degrees-of-freedom before bodies are fully initialized"); then each
+        // body wholly in the temperature group keeps 6 (3d; 5 if linear) or 3 (2d) degrees of
+        // freedom of its 3N+6M (2N+3M)
+        if !self.set_up {
+            return 0.0;
+        }
         let (bodies, members) = self.assign(state);
         let a = &state.atoms;
         let mut in_group = vec![0usize; bodies.len()];

@@ -2,6 +2,8 @@
 //! FixBoxRelax): the coupling of the diagonal pressures and the strain energy of a deviatoric
 //! target.
 
+use crate::engine::domain::Dilation;
+use crate::engine::state::State;
 use dmhs_parser::{Args, DResult};
 
 /// `couple`: which diagonal pressures are averaged into one.
@@ -72,4 +74,32 @@ pub fn strain_trace(s: &[f64; 6], h: &[f64; 6]) -> f64 {
     let d1 = s[5] * (h[5] * h[1] + h[4] * h[3]) + s[1] * (h[1] * h[1] + h[3] * h[3]) + s[3] * (h[2] * h[3]);
     let d2 = s[4] * (h[4] * h[2]) + s[3] * (h[3] * h[2]) + s[2] * (h[2] * h[2]);
     0.5 * (d0 + d1 + d2)
+}
+
+/// A barostat's half step of the box (LAMMPS' remap): each length k with `scale[k] =
+/// Some((fixed point, factor))` scaled about its fixed point, then the atoms (all, or the group
+/// `dilate`'s) moved with the box in box fractions (x2lamda, new box, lamda2x). Returns the
+/// dilation, for other points that follow the box (rigid bodies' centres).
+pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], dilate: Option<u32>) -> Result<Dilation, String> {
+    let dom = state.domain.as_mut().ok_or("no simulation box")?;
+    let old = dom.clone();
+    for k in 0..3 {
+        if let Some((fixed, expfac)) = scale[k] {
+            let (oldlo, oldhi) = (dom.lo[k], dom.hi[k]);
+            dom.lo[k] = (oldlo - fixed) * expfac + fixed;
+            dom.hi[k] = (oldhi - fixed) * expfac + fixed;
+        }
+    }
+    let prd = dom.prd();
+    if (0..3).any(|k| !(prd[k] > 0.0) || !prd[k].is_finite()) {
+        return Err(format!("the box length became {prd:?} - simulation unstable"));
+    }
+    let dilation = Dilation::new(&old, dom);
+    let a = &mut state.atoms;
+    for i in 0..a.nlocal {
+        if dilate.is_none_or(|bit| a.mask[i] & bit != 0) {
+            dilation.apply(&mut a.x[i]);
+        }
+    }
+    Ok(dilation)
 }

@@ -275,12 +275,8 @@ impl Fix for FixDeposit {
         if !state.regions.iter().any(|r| r.id == self.region) {
             return Err(format!("region ID {} for fix deposit does not exist", self.region));
         }
-        if let Some(id) = &self.rigid {
-            let f = ctx.other_fixes().find(|f| f.id() == id).ok_or_else(|| format!("fix deposit rigid fix ID {id} does not exist"))?;
-            let Some(template) = f.rigid_template() else { return Err(format!("fix deposit rigid fix {id} ({}) is not a rigid/small fix", f.style())) };
-            if Some(template) != self.mol.as_ref().map(|m| m.id.as_str()) {
-                return Err("fix deposit and fix rigid/small not using same molecule template ID".into());
-            }
+        if let (Some(id), Some(m)) = (&self.rigid, &self.mol) {
+            super::check_rigid_insert(ctx, "deposit", id, &m.id)?;
         }
         Ok(())
     }

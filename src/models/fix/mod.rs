@@ -129,6 +129,18 @@ pub struct FixCtx<'a> {
     pub expressions: &'a mut dyn Expressions,
 }
 
+/// LAMMPS' init checks of a fix that inserts molecules as rigid bodies (`who`: pour,
+/// deposit): the rigid fix `fix_id` exists, is of the rigid/small family and makes its bodies
+/// from the same molecule template.
+pub fn check_rigid_insert(ctx: &FixCtx, who: &str, fix_id: &str, template: &str) -> Result<(), String> {
+    let f = ctx.other_fixes().find(|f| f.id() == fix_id).ok_or_else(|| format!("fix {who} rigid fix ID {fix_id} does not exist"))?;
+    let Some(t) = f.rigid_template() else { return Err(format!("fix {who} rigid fix {fix_id} ({}) is not a rigid/small fix", f.style())) };
+    if t != template {
+        return Err(format!("fix {who} and fix rigid/small not using same molecule template ID"));
+    }
+    Ok(())
+}
+
 impl FixCtx<'_> {
     /// The other fixes in definition order.
     pub fn other_fixes(&self) -> impl Iterator<Item = &dyn Fix> {

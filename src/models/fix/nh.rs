@@ -11,10 +11,9 @@
 //! loop, mtk yes, no drag, the box centre fixed. The scalar is the energy of the chains and the
 //! barostat.
 
-use super::box_stress::{strain_trace, Couple};
+use super::box_stress::{dilate_box, strain_trace, Couple};
 use super::thermostat::{run_fraction, GroupTemp};
 use super::{Fix, FixCtx, FixHooks};
-use crate::engine::domain::Dilation;
 use crate::models::compute::pressure::{scalar_pressure, tensor_pressure};
 use crate::models::compute::temp_bias;
 use crate::engine::state::{RunError, State};
@@ -479,33 +478,13 @@ impl FixNh {
     /// fixed point, the atoms (all, or the dilate group's) with it in box fractions (LAMMPS'
     /// remap).
     fn remap(&mut self, state: &mut State) -> Result<(), RunError> {
-        let step = state.step;
         let dto = 0.5 * state.dt;
         let b = self.baro.as_mut().expect("a barostat");
         for k in 0..3 {
             b.omega[k] += dto * b.omega_dot[k];
         }
-        let dom = state.domain.as_mut().ok_or_else(|| RunError::new(step, format!("fix {}: no box", self.style)))?;
-        let old = dom.clone();
-        for k in 0..3 {
-            if b.p_flag[k] {
-                let (oldlo, oldhi) = (dom.lo[k], dom.hi[k]);
-                let expfac = (dto * b.omega_dot[k]).exp();
-                dom.lo[k] = (oldlo - b.fixedpoint[k]) * expfac + b.fixedpoint[k];
-                dom.hi[k] = (oldhi - b.fixedpoint[k]) * expfac + b.fixedpoint[k];
-            }
-        }
-        let prd = dom.prd();
-        if (0..3).any(|k| !(prd[k] > 0.0) || !prd[k].is_finite()) {
-            return Err(RunError::new(step, format!("fix {} {}: the box length became {prd:?} - simulation unstable", self.style, self.id)));
-        }
-        let dilation = Dilation::new(&old, dom);
-        let a = &mut state.atoms;
-        for i in 0..a.nlocal {
-            if b.dilate.is_none_or(|bit| a.mask[i] & bit != 0) {
-                dilation.apply(&mut a.x[i]);
-            }
-        }
+        let scale = std::array::from_fn(|k| b.p_flag[k].then(|| (b.fixedpoint[k], (dto * b.omega_dot[k]).exp())));
+        dilate_box(state, scale, b.dilate).map_err(|e| RunError::new(state.step, format!("fix {} {}: {e}", self.style, self.id)))?;
         Ok(())
     }
 

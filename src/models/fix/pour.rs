@@ -443,10 +443,7 @@ impl Fix for FixPour {
         self.nfreq = nfreq;
         self.next = (self.ninserted < self.ninsert).then_some(state.step + 1);
         if let Some((m, Some(id))) = &self.mol {
-            let template = ctx.other_fixes().find(|f| f.id() == id).and_then(|f| f.rigid_template());
-            if template != Some(m.id.as_str()) {
-                return Err("fix pour and fix rigid/small not using same molecule template ID".into());
-            }
+            super::check_rigid_insert(ctx, "pour", id, &m.id)?;
         }
         Ok(())
     }

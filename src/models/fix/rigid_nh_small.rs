@@ -10,9 +10,8 @@
 //! the placing of the atoms, and the bodies' momenta with it. The chains are integrated with
 //! Yoshida-Suzuki weights.
 
-use super::box_stress::Couple;
+use super::box_stress::{dilate_box, Couple};
 use super::rigid_small::Body;
-use crate::engine::domain::Dilation;
 use crate::engine::quat;
 use crate::engine::state::State;
 
@@ -66,6 +65,8 @@ pub struct Baro {
     p_hydro: f64,
     /// The coupled current pressure, measured by the caller.
     pub p_current: [f64; 3],
+    /// The degrees of freedom of that pressure's temperature (group all), counted at setup.
+    pub dof: f64,
     p_freq_max: f64,
     pdim: usize,
     vol0: f64,
@@ -96,6 +97,7 @@ impl Baro {
             p_target: [0.0; 3],
             p_hydro: 0.0,
             p_current: [0.0; 3],
+            dof: 0.0,
             p_freq_max: 0.0,
             pdim: p_flag.iter().filter(|&&f| f).count(),
             vol0: 0.0,
@@ -264,9 +266,6 @@ impl RigidNh {
             self.temp_target(fraction);
         } else if self.baro.is_some() {
             self.t_target = if t_now == 0.0 { 1.0 } else { t_now };
-        }
-        if let Some(b) = self.baro.as_mut() {
-            b.press_target(fraction);
         }
         let (nf_t, nf_r, g_f) = (self.nf_t as f64, self.nf_r as f64, self.g_f());
         let kt = u.boltz * self.t_target;
@@ -467,28 +466,9 @@ impl RigidNh {
         for i in 0..3 {
             b.epsilon[i] += dtq * b.epsilon_dot[i];
         }
-        let dom = state.domain.as_mut().ok_or("no simulation box")?;
-        let old = dom.clone();
-        for i in 0..3 {
-            if b.p_flag[i] {
-                let (oldlo, oldhi) = (dom.lo[i], dom.hi[i]);
-                let ctr = 0.5 * (oldlo + oldhi);
-                let expfac = (dtq * b.epsilon_dot[i]).exp();
-                dom.lo[i] = (oldlo - ctr) * expfac + ctr;
-                dom.hi[i] = (oldhi - ctr) * expfac + ctr;
-            }
-        }
-        let prd = dom.prd();
-        if (0..3).any(|k| !(prd[k] > 0.0) || !prd[k].is_finite()) {
-            return Err(format!("the box length became {prd:?} - simulation unstable"));
-        }
-        let dilation = Dilation::new(&old, dom);
-        let a = &mut state.atoms;
-        for i in 0..a.nlocal {
-            if b.dilate.is_none_or(|bit| a.mask[i] & bit != 0) {
-                dilation.apply(&mut a.x[i]);
-            }
-        }
+        let dom = state.domain.as_ref().ok_or("no simulation box")?;
+        let scale = std::array::from_fn(|i| b.p_flag[i].then(|| (0.5 * (dom.lo[i] + dom.hi[i]), (dtq * b.epsilon_dot[i]).exp())));
+        let dilation = dilate_box(state, scale, b.dilate)?;
         for body in bodies.iter_mut() {
             dilation.apply(&mut body.xcm);
         }

@@ -316,12 +316,19 @@ impl FixRigidSmall {
     }
 
     /// The pressure the barostat reads (LAMMPS' compute fixID_press on compute fixID_temp,
-    /// group all, coupled) and that temperature.
-    fn measure_pressure(&self, state: &State, ctx: &mut FixCtx) -> Result<([f64; 3], f64), RunError> {
-        let Some(b) = self.nh.as_ref().and_then(|nh| nh.baro.as_ref()) else { return Ok(([0.0; 3], 0.0)) };
-        let (virial, fix_dof) = ctx.eval(state, self, |w, _| Ok((w.virial(), w.fix_dof(1))))?;
+    /// group all, coupled) and that temperature. `setup`: the temperature's degrees of freedom
+    /// are counted (LAMMPS' compute setup, once per run), else the setup's count is used.
+    fn measure_pressure(&mut self, state: &State, ctx: &mut FixCtx, setup: bool) -> Result<([f64; 3], f64), RunError> {
+        if !self.changes_box() {
+            return Ok(([0.0; 3], 0.0));
+        }
         let spec = crate::models::compute::temp_bias::TempSpec::plain(1);
-        let dof = spec.dof(state, fix_dof);
+        let (virial, fix_dof) = ctx.eval(state, &*self, |w, _| Ok((w.virial(), setup.then(|| w.fix_dof(1)))))?;
+        if let Some(fix_dof) = fix_dof {
+            self.nh.as_mut().and_then(|nh| nh.baro.as_mut()).expect("a barostat").dof = spec.dof(state, fix_dof);
+        }
+        let b = self.nh.as_ref().and_then(|nh| nh.baro.as_ref()).expect("a barostat");
+        let dof = b.dof;
         let (t, _) = spec.temperature(state, dof).map_err(|e| self.err(state, e))?;
         let volume = state.domain().map_err(|e| self.err(state, e))?.volume();
         let u = &state.units;
@@ -738,7 +745,7 @@ impl Fix for FixRigidSmall {
         for v in self.tally.virial.iter_mut() {
             *v *= 2.0;
         }
-        let (p_current, t_now) = self.measure_pressure(state, ctx)?;
+        let (p_current, t_now) = self.measure_pressure(state, ctx, true)?;
         let volume = state.domain().map_err(|e| self.err(state, e))?.volume();
         if let Some(nh) = self.nh.as_mut() {
             if let Some(b) = nh.baro.as_mut() {
@@ -787,22 +794,21 @@ impl Fix for FixRigidSmall {
     /// kicks scaled to the target temperature of the run's ramp.
     fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         let Some(l) = self.langevin.as_mut() else { return Ok(()) };
-        let (begin, end) = state.run_window.unwrap_or((state.step, state.step));
-        let delta = (state.step - begin) as f64 / (end - begin) as f64;
-        let t_target = l.t_start + delta * (l.t_stop - l.t_start);
+        let t_target = l.t_start + run_fraction(state) * (l.t_stop - l.t_start);
         let tsqrt = t_target.sqrt();
         let u = &state.units;
-        let dt = state.dt;
+        let kick = (24.0 * u.boltz / l.t_period / state.dt / u.mvv2e).sqrt();
+        // the rotational drag and kick are the same for every body
+        let (gamma1_rot, gamma2_rot) = (-1.0 / l.t_period / u.ftm2v, tsqrt * kick / u.ftm2v);
         l.extra.resize(self.bodies.len(), [0.0; 6]);
         for (b, e) in self.bodies.iter().zip(l.extra.iter_mut()) {
             let gamma1 = -b.mass / l.t_period / u.ftm2v;
-            let gamma2 = b.mass.sqrt() * tsqrt * (24.0 * u.boltz / l.t_period / dt / u.mvv2e).sqrt() / u.ftm2v;
+            let gamma2 = b.mass.sqrt() * tsqrt * kick / u.ftm2v;
             for k in 0..3 {
                 e[k] = gamma1 * b.vcm[k] + gamma2 * (l.random.uniform() - 0.5);
             }
             // the torque in the body frame, where the moments are
-            let gamma1 = -1.0 / l.t_period / u.ftm2v;
-            let gamma2 = tsqrt * (24.0 * u.boltz / l.t_period / dt / u.mvv2e).sqrt() / u.ftm2v;
+            let (gamma1, gamma2) = (gamma1_rot, gamma2_rot);
             let wbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.omega);
             let mut tbody = [0.0; 3];
             for k in 0..3 {
@@ -835,8 +841,8 @@ impl Fix for FixRigidSmall {
         if let Some(nh) = self.nh.as_mut() {
             nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt });
             self.set_atoms(state, false).map_err(|e| self.err(state, e))?;
-            if self.nh.as_ref().is_some_and(|nh| nh.baro.is_some()) {
-                let (p_current, _) = self.measure_pressure(state, ctx)?;
+            if self.changes_box() {
+                let (p_current, _) = self.measure_pressure(state, ctx, false)?;
                 let volume = state.domain().map_err(|e| self.err(state, e))?.volume();
                 let nh = self.nh.as_mut().expect("checked above");
                 nh.baro.as_mut().expect("checked above").p_current = p_current;
@@ -925,8 +931,8 @@ impl Fix for FixRigidSmall {
         let b = self.bodies.len() - 1;
         for (m, &displace) in t.dxbody.iter().enumerate() {
             self.members.insert(ins.tagprev + m as i64 + 1, Member { body: b, displace, sphere: t.spheres });
-            self.local.tags.clear();
         }
+        self.local.tags.clear();
         Ok(())
     }
     fn dof_removed(&self, state: &State, groupbit: u32) -> f64 {

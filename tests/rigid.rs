@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 10] = ["rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 14] = ["rigid_clumps_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -45,15 +45,25 @@ fn fix_modify_virial_switches_the_constraint_virial() {
 fn unsupported_uses_are_located_errors() {
     for (cmd, want) in [
         ("fix_modify 1 energy yes", "does not support fix_modify energy"),
-        ("fix 2 all rigid molecule", "fix rigid is not supported"),
-        ("fix 2 all rigid/nve/small molecule langevin 1 1 1 5", "belongs to rigid/small"),
+        ("fix 2 all rigid group 1 nogroup", "could not find fix rigid group ID `nogroup`"),
+        ("fix 2 all rigid custom i_body", "fix rigid custom is not supported yet"),
+        ("fix 2 all rigid sphere", "illegal fix rigid body style `sphere`"),
+        ("fix 2 all rigid molecule force 3 on on on", "body range"),
+        ("fix 2 all rigid molecule torque 1 on maybe on", "maybe"),
+        ("fix 2 all rigid molecule infile bodies.txt", "infile is not supported yet"),
+        ("fix 2 all rigid/nve molecule langevin 1 1 1 5", "belongs to rigid and rigid/small"),
+        ("fix 2 all rigid/nve molecule force 1 off on on", "switched off is not supported yet"),
+        ("fix 2 all rigid/nvt molecule", "did not set temp for fix rigid/nvt"),
+        ("fix 2 all rigid molecule mol t", "molecule template `t` does not exist"),
+        ("fix_modify 1 bodyforces sometimes", "sometimes"),
+        ("fix 2 all rigid/nve/small molecule langevin 1 1 1 5", "belongs to rigid and rigid/small"),
         ("fix 2 all rigid/small molecule langevin 1 1 0 5", "langevin period must be > 0.0"),
         ("fix 2 all rigid/nve/small molecule temp 1 1 1", "illegal fix rigid/nve/small keyword `temp`"),
         ("fix 2 all rigid/nvt/small molecule", "did not set temp for fix rigid/nvt/small"),
         ("fix 2 all rigid/nvt/small molecule temp 1 0 1", "target temperature for fix rigid/nvt/small cannot be 0.0"),
         ("fix 2 all rigid/nvt/small molecule temp 1 1 0", "period must be > 0.0"),
         ("fix 2 all rigid/nvt/small molecule temp 1 1 1 tparam 4 1 4", "t_order must be 3 or 5"),
-        ("fix 2 all rigid/nvt/small molecule temp 1 1 1 iso 1 1 1", "rigid/npt/small and rigid/nph/small"),
+        ("fix 2 all rigid/nvt/small molecule temp 1 1 1 iso 1 1 1", "rigid/npt, rigid/nph and their /small forms"),
         ("fix 2 all rigid/nph/small molecule temp 1 1 1 iso 1 1 1", "illegal fix rigid/nph/small keyword `temp`"),
         ("fix 2 all rigid/nph/small molecule", "pressure control must be used with fix rigid/nph/small"),
         ("fix 2 all rigid/npt/small molecule iso 1 1 1", "did not set temp for fix rigid/npt/small"),
@@ -140,4 +150,21 @@ fn velocity_before_the_first_run_counts_no_rigid_dof() {
     let run = run_text("in.vel", deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
     let rows = table(run.sim.out.captured.as_deref().unwrap()).1;
     assert_eq!(rows[0][1..], [1.0179873874876, 0.742282470043043], "{rows:?}");
+}
+
+/// `reinit no` keeps the first run's bodies: a `velocity` command between runs is undone by the
+/// bodies' velocities at the next setup, where `reinit yes` (the default) takes the atoms' new
+/// velocities into new bodies (LAMMPS' FixRigid::init).
+#[test]
+fn fix_rigid_reinit_no_keeps_the_bodies() {
+    let ke = |reinit: &str| -> Vec<Vec<f64>> {
+        let deck = BASE.replace("fix 1 all rigid/small molecule\n", &format!("fix 1 all rigid molecule{reinit}\n"));
+        let deck = format!("{deck}thermo_style custom step ke\nthermo_modify format float %.17g\nthermo 10\nrun 10\nvelocity all set 0 0 0\nrun 10\n");
+        let run = run_text("ok.deck", &deck, &DeckOptions { screen: false, capture_text: true, ..Default::default() }).unwrap_or_else(|f| panic!("{}", f.rendered));
+        table(run.sim.out.captured.as_deref().unwrap()).1
+    };
+    // the last table: the second run's steps 10 and 20 (the dimers move at 0.5 before it)
+    let (yes, no) = (ke(""), ke(" reinit no"));
+    assert_eq!(yes[0][1], 0.0, "reinit yes: the bodies take the atoms' zero velocities: {yes:?}");
+    assert!(no[0][1] > 0.1, "reinit no: the bodies keep moving: {no:?}");
 }

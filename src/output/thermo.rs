@@ -130,6 +130,7 @@ pub const KEYWORDS: &[(&str, &str)] = &[
     ("etotal", "TotEng"),
     ("ecouple", "Ecouple"),
     ("econserve", "Econserve"),
+    ("enthalpy", "Enthalpy"),
     ("evdwl", "E_vdwl"),
     ("ecoul", "E_coul"),
     ("epair", "E_pair"),
@@ -251,6 +252,11 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "pe" => ext(w.pe()),
             "ke" => ext(kinetic()?),
             "etotal" => ext(w.pe()) + ext(kinetic()?),
+            // LAMMPS' compute_enthalpy: etotal + press vol / nktv2p (vol per atom when normalised)
+            "enthalpy" => {
+                let vol = ext(box_value(&|d| d.volume())?);
+                ext(w.pe()) + ext(kinetic()?) + press_compute(w, thermo)?.scalar(w)? * vol / w.state.units.nktv2p
+            }
             "ecouple" => ext(w.ecouple()),
             // LAMMPS adds the coupling energy to the total energy
             "econserve" => ext(w.ecouple()) + (ext(w.pe()) + ext(kinetic()?)),

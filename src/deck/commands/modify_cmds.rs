@@ -117,7 +117,7 @@ const WITH_VIRIAL: &str = "wall/lj93, wall/lj126, wall/lj1043, wall/harmonic, wa
 /// measures its temperature with compute CID, temp or a bias compute, its extra/dof as set
 /// when fix_modify is given, and removes the compute's bias while it scales), `energy yes|no` (the fix's energy counts in pe and in the
 /// minimizer's objective), `virial yes|no` (its virial counts in the pressure),
-/// `dynamic/dof yes|no`; `respa` and `bodyforces` are refused.
+/// `dynamic/dof yes|no`, `bodyforces early|late` (rigid fixes); `respa` is refused.
 pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, "fix_modify ID keyword value ... (temp compute-ID, energy yes|no, virial yes|no, dynamic/dof yes|no)");
     let id = a.word("fix ID")?;
@@ -166,8 +166,8 @@ pub fn fix_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             }
             "respa" => return Err(a.error_at(kw, "fix_modify respa: dmhs has no rRESPA integrator (run_style respa)", "not supported")),
             "bodyforces" => {
-                let f = &sim.fixes[k];
-                return Err(a.error_at(kw, format!("fix {} ({}) does not support fix_modify bodyforces (a fix rigid keyword; dmhs refuses fix rigid)", f.id(), f.style()), "not supported"));
+                let early = a.choice("bodyforces timing (early or late)", &["late", "early"])? == 1;
+                sim.fixes[k].set_body_forces_early(early).map_err(|e| a.error_at(kw, e, "not a rigid fix"))?;
             }
             _ => return Err(a.unknown_keyword(kw, &["temp", "energy", "virial", "dynamic/dof", "respa", "bodyforces"])),
         }

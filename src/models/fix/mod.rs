@@ -45,6 +45,7 @@ pub mod sampling;
 pub mod print;
 pub mod property_atom;
 pub mod recenter;
+pub mod rigid;
 pub mod rigid_nh_small;
 pub mod rigid_small;
 pub mod setforce;
@@ -415,6 +416,10 @@ pub trait Fix: Send + Sync {
     /// `fix_modify ID dynamic/dof yes|no` (LAMMPS' Fix::dynamic): fixes that count degrees of
     /// freedom of their own recount them every step. Others ignore it.
     fn set_dynamic_dof(&mut self, _on: bool) {}
+    /// `fix_modify ID bodyforces early|late` (the rigid fixes' modify_param); others refuse.
+    fn set_body_forces_early(&mut self, _early: bool) -> Result<(), String> {
+        Err(format!("fix {} ({}) does not support fix_modify bodyforces (a keyword of the rigid fixes)", self.id(), self.style()))
+    }
     /// A rigid fix: the molecule template its inserted bodies are made from (`mol TEMPLATE`;
     /// LAMMPS' extract("onemol")), `Some("")` without one. `None`: not a rigid fix.
     fn rigid_template(&self) -> Option<&str> {
@@ -608,7 +613,11 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("rigid/nvt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt/small", d.args, d.cmd, state)?))),
     ("rigid/npt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt/small", d.args, d.cmd, state)?))),
     ("rigid/nph/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph/small", d.args, d.cmd, state)?))),
-    ("rigid", |d, _| Ok(Box::new(rigid_small::FixRigidSmall::refuse_rigid(d.args, d.cmd, d.style)?))),
+    ("rigid", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid", d.args, d.cmd, state)?))),
+    ("rigid/nve", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve", d.args, d.cmd, state)?))),
+    ("rigid/nvt", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt", d.args, d.cmd, state)?))),
+    ("rigid/npt", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt", d.args, d.cmd, state)?))),
+    ("rigid/nph", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph", d.args, d.cmd, state)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 

@@ -545,9 +545,8 @@ impl RigidNh {
         }
     }
 
-    /// The energy of the extended system (LAMMPS' compute_scalar): the bodies' translational
-    /// and quaternion kinetic energies, the chains' energies, the barostat's (its kinetic
-    /// energy, P0 V and its chain).
+    /// The energy of the extended system (LAMMPS' FixRigidNHSmall::compute_scalar): the bodies'
+    /// translational and quaternion kinetic energies, then [`RigidNh::extended`].
     pub fn scalar(&self, bodies: &[Body], u: &crate::engine::units::Units, volume: f64) -> f64 {
         let (mut ke_t, mut ke_q) = (0.0, 0.0);
         for b in bodies {
@@ -570,7 +569,13 @@ impl RigidNh {
                 ke_q += tmp;
             }
         }
-        let mut energy = (ke_t + ke_q) * u.mvv2e;
+        self.extended((ke_t + ke_q) * u.mvv2e, u, volume)
+    }
+
+    /// `energy` (the bodies' part: rigid/small's kinetic energies, fix rigid's temperature)
+    /// plus the chains' energies and the barostat's (its kinetic energy, P0 V and its chain),
+    /// added in LAMMPS' order.
+    pub fn extended(&self, mut energy: f64, u: &crate::engine::units::Units, volume: f64) -> f64 {
         let kt = u.boltz * self.t_target;
         if let Some(c) = &self.chains {
             energy += kt * (self.nf_t as f64 * c.eta_t[0] + self.nf_r as f64 * c.eta_r[0]);

@@ -14,13 +14,15 @@
 //! its post_force, as LAMMPS' FixRigidSmall::enforce2d.
 //!
 //! `rigid/nve/small`, `rigid/nvt/small`, `rigid/npt/small` and `rigid/nph/small` are this fix
-//! with another step (rigid_nh_small.rs).
+//! with another step (rigid_nh_small.rs). `fix rigid` and its integrators are this fix with the
+//! bodies of rigid.rs (one set, fixed when the fix is defined, set up at the run's init).
 //! `langevin Tstart Tstop Tperiod seed` (rigid/small only) adds to each body's force and torque,
 //! at its final half step, a drag and a random kick drawn at post_force (LAMMPS'
 //! apply_langevin_thermostat: Marsaglia's stream seeded with `seed`, six draws per body in body
 //! order).
 
 use super::box_stress::Couple;
+use super::rigid::Global;
 use super::rigid_nh_small::{Baro, Chains, RigidNh, Steps};
 use super::thermostat::run_fraction;
 use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
@@ -32,6 +34,7 @@ use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 use std::collections::HashMap;
 
+pub const SYNTAX_RIGID: &str = "fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph single|molecule|group N g1 ... gN [force M x y z] [torque M x y z] [reinit yes|no] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
 pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small|rigid/npt/small|rigid/nph/small molecule [mol TEMPLATE] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
 
 /// Moment of inertia prefactor of a solid sphere.
@@ -110,6 +113,14 @@ pub struct FixRigidSmall {
     /// The members by local index (`slot`), valid while the owned atoms' IDs are `tags`: the
     /// per-step passes read this, not the map by ID.
     local: LocalMembers,
+    /// `fix rigid` and its integrators: the bodies fixed at definition and their switches.
+    global: Option<Global>,
+    /// `fix_modify ID bodyforces early`: the bodies' forces and torques are summed at
+    /// post_force, before later fixes change the atoms' forces (LAMMPS' earlyflag).
+    early: bool,
+    /// `fix_modify ID temp CID` of a barostat: the temperature its pressure reads (LAMMPS'
+    /// id_temp; group all by default).
+    press_temp: Option<crate::models::compute::temp_bias::TempSpec>,
 }
 
 #[derive(Default)]
@@ -131,23 +142,28 @@ struct BodyLangevin {
 }
 
 impl FixRigidSmall {
-    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
-        let mut a = Args::from_words(args, cmd.span, SYNTAX);
-        let kind = a.word("body style (molecule)")?;
-        if kind.text != "molecule" {
-            let msg = match kind.text.as_str() {
-                "custom" => "fix rigid/small custom is not supported yet (only molecule)",
-                _ => "fix rigid/small needs the body style molecule",
-            };
-            return Err(a.error_at(kind, msg, "supported: molecule"));
-        }
-        if !state.atoms.features.molecule {
-            return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
+        let mut a = Args::from_words(args, cmd.span, if style.ends_with("/small") { SYNTAX } else { SYNTAX_RIGID });
+        // fix rigid and its integrators: one set of bodies from the body style (rigid.rs)
+        let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state)?) };
+        if global.is_none() {
+            let kind = a.word("body style (molecule)")?;
+            if kind.text != "molecule" {
+                let msg = match kind.text.as_str() {
+                    "custom" => "fix rigid/small custom is not supported yet (only molecule)",
+                    _ => "fix rigid/small needs the body style molecule",
+                };
+                return Err(a.error_at(kind, msg, "supported: molecule"));
+            }
+            if !state.atoms.features.molecule {
+                return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+            }
         }
         let mut template = None;
-        // LAMMPS' ^rigid/n.t/small (a thermostat) and ^rigid/np./small (a barostat)
-        let nvt = matches!(style, "rigid/nvt/small" | "rigid/npt/small");
-        let npx = matches!(style, "rigid/npt/small" | "rigid/nph/small");
+        // LAMMPS' ^rigid/n.t (a thermostat) and ^rigid/np. (a barostat)
+        let nvt = style.starts_with("rigid/nvt") || style.starts_with("rigid/npt");
+        let npx = style.starts_with("rigid/npt") || style.starts_with("rigid/nph");
+        let plain = style == "rigid/small" || style == "rigid";
         let dim = state.dimension;
         let (mut p_start, mut p_stop, mut p_period, mut p_flag) = ([0.0; 3], [0.0; 3], [0.0; 3], [false; 3]);
         let mut couple = Couple::None;
@@ -226,26 +242,40 @@ impl FixRigidSmall {
                     template = Some((t.text.clone(), body));
                     continue;
                 }
-                "langevin" if style == "rigid/small" => {
+                "force" | "torque" if global.is_some() => {
+                    a.skip(1);
+                    global.as_mut().expect("checked").parse_flags(&mut a, w, style, dim)?;
+                    continue;
+                }
+                "reinit" if global.is_some() => {
+                    a.skip(1);
+                    global.as_mut().expect("checked").reinit = a.logical("reinit (yes or no)")?;
+                    continue;
+                }
+                "langevin" if plain => {
                     a.skip(1);
                     let (t_start, t_stop) = (a.f64("Tstart")?, a.f64("Tstop")?);
                     let pw = a.peek().cloned();
                     let t_period = a.f64("Tperiod")?;
                     if t_period <= 0.0 {
-                        return Err(a.error_at(&pw.unwrap(), "fix rigid/small langevin period must be > 0.0", "Tperiod > 0"));
+                        return Err(a.error_at(&pw.unwrap(), format!("fix {style} langevin period must be > 0.0"), "Tperiod > 0"));
                     }
                     let seed = a.i64_in("random seed (> 0)", 1, i64::from(i32::MAX))? as i32;
                     langevin = Some(BodyLangevin { t_start, t_stop, t_period, random: RanMars::new(seed), extra: Vec::new() });
                     continue;
                 }
-                "infile" => return Err(a.error_at(w, format!("fix {style} infile is not supported yet"), "not supported")),
+                "infile" | "gravity" => return Err(a.error_at(w, format!("fix {style} {} is not supported yet", w.text), "not supported")),
                 "reinit" => return Err(a.error_at(w, format!("fix {style} reinit is not supported yet (bodies are set up at every run, LAMMPS' default)"), "not supported")),
-                "langevin" => "it belongs to rigid/small (LAMMPS allows the bodies' Langevin thermostat there only)",
-                "temp" | "tparam" => "it belongs to rigid/nvt/small and rigid/npt/small (a thermostat)",
-                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "it belongs to rigid/npt/small and rigid/nph/small (a barostat)",
+                "langevin" => "it belongs to rigid and rigid/small (dmhs has the bodies' Langevin thermostat there only)",
+                "temp" | "tparam" => "it belongs to rigid/nvt, rigid/npt and their /small forms (a thermostat)",
+                "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "it belongs to rigid/npt, rigid/nph and their /small forms (a barostat)",
+                "force" | "torque" => "it belongs to fix rigid and its integrators (one set of bodies)",
                 _ => {
                     let mut known = vec!["mol"];
-                    if style == "rigid/small" {
+                    if global.is_some() {
+                        known.extend(["force", "torque", "reinit"]);
+                    }
+                    if plain {
                         known.push("langevin");
                     }
                     if nvt {
@@ -278,10 +308,21 @@ impl FixRigidSmall {
             None if npx => return Err(a.missing(&format!("`iso|aniso|x|y|z Pstart Pstop Pdamp` (pressure control must be used with fix {style})"))),
             None => None,
         };
-        let nh = (style != "rigid/small").then(|| RigidNh::new(chains, baro, t_iter, t_order));
+        if let Some(g) = global.as_ref().filter(|_| !plain) {
+            if g.fflag.iter().chain(&g.tflag).any(|f| f.iter().any(|&x| x == 0.0)) && state.dimension == 3 {
+                return Err(a.error_at(&cmd.name, format!("fix {style} with force or torque switched off is not supported yet (fix rigid only)"), "not supported"));
+            }
+        }
+        if global.is_some() && template.is_some() {
+            return Err(a.error_at(&cmd.name, format!("fix {style} takes no molecule template (`mol` belongs to the /small styles)"), "not this style's keyword"));
+        }
+        let nh = (!plain).then(|| RigidNh::new(chains, baro, t_iter, t_order));
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
-        let rank = Self::creation_order(state, groupbit);
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default() })
+        let rank = if global.is_some() { HashMap::new() } else { Self::creation_order(state, groupbit) };
+        if let Some(g) = &global {
+            state.messages.push(format!("  {} rigid bodies with {} atoms", g.nbody, g.body_of.len()));
+        }
+        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None })
     }
 
     /// LAMMPS' checks of the barostat's settings (FixRigidNHSmall's constructor).
@@ -322,8 +363,9 @@ impl FixRigidSmall {
         if !self.changes_box() {
             return Ok(([0.0; 3], 0.0));
         }
-        let spec = crate::models::compute::temp_bias::TempSpec::plain(1);
-        let (virial, fix_dof) = ctx.eval(state, &*self, |w, _| Ok((w.virial(), setup.then(|| w.fix_dof(1)))))?;
+        let spec = self.press_temp.clone().unwrap_or(crate::models::compute::temp_bias::TempSpec::plain(1));
+        let bit = spec.groupbit;
+        let (virial, fix_dof) = ctx.eval(state, &*self, |w, _| Ok((w.virial(), setup.then(|| w.fix_dof(bit)))))?;
         if let Some(fix_dof) = fix_dof {
             self.nh.as_mut().and_then(|nh| nh.baro.as_mut()).expect("a barostat").dof = spec.dof(state, fix_dof);
         }
@@ -382,24 +424,37 @@ impl FixRigidSmall {
         rank
     }
 
-    /// `fix rigid` (one set of bodies summed over all ranks) is refused: LAMMPS' fix rigid
-    /// molecule sets its bodies up in another order of operations (its step-0 pressure differs
-    /// from rigid/small's by ~1e-13 relative on rigid_small_clumps and rigid_small_2d), so this
-    /// fix's integration would differ from it silently in the last bits.
-    pub fn refuse_rigid(args: &[Word], cmd: &Command, style: &Word) -> DResult<Self> {
-        let a = Args::from_words(args, cmd.span, SYNTAX);
-        Err(a.error_at(style, "fix rigid is not supported: its body setup differs from fix rigid/small's in the last bits", "not supported").with_help("use `fix ID group rigid/small molecule` (the same physics; LAMMPS' numbers of rigid/small)"))
-    }
-
     fn massone(state: &State, i: usize) -> f64 {
         let a = &state.atoms;
         if a.features.per_atom_mass() { a.rmass[i] } else { state.type_mass[a.typ[i]] }
+    }
+
+    /// Atom `i` joins body `b` (counted as a point or a finite-size sphere).
+    fn add_member(body: &mut Body, members: &mut HashMap<i64, Member>, state: &State, i: usize, b: usize) {
+        let a = &state.atoms;
+        let sphere = a.features.sphere && a.radius[i] > 0.0;
+        if sphere {
+            body.nsphere += 1;
+        } else {
+            body.npoint += 1;
+        }
+        members.insert(a.tag[i], Member { body: b, displace: [0.0; 3], sphere });
     }
 
     /// The bodies of the group's molecules, in LAMMPS' body order (`rank`), with their
     /// membership counts; nothing else set.
     fn assign(&self, state: &State) -> (Vec<Body>, HashMap<i64, Member>) {
         let a = &state.atoms;
+        if let Some(g) = &self.global {
+            // fix rigid: the bodies of the definition, in their order
+            let mut bodies: Vec<Body> = (0..g.nbody).map(|k| Body { mol: k as i64 + 1, ..Body::default() }).collect();
+            let mut members = HashMap::new();
+            for i in 0..a.nlocal {
+                let Some(&b) = g.body_of.get(&a.tag[i]) else { continue };
+                Self::add_member(&mut bodies[b], &mut members, state, i, b);
+            }
+            return (bodies, members);
+        }
         let mut bodies: Vec<Body> = Vec::new();
         let mut by_mol: HashMap<i64, usize> = HashMap::new();
         let mut members = HashMap::new();
@@ -412,13 +467,7 @@ impl FixRigidSmall {
                 bodies.push(Body { mol, ..Body::default() });
                 bodies.len() - 1
             });
-            let sphere = a.features.sphere && a.radius[i] > 0.0;
-            if sphere {
-                bodies[b].nsphere += 1;
-            } else {
-                bodies[b].npoint += 1;
-            }
-            members.insert(a.tag[i], Member { body: b, displace: [0.0; 3], sphere });
+            Self::add_member(&mut bodies[b], &mut members, state, i, b);
         }
         let mut order: Vec<usize> = (0..bodies.len()).collect();
         order.sort_by_key(|&b| self.rank.get(&bodies[b].mol).map_or((1, bodies[b].mol), |&r| (0, r as i64)));
@@ -670,6 +719,38 @@ impl FixRigidSmall {
         Ok(())
     }
 
+    /// LAMMPS' apply_langevin_thermostat: drag on the half-step vcm and omega, and uniform
+    /// kicks scaled to the target temperature of the run's ramp.
+    fn draw_langevin(&mut self, state: &State) {
+        let Some(l) = self.langevin.as_mut() else { return };
+        let t_target = l.t_start + run_fraction(state) * (l.t_stop - l.t_start);
+        let tsqrt = t_target.sqrt();
+        let u = &state.units;
+        let kick = (24.0 * u.boltz / l.t_period / state.dt / u.mvv2e).sqrt();
+        // the rotational drag and kick are the same for every body
+        let (gamma1_rot, gamma2_rot) = (-1.0 / l.t_period / u.ftm2v, tsqrt * kick / u.ftm2v);
+        l.extra.resize(self.bodies.len(), [0.0; 6]);
+        for (b, e) in self.bodies.iter().zip(l.extra.iter_mut()) {
+            let gamma1 = -b.mass / l.t_period / u.ftm2v;
+            let gamma2 = b.mass.sqrt() * tsqrt * kick / u.ftm2v;
+            for k in 0..3 {
+                e[k] = gamma1 * b.vcm[k] + gamma2 * (l.random.uniform() - 0.5);
+            }
+            // the torque in the body frame, where the moments are
+            let (gamma1, gamma2) = (gamma1_rot, gamma2_rot);
+            let wbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.omega);
+            let mut tbody = [0.0; 3];
+            for k in 0..3 {
+                tbody[k] = b.inertia[k] * gamma1 * wbody[k] + b.inertia[k].sqrt() * gamma2 * (l.random.uniform() - 0.5);
+            }
+            let t = quat::matvec_cols(&b.ex, &b.ey, &b.ez, &tbody);
+            e[3..].copy_from_slice(&t);
+            if state.dimension == 2 {
+                (e[2], e[3], e[4]) = (0.0, 0.0, 0.0);
+            }
+        }
+    }
+
     /// LAMMPS' FixRigidSmall::enforce2d, called from fix enforce2d's post_force.
     fn zero_out_of_plane(&mut self) {
         if let Some(l) = self.langevin.as_mut() {
@@ -709,7 +790,7 @@ impl Fix for FixRigidSmall {
         true
     }
     fn hooks(&self) -> FixHooks {
-        FixHooks { initial_integrate: true, pre_exchange: true, post_force: self.langevin.is_some(), final_integrate: true, ..FixHooks::default() }
+        FixHooks { initial_integrate: true, pre_exchange: true, post_force: self.langevin.is_some() || self.early, final_integrate: true, ..FixHooks::default() }
     }
     fn min_role(&self) -> MinRole {
         MinRole::Refused(format!("fix {} ({}) is not supported in minimize", self.id, self.style))
@@ -719,6 +800,11 @@ impl Fix for FixRigidSmall {
             return Err(format!("fix enforce2d {} must be defined after fix {} ({})", f.id(), self.id, self.style));
         }
         self.enforce2d = state.dimension == 2 && ctx.others[1].iter().any(|f| f.style() == "enforce2d");
+        // fix rigid sets its bodies up here, before the run wraps and sorts the atoms (LAMMPS'
+        // FixRigid::init); rigid/small at setup_pre_force
+        if self.global.as_ref().is_some_and(|g| g.reinit || !self.set_up) {
+            self.setup_bodies(state)?;
+        }
         self.set_up = true;
         if let Some(nh) = self.nh.as_mut().filter(|nh| nh.baro.is_some()) {
             if let Some(f) = ctx.other_fixes().find(|f| f.style() == "deform" || f.changes_box()) {
@@ -731,7 +817,14 @@ impl Fix for FixRigidSmall {
         }
         Ok(())
     }
+    /// LAMMPS' rigid fixes each warn at init when another rigid fix is defined.
+    fn init_warning(&self, others: [&[Box<dyn Fix>]; 2]) -> Option<String> {
+        others.iter().flat_map(|o| o.iter()).any(|f| f.rigid_template().is_some()).then(|| "More than one fix rigid".to_string())
+    }
     fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        if self.global.is_some() {
+            return Ok(());
+        }
         self.setup_bodies(state).map_err(|e| self.err(state, e))
     }
     fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -772,16 +865,18 @@ impl Fix for FixRigidSmall {
             let nh = self.nh.as_mut().expect("checked above");
             return nh.remap(state, &mut self.bodies, dtq).map_err(|e| RunError::new(state.step, format!("fix {} ({}): {e}", self.id, self.style)));
         }
-        for b in self.bodies.iter_mut() {
+        let flags = self.global.as_ref().map(|g| (&g.fflag[..], &g.tflag[..]));
+        for (n, b) in self.bodies.iter_mut().enumerate() {
+            let (ff, tf) = flags.map_or(([1.0; 3], [1.0; 3]), |(f, t)| (f[n], t[n]));
             let dtfm = dtf / b.mass;
             for k in 0..3 {
-                b.vcm[k] += dtfm * b.fcm[k];
+                b.vcm[k] += dtfm * b.fcm[k] * ff[k];
             }
             for k in 0..3 {
                 b.xcm[k] += dtv * b.vcm[k];
             }
             for k in 0..3 {
-                b.angmom[k] += dtf * b.torque[k];
+                b.angmom[k] += dtf * b.torque[k] * tf[k];
             }
             b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
             quat::richardson(&mut b.quat, &b.angmom, &mut b.omega, &b.inertia, dtq);
@@ -790,36 +885,27 @@ impl Fix for FixRigidSmall {
         self.tally.v_init();
         self.set_atoms(state, true).map_err(|e| self.err(state, e))
     }
-    /// LAMMPS' apply_langevin_thermostat: drag on the half-step vcm and omega, and uniform
-    /// kicks scaled to the target temperature of the run's ramp.
+    /// The Langevin draw, then (`bodyforces early`) the bodies' forces and torques.
     fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
-        let Some(l) = self.langevin.as_mut() else { return Ok(()) };
-        let t_target = l.t_start + run_fraction(state) * (l.t_stop - l.t_start);
-        let tsqrt = t_target.sqrt();
-        let u = &state.units;
-        let kick = (24.0 * u.boltz / l.t_period / state.dt / u.mvv2e).sqrt();
-        // the rotational drag and kick are the same for every body
-        let (gamma1_rot, gamma2_rot) = (-1.0 / l.t_period / u.ftm2v, tsqrt * kick / u.ftm2v);
-        l.extra.resize(self.bodies.len(), [0.0; 6]);
-        for (b, e) in self.bodies.iter().zip(l.extra.iter_mut()) {
-            let gamma1 = -b.mass / l.t_period / u.ftm2v;
-            let gamma2 = b.mass.sqrt() * tsqrt * kick / u.ftm2v;
-            for k in 0..3 {
-                e[k] = gamma1 * b.vcm[k] + gamma2 * (l.random.uniform() - 0.5);
-            }
-            // the torque in the body frame, where the moments are
-            let (gamma1, gamma2) = (gamma1_rot, gamma2_rot);
-            let wbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.omega);
-            let mut tbody = [0.0; 3];
-            for k in 0..3 {
-                tbody[k] = b.inertia[k] * gamma1 * wbody[k] + b.inertia[k].sqrt() * gamma2 * (l.random.uniform() - 0.5);
-            }
-            let t = quat::matvec_cols(&b.ex, &b.ey, &b.ez, &tbody);
-            e[3..].copy_from_slice(&t);
-            if state.dimension == 2 {
-                (e[2], e[3], e[4]) = (0.0, 0.0, 0.0);
-            }
+        self.draw_langevin(state);
+        if self.early {
+            self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
+            self.add_langevin();
         }
+        Ok(())
+    }
+    fn modify_temp(&mut self, spec: crate::models::compute::temp_bias::TempSpec) -> Result<(), String> {
+        if self.nh.is_none() {
+            return Err(format!("fix {} ({}) has no temperature to replace (fix_modify temp belongs to the rigid thermostats and barostats)", self.id, self.style));
+        }
+        if !matches!(spec.bias, crate::models::compute::temp_bias::Bias::None) {
+            return Err(format!("fix {} ({}): a temperature with a velocity bias is not supported here", self.id, self.style));
+        }
+        self.press_temp = Some(spec);
+        Ok(())
+    }
+    fn set_body_forces_early(&mut self, early: bool) -> Result<(), String> {
+        self.early = early;
         Ok(())
     }
     fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -835,8 +921,10 @@ impl Fix for FixRigidSmall {
         if self.enforce2d {
             self.zero_out_of_plane();
         }
-        self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
-        self.add_langevin();
+        if !self.early {
+            self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
+            self.add_langevin();
+        }
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         if let Some(nh) = self.nh.as_mut() {
             nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt });
@@ -850,13 +938,15 @@ impl Fix for FixRigidSmall {
             }
             return Ok(());
         }
-        for b in self.bodies.iter_mut() {
+        let flags = self.global.as_ref().map(|g| (&g.fflag[..], &g.tflag[..]));
+        for (n, b) in self.bodies.iter_mut().enumerate() {
+            let (ff, tf) = flags.map_or(([1.0; 3], [1.0; 3]), |(f, t)| (f[n], t[n]));
             let dtfm = dtf / b.mass;
             for k in 0..3 {
-                b.vcm[k] += dtfm * b.fcm[k];
+                b.vcm[k] += dtfm * b.fcm[k] * ff[k];
             }
             for k in 0..3 {
-                b.angmom[k] += dtf * b.torque[k];
+                b.angmom[k] += dtf * b.torque[k] * tf[k];
             }
             b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
         }
@@ -865,9 +955,24 @@ impl Fix for FixRigidSmall {
     /// The temperature of the bodies (LAMMPS' compute_scalar): translational and rotational
     /// (in the body frame) kinetic energy over 6 degrees of freedom per body.
     fn scalar(&self, state: &State) -> Option<f64> {
-        if let Some(nh) = &self.nh {
-            let volume = state.domain.as_ref().map_or(0.0, |d| d.volume());
+        let volume = state.domain.as_ref().map_or(0.0, |d| d.volume());
+        if let (Some(nh), None) = (&self.nh, &self.global) {
             return Some(nh.scalar(&self.bodies, &state.units, volume));
+        }
+        if let Some(g) = &self.global {
+            // LAMMPS' FixRigid::compute_scalar: the switched-on components only
+            let mut t = 0.0;
+            for (n, b) in self.bodies.iter().enumerate() {
+                let (ff, tf, v) = (g.fflag[n], g.tflag[n], b.vcm);
+                t += b.mass * (ff[0] * v[0] * v[0] + ff[1] * v[1] * v[1] + ff[2] * v[2] * v[2]);
+                let w = b.wbody();
+                t += tf[0] * b.inertia[0] * w[0] * w[0] + tf[1] * b.inertia[1] * w[1] * w[1] + tf[2] * b.inertia[2] * w[2] * w[2];
+            }
+            let nlinear = self.bodies.iter().filter(|b| state.dimension == 3 && b.inertia.contains(&0.0)).count();
+            let ndof = g.ndof(nlinear);
+            let tfactor = if ndof > 0.0 { state.units.mvv2e / (ndof * state.units.boltz) } else { 0.0 };
+            // FixRigidNH: the temperature plus the chains' and the barostat's energies
+            return Some(self.nh.as_ref().map_or(t * tfactor, |nh| nh.extended(t * tfactor, &state.units, volume)));
         }
         let mut t = 0.0;
         for b in &self.bodies {
@@ -878,6 +983,23 @@ impl Fix for FixRigidSmall {
         }
         let tfactor = state.units.mvv2e / (6.0 * self.bodies.len() as f64 * state.units.boltz);
         Some(t * tfactor)
+    }
+    /// fix rigid's per-body array (LAMMPS' compute_array): centre, vcm, force, torque, image.
+    fn array(&self, _state: &State, i: usize, j: usize) -> Option<f64> {
+        self.global.as_ref()?;
+        let b = self.bodies.get(i.checked_sub(1)?)?;
+        let j = j.checked_sub(1)?;
+        Some(match j {
+            0..=2 => b.xcm[j],
+            3..=5 => b.vcm[j - 3],
+            6..=8 => b.fcm[j - 6],
+            9..=11 => b.torque[j - 9],
+            12..=14 => b.image[j - 12] as f64,
+            _ => return None,
+        })
+    }
+    fn size_array(&self) -> Option<(usize, usize)> {
+        self.global.as_ref().map(|g| (g.nbody, 15))
     }
     fn rigid_kinetic(&self) -> Option<[f64; 2]> {
         let (mut ke, mut erot) = (0.0, 0.0);

@@ -1,0 +1,128 @@
+//! `fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph bodystyle ...` (LAMMPS'
+//! FixRigid family, 22 Jul 2025): one set of bodies, fixed when the fix is defined:
+//!
+//! * `single`: the whole group is one body;
+//! * `molecule`: one body per molecule ID of the group, numbered by increasing ID;
+//! * `group N g1 ... gN`: one body per listed group (atoms of the fix group in it), in the
+//!   listed order; an atom in two of them is an error.
+//!
+//! The bodies move as rigid/small's (rigid_small.rs, with the same step and thermostats); what
+//! differs, as in LAMMPS: the bodies are set up at the run's init (before the atoms are wrapped
+//! and sorted, summing in their order then), the principal axes come sorted by decreasing
+//! moment, `force M x y z` and `torque M x y z` switch components of bodies M (a range) off,
+//! `reinit no` keeps the first run's bodies, and the fix's scalar is the bodies' temperature
+//! over their unconstrained degrees of freedom. Atoms created after the fix belong to no body.
+
+use dmhs_parser::{Args, DResult, Word};
+use std::collections::HashMap;
+
+use crate::engine::state::State;
+
+/// The bodies of a `fix rigid` and its per-body switches.
+#[derive(Clone, Debug)]
+pub struct Global {
+    /// The body of each atom, by atom ID (LAMMPS' body[i], set when the fix is defined).
+    pub body_of: HashMap<i64, usize>,
+    pub nbody: usize,
+    /// Per body: force components on (1.0) or off (0.0), LAMMPS' fflag.
+    pub fflag: Vec<[f64; 3]>,
+    /// Per body: torque components on or off, LAMMPS' tflag.
+    pub tflag: Vec<[f64; 3]>,
+    /// `reinit yes` (default): the bodies are set up again at every run's init.
+    pub reinit: bool,
+}
+
+impl Global {
+    /// The body style and its bodies (`single`, `molecule`, `group N g1 ... gN`), with
+    /// LAMMPS' checks; every body needs two atoms or more.
+    pub fn parse(a: &mut Args, style: &str, groupbit: u32, state: &State) -> DResult<Global> {
+        let kind = a.word("body style (single, molecule or group)")?;
+        let atoms = &state.atoms;
+        let owned = 0..atoms.nlocal;
+        let in_fix = |i: usize| atoms.mask[i] & groupbit != 0;
+        let mut body_of = HashMap::new();
+        let nbody = match kind.text.as_str() {
+            "single" => {
+                for i in owned.filter(|&i| in_fix(i)) {
+                    body_of.insert(atoms.tag[i], 0);
+                }
+                1
+            }
+            "molecule" => {
+                if !atoms.features.molecule {
+                    return Err(a.error_at(kind, format!("fix {style} molecule requires atom attribute molecule"), "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+                }
+                let mut mols: Vec<i64> = owned.clone().filter(|&i| in_fix(i)).map(|i| atoms.molecule[i]).collect();
+                mols.sort_unstable();
+                mols.dedup();
+                let index: HashMap<i64, usize> = mols.iter().enumerate().map(|(k, &m)| (m, k)).collect();
+                for i in owned.filter(|&i| in_fix(i)) {
+                    body_of.insert(atoms.tag[i], index[&atoms.molecule[i]]);
+                }
+                mols.len()
+            }
+            "group" => {
+                let n = a.usize_min("number of bodies N", 1)?;
+                let mut bits = Vec::with_capacity(n);
+                for _ in 0..n {
+                    let g = a.word("group ID of a body")?;
+                    let bit = state.groups.bit(&g.text).ok_or_else(|| a.error_at(g, format!("could not find fix {style} group ID `{}`", g.text), "unknown group"))?;
+                    bits.push(bit);
+                }
+                for i in owned.filter(|&i| in_fix(i)) {
+                    let mut inside = bits.iter().enumerate().filter(|(_, &b)| atoms.mask[i] & b != 0);
+                    if let Some((k, _)) = inside.next() {
+                        if inside.next().is_some() {
+                            return Err(a.error_at(kind, format!("one or more atoms belong to multiple rigid bodies (atom {})", atoms.tag[i]), "groups overlap"));
+                        }
+                        body_of.insert(atoms.tag[i], k);
+                    }
+                }
+                n
+            }
+            "custom" => return Err(a.error_at(kind, format!("fix {style} custom is not supported yet"), "supported: single, molecule, group")),
+            _ => return Err(a.error_at(kind, format!("illegal fix {style} body style `{}`", kind.text), "expected single, molecule or group")),
+        };
+        if nbody == 0 {
+            return Err(a.error_at(kind, "no rigid bodies defined", "the fix group has no atoms"));
+        }
+        let mut count = vec![0usize; nbody];
+        for &b in body_of.values() {
+            count[b] += 1;
+        }
+        if count.iter().any(|&c| c <= 1) {
+            return Err(a.error_at(kind, "one or zero atoms in rigid body", "every body needs 2 atoms or more"));
+        }
+        let (fflag, tflag) = if state.dimension == 2 { ([1.0, 1.0, 0.0], [0.0, 0.0, 1.0]) } else { ([1.0; 3], [1.0; 3]) };
+        Ok(Global { body_of, nbody, fflag: vec![fflag; nbody], tflag: vec![tflag; nbody], reinit: true })
+    }
+
+    /// `force M xflag yflag zflag` or `torque M ...` (`w` the keyword): components of the bodies
+    /// in range M switched on or off.
+    pub fn parse_flags(&mut self, a: &mut Args, w: &Word, style: &str, dimension: usize) -> DResult<()> {
+        let (lo, hi) = a.type_range("body range M (n, *, *n, n*, m*n)", self.nbody)?;
+        let mut on = [0.0; 3];
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            on[k] = if a.on_off(&format!("{axis} flag (on or off)"))? { 1.0 } else { 0.0 };
+        }
+        let force = w.text == "force";
+        if dimension == 2 && force && on[2] == 1.0 {
+            return Err(a.error_at(w, format!("fix {style} z force cannot be on for 2d simulation"), "z off in 2d"));
+        }
+        if dimension == 2 && !force && (on[0] == 1.0 || on[1] == 1.0) {
+            return Err(a.error_at(w, format!("fix {style} xy torque cannot be on for 2d simulation"), "x and y off in 2d"));
+        }
+        let flags = if force { &mut self.fflag } else { &mut self.tflag };
+        for f in &mut flags[lo - 1..hi] {
+            *f = on;
+        }
+        Ok(())
+    }
+
+    /// The bodies' degrees of freedom for the fix's temperature (LAMMPS' init: 6 per body
+    /// less the switched-off components, one less per linear body).
+    pub fn ndof(&self, nlinear: usize) -> f64 {
+        let sum: f64 = self.fflag.iter().chain(&self.tflag).map(|f| f[0] + f[1] + f[2]).sum();
+        sum - nlinear as f64
+    }
+}

@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 14] = ["rigid_clumps_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 15] = ["rigid_clumps_flags", "rigid_clumps_infile", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -50,7 +50,8 @@ fn unsupported_uses_are_located_errors() {
         ("fix 2 all rigid sphere", "illegal fix rigid body style `sphere`"),
         ("fix 2 all rigid molecule force 3 on on on", "body range"),
         ("fix 2 all rigid molecule torque 1 on maybe on", "maybe"),
-        ("fix 2 all rigid molecule infile bodies.txt", "infile is not supported yet"),
+        ("fix 2 all rigid molecule infile no_such_bodies.txt", "cannot open fix rigid infile"),
+        ("fix 2 all rigid/small molecule infile bodies.txt", "infile is not supported yet"),
         ("fix 2 all rigid/nve molecule langevin 1 1 1 5", "belongs to rigid and rigid/small"),
         ("fix 2 all rigid/nve molecule force 1 off on on", "switched off is not supported yet"),
         ("fix 2 all rigid/nvt molecule", "did not set temp for fix rigid/nvt"),
@@ -167,4 +168,24 @@ fn fix_rigid_reinit_no_keeps_the_bodies() {
     let (yes, no) = (ke(""), ke(" reinit no"));
     assert_eq!(yes[0][1], 0.0, "reinit yes: the bodies take the atoms' zero velocities: {yes:?}");
     assert!(no[0][1] > 0.1, "reinit no: the bodies keep moving: {no:?}");
+}
+
+/// A fix rigid `infile` with a bad line is a located error naming the file's line.
+#[test]
+fn fix_rigid_infile_errors_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    for (text, want) in [
+        ("# bodies\n\n1\n1 2.0 5 5 5 1 1 1 0 0 0 0 0 0 0 0\n", "bodies.txt:4: incorrect rigid body format"),
+        ("2\n1 2.0 5 5 5 1 1 1 0 0 0 0 0 0 0 0 0 0 0 0\n", "unexpected end of fix rigid infile"),
+        ("1\n7 2.0 5 5 5 1 1 1 0 0 0 0 0 0 0 0 0 0 0 0\n", "bodies.txt:2: invalid rigid body ID 7"),
+        ("1\n1 2.0 5 5 five 1 1 1 0 0 0 0 0 0 0 0 0 0 0 0\n", "bodies.txt:2: expected a number, found `five`"),
+        ("one\n", "bodies.txt:1: fix rigid infile has incorrect format"),
+    ] {
+        std::fs::write(dir.path().join("bodies.txt"), text).unwrap();
+        let deck = format!("{BASE}fix 2 all rigid molecule infile bodies.txt\nrun 0\n");
+        let opts = DeckOptions { base_dir: Some(dir.path().to_path_buf()), ..Default::default() };
+        let f = run_text("bad.deck", &deck, &opts).err().unwrap_or_else(|| panic!("accepted: {text}"));
+        let line = BASE.lines().count() + 1;
+        assert!(f.rendered.contains(&format!("bad.deck:{line}:")) && f.rendered.contains(want), "expected `{want}`:\n{}", f.rendered);
+    }
 }

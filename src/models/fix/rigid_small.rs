@@ -142,7 +142,7 @@ struct BodyLangevin {
 }
 
 impl FixRigidSmall {
-    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &mut State) -> DResult<Self> {
+    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &mut State, base_dir: Option<&std::path::Path>) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, if style.ends_with("/small") { SYNTAX } else { SYNTAX_RIGID });
         // fix rigid and its integrators: one set of bodies from the body style (rigid.rs)
         let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state)?) };
@@ -245,6 +245,19 @@ impl FixRigidSmall {
                 "force" | "torque" if global.is_some() => {
                     a.skip(1);
                     global.as_mut().expect("checked").parse_flags(&mut a, w, style, dim)?;
+                    continue;
+                }
+                "infile" if global.is_some() => {
+                    a.skip(1);
+                    let f = a.word("body file name")?;
+                    let path = match base_dir {
+                        Some(d) if std::path::Path::new(&f.text).is_relative() => d.join(&f.text),
+                        _ => std::path::PathBuf::from(&f.text),
+                    };
+                    let g = global.as_mut().expect("checked");
+                    let file = g.read_infile(&path).map_err(|e| a.error_at(f, e, "this body file"))?;
+                    state.messages.push(format!("Reading rigid body data for {} bodies from file {}", file.bodies.len(), f.text));
+                    (g.infile, g.reinit) = (Some(file), false);
                     continue;
                 }
                 "reinit" if global.is_some() => {
@@ -510,7 +523,19 @@ impl FixRigidSmall {
                 b.xcm[k] /= b.mass;
             }
             b.image = [0; 3];
-            // pre_neighbor: the centre wrapped into the box
+        }
+        // fix rigid infile: the atoms' dynamics first, then the file's bodies over them (LAMMPS
+        // 22 Jul 2025's order in setup_bodies_static)
+        let infile = self.global.as_ref().and_then(|g| g.infile.clone());
+        if let Some(file) = &infile {
+            Self::setup_dynamic(&mut bodies, &members, state, &order, &domain);
+            for (&k, r) in &file.bodies {
+                let b = &mut bodies[k];
+                (b.mass, b.xcm, b.vcm, b.angmom, b.image) = (r.mass, r.xcm, r.vcm, r.angmom, r.image);
+            }
+        }
+        // pre_neighbor: the centres wrapped into the box
+        for b in bodies.iter_mut() {
             domain.remap(&mut b.xcm, &mut b.image);
         }
         // inertia tensor about the centre (Voigt: xx yy zz yz xz xy)
@@ -539,6 +564,11 @@ impl FixRigidSmall {
                         t[k] += SINERTIA * massone * a.radius[i] * a.radius[i];
                     }
                 }
+            }
+        }
+        if let Some(file) = &infile {
+            for (&k, r) in &file.bodies {
+                itensor[k] = r.itensor;
             }
         }
         for (b, t) in bodies.iter_mut().zip(&itensor) {
@@ -577,7 +607,22 @@ impl FixRigidSmall {
             let delta = [unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]];
             m.displace = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &delta);
         }
-        // dynamic: vcm and angular momentum from the atoms
+        if infile.is_none() {
+            Self::setup_dynamic(&mut bodies, &members, state, &order, &domain);
+        }
+        self.bodies = bodies;
+        self.members = members;
+        self.local.tags.clear();
+        Ok(())
+    }
+
+    /// LAMMPS' setup_bodies_dynamic: vcm and angular momentum from the atoms' velocities, about
+    /// the bodies' centres as they are.
+    fn setup_dynamic(bodies: &mut [Body], members: &HashMap<i64, Member>, state: &State, order: &[usize], domain: &crate::engine::domain::Domain) {
+        let a = &state.atoms;
+        for b in bodies.iter_mut() {
+            (b.vcm, b.angmom) = ([0.0; 3], [0.0; 3]);
+        }
         for &i in order.iter() {
             let Some(m) = members.get(&a.tag[i]) else { continue };
             let b = &mut bodies[m.body];
@@ -592,7 +637,7 @@ impl FixRigidSmall {
             b.angmom[1] += dz * massone * v[0] - dx * massone * v[2];
             b.angmom[2] += dx * massone * v[1] - dy * massone * v[0];
         }
-        if extended {
+        if members.values().any(|m| m.sphere) {
             for &i in order.iter() {
                 let Some(m) = members.get(&a.tag[i]) else { continue };
                 if m.sphere {
@@ -609,10 +654,6 @@ impl FixRigidSmall {
                 b.vcm[k] /= b.mass;
             }
         }
-        self.bodies = bodies;
-        self.members = members;
-        self.local.tags.clear();
-        Ok(())
     }
 
     /// The members of the owned atoms by local index, renewed when the atoms' IDs changed.

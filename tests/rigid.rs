@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 15] = ["rigid_clumps_flags", "rigid_clumps_infile", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 16] = ["rigid_clumps_flags", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -46,7 +46,10 @@ fn unsupported_uses_are_located_errors() {
     for (cmd, want) in [
         ("fix_modify 1 energy yes", "does not support fix_modify energy"),
         ("fix 2 all rigid group 1 nogroup", "could not find fix rigid group ID `nogroup`"),
-        ("fix 2 all rigid custom i_body", "fix rigid custom is not supported yet"),
+        ("fix 2 all rigid custom i_body", "requires previously defined property/atom `body`"),
+        ("fix 2 all rigid custom v_nobody", "Variable name for fix rigid custom does not exist"),
+        ("variable e equal 1\nfix 2 all rigid custom v_e", "is no atom-style variable"),
+        ("fix 2 all rigid custom d_x", "unsupported fix rigid custom property `d_x`"),
         ("fix 2 all rigid sphere", "illegal fix rigid body style `sphere`"),
         ("fix 2 all rigid molecule force 3 on on on", "body range"),
         ("fix 2 all rigid molecule torque 1 on maybe on", "maybe"),
@@ -79,7 +82,7 @@ fn unsupported_uses_are_located_errors() {
     ] {
         let deck = format!("{BASE}{cmd}\nrun 0\n");
         let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
-        let line = BASE.lines().count() + 1;
+        let line = BASE.lines().count() + 1 + cmd.matches('\n').count();
         assert!(f.rendered.contains(&format!("bad.deck:{line}:")) && f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
     }
 }
@@ -188,4 +191,20 @@ fn fix_rigid_infile_errors_name_the_line() {
         let line = BASE.lines().count() + 1;
         assert!(f.rendered.contains(&format!("bad.deck:{line}:")) && f.rendered.contains(want), "expected `{want}`:\n{}", f.rendered);
     }
+}
+
+/// gmask(), rmask() and grmask() in atom-style variables (LAMMPS' special functions): the
+/// dimers' atoms at x = 2, 3, 4.1, 5.1; the region holds the first two, the group the last two.
+#[test]
+fn mask_functions_pick_group_and_region_atoms() {
+    let deck = format!(
+        "{BASE}region left block 0 3.5 0 10 0 10 units box\ngroup right id 3 4\nvariable g atom gmask(right)\nvariable r atom rmask(left)\nvariable gr atom grmask(right,left)+grmask(all,left)\n\
+group G variable g\ngroup R variable r\ngroup GR variable gr\nvariable n equal count(G)+10*count(R)+100*count(GR)\nthermo_style custom step v_n\nrun 0\n"
+    );
+    let run = run_text("ok.deck", &deck, &DeckOptions { screen: false, capture_text: true, ..Default::default() }).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let rows = table(run.sim.out.captured.as_deref().unwrap()).1;
+    assert_eq!(rows[0][1], 222.0);
+    let bad = format!("{BASE}variable g atom gmask(nogroup)\ngroup G variable g\n");
+    let f = run_text("bad.deck", &bad, &Default::default()).err().expect("an unknown group is an error");
+    assert!(f.rendered.contains("Group ID nogroup in variable formula does not exist"), "{}", f.rendered);
 }

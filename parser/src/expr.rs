@@ -189,7 +189,7 @@ pub const GROUP_FUNCTIONS: &[&str] =
 /// LAMMPS special and feature functions that dmhs does not implement (a clear error, not the
 /// "invalid function" of a misspelling).
 pub(crate) const UNSUPPORTED_FUNCTIONS: &[&str] = &[
-    "sort", "rsort", "gmask", "rmask", "grmask", "next", "is_active",
+    "sort", "rsort", "next", "is_active",
     "is_available", "is_defined", "is_os", "extract_setting", "label2type", "is_typelabel", "is_timeout",
 ];
 

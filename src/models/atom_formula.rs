@@ -200,6 +200,7 @@ fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut r
             }
             per_atom(e, k, n, ctx, |c| Node::Math(*f, c))
         }
+        Node::Function { name, args } if matches!(name.as_str(), "gmask" | "rmask" | "grmask") => mask_function(name, args, w).map(V::Many),
         Node::Variable { name, index: None } => eval_variable(name, w, ctx, depth, rng),
         Node::Compute { id, indices } => peratom_ref("c_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
         Node::Fix { id, indices } => peratom_ref("f_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
@@ -210,4 +211,23 @@ fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut r
         }
         _ => scalar(e, ctx),
     }
+}
+
+/// LAMMPS' atom-style special functions gmask(group), rmask(region), grmask(group,region): 1
+/// for an atom in the group and/or the region, else 0.
+fn mask_function(name: &str, args: &[String], w: &World) -> Result<Vec<f64>, String> {
+    let state = w.state;
+    let want = if name == "grmask" { 2 } else { 1 };
+    if args.len() != want {
+        return Err(format!("Invalid {name}() function in variable formula: it takes {want} argument(s)"));
+    }
+    let group = |g: &str| state.groups.bit(g).ok_or_else(|| format!("Group ID {g} in variable formula does not exist"));
+    let region = |r: &str| state.regions.iter().find(|reg| reg.id == r).ok_or_else(|| format!("Region ID {r} in variable formula does not exist"));
+    let (bit, reg) = match name {
+        "gmask" => (Some(group(&args[0])?), None),
+        "rmask" => (None, Some(region(&args[0])?)),
+        _ => (Some(group(&args[0])?), Some(region(&args[1])?)),
+    };
+    let a = &state.atoms;
+    Ok((0..a.nlocal).map(|i| bit.is_none_or(|b| a.mask[i] & b != 0) && reg.is_none_or(|r| r.matches(a.x[i]))).map(|on| if on { 1.0 } else { 0.0 }).collect())
 }

@@ -38,7 +38,20 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     if let Some(k) = existing {
         sim.fixes[k].cleanup(&mut sim.state);
     }
-    let made = crate::models::fix::new_fix(cmd, id, bit, style, rest, crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref() }, &mut sim.state);
+    // fix rigid custom v_name: LAMMPS evaluates the atom-style variable when the fix is made
+    let atom_values = match (rest.first(), rest.get(1)) {
+        (Some(c), Some(v)) if style.text.starts_with("rigid") && !style.text.ends_with("/small") && c.text == "custom" && v.text.starts_with("v_") => {
+            let name = &v.text[2..];
+            match sim.variables.style(name) {
+                None => return Err(a.error_at(v, format!("Variable name for fix rigid custom does not exist: {}", v.text), "no such variable")),
+                Some("atom") => Some(super::atoms_cmds::atom_variable_values(sim, v, name, "fix rigid custom")?),
+                Some(s) => return Err(a.error_at(v, format!("Fix rigid custom variable is no atom-style variable: {} is {s}-style", v.text), "an atom-style variable is needed")),
+            }
+        }
+        _ => None,
+    };
+    let defined = crate::models::fix::Defined { fixes: &sim.fixes, computes: &sim.computes, base_dir: sim.base_dir.as_deref(), atom_values: atom_values.as_deref() };
+    let made = crate::models::fix::new_fix(cmd, id, bit, style, rest, defined, &mut sim.state);
     let mut f = match made {
         Ok(f) => f,
         Err(e) => {

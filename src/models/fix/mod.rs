@@ -532,6 +532,9 @@ pub struct FixDef<'a> {
     pub computes: &'a [Box<dyn Compute>],
     /// Directory for relative file names (None: the working directory).
     pub base_dir: Option<&'a std::path::Path>,
+    /// The values over the owned atoms of an atom-style variable the fix takes as an argument
+    /// when it is defined (fix rigid `custom v_name`), evaluated by the fix command.
+    pub atom_values: Option<&'a [f64]>,
     pub id: String,
     pub groupbit: u32,
     pub style: &'a Word,
@@ -608,16 +611,16 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("thermal/conductivity", |d, _| Ok(Box::new(thermal_conductivity::FixThermalConductivity::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("heat", |d, state| Ok(Box::new(heat::FixHeat::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
     ("heat/flow", |d, state| Ok(Box::new(heat_flow::FixHeatFlow::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),
-    ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/nve/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve/small", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/nvt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt/small", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/npt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt/small", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/nph/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph/small", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/nve", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/nvt", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/npt", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt", d.args, d.cmd, state, d.base_dir)?))),
-    ("rigid/nph", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph", d.args, d.cmd, state, d.base_dir)?))),
+    ("rigid/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/small", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/nve/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve/small", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/nvt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt/small", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/npt/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt/small", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/nph/small", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph/small", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/nve", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nve", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/nvt", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nvt", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/npt", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/npt", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
+    ("rigid/nph", |d, state| Ok(Box::new(rigid_small::FixRigidSmall::from_lammps(d.id, d.groupbit, "rigid/nph", d.args, d.cmd, state, d.base_dir, d.atom_values)?))),
     ("dmhs/stokes", |d, state| Ok(Box::new(dmhs_stokes::FixStokes::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
 ];
 
@@ -636,12 +639,14 @@ pub struct Defined<'a> {
     pub fixes: &'a [Box<dyn Fix>],
     pub computes: &'a [Box<dyn Compute>],
     pub base_dir: Option<&'a std::path::Path>,
+    /// See [`FixDef::atom_values`].
+    pub atom_values: Option<&'a [f64]>,
 }
 
 /// Build a fix from `fix ID group style args...`; `defined` are the fixes and computes so far.
 pub fn new_fix(cmd: &Command, id: &Word, groupbit: u32, style: &Word, args: &[Word], defined: Defined, state: &mut State) -> DResult<Box<dyn Fix>> {
     match STYLES.iter().find(|(n, _)| *n == style.text) {
-        Some((_, ctor)) => ctor(FixDef { cmd, fixes: defined.fixes, computes: defined.computes, base_dir: defined.base_dir, id: id.text.clone(), groupbit, style, args }, state),
+        Some((_, ctor)) => ctor(FixDef { cmd, fixes: defined.fixes, computes: defined.computes, base_dir: defined.base_dir, atom_values: defined.atom_values, id: id.text.clone(), groupbit, style, args }, state),
         None => Err(crate::models::styles::unsupported_style("fix", style, &style.text, &supported())),
     }
 }

@@ -4,7 +4,10 @@
 //! * `single`: the whole group is one body;
 //! * `molecule`: one body per molecule ID of the group, numbered by increasing ID;
 //! * `group N g1 ... gN`: one body per listed group (atoms of the fix group in it), in the
-//!   listed order; an atom in two of them is an error.
+//!   listed order; an atom in two of them is an error;
+//! * `custom i_name|v_name`: as molecule, with the IDs an integer per atom from fix
+//!   property/atom or an atom-style variable (evaluated when the fix is defined), truncated and
+//!   shifted so that the group's least is 1.
 //!
 //! The bodies move as rigid/small's (rigid_small.rs, with the same step and thermostats); what
 //! differs, as in LAMMPS: the bodies are set up at the run's init (before the atoms are wrapped
@@ -58,8 +61,8 @@ pub struct Infile {
 impl Global {
     /// The body style and its bodies (`single`, `molecule`, `group N g1 ... gN`), with
     /// LAMMPS' checks; every body needs two atoms or more.
-    pub fn parse(a: &mut Args, style: &str, groupbit: u32, state: &State) -> DResult<Global> {
-        let kind = a.word("body style (single, molecule or group)")?;
+    pub fn parse(a: &mut Args, style: &str, groupbit: u32, state: &State, atom_values: Option<&[f64]>) -> DResult<Global> {
+        let kind = a.word("body style (single, molecule, custom or group)")?;
         let atoms = &state.atoms;
         let owned = 0..atoms.nlocal;
         let in_fix = |i: usize| atoms.mask[i] & groupbit != 0;
@@ -72,16 +75,34 @@ impl Global {
                 }
                 1
             }
-            "molecule" => {
-                if !atoms.features.molecule {
-                    return Err(a.error_at(kind, format!("fix {style} molecule requires atom attribute molecule"), "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
-                }
-                let mut mols: Vec<i64> = owned.clone().filter(|&i| in_fix(i)).map(|i| atoms.molecule[i]).collect();
+            "molecule" | "custom" => {
+                // custom: an integer per atom (i_name of fix property/atom, or an atom-style
+                // variable truncated), shifted so that the group's least is 1, as molecule IDs
+                let ids: Vec<i64> = if kind.text == "molecule" {
+                    if !atoms.features.molecule {
+                        return Err(a.error_at(kind, format!("fix {style} molecule requires atom attribute molecule"), "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+                    }
+                    atoms.molecule[..atoms.nlocal].to_vec()
+                } else {
+                    let w = a.word("custom property (i_name or v_name)")?;
+                    let raw: Vec<f64> = if let Some(name) = w.text.strip_prefix("i_") {
+                        let k = atoms.find_extra(&w.text).ok_or_else(|| a.error_at(w, format!("fix {style} custom requires previously defined property/atom `{name}`"), "no such property"))?;
+                        atoms.extra[k].data[..atoms.nlocal].to_vec()
+                    } else if w.text.starts_with("v_") {
+                        atom_values.ok_or_else(|| a.error_at(w, "the atom-style variable was not evaluated", "internal"))?.to_vec()
+                    } else {
+                        return Err(a.error_at(w, format!("unsupported fix {style} custom property `{}`", w.text), "expected i_name or v_name"));
+                    };
+                    let int: Vec<i64> = raw.iter().map(|&v| v as i32 as i64).collect();
+                    let min = owned.clone().filter(|&i| in_fix(i)).map(|i| int[i]).min().unwrap_or(0);
+                    int.iter().map(|&v| v - min + 1).collect()
+                };
+                let mut mols: Vec<i64> = owned.clone().filter(|&i| in_fix(i)).map(|i| ids[i]).collect();
                 mols.sort_unstable();
                 mols.dedup();
                 let index: HashMap<i64, usize> = mols.iter().enumerate().map(|(k, &m)| (m, k)).collect();
                 for i in owned.filter(|&i| in_fix(i)) {
-                    body_of.insert(atoms.tag[i], index[&atoms.molecule[i]]);
+                    body_of.insert(atoms.tag[i], index[&ids[i]]);
                 }
                 mol_to_body = Some(index);
                 mols.len()
@@ -105,8 +126,7 @@ impl Global {
                 }
                 n
             }
-            "custom" => return Err(a.error_at(kind, format!("fix {style} custom is not supported yet"), "supported: single, molecule, group")),
-            _ => return Err(a.error_at(kind, format!("illegal fix {style} body style `{}`", kind.text), "expected single, molecule or group")),
+            _ => return Err(a.error_at(kind, format!("illegal fix {style} body style `{}`", kind.text), "expected single, molecule, custom or group")),
         };
         if nbody == 0 {
             return Err(a.error_at(kind, "no rigid bodies defined", "the fix group has no atoms"));

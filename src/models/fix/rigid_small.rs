@@ -142,10 +142,11 @@ struct BodyLangevin {
 }
 
 impl FixRigidSmall {
-    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &mut State, base_dir: Option<&std::path::Path>) -> DResult<Self> {
+    #[allow(clippy::too_many_arguments)]
+    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &mut State, base_dir: Option<&std::path::Path>, atom_values: Option<&[f64]>) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, if style.ends_with("/small") { SYNTAX } else { SYNTAX_RIGID });
         // fix rigid and its integrators: one set of bodies from the body style (rigid.rs)
-        let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state)?) };
+        let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state, atom_values)?) };
         if global.is_none() {
             let kind = a.word("body style (molecule)")?;
             if kind.text != "molecule" {

@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 16] = ["rigid_clumps_flags", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 17] = ["rigid_clumps_flags", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -56,7 +56,6 @@ fn unsupported_uses_are_located_errors() {
         ("fix 2 all rigid molecule infile no_such_bodies.txt", "cannot open fix rigid infile"),
         ("fix 2 all rigid/small molecule infile bodies.txt", "infile is not supported yet"),
         ("fix 2 all rigid/nve molecule langevin 1 1 1 5", "belongs to rigid and rigid/small"),
-        ("fix 2 all rigid/nve molecule force 1 off on on", "switched off is not supported yet"),
         ("fix 2 all rigid/nvt molecule", "did not set temp for fix rigid/nvt"),
         ("fix 2 all rigid molecule mol t", "molecule template `t` does not exist"),
         ("fix_modify 1 bodyforces sometimes", "sometimes"),

@@ -159,6 +159,14 @@ fn chain_sweep(eta: &mut [f64], eta_dot: &mut [f64], f_eta: &mut [f64], q: &[f64
     eta_dot[n - 1] += w2 * f_eta[n - 1];
 }
 
+/// fix rigid's per-body force and torque switches (1 on, 0 off), None for the /small styles.
+pub type Flags<'a> = Option<(&'a [[f64; 3]], &'a [[f64; 3]])>;
+
+/// Body `n`'s switches (all on without flags: a multiplication by 1 changes no bit).
+fn body_flags(flags: Flags, n: usize) -> ([f64; 3], [f64; 3]) {
+    flags.map_or(([1.0; 3], [1.0; 3]), |(f, t)| (f[n], t[n]))
+}
+
 /// The state of the NO_SQUISH integrator over the fix's bodies.
 #[derive(Clone, Debug)]
 pub struct RigidNh {
@@ -327,7 +335,10 @@ impl RigidNh {
     /// The first half of the step (LAMMPS' initial_integrate, steps 1.1 to 1.13 of Kamberaj
     /// et al.), then the chains' full step. The caller then remaps the box (with a barostat),
     /// places the atoms (set_xv) and remaps again.
-    pub fn initial_integrate(&mut self, bodies: &mut [Body], s: &Steps, dimension: usize, u: &crate::engine::units::Units, fraction: f64) {
+    /// `flags`: fix rigid's per-body force and torque switches (FixRigidNH multiplies them into
+    /// the kick and the torque; None for the /small styles).
+    #[allow(clippy::too_many_arguments)]
+    pub fn initial_integrate(&mut self, bodies: &mut [Body], s: &Steps, dimension: usize, u: &crate::engine::units::Units, fraction: f64, flags: Flags) {
         let dtf2 = s.dtf * 2.0;
         let (scale_t, scale_r) = self.scales(s.dtq);
         let scale_v: Option<[f64; 3]> = self.baro.as_ref().map(|b| {
@@ -337,10 +348,11 @@ impl RigidNh {
             })
         });
         let stat = self.stat();
-        for b in bodies.iter_mut() {
+        for (n, b) in bodies.iter_mut().enumerate() {
+            let (ff, tf) = body_flags(flags, n);
             let dtfm = s.dtf / b.mass;
             for k in 0..3 {
-                b.vcm[k] += dtfm * b.fcm[k];
+                b.vcm[k] += dtfm * b.fcm[k] * ff[k];
             }
             if stat {
                 for k in 0..3 {
@@ -358,6 +370,9 @@ impl RigidNh {
                         b.xcm[k] += v[k] * b.vcm[k];
                     }
                 }
+            }
+            for k in 0..3 {
+                b.torque[k] *= tf[k];
             }
             let tbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.torque);
             let fquat = quat::quatvec(&b.quat, &tbody);
@@ -393,11 +408,12 @@ impl RigidNh {
     /// The second half kick (LAMMPS' final_integrate), after the bodies' forces and torques
     /// are summed. The caller then sets the atoms' velocities (set_v) and, with a barostat,
     /// measures the pressure and calls [`RigidNh::end_of_final`].
-    pub fn final_integrate(&mut self, bodies: &mut [Body], s: &Steps) {
+    pub fn final_integrate(&mut self, bodies: &mut [Body], s: &Steps, flags: Flags) {
         let dtf2 = s.dtf * 2.0;
         let (scale_t, scale_r) = self.scales(s.dtq);
         let stat = self.stat();
-        for b in bodies.iter_mut() {
+        for (n, b) in bodies.iter_mut().enumerate() {
+            let (ff, tf) = body_flags(flags, n);
             let dtfm = s.dtf / b.mass;
             if stat {
                 for k in 0..3 {
@@ -405,7 +421,10 @@ impl RigidNh {
                 }
             }
             for k in 0..3 {
-                b.vcm[k] += dtfm * b.fcm[k];
+                b.vcm[k] += dtfm * b.fcm[k] * ff[k];
+            }
+            for k in 0..3 {
+                b.torque[k] *= tf[k];
             }
             let tbody = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &b.torque);
             let fquat = quat::quatvec(&b.quat, &tbody);

@@ -322,11 +322,6 @@ impl FixRigidSmall {
             None if npx => return Err(a.missing(&format!("`iso|aniso|x|y|z Pstart Pstop Pdamp` (pressure control must be used with fix {style})"))),
             None => None,
         };
-        if let Some(g) = global.as_ref().filter(|_| !plain) {
-            if g.fflag.iter().chain(&g.tflag).any(|f| f.iter().any(|&x| x == 0.0)) && state.dimension == 3 {
-                return Err(a.error_at(&cmd.name, format!("fix {style} with force or torque switched off is not supported yet (fix rigid only)"), "not supported"));
-            }
-        }
         if global.is_some() && template.is_some() {
             return Err(a.error_at(&cmd.name, format!("fix {style} takes no molecule template (`mol` belongs to the /small styles)"), "not this style's keyword"));
         }
@@ -899,7 +894,8 @@ impl Fix for FixRigidSmall {
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         let dtq = 0.5 * state.dt;
         if let Some(nh) = self.nh.as_mut() {
-            nh.initial_integrate(&mut self.bodies, &Steps { dtv, dtf, dtq }, state.dimension, &state.units, run_fraction(state));
+            let flags = self.global.as_ref().map(|g| (&g.fflag[..], &g.tflag[..]));
+            nh.initial_integrate(&mut self.bodies, &Steps { dtv, dtf, dtq }, state.dimension, &state.units, run_fraction(state), flags);
             self.tally.v_init();
             // a barostat scales the box by half a step before and after the atoms are placed
             nh.remap(state, &mut self.bodies, dtq).map_err(|e| RunError::new(state.step, format!("fix {} ({}): {e}", self.id, self.style)))?;
@@ -969,7 +965,8 @@ impl Fix for FixRigidSmall {
         }
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         if let Some(nh) = self.nh.as_mut() {
-            nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt });
+            let flags = self.global.as_ref().map(|g| (&g.fflag[..], &g.tflag[..]));
+            nh.final_integrate(&mut self.bodies, &Steps { dtv: state.dt, dtf, dtq: 0.5 * state.dt }, flags);
             self.set_atoms(state, false).map_err(|e| self.err(state, e))?;
             if self.changes_box() {
                 let (p_current, _) = self.measure_pressure(state, ctx, false)?;

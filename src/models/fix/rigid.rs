@@ -11,9 +11,10 @@
 //!
 //! The bodies move as rigid/small's (rigid_small.rs, with the same step and thermostats); what
 //! differs, as in LAMMPS: the bodies are set up at the run's init (before the atoms are wrapped
-//! and sorted, summing in their order then), `force M x y z` and `torque M x y z` switch components of bodies M (a range) off,
-//! `reinit no` keeps the first run's bodies, and the fix's scalar is the bodies' temperature
-//! over their unconstrained degrees of freedom. Atoms created after the fix belong to no body.
+//! and sorted, summing in their order then), `force M x y z` and `torque M x y z` switch
+//! components of bodies M (a range) off, `reinit no` keeps the first run's bodies, `infile`
+//! gives bodies from a file, and the fix's scalar is the bodies' temperature over their
+//! unconstrained degrees of freedom. Atoms created after the fix belong to no body.
 
 use dmhs_parser::{Args, DResult, Word};
 use std::collections::{BTreeMap, HashMap};

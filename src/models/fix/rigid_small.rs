@@ -25,13 +25,13 @@ use super::box_stress::Couple;
 use super::rigid::Global;
 use super::rigid_nh_small::{Baro, Chains, RigidNh, Steps};
 use super::thermostat::run_fraction;
-use super::{Fix, FixCtx, FixHooks, MinRole, ThermoTally};
+use super::{Fix, FixCtx, FixDef, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
 use crate::engine::molecule::{RigidInsert, RigidTemplate};
 use crate::engine::quat::{self, Quat};
 use crate::engine::random_mars::RanMars;
 use crate::engine::state::{RunError, State};
-use dmhs_parser::{Args, Command, DResult, Word};
+use dmhs_parser::{Args, DResult, Word};
 use std::collections::HashMap;
 
 pub const SYNTAX_RIGID: &str = "fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph single|molecule|group N g1 ... gN [force M x y z] [torque M x y z] [reinit yes|no] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
@@ -142,11 +142,11 @@ struct BodyLangevin {
 }
 
 impl FixRigidSmall {
-    #[allow(clippy::too_many_arguments)]
-    pub fn from_lammps(id: String, groupbit: u32, style: &'static str, args: &[Word], cmd: &Command, state: &mut State, base_dir: Option<&std::path::Path>, atom_values: Option<&[f64]>) -> DResult<Self> {
-        let mut a = Args::from_words(args, cmd.span, if style.ends_with("/small") { SYNTAX } else { SYNTAX_RIGID });
+    pub fn from_lammps(d: FixDef, style: &'static str, state: &mut State) -> DResult<Self> {
+        let (groupbit, cmd) = (d.groupbit, d.cmd);
+        let mut a = Args::from_words(d.args, cmd.span, if style.ends_with("/small") { SYNTAX } else { SYNTAX_RIGID });
         // fix rigid and its integrators: one set of bodies from the body style (rigid.rs)
-        let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state, atom_values)?) };
+        let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state, d.atom_values)?) };
         if global.is_none() {
             let kind = a.word("body style (molecule)")?;
             if kind.text != "molecule" {
@@ -251,12 +251,8 @@ impl FixRigidSmall {
                 "infile" if global.is_some() => {
                     a.skip(1);
                     let f = a.word("body file name")?;
-                    let path = match base_dir {
-                        Some(d) if std::path::Path::new(&f.text).is_relative() => d.join(&f.text),
-                        _ => std::path::PathBuf::from(&f.text),
-                    };
                     let g = global.as_mut().expect("checked");
-                    let file = g.read_infile(&path).map_err(|e| a.error_at(f, e, "this body file"))?;
+                    let file = g.read_infile(&d.path(&f.text)).map_err(|e| a.error_at(f, e, "this body file"))?;
                     state.messages.push(format!("Reading rigid body data for {} bodies from file {}", file.bodies.len(), f.text));
                     (g.infile, g.reinit) = (Some(file), false);
                     continue;
@@ -331,7 +327,7 @@ impl FixRigidSmall {
         if let Some(g) = &global {
             state.messages.push(format!("  {} rigid bodies with {} atoms", g.nbody, g.body_of.len()));
         }
-        Ok(FixRigidSmall { id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None })
+        Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None })
     }
 
     /// LAMMPS' checks of the barostat's settings (FixRigidNHSmall's constructor).
@@ -522,8 +518,8 @@ impl FixRigidSmall {
         }
         // fix rigid infile: the atoms' dynamics first, then the file's bodies over them (LAMMPS
         // 22 Jul 2025's order in setup_bodies_static)
-        let infile = self.global.as_ref().and_then(|g| g.infile.clone());
-        if let Some(file) = &infile {
+        let infile = self.global.as_ref().and_then(|g| g.infile.as_ref());
+        if let Some(file) = infile {
             Self::setup_dynamic(&mut bodies, &members, state, &order, &domain);
             for (&k, r) in &file.bodies {
                 let b = &mut bodies[k];
@@ -562,7 +558,7 @@ impl FixRigidSmall {
                 }
             }
         }
-        if let Some(file) = &infile {
+        if let Some(file) = infile {
             for (&k, r) in &file.bodies {
                 itensor[k] = r.itensor;
             }

@@ -1,7 +1,7 @@
 //! What LAMMPS' classic example decks (examples/flow, obstacle, friction, crack, indent, melt,
 //! min, micelle; docs/validation.md, "LAMMPS MD examples") needed, on decks of our own: fix
 //! aveforce (aveforce_flow), fix adapt (adapt_soft, adapt_lj, adapt_diameter), fix deform (deform_erate_volume,
-//! deform_wiggle_2d) and compute msd/chunk (msd_chunk_chains; the thermo table at every printed step against
+//! deform_wiggle_2d), compute msd/chunk (msd_chunk_chains) and variable atomfile (addforce_atomfile; the thermo table at every printed step against
 //! lammps-refs/refs/NAME/thermo.txt and LAMMPS run now, when present), thermo style one's
 //! Volume column when the box can change, region IDs with '-'; and the located errors.
 
@@ -10,7 +10,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::{root, table};
 
-const DECKS: [&str; 8] = ["aveforce_flow", "adapt_soft", "adapt_lj", "adapt_diameter", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
+const DECKS: [&str; 9] = ["aveforce_flow", "addforce_atomfile", "adapt_soft", "adapt_lj", "adapt_diameter", "addforce_atom", "deform_erate_volume", "deform_wiggle_2d", "msd_chunk_chains"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -275,4 +275,29 @@ fn bad_adapt_is_a_located_error() {
         let f = run_text("bad.deck", &deck("p p p", &format!("{base}{line}")), &opts()).err().unwrap_or_else(|| panic!("accepted: {line}"));
         assert!(f.rendered.contains(want), "{line}: {}", f.rendered);
     }
+}
+
+/// variable atomfile: a file with a bad count, an atom ID beyond the largest, too few lines or a
+/// line without a value is an error at the variable command naming the file's line; `next`
+/// past the last set deletes the variable (a later v_ use fails).
+#[test]
+fn atomfile_errors_are_located() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("count", "# values\n\nmany\n1 0.5\n", "count.txt:3: expected the number of lines"),
+        ("big", "2\n1 0.5\n61 0.5\n", "big.txt:3: Invalid atom ID 61 in variable file"),
+        ("short", "3\n1 0.5\n2 0.5\n", "Atomfile variable could not read values"),
+        ("novalue", "2\n1 0.5\n2\n", "novalue.txt:3: Invalid atomfile line '2'"),
+        ("empty", "# nothing\n", "Atomfile variable could not read values"),
+    ];
+    for (name, text, want) in cases {
+        let file = dir.path().join(format!("{name}.txt"));
+        std::fs::write(&file, text).unwrap();
+        assert_located_at_last_line("", &[(&format!("variable w atomfile {}", file.display()), want)]);
+    }
+    let file = dir.path().join("one.txt");
+    std::fs::write(&file, "1\n3 0.25\n").unwrap();
+    let text = deck("p p p", &format!("variable w atomfile {}\nnext w\nfix 3 all addforce v_w 0.0 0.0\nrun 1\n", file.display()));
+    let f = run_text("bad.deck", &text, &opts()).err().expect("the variable is gone after next");
+    assert!(f.rendered.contains("Variable name for fix addforce does not exist (v_w)"), "{}", f.rendered);
 }

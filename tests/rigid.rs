@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 17] = ["rigid_clumps_flags", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 21] = ["rigid_clumps_flags", "rigid_small_infile", "rigid_small_reinit", "rigid_gravity_bodies", "rigid_pour_gravity", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -54,7 +54,8 @@ fn unsupported_uses_are_located_errors() {
         ("fix 2 all rigid molecule force 3 on on on", "body range"),
         ("fix 2 all rigid molecule torque 1 on maybe on", "maybe"),
         ("fix 2 all rigid molecule infile no_such_bodies.txt", "cannot open fix rigid infile"),
-        ("fix 2 all rigid/small molecule infile bodies.txt", "infile is not supported yet"),
+        ("fix 2 all rigid/small molecule infile no_such_bodies.txt", "cannot open fix rigid/small infile"),
+        ("fix 2 all rigid/small molecule gravity", "fix gravity ID"),
         ("fix 2 all rigid/nve molecule langevin 1 1 1 5", "belongs to rigid and rigid/small"),
         ("fix 2 all rigid/nvt molecule", "did not set temp for fix rigid/nvt"),
         ("fix 2 all rigid molecule mol t", "molecule template `t` does not exist"),
@@ -84,6 +85,24 @@ fn unsupported_uses_are_located_errors() {
         let line = BASE.lines().count() + 1 + cmd.matches('\n').count();
         assert!(f.rendered.contains(&format!("bad.deck:{line}:")) && f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
     }
+}
+
+/// `gravity FIXID` names a fix gravity: none, or a fix of another style, stops the run (LAMMPS'
+/// init); a rigid/small infile names molecules of the group by ID (1 to the largest), located at
+/// the file's line.
+#[test]
+fn rigid_gravity_and_infile_refusals() {
+    for (cmd, want) in [("fix 2 all rigid/small molecule gravity g", "fix rigid/small cannot find fix gravity ID g"), ("fix g all nve\nfix 2 all rigid molecule gravity g", "fix rigid gravity fix ID g is not a gravity fix style")] {
+        let deck = format!("{BASE}{cmd}\nrun 0\n");
+        let f = run_text("bad.deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
+        assert!(f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bodies.txt");
+    std::fs::write(&file, "# two bodies\n2\n1 2.0 2.5 5 5 1 1 1 0 0 0 0 0 0 0 0 0 0 0 0\n3 2.0 4.6 5.2 5 1 1 1 0 0 0 0 0 0 0 0 0 0 0 0\n").unwrap();
+    let deck = format!("{BASE}fix 2 all rigid/small molecule infile {}\nrun 0\n", file.display());
+    let f = run_text("bad.deck", &deck, &Default::default()).err().expect("molecule 3 does not exist");
+    assert!(f.rendered.contains("bodies.txt:4: invalid rigid body molecule ID 3 in fix rigid/small infile") && f.rendered.contains(&format!("bad.deck:{}:", BASE.lines().count() + 1)), "{}", f.rendered);
 }
 
 /// fix deposit `rigid`: LAMMPS' three refusals (no molecule template, no such fix, another

@@ -89,6 +89,11 @@ pub trait Host: EvalContext {
     /// Whether the engine implements a command (the interpreter reports all unknown and
     /// unsupported command names of a file before running it).
     fn supports_command(&self, name: &str) -> bool;
+    /// The IDs of the atoms that exist now (this rank's) and the largest atom ID of all ranks
+    /// (for atomfile variables).
+    fn atom_ids(&mut self) -> (Vec<i64>, i64) {
+        (Vec::new(), 0)
+    }
     /// A fix halt ended the runs (LAMMPS' expired timer): `run ... every` stops its segments.
     fn run_halted(&self) -> bool {
         false

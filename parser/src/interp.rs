@@ -408,10 +408,23 @@ impl Interpreter {
                     let value = lexer::substitute(&args[2].text, host, None).map_err(one)?;
                     w[2].text = value.text().to_string();
                 }
+                if args.len() >= 2 && args[1].as_str() == "atomfile" {
+                    let path = args.get(2).map(|f| self.resolve(f.as_str())).unwrap_or_default();
+                    let ids = host.atom_ids();
+                    return host.variables().define_atomfile(&w, &path, (&ids.0, ids.1)).map_err(one);
+                }
                 host.variables().command(&w).map_err(one)
             }
             "next" => {
-                if host.variables().next(&words_of(args)).map_err(one)? {
+                let w = words_of(args);
+                if args.first().is_some_and(|a| host.variables().style(a.as_str()) == Some("atomfile")) {
+                    let ids = host.atom_ids();
+                    if host.variables().next_atomfile(&w, (&ids.0, ids.1)).map_err(one)? {
+                        self.jump_skip = true;
+                    }
+                    return Ok(());
+                }
+                if host.variables().next(&w).map_err(one)? {
                     self.jump_skip = true;
                 }
                 Ok(())

@@ -3,7 +3,8 @@
 //! `retrieve()`, `compute_equal()`).
 //!
 //! Styles: `index`, `loop` (N, N1 N2, `pad`), `string`, `equal`, `internal`, `format`,
-//! `getenv`, and `atom`/`vector` (stored for per-atom use; they have no single value).
+//! `getenv`, `atom`/`vector` (stored for per-atom use; they have no single value), and
+//! `atomfile` (per-atom values read from a file by atom ID, [`Variables::define_atomfile`]).
 //! Redefinition follows LAMMPS: `index` and `loop` are ignored when the name exists (so a
 //! `-var` on the command line wins); `string`, `equal`, `internal`, `format`, `getenv`, `atom`,
 //! `vector` replace a variable of the same style; another style is an error.
@@ -42,6 +43,54 @@ enum Style {
     Getenv(String),
     Atom(String),
     Vector(String),
+    AtomFile(AtomFile),
+}
+
+/// An `atomfile` variable: the file, the line its next set starts at, and the current set's
+/// values by atom ID (the atoms that existed when it was read; others read 0, as LAMMPS' per-atom
+/// store gives new atoms).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AtomFile {
+    path: std::path::PathBuf,
+    next_line: usize,
+    values: std::collections::HashMap<i64, f64>,
+}
+
+impl AtomFile {
+    /// LAMMPS' VarReader::read_peratom from line `start` (0-based): comments and blank lines
+    /// up to the count N, then N lines `ID value` (an ID above the largest atom ID is an
+    /// error; IDs of no atom are skipped). None at the end of the file.
+    fn read(path: &std::path::Path, start: usize, (ids, max_id): (&[i64], i64)) -> Result<Option<AtomFile>, String> {
+        let name = path.display();
+        let text = std::fs::read_to_string(path).map_err(|e| format!("Cannot open file variable file {name}: {e}"))?;
+        let lines: Vec<&str> = text.lines().collect();
+        let mut k = start;
+        let count = loop {
+            let Some(l) = lines.get(k) else { return Ok(None) };
+            k += 1;
+            let t = l.split('#').next().unwrap_or("").trim();
+            if !t.is_empty() {
+                break t.parse::<i64>().ok().filter(|&n| n >= 0).ok_or_else(|| format!("{name}:{k}: expected the number of lines of a set of per-atom values, found `{t}`"))?;
+            }
+        };
+        let owned: std::collections::HashSet<i64> = ids.iter().copied().collect();
+        let mut values = std::collections::HashMap::new();
+        for _ in 0..count {
+            let Some(l) = lines.get(k) else { return Err(format!("{name}: Atomfile variable could not read values ({count} lines announced, the file ends at line {})", lines.len())) };
+            k += 1;
+            let mut w = l.split_whitespace();
+            let (Some(Ok(tag)), Some(Ok(value))) = (w.next().map(|t| t.parse::<i64>()), w.next().map(|t| t.parse::<f64>())) else {
+                return Err(format!("{name}:{k}: Invalid atomfile line '{l}': expected an atom ID and a value"));
+            };
+            if tag <= 0 || tag > max_id {
+                return Err(format!("{name}:{k}: Invalid atom ID {tag} in variable file"));
+            }
+            if owned.contains(&tag) {
+                values.insert(tag, value);
+            }
+        }
+        Ok(Some(AtomFile { path: path.to_path_buf(), next_line: k, values }))
+    }
 }
 
 impl Style {
@@ -56,6 +105,7 @@ impl Style {
             Style::Getenv(_) => "getenv",
             Style::Atom(_) => "atom",
             Style::Vector(_) => "vector",
+            Style::AtomFile(_) => "atomfile",
         }
     }
 }
@@ -77,9 +127,9 @@ pub struct Variables {
     random_equal: Option<RanMars>,
 }
 
-const STYLES: &[&str] = &["index", "loop", "string", "equal", "internal", "format", "getenv", "atom", "vector", "delete"];
+const STYLES: &[&str] = &["index", "loop", "string", "equal", "internal", "format", "getenv", "atom", "vector", "atomfile", "delete"];
 /// LAMMPS styles that dmhs does not implement.
-const UNSUPPORTED_STYLES: &[&str] = &["world", "universe", "uloop", "file", "atomfile", "python", "timer"];
+const UNSUPPORTED_STYLES: &[&str] = &["world", "universe", "uloop", "file", "python", "timer"];
 
 fn syntax_of(style: &str) -> &'static str {
     match style {
@@ -92,8 +142,9 @@ fn syntax_of(style: &str) -> &'static str {
         "getenv" => "variable NAME getenv ENVIRONMENT_VARIABLE",
         "atom" => "variable NAME atom FORMULA",
         "vector" => "variable NAME vector FORMULA",
+        "atomfile" => "variable NAME atomfile FILE",
         "delete" => "variable NAME delete",
-        _ => "variable NAME STYLE ARGS...  (STYLE: index, loop, string, equal, internal, format, getenv, atom, vector, delete)",
+        _ => "variable NAME STYLE ARGS...  (STYLE: index, loop, string, equal, internal, format, getenv, atom, vector, atomfile, delete)",
     }
 }
 
@@ -263,6 +314,9 @@ impl Variables {
             "format" => {
                 check_count(args, 4, style)?;
                 self.format_style(args)?
+            }
+            "atomfile" => {
+                return Err(Diagnostic::at(style_word.span, "atomfile variables are defined through the interpreter (they read a file)", "internal").with_help(format!("syntax: {}", syntax_of(style))));
             }
             _ if UNSUPPORTED_STYLES.contains(&style) => {
                 return Err(Diagnostic::at(
@@ -434,6 +488,58 @@ impl Variables {
         Ok(exhausted)
     }
 
+    /// `variable NAME atomfile FILE` (`path` resolved by the caller; `ids` the atoms' IDs
+    /// now and the largest atom ID): the file's first set of per-atom values. A name that exists is left alone, as
+    /// LAMMPS does.
+    pub fn define_atomfile(&mut self, args: &[Word], path: &std::path::Path, ids: (&[i64], i64)) -> DResult<()> {
+        check_count(args, 3, "atomfile")?;
+        let name = args[0].text.as_str();
+        if self.find(name).is_some() {
+            return Ok(());
+        }
+        if name.is_empty() || !name.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_') {
+            return Err(Diagnostic::at(args[0].span, format!("Variable name '{name}' must have only letters, numbers, or underscores"), "invalid name"));
+        }
+        let file = AtomFile::read(path, 0, ids)
+            .map_err(|m| Diagnostic::at(args[2].span, m, "this file"))?
+            .ok_or_else(|| Diagnostic::at(args[2].span, "Atomfile variable could not read values", "no set of values in this file"))?;
+        self.vars.push(Var { name: name.to_string(), style: Style::AtomFile(file), busy: false });
+        Ok(())
+    }
+
+    /// `next` of atomfile variables (`ids` the atoms' IDs now): each reads its file's next set;
+    /// one at the end of its file is deleted. Returns true if any was.
+    pub fn next_atomfile(&mut self, args: &[Word], ids: (&[i64], i64)) -> DResult<bool> {
+        let mut exhausted = false;
+        for w in args {
+            let Some(i) = self.find(&w.text) else { continue };
+            let Style::AtomFile(f) = &self.vars[i].style else {
+                return Err(Diagnostic::at(w.span, "All variables in next command must have same style", format!("a {} variable", self.vars[i].style.name())));
+            };
+            match AtomFile::read(&f.path, f.next_line, ids).map_err(|m| Diagnostic::at(w.span, m, "reading the next set"))? {
+                Some(next) => self.vars[i].style = Style::AtomFile(next),
+                None => {
+                    exhausted = true;
+                    self.vars.remove(i);
+                }
+            }
+        }
+        Ok(exhausted)
+    }
+
+    /// True for atom-style and atomfile variables (LAMMPS' atomstyle()).
+    pub fn is_atom_style(&self, name: &str) -> bool {
+        matches!(self.get(name).map(|v| &v.style), Some(Style::Atom(_) | Style::AtomFile(_)))
+    }
+
+    /// The current values of an atomfile variable by atom ID (an atom not listed reads 0).
+    pub fn atomfile_values(&self, name: &str) -> Option<&std::collections::HashMap<i64, f64>> {
+        match &self.get(name)?.style {
+            Style::AtomFile(f) => Some(&f.values),
+            _ => None,
+        }
+    }
+
     /// An index variable from the command line (`-var NAME V1 V2 ...`): defined before the
     /// script runs, so the script's own `variable NAME index ...` is ignored.
     pub fn define_index(&mut self, name: &str, values: Vec<String>) {
@@ -524,7 +630,7 @@ pub fn retrieve(ctx: &mut dyn EvalContext, name: &str) -> Result<Option<String>,
         Style::Str(s) => Some(s),
         Style::Getenv(v) => Some(std::env::var(&v).unwrap_or_default()),
         Style::Internal(v) => Some(numfmt::format_g(v, 15)),
-        Style::Atom(_) => None,
+        Style::Atom(_) | Style::AtomFile(_) => None,
         // LAMMPS: "[v1,v2,...]", each value in fmt's shortest form
         Style::Vector(_) => {
             let v = ctx.vector_variable(name)?;
@@ -579,6 +685,7 @@ pub fn formula_value(ctx: &mut dyn EvalContext, name: &str) -> Result<f64, Strin
     match var.style {
         Style::Internal(v) => return Ok(v),
         Style::Atom(_) => return Err(format!("Variable {name}: Atom-style variable in equal-style variable formula")),
+        Style::AtomFile(_) => return Err(format!("Variable {name}: Atomfile-style variable in equal-style variable formula")),
         Style::Vector(_) => return Err(format!("Variable {name}: Vector-style variable in equal-style variable formula")),
         _ => {}
     }

@@ -126,6 +126,9 @@ fn template(sim: &Simulation, id: &str, mf: &MoleculeFile, o: Options, cmd_span:
     m.q = mf.charges.as_ref().map(|v| v.values.clone());
     m.radius = mf.diameters.as_ref().map(|v| v.values.iter().map(|d| d * s * 0.5).collect());
     m.rmass = mf.masses.as_ref().map(|v| v.values.iter().map(|x| x * (s * s * s)).collect());
+    m.user_mass = mf.mass.map(|v| v * (s * s * s));
+    m.user_com = mf.com.map(|c| c.map(|v| v * s));
+    m.user_inertia = mf.inertia.map(|t| t.map(|v| v * s.powi(5)));
     if (!mf.bonds.is_empty() || !mf.angles.is_empty() || !mf.dihedrals.is_empty()) && !st.atoms.features.molecular() {
         return Err(Diagnostic::at(cmd_span, format!("the molecule has bonds, angles or dihedrals, but atom style {} has no bonds", st.atom_style.join(" ")), "atom style cannot hold them"));
     }

@@ -24,6 +24,9 @@ pub struct LammpsOrder {
     /// neighbour cutoff.
     pub sortfreq: i64,
     pub binsize: f64,
+    /// `atom_modify first GROUP`: the group's atoms are kept first (LAMMPS' first_reorder
+    /// after every exchange; sorting is then off).
+    pub first: Option<String>,
     nextsort: i64,
     /// Which atom of a pair LAMMPS' half list lists it from, as of the last rebuild (made on
     /// request, see [`LammpsOrder::make_sides`]).
@@ -32,7 +35,7 @@ pub struct LammpsOrder {
 
 impl Default for LammpsOrder {
     fn default() -> Self {
-        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, nextsort: 0, sides: None }
+        LammpsOrder { ids: Vec::new(), local: Vec::new(), sortfreq: 1000, binsize: 0.0, first: None, nextsort: 0, sides: None }
     }
 }
 
@@ -80,6 +83,27 @@ impl LammpsOrder {
         for &t in owned {
             if known.get(t).is_none() {
                 self.ids.push(t);
+            }
+        }
+    }
+
+    /// LAMMPS' Atom::first_reorder (after [`LammpsOrder::before_rebuild`]): each atom of the
+    /// group (`bit`) found behind the first atom outside it swaps places with that atom.
+    pub fn first_reorder(&mut self, atoms: &Atoms, bit: u32) {
+        let map = atoms.tag_map();
+        let inside = |t: i64| map.get(t).is_some_and(|i| atoms.mask[i] & bit != 0);
+        let ids = &mut self.ids;
+        let n = ids.len();
+        let mut nfirst = 0;
+        while nfirst < n && inside(ids[nfirst]) {
+            nfirst += 1;
+        }
+        for i in 0..n {
+            if i > nfirst && inside(ids[i]) {
+                ids.swap(i, nfirst);
+                while nfirst < n && inside(ids[nfirst]) {
+                    nfirst += 1;
+                }
             }
         }
     }

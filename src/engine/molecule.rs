@@ -17,6 +17,17 @@ pub fn rotation(mut r: [f64; 3], theta: f64) -> [[f64; 3]; 3] {
     quat_to_mat(&axisangle_to_quat(&r, theta))
 }
 
+/// Adds a point mass `m` at `d` from the centre to an inertia tensor in Voigt order (xx yy zz yz
+/// xz xy), as LAMMPS sums it.
+pub fn add_point_inertia(t: &mut [f64; 6], m: f64, [dx, dy, dz]: [f64; 3]) {
+    t[0] += m * (dy * dy + dz * dz);
+    t[1] += m * (dx * dx + dz * dz);
+    t[2] += m * (dx * dx + dy * dy);
+    t[3] -= m * dy * dz;
+    t[4] -= m * dx * dz;
+    t[5] -= m * dx * dy;
+}
+
 /// A template as one rigid body (LAMMPS' Molecule::compute_mass, compute_com and
 /// compute_inertia): what fix rigid/small gives a body that fix pour or deposit inserts.
 #[derive(Clone, Debug, PartialEq)]
@@ -70,6 +81,11 @@ pub struct Molecule {
     pub dx: Vec<[f64; 3]>,
     /// The largest distance of an atom's surface from the centre.
     pub molradius: f64,
+    /// The header's `M mass`, `x y z com` and `Ixx Iyy Izz Ixy Ixz Iyz inertia` (scaled):
+    /// used as given in place of the computed values (LAMMPS' massflag, comflag, inertiaflag).
+    pub user_mass: Option<f64>,
+    pub user_com: Option<[f64; 3]>,
+    pub user_inertia: Option<[f64; 6]>,
 }
 
 impl Molecule {
@@ -101,6 +117,9 @@ impl Molecule {
             center,
             dx,
             molradius: 0.0,
+            user_mass: None,
+            user_com: None,
+            user_inertia: None,
         }
         .with_radius()
     }
@@ -225,41 +244,38 @@ impl Molecule {
             None => type_mass.get(typ[i]).copied().unwrap_or(0.0),
         };
         let n = self.natoms();
-        let mut masstotal = 0.0;
-        for i in 0..n {
-            masstotal += mass(i);
-        }
+        // the header's values as given, else computed (the centre of mass over the header's
+        // mass when only that is given, as LAMMPS divides by its masstotal)
+        let masstotal = self.user_mass.unwrap_or_else(|| (0..n).map(mass).sum());
         if masstotal <= 0.0 {
             return Err(format!("molecule template `{}` has no mass (set type masses or a Masses section)", self.id));
         }
-        let mut com = [0.0; 3];
-        for i in 0..n {
-            for k in 0..3 {
-                com[k] += self.x[i][k] * mass(i);
-            }
-        }
-        for c in com.iter_mut() {
-            *c /= masstotal;
-        }
-        let dxcom: Vec<[f64; 3]> = self.x.iter().map(|p| [p[0] - com[0], p[1] - com[1], p[2] - com[2]]).collect();
-        let mut t = [0.0f64; 6];
-        for (i, d) in dxcom.iter().enumerate() {
-            let m = mass(i);
-            let (dx, dy, dz) = (d[0], d[1], d[2]);
-            t[0] += m * (dy * dy + dz * dz);
-            t[1] += m * (dx * dx + dz * dz);
-            t[2] += m * (dx * dx + dy * dy);
-            t[3] -= m * dy * dz;
-            t[4] -= m * dx * dz;
-            t[5] -= m * dx * dy;
-        }
-        if let Some(r) = &self.radius {
+        let com = self.user_com.unwrap_or_else(|| {
+            let mut com = [0.0; 3];
             for i in 0..n {
-                for v in t.iter_mut().take(3) {
-                    *v += 0.4 * mass(i) * r[i] * r[i];
+                for k in 0..3 {
+                    com[k] += self.x[i][k] * mass(i);
                 }
             }
-        }
+            com.map(|c| c / masstotal)
+        });
+        let dxcom: Vec<[f64; 3]> = self.x.iter().map(|p| [p[0] - com[0], p[1] - com[1], p[2] - com[2]]).collect();
+        // a header's six values fill LAMMPS' itensor in the order given (its Voigt order xx yy
+        // zz yz xz xy)
+        let t = self.user_inertia.unwrap_or_else(|| {
+            let mut t = [0.0f64; 6];
+            for (i, &d) in dxcom.iter().enumerate() {
+                add_point_inertia(&mut t, mass(i), d);
+            }
+            if let Some(r) = &self.radius {
+                for i in 0..n {
+                    for v in t.iter_mut().take(3) {
+                        *v += 0.4 * mass(i) * r[i] * r[i];
+                    }
+                }
+            }
+            t
+        });
         let tensor = [[t[0], t[5], t[4]], [t[5], t[1], t[3]], [t[4], t[3], t[2]]];
         let (mut inertia, evec) = jacobi3(&tensor, Sort::Decreasing).ok_or_else(|| format!("insufficient Jacobi rotations for the rigid molecule `{}`", self.id))?;
         let ex = [evec[0][0], evec[1][0], evec[2][0]];

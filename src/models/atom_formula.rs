@@ -43,7 +43,7 @@ pub fn atom_variable(name: &str, w: &World, ctx: &mut dyn EvalContext) -> Result
 pub fn atom_variable_input(style: &str, name: &str, w: &World, ctx: &mut dyn EvalContext) -> Result<Vec<f64>, String> {
     match ctx.variables().style(name) {
         None => Err(format!("Variable name {name} for fix {style} does not exist")),
-        Some("atom") => atom_variable(name, w, ctx),
+        Some("atom" | "atomfile") => atom_variable(name, w, ctx),
         Some(_) => Err(format!("Fix {style} variable {name} is not atom-style variable")),
     }
 }
@@ -73,6 +73,12 @@ fn eval_variable(name: &str, w: &World, ctx: &mut dyn EvalContext, depth: usize,
                 return Err(format!("variable {name}: dmhs supports one random() or normal() per atom-style formula"));
             }
             eval_tree(&tree, w, ctx, depth + 1, rng)
+        }
+        // the file's value of each atom by ID, 0 for atoms it does not list
+        Some("atomfile") => {
+            let values = vars.atomfile_values(name).expect("an atomfile variable");
+            let a = &w.state.atoms;
+            Ok(V::Many(a.tag[..a.nlocal].iter().map(|t| values.get(t).copied().unwrap_or(0.0)).collect()))
         }
         Some(_) => {
             let tree = Expr { node: Node::Variable { name: name.to_string(), index: None }, offset: 0, len: 0 };

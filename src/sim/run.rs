@@ -130,7 +130,7 @@ impl Simulation {
         }
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
-            if let Some(w) = self.fixes[k].init_warning([&self.fixes[..k], &self.fixes[k + 1..]]) {
+            for w in self.fixes[k].init_warnings([&self.fixes[..k], &self.fixes[k + 1..]]) {
                 self.out.print(&format!("WARNING: {w}"));
             }
         }
@@ -214,6 +214,10 @@ impl Simulation {
             self.state.distributed = Some(d.comm.sum1(self.state.atoms.nlocal as f64) as usize);
         }
         self.state.lammps_order.before_rebuild(&self.state.atoms);
+        if let Some(name) = &self.state.lammps_order.first {
+            let bit = self.state.groups.bit(name).ok_or_else(|| RunError::new(step, format!("could not find atom_modify first group ID `{name}`")))?;
+            self.state.lammps_order.first_reorder(&self.state.atoms, bit);
+        }
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
         // (a granular style without radii stops at its init, never here)

@@ -69,7 +69,7 @@ pub fn eval(e: &Expr, ctx: &mut dyn EvalContext) -> Result<f64, ExprError> {
             if let Some(index) = index {
                 return match variables::style_of(ctx, name) {
                     None => Err(e.err(format!("Invalid variable reference v_{name} in variable formula")).bare()),
-                    Some("atom") => {
+                    Some("atom" | "atomfile") => {
                         let atom = index_value(e, index, ctx)?;
                         ctx.atom_variable_element(name, atom).map_err(|m| e.err(m))
                     }

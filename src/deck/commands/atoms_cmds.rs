@@ -261,7 +261,7 @@ fn group_dynamic(sim: &mut Simulation, a: &mut Args, idw: &Word, style: &Word) -
                 let w = a.word("variable name")?;
                 match sim.variables.style(&w.text) {
                     None => return Err(a.error_at(w, format!("Variable '{}' for dynamic group {} does not exist", w.text, idw.text), "unknown variable")),
-                    Some("atom") => {}
+                    Some("atom" | "atomfile") => {}
                     Some(s) => return Err(a.error_at(w, format!("Variable {} for dynamic group {} is invalid style ({s}; an atom-style variable is needed)", w.text, idw.text), "not atom-style")),
                 }
                 var = Some(w.text.clone());
@@ -574,7 +574,7 @@ fn set_value<'c>(sim: &mut Simulation, a: &mut Args<'c>, what: &str, syntax: &st
 /// `what` (set, group): LAMMPS' errors for a missing variable or another style.
 pub(crate) fn atom_variable_values(sim: &mut Simulation, w: &Word, name: &str, what: &str) -> DResult<Vec<f64>> {
     match sim.variables.style(name) {
-        Some("atom") => {}
+        Some("atom" | "atomfile") => {}
         None => return Err(Diagnostic::at(w.span, format!("Variable name {} for {what} does not exist", w.text), "no such variable").with_help(format!("define it first: variable {name} atom FORMULA"))),
         Some(style) => {
             return Err(Diagnostic::at(w.span, format!("Variable {} for {what} is invalid style", w.text), format!("an {style}-style variable")).with_help(format!("{what} takes atom-style variables only (as LAMMPS)")))
@@ -592,7 +592,7 @@ pub(crate) fn equal_or_atom_variable(sim: &mut Simulation, w: &Word, what: &str)
     let name = &w.text[2..];
     match sim.variables.style(name) {
         None => Err(Diagnostic::at(w.span, format!("Variable name for {what} does not exist: {}", w.text), "no such variable")),
-        Some("atom") => Ok(SetValue::PerAtom(atom_variable_values(sim, w, name, what)?)),
+        Some("atom" | "atomfile") => Ok(SetValue::PerAtom(atom_variable_values(sim, w, name, what)?)),
         Some("equal" | "internal" | "timer" | "python") => {
             dmhs_parser::variables::compute_equal(sim, name).map(SetValue::One).map_err(|e| Diagnostic::at(w.span, e, "while evaluating this variable"))
         }

@@ -142,6 +142,12 @@ impl Host for Simulation {
     fn supports_command(&self, name: &str) -> bool {
         COMMANDS.iter().any(|(n, _)| *n == name)
     }
+    fn atom_ids(&mut self) -> (Vec<i64>, i64) {
+        let a = &self.state.atoms;
+        let mut max = [a.tag[..a.nlocal].iter().copied().max().unwrap_or(0) as f64];
+        self.state.max_ranks(&mut max);
+        (a.tag[..a.nlocal].to_vec(), max[0] as i64)
+    }
 }
 
 impl Simulation {

@@ -44,7 +44,7 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
             let name = &v.text[2..];
             match sim.variables.style(name) {
                 None => return Err(a.error_at(v, format!("Variable name for fix rigid custom does not exist: {}", v.text), "no such variable")),
-                Some("atom") => Some(super::atoms_cmds::atom_variable_values(sim, v, name, "fix rigid custom")?),
+                Some("atom" | "atomfile") => Some(super::atoms_cmds::atom_variable_values(sim, v, name, "fix rigid custom")?),
                 Some(s) => return Err(a.error_at(v, format!("Fix rigid custom variable is no atom-style variable: {} is {s}-style", v.text), "an atom-style variable is needed")),
             }
         }

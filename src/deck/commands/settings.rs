@@ -196,6 +196,9 @@ pub fn atom_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
             // dmhs sorts its own atoms at every rebuild; the setting gives LAMMPS' order, which
             // fixes that draw random numbers per atom follow (engine/lammps_order.rs)
             "sort" => {
+                if sim.state.lammps_order.first.is_some() {
+                    return Err(a.error_at(w, "atom_modify sort and first options cannot be used together", "first GROUP already set"));
+                }
                 sim.state.lammps_order.sortfreq = a.i64_in("sort frequency", 0, i64::MAX)?;
                 sim.state.lammps_order.binsize = a.non_negative_f64("sort bin size")?;
             }
@@ -204,10 +207,14 @@ pub fn atom_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DR
                     return Err(a.error_at(a.last().unwrap(), "atom_modify id no is not supported (atoms always have IDs)", "use yes"));
                 }
             }
+            // LAMMPS keeps the group's atoms first in its local order, and stops sorting
             "first" => {
                 let g = a.word("group ID")?;
-                if g.text != "all" {
-                    return Err(a.error_at(g, "atom_modify first is not supported (only `all`)", "not supported"));
+                if g.text == "all" {
+                    sim.state.lammps_order.first = None;
+                } else {
+                    sim.state.lammps_order.first = Some(g.text.clone());
+                    sim.state.lammps_order.sortfreq = 0;
                 }
             }
             _ => return Err(a.unknown_keyword(w, &["map", "sort", "id", "first"])),

@@ -342,11 +342,11 @@ impl FixAveHisto {
                 }
                 (Value::Variable(name), _) => match (ev.variables().style(name), self.kind) {
                     (None, _) => return Err(format!("Variable name {name} for fix ave/histo does not exist")),
-                    (Some("atom"), Kind::PerAtom) => {
+                    (Some("atom" | "atomfile"), Kind::PerAtom) => {
                         let vals = crate::models::atom_formula::atom_variable(name, w, ev)?;
                         out.extend(members(&|i| vals[i]));
                     }
-                    (Some("atom"), _) => return Err("Fix ave/histo inputs are not all global, peratom, or local".into()),
+                    (Some("atom" | "atomfile"), _) => return Err("Fix ave/histo inputs are not all global, peratom, or local".into()),
                     (Some(_), Kind::PerAtom | Kind::Local) => return Err("Fix ave/histo inputs are not all global, peratom, or local".into()),
                     (Some(_), Kind::Global) => out.push(dmhs_parser::variables::compute_equal(ev, name).map_err(|e| format!("variable `{name}`: {e}"))?),
                 },
@@ -464,7 +464,7 @@ impl Fix for FixAveHisto {
         for (n, st) in names.iter().zip(styles) {
             let k = match st {
                 None => return Err(err(format!("Variable name {n} for fix ave/histo does not exist"))),
-                Some("atom") => Kind::PerAtom,
+                Some("atom" | "atomfile") => Kind::PerAtom,
                 Some(_) => Kind::Global,
             };
             if kind.is_some_and(|k0| k0 != k) {

@@ -1,5 +1,7 @@
 //! `fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta`:
 //! f += m * g (acceleration `magnitude` along the normalised direction, LAMMPS' arithmetic).
+//! `disable`: no force on the atoms (nor energy); the acceleration is still evaluated every
+//! step for the fixes that read it (a rigid fix's `gravity` keyword).
 
 use super::value::FixValue;
 use super::{Fix, FixCtx, FixHooks, ThermoTally};
@@ -7,14 +9,15 @@ use crate::engine::par::{ranges, AtomsMut};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta";
+pub const SYNTAX: &str = "fix ID group gravity magnitude vector x y z | chute angle | spherical phi theta [disable]";
 
 /// What a fix gravity applies: the acceleration magnitude (None when a variable gives it) along
-/// the unit direction `dir`.
+/// the unit direction `dir`, and the acceleration vector of the last force step (LAMMPS' gvec).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gravity {
     pub magnitude: Option<f64>,
     pub dir: [f64; 3],
+    pub acc: [f64; 3],
 }
 
 pub struct FixGravity {
@@ -24,6 +27,8 @@ pub struct FixGravity {
     dir: [f64; 3],
     /// The acceleration vector of the last force step.
     acc: [f64; 3],
+    /// `disable`: the atoms get no force.
+    disable: bool,
     /// Energy only (LAMMPS: no virial).
     tally: ThermoTally,
 }
@@ -59,8 +64,21 @@ impl FixGravity {
         if !dir.iter().all(|v| v.is_finite()) {
             return Err(a.error_at(&args[1], "gravity direction has zero length", "zero vector"));
         }
-        a.finish()?;
-        Ok(FixGravity { id, groupbit, magnitude, dir, acc: [0.0; 3], tally: ThermoTally::default() })
+        let mut disable = false;
+        while let Some(w) = a.peek() {
+            if w.text != "disable" {
+                return Err(a.unknown_keyword(w, &["disable"]));
+            }
+            a.skip(1);
+            disable = true;
+        }
+        // LAMMPS sets the acceleration at init already (a rigid fix may read it before this
+        // fix's first post_force)
+        let acc = match magnitude {
+            FixValue::Const(g) => [g * dir[0], g * dir[1], g * dir[2]],
+            _ => [0.0; 3],
+        };
+        Ok(FixGravity { id, groupbit, magnitude, dir, acc, disable, tally: ThermoTally::default() })
     }
 }
 
@@ -89,6 +107,9 @@ impl Fix for FixGravity {
         let g = ctx.value(state, self, &self.magnitude)?.unwrap_or(0.0);
         let acc = [g * self.dir[0], g * self.dir[1], g * self.dir[2]];
         self.acc = acc;
+        if self.disable {
+            return Ok(());
+        }
         let per_atom = state.atoms.features.per_atom_mass();
         let a = &mut state.atoms;
         let n = a.nlocal;
@@ -112,6 +133,9 @@ impl Fix for FixGravity {
     /// the group do not change between the force step and the end of the step, when thermo and
     /// variables read it).
     fn scalar(&self, state: &State) -> Option<f64> {
+        if self.disable {
+            return Some(0.0);
+        }
         let a = &state.atoms;
         let per_atom = a.features.per_atom_mass();
         let [xacc, yacc, zacc] = self.acc;
@@ -140,6 +164,6 @@ impl Fix for FixGravity {
             FixValue::Const(g) => Some(g),
             _ => None,
         };
-        Some(Gravity { magnitude, dir: self.dir })
+        Some(Gravity { magnitude, dir: self.dir, acc: self.acc })
     }
 }

@@ -177,7 +177,7 @@ impl FixCtx<'_> {
         let what = format!("fix {} {}", running.style(), running.id());
         match self.eval(state, running, |_, ev| Ok(ev.variables().style(name)))? {
             None => Err(RunError::new(state.step, format!("{what}: Variable name for fix {} does not exist (v_{name})", running.style()))),
-            Some("atom") => {
+            Some("atom" | "atomfile") => {
                 let vals = self.eval(state, running, |w, ev| crate::models::atom_formula::atom_variable(name, w, ev).map_err(|e| format!("{what}: {e}")))?;
                 Ok(value::Evaluated::PerAtom(vals))
             }
@@ -292,10 +292,10 @@ pub trait Fix: Send + Sync {
     fn init(&mut self, _state: &State, _ctx: &FixCtx) -> Result<(), String> {
         Ok(())
     }
-    /// A warning LAMMPS prints when a run starts, given the fixes defined before and after
+    /// The warnings LAMMPS prints when a run starts, given the fixes defined before and after
     /// this one.
-    fn init_warning(&self, _others: [&[Box<dyn Fix>]; 2]) -> Option<String> {
-        None
+    fn init_warnings(&self, _others: [&[Box<dyn Fix>]; 2]) -> Vec<String> {
+        Vec::new()
     }
     /// Called once per run before the forces of step 0 are computed (LAMMPS `setup_pre_force`).
     fn setup_pre_force(&mut self, _state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {

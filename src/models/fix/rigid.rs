@@ -31,13 +31,8 @@ pub struct Global {
     pub fflag: Vec<[f64; 3]>,
     /// Per body: torque components on or off, LAMMPS' tflag.
     pub tflag: Vec<[f64; 3]>,
-    /// `reinit yes` (default): the bodies are set up again at every run's init.
-    pub reinit: bool,
     /// `molecule`: each molecule ID's body (the IDs of a body file are molecule IDs).
     pub mol_to_body: Option<HashMap<i64, usize>>,
-    /// `infile FILE`: bodies whose mass, centre, inertia tensor, vcm, angular momentum and
-    /// image come from the file.
-    pub infile: Option<Infile>,
 }
 
 /// One body of a fix rigid `infile`.
@@ -52,7 +47,7 @@ pub struct FileBody {
     pub image: [i32; 3],
 }
 
-/// The bodies a fix rigid `infile` sets, by body index.
+/// The bodies an `infile` sets: by body index (fix rigid) or by molecule ID (rigid/small).
 #[derive(Clone, Debug, Default)]
 pub struct Infile {
     pub bodies: BTreeMap<usize, FileBody>,
@@ -139,7 +134,7 @@ impl Global {
             return Err(a.error_at(kind, "one or zero atoms in rigid body", "every body needs 2 atoms or more"));
         }
         let (fflag, tflag) = if state.dimension == 2 { ([1.0, 1.0, 0.0], [0.0, 0.0, 1.0]) } else { ([1.0; 3], [1.0; 3]) };
-        Ok(Global { body_of, nbody, fflag: vec![fflag; nbody], tflag: vec![tflag; nbody], reinit: true, mol_to_body, infile: None })
+        Ok(Global { body_of, nbody, fflag: vec![fflag; nbody], tflag: vec![tflag; nbody], mol_to_body })
     }
 
     /// `force M xflag yflag zflag` or `torque M ...` (`w` the keyword): components of the bodies
@@ -171,43 +166,48 @@ impl Global {
         sum - nlinear as f64
     }
 
-    /// LAMMPS' readfile: the first line that is not blank or a comment gives the number of
-    /// bodies N, then N lines of `ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx
-    /// ly lz ixcm iycm izcm` (ID the molecule ID for `molecule`, else the body number).
-    pub fn read_infile(&self, path: &std::path::Path) -> Result<Infile, String> {
-        let name = path.display();
-        let text = std::fs::read_to_string(path).map_err(|e| format!("cannot open fix rigid infile {name}: {e}"))?;
-        let mut lines = text.lines().enumerate();
-        let (n, count_line) = loop {
-            let Some((k, l)) = lines.next() else { return Err(format!("{name}: unexpected end of fix rigid infile (no body count)")) };
-            let t = l.trim();
-            if !t.is_empty() && !t.starts_with('#') {
-                let n: usize = t.parse().map_err(|_| format!("{name}:{}: fix rigid infile has incorrect format: expected the number of bodies, found `{t}`", k + 1))?;
-                break (n, k + 1);
-            }
+    /// The body index of a fix rigid infile's ID (the molecule ID for `molecule`, else the
+    /// body number).
+    pub fn file_body(&self, id: i64) -> Result<usize, String> {
+        let body = match &self.mol_to_body {
+            Some(m) => m.get(&id).copied(),
+            None => usize::try_from(id - 1).ok().filter(|&b| b < self.nbody),
         };
-        let mut out = Infile::default();
-        for _ in 0..n {
-            let Some((k, l)) = lines.next() else { return Err(format!("{name}: unexpected end of fix rigid infile: {n} bodies announced at line {count_line}")) };
-            let at = k + 1;
-            let words: Vec<&str> = l.split('#').next().unwrap_or("").split_whitespace().collect();
-            if words.len() != 20 {
-                return Err(format!("{name}:{at}: incorrect rigid body format in fix rigid infile: expected 20 values (ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm iycm izcm), found {}", words.len()));
-            }
-            let int = |w: &str| w.parse::<i64>().map_err(|_| format!("{name}:{at}: expected an integer, found `{w}`"));
-            let mut v = [0.0f64; 20];
-            for (j, w) in words.iter().enumerate().skip(1).take(16) {
-                v[j] = w.parse::<f64>().map_err(|_| format!("{name}:{at}: expected a number, found `{w}`"))?;
-            }
-            let id = int(words[0])?;
-            let body = match &self.mol_to_body {
-                Some(m) => m.get(&id).copied(),
-                None => usize::try_from(id - 1).ok().filter(|&b| b < self.nbody),
-            };
-            let Some(body) = body else { return Err(format!("{name}:{at}: invalid rigid body ID {id} in fix rigid infile")) };
-            let image = [int(words[17])? as i32, int(words[18])? as i32, int(words[19])? as i32];
-            out.bodies.insert(body, FileBody { mass: v[1], xcm: [v[2], v[3], v[4]], itensor: [v[5], v[6], v[7], v[10], v[9], v[8]], vcm: [v[11], v[12], v[13]], angmom: [v[14], v[15], v[16]], image });
-        }
-        Ok(out)
+        body.ok_or_else(|| format!("invalid rigid body ID {id} in fix rigid infile"))
     }
+}
+
+/// LAMMPS' readfile: the first line that is not blank or a comment gives the number of bodies
+/// N, then N lines of `ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm
+/// iycm izcm`; `key` turns an ID into the body's key in the result (or says why it is invalid).
+pub fn read_infile(path: &std::path::Path, style: &str, key: impl Fn(i64) -> Result<usize, String>) -> Result<Infile, String> {
+    let name = path.display();
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot open fix {style} infile {name}: {e}"))?;
+    let mut lines = text.lines().enumerate();
+    let (n, count_line) = loop {
+        let Some((k, l)) = lines.next() else { return Err(format!("{name}: unexpected end of fix {style} infile (no body count)")) };
+        let t = l.trim();
+        if !t.is_empty() && !t.starts_with('#') {
+            let n: usize = t.parse().map_err(|_| format!("{name}:{}: fix {style} infile has incorrect format: expected the number of bodies, found `{t}`", k + 1))?;
+            break (n, k + 1);
+        }
+    };
+    let mut out = Infile::default();
+    for _ in 0..n {
+        let Some((k, l)) = lines.next() else { return Err(format!("{name}: unexpected end of fix {style} infile: {n} bodies announced at line {count_line}")) };
+        let at = k + 1;
+        let words: Vec<&str> = l.split('#').next().unwrap_or("").split_whitespace().collect();
+        if words.len() != 20 {
+            return Err(format!("{name}:{at}: incorrect rigid body format in fix {style} infile: expected 20 values (ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm iycm izcm), found {}", words.len()));
+        }
+        let int = |w: &str| w.parse::<i64>().map_err(|_| format!("{name}:{at}: expected an integer, found `{w}`"));
+        let mut v = [0.0f64; 20];
+        for (j, w) in words.iter().enumerate().skip(1).take(16) {
+            v[j] = w.parse::<f64>().map_err(|_| format!("{name}:{at}: expected a number, found `{w}`"))?;
+        }
+        let body = key(int(words[0])?).map_err(|e| format!("{name}:{at}: {e}"))?;
+        let image = [int(words[17])? as i32, int(words[18])? as i32, int(words[19])? as i32];
+        out.bodies.insert(body, FileBody { mass: v[1], xcm: [v[2], v[3], v[4]], itensor: [v[5], v[6], v[7], v[10], v[9], v[8]], vcm: [v[11], v[12], v[13]], angmom: [v[14], v[15], v[16]], image });
+    }
+    Ok(out)
 }

@@ -1,10 +1,11 @@
 //! `fix ID group rigid/small molecule`: each molecule of the group moves as one rigid body
 //! (LAMMPS' fix rigid/small with nve integration, 22 Jul 2025, serial order of operations).
 //!
-//! Setup (every run, LAMMPS' reinit yes): mass and centre of mass from unwrapped positions,
-//! the inertia tensor (finite-size spheres add 0.4 m r^2), principal axes by LAMMPS' Jacobi
-//! rotations (ascending moments; in 2d the axis along z last), the quaternion, each atom's
-//! displacement in the body frame; vcm and angular momentum from the atoms' velocities.
+//! Setup (every run; with `reinit no` or `infile` the first run's only): mass and centre of mass
+//! from unwrapped positions, the inertia tensor (finite-size spheres add 0.4 m r^2), principal
+//! axes by LAMMPS' Jacobi rotations (ascending moments; in 2d the axis along z last), the
+//! quaternion, each atom's displacement in the body frame; vcm and angular momentum from the
+//! atoms' velocities.
 //! Per step: initial_integrate (half kick of vcm and angular momentum, drift of the centre,
 //! Richardson update of the quaternion, positions and velocities of the atoms from the
 //! body), final_integrate (force and torque summed over the body's atoms, half kick,
@@ -19,23 +20,25 @@
 //! `langevin Tstart Tstop Tperiod seed` (rigid/small only) adds to each body's force and torque,
 //! at its final half step, a drag and a random kick drawn at post_force (LAMMPS'
 //! apply_langevin_thermostat: Marsaglia's stream seeded with `seed`, six draws per body in body
-//! order).
+//! order). `infile FILE` gives bodies (by molecule ID) their mass, centre, inertia tensor and
+//! momenta from a file (LAMMPS' readfile); `gravity FIXID` adds that fix gravity's m g to each
+//! body's force (at setup too, after the thermostat's), for a fix gravity with `disable`.
 
 use super::box_stress::Couple;
-use super::rigid::Global;
+use super::rigid::{read_infile, Global, Infile};
 use super::rigid_nh_small::{Baro, Chains, RigidNh, Steps};
 use super::thermostat::run_fraction;
 use super::{Fix, FixCtx, FixDef, FixHooks, MinRole, ThermoTally};
 use crate::engine::jacobi::{jacobi3, Sort};
-use crate::engine::molecule::{RigidInsert, RigidTemplate};
+use crate::engine::molecule::{add_point_inertia, RigidInsert, RigidTemplate};
 use crate::engine::quat::{self, Quat};
 use crate::engine::random_mars::RanMars;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult, Word};
 use std::collections::HashMap;
 
-pub const SYNTAX_RIGID: &str = "fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph single|molecule|group N g1 ... gN [force M x y z] [torque M x y z] [reinit yes|no] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
-pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small|rigid/npt/small|rigid/nph/small molecule [mol TEMPLATE] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
+pub const SYNTAX_RIGID: &str = "fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph single|molecule|group N g1 ... gN [force M x y z] [torque M x y z] [reinit yes|no] [infile FILE] [gravity FIXID] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
+pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small|rigid/npt/small|rigid/nph/small molecule [mol TEMPLATE] [reinit yes|no] [infile FILE] [gravity FIXID] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
 
 /// Moment of inertia prefactor of a solid sphere.
 const SINERTIA: f64 = 0.4;
@@ -121,6 +124,17 @@ pub struct FixRigidSmall {
     /// `fix_modify ID temp CID` of a barostat: the temperature its pressure reads (LAMMPS'
     /// id_temp; group all by default).
     press_temp: Option<crate::models::compute::temp_bias::TempSpec>,
+    /// `reinit yes` (default): the bodies are set up again at every run (fix rigid at init,
+    /// the /small styles at setup); `no` keeps the first run's.
+    reinit: bool,
+    /// `infile FILE`: bodies whose mass, centre, inertia tensor, vcm, angular momentum and image
+    /// come from the file (keyed by body index for fix rigid, by molecule ID for /small).
+    infile: Option<Infile>,
+    /// `gravity FIXID`: the acceleration of that fix gravity acts on each body's centre of mass
+    /// (LAMMPS' id_gravity; the fix gravity usually has `disable`).
+    gravity: Option<String>,
+    /// The bodies have been set up once (LAMMPS' setupflag, for `reinit no`).
+    bodies_set_up: bool,
 }
 
 #[derive(Default)]
@@ -173,6 +187,7 @@ impl FixRigidSmall {
         let mut press_word = None;
         let mut temp = None;
         let mut langevin = None;
+        let (mut reinit, mut infile, mut gravity) = (true, None, None);
         let (mut t_chain, mut t_iter, mut t_order) = (10, 1, 3);
         while let Some(w) = a.peek() {
             let what = match w.text.as_str() {
@@ -248,18 +263,31 @@ impl FixRigidSmall {
                     global.as_mut().expect("checked").parse_flags(&mut a, w, style, dim)?;
                     continue;
                 }
-                "infile" if global.is_some() => {
+                "infile" => {
                     a.skip(1);
                     let f = a.word("body file name")?;
-                    let g = global.as_mut().expect("checked");
-                    let file = g.read_infile(&d.path(&f.text)).map_err(|e| a.error_at(f, e, "this body file"))?;
+                    let file = match &global {
+                        Some(g) => read_infile(&d.path(&f.text), "rigid", |id| g.file_body(id)),
+                        None => {
+                            // LAMMPS' maxmol: the largest molecule ID of the group
+                            let at = &state.atoms;
+                            let maxmol = (0..at.nlocal).filter(|&i| at.mask[i] & groupbit != 0).map(|i| at.molecule[i]).max().unwrap_or(-1);
+                            read_infile(&d.path(&f.text), style, |id| usize::try_from(id).ok().filter(|_| id >= 1 && id <= maxmol).ok_or_else(|| format!("invalid rigid body molecule ID {id} in fix {style} infile")))
+                        }
+                    }
+                    .map_err(|e| a.error_at(f, e, "this body file"))?;
                     state.messages.push(format!("Reading rigid body data for {} bodies from file {}", file.bodies.len(), f.text));
-                    (g.infile, g.reinit) = (Some(file), false);
+                    (infile, reinit) = (Some(file), false);
                     continue;
                 }
-                "reinit" if global.is_some() => {
+                "reinit" => {
                     a.skip(1);
-                    global.as_mut().expect("checked").reinit = a.logical("reinit (yes or no)")?;
+                    reinit = a.logical("reinit (yes or no)")?;
+                    continue;
+                }
+                "gravity" => {
+                    a.skip(1);
+                    gravity = Some(a.word("fix gravity ID")?.text.clone());
                     continue;
                 }
                 "langevin" if plain => {
@@ -274,16 +302,14 @@ impl FixRigidSmall {
                     langevin = Some(BodyLangevin { t_start, t_stop, t_period, random: RanMars::new(seed), extra: Vec::new() });
                     continue;
                 }
-                "infile" | "gravity" => return Err(a.error_at(w, format!("fix {style} {} is not supported yet", w.text), "not supported")),
-                "reinit" => return Err(a.error_at(w, format!("fix {style} reinit is not supported yet (bodies are set up at every run, LAMMPS' default)"), "not supported")),
                 "langevin" => "it belongs to rigid and rigid/small (dmhs has the bodies' Langevin thermostat there only)",
                 "temp" | "tparam" => "it belongs to rigid/nvt, rigid/npt and their /small forms (a thermostat)",
                 "iso" | "aniso" | "x" | "y" | "z" | "couple" | "dilate" | "pchain" => "it belongs to rigid/npt, rigid/nph and their /small forms (a barostat)",
                 "force" | "torque" => "it belongs to fix rigid and its integrators (one set of bodies)",
                 _ => {
-                    let mut known = vec!["mol"];
+                    let mut known = vec!["mol", "infile", "reinit", "gravity"];
                     if global.is_some() {
-                        known.extend(["force", "torque", "reinit"]);
+                        known.extend(["force", "torque"]);
                     }
                     if plain {
                         known.push("langevin");
@@ -327,7 +353,7 @@ impl FixRigidSmall {
         if let Some(g) = &global {
             state.messages.push(format!("  {} rigid bodies with {} atoms", g.nbody, g.body_of.len()));
         }
-        Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None })
+        Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None, reinit, infile, gravity, bodies_set_up: false })
     }
 
     /// LAMMPS' checks of the barostat's settings (FixRigidNHSmall's constructor).
@@ -516,14 +542,18 @@ impl FixRigidSmall {
             }
             b.image = [0; 3];
         }
-        // fix rigid infile: the atoms' dynamics first, then the file's bodies over them (LAMMPS
-        // 22 Jul 2025's order in setup_bodies_static)
-        let infile = self.global.as_ref().and_then(|g| g.infile.as_ref());
-        if let Some(file) = infile {
+        // infile: the atoms' dynamics first, then the file's bodies over them (LAMMPS 22 Jul
+        // 2025's order in setup_bodies_static); fix rigid's file names body indices, the /small
+        // styles' molecule IDs
+        let infile = self.infile.as_ref();
+        let by_index = self.global.is_some();
+        let from_file = |k: usize, b: &Body| infile.and_then(|f| f.bodies.get(&if by_index { k } else { b.mol as usize }));
+        if infile.is_some() {
             Self::setup_dynamic(&mut bodies, &members, state, &order, &domain);
-            for (&k, r) in &file.bodies {
-                let b = &mut bodies[k];
-                (b.mass, b.xcm, b.vcm, b.angmom, b.image) = (r.mass, r.xcm, r.vcm, r.angmom, r.image);
+            for (k, b) in bodies.iter_mut().enumerate() {
+                if let Some(r) = from_file(k, b) {
+                    (b.mass, b.xcm, b.vcm, b.angmom, b.image) = (r.mass, r.xcm, r.vcm, r.angmom, r.image);
+                }
             }
         }
         // pre_neighbor: the centres wrapped into the box
@@ -536,15 +566,8 @@ impl FixRigidSmall {
             let Some(m) = members.get(&a.tag[i]) else { continue };
             let b = &bodies[m.body];
             let unwrap = domain.unmap(a.x[i], Self::xcmimage(a.image[i], b.image));
-            let (dx, dy, dz) = (unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]);
-            let massone = Self::massone(state, i);
-            let t = &mut itensor[m.body];
-            t[0] += massone * (dy * dy + dz * dz);
-            t[1] += massone * (dx * dx + dz * dz);
-            t[2] += massone * (dx * dx + dy * dy);
-            t[3] -= massone * dy * dz;
-            t[4] -= massone * dx * dz;
-            t[5] -= massone * dx * dy;
+            let d = [unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]];
+            add_point_inertia(&mut itensor[m.body], Self::massone(state, i), d);
         }
         if extended {
             for &i in order.iter() {
@@ -558,8 +581,8 @@ impl FixRigidSmall {
                 }
             }
         }
-        if let Some(file) = infile {
-            for (&k, r) in &file.bodies {
+        for (k, b) in bodies.iter().enumerate() {
+            if let Some(r) = from_file(k, b) {
                 itensor[k] = r.itensor;
             }
         }
@@ -605,6 +628,7 @@ impl FixRigidSmall {
         self.bodies = bodies;
         self.members = members;
         self.local.tags.clear();
+        self.bodies_set_up = true;
         Ok(())
     }
 
@@ -704,6 +728,18 @@ impl FixRigidSmall {
             }
             for k in 0..3 {
                 b.torque[k] += e[3 + k];
+            }
+        }
+    }
+
+    /// `gravity FIXID`: m g on each body's centre of mass, with the fix gravity's acceleration of
+    /// this step (after the thermostat's force, as LAMMPS' compute_forces_and_torques).
+    fn add_gravity(&mut self, ctx: &FixCtx) {
+        let Some(id) = &self.gravity else { return };
+        let Some(g) = ctx.other_fixes().find(|f| f.id() == id).and_then(|f| f.gravity()) else { return };
+        for b in self.bodies.iter_mut() {
+            for k in 0..3 {
+                b.fcm[k] += g.acc[k] * b.mass;
             }
         }
     }
@@ -835,10 +871,17 @@ impl Fix for FixRigidSmall {
         self.enforce2d = state.dimension == 2 && ctx.others[1].iter().any(|f| f.style() == "enforce2d");
         // fix rigid sets its bodies up here, before the run wraps and sorts the atoms (LAMMPS'
         // FixRigid::init); rigid/small at setup_pre_force
-        if self.global.as_ref().is_some_and(|g| g.reinit || !self.set_up) {
+        if self.global.is_some() && (self.reinit || !self.bodies_set_up) {
             self.setup_bodies(state)?;
         }
         self.set_up = true;
+        if let Some(id) = &self.gravity {
+            match ctx.other_fixes().find(|f| f.id() == id) {
+                None => return Err(format!("fix {} cannot find fix gravity ID {id}", self.style)),
+                Some(f) if f.gravity().is_none() => return Err(format!("fix {} gravity fix ID {id} is not a gravity fix style", self.style)),
+                Some(_) => {}
+            }
+        }
         if let Some(nh) = self.nh.as_mut().filter(|nh| nh.baro.is_some()) {
             if let Some(f) = ctx.other_fixes().find(|f| f.style() == "deform" || f.changes_box()) {
                 return Err(format!("fix {} ({}) with fix {} ({}): dmhs does not combine a rigid barostat with another fix that changes the box", self.id, self.style, f.id(), f.style()));
@@ -851,17 +894,41 @@ impl Fix for FixRigidSmall {
         Ok(())
     }
     /// LAMMPS' rigid fixes each warn at init when another rigid fix is defined.
-    fn init_warning(&self, others: [&[Box<dyn Fix>]; 2]) -> Option<String> {
-        others.iter().flat_map(|o| o.iter()).any(|f| f.rigid_template().is_some()).then(|| "More than one fix rigid".to_string())
-    }
-    fn setup_pre_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
-        if self.global.is_some() {
-            return Ok(());
+    /// LAMMPS' warnings at a rigid fix's init: another rigid fix; gravity on bodies whose mass
+    /// and centre come from a file or template but not from the `gravity` keyword; with
+    /// `bodyforces early`, fixes after the first rigid fix that change forces after the sums.
+    fn init_warnings(&self, [before, after]: [&[Box<dyn Fix>]; 2]) -> Vec<String> {
+        let rigid = |f: &&Box<dyn Fix>| f.rigid_template().is_some();
+        let mut out = Vec::new();
+        if before.iter().chain(after).any(|f| rigid(&f)) {
+            out.push(if self.global.is_some() { "More than one fix rigid" } else { "More than one fix rigid command" }.to_string());
         }
-        self.setup_bodies(state).map_err(|e| self.err(state, e))
+        if (self.infile.is_some() || self.template.is_some()) && self.gravity.is_none() && before.iter().chain(after).any(|f| f.style() == "gravity") {
+            out.push("Gravity may not be correctly applied to rigid bodies if they consist of overlapped particles".to_string());
+        }
+        if self.early {
+            let first = before.iter().position(|f| rigid(&f)).unwrap_or(before.len());
+            for f in before[first..].iter().chain(after) {
+                if !rigid(&f) && f.hooks().post_force {
+                    out.push(format!("Fix {} with ID {} alters forces after fix rigid", f.style(), f.id()));
+                }
+            }
+        }
+        out
+    }
+    fn setup_pre_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        if self.global.is_none() && (self.reinit || !self.bodies_set_up) {
+            return self.setup_bodies(state).map_err(|e| self.err(state, e));
+        }
+        // the bodies kept: LAMMPS' pre_neighbor (centres back into the box)
+        if self.global.is_none() {
+            self.pre_exchange(state, ctx)?;
+        }
+        Ok(())
     }
     fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
+        self.add_gravity(ctx);
         for b in self.bodies.iter_mut() {
             b.omega = quat::angmom_to_omega(&b.angmom, &b.ex, &b.ey, &b.ez, &b.inertia);
         }
@@ -920,11 +987,12 @@ impl Fix for FixRigidSmall {
         self.set_atoms(state, true).map_err(|e| self.err(state, e))
     }
     /// The Langevin draw, then (`bodyforces early`) the bodies' forces and torques.
-    fn post_force(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+    fn post_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.draw_langevin(state);
         if self.early {
             self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
             self.add_langevin();
+            self.add_gravity(ctx);
         }
         Ok(())
     }
@@ -958,6 +1026,7 @@ impl Fix for FixRigidSmall {
         if !self.early {
             self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
             self.add_langevin();
+            self.add_gravity(ctx);
         }
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         if let Some(nh) = self.nh.as_mut() {

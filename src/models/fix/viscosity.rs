@@ -71,8 +71,8 @@ impl Fix for FixViscosity {
     fn global_freq(&self) -> i64 {
         self.nevery
     }
-    fn init_warning(&self, [_, later]: [&[Box<dyn Fix>]; 2]) -> Option<String> {
-        super::slab_swaps::ave_chunk_after("viscosity", later)
+    fn init_warnings(&self, [_, later]: [&[Box<dyn Fix>]; 2]) -> Vec<String> {
+        super::slab_swaps::ave_chunk_after("viscosity", later).into_iter().collect()
     }
     fn end_of_step(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
         if state.step % self.nevery != 0 {

@@ -108,9 +108,9 @@ impl Fix for FixWallReflect {
     fn hooks(&self) -> FixHooks {
         FixHooks { post_integrate: true, ..FixHooks::default() }
     }
-    fn init_warning(&self, others: [&[Box<dyn Fix>]; 2]) -> Option<String> {
+    fn init_warnings(&self, others: [&[Box<dyn Fix>]; 2]) -> Vec<String> {
         let rigid = others.iter().any(|fixes| fixes.iter().any(|f| f.rigid_template().is_some()));
-        rigid.then(|| "Should not use reflecting walls with rigid bodies".to_string())
+        rigid.then(|| "Should not use reflecting walls with rigid bodies".to_string()).into_iter().collect()
     }
     fn image_planes(&self, _state: &State, equal: &mut dyn FnMut(&str) -> Result<f64, String>) -> Result<Vec<(usize, f64)>, String> {
         let mut planes = vec![];

@@ -111,7 +111,7 @@ fn read_data_add_errors_are_located() {
     expect_error(&replace("read_data    chains_walls.data add append offset 2 2 1 1"), "missing ioff");
     expect_error(&replace("read_data    chains_walls.data add 1000"), "molecule ID offset");
     expect_error(&replace("read_data    chains_walls.data add append extra/atom/types 2"), "cannot be used with add");
-    expect_error(&replace("read_data    chains_walls.data add append fix f NULL Section"), "read_data fix");
+    expect_error(&replace("read_data    chains_walls.data add append fix f NULL Section"), "Fix ID f for read_data does not exist");
     expect_error(&replace("read_data    chains_walls.data add append bogus"), "unknown keyword `bogus`");
     expect_error(&d.replace("read_data    chains_walls.data extra/atom/types 2", "read_data    chains_walls.data add append"), "needs a simulation box");
     expect_error(&d.replace("read_data    chains_walls.data extra/atom/types 2", "read_data    chains_walls.data shift 1 0 0 extra/atom/types 2"), "read_data shift needs the `add` keyword");
@@ -244,4 +244,26 @@ fn delete_atoms_overlap_uses_the_neighbor_list() {
     expect_error(&d.replace(delete, "delete_atoms overlap 1.6 all two\n"), "Delete_atoms cutoff > max neighbor cutoff (1.6 > 1.55)");
     // LAMMPS' compute reduce reads x, y, z, v*, f* directly; other attributes via property/atom
     expect_error(&d.replace("run          ${nsteps}", "compute r all reduce max mass\nrun ${nsteps}"), "Unknown compute reduce keyword: mass");
+}
+
+/// read_data's `fix ID NULL Section`: fix property/atom reads the section's values by atom ID,
+/// shifted by `add append` (the appended atoms get their own lines' values); LAMMPS' section
+/// names are refused, and so are a header keyword, a line with a value missing and an atom ID
+/// beyond the largest.
+#[test]
+fn read_data_fix_sections() {
+    let head = "units lj\natom_style atomic\natom_modify map array\nfix p all property/atom mol i_body\n";
+    let (code, out) = run(&format!("{head}read_data rigid_clumps_extras.data fix p NULL Extras\nread_data rigid_clumps_extras.data add append shift 0 0 0 fix p NULL Extras\ngroup b variable vb\nprint \"ok\"\n").replace("group b variable vb\n", "variable vb atom i_body==3\ngroup b variable vb\ngroup m molecule 5\n"));
+    // clump pairs 5-6 are body 3: 8 atoms in each copy; molecule 5: 4 atoms in each copy
+    assert!(code == 0 && out.contains("16 atoms in group b") && out.contains("8 atoms in group m"), "{out}");
+    expect_error(&format!("{head}read_data rigid_clumps_extras.data fix p NULL Atoms\n"), "Custom data section name Atoms for fix p collides with existing data section");
+    expect_error(&format!("{head}read_data rigid_clumps_extras.data fix p Header Extras\n"), "read_data fix with a header keyword");
+    let tmp = tempfile::tempdir().unwrap();
+    let data = std::fs::read_to_string(root().join("lammps-refs/decks/rigid_clumps_extras.data")).unwrap();
+    for (from, to, want) in [("\n6 2 1\n", "\n6 2\n", "Incorrect format in Extras section of data file"), ("\n6 2 1\n", "\n99 2 1\n", "Invalid atom ID 99 in Extras section of data file")] {
+        assert!(data.contains(from));
+        std::fs::write(tmp.path().join("bad.data"), data.replace(from, to)).unwrap();
+        let text = format!("{head}read_data {}/bad.data fix p NULL Extras\n", tmp.path().display());
+        expect_error(&text, want);
+    }
 }

@@ -20,7 +20,7 @@ pub(crate) mod read;
 mod write;
 
 pub use layout::{AtomLayout, Column};
-pub use read::parse_data_file;
+pub use read::{is_section_name, parse_data_file, parse_data_file_with};
 pub use write::{format_float, write_data_title};
 
 use std::collections::HashMap;
@@ -532,6 +532,14 @@ impl TypeLabels {
     }
 }
 
+/// A section a fix reads (`read_data ... fix ID NULL NAME`): its lines as words, one line per
+/// atom, with each line's span.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FixSection {
+    pub name: String,
+    pub lines: Vec<(Span, Vec<Word>)>,
+}
+
 /// A data file: what `read_data` reads, or what `write_data` writes.
 ///
 /// Types in every section are resolved to numbers (type labels included). Lines are in file
@@ -558,6 +566,8 @@ pub struct DataFile {
     pub angles: Vec<AngleLine>,
     pub dihedrals: Vec<DihedralLine>,
     pub impropers: Vec<ImproperLine>,
+    /// Sections read for fixes (`read_data ... fix`), in the order first met.
+    pub fix_sections: Vec<FixSection>,
     /// Warnings found while reading (things LAMMPS accepts but that are probably mistakes).
     pub warnings: Vec<Diagnostic>,
 }

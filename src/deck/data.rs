@@ -5,10 +5,10 @@ use crate::engine::atoms::NewAtom;
 use crate::engine::domain::Domain;
 use crate::sim::Simulation;
 use crate::engine::topology::{Angle, Bond, Dihedral};
-use dmhs_parser::data_file::{parse_data_file, write_data_title, AtomLayout, AtomLine, CoeffKind, CoeffLine, CoeffSection, DataFile, MassLine, TopoLine, VelocityLine};
+use dmhs_parser::data_file::{parse_data_file_with, write_data_title, AtomLayout, AtomLine, CoeffKind, CoeffLine, CoeffSection, DataFile, MassLine, TopoLine, VelocityLine};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 
-pub const READ_SYNTAX: &str = "read_data file [add append|merge|IDoffset [MOLoffset]] [offset toff boff aoff doff ioff] [shift Sx Sy Sz] [extra/atom|bond|angle|dihedral|improper/types N] [extra/bond|angle|dihedral|improper|special/per/atom N] [group ID] [nocoeff]";
+pub const READ_SYNTAX: &str = "read_data file [add append|merge|IDoffset [MOLoffset]] [offset toff boff aoff doff ioff] [shift Sx Sy Sz] [extra/atom|bond|angle|dihedral|improper/types N] [extra/bond|angle|dihedral|improper|special/per/atom N] [group ID] [nocoeff] [fix ID NULL Section]";
 
 /// How the atoms of a data file join a system that exists (`read_data ... add`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,12 +33,14 @@ struct ReadOptions {
     extra_at: Option<dmhs_parser::span::Span>,
     group: Option<u32>,
     coeffs: bool,
+    /// `fix ID NULL Section`: the fix index and the section name it reads.
+    fixes: Vec<(usize, String)>,
 }
 
 const KINDS: [&str; 5] = ["atom", "bond", "angle", "dihedral", "improper"];
 
 fn read_options(sim: &mut Simulation, cmd: &Command, a: &mut Args) -> DResult<ReadOptions> {
-    let mut o = ReadOptions { add: None, offset: [0; 5], shift: [0.0; 3], extra_types: [0; 5], extra_at: None, group: None, coeffs: true };
+    let mut o = ReadOptions { add: None, offset: [0; 5], shift: [0.0; 3], extra_types: [0; 5], extra_at: None, group: None, coeffs: true, fixes: vec![] };
     let (mut offset_w, mut shift_w, mut extra_w) = (None, None, None);
     let ft = sim.state.atoms.features;
     let allowed = [true, ft.bonds, ft.angles, ft.dihedrals, false];
@@ -81,7 +83,19 @@ fn read_options(sim: &mut Simulation, cmd: &Command, a: &mut Args) -> DResult<Re
                 let k = sim.state.groups.find_or_create(&g.text).map_err(|e| a.error_at(g, e, "group"))?;
                 o.group = Some(1 << k);
             }
-            "fix" => return Err(a.error_at(w, "read_data fix (sections read by a fix such as property/atom) is not supported", "not supported")),
+            "fix" => {
+                let id = a.word("fix ID")?;
+                let k = sim.fixes.iter().position(|f| f.id() == id.text).ok_or_else(|| a.error_at(id, format!("Fix ID {} for read_data does not exist", id.text), "no such fix"))?;
+                let header = a.word("header keyword (NULL)")?;
+                if header.text != "NULL" {
+                    return Err(a.error_at(header, format!("read_data fix with a header keyword (`{}`) is not supported: the fixes dmhs has read sections only", header.text), "expected NULL"));
+                }
+                let section = a.word("section name")?;
+                if dmhs_parser::data_file::is_section_name(&section.text) {
+                    return Err(a.error_at(section, format!("Custom data section name {} for fix {} collides with existing data section", section.text, id.text), "a data file section of LAMMPS' own"));
+                }
+                o.fixes.push((k, section.text.clone()));
+            }
             _ => {
                 let parts: Vec<&str> = kw.split('/').collect();
                 match parts[..] {
@@ -157,7 +171,8 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
     let text = String::from_utf8_lossy(&bytes).into_owned();
     let file = sources.add(path.display().to_string(), text);
     let layout = layout(sim).map_err(|d| d.with_label(cmd.span, "for this read_data"))?;
-    let data = parse_data_file(&sources.file(file).text.clone(), file, &layout).map_err(|d| combine(d, sources))?;
+    let fix_sections: Vec<String> = opts.fixes.iter().map(|(_, s)| s.clone()).collect();
+    let data = parse_data_file_with(&sources.file(file).text.clone(), file, &layout, &fix_sections).map_err(|d| combine(d, sources))?;
     for w in &data.warnings {
         sim.out.print(&w.render(sources));
     }
@@ -346,6 +361,11 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
         crate::engine::boundary::reset_shrink_wrap(d, initial, &sim.state.atoms);
     }
     sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", data.atoms.len(), data.bonds.len(), data.angles.len(), data.dihedrals.len()));
+    // sections read by fixes (LAMMPS' Fix::read_data_section), atom IDs shifted by `add`
+    for section in &data.fix_sections {
+        let Some(&(k, _)) = o.fixes.iter().find(|(_, s)| *s == section.name) else { continue };
+        sim.fixes[k].read_data_section(&mut sim.state, section, id_off).map_err(|d| d.with_label(cmd.span, "for this read_data"))?;
+    }
     if o.add.is_some() && !(data.bonds.is_empty() && data.angles.is_empty() && data.dihedrals.is_empty()) {
         sim.state.topology_changed();
     }

@@ -43,6 +43,8 @@ pub struct RigidTemplate {
     pub dxbody: Vec<[f64; 3]>,
     /// Finite-size atoms (the template has diameters).
     pub spheres: bool,
+    /// The largest distance from the atom nearest the COM to any atom (LAMMPS' maxextent).
+    pub maxextent: f64,
 }
 
 /// One molecule inserted as a rigid body (the arguments of LAMMPS' set_molecule).
@@ -293,7 +295,11 @@ impl Molecule {
         }
         let quat = exyz_to_q(&ex, &ey, &ez);
         let dxbody = dxcom.iter().map(|d| transpose_matvec_cols(&ex, &ey, &ez, d)).collect();
-        Ok(RigidTemplate { masstotal, com, center: self.center, inertia, quat, dxbody, spheres: self.radius.is_some() })
+        // LAMMPS' comatom: the first atom nearest the centre of mass
+        let sq = |d: &[f64; 3]| d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let comatom = (0..n).fold(0, |best, i| if sq(&dxcom[i]) < sq(&dxcom[best]) { i } else { best });
+        let maxextent = (0..n).map(|i| sq(&std::array::from_fn(|k| self.x[comatom][k] - self.x[i][k]))).fold(0.0f64, f64::max).sqrt();
+        Ok(RigidTemplate { masstotal, com, center: self.center, inertia, quat, dxbody, spheres: self.radius.is_some(), maxextent })
     }
 
     pub fn natoms(&self) -> usize {

@@ -210,6 +210,11 @@ fn eval_tree(e: &Expr, w: &World, ctx: &mut dyn EvalContext, depth: usize, mut r
         Node::Variable { name, index: None } => eval_variable(name, w, ctx, depth, rng),
         Node::Compute { id, indices } => peratom_ref("c_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
         Node::Fix { id, indices } => peratom_ref("f_", id, indices, w).unwrap_or_else(|| scalar(e, ctx)),
+        // a fix property/atom's custom values (LAMMPS' i_name and d_name in atom-style formulas)
+        Node::Thermo(name) if (name.starts_with("i_") || name.starts_with("d_")) && w.state.atoms.find_extra(name).is_some() => {
+            let k = w.state.atoms.find_extra(name).expect("checked");
+            Ok(V::Many(w.state.atoms.extra[k].data[..n].to_vec()))
+        }
         Node::AtomVector(name) => {
             let f = Field::parse(name).ok_or_else(|| format!("`{name}` is not a per-atom value dmhs knows"))?;
             f.check(w.state)?;

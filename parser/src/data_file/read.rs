@@ -49,6 +49,8 @@ enum Section {
     TypeLabels(TypeKind),
     /// Ellipsoids, Lines, Triangles, Bodies: sections of atom styles dmhs does not support.
     Bonus(&'static str),
+    /// A section `read_data ... fix ID NULL NAME` gives to a fix: the index of its name.
+    Fix(usize),
 }
 
 const BONUS_SECTIONS: [&str; 4] = ["Ellipsoids", "Lines", "Triangles", "Bodies"];
@@ -65,6 +67,11 @@ fn section_names() -> Vec<&'static str> {
     ]);
     v.extend(BONUS_SECTIONS);
     v
+}
+
+/// A section name of LAMMPS' own (which a fix's section may not take).
+pub fn is_section_name(name: &str) -> bool {
+    section_from_name(name).is_some()
 }
 
 fn section_from_name(name: &str) -> Option<Section> {
@@ -140,17 +147,19 @@ pub(crate) fn is_sep(c: char) -> bool {
 
 /// How a data line's comment is found: LAMMPS cuts at the first `#` in some sections
 /// (`Velocities`, coefficients, header) and at the first word starting with `#` in others
-/// (`Atoms`, `Masses`, `Bonds`, ...), so `1.0#x` is an error only in the latter.
+/// (`Atoms`, `Masses`, `Bonds`, ...), so `1.0#x` is an error only in the latter; a fix's section
+/// keeps every word (fix property/atom's reader strips no comment).
 #[derive(Clone, Copy, PartialEq)]
 pub(crate) enum Comment {
     AnyHash,
     HashWord,
+    None,
 }
 
 pub(crate) fn words_of(line: &Line, file: FileId, comment: Comment) -> Vec<Word> {
     let text = match comment {
         Comment::AnyHash => line.text.split('#').next().unwrap_or(""),
-        Comment::HashWord => line.text,
+        Comment::HashWord | Comment::None => line.text,
     };
     let mut out = vec![];
     let mut i = 0;
@@ -206,7 +215,15 @@ fn too_large_integer(w: &Word) -> Option<i64> {
 /// allows to find (at most 25, then a note), and the warnings found on the way. On success
 /// the warnings are in [`DataFile::warnings`].
 pub fn parse_data_file(text: &str, file: FileId, layout: &AtomLayout) -> Result<DataFile, Vec<Diagnostic>> {
+    parse_data_file_with(text, file, layout, &[])
+}
+
+/// [`parse_data_file`] with the section names that `read_data ... fix ID NULL NAME` gives to
+/// fixes (LAMMPS looks for them before its own section names): their lines, one per atom, are
+/// kept as words in [`DataFile::fix_sections`].
+pub fn parse_data_file_with(text: &str, file: FileId, layout: &AtomLayout, fix_sections: &[String]) -> Result<DataFile, Vec<Diagnostic>> {
     let mut r = Reader {
+        fix_names: fix_sections.to_vec(),
         lines: split_lines(text),
         file,
         layout,
@@ -238,6 +255,8 @@ pub fn parse_data_file(text: &str, file: FileId, layout: &AtomLayout) -> Result<
 }
 
 struct Reader<'a> {
+    /// Section names that fixes read (`read_data ... fix`).
+    fix_names: Vec<String>,
     lines: Vec<Line<'a>>,
     file: FileId,
     layout: &'a AtomLayout,
@@ -345,7 +364,7 @@ impl<'a> Reader<'a> {
                     // header line LAMMPS does not know
                     let name = section_keyword(self.lines[i].text).0;
                     let header_like = looks_numeric(&words[0].text) || box_values(&t).is_some();
-                    if section_from_name(name).is_some() || !header_like {
+                    if self.section_of(name).is_some() || !header_like {
                         return Some(i);
                     }
                     self.bad_header_line(&words);
@@ -569,6 +588,14 @@ impl<'a> Reader<'a> {
 
     // ----- sections ----------------------------------------------------------------------
 
+    /// The section a name starts: a fix's first, as LAMMPS' read_data checks them first.
+    fn section_of(&self, name: &str) -> Option<Section> {
+        match self.fix_names.iter().position(|f| f == name) {
+            Some(k) => Some(Section::Fix(k)),
+            None => section_from_name(name),
+        }
+    }
+
     /// Reads the section whose name is on line `i` (or skips blank lines to it); returns the
     /// line where the next section name is expected.
     fn section(&mut self, i: usize) -> Option<usize> {
@@ -582,7 +609,7 @@ impl<'a> Reader<'a> {
         }
         let (name, hint) = section_keyword(self.lines[i].text);
         let name_span = self.keyword_span(i, name);
-        let Some(section) = section_from_name(name) else {
+        let Some(section) = self.section_of(name) else {
             self.unknown_section(i, name, name_span);
             return self.next_section_line(i + 1);
         };
@@ -659,7 +686,7 @@ impl<'a> Reader<'a> {
                 return None;
             }
             let text = self.lines[j].text;
-            let is_name = |t: &str| section_from_name(section_keyword(t).0).is_some();
+            let is_name = |t: &str| self.section_of(section_keyword(t).0).is_some();
             if is_blank_or_comment(text) || is_name(text) {
                 // a stray blank line with more data after it, or the end of a short section
                 let next = (j + 1..self.lines.len()).find(|&k| !is_blank_or_comment(self.lines[k].text));
@@ -740,7 +767,7 @@ impl<'a> Reader<'a> {
                 // the blank line after a section name, or the gap after its lines
                 continue;
             }
-            if let Some(s) = section_from_name(section_keyword(text).0) {
+            if let Some(s) = self.section_of(section_keyword(text).0) {
                 return self.section_spans.get(&s).map(|sp| (s, *sp));
             }
         }
@@ -749,7 +776,7 @@ impl<'a> Reader<'a> {
 
     /// First line at or after `from` that names a section.
     fn next_section_line(&self, from: usize) -> Option<usize> {
-        (from..self.lines.len()).find(|&k| section_from_name(section_keyword(self.lines[k].text).0).is_some())
+        (from..self.lines.len()).find(|&k| self.section_of(section_keyword(self.lines[k].text).0).is_some())
     }
 
     fn skip_body(&self, body: usize, count: usize) -> Option<usize> {
@@ -799,6 +826,7 @@ impl<'a> Reader<'a> {
             Section::Topology(k) => h.count(k),
             Section::TypeLabels(k) => h.types(k),
             Section::Bonus(_) => 0,
+            Section::Fix(_) => h.atoms,
         }
     }
 
@@ -927,6 +955,19 @@ impl<'a> Reader<'a> {
             }
             Section::Topology(TypeKind::Atom) | Section::Bonus(_) => {}
             Section::TypeLabels(k) => self.label_line(k, j),
+            Section::Fix(k) => {
+                let words = words_of(&self.lines[j], self.file, Comment::None);
+                let span = self.line_span(j);
+                let name = &self.fix_names[k];
+                let sec = match self.df.fix_sections.iter_mut().find(|s| &s.name == name) {
+                    Some(s) => s,
+                    None => {
+                        self.df.fix_sections.push(FixSection { name: name.clone(), lines: vec![] });
+                        self.df.fix_sections.last_mut().expect("pushed")
+                    }
+                };
+                sec.lines.push((span, words));
+            }
         }
     }
 
@@ -1495,6 +1536,7 @@ fn section_label(s: Section) -> String {
     match s {
         Section::Atoms => "Atoms".into(),
         Section::Velocities => "Velocities".into(),
+        Section::Fix(_) => "fix".into(),
         Section::Masses => "Masses".into(),
         Section::Coeffs(k) => k.section_name().into(),
         Section::Topology(k) => topo_section_name(k).into(),
@@ -1506,7 +1548,7 @@ fn section_label(s: Section) -> String {
 /// `"3 atoms"` and the header line that sets it, for count messages.
 fn section_count_words(s: Section, h: &Header) -> (String, Option<HeaderKey>) {
     match s {
-        Section::Atoms | Section::Velocities => (format!("{} atoms", h.atoms), Some(HeaderKey::Atoms)),
+        Section::Atoms | Section::Velocities | Section::Fix(_) => (format!("{} atoms", h.atoms), Some(HeaderKey::Atoms)),
         Section::Masses => (format!("{} atom types", h.atom_types), Some(HeaderKey::Types(TypeKind::Atom))),
         Section::Coeffs(CoeffKind::PairIJ) => (
             format!("{} atom types, so {} lines", h.atom_types, h.atom_types * (h.atom_types + 1) / 2),

@@ -486,6 +486,12 @@ pub trait Fix: Send + Sync {
     fn local(&self) -> Option<(&[Vec<f64>], usize, i64)> {
         None
     }
+    /// A section of a data file given to this fix by `read_data ... fix ID NULL Section`
+    /// (LAMMPS' read_data_section), its atom IDs shifted by `id_offset`.
+    fn read_data_section(&mut self, _state: &mut State, section: &dmhs_parser::data_file::FixSection, _id_offset: i64) -> DResult<()> {
+        let span = section.lines.first().map(|l| l.0).unwrap_or_default();
+        Err(dmhs_parser::Diagnostic::at(span, format!("fix {} ({}) reads no data file sections (section {})", self.id(), self.style(), section.name), "not read by this fix"))
+    }
     fn describe(&self) -> String {
         format!("fix {} {}", self.id(), self.style())
     }

@@ -8,13 +8,16 @@
 //!
 //! `ghost yes` makes ghost images carry the custom values (temperature always travels: the heat
 //! models read it on neighbours). `mol` gives an atom style without molecule IDs (sphere) the
-//! molecule IDs, 0 until set (fix pour and deposit number their molecules); q, rmass, arrays (`d2_`, `i2_`) and `read_data ... fix`
-//! sections are refused. Unfixing removes the values.
+//! molecule IDs, 0 until set (fix pour and deposit number their molecules); q, rmass and arrays
+//! (`d2_`, `i2_`) are refused. `read_data ... fix ID NULL Section` gives the values from a data
+//! file section, a line `atom-ID value1 value2 ...` per atom in the order of this fix's names
+//! (LAMMPS' read_data_section). Unfixing removes the values.
 
 use super::{Fix, FixHooks};
 use crate::engine::fields::{HEATFLOW, TEMPERATURE};
 use crate::engine::state::State;
-use dmhs_parser::{Args, Command, DResult, Word};
+use dmhs_parser::data_file::FixSection;
+use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
 
 pub const SYNTAX: &str = "fix ID group property/atom name1 name2 ... [ghost yes|no]  (names: mol temperature heatflow d_NAME i_NAME)";
 
@@ -23,6 +26,9 @@ pub struct FixPropertyAtom {
     groupbit: u32,
     /// the extra arrays this fix made
     names: Vec<String>,
+    /// The values in the command's order (a data file section's columns): `mol`, or an extra
+    /// array and whether it holds integers.
+    columns: Vec<(String, bool)>,
 }
 
 impl FixPropertyAtom {
@@ -30,6 +36,7 @@ impl FixPropertyAtom {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         // (word, extra array name, carried by ghosts unless `ghost no`)
         let mut wanted: Vec<(&Word, String, bool)> = vec![];
+        let mut columns: Vec<(String, bool)> = vec![];
         let mut ghost = false;
         let mut wants_mol = false;
         while let Some(w) = a.peek() {
@@ -49,6 +56,7 @@ impl FixPropertyAtom {
                         return Err(a.error_at(w, "fix property/atom mol: the atoms already have molecule IDs", "defined twice"));
                     }
                     wants_mol = true;
+                    columns.push(("mol".to_string(), true));
                     continue;
                 }
                 "q" | "rmass" => {
@@ -68,6 +76,7 @@ impl FixPropertyAtom {
             if state.atoms.find_extra(&name).is_some() || wanted.iter().any(|(_, n, _)| *n == name) {
                 return Err(a.error_at(w, format!("per-atom `{t}` already exists (another fix property/atom or a DMHS fix made it)"), "defined twice"));
             }
+            columns.push((name.clone(), t.starts_with("i_")));
             wanted.push((w, name, always_ghost));
         }
         if wanted.is_empty() && !wants_mol {
@@ -86,7 +95,7 @@ impl FixPropertyAtom {
             state.atoms.extra_field(&name, 1, always_ghost || ghost);
             names.push(name);
         }
-        Ok(FixPropertyAtom { id, groupbit, names })
+        Ok(FixPropertyAtom { id, groupbit, names, columns })
     }
 }
 
@@ -109,6 +118,33 @@ impl Fix for FixPropertyAtom {
         for n in &self.names {
             state.atoms.remove_extra(n);
         }
+    }
+    /// LAMMPS' FixPropertyAtom::read_data_section: N + 1 values a line (a `#` comment counts
+    /// as values, as LAMMPS 22 Jul 2025 reads it), the atom ID (plus the offset) between 1 and the largest atom ID; IDs of no atom
+    /// are skipped; integers for mol and i_NAME.
+    fn read_data_section(&mut self, state: &mut State, section: &FixSection, id_offset: i64) -> DResult<()> {
+        let map = state.atoms.tag_map();
+        let max_tag = state.atoms.max_tag();
+        let cols: Vec<(Option<usize>, bool)> = self.columns.iter().map(|(n, int)| (if n == "mol" { None } else { state.atoms.find_extra(n) }, *int)).collect();
+        for (span, words) in &section.lines {
+            if words.len() != cols.len() + 1 {
+                return Err(Diagnostic::at(*span, format!("Incorrect format in {} section of data file: expected an atom ID and {} values", section.name, cols.len()), format!("{} values", words.len())));
+            }
+            let int = |w: &Word| w.text.parse::<i64>().map_err(|_| Diagnostic::at(w.span, format!("expected an integer in the {} section, found `{}`", section.name, w.text), "not an integer"));
+            let tag = int(&words[0])? + id_offset;
+            if tag <= 0 || tag > max_tag {
+                return Err(Diagnostic::at(words[0].span, format!("Invalid atom ID {tag} in {} section of data file", section.name), "no such atom ID"));
+            }
+            let Some(i) = map.get(tag) else { continue };
+            for (w, &(k, is_int)) in words[1..].iter().zip(&cols) {
+                let v = if is_int { int(w)? as f64 } else { w.text.parse::<f64>().map_err(|_| Diagnostic::at(w.span, format!("expected a number in the {} section, found `{}`", section.name, w.text), "not a number"))? };
+                match k {
+                    None => state.atoms.molecule[i] = v as i64,
+                    Some(k) => state.atoms.extra[k].data[i] = v,
+                }
+            }
+        }
+        Ok(())
     }
     fn describe(&self) -> String {
         format!("fix {} property/atom {}", self.id, self.names.join(" "))

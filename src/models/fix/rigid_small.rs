@@ -349,10 +349,22 @@ impl FixRigidSmall {
         }
         let nh = (!plain).then(|| RigidNh::new(chains, baro, t_iter, t_order));
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
-        let rank = if global.is_some() { HashMap::new() } else { Self::creation_order(state, groupbit) };
-        if let Some(g) = &global {
-            state.messages.push(format!("  {} rigid bodies with {} atoms", g.nbody, g.body_of.len()));
-        }
+        let rank = match &global {
+            Some(g) => {
+                state.messages.push(format!("  {} rigid bodies with {} atoms", g.nbody, g.body_of.len()));
+                HashMap::new()
+            }
+            None => {
+                // LAMMPS' create_bodies reports the bodies and their extent (a template's too)
+                let (rank, mut extent) = Self::creation_order(state, groupbit);
+                if let Some((_, t)) = &template {
+                    extent = extent.max(t.maxextent);
+                }
+                let natoms = (0..state.atoms.nlocal).filter(|&i| state.atoms.mask[i] & groupbit != 0).count();
+                state.messages.push(format!("  {} rigid bodies with {natoms} atoms\n  {} = max distance from body owner to body atom", rank.len(), dmhs_parser::numfmt::format_g(extent, 8)));
+                rank
+            }
+        };
         Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None, reinit, infile, gravity, bodies_set_up: false })
     }
 
@@ -420,10 +432,11 @@ impl FixRigidSmall {
 
     /// LAMMPS' create_bodies: each molecule of the group is owned by its atom closest to the
     /// centre of the molecule's bounding box (unwrapped; the smaller ID on a tie), and the
-    /// bodies are numbered in the local order of their owners.
-    fn creation_order(state: &State, groupbit: u32) -> HashMap<i64, usize> {
+    /// bodies are numbered in the local order of their owners; also the largest distance from
+    /// an owner to an atom of its body (unwrapped).
+    fn creation_order(state: &State, groupbit: u32) -> (HashMap<i64, usize>, f64) {
         let a = &state.atoms;
-        let Some(domain) = state.domain.as_ref() else { return HashMap::new() };
+        let Some(domain) = state.domain.as_ref() else { return (HashMap::new(), 0.0) };
         let group: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0).collect();
         let mut bbox: HashMap<i64, ([f64; 3], [f64; 3])> = HashMap::new();
         for &i in &group {
@@ -452,7 +465,15 @@ impl FixRigidSmall {
                 rank.insert(a.molecule[i], n);
             }
         }
-        rank
+        let map = a.tag_map();
+        let mut rsqfar = 0.0f64;
+        for &i in &group {
+            let owner = map.get(close[&a.molecule[i]].1).expect("an owned atom");
+            let (u, o) = (domain.unmap(a.x[i], a.image[i]), domain.unmap(a.x[owner], a.image[owner]));
+            let d: [f64; 3] = std::array::from_fn(|k| u[k] - o[k]);
+            rsqfar = rsqfar.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        }
+        (rank, rsqfar.sqrt())
     }
 
     fn massone(state: &State, i: usize) -> f64 {

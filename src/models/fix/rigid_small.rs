@@ -187,7 +187,7 @@ impl FixRigidSmall {
         let mut press_word = None;
         let mut temp = None;
         let mut langevin = None;
-        let (mut reinit, mut infile, mut gravity) = (true, None, None);
+        let (mut reinit, mut infile, mut gravity, mut reading) = (true, None, None, None);
         let (mut t_chain, mut t_iter, mut t_order) = (10, 1, 3);
         while let Some(w) = a.peek() {
             let what = match w.text.as_str() {
@@ -276,7 +276,7 @@ impl FixRigidSmall {
                         }
                     }
                     .map_err(|e| a.error_at(f, e, "this body file"))?;
-                    state.messages.push(format!("Reading rigid body data for {} bodies from file {}", file.bodies.len(), f.text));
+                    reading = Some(format!("Reading rigid body data for {} bodies from file {}", file.bodies.len(), f.text));
                     (infile, reinit) = (Some(file), false);
                     continue;
                 }
@@ -365,6 +365,8 @@ impl FixRigidSmall {
                 rank
             }
         };
+        // (LAMMPS reads the file at the run's setup, after the bodies' lines)
+        state.messages.extend(reading);
         Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None, reinit, infile, gravity, bodies_set_up: false })
     }
 
@@ -914,7 +916,6 @@ impl Fix for FixRigidSmall {
         }
         Ok(())
     }
-    /// LAMMPS' rigid fixes each warn at init when another rigid fix is defined.
     /// LAMMPS' warnings at a rigid fix's init: another rigid fix; gravity on bodies whose mass
     /// and centre come from a file or template but not from the `gravity` keyword; with
     /// `bodyforces early`, fixes after the first rigid fix that change forces after the sums.

@@ -1201,6 +1201,7 @@ impl Fix for FixRigidSmall {
                 }
             }
         }
+        let linear_mols: std::collections::HashSet<i64> = self.bodies.iter().filter(|s| s.inertia.contains(&0.0)).map(|s| s.mol).collect();
         let mut n = 0i64;
         for (k, b) in bodies.iter().enumerate() {
             if in_group[k] != b.npoint + b.nsphere {
@@ -1210,8 +1211,7 @@ impl Fix for FixRigidSmall {
             if state.dimension == 3 {
                 n += 3 * np + 6 * ns - 6;
                 // linear bodies (a zero principal moment) keep 5
-                let linear = self.bodies.iter().find(|s| s.mol == b.mol).is_some_and(|s| s.inertia.contains(&0.0));
-                if linear {
+                if linear_mols.contains(&b.mol) {
                     n += 1;
                 }
             } else {

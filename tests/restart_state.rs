@@ -141,3 +141,22 @@ fn granular_contacts_survive_a_repeated_pair_style() {
     std::fs::write(&path, serde_json::to_string(&file).unwrap()).unwrap();
     assert!(run(&c) != whole, "without the contacts the continuation should differ");
 }
+
+/// `atom_modify first GROUP` travels in the restart file (LAMMPS keeps the group's name in its
+/// header): the restarted system keeps the group's atoms first and does not sort.
+#[test]
+fn atom_modify_first_is_restored() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("first.restart");
+    let deck = format!(
+        "units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+         group mid id 20:40\natom_modify first mid\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nrun 0\nwrite_restart {f}\nclear\nread_restart {f}\n",
+        f = file.display()
+    );
+    let run = dmhs::deck::run_text("in.first", &deck, &DeckOptions { screen: false, ..Default::default() }).unwrap_or_else(|f| panic!("{}", f.rendered));
+    let order = &run.sim.state.lammps_order;
+    assert_eq!(order.first.as_deref(), Some("mid"));
+    assert_eq!(order.sortfreq, 0);
+    // the group's 21 atoms lead LAMMPS' order
+    assert!(order.ids()[..21].iter().all(|t| (20..=40).contains(t)), "{:?}", &order.ids()[..21]);
+}

@@ -24,8 +24,8 @@
 //!   arrays of fixes ({`name`, `stride`, `ghosts`, `values`: `stride` numbers per atom}, e.g. the
 //!   wall spring of fix wall/gran), restored to a fix defined again with the same ID (and kept
 //!   over what the replayed force field sets, e.g. x/ref of a BPM style's store/local);
-//!   `lammps_order` {`ids`, `sortfreq`, `binsize`}: LAMMPS' local order of the atoms and its
-//!   `atom_modify sort` (sums and random numbers over atoms follow it);
+//!   `lammps_order` {`ids`, `sortfreq`, `binsize`, `first`}: LAMMPS' local order of the atoms
+//!   and its `atom_modify sort` and `first` (sums and random numbers over atoms follow it);
 //! * `topology`: `bond_types`, `angle_types`, `dihedral_types`, `improper_types`; `bonds`
 //!   [type, id, id], `angles` [type, 3 ids], `dihedrals` [type, 4 ids]; with a BPM bond style
 //!   `bond_history` (per bond its reference state, LAMMPS' fix bond/history) and
@@ -195,7 +195,7 @@ fn snapshot(sim: &mut Simulation) -> Result<Restart, String> {
             cv: rows(ft.sph, &a.cv, n),
             vest: rows(ft.sph, &a.vest, n),
             fix_arrays: a.extra.iter().map(|e| FixArray { name: e.name.clone(), stride: e.stride, ghosts: e.ghosts, values: e.data[..n * e.stride].chunks(e.stride).map(<[f64]>::to_vec).collect() }).collect(),
-            lammps_order: Some(OrderSection { ids: order.ids().to_vec(), sortfreq: order.sortfreq, binsize: order.binsize }),
+            lammps_order: Some(OrderSection { ids: order.ids().to_vec(), sortfreq: order.sortfreq, binsize: order.binsize, first: order.first.clone() }),
         },
         topology: TopologySection {
             bond_types: t.nbondtypes,
@@ -408,6 +408,7 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
     let t = r.topology;
     if let Some(o) = a.lammps_order {
         st.lammps_order = crate::engine::lammps_order::LammpsOrder::restored(o.ids, o.sortfreq, o.binsize);
+        st.lammps_order.first = o.first;
     }
     let history = t.bond_history.unwrap_or_else(|| vec![[0.0; crate::engine::topology::BOND_HISTORY]; t.bonds.len()]);
     let slots = t.bond_slots.unwrap_or_else(|| vec![[u32::MAX; 2]; t.bonds.len()]);

@@ -53,6 +53,9 @@ pub struct OrderSection {
     pub ids: Vec<i64>,
     pub sortfreq: i64,
     pub binsize: f64,
+    /// `atom_modify first GROUP` (LAMMPS keeps the group's name in its restart header).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first: Option<String>,
 }
 
 #[derive(Serialize, Deserialize)]

@@ -180,6 +180,15 @@ fn check_count(args: &[Word], n: usize, style: &str) -> DResult<()> {
     Err(d.with_help(format!("syntax: {}", syntax_of(style))))
 }
 
+/// LAMMPS' rule for a new variable's name: letters, digits and underscores.
+fn check_name(w: &Word) -> DResult<()> {
+    let name = &w.text;
+    if name.is_empty() || !name.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_') {
+        return Err(Diagnostic::at(w.span, format!("Variable name '{name}' must have only letters, numbers, or underscores"), "invalid name"));
+    }
+    Ok(())
+}
+
 fn parse_int(w: &Word) -> DResult<i64> {
     if crate::args::is_lammps_integer(&w.text) {
         if let Ok(v) = w.text.parse::<i64>() {
@@ -348,13 +357,7 @@ impl Variables {
             self.vars[i].style = new_style;
             return Ok(());
         }
-        if name.is_empty() || !name.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_') {
-            return Err(Diagnostic::at(
-                args[0].span,
-                format!("Variable name '{name}' must have only letters, numbers, or underscores"),
-                "invalid name",
-            ));
-        }
+        check_name(&args[0])?;
         self.vars.push(Var { name: name.to_string(), style: new_style, busy: false });
         Ok(())
     }
@@ -497,9 +500,7 @@ impl Variables {
         if self.find(name).is_some() {
             return Ok(());
         }
-        if name.is_empty() || !name.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_') {
-            return Err(Diagnostic::at(args[0].span, format!("Variable name '{name}' must have only letters, numbers, or underscores"), "invalid name"));
-        }
+        check_name(&args[0])?;
         let file = AtomFile::read(path, 0, ids)
             .map_err(|m| Diagnostic::at(args[2].span, m, "this file"))?
             .ok_or_else(|| Diagnostic::at(args[2].span, "Atomfile variable could not read values", "no set of values in this file"))?;
@@ -525,11 +526,6 @@ impl Variables {
             }
         }
         Ok(exhausted)
-    }
-
-    /// True for atom-style and atomfile variables (LAMMPS' atomstyle()).
-    pub fn is_atom_style(&self, name: &str) -> bool {
-        matches!(self.get(name).map(|v| &v.style), Some(Style::Atom(_) | Style::AtomFile(_)))
     }
 
     /// The current values of an atomfile variable by atom ID (an atom not listed reads 0).

@@ -24,11 +24,15 @@ pub const SYNTAX: &str = "fix ID group property/atom name1 name2 ... [ghost yes|
 pub struct FixPropertyAtom {
     id: String,
     groupbit: u32,
-    /// the extra arrays this fix made
-    names: Vec<String>,
-    /// The values in the command's order (a data file section's columns): `mol`, or an extra
-    /// array and whether it holds integers.
-    columns: Vec<(String, bool)>,
+    /// The values in the command's order (a data file section's columns).
+    columns: Vec<Column>,
+}
+
+/// One value of a fix property/atom: the molecule ID, or an extra array this fix made (and
+/// whether it holds integers).
+enum Column {
+    Mol,
+    Extra { name: String, int: bool },
 }
 
 impl FixPropertyAtom {
@@ -36,7 +40,7 @@ impl FixPropertyAtom {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         // (word, extra array name, carried by ghosts unless `ghost no`)
         let mut wanted: Vec<(&Word, String, bool)> = vec![];
-        let mut columns: Vec<(String, bool)> = vec![];
+        let mut columns: Vec<Column> = vec![];
         let mut ghost = false;
         let mut wants_mol = false;
         while let Some(w) = a.peek() {
@@ -56,7 +60,7 @@ impl FixPropertyAtom {
                         return Err(a.error_at(w, "fix property/atom mol: the atoms already have molecule IDs", "defined twice"));
                     }
                     wants_mol = true;
-                    columns.push(("mol".to_string(), true));
+                    columns.push(Column::Mol);
                     continue;
                 }
                 "q" | "rmass" => {
@@ -76,7 +80,7 @@ impl FixPropertyAtom {
             if state.atoms.find_extra(&name).is_some() || wanted.iter().any(|(_, n, _)| *n == name) {
                 return Err(a.error_at(w, format!("per-atom `{t}` already exists (another fix property/atom or a DMHS fix made it)"), "defined twice"));
             }
-            columns.push((name.clone(), t.starts_with("i_")));
+            columns.push(Column::Extra { name: name.clone(), int: t.starts_with("i_") });
             wanted.push((w, name, always_ghost));
         }
         if wanted.is_empty() && !wants_mol {
@@ -90,12 +94,18 @@ impl FixPropertyAtom {
             state.atoms.features.molecule = true;
             state.atoms.molecule = vec![0; n];
         }
-        let mut names = vec![];
         for (_, name, always_ghost) in wanted {
             state.atoms.extra_field(&name, 1, always_ghost || ghost);
-            names.push(name);
         }
-        Ok(FixPropertyAtom { id, groupbit, names, columns })
+        Ok(FixPropertyAtom { id, groupbit, columns })
+    }
+
+    /// The extra arrays this fix made.
+    fn extras(&self) -> impl Iterator<Item = &str> {
+        self.columns.iter().filter_map(|c| match c {
+            Column::Mol => None,
+            Column::Extra { name, .. } => Some(name.as_str()),
+        })
     }
 }
 
@@ -115,7 +125,7 @@ impl Fix for FixPropertyAtom {
     fn cleanup(&mut self, state: &mut State) {
         state.atoms.clear_ghosts();
         state.lists_valid = false;
-        for n in &self.names {
+        for n in self.extras() {
             state.atoms.remove_extra(n);
         }
     }
@@ -125,7 +135,15 @@ impl Fix for FixPropertyAtom {
     fn read_data_section(&mut self, state: &mut State, section: &FixSection, id_offset: i64) -> DResult<()> {
         let map = state.atoms.tag_map();
         let max_tag = state.atoms.max_tag();
-        let cols: Vec<(Option<usize>, bool)> = self.columns.iter().map(|(n, int)| (if n == "mol" { None } else { state.atoms.find_extra(n) }, *int)).collect();
+        // (the extra array, None for the molecule ID; integer values)
+        let cols: Vec<(Option<usize>, bool)> = self
+            .columns
+            .iter()
+            .map(|c| match c {
+                Column::Mol => Ok((None, true)),
+                Column::Extra { name, int } => state.atoms.find_extra(name).map(|k| (Some(k), *int)).ok_or_else(|| Diagnostic::error(format!("fix {} property/atom: its per-atom `{name}` no longer exists", self.id))),
+            })
+            .collect::<DResult<_>>()?;
         for (span, words) in &section.lines {
             if words.len() != cols.len() + 1 {
                 return Err(Diagnostic::at(*span, format!("Incorrect format in {} section of data file: expected an atom ID and {} values", section.name, cols.len()), format!("{} values", words.len())));
@@ -147,6 +165,6 @@ impl Fix for FixPropertyAtom {
         Ok(())
     }
     fn describe(&self) -> String {
-        format!("fix {} property/atom {}", self.id, self.names.join(" "))
+        format!("fix {} property/atom {}", self.id, self.extras().collect::<Vec<_>>().join(" "))
     }
 }

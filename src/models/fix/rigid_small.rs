@@ -939,14 +939,15 @@ impl Fix for FixRigidSmall {
         out
     }
     fn setup_pre_force(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
-        if self.global.is_none() && (self.reinit || !self.bodies_set_up) {
+        // fix rigid set its bodies up at init
+        if self.global.is_some() {
+            return Ok(());
+        }
+        if self.reinit || !self.bodies_set_up {
             return self.setup_bodies(state).map_err(|e| self.err(state, e));
         }
         // the bodies kept: LAMMPS' pre_neighbor (centres back into the box)
-        if self.global.is_none() {
-            self.pre_exchange(state, ctx)?;
-        }
-        Ok(())
+        self.pre_exchange(state, ctx)
     }
     fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         self.forces_and_torques(state).map_err(|e| self.err(state, e))?;

@@ -479,35 +479,137 @@ impl ActingCache {
     }
 }
 
-/// The per-bin arrays of a build (see [`Neighbor::build`]).
+/// The per-bin arrays of a build (see [`Neighbor::build`]): one index for the owned atoms, one
+/// for the ghosts.
 #[derive(Clone, Debug, Default)]
 struct BinScratch {
-    start: Vec<u32>,
-    local_start: Vec<u32>,
-    ghost_start: Vec<u32>,
+    local: BinIndex,
+    ghost: BinIndex,
+}
+
+/// Items (atoms) sorted by bin, and where each bin's items start: a stable counting sort (items
+/// of one bin keep their order). Dense: the start of every bin of the grid. By lines, for grids
+/// whose lines of bins along the fastest axis are mostly empty (a few bodies in a large box,
+/// a pour's first grains, where counting and summing every bin was most of a build): the starts
+/// of the bins of the occupied lines only. Both give the same order and the same ranges.
+#[derive(Clone, Debug, Default)]
+struct BinIndex {
+    /// Bins per line along the fastest axis.
+    per_line: usize,
+    /// Dense: `starts[b]..starts[b + 1]` are the places of the items of bin `b`. By lines: the
+    /// same for the bins of occupied lines only, line `l`'s `per_line + 1` entries from
+    /// `block[l]` on.
+    starts: Vec<u32>,
+    /// By lines: where each line's entries start in `starts` (`EMPTY` for a line without
+    /// items); empty when dense.
+    block: Vec<u32>,
     fill: Vec<u32>,
+}
+
+impl BinIndex {
+    const EMPTY: u32 = u32::MAX;
+    /// Fewer bins than this many per item: dense, without counting lines.
+    const DENSE_BINS_PER_ITEM: usize = 8;
+
+    /// Sorts items with bins `keys` (on `grid`) by bin: returns the sorted order (`order[k]`:
+    /// the item that goes to place `k`).
+    fn sort(&mut self, grid: &Grid, keys: &[u32]) -> Vec<usize> {
+        self.sort_in(grid.nb[grid.order[2]], grid.total, keys, None)
+    }
+
+    /// [`BinIndex::sort`] on lines of `per_line` bins (`total` bins, a multiple of it), by lines
+    /// if `by_lines` says so or, when it is None, if at most half the lines hold items.
+    fn sort_in(&mut self, per_line: usize, total: usize, keys: &[u32], by_lines: Option<bool>) -> Vec<usize> {
+        self.per_line = per_line;
+        self.block.clear();
+        let lines = total / per_line;
+        let pl = per_line as u32;
+        // which lines hold items (counted only where that can choose lines)
+        let used = |fill: &mut Vec<u32>| {
+            zeroed(fill, lines);
+            for &k in keys {
+                fill[(k / pl) as usize] = 1;
+            }
+        };
+        let by_lines = by_lines.unwrap_or_else(|| {
+            total >= Self::DENSE_BINS_PER_ITEM * keys.len() && {
+                used(&mut self.fill);
+                2 * self.fill.iter().filter(|&&c| c > 0).count() <= lines
+            }
+        });
+        let entries = if by_lines {
+            used(&mut self.fill);
+            let mut next = 0;
+            self.block.extend(self.fill.iter().map(|&u| {
+                if u == 0 {
+                    return Self::EMPTY;
+                }
+                next += pl + 1;
+                next - (pl + 1)
+            }));
+            next as usize
+        } else {
+            total + 1
+        };
+        // where an item is counted: at its bin, or at its bin among the occupied lines' bins
+        let place = |block: &[u32], k: u32| -> usize {
+            if by_lines {
+                (block[(k / pl) as usize] + k % pl) as usize
+            } else {
+                k as usize
+            }
+        };
+        zeroed(&mut self.starts, entries);
+        for &k in keys {
+            self.starts[place(&self.block, k) + 1] += 1;
+        }
+        // one running sum over all entries: a line's first entry (no item is counted there)
+        // takes the end of the line before. The sum is kept in a register (`v[b + 1] += v[b]`
+        // waits for the store of the step before, which made this loop most of a small
+        // system's list build)
+        let mut sum = 0;
+        for c in self.starts.iter_mut() {
+            sum += *c;
+            *c = sum;
+        }
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.starts);
+        let mut order = vec![0usize; keys.len()];
+        for (i, &k) in keys.iter().enumerate() {
+            let slot = &mut self.fill[place(&self.block, k)];
+            order[*slot as usize] = i;
+            *slot += 1;
+        }
+        order
+    }
+
+    /// Whether the index is by lines.
+    fn by_lines(&self) -> bool {
+        !self.block.is_empty()
+    }
+
+    /// The places of the items in bins `b0..=b1` of line `line` (of the grid's lines along its
+    /// fastest axis; read only by lines).
+    #[inline(always)]
+    fn range(&self, line: usize, b0: usize, b1: usize) -> (usize, usize) {
+        if self.block.is_empty() {
+            return (self.starts[b0] as usize, self.starts[b1 + 1] as usize);
+        }
+        debug_assert_eq!((line, line), (b0 / self.per_line, b1 / self.per_line));
+        let block = self.block[line];
+        if block == Self::EMPTY {
+            return (0, 0);
+        }
+        let first = line * self.per_line;
+        let at = block as usize;
+        (self.starts[at + b0 - first] as usize, self.starts[at + b1 - first + 1] as usize)
+    }
 }
 
 /// `v` as `n` zeros, reusing its allocation.
 fn zeroed(v: &mut Vec<u32>, n: usize) {
     v.clear();
     v.resize(n, 0);
-}
-
-/// `v` as the `total + 1` starts of a counting sort of `keys` into bins `0..total`: the items
-/// of bin b go to `v[b]..v[b + 1]`.
-fn bin_starts(v: &mut Vec<u32>, total: usize, keys: &[u32]) {
-    zeroed(v, total + 1);
-    for &k in keys {
-        v[k as usize + 1] += 1;
-    }
-    // the running sum kept in a register (`v[b + 1] += v[b]` waits for the store of the
-    // step before, which made this loop most of a small system's list build)
-    let mut sum = 0;
-    for c in v.iter_mut() {
-        sum += *c;
-        *c = sum;
-    }
 }
 
 /// Where the ghosts of a build come from.
@@ -688,19 +790,11 @@ impl Neighbor {
 
         // sort owned atoms by bin: bins are numbered slab axis first, so this is slab order
         let keys: Vec<u32> = atoms.x[..n].iter().map(|x| grid.bin(x) as u32).collect();
-        // counting sort (stable: atoms of one bin keep their order)
-        let BinScratch { start, local_start, ghost_start, fill } = &mut self.bins;
-        bin_starts(start, grid.total, &keys);
-        // owned atoms of bin b will be the index range local_start[b]..local_start[b+1]
-        local_start.clear();
-        local_start.extend_from_slice(start);
-        let mut order = vec![0usize; n];
-        for (i, &k) in keys.iter().enumerate() {
-            order[start[k as usize] as usize] = i;
-            start[k as usize] += 1;
-        }
+        // stable: atoms of one bin keep their order; `bin_of`: the bin of each owned atom in
+        // its new place
+        let BinScratch { local, ghost } = &mut self.bins;
+        let order = local.sort(&grid, &keys);
         atoms.permute(&order);
-        // bin of each owned atom in its new place
         let bin_of: Vec<u32> = order.iter().map(|&o| keys[o]).collect();
 
         // ghosts, dimension by dimension so edges and corners get images too (LAMMPS borders())
@@ -742,14 +836,8 @@ impl Neighbor {
         // ghosts are counting-sorted into their own bins
         let nall = atoms.nall();
         let ghost_bin: Vec<u32> = atoms.x[n..].iter().map(|x| grid.bin(x) as u32).collect();
-        bin_starts(ghost_start, grid.total, &ghost_bin);
-        fill.clear();
-        fill.extend_from_slice(ghost_start);
-        let mut ghosts_by_bin = vec![0u32; nall - n];
-        for (k, &b) in ghost_bin.iter().enumerate() {
-            ghosts_by_bin[fill[b as usize] as usize] = (n + k) as u32;
-            fill[b as usize] += 1;
-        }
+        let ghosts_by_bin: Vec<u32> = ghost.sort(&grid, &ghost_bin).into_iter().map(|k| (n + k) as u32).collect();
+        let (local, ghost) = (&*local, &*ghost);
 
         // stencil rows: runs of consecutive bins along the fastest grid axis within reach;
         // atoms of consecutive bins are consecutive (owned atoms are sorted by bin, ghosts are
@@ -758,7 +846,10 @@ impl Neighbor {
         // owned partners come from the forward half: rows after the atom's own row, and the
         // atom's own row from its bin on (later atoms of its own bin only)
         let own_row_end = rows.iter().find(|r| r.0 <= 0 && r.1 >= 0).map(|r| r.1).unwrap_or(0);
-        let forward: Vec<(i64, i64)> = rows.iter().copied().filter(|r| r.0 > 0).collect();
+        let forward: Vec<(i64, i64, i64)> = rows.iter().copied().filter(|r| r.0 > 0).collect();
+        // the line of bins along the fastest axis that each bin lies on (a row lies on one)
+        let line_len = grid.nb[grid.order[2]];
+        let lines_used = local.by_lines() || ghost.by_lines();
 
         // slab chunks: consecutive planes along the slab axis, at least `reach` planes thick
         let thick = grid.reach[grid.axis].max(1) as usize;
@@ -815,11 +906,14 @@ impl Neighbor {
                     return Err(0);
                 }
                 offsets.push(0u32);
+                let mut spans: Vec<(usize, usize)> = Vec::with_capacity(forward.len() + 1);
                 for i in start..end {
                     let xi = a.x[i];
                     let ti = a.typ[i];
                     let row = &cutneighsq[ti * stride..(ti + 1) * stride];
                     let bi = bin_of[i] as i64;
+                    // (a division per atom only where an index needs lines)
+                    let li = if lines_used { bi / line_len as i64 } else { 0 };
                     let acting: &[(i64, u8)] = if by_acting { acting_cache.of(i) } else { &[] };
                     // what special bonds do to the pair with atom j (`far_image`: j is a ghost
                     // beyond half the box, asked only for a pair the bonds would change)
@@ -865,13 +959,13 @@ impl Neighbor {
                         }
                     };
                     // owned partners, each span a contiguous index range: later atoms of the own
-                    // row, then the forward rows
-                    let spans = || {
-                        std::iter::once((i + 1, local_start[(bi + own_row_end) as usize + 1] as usize))
-                            .chain(forward.iter().map(|&(r0, r1)| (local_start[(bi + r0) as usize] as usize, local_start[(bi + r1) as usize + 1] as usize)))
-                    };
+                    // row, then the forward rows (the empty ones left out; looked up once, read
+                    // twice below)
+                    spans.clear();
+                    spans.push((i + 1, local.range(li as usize, bi as usize, (bi + own_row_end) as usize).1));
+                    spans.extend(forward.iter().map(|&(r0, r1, l)| local.range((li + l) as usize, (bi + r0) as usize, (bi + r1) as usize)).filter(|(j0, j1)| j1 > j0));
                     if !excl.is_empty() {
-                        for (j0, j1) in spans() {
+                        for &(j0, j1) in &spans {
                             (j0..j1).for_each(|j| consider(j, &mut neigh));
                         }
                     } else {
@@ -879,7 +973,7 @@ impl Neighbor {
                         // if within the cutoff (branch-free: the hit rate is about 1 in 4, badly
                         // predicted), into room made once per atom; special bonds then act on
                         // the few kept
-                        let total: usize = spans().map(|(j0, j1)| j1.saturating_sub(j0)).sum();
+                        let total: usize = spans.iter().map(|&(j0, j1)| j1 - j0).sum();
                         if total > 0 && room(&mut neigh, total) {
                             let len = neigh.len();
                             neigh.resize(len + total, 0);
@@ -892,7 +986,7 @@ impl Neighbor {
                             };
                             // kept <= k (the candidates before this one): the write lands in `slots`
                             let (mut kept, mut k) = (0usize, 0usize);
-                            for (j0, j1) in spans().filter(|(j0, j1)| j1 > j0) {
+                            for &(j0, j1) in spans.iter().filter(|(j0, j1)| j1 > j0) {
                                 // slices taken before the loop: read through `a`, their
                                 // addresses were reloaded after every store
                                 let xs = &a.x[j0..j1];
@@ -933,9 +1027,10 @@ impl Neighbor {
                     // face, so only atoms that near a face can see one)
                     let near_face = ghost_faces.iter().any(|&(d, lo, hi)| xi[d] < lo + cutmax || xi[d] >= hi - cutmax);
                     if near_face {
-                        for &(r0, r1) in &rows {
+                        for &(r0, r1, l) in &rows {
                             let (b0, b1) = ((bi + r0) as usize, (bi + r1) as usize);
-                            for &g in &ghosts_by_bin[ghost_start[b0] as usize..ghost_start[b1 + 1] as usize] {
+                            let (g0, g1) = ghost.range((li + l) as usize, b0, b1);
+                            for &g in &ghosts_by_bin[g0..g1] {
                                 consider(g as usize, &mut neigh);
                             }
                         }
@@ -1066,8 +1161,9 @@ impl Grid {
         bin as usize / (self.nb[self.order[1]] * self.nb[self.order[2]])
     }
     /// The stencil as rows along the fastest axis: `(first, last)` bin-index offsets of each
-    /// run of bins whose closest point can be within `cut`, in increasing order.
-    fn stencil_rows(&self, cut: f64) -> Vec<(i64, i64)> {
+    /// run of bins whose closest point can be within `cut`, in increasing order, and the offset
+    /// of the row's line (of bins along the fastest axis).
+    fn stencil_rows(&self, cut: f64) -> Vec<(i64, i64, i64)> {
         let [a, b, c] = self.order;
         let (nbb, nbc) = (self.nb[b] as i64, self.nb[c] as i64);
         let gap = |k: i64, d: usize| if k == 0 { 0.0 } else { (k.abs() - 1) as f64 * self.size[d] };
@@ -1081,7 +1177,7 @@ impl Grid {
                 }
                 let kmax = (0..=self.reach[c]).rev().find(|&k| within(ga, gb, gap(k, c))).unwrap_or(0);
                 let base = (ka * nbb + kb) * nbc;
-                rows.push((base - kmax, base + kmax));
+                rows.push((base - kmax, base + kmax, ka * nbb + kb));
             }
         }
         rows
@@ -1260,6 +1356,33 @@ mod tests {
     /// A box long in one dimension only (8.4 x 8.4 x 3.6e9, from a fuzzed `region` line): the
     /// grid, margins included, stays within MAX_BINS (it was 49 x 2^24 bins, 3 GB), and a
     /// close pair far along the long axis is listed.
+    #[test]
+    fn bin_index_by_lines_gives_the_dense_order_and_ranges() {
+        let mut r = uniform(11);
+        let (per_line, lines) = (13usize, 40usize);
+        let total = per_line * lines;
+        for nitems in [0usize, 1, 5, 30, 200, 2000] {
+            // items on a few lines only, or anywhere
+            for lines_used in [3usize, lines] {
+                let keys: Vec<u32> = (0..nitems).map(|_| ((r() * lines_used as f64) as usize * per_line + (r() * per_line as f64) as usize) as u32).collect();
+                let (mut dense, mut sparse) = (BinIndex::default(), BinIndex::default());
+                let od = dense.sort_in(per_line, total, &keys, Some(false));
+                let os = sparse.sort_in(per_line, total, &keys, Some(true));
+                assert_eq!(od, os);
+                assert!(od.windows(2).all(|w| (keys[w[0]], w[0]) < (keys[w[1]], w[1])), "stable by bin");
+                for line in 0..lines {
+                    for a in 0..per_line {
+                        for b in a..per_line {
+                            let (b0, b1) = (line * per_line + a, line * per_line + b);
+                            let (d, s) = (dense.range(line, b0, b1), sparse.range(line, b0, b1));
+                            assert!(d == s || (d.0 == d.1 && s.0 == s.1), "bins {b0}..={b1}: {d:?} {s:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn long_thin_boxes_keep_the_bin_count_bounded() {
         let g = Grid::new([0.0; 3], [8.4, 8.4, 3.6e9], 2.8 / 3.0, 3, 2.8).unwrap();

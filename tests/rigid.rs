@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 22] = ["rigid_clumps_flags", "rigid_read_data_fix", "rigid_small_infile", "rigid_small_reinit", "rigid_gravity_bodies", "rigid_pour_gravity", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 23] = ["rigid_clumps_flags", "rigid_small_custom", "rigid_read_data_fix", "rigid_small_infile", "rigid_small_reinit", "rigid_gravity_bodies", "rigid_pour_gravity", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 
@@ -103,6 +103,30 @@ fn rigid_gravity_and_infile_refusals() {
     let deck = format!("{BASE}fix 2 all rigid/small molecule infile {}\nrun 0\n", file.display());
     let f = run_text("bad.deck", &deck, &Default::default()).err().expect("molecule 3 does not exist");
     assert!(f.rendered.contains("bodies.txt:4: invalid rigid body molecule ID 3 in fix rigid/small infile") && f.rendered.contains(&format!("bad.deck:{}:", BASE.lines().count() + 1)), "{}", f.rendered);
+}
+
+/// rigid/small `custom`: LAMMPS' refusals of a missing property and of a variable of another
+/// style, dmhs' of a molecule template beside custom bodies, and LAMMPS' check at the run's
+/// setup that the ghost cutoff reaches every body atom from its owner (bodies {1,4} and {2,3}:
+/// 3.107 from atom 1 to atom 4 against 2.8, unless comm_modify cutoff reaches it).
+#[test]
+fn rigid_small_custom_refusals() {
+    let base = BASE.replace("fix 1 all rigid/small molecule\n", "fix p all property/atom i_b\nset atom 1 i_b 1\nset atom 4 i_b 1\nset atom 2*3 i_b 2\n");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("pair.mol"), "# two atoms\n2 atoms\n\nCoords\n\n1 0 0 0\n2 1 0 0\n\nTypes\n\n1 1\n2 1\n").unwrap();
+    let opts = DeckOptions { screen: false, base_dir: Some(dir.path().to_path_buf()), ..Default::default() };
+    for (cmd, want) in [
+        ("fix 2 all rigid/small custom i_nope", "fix rigid/small custom requires previously defined property/atom `nope`"),
+        ("variable v equal 1\nfix 2 all rigid/small custom v_v", "Fix rigid/small custom variable is no atom-style variable"),
+        ("molecule two pair.mol\nfix 2 all rigid/small custom i_b mol two", "fix rigid/small custom with a molecule template (`mol`) is not supported"),
+        ("fix 2 all rigid/small custom i_b", "Rigid body extent 3.106444913401813 > ghost atom cutoff - use comm_modify cutoff"),
+    ] {
+        let deck = format!("{base}{cmd}\nrun 0\n");
+        let f = run_text("bad.deck", &deck, &opts).err().unwrap_or_else(|| panic!("accepted: {cmd}"));
+        assert!(f.rendered.contains(want), "{cmd}: expected `{want}`:\n{}", f.rendered);
+    }
+    let deck = format!("{base}comm_modify cutoff 3.2\nfix 2 all rigid/small custom i_b\nrun 0\n");
+    run_text("ok.deck", &deck, &opts).unwrap_or_else(|f| panic!("{}", f.rendered));
 }
 
 /// fix deposit `rigid`: LAMMPS' three refusals (no molecule template, no such fix, another

@@ -40,12 +40,13 @@ pub fn fix(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     }
     // fix rigid custom v_name: LAMMPS evaluates the atom-style variable when the fix is made
     let atom_values = match (rest.first(), rest.get(1)) {
-        (Some(c), Some(v)) if style.text.starts_with("rigid") && !style.text.ends_with("/small") && c.text == "custom" && v.text.starts_with("v_") => {
+        (Some(c), Some(v)) if style.text.starts_with("rigid") && c.text == "custom" && v.text.starts_with("v_") => {
             let name = &v.text[2..];
+            let who = if style.text.ends_with("/small") { "rigid/small" } else { "rigid" };
             match sim.variables.style(name) {
-                None => return Err(a.error_at(v, format!("Variable name for fix rigid custom does not exist: {}", v.text), "no such variable")),
-                Some("atom" | "atomfile") => Some(super::atoms_cmds::atom_variable_values(sim, v, name, "fix rigid custom")?),
-                Some(s) => return Err(a.error_at(v, format!("Fix rigid custom variable is no atom-style variable: {} is {s}-style", v.text), "an atom-style variable is needed")),
+                None => return Err(a.error_at(v, format!("Variable name for fix {who} custom does not exist: {}", v.text), "no such variable")),
+                Some("atom" | "atomfile") => Some(super::atoms_cmds::atom_variable_values(sim, v, name, &format!("fix {who} custom"))?),
+                Some(s) => return Err(a.error_at(v, format!("Fix {who} custom variable is no atom-style variable: {} is {s}-style", v.text), "an atom-style variable is needed")),
             }
         }
         _ => None,

@@ -79,18 +79,7 @@ impl Global {
                     }
                     atoms.molecule[..atoms.nlocal].to_vec()
                 } else {
-                    let w = a.word("custom property (i_name or v_name)")?;
-                    let raw: Vec<f64> = if let Some(name) = w.text.strip_prefix("i_") {
-                        let k = atoms.find_extra(&w.text).ok_or_else(|| a.error_at(w, format!("fix {style} custom requires previously defined property/atom `{name}`"), "no such property"))?;
-                        atoms.extra[k].data[..atoms.nlocal].to_vec()
-                    } else if w.text.starts_with("v_") {
-                        atom_values.ok_or_else(|| a.error_at(w, "the atom-style variable was not evaluated", "internal"))?.to_vec()
-                    } else {
-                        return Err(a.error_at(w, format!("unsupported fix {style} custom property `{}`", w.text), "expected i_name or v_name"));
-                    };
-                    let int: Vec<i64> = raw.iter().map(|&v| v as i32 as i64).collect();
-                    let min = owned.clone().filter(|&i| in_fix(i)).map(|i| int[i]).min().unwrap_or(0);
-                    int.iter().map(|&v| v - min + 1).collect()
+                    custom_ids(a, style, state, groupbit, atom_values)?
                 };
                 let mut mols: Vec<i64> = owned.clone().filter(|&i| in_fix(i)).map(|i| ids[i]).collect();
                 mols.sort_unstable();
@@ -180,6 +169,26 @@ impl Global {
 /// LAMMPS' readfile: the first line that is not blank or a comment gives the number of bodies
 /// N, then N lines of `ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm
 /// iycm izcm`; `key` turns an ID into the body's key in the result (or says why it is invalid).
+/// The body IDs of the `custom i_name|v_name` body style, one per owned atom: the integer
+/// property of fix property/atom, or the atom-style variable evaluated when the fix is defined
+/// (`atom_values`) truncated, shifted so that the fix group's least is 1 (LAMMPS' fix rigid
+/// and rigid/small).
+pub fn custom_ids(a: &mut Args, style: &str, state: &State, groupbit: u32, atom_values: Option<&[f64]>) -> DResult<Vec<i64>> {
+    let atoms = &state.atoms;
+    let w = a.word("custom property (i_name or v_name)")?;
+    let raw: Vec<f64> = if let Some(name) = w.text.strip_prefix("i_") {
+        let k = atoms.find_extra(&w.text).ok_or_else(|| a.error_at(w, format!("fix {style} custom requires previously defined property/atom `{name}`"), "no such property"))?;
+        atoms.extra[k].data[..atoms.nlocal].to_vec()
+    } else if w.text.starts_with("v_") {
+        atom_values.ok_or_else(|| a.error_at(w, "the atom-style variable was not evaluated", "internal"))?.to_vec()
+    } else {
+        return Err(a.error_at(w, format!("unsupported fix {style} custom property `{}`", w.text), "expected i_name or v_name"));
+    };
+    let int: Vec<i64> = raw.iter().map(|&v| v as i32 as i64).collect();
+    let min = (0..atoms.nlocal).filter(|&i| atoms.mask[i] & groupbit != 0).map(|i| int[i]).min().unwrap_or(0);
+    Ok(int.iter().map(|&v| v - min + 1).collect())
+}
+
 pub fn read_infile(path: &std::path::Path, style: &str, key: impl Fn(i64) -> Result<usize, String>) -> Result<Infile, String> {
     let name = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot open fix {style} infile {name}: {e}"))?;

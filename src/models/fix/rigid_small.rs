@@ -37,8 +37,8 @@ use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult, Word};
 use std::collections::HashMap;
 
-pub const SYNTAX_RIGID: &str = "fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph single|molecule|group N g1 ... gN [force M x y z] [torque M x y z] [reinit yes|no] [infile FILE] [gravity FIXID] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
-pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small|rigid/npt/small|rigid/nph/small molecule [mol TEMPLATE] [reinit yes|no] [infile FILE] [gravity FIXID] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
+pub const SYNTAX_RIGID: &str = "fix ID group rigid|rigid/nve|rigid/nvt|rigid/npt|rigid/nph single|molecule|custom i_name|v_name|group N g1 ... gN [force M x y z] [torque M x y z] [reinit yes|no] [infile FILE] [gravity FIXID] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
+pub const SYNTAX: &str = "fix ID group rigid/small|rigid/nve/small|rigid/nvt/small|rigid/npt/small|rigid/nph/small molecule|custom i_name|v_name [mol TEMPLATE] [reinit yes|no] [infile FILE] [gravity FIXID] [langevin Tstart Tstop Tperiod seed] [temp Tstart Tstop Tdamp] [tparam Tchain Titer Torder] [iso|aniso|x|y|z Pstart Pstop Pdamp] [couple none|xyz|xy|yz|xz] [dilate all|group] [pchain N]";
 
 /// Moment of inertia prefactor of a solid sphere.
 const SINERTIA: f64 = 0.4;
@@ -135,6 +135,21 @@ pub struct FixRigidSmall {
     gravity: Option<String>,
     /// The bodies have been set up once (LAMMPS' setupflag, for `reinit no`).
     bodies_set_up: bool,
+    /// /small with `custom`: the body ID of each atom of the group when the fix was defined,
+    /// by atom ID (molecule IDs otherwise).
+    custom: Option<HashMap<i64, i64>>,
+    /// /small: the largest distance from a body's owner to its atoms when the fix was defined
+    /// (a template's included), which the ghost cutoff must reach (LAMMPS' maxextent).
+    maxextent: f64,
+}
+
+/// The body ID of owned atom `i` of a /small fix: its `custom` ID, or its molecule ID if it is
+/// in the fix group; None for an atom in no body.
+fn body_key(custom: Option<&HashMap<i64, i64>>, a: &crate::engine::atoms::Atoms, groupbit: u32, i: usize) -> Option<i64> {
+    match custom {
+        Some(ids) => ids.get(&a.tag[i]).copied(),
+        None => (a.mask[i] & groupbit != 0).then(|| a.molecule[i]),
+    }
 }
 
 #[derive(Default)]
@@ -161,17 +176,25 @@ impl FixRigidSmall {
         let mut a = Args::from_words(d.args, cmd.span, if style.ends_with("/small") { SYNTAX } else { SYNTAX_RIGID });
         // fix rigid and its integrators: one set of bodies from the body style (rigid.rs)
         let mut global = if style.ends_with("/small") { None } else { Some(Global::parse(&mut a, style, groupbit, state, d.atom_values)?) };
+        // the /small styles: bodies by molecule ID, or by `custom` IDs given when the fix is
+        // defined (LAMMPS' bodyID; atoms outside the group or made later are in no body)
+        let mut custom = None;
+        let mut custom_word = None;
         if global.is_none() {
-            let kind = a.word("body style (molecule)")?;
-            if kind.text != "molecule" {
-                let msg = match kind.text.as_str() {
-                    "custom" => "fix rigid/small custom is not supported yet (only molecule)",
-                    _ => "fix rigid/small needs the body style molecule",
-                };
-                return Err(a.error_at(kind, msg, "supported: molecule"));
-            }
-            if !state.atoms.features.molecule {
-                return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+            let kind = a.word("body style (molecule or custom)")?;
+            match kind.text.as_str() {
+                "molecule" => {
+                    if !state.atoms.features.molecule {
+                        return Err(a.error_at(kind, "fix rigid/small requires atom attribute molecule", "no molecule IDs").with_help("use an atom style with molecule IDs (bond, molecular, full, or hybrid sphere molecular)"));
+                    }
+                }
+                "custom" => {
+                    let ids = super::rigid::custom_ids(&mut a, style, state, groupbit, d.atom_values)?;
+                    let at = &state.atoms;
+                    custom = Some((0..at.nlocal).filter(|&i| at.mask[i] & groupbit != 0).map(|i| (at.tag[i], ids[i])).collect::<HashMap<i64, i64>>());
+                    custom_word = Some(kind.clone());
+                }
+                _ => return Err(a.error_at(kind, format!("illegal fix {style} body style `{}`", kind.text), "expected molecule or custom")),
             }
         }
         let mut template = None;
@@ -269,9 +292,9 @@ impl FixRigidSmall {
                     let file = match &global {
                         Some(g) => read_infile(&d.path(&f.text), "rigid", |id| g.file_body(id)),
                         None => {
-                            // LAMMPS' maxmol: the largest molecule ID of the group
+                            // LAMMPS' maxmol: the largest body ID of the group
                             let at = &state.atoms;
-                            let maxmol = (0..at.nlocal).filter(|&i| at.mask[i] & groupbit != 0).map(|i| at.molecule[i]).max().unwrap_or(-1);
+                            let maxmol = (0..at.nlocal).filter_map(|i| body_key(custom.as_ref(), at, groupbit, i)).max().unwrap_or(-1);
                             read_infile(&d.path(&f.text), style, |id| usize::try_from(id).ok().filter(|_| id >= 1 && id <= maxmol).ok_or_else(|| format!("invalid rigid body molecule ID {id} in fix {style} infile")))
                         }
                     }
@@ -344,11 +367,15 @@ impl FixRigidSmall {
             None if npx => return Err(a.missing(&format!("`iso|aniso|x|y|z Pstart Pstop Pdamp` (pressure control must be used with fix {style})"))),
             None => None,
         };
+        if let (Some(w), Some(_)) = (&custom_word, &template) {
+            return Err(a.error_at(w, format!("fix {style} custom with a molecule template (`mol`) is not supported"), "inserted molecules are bodies by molecule ID"));
+        }
         if global.is_some() && template.is_some() {
             return Err(a.error_at(&cmd.name, format!("fix {style} takes no molecule template (`mol` belongs to the /small styles)"), "not this style's keyword"));
         }
         let nh = (!plain).then(|| RigidNh::new(chains, baro, t_iter, t_order));
         let tally = ThermoTally { has_virial: true, virial_on: true, no_energy: true, ..ThermoTally::default() };
+        let mut maxextent = 0.0;
         let rank = match &global {
             Some(g) => {
                 state.messages.push(format!("  {} rigid bodies with {} atoms", g.nbody, g.body_of.len()));
@@ -356,18 +383,19 @@ impl FixRigidSmall {
             }
             None => {
                 // LAMMPS' create_bodies reports the bodies and their extent (a template's too)
-                let (rank, mut extent) = Self::creation_order(state, groupbit);
+                let (rank, mut extent) = Self::creation_order(state, groupbit, custom.as_ref());
                 if let Some((_, t)) = &template {
                     extent = extent.max(t.maxextent);
                 }
-                let natoms = (0..state.atoms.nlocal).filter(|&i| state.atoms.mask[i] & groupbit != 0).count();
+                maxextent = extent;
+                let natoms = (0..state.atoms.nlocal).filter(|&i| body_key(custom.as_ref(), &state.atoms, groupbit, i).is_some()).count();
                 state.messages.push(format!("  {} rigid bodies with {natoms} atoms\n  {} = max distance from body owner to body atom", rank.len(), dmhs_parser::numfmt::format_g(extent, 8)));
                 rank
             }
         };
         // (LAMMPS reads the file at the run's setup, after the bodies' lines)
         state.messages.extend(reading);
-        Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None, reinit, infile, gravity, bodies_set_up: false })
+        Ok(FixRigidSmall { id: d.id, groupbit, style, bodies: Vec::new(), members: HashMap::new(), enforce2d: false, template, tally, nh, langevin, rank, set_up: false, local: LocalMembers::default(), global, early: false, press_temp: None, reinit, infile, gravity, bodies_set_up: false, custom, maxextent })
     }
 
     /// LAMMPS' checks of the barostat's settings (FixRigidNHSmall's constructor).
@@ -436,14 +464,16 @@ impl FixRigidSmall {
     /// centre of the molecule's bounding box (unwrapped; the smaller ID on a tie), and the
     /// bodies are numbered in the local order of their owners; also the largest distance from
     /// an owner to an atom of its body (unwrapped).
-    fn creation_order(state: &State, groupbit: u32) -> (HashMap<i64, usize>, f64) {
+    fn creation_order(state: &State, groupbit: u32, custom: Option<&HashMap<i64, i64>>) -> (HashMap<i64, usize>, f64) {
         let a = &state.atoms;
         let Some(domain) = state.domain.as_ref() else { return (HashMap::new(), 0.0) };
-        let group: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0).collect();
+        let key: Vec<Option<i64>> = (0..a.nlocal).map(|i| body_key(custom, a, groupbit, i)).collect();
+        let group: Vec<usize> = (0..a.nlocal).filter(|&i| key[i].is_some()).collect();
+        let key = |i: usize| key[i].expect("an atom of a body");
         let mut bbox: HashMap<i64, ([f64; 3], [f64; 3])> = HashMap::new();
         for &i in &group {
             let u = domain.unmap(a.x[i], a.image[i]);
-            let e = bbox.entry(a.molecule[i]).or_insert((u, u));
+            let e = bbox.entry(key(i)).or_insert((u, u));
             for k in 0..3 {
                 e.0[k] = e.0[k].min(u[k]);
                 e.1[k] = e.1[k].max(u[k]);
@@ -451,26 +481,26 @@ impl FixRigidSmall {
         }
         let mut close: HashMap<i64, (f64, i64)> = HashMap::new();
         for &i in &group {
-            let (lo, hi) = bbox[&a.molecule[i]];
+            let (lo, hi) = bbox[&key(i)];
             let u = domain.unmap(a.x[i], a.image[i]);
             let d: [f64; 3] = std::array::from_fn(|k| u[k] - 0.5 * (lo[k] + hi[k]));
             let rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            let e = close.entry(a.molecule[i]).or_insert((f64::INFINITY, i64::MAX));
+            let e = close.entry(key(i)).or_insert((f64::INFINITY, i64::MAX));
             if rsq < e.0 || (rsq == e.0 && a.tag[i] < e.1) {
                 *e = (rsq, a.tag[i]);
             }
         }
         let mut rank = HashMap::new();
         for &i in state.lammps_order.indices(a.nlocal).iter() {
-            if a.mask[i] & groupbit != 0 && close[&a.molecule[i]].1 == a.tag[i] {
+            if group.binary_search(&i).is_ok() && close[&key(i)].1 == a.tag[i] {
                 let n = rank.len();
-                rank.insert(a.molecule[i], n);
+                rank.insert(key(i), n);
             }
         }
         let map = a.tag_map();
         let mut rsqfar = 0.0f64;
         for &i in &group {
-            let owner = map.get(close[&a.molecule[i]].1).expect("an owned atom");
+            let owner = map.get(close[&key(i)].1).expect("an owned atom");
             let (u, o) = (domain.unmap(a.x[i], a.image[i]), domain.unmap(a.x[owner], a.image[owner]));
             let d: [f64; 3] = std::array::from_fn(|k| u[k] - o[k]);
             rsqfar = rsqfar.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -513,10 +543,7 @@ impl FixRigidSmall {
         let mut by_mol: HashMap<i64, usize> = HashMap::new();
         let mut members = HashMap::new();
         for &i in state.lammps_order.indices(a.nlocal).iter() {
-            if a.mask[i] & self.groupbit == 0 {
-                continue;
-            }
-            let mol = a.molecule[i];
+            let Some(mol) = body_key(self.custom.as_ref(), a, self.groupbit, i) else { continue };
             let b = *by_mol.entry(mol).or_insert_with(|| {
                 bodies.push(Body { mol, ..Body::default() });
                 bodies.len() - 1
@@ -950,6 +977,11 @@ impl Fix for FixRigidSmall {
         self.pre_exchange(state, ctx)
     }
     fn setup(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
+        // LAMMPS' check for the /small styles, here because the lists' cutoff is known now
+        let cutghost = state.neighbor.cutneighmax.max(state.comm_cutoff);
+        if self.global.is_none() && self.maxextent > cutghost {
+            return Err(self.err(state, format!("Rigid body extent {} > ghost atom cutoff - use comm_modify cutoff", self.maxextent)));
+        }
         self.forces_and_torques(state).map_err(|e| self.err(state, e))?;
         self.add_gravity(ctx);
         for b in self.bodies.iter_mut() {

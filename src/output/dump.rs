@@ -1,5 +1,5 @@
-//! `dump atom` and `dump custom` snapshots in LAMMPS' text format (readable by OVITO and by
-//! LAMMPS' `read_dump`). Every snapshot is formatted in memory and written with one call;
+//! `dump atom`, `dump custom` and `dump xyz` snapshots in LAMMPS' text formats (readable by
+//! OVITO and VMD, and the first two by LAMMPS' `read_dump`). Every snapshot is formatted in memory and written with one call;
 //! per-snapshot files (`*` in the name) are written atomically.
 
 use crate::models::compute::property::Field;
@@ -12,7 +12,7 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::PathBuf;
 
-pub const SYNTAX: &str = "dump ID group atom|custom|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index c_ID c_ID[N] f_ID f_ID[N]]";
+pub const SYNTAX: &str = "dump ID group atom|custom|xyz|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index c_ID c_ID[N] f_ID f_ID[N]]";
 
 #[derive(Clone, Debug)]
 pub(crate) enum Column {
@@ -56,6 +56,11 @@ pub struct Dump {
     series: Vec<(f64, String)>,
     /// `dump_modify header yes/no`: the ITEM lines before each snapshot.
     pub header: bool,
+    /// dump xyz: `dump_modify element E1 .. EN`, the name written for each type (the type
+    /// number without it).
+    elements: Option<Vec<String>>,
+    /// dump xyz: `dump_modify time yes`, the time after the step in the comment line.
+    time: bool,
 }
 
 impl Dump {
@@ -67,13 +72,13 @@ impl Dump {
         let groupbit = w.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
         let style_w = a.word("dump style")?;
         let style = style_w.text.clone();
-        if !["atom", "custom", "local", "vtk", "image", "movie"].contains(&style.as_str()) {
+        if !["atom", "custom", "xyz", "local", "vtk", "image", "movie"].contains(&style.as_str()) {
             let msg = if dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Dump, &style) {
-                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, local, vtk, image or movie)")
+                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, xyz, local, vtk, image or movie)")
             } else {
                 format!("unknown dump style `{style}`")
             };
-            return Err(a.error_at(style_w, msg, "expected atom, custom, local, vtk, image or movie"));
+            return Err(a.error_at(style_w, msg, "expected atom, custom, xyz, local, vtk, image or movie"));
         }
         let every = a.i64_in("N (dump every N steps)", 1, i64::MAX)?;
         let fw = a.word("file name")?;
@@ -110,6 +115,8 @@ impl Dump {
             binary: true,
             series: vec![],
             header: true,
+            elements: None,
+            time: false,
         };
         if d.picture.is_some() {
             return Ok(d);
@@ -147,6 +154,10 @@ impl Dump {
         } else if style == "atom" {
             a.finish()?;
             d.set_atom_columns();
+        } else if style == "xyz" {
+            a.finish()?;
+            d.names = ["type", "x", "y", "z"].map(String::from).to_vec();
+            d.columns = d.names.iter().map(|n| Column::Attr(Field::parse(n).expect("an attribute"))).collect();
         } else if style == "vtk" && a.is_empty() {
             for name in crate::output::dump_vtu::default_fields(w.state) {
                 d.names.push(name.to_string());
@@ -176,8 +187,9 @@ impl Dump {
     }
 
     /// `dump_modify ID keyword value ...`
-    pub fn modify(&mut self, a: &mut Args) -> DResult<()> {
-        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary", "header"];
+    /// `ntypes`: the number of atom types (`element` names one per type).
+    pub fn modify(&mut self, a: &mut Args, ntypes: usize) -> DResult<()> {
+        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary", "header", "element", "time"];
         while let Some(w) = a.peek() {
             a.skip(1);
             if let Some(p) = self.picture.as_mut() {
@@ -194,6 +206,15 @@ impl Dump {
                         _ => return Err(a.error_at(v, "dmhs sorts dumps only by `id` (or `off`)", "expected id or off")),
                     };
                 }
+                "element" if self.style == "xyz" => {
+                    let mut names = Vec::with_capacity(ntypes);
+                    for t in 1..=ntypes {
+                        names.push(a.word(&format!("element name of atom type {t} (one per type)"))?.text.clone());
+                    }
+                    self.elements = Some(names);
+                }
+                "time" if self.style == "xyz" => self.time = a.yes_no("time")?,
+                "format" if self.style == "xyz" => return Err(a.error_at(w, "dump_modify format is not supported for dump xyz (its lines are `%s %g %g %g`: element or type, x, y, z)", "not for dump xyz")),
                 "format" => {
                     let which = a.word("format kind (line, int, float, N or none)")?;
                     match which.text.as_str() {
@@ -350,6 +371,9 @@ impl Dump {
         if self.style == "local" {
             return self.snapshot_local(w, ev);
         }
+        if self.style == "xyz" {
+            return self.snapshot_xyz(w);
+        }
         let a = &w.state.atoms;
         let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         if self.sort {
@@ -380,6 +404,36 @@ impl Dump {
                 s.push(' ');
             }
             s.pop();
+            s.push('\n');
+        }
+        Ok(s)
+    }
+
+    /// A dump xyz snapshot: the atom count, a comment line with the step (and the time), then
+    /// `name x y z` per atom, name the type's element or its number (LAMMPS' DumpXYZ).
+    fn snapshot_xyz(&self, w: &World) -> Result<String, String> {
+        let a = &w.state.atoms;
+        // unsorted in LAMMPS' local order: an xyz file names atoms by their place only
+        let mut idx: Vec<usize> = w.state.lammps_order.indices(a.nlocal).iter().copied().filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        if self.sort {
+            idx.sort_by_key(|&i| a.tag[i]);
+        }
+        let mut s = String::with_capacity(48 * (idx.len() + 2));
+        s += &format!("{}\n Atoms. Timestep: {}", idx.len(), w.state.step);
+        if self.time {
+            s += &format!(" Time: {}", format_printf("%.6f", w.state.time())?);
+        }
+        s.push('\n');
+        for &i in &idx {
+            let t = a.typ[i];
+            match &self.elements {
+                Some(names) => s += &names[t - 1],
+                None => s += &t.to_string(),
+            }
+            for d in 0..3 {
+                s.push(' ');
+                s += &format_printf("%g", a.x[i][d])?;
+            }
             s.push('\n');
         }
         Ok(s)

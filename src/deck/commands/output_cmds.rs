@@ -201,13 +201,14 @@ pub fn undump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 }
 
 pub fn dump_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "dump_modify ID keyword value ...  (sort id|off, format line|int|float|N str, every N, first yes|no, image yes|no, append yes|no)");
+    let mut a = Args::new(cmd, "dump_modify ID keyword value ...  (sort id|off, format line|int|float|N str, every N, first yes|no, image yes|no, append yes|no, element E1 .. EN (xyz), time yes|no (xyz))");
     let w = a.word("dump ID")?;
     let k = crate::output::dump::find(&sim.dumps, w).ok_or_else(|| a.error_at(w, format!("dump `{}` does not exist", w.text), "unknown dump"))?;
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }
-    sim.dumps[k].modify(&mut a)
+    let ntypes = sim.state.ntypes;
+    sim.dumps[k].modify(&mut a, ntypes)
 }
 
 /// `write_dump group-ID style file args ... [modify keyword value ...]` (LAMMPS' WriteDump): a
@@ -239,7 +240,7 @@ pub fn write_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         if m.is_empty() {
             return Err(m.missing("a dump_modify keyword after `modify`"));
         }
-        d.modify(&mut m)?;
+        d.modify(&mut m, sim.state.ntypes)?;
     }
     let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref(), pair: sim.pair.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };

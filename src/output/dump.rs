@@ -413,8 +413,10 @@ impl Dump {
     /// `name x y z` per atom, name the type's element or its number (LAMMPS' DumpXYZ).
     fn snapshot_xyz(&self, w: &World) -> Result<String, String> {
         let a = &w.state.atoms;
-        // unsorted in LAMMPS' local order: an xyz file names atoms by their place only
-        let mut idx: Vec<usize> = w.state.lammps_order.indices(a.nlocal).iter().copied().filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        // unsorted in LAMMPS' local order (an xyz file names atoms by their place only); the
+        // atoms gathered from the ranks of a distributed run in rank order
+        let order: Vec<usize> = if w.state.decomp.is_some() { (0..a.nlocal).collect() } else { w.state.lammps_order.indices(a.nlocal).into_owned() };
+        let mut idx: Vec<usize> = order.into_iter().filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         if self.sort {
             idx.sort_by_key(|&i| a.tag[i]);
         }

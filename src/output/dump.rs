@@ -1,6 +1,7 @@
 //! `dump atom`, `dump custom` and `dump xyz` snapshots in LAMMPS' text formats (readable by
-//! OVITO and VMD, and the first two by LAMMPS' `read_dump`). Every snapshot is formatted in memory and written with one call;
-//! per-snapshot files (`*` in the name) are written atomically.
+//! OVITO and VMD, and the first two by LAMMPS' `read_dump`). Every snapshot is formatted in
+//! memory and written with one call; per-snapshot files (`*` in the name) are written
+//! atomically.
 
 use crate::models::compute::property::Field;
 use crate::output::log::write_atomic;
@@ -428,8 +429,9 @@ impl Dump {
         s.push('\n');
         for &i in &idx {
             let t = a.typ[i];
-            match &self.elements {
-                Some(names) => s += &names[t - 1],
+            // (a type added after dump_modify element has no name: its number)
+            match self.elements.as_ref().and_then(|names| names.get(t - 1)) {
+                Some(name) => s += name,
                 None => s += &t.to_string(),
             }
             for d in 0..3 {

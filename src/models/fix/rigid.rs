@@ -166,9 +166,6 @@ impl Global {
     }
 }
 
-/// LAMMPS' readfile: the first line that is not blank or a comment gives the number of bodies
-/// N, then N lines of `ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm
-/// iycm izcm`; `key` turns an ID into the body's key in the result (or says why it is invalid).
 /// The body IDs of the `custom i_name|v_name` body style, one per owned atom: the integer
 /// property of fix property/atom, or the atom-style variable evaluated when the fix is defined
 /// (`atom_values`) truncated, shifted so that the fix group's least is 1 (LAMMPS' fix rigid
@@ -189,6 +186,9 @@ pub fn custom_ids(a: &mut Args, style: &str, state: &State, groupbit: u32, atom_
     Ok(int.iter().map(|&v| v - min + 1).collect())
 }
 
+/// LAMMPS' readfile: the first line that is not blank or a comment gives the number of bodies
+/// N, then N lines of `ID mass xcm ycm zcm ixx iyy izz ixy ixz iyz vxcm vycm vzcm lx ly lz ixcm
+/// iycm izcm`; `key` turns an ID into the body's key in the result (or says why it is invalid).
 pub fn read_infile(path: &std::path::Path, style: &str, key: impl Fn(i64) -> Result<usize, String>) -> Result<Infile, String> {
     let name = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot open fix {style} infile {name}: {e}"))?;

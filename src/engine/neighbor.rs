@@ -531,14 +531,18 @@ impl BinIndex {
                 fill[(k / pl) as usize] = 1;
             }
         };
+        let mut counted = false;
         let by_lines = by_lines.unwrap_or_else(|| {
             total >= Self::DENSE_BINS_PER_ITEM * keys.len() && {
                 used(&mut self.fill);
+                counted = true;
                 2 * self.fill.iter().filter(|&&c| c > 0).count() <= lines
             }
         });
         let entries = if by_lines {
-            used(&mut self.fill);
+            if !counted {
+                used(&mut self.fill);
+            }
             let mut next = 0;
             self.block.extend(self.fill.iter().map(|&u| {
                 if u == 0 {

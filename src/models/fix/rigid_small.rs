@@ -467,9 +467,9 @@ impl FixRigidSmall {
     fn creation_order(state: &State, groupbit: u32, custom: Option<&HashMap<i64, i64>>) -> (HashMap<i64, usize>, f64) {
         let a = &state.atoms;
         let Some(domain) = state.domain.as_ref() else { return (HashMap::new(), 0.0) };
-        let key: Vec<Option<i64>> = (0..a.nlocal).map(|i| body_key(custom, a, groupbit, i)).collect();
-        let group: Vec<usize> = (0..a.nlocal).filter(|&i| key[i].is_some()).collect();
-        let key = |i: usize| key[i].expect("an atom of a body");
+        let keys: Vec<Option<i64>> = (0..a.nlocal).map(|i| body_key(custom, a, groupbit, i)).collect();
+        let group: Vec<usize> = (0..a.nlocal).filter(|&i| keys[i].is_some()).collect();
+        let key = |i: usize| keys[i].expect("an atom of a body");
         let mut bbox: HashMap<i64, ([f64; 3], [f64; 3])> = HashMap::new();
         for &i in &group {
             let u = domain.unmap(a.x[i], a.image[i]);
@@ -492,7 +492,7 @@ impl FixRigidSmall {
         }
         let mut rank = HashMap::new();
         for &i in state.lammps_order.indices(a.nlocal).iter() {
-            if group.binary_search(&i).is_ok() && close[&key(i)].1 == a.tag[i] {
+            if keys[i].is_some() && close[&key(i)].1 == a.tag[i] {
                 let n = rank.len();
                 rank.insert(key(i), n);
             }

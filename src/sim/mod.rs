@@ -4,6 +4,7 @@ pub mod distributed;
 pub mod eval;
 pub mod memory;
 pub mod minimize;
+pub mod rerun;
 pub mod run;
 pub mod stability;
 mod stale_vest;

@@ -6,6 +6,7 @@ use crate::models::bonded::pass::BondedStyles;
 use crate::models::fix::{Fix, FixCtx, FixHooks};
 use crate::models::world::{FixesView, World};
 use crate::sim::eval::{Eval, HookExpressions};
+use crate::engine::lammps_order::Sort;
 use crate::engine::neighbor::NeighError;
 use crate::models::pair::{PairInput, PairOutput, Tally};
 use crate::sim::{Energies, RunError, SetupError, Simulation, State};
@@ -128,12 +129,7 @@ impl Simulation {
         for w in warnings {
             self.out.print(&format!("WARNING: {w}"));
         }
-        for k in 0..self.fixes.len() {
-            self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
-            for w in self.fixes[k].init_warnings([&self.fixes[..k], &self.fixes[k + 1..]]) {
-                self.out.print(&format!("WARNING: {w}"));
-            }
-        }
+        self.init_fixes(true)?;
         self.init_thermo_columns();
         // LAMMPS' Output::init: output intervals given by variables
         let intervals = self.thermo.every_var.iter().map(|v| (v, "thermo".to_string())).chain(self.dumps.iter().filter_map(|d| d.every_var.as_ref().map(|v| (v, format!("dump {}", d.id)))));
@@ -160,6 +156,46 @@ impl Simulation {
         Ok(())
     }
 
+    /// LAMMPS' Modify::init of the fixes (with their warnings when `warn`).
+    pub(crate) fn init_fixes(&mut self, warn: bool) -> Result<(), String> {
+        for k in 0..self.fixes.len() {
+            self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
+            if warn {
+                for w in self.fixes[k].init_warnings([&self.fixes[..k], &self.fixes[k + 1..]]) {
+                    self.out.print(&format!("WARNING: {w}"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// LAMMPS' Update::reset_timestep: the step becomes `step`; the time goes on as if the
+    /// steps in between were taken, or restarts at 0 when the step goes back. Outside a run
+    /// (`in_run` false) a dump that has written a snapshot to one file refuses it, as LAMMPS'
+    /// "Cannot reset timestep with active dump - must undump first".
+    pub fn reset_timestep(&mut self, step: i64, in_run: bool) -> Result<(), String> {
+        if step < 0 {
+            return Err("Timestep must be >= 0".to_string());
+        }
+        if !in_run {
+            if let Some(d) = self.dumps.iter().find(|d| d.last_written.is_some() && !d.path.to_string_lossy().contains('*')) {
+                return Err(format!("Cannot reset timestep with active dump - must undump first (dump {} has written to {})", d.id, d.path.display()));
+            }
+        }
+        let st = &mut self.state;
+        if step >= st.step {
+            st.atime += (step - st.atimestep) as f64 * st.dt;
+        } else {
+            st.atime = 0.0;
+        }
+        st.atimestep = step;
+        st.step = step;
+        for d in &mut self.dumps {
+            d.last_written = None;
+        }
+        Ok(())
+    }
+
     /// Wrap periodic coordinates, resize shrink-wrapped boxes, remove atoms that left a fixed
     /// box, sort, make ghosts and build the lists.
     pub fn rebuild(&mut self) -> Result<(), RunError> {
@@ -170,6 +206,11 @@ impl Simulation {
     /// Returns the permutation applied to the owned atoms (`new k <- old order[k]`), for
     /// per-atom vectors kept outside the atoms (the minimizer's).
     pub(crate) fn rebuild_at(&mut self, setup: bool) -> Result<Vec<usize>, RunError> {
+        self.rebuild_sorting(if setup { Sort::Setup } else { Sort::Due })
+    }
+
+    /// [`Simulation::rebuild_at`] with LAMMPS' atom sort as `sort` says.
+    pub(crate) fn rebuild_sorting(&mut self, sort: Sort) -> Result<Vec<usize>, RunError> {
         let step = self.state.step;
         if self.state.special_dirty {
             // every rank of a distributed run changed the same topology: they agree here
@@ -277,7 +318,7 @@ impl Simulation {
         // one rank's failure stops every rank here, before the next exchange
         let order = self.agreed(order)?;
         let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
-        self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, setup);
+        self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, sort);
         self.state.lammps_order.make_sides(&self.state.atoms, domain, cutneighmax, self.state.neigh_settings.binsize, self.state.newton_pair);
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
@@ -544,6 +585,12 @@ impl Simulation {
 
     /// LAMMPS `Verlet::setup`: lists, forces of the current state, fix setup, first output.
     pub fn setup(&mut self, pre: bool) -> Result<(), RunError> {
+        self.setup_sorting(pre, Sort::Setup)
+    }
+
+    /// [`Simulation::setup`]; `sort`: whether the build sorts LAMMPS' order (a rerun
+    /// snapshot's setup, LAMMPS' setup_minimal, does not).
+    pub(crate) fn setup_sorting(&mut self, pre: bool, sort: Sort) -> Result<(), RunError> {
         // LAMMPS' Modify::init drops the restart file's fix states no fix took
         for s in std::mem::take(&mut self.restart_fixes) {
             self.out.print(&format!("WARNING: fix {} {} of the restart file was not defined again: its stored state is dropped", s.id, s.style));
@@ -552,7 +599,7 @@ impl Simulation {
             self.timers.stamp();
             // the setup's build is not counted (LAMMPS' Verlet::setup zeroes ncalls after it)
             let builds = self.state.neighbor.nbuilds;
-            self.rebuild_at(true)?;
+            self.rebuild_sorting(sort)?;
             self.state.neighbor.nbuilds = builds;
             self.timers.charge(Stage::Neigh);
         } else {
@@ -901,7 +948,7 @@ impl Simulation {
 
     /// Whether a thermo line is printed at `step` (after the run's setup line): at the steps
     /// `thermo v_name` gives, else every N steps and the run's last step.
-    fn thermo_due(&self, step: i64, last: i64) -> bool {
+    pub(crate) fn thermo_due(&self, step: i64, last: i64) -> bool {
         match self.thermo.every_var {
             Some(_) => step == self.thermo.next,
             None => step == last || (self.thermo.every > 0 && step % self.thermo.every == 0),
@@ -922,21 +969,7 @@ impl Simulation {
         // (LAMMPS' compute_cpu)
         let cpu = if setup { 0.0 } else { self.cpu_seconds() };
         if thermo_now {
-            self.out.warnings_notice();
-            let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
-            let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
-            let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
-            let line = self.thermo.format_line(&vals, step, cpu);
-            self.out.print(&line);
-            if self.thermo.flush {
-                self.out.flush();
-            }
-            // the next output step, from the variable after each output (LAMMPS' Output::setup
-            // and write: only the later ones are capped at the run's last step)
-            if let Some(v) = &self.thermo.every_var {
-                let next = next_output_step(&mut ev, v, step).map_err(|e| RunError::new(step, format!("Thermo every variable {v} {e}")))?;
-                self.thermo.next = if setup { next } else { next.min(last) };
-            }
+            self.write_thermo(setup, last, cpu)?;
         }
         let due: Vec<usize> = (0..self.dumps.len()).filter(|&k| self.dumps[k].due(step, setup) || (all_dumps && self.dumps[k].last_written != Some(step))).collect();
         let distributed = self.state.distributed.is_some();
@@ -955,6 +988,28 @@ impl Simulation {
             if let Some(v) = d.every_var.as_ref().filter(|_| setup || written) {
                 d.next = next_output_step(&mut ev, v, step).map_err(|e| RunError::new(step, format!("Dump {} every variable {v} {e}", d.id)))?;
             }
+        }
+        Ok(())
+    }
+
+    /// The thermo line of the current step (`setup`: a run's first, whose next output step is
+    /// not capped at `last`); `cpu`: the seconds the thermo `cpu` keyword shows.
+    pub(crate) fn write_thermo(&mut self, setup: bool, last: i64, cpu: f64) -> Result<(), RunError> {
+        let step = self.state.step;
+        self.out.warnings_notice();
+        let world = World { state: &self.state, computes: &self.computes, fixes: FixesView::all(&self.fixes), bond: self.bond_style.as_deref(), pair: self.pair.as_deref() };
+        let mut ev = Eval { world, thermo: &self.thermo, variables: &mut self.variables, cpu };
+        let vals = crate::output::thermo::values(&self.thermo, &world, &mut ev).map_err(|e| RunError::new(step, format!("thermo output: {e}")))?;
+        let line = self.thermo.format_line(&vals, step, cpu);
+        self.out.print(&line);
+        if self.thermo.flush {
+            self.out.flush();
+        }
+        // the next output step, from the variable after each output (LAMMPS' Output::setup
+        // and write: only the later ones are capped at the run's last step)
+        if let Some(v) = &self.thermo.every_var {
+            let next = next_output_step(&mut ev, v, step).map_err(|e| RunError::new(step, format!("Thermo every variable {v} {e}")))?;
+            self.thermo.next = if setup { next } else { next.min(last) };
         }
         Ok(())
     }

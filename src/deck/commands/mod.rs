@@ -11,6 +11,7 @@ mod min_cmds;
 mod modify_cmds;
 mod output_cmds;
 mod replicate;
+mod rerun_cmds;
 mod run_cmds;
 mod settings;
 mod topology_cmds;
@@ -86,6 +87,8 @@ const COMMANDS: &[(&str, Handler)] = &[
     ("min_style", min_cmds::min_style),
     ("min_modify", min_cmds::min_modify),
     ("reset_timestep", run_cmds::reset_timestep),
+    ("read_dump", rerun_cmds::read_dump),
+    ("rerun", rerun_cmds::rerun),
     ("write_restart", crate::deck::restart::write_restart),
     ("read_restart", crate::deck::restart::read_restart),
 ];

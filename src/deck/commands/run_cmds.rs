@@ -65,12 +65,9 @@ pub fn reset_timestep(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
             _ => return Err(a.unknown_keyword(kw, &["time"])),
         }
     }
-    // LAMMPS: time continues from the current value unless given
-    sim.state.atime = time.unwrap_or_else(|| sim.state.time());
-    sim.state.atimestep = n;
-    sim.state.step = n;
-    for d in &mut sim.dumps {
-        d.last_written = None;
+    sim.reset_timestep(n, false).map_err(|e| Diagnostic::at(cmd.span, e, "reset here"))?;
+    if let Some(t) = time {
+        sim.state.atime = t;
     }
     Ok(())
 }

@@ -248,6 +248,8 @@ impl FixAveTime {
     fn sample(&self, w: &World, ev: &mut dyn EvalContext) -> Result<Vec<Vec<f64>>, String> {
         let who = format!("fix ave/time {}", self.id);
         let mut cols = Vec::with_capacity(self.values.len());
+        // a compute's array is made once per sample, however many of its columns are read
+        let mut arrays: Vec<(&str, Vec<Vec<f64>>)> = Vec::new();
         for v in &self.values {
             if !self.vector_mode {
                 cols.push(vec![global_value(v.source, &v.id, v.index, w, ev, &who)?]);
@@ -259,7 +261,14 @@ impl FixAveTime {
                     match v.index {
                         None => c.vector(w)?,
                         Some(j) => {
-                            let rows = c.array(w)?;
+                            let k = match arrays.iter().position(|(id, _)| *id == v.id) {
+                                Some(k) => k,
+                                None => {
+                                    arrays.push((&v.id, c.array(w)?));
+                                    arrays.len() - 1
+                                }
+                            };
+                            let rows = &arrays[k].1;
                             rows.iter().map(|r| r.get(j - 1).copied().ok_or_else(|| format!("compute `{}` array has {} columns, column {j} is out of range", v.id, r.len()))).collect::<Result<_, _>>()?
                         }
                     }

@@ -1,0 +1,110 @@
+//! `rerun`: a pseudo run over dump snapshots (LAMMPS' Rerun::command). The run is set up once;
+//! then each snapshot sets the step, replaces the atoms, and gets LAMMPS' setup_minimal (lists
+//! built without sorting, forces and energies, the fixes' setup), the fixes' end_of_step and
+//! the output due at its step. Nothing is integrated.
+
+use crate::deck::read_dump::DumpSource;
+use crate::engine::lammps_order::Sort;
+use crate::sim::{RunError, Simulation};
+
+/// The keywords of `rerun` before `dump`.
+#[derive(Clone, Copy, Debug)]
+pub struct RerunOptions {
+    /// Snapshots from this step on.
+    pub first: i64,
+    /// Snapshots up to this step.
+    pub last: i64,
+    /// Only steps that are multiples of it (0: all).
+    pub every: i64,
+    /// One snapshot in `skip` after the first.
+    pub skip: i64,
+    /// The pseudo run's start and stop (for fixes that ramp over a run).
+    pub start: Option<i64>,
+    pub stop: Option<i64>,
+    /// The summary after the loop.
+    pub post: bool,
+}
+
+impl Default for RerunOptions {
+    fn default() -> Self {
+        // LAMMPS' last: the largest bigint less one, so that output can add 1
+        RerunOptions { first: 0, last: i64::MAX - 1, every: 0, skip: 1, start: None, stop: None, post: false }
+    }
+}
+
+impl Simulation {
+    /// The `rerun` command over the snapshots of `src`.
+    pub fn rerun(&mut self, src: &mut DumpSource, o: &RerunOptions) -> Result<(), RunError> {
+        let step = self.state.step;
+        self.state.run_window = Some((o.start.unwrap_or(o.first), o.stop.unwrap_or(o.last)));
+        self.init_run().map_err(|e| RunError::setup(step, e))?;
+        if !self.fixes.iter().any(|f| f.time_integrate()) {
+            self.out.print("WARNING: No fixes with time integration, atoms won't move");
+        }
+        let fail = |e: String| RunError::new(step, e);
+        let mut next = src.seek(o.first, false).map_err(fail)?;
+        if next.is_none() {
+            return Err(fail(format!("Rerun dump file does not contain requested snapshot (a step >= {})", o.first)));
+        }
+        let t0 = std::time::Instant::now();
+        self.loop_start = Some(t0);
+        self.timers.reset();
+        let mut ndump = 0;
+        let mut last_thermo = None;
+        while let Some(t) = next {
+            let first = ndump == 0;
+            ndump += 1;
+            let snap = src.snapshot(first).map_err(|e| RunError::new(t, e))?;
+            self.reset_timestep(t, true).map_err(|e| RunError::new(t, e))?;
+            src.apply(self, &snap).map_err(|e| RunError::new(t, e))?;
+            // LAMMPS' Modify::init before each snapshot's setup
+            self.init_fixes(false).map_err(|e| RunError::new(t, e))?;
+            self.setup_sorting(true, Sort::Never)?;
+            self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
+            if first {
+                let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
+                self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
+                if let Some(h) = self.thermo.header() {
+                    self.out.print(&h);
+                }
+                self.output_now(true, o.last, false)?;
+                last_thermo = Some(t);
+            } else {
+                let thermo = self.thermo_due(t, o.last);
+                self.output_now(false, o.last, false)?;
+                if thermo {
+                    last_thermo = Some(t);
+                }
+            }
+            next = src.next(t, o.last, o.every, o.skip).map_err(|e| RunError::new(t, e))?;
+            if let (Some(n), Some(stop)) = (next, o.stop) {
+                if n > stop {
+                    return Err(RunError::new(t, format!("Read rerun dump file timestep > specified stop: snapshot {n} after stop {stop}")));
+                }
+            }
+        }
+        // a thermo line for the last snapshot, if its step had none
+        let t = self.state.step;
+        if last_thermo != Some(t) {
+            let cpu = self.cpu_seconds();
+            self.write_thermo(false, o.last, cpu)?;
+        }
+        // LAMMPS' post_run (fix adapt's reset)
+        for f in self.fixes.iter_mut() {
+            f.post_run(&mut self.state);
+        }
+        let loop_time = t0.elapsed().as_secs_f64();
+        self.loop_start = None;
+        if let Some(f) = self.thermo.footer() {
+            self.out.print(f);
+        }
+        self.last_loop_seconds = loop_time;
+        self.last_loop_steps = ndump;
+        self.out.print(&format!("Loop time of {} on {} procs for {ndump} steps with {} atoms\n", crate::output::format::g6(loop_time), self.nranks(), self.state.atoms.nlocal));
+        if o.post {
+            self.print_run_summary(loop_time, ndump, None, None);
+        }
+        self.out.flush();
+        Ok(())
+    }
+}

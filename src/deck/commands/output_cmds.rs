@@ -242,6 +242,10 @@ pub fn write_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         }
         d.modify(&mut m, sim.state.ntypes)?;
     }
+    // `dmhs check` writes no file (the atoms are not those of a run)
+    if sim.check_only {
+        return Ok(());
+    }
     let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref(), pair: sim.pair.as_deref() };
     let mut ev = crate::sim::eval::Eval { world, thermo: &sim.thermo, variables: &mut sim.variables, cpu: sim.last_loop_seconds };
     d.write(&world, &mut ev).map_err(|e| a.error_at(&cmd.args[2], e, "while writing"))

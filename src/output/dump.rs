@@ -1,7 +1,7 @@
 //! `dump atom`, `dump custom` and `dump xyz` snapshots in LAMMPS' text formats (readable by
-//! OVITO and VMD, and the first two by LAMMPS' `read_dump`). Every snapshot is formatted in
-//! memory and written with one call; per-snapshot files (`*` in the name) are written
-//! atomically.
+//! OVITO and VMD, and by `read_dump`), unsorted in LAMMPS' local order as LAMMPS writes them on
+//! one process. Every snapshot is formatted in memory and written with one call; per-snapshot
+//! files (`*` in the name) are written atomically.
 
 use crate::models::compute::property::Field;
 use crate::output::log::write_atomic;
@@ -13,7 +13,7 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::PathBuf;
 
-pub const SYNTAX: &str = "dump ID group atom|custom|xyz|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index c_ID c_ID[N] f_ID f_ID[N]]";
+pub const SYNTAX: &str = "dump ID group atom|custom|xyz|dcd|local|vtk|image|movie N file [custom fields: id type x y z xu vx fx c_ID c_ID[N] ...] [local fields: index c_ID c_ID[N] f_ID f_ID[N]]";
 
 #[derive(Clone, Debug)]
 pub(crate) enum Column {
@@ -62,6 +62,8 @@ pub struct Dump {
     elements: Option<Vec<String>>,
     /// dump xyz: `dump_modify time yes`, the time after the step in the comment line.
     time: bool,
+    /// dump dcd: the binary trajectory's state.
+    dcd: Option<Box<crate::output::dump_dcd::Dcd>>,
 }
 
 impl Dump {
@@ -73,13 +75,13 @@ impl Dump {
         let groupbit = w.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
         let style_w = a.word("dump style")?;
         let style = style_w.text.clone();
-        if !["atom", "custom", "xyz", "local", "vtk", "image", "movie"].contains(&style.as_str()) {
+        if !["atom", "custom", "xyz", "dcd", "local", "vtk", "image", "movie"].contains(&style.as_str()) {
             let msg = if dmhs_parser::commands::is_lammps_style(dmhs_parser::commands::StyleKind::Dump, &style) {
-                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, xyz, local, vtk, image or movie)")
+                format!("dump style `{style}` is a LAMMPS style that dmhs does not support (use atom, custom, xyz, dcd, local, vtk, image or movie)")
             } else {
                 format!("unknown dump style `{style}`")
             };
-            return Err(a.error_at(style_w, msg, "expected atom, custom, xyz, local, vtk, image or movie"));
+            return Err(a.error_at(style_w, msg, "expected atom, custom, xyz, dcd, local, vtk, image or movie"));
         }
         let every = a.i64_in("N (dump every N steps)", 1, i64::MAX)?;
         let fw = a.word("file name")?;
@@ -102,8 +104,8 @@ impl Dump {
             path: crate::output::log::resolve_path(base_dir, &fw.text),
             names: vec![],
             columns: vec![],
-            // LAMMPS' DumpXYZ sorts by ID unless told `sort off`
-            sort: style == "xyz",
+            // LAMMPS' DumpXYZ sorts by ID unless told `sort off`; DumpDCD always
+            sort: style == "xyz" || style == "dcd",
             image: false,
             first: false,
             append: false,
@@ -119,6 +121,7 @@ impl Dump {
             header: true,
             elements: None,
             time: false,
+            dcd: None,
         };
         if d.picture.is_some() {
             return Ok(d);
@@ -156,6 +159,14 @@ impl Dump {
         } else if style == "atom" {
             a.finish()?;
             d.set_atom_columns();
+        } else if style == "dcd" {
+            a.finish()?;
+            if fw.text.contains('*') {
+                return Err(a.error_at(fw, format!("Invalid dump dcd filename {}: a DCD file holds every snapshot (no *)", fw.text), "one file"));
+            }
+            let at = &w.state.atoms;
+            let natoms = (0..at.nlocal).filter(|&i| at.mask[i] & groupbit != 0).count();
+            d.dcd = Some(Box::new(crate::output::dump_dcd::Dcd::new(natoms)));
         } else if style == "xyz" {
             a.finish()?;
             d.names = ["type", "x", "y", "z"].map(String::from).to_vec();
@@ -191,7 +202,7 @@ impl Dump {
     /// `dump_modify ID keyword value ...`
     /// `ntypes`: the number of atom types (`element` names one per type).
     pub fn modify(&mut self, a: &mut Args, ntypes: usize) -> DResult<()> {
-        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary", "header", "element", "time"];
+        let keys = ["sort", "format", "every", "first", "image", "append", "flush", "binary", "header", "element", "time", "unwrap"];
         while let Some(w) = a.peek() {
             a.skip(1);
             if let Some(p) = self.picture.as_mut() {
@@ -200,6 +211,14 @@ impl Dump {
                 }
             }
             match w.text.as_str() {
+                "sort" if self.style == "dcd" => {
+                    let v = a.word("sort setting")?;
+                    if v.text != "id" {
+                        return Err(a.error_at(v, "Dump dcd requires sorting by atom ID", "dump dcd is sorted by ID"));
+                    }
+                }
+                "unwrap" if self.style == "dcd" => self.dcd.as_mut().expect("a dcd dump").unwrap = a.yes_no("unwrap")?,
+                "format" if self.style == "dcd" => return Err(a.error_at(w, "dump_modify format is not for dump dcd (a binary file of floats)", "not for dump dcd")),
                 "sort" => {
                     let v = a.word("sort setting (id or off)")?;
                     self.sort = match v.text.as_str() {
@@ -243,11 +262,18 @@ impl Dump {
                     let n = a.word("every")?;
                     // the variable is looked up when a run starts (LAMMPS' Output::init)
                     if let Some(v) = n.text.strip_prefix("v_") {
+                        if self.style == "dcd" {
+                            return Err(a.error_at(n, "Cannot use variable every setting for dump dcd", "a DCD file has one interval"));
+                        }
                         self.every_var = Some(v.to_string());
                     } else {
                         self.every = dmhs_parser::args::word_i64(n, "every")?;
                         if self.every < 1 {
                             return Err(a.error_at(n, "dump_modify every must be >= 1", "expected N >= 1 or v_name"));
+                        }
+                        // (LAMMPS refuses it at the next run's init)
+                        if let Some(old) = self.dcd.as_ref().and_then(|d| d.fixed_every()).filter(|&o| o != self.every) {
+                            return Err(a.error_at(n, format!("Cannot change dump_modify every for dump dcd (its file's interval is {old})"), "fixed by the first snapshot"));
                         }
                         self.every_var = None;
                     }
@@ -377,7 +403,7 @@ impl Dump {
             return self.snapshot_xyz(w);
         }
         let a = &w.state.atoms;
-        let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        let mut idx = local_order(w, self.groupbit);
         if self.sort {
             idx.sort_by_key(|&i| a.tag[i]);
         }
@@ -415,10 +441,8 @@ impl Dump {
     /// `name x y z` per atom, name the type's element or its number (LAMMPS' DumpXYZ).
     fn snapshot_xyz(&self, w: &World) -> Result<String, String> {
         let a = &w.state.atoms;
-        // by ID (the default), or with `sort off` in LAMMPS' local order; the atoms gathered
-        // from the ranks of a distributed run in rank order
-        let order: Vec<usize> = if w.state.decomp.is_some() { (0..a.nlocal).collect() } else { w.state.lammps_order.indices(a.nlocal).into_owned() };
-        let mut idx: Vec<usize> = order.into_iter().filter(|&i| a.mask[i] & self.groupbit != 0).collect();
+        // by ID (the default), or with `sort off` in LAMMPS' local order
+        let mut idx = local_order(w, self.groupbit);
         if self.sort {
             idx.sort_by_key(|&i| a.tag[i]);
         }
@@ -510,6 +534,13 @@ impl Dump {
             self.last_written = Some(w.state.step);
             return Ok(());
         }
+        if let Some(dcd) = self.dcd.as_mut() {
+            // write_dump's one snapshot has no interval (LAMMPS writes 0)
+            let every = (self.id != "WRITE_DUMP").then_some(self.every);
+            dcd.write(w, self.groupbit, every, &self.path).map_err(|e| format!("dump {}: {e}", self.id))?;
+            self.last_written = Some(w.state.step);
+            return Ok(());
+        }
         let text = self.snapshot_with(w, Some(ev))?;
         let name = self.path.to_string_lossy().to_string();
         if name.contains('*') {
@@ -530,6 +561,14 @@ impl Dump {
         self.last_written = Some(w.state.step);
         Ok(())
     }
+}
+
+/// The owned atoms of the group `groupbit` in LAMMPS' local order, as an unsorted dump lists
+/// them (the atoms gathered from the ranks of a distributed run: in rank order).
+fn local_order(w: &World, groupbit: u32) -> Vec<usize> {
+    let a = &w.state.atoms;
+    let order: Vec<usize> = if w.state.decomp.is_some() { (0..a.nlocal).collect() } else { w.state.lammps_order.indices(a.nlocal).into_owned() };
+    order.into_iter().filter(|&i| a.mask[i] & groupbit != 0).collect()
 }
 
 /// The values of one column for the owned atoms `idx`.

@@ -3,6 +3,7 @@
 pub mod atom_table;
 pub mod colors;
 pub mod dump;
+pub mod dump_dcd;
 pub mod dump_image;
 pub mod dump_vtu;
 pub mod format;

@@ -296,7 +296,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     if cmd.args.first().is_some_and(|w| w.text == "region") {
         super::box_cmds::region_now(sim, cmd, "region")?;
     }
-    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water, temperature; a number may be v_name of an atom-style variable)";
+    let syntax = "set atom|type|mol|group|region ID keyword value ...  (type, type/fraction, type/ratio, type/subset, mass, diameter, density, charge, image, x, y, z, vx, vy, vz, mol, omega, quat, quat/random, sph/rho, sph/e, sph/cv, dmhs/conc, dmhs/water, temperature; a number may be v_name of an atom-style variable)";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();
     let n = sim.state.atoms.nlocal;
@@ -482,6 +482,56 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                     each(&mut sim.state.atoms, v, w, &any, "", &mut |at, i, x| at.omega[i][d] = x)?;
                 }
             }
+            "quat" => {
+                need(ft.quat, "orientations (bpm/sphere)")?;
+                let dim = sim.state.domain.as_ref().map_or(3, |d| d.dimension);
+                let names = ["a", "b", "c", "theta"];
+                let mut vals = Vec::with_capacity(4);
+                for (k, name) in names.iter().enumerate() {
+                    let (w, v) = set_value(sim, &mut a, name, syntax)?;
+                    if let (SetValue::One(x), true) = (&v, k < 2 && dim == 2) {
+                        if *x != 0.0 {
+                            return Err(a.error_at(w, "Cannot set quaternion with xy components for 2d system", "must be 0 in 2d"));
+                        }
+                    }
+                    vals.push((w, v));
+                }
+                let at = &mut sim.state.atoms;
+                for i in (0..n).filter(|&i| sel[i]) {
+                    let [x, y, z, theta] = [0, 1, 2, 3].map(|k| vals[k].1.at(i));
+                    if dim == 2 && (x != 0.0 || y != 0.0) {
+                        return Err(set_value_error(vals[0].0, &vals[0].1, at.tag[i], x, "Cannot set quaternion with xy components for 2d system"));
+                    }
+                    // LAMMPS: the half angle, the axis scaled by its sine, then normalised
+                    let half = std::f64::consts::FRAC_PI_2 * theta / 180.0;
+                    let s = half.sin();
+                    let q = [half.cos(), x * s, y * s, z * s];
+                    let norm = 1.0 / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
+                    at.quat[i] = q.map(|c| c * norm);
+                }
+            }
+            "quat/random" => {
+                need(ft.quat, "orientations (bpm/sphere)")?;
+                let seed = a.i64_in("random number seed", 1, i32::MAX as i64)? as i32;
+                let three_d = sim.state.domain.as_ref().map_or(3, |d| d.dimension) == 3;
+                let at = &mut sim.state.atoms;
+                let mut r = crate::engine::random_park::RanPark::new(1);
+                let pi = std::f64::consts::PI;
+                // LAMMPS' generator reseeded by the seed and each atom's position
+                for i in (0..n).filter(|&i| sel[i]) {
+                    r.reset_coord(seed, at.x[i]);
+                    at.quat[i] = if three_d {
+                        let s = r.uniform();
+                        let (t1, t2) = ((1.0 - s).sqrt(), s.sqrt());
+                        let theta1 = 2.0 * pi * r.uniform();
+                        let theta2 = 2.0 * pi * r.uniform();
+                        [theta2.cos() * t2, theta1.sin() * t1, theta1.cos() * t1, theta2.sin() * t2]
+                    } else {
+                        let theta2 = pi * r.uniform();
+                        [theta2.cos(), 0.0, 0.0, theta2.sin()]
+                    };
+                }
+            }
             "sph/rho" | "sph/e" | "sph/cv" => {
                 need(ft.sph, "SPH attributes (sph)")?;
                 let (w, v) = set_value(sim, &mut a, &kw.text, syntax)?;
@@ -519,7 +569,7 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                 each(&mut sim.state.atoms, &v, w, &|_| true, "", &mut |at, i, x| at.extra[k].data[i] = if int { x.trunc() } else { x })?;
             }
             other => {
-                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water", "temperature", "i_NAME", "d_NAME"];
+                let known = ["type", "type/fraction", "type/ratio", "type/subset", "mass", "diameter", "density", "density/disc", "charge", "mol", "image", "x", "y", "z", "vx", "vy", "vz", "omega", "quat", "quat/random", "sph/rho", "sph/e", "sph/cv", "dmhs/conc", "dmhs/water", "temperature", "i_NAME", "d_NAME"];
                 let mut d = a.error_at(kw, format!("set keyword `{other}` is not supported"), "unknown or unsupported keyword");
                 if let Some(h) = dmhs_parser::suggest::did_you_mean_help(other, known) {
                     d = d.with_help(h);

@@ -98,6 +98,15 @@ impl LammpsOrder {
         }
     }
 
+    /// dmhs' indices of the owned atoms in LAMMPS' order now, between rebuilds too (after
+    /// [`LammpsOrder::before_rebuild`]: atoms made since the last rebuild at the end, deleted
+    /// ones gone as LAMMPS loses them).
+    pub fn current(&mut self, atoms: &Atoms) -> Vec<usize> {
+        self.before_rebuild(atoms);
+        let map = atoms.tag_map();
+        self.ids.iter().map(|&t| map.get(t).expect("every ordered atom is owned")).collect()
+    }
+
     /// LAMMPS' Atom::first_reorder (after [`LammpsOrder::before_rebuild`]): each atom of the
     /// group (`bit`) found behind the first atom outside it swaps places with that atom.
     pub fn first_reorder(&mut self, atoms: &Atoms, bit: u32) {

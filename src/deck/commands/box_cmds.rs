@@ -105,7 +105,7 @@ pub fn create_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
 pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
     region_now(sim, cmd, "region")?;
-    let syntax = "delete_atoms group ID | region ID | overlap cutoff group1 group2  [compress yes|no] [bond yes|no] [mol yes|no]";
+    let syntax = "delete_atoms group ID | region ID | overlap cutoff group1 group2 | random fraction F yes|no group-ID region-ID|NULL seed | random count N yes|no group-ID region-ID|NULL seed | variable name  [compress yes|no] [bond yes|no] [mol yes|no]";
     let mut a = Args::new(cmd, syntax);
     sim.state.atoms.clear_ghosts();
     let n = sim.state.atoms.nlocal;
@@ -134,19 +134,46 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             let cutneigh = overlap_cutoffs(sim, cmd, cut)?;
             gone = overlap_deletions(sim, cut, &cutneigh, g1, g2).map_err(|e| Diagnostic::at(cmd.span, e, "special bonds"))?;
         }
+        4 => gone = random_deletions(sim, &mut a)?,
+        5 => {
+            let w = a.word("atom-style variable name")?;
+            gone = super::atoms_cmds::atom_variable_values(sim, w, &w.text, "delete_atoms")?.iter().map(|&v| v != 0.0).collect();
+        }
         _ => {
             let w = a.last().unwrap();
-            return Err(a.error_at(w, format!("delete_atoms {} is not supported yet", w.text), "supported: group, region, overlap"));
+            return Err(a.error_at(w, "delete_atoms porosity is not a style of LAMMPS 22 Jul 2025: use delete_atoms random fraction F no group-ID region-ID seed", "not supported"));
         }
     }
+    let molecular = sim.state.atoms.features.molecular();
     let mut compress = true;
+    // LAMMPS reports the interactions deleted with `bond yes` or `mol yes`
+    let mut report_topology = false;
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
             "compress" => compress = a.yes_no("compress")?,
-            "bond" | "mol" => {
-                if a.yes_no(&w.text)? {
-                    return Err(a.error_at(w, format!("delete_atoms {} yes is not supported yet", w.text), "not supported"));
+            // dmhs removes every bond, angle and dihedral of a deleted atom anyway (a dangling
+            // one would only stop the next run with LAMMPS' "missing atoms" error)
+            "bond" => {
+                if a.yes_no("bond")? {
+                    if !molecular {
+                        return Err(a.error_at(w, "Cannot use delete_atoms bond yes for non-molecular systems", "no bonds in this atom style"));
+                    }
+                    report_topology = true;
+                }
+            }
+            "mol" => {
+                if a.yes_no("mol")? {
+                    report_topology = true;
+                    if !sim.state.atoms.features.molecule {
+                        return Err(a.error_at(w, "Delete_atoms mol yes requires atom attribute molecule", "no molecule IDs"));
+                    }
+                    // every atom of a molecule (ID > 0) that lost an atom goes too
+                    let at = &sim.state.atoms;
+                    let mols: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i] && at.molecule[i] != 0).map(|i| at.molecule[i]).collect();
+                    for i in 0..n {
+                        gone[i] |= mols.contains(&at.molecule[i]);
+                    }
                 }
             }
             _ => return Err(a.unknown_keyword(w, &["compress", "bond", "mol"])),
@@ -154,6 +181,8 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     }
     let tags: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i]).map(|i| sim.state.atoms.tag[i]).collect();
     let ndel = tags.len();
+    let t = &sim.state.topo;
+    let before = [t.bonds.len(), t.angles.len(), t.dihedrals.len()];
     // LAMMPS' local order before and after the deletion (it moves its last atom into each hole)
     sim.state.lammps_order.before_rebuild(&sim.state.atoms);
     sim.state.atoms.retain(&gone);
@@ -167,7 +196,61 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
     }
     sim.state.lists_valid = false;
     sim.out.print(&format!("Deleted {ndel} atoms, new total = {}", sim.state.atoms.nlocal));
+    if report_topology {
+        let t = &sim.state.topo;
+        let after = [t.bonds.len(), t.angles.len(), t.dihedrals.len()];
+        for (k, what) in ["bonds", "angles", "dihedrals"].iter().enumerate().filter(|(k, _)| before[*k] > 0) {
+            sim.out.print(&format!("Deleted {} {what}, new total = {}", before[k] - after[k], after[k]));
+        }
+    }
     Ok(())
+}
+
+/// `delete_atoms random fraction F exact | count N error, group-ID region-ID|NULL seed`: the
+/// atoms to delete among those in the group and region, as LAMMPS picks them (Marsaglia's
+/// generator seeded by `seed` on one process, over the atoms in LAMMPS' local order: each with
+/// probability F, or exactly floor(F * eligible) or N of them by select_subset).
+fn random_deletions(sim: &mut Simulation, a: &mut Args) -> DResult<Vec<bool>> {
+    let order = sim.state.lammps_order.current(&sim.state.atoms);
+    let style = a.choice("random style", &["fraction", "count"])?;
+    let (fraction, count, exact, strict) = if style == 0 {
+        let f = a.f64_where("fraction", "between 0 and 1", |f| (0.0..=1.0).contains(&f))?;
+        (f, 0, a.yes_no("exact (yes for the exact fraction)")?, false)
+    } else {
+        let c = a.i64_in("count", 0, i64::MAX)? as usize;
+        (0.0, c, true, a.yes_no("error (yes: an error when too few atoms are eligible)")?)
+    };
+    let gw = a.word("group ID")?;
+    let bit = sim.state.groups.bit(&gw.text).ok_or_else(|| a.error_at(gw, format!("group `{}` does not exist", gw.text), "unknown group"))?;
+    let rw = a.word("region ID or NULL")?;
+    let region = match rw.text.as_str() {
+        "NULL" => None,
+        id => Some(sim.state.regions.iter().find(|r| r.id == id).ok_or_else(|| a.error_at(rw, format!("Could not find delete_atoms random region ID {id}"), "unknown region"))?),
+    };
+    let seed = a.i64_in("random number seed", 1, *crate::engine::random_mars::SEED_RANGE.end())? as i32;
+    let at = &sim.state.atoms;
+    let eligible: Vec<usize> = order.into_iter().filter(|&i| at.mask[i] & bit != 0 && region.is_none_or(|r| r.matches(at.x[i]))).collect();
+    let mut r = crate::engine::random_mars::RanMars::new(seed);
+    let mut gone = vec![false; at.nlocal];
+    if !exact {
+        for &i in &eligible {
+            gone[i] = r.uniform() <= fraction;
+        }
+        return Ok(gone);
+    }
+    let mut target = if style == 0 { (fraction * eligible.len() as f64) as usize } else { count };
+    if target > eligible.len() {
+        let msg = format!("Delete_atoms count of {target} exceeds number of eligible atoms {}", eligible.len());
+        if strict {
+            return Err(a.error_command(msg, "too few eligible atoms"));
+        }
+        sim.out.print(&format!("WARNING: {msg}"));
+        target = eligible.len();
+    }
+    for (&i, pick) in eligible.iter().zip(r.select_subset(target, eligible.len())) {
+        gone[i] = pick;
+    }
+    Ok(gone)
 }
 
 /// The neighbour cutoff of each type pair (row-major over `0..=ntypes`; pair cutoff plus skin,

@@ -127,3 +127,43 @@ fn bad_read_dump_and_rerun_input_is_an_error() {
     let cases: Vec<(&str, &str)> = cases.iter().map(|(a, b)| (a.as_str(), *b)).collect();
     common::assert_located_errors(base, &cases);
 }
+
+/// read_dump and rerun on thread ranks (connected as MPI ranks are) give the serial run's
+/// thermo rows: every rank reads each snapshot whole and keeps its part.
+#[test]
+fn rerun_on_ranks_gives_the_serial_rows() {
+    use dmhs::engine::comm::{Comm, Threads};
+    let tmp = dmhs_files();
+    let d = tmp.path().display();
+    let deck = format!(
+        "units lj\natom_style atomic\nlattice fcc 0.8442\nregion box block 0 4 0 4 0 4\ncreate_box 2 box\ncreate_atoms 1 box\nmass * 1.0\n\
+         pair_style lj/cut 3.0\npair_coeff * * 1.0 1.0\npair_coeff 2 2 0.8 1.1\nneighbor 0.3 bin\nthermo_style custom step time temp pe press\nthermo 50\n\
+         rerun {d}/melt.dump first 50 every 50 post yes dump x y z vx vy vz\nread_dump {d}/melt.dump 100 x y z vx vy vz ix iy iz\nfix 1 all nve\nrun 20\n"
+    );
+    let opts = || dmhs::deck::DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    let rows = |text: &str| -> Vec<Vec<f64>> { text.lines().filter_map(|l| l.split_whitespace().map(|w| w.parse::<f64>()).collect::<Result<Vec<_>, _>>().ok()).filter(|r| r.len() == 5).collect() };
+    let serial = dmhs::deck::run_text("deck", &deck, &opts()).map_err(|f| f.rendered).unwrap();
+    let rows0 = rows(serial.sim.out.captured.as_deref().unwrap());
+    assert_eq!(rows0.len(), 4 + 2, "4 snapshots and a run of 2 rows");
+    for n in [2, 4] {
+        let handles: Vec<_> = Threads::world(n)
+            .into_iter()
+            .map(|c| {
+                let (deck, opts) = (deck.clone(), opts());
+                std::thread::spawn(move || {
+                    let comm: std::sync::Arc<dyn Comm> = std::sync::Arc::new(c);
+                    dmhs::deck::run_text_on("deck", &deck, &opts, Some(comm)).map(|r| r.sim.out.captured.clone().unwrap_or_default()).map_err(|f| f.rendered)
+                })
+            })
+            .collect();
+        let texts: Vec<String> = handles.into_iter().map(|h| h.join().unwrap().unwrap()).collect();
+        assert!(texts[0].contains(&format!("on {n} procs for 4 steps with 256 atoms")), "{}", texts[0]);
+        let got = rows(&texts[0]);
+        assert_eq!(got.len(), rows0.len(), "{}", texts[0]);
+        for (r, r0) in got.iter().zip(&rows0) {
+            for (x, y) in r.iter().zip(r0) {
+                assert!((x - y).abs() <= 1e-9 * (1.0 + x.abs()), "{n} ranks: {r:?} against serial {r0:?}");
+            }
+        }
+    }
+}

@@ -170,6 +170,12 @@ impl Simulation {
     /// The start of a distributed run: the processor grid for the box now, and each rank keeps
     /// the atoms in its sub-domain.
     pub(crate) fn distribute(&mut self) -> Result<(), RunError> {
+        self.distribute_with(true)
+    }
+
+    /// [`Simulation::distribute`]; `report`: print the processor grid (a rerun prints it for
+    /// its first snapshot only).
+    pub(crate) fn distribute_with(&mut self, report: bool) -> Result<(), RunError> {
         let step = self.state.step;
         if let Some(why) = self.distributed_refusal() {
             return Err(RunError::new(step, why));
@@ -203,7 +209,9 @@ impl Simulation {
         // the per-atom order LAMMPS would keep is a serial notion: start afresh on each rank
         self.state.lammps_order = Default::default();
         let p = d.procs;
-        self.out.print(&format!("  {} by {} by {} MPI processor grid", p[0], p[1], p[2]));
+        if report {
+            self.out.print(&format!("  {} by {} by {} MPI processor grid", p[0], p[1], p[2]));
+        }
         Ok(())
     }
 

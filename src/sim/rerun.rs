@@ -41,37 +41,73 @@ impl Simulation {
         if !self.fixes.iter().any(|f| f.time_integrate()) {
             self.out.print("WARNING: No fixes with time integration, atoms won't move");
         }
-        let fail = |e: String| RunError::new(step, e);
-        let mut next = src.seek(o.first, false).map_err(fail)?;
-        if next.is_none() {
-            return Err(fail(format!("Rerun dump file does not contain requested snapshot (a step >= {})", o.first)));
-        }
+        let first = src.seek(o.first, false).map_err(|e| RunError::new(step, e))?;
+        let Some(first) = first else {
+            return Err(RunError::new(step, format!("Rerun dump file does not contain requested snapshot (a step >= {})", o.first)));
+        };
         let t0 = std::time::Instant::now();
         self.loop_start = Some(t0);
         self.timers.reset();
         let mut ndump = 0;
+        let outcome = self.rerun_snapshots(src, o, first, &mut ndump);
+        // LAMMPS' post_run (fix adapt's reset)
+        for f in self.fixes.iter_mut() {
+            f.post_run(&mut self.state);
+        }
+        let counts = self.rank_counts();
+        // every rank holds the whole system again, even after a failure
+        self.gather_ranks();
+        let loop_time = t0.elapsed().as_secs_f64();
+        self.loop_start = None;
+        outcome?;
+        if let Some(f) = self.thermo.footer() {
+            self.out.print(f);
+        }
+        self.last_loop_seconds = loop_time;
+        self.last_loop_steps = ndump;
+        self.out.print(&format!("Loop time of {} on {} procs for {ndump} steps with {} atoms\n", crate::output::format::g6(loop_time), self.nranks(), self.state.atoms.nlocal));
+        if o.post {
+            self.print_run_summary(loop_time, ndump, None, counts);
+        }
+        self.out.flush();
+        Ok(())
+    }
+
+    /// The snapshots from step `first` on (`ndump` counts them): each read, set up and
+    /// output, then a thermo line for the last one if its step had none.
+    fn rerun_snapshots(&mut self, src: &mut DumpSource, o: &RerunOptions, first: i64, ndump: &mut i64) -> Result<(), RunError> {
+        let mut next = Some(first);
         let mut last_thermo = None;
         while let Some(t) = next {
-            let first = ndump == 0;
-            ndump += 1;
+            let first = *ndump == 0;
+            *ndump += 1;
+            // (every rank reads the same snapshot into the whole system, then takes its part)
+            self.gather_ranks();
             let snap = src.snapshot(first).map_err(|e| RunError::new(t, e))?;
             self.reset_timestep(t, true).map_err(|e| RunError::new(t, e))?;
             src.apply(self, &snap).map_err(|e| RunError::new(t, e))?;
             // LAMMPS' Modify::init before each snapshot's setup
             self.init_fixes(false).map_err(|e| RunError::new(t, e))?;
-            self.setup_sorting(true, Sort::Never)?;
-            self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c))?;
+            if self.state.decomp.is_some() {
+                self.distribute_with(first)?;
+            }
+            let set_up = self.setup_sorting(true, Sort::Never);
+            self.agree(set_up)?;
+            let ended = self.fix_hook(|h| h.end_of_step, |f, s, c| f.end_of_step(s, c));
+            self.agree(ended)?;
             if first {
                 let mem = crate::sim::memory::bytes_per_rank(self) as f64 / (1024.0 * 1024.0);
                 self.out.print(&format!("Per MPI rank memory allocation (min/avg/max) = {mem:.4} | {mem:.4} | {mem:.4} Mbytes"));
                 if let Some(h) = self.thermo.header() {
                     self.out.print(&h);
                 }
-                self.output_now(true, o.last, false)?;
+                let written = self.output_now(true, o.last, false);
+                self.agree(written)?;
                 last_thermo = Some(t);
             } else {
                 let thermo = self.thermo_due(t, o.last);
-                self.output_now(false, o.last, false)?;
+                let written = self.output_now(false, o.last, false);
+                self.agree(written)?;
                 if thermo {
                     last_thermo = Some(t);
                 }
@@ -87,24 +123,9 @@ impl Simulation {
         let t = self.state.step;
         if last_thermo != Some(t) {
             let cpu = self.cpu_seconds();
-            self.write_thermo(false, o.last, cpu)?;
+            let written = self.write_thermo(false, o.last, cpu);
+            self.agree(written)?;
         }
-        // LAMMPS' post_run (fix adapt's reset)
-        for f in self.fixes.iter_mut() {
-            f.post_run(&mut self.state);
-        }
-        let loop_time = t0.elapsed().as_secs_f64();
-        self.loop_start = None;
-        if let Some(f) = self.thermo.footer() {
-            self.out.print(f);
-        }
-        self.last_loop_seconds = loop_time;
-        self.last_loop_steps = ndump;
-        self.out.print(&format!("Loop time of {} on {} procs for {ndump} steps with {} atoms\n", crate::output::format::g6(loop_time), self.nranks(), self.state.atoms.nlocal));
-        if o.post {
-            self.print_run_summary(loop_time, ndump, None, None);
-        }
-        self.out.flush();
         Ok(())
     }
 }

@@ -6,18 +6,9 @@ use crate::sim::rerun::RerunOptions;
 use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap};
 
-/// Refused on several ranks (the snapshot is read by one process for now).
-fn serial_only(sim: &Simulation, cmd: &Command) -> DResult<()> {
-    if sim.state.decomp.is_some() {
-        return Err(Diagnostic::at(cmd.name.span, format!("{} is not supported on several ranks (mpiexec) yet", cmd.name()), "not under mpiexec"));
-    }
-    Ok(())
-}
-
 /// `read_dump file Nstep field ... keyword value ...`: the atoms of one snapshot.
 pub fn read_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    serial_only(sim, cmd)?;
     let syntax = format!("read_dump file Nstep field1 field2 ... {KEYWORDS}");
     let mut a = Args::new(cmd, &syntax);
     let fw = a.word("dump file name")?;
@@ -49,7 +40,6 @@ pub const RERUN_SYNTAX: &str = "rerun file1 file2 ... [first N] [last N] [every 
 /// `rerun file ... keyword ... dump field ...`: energies, forces and output of each snapshot.
 pub fn rerun(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
-    serial_only(sim, cmd)?;
     let mut a = Args::new(cmd, RERUN_SYNTAX);
     const KEYS: [&str; 8] = ["first", "last", "every", "skip", "start", "stop", "post", "dump"];
     let mut files = vec![];

@@ -373,6 +373,8 @@ impl DumpSource {
         }
         st.shrink_wrap();
         st.lists_valid = false;
+        // unsorted output before the next build lists the atoms in LAMMPS' order
+        st.lammps_order.refresh(&st.atoms);
         Ok(counts)
     }
 }

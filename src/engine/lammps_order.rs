@@ -107,6 +107,14 @@ impl LammpsOrder {
         self.ids.iter().map(|&t| map.get(t).expect("every ordered atom is owned")).collect()
     }
 
+    /// Bring the map to dmhs' indices up to date after atoms were added or deleted between
+    /// rebuilds ([`LammpsOrder::current`]), so that output in LAMMPS' order lists the atoms
+    /// there are now.
+    pub fn refresh(&mut self, atoms: &Atoms) {
+        self.local = self.current(atoms);
+        self.sides = None;
+    }
+
     /// LAMMPS' Atom::first_reorder (after [`LammpsOrder::before_rebuild`]): each atom of the
     /// group (`bit`) found behind the first atom outside it swaps places with that atom.
     pub fn first_reorder(&mut self, atoms: &Atoms, bit: u32) {

@@ -142,6 +142,8 @@ pub struct DumpSource {
     /// The file being read.
     current: usize,
     columns: Option<Columns>,
+    /// A rerun's snapshot read and not yet applied.
+    pending: Option<Snapshot>,
 }
 
 /// A snapshot's header and its atoms' field values.
@@ -163,7 +165,7 @@ pub struct Counts {
 impl DumpSource {
     pub fn new(spec: Spec) -> DumpSource {
         let reader = DumpReader::new(spec.format);
-        DumpSource { spec, reader, current: 0, columns: None }
+        DumpSource { spec, reader, current: 0, columns: None, pending: None }
     }
 
     /// The first snapshot whose step is `nrequest` (`exact`) or at least `nrequest`, over the
@@ -376,6 +378,23 @@ impl DumpSource {
         // unsorted output before the next build lists the atoms in LAMMPS' order
         st.lammps_order.refresh(&st.atoms);
         Ok(counts)
+    }
+}
+
+impl crate::sim::rerun::SnapshotSource for DumpSource {
+    fn seek(&mut self, first: i64) -> Result<Option<i64>, String> {
+        DumpSource::seek(self, first, false)
+    }
+    fn next(&mut self, current: i64, last: i64, every: i64, skip: i64) -> Result<Option<i64>, String> {
+        DumpSource::next(self, current, last, every, skip)
+    }
+    fn read(&mut self, first: bool) -> Result<(), String> {
+        self.pending = Some(self.snapshot(first)?);
+        Ok(())
+    }
+    fn apply(&mut self, sim: &mut Simulation) -> Result<(), String> {
+        let snap = self.pending.take().ok_or("no snapshot was read")?;
+        DumpSource::apply(self, sim, &snap).map(|_| ())
     }
 }
 

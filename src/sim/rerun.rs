@@ -3,9 +3,21 @@
 //! built without sorting, forces and energies, the fixes' setup), the fixes' end_of_step and
 //! the output due at its step. Nothing is integrated.
 
-use crate::deck::read_dump::DumpSource;
 use crate::engine::lammps_order::Sort;
 use crate::sim::{RunError, Simulation};
+
+/// Where a rerun's snapshots come from (read_dump's dump files, src/deck/read_dump.rs).
+pub trait SnapshotSource {
+    /// The first snapshot whose step is at least `first` (None: there is none).
+    fn seek(&mut self, first: i64) -> Result<Option<i64>, String>;
+    /// The next snapshot after step `current` up to `last`, a multiple of `every` (0: any),
+    /// one in `skip` (LAMMPS' counting); None when there is none.
+    fn next(&mut self, current: i64, last: i64, every: i64, skip: i64) -> Result<Option<i64>, String>;
+    /// Read the snapshot found last; `first`: the first of the rerun.
+    fn read(&mut self, first: bool) -> Result<(), String>;
+    /// Put the snapshot read last into the system.
+    fn apply(&mut self, sim: &mut Simulation) -> Result<(), String>;
+}
 
 /// The keywords of `rerun` before `dump`.
 #[derive(Clone, Copy, Debug)]
@@ -34,14 +46,14 @@ impl Default for RerunOptions {
 
 impl Simulation {
     /// The `rerun` command over the snapshots of `src`.
-    pub fn rerun(&mut self, src: &mut DumpSource, o: &RerunOptions) -> Result<(), RunError> {
+    pub fn rerun(&mut self, src: &mut dyn SnapshotSource, o: &RerunOptions) -> Result<(), RunError> {
         let step = self.state.step;
         self.state.run_window = Some((o.start.unwrap_or(o.first), o.stop.unwrap_or(o.last)));
         self.init_run().map_err(|e| RunError::setup(step, e))?;
         if !self.fixes.iter().any(|f| f.time_integrate()) {
             self.out.print("WARNING: No fixes with time integration, atoms won't move");
         }
-        let first = src.seek(o.first, false).map_err(|e| RunError::new(step, e))?;
+        let first = src.seek(o.first).map_err(|e| RunError::new(step, e))?;
         let Some(first) = first else {
             return Err(RunError::new(step, format!("Rerun dump file does not contain requested snapshot (a step >= {})", o.first)));
         };
@@ -75,7 +87,7 @@ impl Simulation {
 
     /// The snapshots from step `first` on (`ndump` counts them): each read, set up and
     /// output, then a thermo line for the last one if its step had none.
-    fn rerun_snapshots(&mut self, src: &mut DumpSource, o: &RerunOptions, first: i64, ndump: &mut i64) -> Result<(), RunError> {
+    fn rerun_snapshots(&mut self, src: &mut dyn SnapshotSource, o: &RerunOptions, first: i64, ndump: &mut i64) -> Result<(), RunError> {
         let mut next = Some(first);
         let mut last_thermo = None;
         while let Some(t) = next {
@@ -83,9 +95,9 @@ impl Simulation {
             *ndump += 1;
             // (every rank reads the same snapshot into the whole system, then takes its part)
             self.gather_ranks();
-            let snap = src.snapshot(first).map_err(|e| RunError::new(t, e))?;
+            src.read(first).map_err(|e| RunError::new(t, e))?;
             self.reset_timestep(t, true).map_err(|e| RunError::new(t, e))?;
-            src.apply(self, &snap).map_err(|e| RunError::new(t, e))?;
+            src.apply(self).map_err(|e| RunError::new(t, e))?;
             // LAMMPS' Modify::init before each snapshot's setup
             self.init_fixes(false).map_err(|e| RunError::new(t, e))?;
             if self.state.decomp.is_some() {

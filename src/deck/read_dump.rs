@@ -255,11 +255,7 @@ impl DumpSource {
         st.atoms.clear_ghosts();
         let mut counts = Counts { snapshot: snap.rows.len() as u64, ..Counts::default() };
         if s.purge {
-            counts.purged = st.atoms.nlocal;
-            let tags: std::collections::HashSet<i64> = st.atoms.tag[..st.atoms.nlocal].iter().copied().collect();
-            st.atoms.retain(&vec![true; st.atoms.nlocal]);
-            st.lammps_order.before_rebuild(&st.atoms);
-            st.topo.remove_atoms(&tags);
+            counts.purged = st.delete_owned(&vec![true; st.atoms.nlocal]);
         }
         // positions in the snapshot's box (a scaled column is a fraction of it)
         let (lo, prd) = match snap.header.bounds {
@@ -309,13 +305,7 @@ impl DumpSource {
         }
         if s.trim {
             let gone: Vec<bool> = updated.iter().map(|u| !u).collect();
-            let tags: std::collections::HashSet<i64> = (0..nlocal).filter(|&i| gone[i]).map(|i| st.atoms.tag[i]).collect();
-            counts.trimmed = tags.len();
-            // LAMMPS' order loses them as its copy of the last atom into each hole
-            st.lammps_order.before_rebuild(&st.atoms);
-            st.atoms.retain(&gone);
-            st.lammps_order.before_rebuild(&st.atoms);
-            st.topo.remove_atoms(&tags);
+            counts.trimmed = st.delete_owned(&gone);
         }
         if s.add != Add::No {
             let ntypes = st.ntypes;

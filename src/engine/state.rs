@@ -296,6 +296,19 @@ impl State {
             _ => yes,
         }
     }
+    /// Delete the owned atoms marked in `gone`, between runs (delete_atoms, read_dump's purge
+    /// and trim): LAMMPS' local order loses them as its copy of the last atom into each hole,
+    /// and their bonds, angles and dihedrals go with them. No ghosts may be present. Returns
+    /// how many were deleted.
+    pub fn delete_owned(&mut self, gone: &[bool]) -> usize {
+        let tags: std::collections::HashSet<i64> = (0..self.atoms.nlocal).filter(|&i| gone[i]).map(|i| self.atoms.tag[i]).collect();
+        self.lammps_order.before_rebuild(&self.atoms);
+        self.atoms.retain(gone);
+        self.lammps_order.before_rebuild(&self.atoms);
+        self.topo.remove_atoms(&tags);
+        tags.len()
+    }
+
     /// Shrink-wrapped faces around the atoms (LAMMPS' `Domain::reset_box`): those of every rank
     /// in a distributed run, so that every rank cuts the same box.
     pub fn shrink_wrap(&mut self) {

@@ -537,7 +537,9 @@ impl Dump {
         if let Some(dcd) = self.dcd.as_mut() {
             // write_dump's one snapshot has no interval (LAMMPS writes 0)
             let every = (self.id != "WRITE_DUMP").then_some(self.every);
-            dcd.write(w, self.groupbit, every, &self.path).map_err(|e| format!("dump {}: {e}", self.id))?;
+            let mut idx = local_order(w, self.groupbit);
+            idx.sort_by_key(|&i| w.state.atoms.tag[i]);
+            dcd.write(w, &idx, every, &self.path).map_err(|e| format!("dump {}: {e}", self.id))?;
             self.last_written = Some(w.state.step);
             return Ok(());
         }

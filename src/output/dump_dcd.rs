@@ -37,12 +37,11 @@ impl Dcd {
         self.every
     }
 
-    /// One snapshot of the group `groupbit` to `path`; `every` is the dump's interval (None:
-    /// write_dump, written as 0).
-    pub fn write(&mut self, w: &World, groupbit: u32, every: Option<i64>, path: &Path) -> Result<(), String> {
+    /// One snapshot of the owned atoms `idx` (the dump's group, sorted by ID) to `path`;
+    /// `every` is the dump's interval (None: write_dump, written as 0).
+    pub fn write(&mut self, w: &World, idx: &[usize], every: Option<i64>, path: &Path) -> Result<(), String> {
         let s = w.state;
         let a = &s.atoms;
-        let mut idx: Vec<usize> = (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0).collect();
         if idx.len() != self.natoms {
             return Err(format!("Dump dcd of non-matching # of atoms: {} in the group now, {} when the dump was defined", idx.len(), self.natoms));
         }
@@ -52,7 +51,6 @@ impl Dcd {
             (None, _) => self.every = Some(every.unwrap_or(0)),
             _ => {}
         }
-        idx.sort_by_key(|&i| a.tag[i]);
         let domain = s.domain.as_ref().ok_or("no simulation box")?;
         let prd = domain.prd();
         let io = |e: std::io::Error| format!("cannot write {}: {e}", path.display());

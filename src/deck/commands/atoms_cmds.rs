@@ -505,9 +505,9 @@ pub fn set(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
                     // LAMMPS: the half angle, the axis scaled by its sine, then normalised
                     let half = std::f64::consts::FRAC_PI_2 * theta / 180.0;
                     let s = half.sin();
-                    let q = [half.cos(), x * s, y * s, z * s];
-                    let norm = 1.0 / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]).sqrt();
-                    at.quat[i] = q.map(|c| c * norm);
+                    let mut q = [half.cos(), x * s, y * s, z * s];
+                    crate::engine::quat::qnormalize(&mut q);
+                    at.quat[i] = q;
                 }
             }
             "quat/random" => {

@@ -179,15 +179,9 @@ pub fn delete_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> D
             _ => return Err(a.unknown_keyword(w, &["compress", "bond", "mol"])),
         }
     }
-    let tags: std::collections::HashSet<i64> = (0..n).filter(|&i| gone[i]).map(|i| sim.state.atoms.tag[i]).collect();
-    let ndel = tags.len();
     let t = &sim.state.topo;
     let before = [t.bonds.len(), t.angles.len(), t.dihedrals.len()];
-    // LAMMPS' local order before and after the deletion (it moves its last atom into each hole)
-    sim.state.lammps_order.before_rebuild(&sim.state.atoms);
-    sim.state.atoms.retain(&gone);
-    sim.state.lammps_order.before_rebuild(&sim.state.atoms);
-    sim.state.topo.remove_atoms(&tags);
+    let ndel = sim.state.delete_owned(&gone);
     // LAMMPS renumbers IDs 1..N only for atomic systems, in its local order
     if compress && !sim.state.atoms.features.molecular() {
         sim.state.lammps_order.renumber(&mut sim.state.atoms);

@@ -27,16 +27,7 @@ pub fn minimize(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResu
         sim.out.print(&format!("check: minimize {} iterations from step {} (not run)", opts.maxiter, sim.state.step));
         return Ok(());
     }
-    sim.minimize(&opts).map_err(|e| match &e.setup {
-        Some(setup) => match setup.at {
-            Some(at) => Diagnostic::at(at, setup.message.clone(), "defined here").with_label(cmd.span, "checked before this minimize"),
-            None => Diagnostic::at(cmd.span, setup.message.clone(), "this minimize"),
-        },
-        None => {
-            sim.runtime_failed = true;
-            Diagnostic::at(cmd.span, format!("minimize stopped at step {}: {}", e.step, e.message), "this minimize")
-        }
-    })
+    sim.minimize(&opts).map_err(|e| super::run_cmds::run_failure(sim, &e, cmd))
 }
 
 /// `min_style cg|sd|fire`: a new minimizer, so min_modify settings return to their defaults

@@ -81,11 +81,5 @@ pub fn rerun(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
         return Ok(());
     }
     let mut src = DumpSource::new(spec);
-    sim.rerun(&mut src, &o).map_err(|e| match &e.setup {
-        Some(setup) => Diagnostic::at(setup.at.unwrap_or(cmd.span), setup.message.clone(), "checked before this rerun").with_label(cmd.span, "this rerun"),
-        None => {
-            sim.runtime_failed = true;
-            Diagnostic::at(cmd.span, format!("rerun stopped at step {}: {}", e.step, e.message), "this rerun").with_note("results written before the failure (log, dumps) are kept")
-        }
-    })
+    sim.rerun(&mut src, &o).map_err(|e| super::run_cmds::run_failure(sim, &e, cmd))
 }

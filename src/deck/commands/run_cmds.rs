@@ -2,7 +2,7 @@
 
 use super::need_box;
 use crate::sim::run::RunOptions;
-use crate::sim::{SetupError, Simulation};
+use crate::sim::{RunError, SetupError, Simulation};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap};
 
 pub const RUN_SYNTAX: &str = "run N [upto] [start N1] [stop N2] [pre yes|no] [post yes|no]";
@@ -35,22 +35,29 @@ pub fn run(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     if sim.check_only {
         return sim.check_run(&opts).map_err(|e| setup_error(&e, cmd));
     }
-    sim.run(&opts).map_err(|e| match &e.setup {
-        // refused before the first step: a deck error, as `dmhs check` reports it
+    sim.run(&opts).map_err(|e| run_failure(sim, &e, cmd))
+}
+
+/// How a run, rerun or minimize that failed is reported at its command `cmd`: refused before
+/// the first step, a deck error (as `dmhs check` reports it); stopped later, a runtime failure.
+pub(super) fn run_failure(sim: &mut Simulation, e: &RunError, cmd: &Command) -> Diagnostic {
+    match &e.setup {
         Some(setup) => setup_error(setup, cmd),
         None => {
             sim.runtime_failed = true;
-            Diagnostic::at(cmd.span, format!("run stopped at step {}: {}", e.step, e.message), "this run").with_note("results written before the failure (log, dumps) are kept")
+            let what = cmd.name();
+            Diagnostic::at(cmd.span, format!("{what} stopped at step {}: {}", e.step, e.message), format!("this {what}")).with_note("results written before the failure (log, dumps) are kept")
         }
-    })
+    }
 }
 
 /// A check before the run refused the deck: shown at the command that set up what is wrong
-/// (when known) and at the run.
+/// (when known) and at the run (or rerun, minimize).
 fn setup_error(e: &SetupError, run: &Command) -> Diagnostic {
+    let what = run.name();
     match e.at {
-        Some(at) => Diagnostic::at(at, e.message.clone(), "defined here").with_label(run.span, "checked before this run"),
-        None => Diagnostic::at(run.span, e.message.clone(), "this run"),
+        Some(at) => Diagnostic::at(at, e.message.clone(), "defined here").with_label(run.span, format!("checked before this {what}")),
+        None => Diagnostic::at(run.span, e.message.clone(), format!("this {what}")),
     }
 }
 

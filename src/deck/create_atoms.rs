@@ -67,10 +67,9 @@ pub fn create_box(
     let Some(region) = regions.iter().find(|r| r.id == rw.text) else {
         return Err(a.error_at(rw, format!("create_box region `{}` does not exist", rw.text), "unknown region ID"));
     };
-    if region.style == "prism" {
-        return Err(a.error_at(rw, "create_box from a prism region (triclinic box) is not supported", "prism region"));
-    }
-    let Some((lo, hi)) = region.extent() else {
+    // a prism gives a triclinic box of its own bounds and tilts (LAMMPS' CreateBox)
+    let prism = region.prism();
+    let Some((lo, hi)) = prism.map(|(lo, hi, _)| (lo, hi)).or_else(|| region.extent()) else {
         return Err(a.error_at(
             rw,
             format!("create_box region `{}` does not support a bounding box", rw.text),
@@ -100,7 +99,14 @@ pub fn create_box(
     }
     // LAMMPS `Domain::set_initial_box(1)`: shrink-wrapped (`s`) faces are pushed out by
     // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
-    let unpadded = Domain { dimension, lo, hi, boundary };
+    let mut unpadded = Domain::new(dimension, lo, hi, boundary);
+    if let Some((_, _, tilt)) = prism {
+        if (0..3).any(|d| matches!(boundary[d][0], BoundaryKind::Shrink | BoundaryKind::ShrinkMin) || matches!(boundary[d][1], BoundaryKind::Shrink | BoundaryKind::ShrinkMin)) {
+            return Err(a.error_at(rw, "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet", "use p or f boundaries"));
+        }
+        unpadded.tilt = Some(tilt);
+        crate::deck::tilt_check(&unpadded).map_err(|e| a.error_at(rw, e, "z tilt in 2d"))?;
+    }
     let domain = crate::engine::boundary::pad_shrink_faces(&unpadded);
     let mut out = CreateBox {
         ntypes,
@@ -379,9 +385,10 @@ impl CreateAtoms {
         // Insertion bounds: the sub-domain, for lattice styles shifted at periodic faces
         // (lower face down by eps, upper face down by 2 eps) so that of two periodic images
         // "on" the boundary exactly one is created.
-        let prd = domain.prd();
-        let mut sublo = domain.lo;
-        let mut subhi = domain.hi;
+        // A triclinic box's bounds are box fractions (eps then is EPSILON itself).
+        let tri = domain.triclinic();
+        let prd = if tri { [1.0; 3] } else { domain.prd() };
+        let (mut sublo, mut subhi) = if tri { ([0.0; 3], [1.0; 3]) } else { (domain.lo, domain.hi) };
         if matches!(self.style, CreateStyle::Box | CreateStyle::Region(_)) {
             for d in 0..3 {
                 if domain.periodic(d) {
@@ -391,7 +398,10 @@ impl CreateAtoms {
                 }
             }
         }
-        let in_sub = |x: [f64; 3]| (0..3).all(|d| x[d] >= sublo[d] && x[d] < subhi[d]);
+        let in_sub = |x: [f64; 3]| {
+            let c = if tri { domain.x2lamda(x) } else { x };
+            (0..3).all(|d| c[d] >= sublo[d] && c[d] < subhi[d])
+        };
 
         match &self.style {
             CreateStyle::Single(x) => {
@@ -447,8 +457,8 @@ impl CreateAtoms {
         for _ in 0..30 {
             random.uniform();
         }
-        let mut lo = domain.lo;
-        let mut hi = domain.hi;
+        // a triclinic box: points in its bounding box, those outside the box itself rejected
+        let (mut lo, mut hi) = domain.bounds();
         if let Some((rlo, rhi)) = region.and_then(|r| r.extent()) {
             for d in 0..3 {
                 lo[d] = if lo[d] > rlo[d] { lo[d] } else { rlo[d] };
@@ -487,6 +497,9 @@ impl CreateAtoms {
                     if !r.matches(x) {
                         continue;
                     }
+                }
+                if domain.triclinic() && !domain.contains(x) {
+                    continue;
                 }
                 let mut rot = None;
                 if let Some(od2) = odistsq {
@@ -551,9 +564,9 @@ impl CreateAtoms {
         in_sub: &dyn Fn([f64; 3]) -> bool,
         out: &mut Created,
     ) -> DResult<()> {
-        // Bounding box of the sub-domain, narrowed by the region's extent.
-        let mut blo = domain.lo;
-        let mut bhi = domain.hi;
+        // Bounding box of the sub-domain (LAMMPS' bbox of a triclinic box's fractions),
+        // narrowed by the region's extent.
+        let (mut blo, mut bhi) = if domain.triclinic() { domain.bbox([0.0; 3], [1.0; 3]) } else { (domain.lo, domain.hi) };
         if let Some((rlo, rhi)) = region.and_then(|r| r.extent()) {
             for d in 0..3 {
                 if rlo[d] > blo[d] {

@@ -181,8 +181,12 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
 
 fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, sources: &mut SourceMap) -> DResult<()> {
     let h = &data.header;
-    if h.tilt.is_some() {
-        return Err(Diagnostic::at(cmd.span, "triclinic boxes (xy xz yz in the data file) are not supported", "triclinic data file"));
+    let tri_now = sim.state.domain.as_ref().is_some_and(|d| d.triclinic());
+    if o.add.is_some() && (h.tilt.is_some() || tri_now) {
+        return Err(Diagnostic::at(cmd.span, "read_data add with a triclinic box (in the file or the system) is not supported yet", "triclinic box"));
+    }
+    if h.tilt.is_some() && (0..3).any(|d| sim.state.boundary[d].iter().any(|b| matches!(b, crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin))) {
+        return Err(Diagnostic::at(cmd.span, "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet", "triclinic data file"));
     }
     if !data.impropers.is_empty() {
         return Err(Diagnostic::at(cmd.span, "impropers are not supported yet", "data file has Impropers"));
@@ -203,7 +207,8 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
             if sim.state.dimension == 2 && (h.boxlo[2] >= 0.0 || h.boxhi[2] <= 0.0) {
                 return Err(Diagnostic::at(cmd.span, "a 2d data file must have zlo < 0 < zhi", "2d box"));
             }
-            let domain = Domain { dimension: sim.state.dimension, lo: h.boxlo, hi: h.boxhi, boundary: sim.state.boundary };
+            let mut domain = Domain::new(sim.state.dimension, h.boxlo, h.boxhi, sim.state.boundary);
+            domain.tilt = h.tilt;
             let max = dmhs_parser::data_file::MAX_TYPES;
             let totals = [h.atom_types + o.extra_types[0], h.bond_types + o.extra_types[1], h.angle_types + o.extra_types[2], h.dihedral_types + o.extra_types[3], h.improper_types + o.extra_types[4]];
             if let Some(k) = totals.iter().position(|&n| n > max) {
@@ -246,6 +251,9 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
         }
     };
     sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
+    if let Some(w) = crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(cmd.span, e, "z tilt in a 2d box"))? {
+        sim.out.print(&w);
+    }
     sim.state.box_initial = Some(domain.clone());
     // a new box: LAMMPS' set_initial_box(1) pads its shrink-wrapped faces
     let domain = if o.add.is_none() { crate::engine::boundary::pad_shrink_faces(&domain) } else { domain };
@@ -295,7 +303,9 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
             }
         }
         domain.remap(&mut x, &mut image);
-        if !(0..3).all(|d| domain.periodic(d) || (x[d] >= domain.lo[d] && x[d] < domain.hi[d]) || matches!(domain.boundary[d][0], crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin)) {
+        // (a triclinic box's faces are planes of constant box fraction)
+        let (c, lo, hi) = if domain.triclinic() { (domain.x2lamda(x), [0.0; 3], [1.0; 3]) } else { (x, domain.lo, domain.hi) };
+        if !(0..3).all(|d| domain.periodic(d) || (c[d] >= lo[d] && c[d] < hi[d]) || matches!(domain.boundary[d][0], crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin)) {
             return Err(Diagnostic::at(al.span, format!("atom {} at ({}, {}, {}) is outside the non-periodic box", al.id, x[0], x[1], x[2]), "outside the box"));
         }
         if sim.state.dimension == 2 && x[2] != 0.0 {
@@ -408,6 +418,7 @@ pub fn to_data_file(sim: &Simulation, coeffs: bool) -> DataFile {
     h.improper_types = sim.state.topo.nimpropertypes;
     h.boxlo = d.lo;
     h.boxhi = d.hi;
+    h.tilt = d.tilt;
     if !a.features.per_atom_mass() {
         f.masses = (1..=sim.state.ntypes).filter(|&t| sim.state.mass_set[t]).map(|t| MassLine::new(t, sim.state.type_mass[t])).collect();
     }

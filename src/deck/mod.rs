@@ -155,8 +155,27 @@ fn finish(
     }
 }
 
-/// `orthogonal box = (xlo ylo zlo) to (xhi yhi zhi)` as LAMMPS prints a box (8 significant digits).
+/// `orthogonal box = (xlo ylo zlo) to (xhi yhi zhi)`, or `triclinic box = ... with tilt (xy xz
+/// yz)`, as LAMMPS prints a box (8 significant digits).
 pub(crate) fn box_text(d: &crate::engine::domain::Domain) -> String {
     let g8 = crate::output::format::g8;
-    format!("orthogonal box = ({} {} {}) to ({} {} {})", g8(d.lo[0]), g8(d.lo[1]), g8(d.lo[2]), g8(d.hi[0]), g8(d.hi[1]), g8(d.hi[2]))
+    let corners = format!("({} {} {}) to ({} {} {})", g8(d.lo[0]), g8(d.lo[1]), g8(d.lo[2]), g8(d.hi[0]), g8(d.hi[1]), g8(d.hi[2]));
+    match d.tilt {
+        None => format!("orthogonal box = {corners}"),
+        Some([xy, xz, yz]) => format!("triclinic box = {corners} with tilt ({} {} {})", g8(xy), g8(xz), g8(yz)),
+    }
+}
+
+/// LAMMPS' Domain::set_initial_box checks of a triclinic box: no z tilts in 2d (an error),
+/// and a warning when a periodic dimension is skewed by more than half a box length.
+pub(crate) fn tilt_check(d: &crate::engine::domain::Domain) -> Result<Option<String>, String> {
+    let Some([xy, xz, yz]) = d.tilt else { return Ok(None) };
+    if d.dimension == 2 && (xz != 0.0 || yz != 0.0) {
+        return Err("Cannot skew triclinic box in z for 2d simulation".into());
+    }
+    let p = d.prd();
+    if ((xy / p[1]).abs() > 0.5 && d.periodic(1)) || ((xz.abs() + yz.abs()) / p[2] > 0.5 && d.periodic(2)) {
+        return Ok(Some("WARNING: Triclinic box skew is large. LAMMPS will run inefficiently.".into()));
+    }
+    Ok(None)
 }

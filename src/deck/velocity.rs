@@ -76,7 +76,7 @@ pub fn velocity_command(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) 
         None if vel.opts.bias => return Err(Diagnostic::at(cmd.span, "Cannot use velocity bias command without temp keyword", "bias yes needs temp ID")),
         None => None,
     };
-    let env = VelocityEnv { dimension: sim.state.dimension, boltz: sim.state.units.boltz, mvv2e: sim.state.units.mvv2e, prd: sim.state.domain.as_ref().unwrap().prd(), dof };
+    let env = VelocityEnv { dimension: sim.state.dimension, boltz: sim.state.units.boltz, mvv2e: sim.state.units.mvv2e, periods: sim.state.domain.as_ref().unwrap().periods(), dof };
     let mut v = std::mem::take(&mut sim.state.atoms.v);
     let (ids, x, image) = (sim.state.atoms.tag.clone(), sim.state.atoms.x.clone(), sim.state.atoms.image.clone());
     let atoms = VelocityAtoms { ids: &ids, x: &x, image: &image, mass: &mass, selected: &selected };

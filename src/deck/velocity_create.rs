@@ -10,7 +10,7 @@
 // Index loops mirror LAMMPS' formulas term by term (same evaluation order).
 #![allow(clippy::needless_range_loop)]
 
-use crate::engine::domain::unmap_prd;
+use crate::engine::domain::Periods;
 use crate::engine::group_rotation::{remove_rotation, GroupRotation};
 use crate::engine::lattice::Lattice;
 use crate::engine::random_park::RanPark;
@@ -129,7 +129,7 @@ pub struct VelocityEnv {
     pub boltz: f64,
     pub mvv2e: f64,
     /// Box lengths (for unwrapping with image flags).
-    pub prd: [f64; 3],
+    pub periods: Periods,
     /// Degrees of freedom of a `compute temp` over the group (see [`default_dof`]).
     pub dof: f64,
 }
@@ -235,13 +235,13 @@ pub fn zero_momentum(v: &mut [[f64; 3]], mass: &[f64], selected: &[bool]) -> Res
 
 /// Remove the angular velocity of the group about its centre of mass (LAMMPS
 /// `zero_rotation`: `v_i -= omega x r_i` with unwrapped positions).
-pub fn zero_rotation(v: &mut [[f64; 3]], atoms: &VelocityAtoms, prd: [f64; 3]) -> Result<(), String> {
-    let r = GroupRotation::of(v, atoms.x, atoms.image, atoms.mass, atoms.selected, prd, &mut |_| {}).ok_or("cannot zero momentum of no atoms")?;
+pub fn zero_rotation(v: &mut [[f64; 3]], atoms: &VelocityAtoms, periods: Periods) -> Result<(), String> {
+    let r = GroupRotation::of(v, atoms.x, atoms.image, atoms.mass, atoms.selected, periods, &mut |_| {}).ok_or("cannot zero momentum of no atoms")?;
     let (cm, w) = (r.cm, r.omega()?);
     let (x, image, sel) = (atoms.x, atoms.image, atoms.selected);
     for i in 0..v.len() {
         if sel[i] {
-            remove_rotation(&mut v[i], unmap_prd(x[i], image[i], prd), cm, w);
+            remove_rotation(&mut v[i], periods.unmap(x[i], image[i]), cm, w);
         }
     }
     Ok(())
@@ -338,7 +338,7 @@ pub fn create(
         zero_momentum(v, atoms.mass, sel)?;
     }
     if opts.rot {
-        zero_rotation(v, atoms, env.prd)?;
+        zero_rotation(v, atoms, env.periods)?;
     }
     // with a bias the new thermal velocities are measured by a compute temp over the group
     let t = match (&mut tc, &bias) {
@@ -584,7 +584,7 @@ impl Velocity {
                 Ok(())
             }
             VelocityStyle::Zero { angular: false } => zero_momentum(v, atoms.mass, atoms.selected).map_err(located),
-            VelocityStyle::Zero { angular: true } => zero_rotation(v, atoms, env.prd).map_err(located),
+            VelocityStyle::Zero { angular: true } => zero_rotation(v, atoms, env.periods).map_err(located),
         }
     }
 }
@@ -607,7 +607,7 @@ mod tests {
         v: Vec<[f64; 3]>,
         dim: usize,
         lattice: Option<Lattice>,
-        prd: [f64; 3],
+        periods: Periods,
     }
 
     fn setup(deck: &str, mass_of_type: &[f64]) -> Sys {
@@ -622,7 +622,7 @@ mod tests {
             v: vec![[0.0; 3]; n],
             dim: st.dim,
             lattice: st.lattice.clone(),
-            prd: st.boxed.unwrap().domain.prd(),
+            periods: st.boxed.unwrap().domain.periods(),
         }
     }
 
@@ -635,7 +635,7 @@ mod tests {
                 dimension: self.dim,
                 boltz,
                 mvv2e: 1.0,
-                prd: self.prd,
+                periods: self.periods,
                 dof: default_dof(count, self.dim),
             };
             let atoms = VelocityAtoms { ids: &self.ids, x: &self.x, image: &self.image, mass: &mass, selected };

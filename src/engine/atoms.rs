@@ -4,6 +4,8 @@
 //! Which optional arrays exist is decided once by `atom_style` (see [`AtomFeatures`]); an
 //! absent feature keeps its vectors empty so a scene pays only for what it uses.
 
+use crate::engine::domain::Periods;
+
 /// Optional per-atom properties, switched on by the atom style.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct AtomFeatures {
@@ -253,16 +255,16 @@ impl Atoms {
         }
     }
 
-    /// Add a ghost image of owned atom `owner` shifted by `shift` box lengths; per-atom
-    /// values are copied, the position is `x + shift*prd` computed per component as LAMMPS'
-    /// forward communication does it.
-    pub fn push_ghost(&mut self, owner: usize, shift: [i8; 3], prd: [f64; 3]) {
-        let mut x = self.x[owner];
-        for d in 0..3 {
-            if shift[d] != 0 {
-                x[d] += shift[d] as f64 * prd[d];
-            }
-        }
+    /// Add a ghost image of owned atom `owner` shifted by `shift` box periods; per-atom
+    /// values are copied, the position is the image LAMMPS' forward communication makes.
+    pub fn push_ghost(&mut self, owner: usize, shift: [i8; 3], periods: Periods) {
+        let x = periods.shifted(self.x[owner], shift);
+        self.push_ghost_at(owner, shift, x);
+    }
+
+    /// [`Atoms::push_ghost`] at a given position (a triclinic box's rebuild places its ghosts
+    /// from box fractions).
+    pub fn push_ghost_at(&mut self, owner: usize, shift: [i8; 3], x: [f64; 3]) {
         self.ghost_owner.push(owner as u32);
         self.ghost_shift.push(shift);
         self.tag.push(self.tag[owner]);
@@ -303,19 +305,11 @@ impl Atoms {
     }
 
     /// Refresh ghost positions from their owners (LAMMPS' forward communication of `x`).
-    pub fn forward_positions(&mut self, prd: [f64; 3]) {
+    pub fn forward_positions(&mut self, periods: Periods) {
         let n = self.nlocal;
         let (local, ghosts) = self.x.split_at_mut(n);
         for (k, g) in ghosts.iter_mut().enumerate() {
-            let o = self.ghost_owner[k] as usize;
-            let s = self.ghost_shift[k];
-            let mut x = local[o];
-            for d in 0..3 {
-                if s[d] != 0 {
-                    x[d] += s[d] as f64 * prd[d];
-                }
-            }
-            *g = x;
+            *g = periods.shifted(local[self.ghost_owner[k] as usize], self.ghost_shift[k]);
         }
     }
 
@@ -704,14 +698,14 @@ mod tests {
         let mut n = NewAtom::at(7, 2, [0.25, 1.0, 0.0]);
         n.rho = 1000.0;
         a.push(&n);
-        a.push_ghost(0, [1, 0, 0], [10.0, 5.0, 1.0]);
+        a.push_ghost(0, [1, 0, 0], Periods { prd: [10.0, 5.0, 1.0], tilt: None });
         assert_eq!(a.nlocal, 1);
         assert_eq!(a.nghost(), 1);
         assert_eq!(a.x[1], [10.25, 1.0, 0.0]);
         assert_eq!(a.tag[1], 7);
         assert_eq!(a.rho[1], 1000.0);
         a.x[0][0] = 0.5;
-        a.forward_positions([10.0, 5.0, 1.0]);
+        a.forward_positions(Periods { prd: [10.0, 5.0, 1.0], tilt: None });
         assert_eq!(a.x[1][0], 10.5);
         a.clear_ghosts();
         assert_eq!(a.nall(), 1);
@@ -748,7 +742,7 @@ mod extra_tests {
         let c = a.extra_field("conc", 1, true);
         let p = a.extra_array("private", 2);
         a.extra[c].data = vec![0.25, 0.75];
-        a.push_ghost(1, [-1, 0, 0], [1.0, 1.0, 1.0]);
+        a.push_ghost(1, [-1, 0, 0], Periods { prd: [1.0; 3], tilt: None });
         assert_eq!(a.extra[c].data, vec![0.25, 0.75, 0.75]);
         assert_eq!(a.extra[p].data.len(), 4);
         a.extra[c].data[1] = 0.5;

@@ -570,7 +570,7 @@ mod tests {
     #[test]
     fn the_owner_is_the_last_sub_domain_starting_at_or_below_x() {
         use crate::engine::domain::BoundaryKind;
-        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [10.0; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let domain = Domain::new(3, [0.0; 3], [10.0; 3], [[BoundaryKind::Periodic; 2]; 3]);
         let mut d = Decomp::new(Arc::new(crate::engine::comm::Serial), [7, 1, 1]);
         d.splits[0] = vec![0.0, 0.05, 0.05, 0.3, 0.31, 0.6, 0.9, 1.0];
         let linear = |x: f64| (1..7).take_while(|&k| x >= d.bounds(&domain, 0, k).0).last().unwrap_or(0);

@@ -1,4 +1,7 @@
-//! The simulation box: bounds, boundary conditions, periodic images (orthogonal boxes only).
+//! The simulation box: bounds, tilts, boundary conditions, periodic images. A triclinic box
+//! (LAMMPS' restricted triclinic: edge vectors a = (lx, 0, 0), b = (xy, ly, 0),
+//! c = (xz, yz, lz)) is handled as LAMMPS handles it, in box fractions ("lamda"
+//! coordinates) wherever LAMMPS uses them, with LAMMPS' arithmetic so that the bits agree.
 
 /// Boundary condition of one box face, as in the `boundary` command.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,16 +35,103 @@ pub struct Domain {
     pub hi: [f64; 3],
     /// `boundary[dim][0]` is the lower face, `[1]` the upper.
     pub boundary: [[BoundaryKind; 2]; 3],
+    /// The tilt factors `[xy, xz, yz]` of a triclinic box; `None` for an orthogonal box. A
+    /// triclinic box with zero tilts is not an orthogonal one: LAMMPS moves its atoms through
+    /// box fractions at every rebuild, which changes their last bits.
+    pub tilt: Option<[f64; 3]>,
 }
 
 impl Domain {
+    /// An orthogonal box.
+    pub fn new(dimension: usize, lo: [f64; 3], hi: [f64; 3], boundary: [[BoundaryKind; 2]; 3]) -> Domain {
+        Domain { dimension, lo, hi, boundary, tilt: None }
+    }
+    pub fn triclinic(&self) -> bool {
+        self.tilt.is_some()
+    }
+    /// `[xy, xz, yz]`, zero for an orthogonal box.
+    pub fn tilts(&self) -> [f64; 3] {
+        self.tilt.unwrap_or([0.0; 3])
+    }
+    /// LAMMPS' `h`: `[lx, ly, lz, yz, xz, xy]` (the tilts zero for an orthogonal box).
+    pub fn h(&self) -> [f64; 6] {
+        let p = self.prd();
+        let [xy, xz, yz] = self.tilts();
+        [p[0], p[1], p[2], yz, xz, xy]
+    }
+    /// LAMMPS' `h_inv` (Domain::set_global_box), the inverse of `h`'s matrix in the same layout.
+    pub fn h_inv(&self) -> [f64; 6] {
+        let h = self.h();
+        let mut hi = [1.0 / h[0], 1.0 / h[1], 1.0 / h[2], 0.0, 0.0, 0.0];
+        if self.triclinic() {
+            hi[3] = -h[3] / (h[1] * h[2]);
+            hi[4] = (h[3] * h[5] - h[1] * h[4]) / (h[0] * h[1] * h[2]);
+            hi[5] = -h[5] / (h[0] * h[1]);
+        }
+        hi
+    }
+    /// Box fractions of a point (LAMMPS' x2lamda, term by term).
+    pub fn x2lamda(&self, x: [f64; 3]) -> [f64; 3] {
+        x2lamda_with(&self.h_inv(), &self.lo, x)
+    }
+    /// The point at box fractions `l` (LAMMPS' lamda2x, term by term).
+    pub fn lamda2x(&self, l: [f64; 3]) -> [f64; 3] {
+        lamda2x_with(&self.h(), &self.lo, l)
+    }
+    /// The corners of the box in LAMMPS' order (x fastest, then y, then z), as lamda2x of the
+    /// unit cube's (LAMMPS' box_corners).
+    pub fn corners(&self) -> [[f64; 3]; 8] {
+        let mut c = [[0.0; 3]; 8];
+        for (k, x) in c.iter_mut().enumerate() {
+            *x = self.lamda2x([(k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64]);
+        }
+        c
+    }
+    /// The axis-aligned box around the points of box fractions `lo..hi` (LAMMPS' Domain::bbox).
+    pub fn bbox(&self, lo: [f64; 3], hi: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+        let (mut blo, mut bhi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for k in 0..8 {
+            let l = [if k & 1 == 0 { lo[0] } else { hi[0] }, if k & 2 == 0 { lo[1] } else { hi[1] }, if k & 4 == 0 { lo[2] } else { hi[2] }];
+            let x = self.lamda2x(l);
+            for d in 0..3 {
+                blo[d] = blo[d].min(x[d]);
+                bhi[d] = bhi[d].max(x[d]);
+            }
+        }
+        (blo, bhi)
+    }
+    /// The box's axis-aligned bounds (LAMMPS' boxlo_bound and boxhi_bound).
+    pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        let [xy, xz, yz] = self.tilts();
+        let (mut lo, mut hi) = (self.lo, self.hi);
+        lo[0] = lo[0].min(lo[0] + xy);
+        lo[0] = lo[0].min(lo[0] + xz);
+        lo[1] = lo[1].min(lo[1] + yz);
+        hi[0] = hi[0].max(hi[0] + xy);
+        hi[0] = hi[0].max(hi[0] + xz);
+        hi[1] = hi[1].max(hi[1] + yz);
+        (lo, hi)
+    }
+    /// How far (in box fractions) a distance `cut` reaches across the box in each dimension:
+    /// the ghost shell of LAMMPS' CommBrick::setup, `cut` over the distance between the
+    /// box's opposite faces (for an orthogonal box, `cut / prd`).
+    pub fn lamda_reach(&self, cut: f64) -> [f64; 3] {
+        let hi = self.h_inv();
+        [cut * (hi[0] * hi[0] + hi[5] * hi[5] + hi[4] * hi[4]).sqrt(), cut * (hi[1] * hi[1] + hi[3] * hi[3]).sqrt(), cut * hi[2]]
+    }
+    /// The periodic shifts of this box, for ghost images and unwrapping.
+    pub fn periods(&self) -> Periods {
+        Periods { prd: self.prd(), tilt: self.tilt }
+    }
+
     /// Whether an inserting fix (pour, deposit) keeps a new atom at `x`: inside the box, or
     /// above its top (z in 3D, y in 2D) and inside laterally (on one process the sub-box is the
     /// box, and LAMMPS' top process also takes atoms above it).
     pub fn takes_inserted(&self, x: [f64; 3]) -> bool {
         let vertical = self.dimension - 1;
-        let inside = (0..3).all(|k| x[k] >= self.lo[k] && x[k] < self.hi[k]);
-        inside || (x[vertical] >= self.hi[vertical] && (0..vertical).all(|k| x[k] >= self.lo[k] && x[k] < self.hi[k]))
+        let (x, lo, hi) = if self.triclinic() { (self.x2lamda(x), [0.0; 3], [1.0; 3]) } else { (x, self.lo, self.hi) };
+        let inside = (0..3).all(|k| x[k] >= lo[k] && x[k] < hi[k]);
+        inside || (x[vertical] >= hi[vertical] && (0..vertical).all(|k| x[k] >= lo[k] && x[k] < hi[k]))
     }
 
     pub fn periodic(&self, d: usize) -> bool {
@@ -56,29 +146,48 @@ impl Domain {
         let p = self.prd();
         if self.dimension == 3 { p[0] * p[1] * p[2] } else { p[0] * p[1] }
     }
-    /// True if `x` lies in `[lo, hi)` in every dimension.
+    /// True if `x` lies in `[lo, hi)` in every dimension (in box fractions `[0, 1)` for a
+    /// triclinic box, as LAMMPS' Domain::inside).
     pub fn contains(&self, x: [f64; 3]) -> bool {
+        if self.triclinic() {
+            let l = self.x2lamda(x);
+            return (0..3).all(|d| l[d] >= 0.0 && l[d] < 1.0);
+        }
         (0..3).all(|d| x[d] >= self.lo[d] && x[d] < self.hi[d])
     }
-    /// Unwrapped coordinate: `x + image * prd` (LAMMPS `Domain::unmap`).
+    /// Unwrapped coordinate: `x + image * prd` (LAMMPS `Domain::unmap`; with the tilts for a
+    /// triclinic box).
     pub fn unmap(&self, x: [f64; 3], image: [i32; 3]) -> [f64; 3] {
-        unmap_prd(x, image, self.prd())
+        self.periods().unmap(x, image)
     }
     /// Wrap a position back into a periodic box, updating its image flags, exactly as
-    /// LAMMPS `Domain::pbc` does (one box length at most per call).
+    /// LAMMPS `Domain::pbc` does (one box length at most per call). A triclinic box wraps in
+    /// box fractions ([`Domain::wrap_lamda`]), then converts back.
     pub fn wrap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) {
-        let p = self.prd();
+        if self.triclinic() {
+            let mut l = self.x2lamda(*x);
+            self.wrap_lamda(&mut l, image);
+            *x = self.lamda2x(l);
+            return;
+        }
+        self.wrap_in(x, image, self.lo, self.hi, self.prd());
+    }
+    /// [`Domain::wrap`] of box fractions (LAMMPS' pbc() of a triclinic box: lo 0, hi 1).
+    pub fn wrap_lamda(&self, l: &mut [f64; 3], image: &mut [i32; 3]) {
+        self.wrap_in(l, image, [0.0; 3], [1.0; 3], [1.0; 3]);
+    }
+    fn wrap_in(&self, x: &mut [f64; 3], image: &mut [i32; 3], lo: [f64; 3], hi: [f64; 3], p: [f64; 3]) {
         for d in 0..3 {
             if !self.periodic(d) {
                 continue;
             }
-            if x[d] < self.lo[d] {
+            if x[d] < lo[d] {
                 x[d] += p[d];
                 image[d] -= 1;
             }
-            if x[d] >= self.hi[d] {
+            if x[d] >= hi[d] {
                 x[d] -= p[d];
-                x[d] = x[d].max(self.lo[d]);
+                x[d] = x[d].max(lo[d]);
                 image[d] += 1;
             }
         }
@@ -92,6 +201,16 @@ impl Domain {
     /// the time is O(1); its image flags saturate at the limits of i32. A non-finite
     /// coordinate ends at the lower bound (callers refuse non-finite positions first).
     pub fn remap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) {
+        if self.triclinic() {
+            let mut l = self.x2lamda(*x);
+            for d in 0..3 {
+                if self.periodic(d) {
+                    remap_coord(&mut l[d], &mut image[d], 0.0, 1.0, 1.0);
+                }
+            }
+            *x = self.lamda2x(l);
+            return;
+        }
         let p = self.prd();
         for d in 0..3 {
             if self.periodic(d) {
@@ -108,6 +227,9 @@ impl Domain {
     /// [`Domain::REMAP_STEPS`] box lengths (an atom put far outside the box by `set`) is first
     /// reduced to its exact remainder, so that the steps end.
     pub fn minimum_image(&self, dx: &mut [f64; 3]) {
+        if self.triclinic() {
+            return self.minimum_image_tilted(dx);
+        }
         let p = self.prd();
         for d in 0..3 {
             if self.periodic(d) && dx[d].abs() > Self::REMAP_STEPS * p[d] {
@@ -127,6 +249,52 @@ impl Domain {
                     }
                     if dx[d] < -0.5 * p[d] {
                         dx[d] += p[d];
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Domain {
+    /// [`Domain::minimum_image`] of a triclinic box: z, then y, then x, each whole period of
+    /// z carrying yz and xz along, each of y carrying xy (LAMMPS' order and arithmetic).
+    fn minimum_image_tilted(&self, dx: &mut [f64; 3]) {
+        let p = self.prd();
+        let [xy, xz, yz] = self.tilts();
+        // the displacement one period of each dimension makes: (dim, [x, y, z] shift)
+        let steps = [(2, [xz, yz, p[2]]), (1, [xy, p[1], 0.0]), (0, [p[0], 0.0, 0.0])];
+        for (d, s) in steps {
+            if !self.periodic(d) {
+                continue;
+            }
+            if dx[d].abs() > Self::REMAP_STEPS * p[d] {
+                // far apart: whole periods at once, so that the steps end
+                let n = (dx[d] / p[d]).trunc();
+                for k in 0..=d {
+                    dx[k] -= n * s[k];
+                }
+            }
+            let half = 0.5 * p[d];
+            let add = |dx: &mut [f64; 3], sign: f64| {
+                for k in (0..=d).rev() {
+                    dx[k] += sign * s[k];
+                }
+            };
+            if dx[d].abs() > half {
+                if dx[d] < 0.0 {
+                    while dx[d] < 0.0 {
+                        add(dx, 1.0);
+                    }
+                    if dx[d] > half {
+                        add(dx, -1.0);
+                    }
+                } else {
+                    while dx[d] > 0.0 {
+                        add(dx, -1.0);
+                    }
+                    if dx[d] < -half {
+                        add(dx, 1.0);
                     }
                 }
             }
@@ -176,6 +344,14 @@ impl Domain {
     /// Move `xnew` by whole periods so it is the image closest to `xold`
     /// (LAMMPS `Domain::remap_near`, same arithmetic).
     pub fn remap_near(&self, xnew: &mut [f64; 3], xold: &[f64; 3]) {
+        if self.triclinic() {
+            // in box fractions, as LAMMPS
+            let (mut lnew, lold) = (self.x2lamda(*xnew), self.x2lamda(*xold));
+            let flat = Domain { lo: [0.0; 3], hi: [1.0; 3], tilt: None, ..self.clone() };
+            flat.remap_near(&mut lnew, &lold);
+            *xnew = self.lamda2x(lnew);
+            return;
+        }
         let period = self.prd();
         for d in 0..3 {
             if !self.periodic(d) {
@@ -209,7 +385,7 @@ mod tests {
     use super::*;
 
     fn periodic(lo: f64, hi: f64) -> Domain {
-        Domain { dimension: 3, lo: [lo; 3], hi: [hi; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] }
+        Domain::new(3, [lo; 3], [hi; 3], [[BoundaryKind::Periodic; 2]; 3])
     }
 
     /// LAMMPS' Domain::remap: one box length per step, then MAX(x, lo).
@@ -260,33 +436,134 @@ mod tests {
     }
 }
 
-/// A point carried along when the (orthogonal) box changes: its box fractions in the old box,
-/// then their place in the new one (LAMMPS' x2lamda and lamda2x, term by term, so that the
-/// round-off is LAMMPS'; the zero tilt terms are kept: an atom at the low face stays at +0).
+/// A point carried along when the box changes: its box fractions in the old box, then their
+/// place in the new one (LAMMPS' x2lamda and lamda2x, term by term, so that the round-off is
+/// LAMMPS'; the zero tilt terms of an orthogonal box are kept: an atom at the low face stays
+/// at +0).
 pub struct Dilation {
     lo_old: [f64; 3],
-    hinv_old: [f64; 3],
+    hinv_old: [f64; 6],
     lo_new: [f64; 3],
-    h_new: [f64; 3],
+    h_new: [f64; 6],
 }
 
 impl Dilation {
     pub fn new(old: &Domain, new: &Domain) -> Dilation {
-        let (p, q) = (old.prd(), new.prd());
-        Dilation { lo_old: old.lo, hinv_old: [1.0 / p[0], 1.0 / p[1], 1.0 / p[2]], lo_new: new.lo, h_new: q }
+        Dilation { lo_old: old.lo, hinv_old: old.h_inv(), lo_new: new.lo, h_new: new.h() }
     }
     pub fn apply(&self, x: &mut [f64; 3]) {
-        let (lo, hinv) = (&self.lo_old, &self.hinv_old);
-        let d = [x[0] - lo[0], x[1] - lo[1], x[2] - lo[2]];
-        let l = [hinv[0] * d[0] + 0.0 * d[1] + 0.0 * d[2], hinv[1] * d[1] + 0.0 * d[2], hinv[2] * d[2]];
-        let (lo, h) = (&self.lo_new, &self.h_new);
-        x[0] = h[0] * l[0] + 0.0 * l[1] + 0.0 * l[2] + lo[0];
-        x[1] = h[1] * l[1] + 0.0 * l[2] + lo[1];
-        x[2] = h[2] * l[2] + lo[2];
+        *x = lamda2x_with(&self.h_new, &self.lo_new, x2lamda_with(&self.hinv_old, &self.lo_old, *x));
     }
 }
 
-/// [`Domain::unmap`] for callers that hold only the box lengths `prd` (orthogonal boxes).
-pub fn unmap_prd(x: [f64; 3], image: [i32; 3], prd: [f64; 3]) -> [f64; 3] {
-    [x[0] + image[0] as f64 * prd[0], x[1] + image[1] as f64 * prd[1], x[2] + image[2] as f64 * prd[2]]
+/// LAMMPS' x2lamda with a given `h_inv` and box origin.
+pub fn x2lamda_with(hinv: &[f64; 6], lo: &[f64; 3], x: [f64; 3]) -> [f64; 3] {
+    let d = [x[0] - lo[0], x[1] - lo[1], x[2] - lo[2]];
+    [hinv[0] * d[0] + hinv[5] * d[1] + hinv[4] * d[2], hinv[1] * d[1] + hinv[3] * d[2], hinv[2] * d[2]]
+}
+
+/// LAMMPS' lamda2x with a given `h` and box origin.
+pub fn lamda2x_with(h: &[f64; 6], lo: &[f64; 3], l: [f64; 3]) -> [f64; 3] {
+    [h[0] * l[0] + h[5] * l[1] + h[4] * l[2] + lo[0], h[1] * l[1] + h[3] * l[2] + lo[1], h[2] * l[2] + lo[2]]
+}
+
+/// The periodic shifts of a box: what a ghost image or an image flag adds to a position.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Periods {
+    pub prd: [f64; 3],
+    /// `[xy, xz, yz]` of a triclinic box.
+    pub tilt: Option<[f64; 3]>,
+}
+
+impl Periods {
+    /// The unwrapped position of `x` with image flags `image` (LAMMPS' Domain::unmap).
+    pub fn unmap(&self, x: [f64; 3], image: [i32; 3]) -> [f64; 3] {
+        let p = self.prd;
+        let [a, b, c] = [image[0] as f64, image[1] as f64, image[2] as f64];
+        match self.tilt {
+            None => [x[0] + a * p[0], x[1] + b * p[1], x[2] + c * p[2]],
+            Some([xy, xz, yz]) => [x[0] + p[0] * a + xy * b + xz * c, x[1] + p[1] * b + yz * c, x[2] + p[2] * c],
+        }
+    }
+    /// The position of the image `shift` of a point at `x`, as LAMMPS' forward communication
+    /// makes it: one exchange per dimension in turn (x, y, z), each adding its own shift (for
+    /// a triclinic box a shift along y moves x by xy too, one along z x and y by xz and yz).
+    pub fn shifted(&self, mut x: [f64; 3], s: [i8; 3]) -> [f64; 3] {
+        let p = self.prd;
+        match self.tilt {
+            None => {
+                for d in 0..3 {
+                    if s[d] != 0 {
+                        x[d] += s[d] as f64 * p[d];
+                    }
+                }
+            }
+            Some([xy, xz, yz]) => {
+                for d in 0..3 {
+                    if s[d] == 0 {
+                        continue;
+                    }
+                    let mut f = [0.0; 3];
+                    f[d] = s[d] as f64;
+                    x[0] += f[0] * p[0] + f[1] * xy + f[2] * xz;
+                    x[1] += f[1] * p[1] + f[2] * yz;
+                    x[2] += f[2] * p[2];
+                }
+            }
+        }
+        x
+    }
+}
+
+#[cfg(test)]
+mod tilted_tests {
+    use super::*;
+
+    fn tilted() -> Domain {
+        Domain { tilt: Some([1.5, -0.7, 0.9]), ..Domain::new(3, [-1.0, 0.5, 2.0], [5.0, 4.5, 7.0], [[BoundaryKind::Periodic; 2]; 3]) }
+    }
+
+    #[test]
+    fn box_fractions_round_trip_and_wrap_as_lammps() {
+        let d = tilted();
+        // the corners: lamda2x of the unit cube's, x fastest
+        let c = d.corners();
+        assert_eq!(c[0], d.lo);
+        assert_eq!(c[7], [5.0 + 1.5 - 0.7, 4.5 + 0.9, 7.0]);
+        let x = [2.3, 1.1, 6.9];
+        let l = d.x2lamda(x);
+        let y = d.lamda2x(l);
+        for k in 0..3 {
+            assert!((x[k] - y[k]).abs() < 1e-14);
+        }
+        // an atom past the upper y face wraps by b = (xy, ly, 0) and counts an image
+        let (mut p, mut img) = (d.lamda2x([0.5, 1.2, 0.5]), [0; 3]);
+        d.remap(&mut p, &mut img);
+        assert_eq!(img, [0, 1, 0]);
+        let q = d.lamda2x([0.5, 0.2, 0.5]);
+        for k in 0..3 {
+            assert!((p[k] - q[k]).abs() < 1e-14, "{p:?} {q:?}");
+        }
+        let u = d.unmap(p, img);
+        let want = d.lamda2x([0.5, 1.2, 0.5]);
+        for k in 0..3 {
+            assert!((u[k] - want[k]).abs() < 1e-13);
+        }
+        assert!(d.contains(q) && !d.contains(want));
+    }
+
+    #[test]
+    fn minimum_image_carries_the_tilts() {
+        let d = tilted();
+        // one period along c minus a bit: the image is the short vector
+        let mut dx = [-0.7 + 0.1, 0.9 + 0.2, 5.0 - 0.3];
+        d.minimum_image(&mut dx);
+        for (k, w) in [0.1, 0.2, -0.3].iter().enumerate() {
+            assert!((dx[k] - w).abs() < 1e-14, "{dx:?}");
+        }
+        // ghost images: one exchange per dimension, a shift along y moves x by xy
+        let p = d.periods();
+        assert_eq!(p.shifted([0.0; 3], [0, 1, 0]), [1.5, 4.0, 0.0]);
+        assert_eq!(p.shifted([0.0; 3], [1, 0, -1]), [6.0 + 0.7, -0.9, -5.0]);
+    }
 }

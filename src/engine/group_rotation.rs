@@ -3,7 +3,7 @@
 //! (velocity's `rot yes` and `zero angular`, fix momentum `angular`, the group functions
 //! angmom(), inertia() and omega()). Sums run in the order of the arrays given.
 
-use crate::engine::domain::unmap_prd;
+use crate::engine::domain::Periods;
 
 /// Threshold below which the inertia tensor is treated as singular (LAMMPS group.cpp).
 const INERTIA_EPSILON: f64 = 1.0e-6;
@@ -30,7 +30,7 @@ impl GroupRotation {
     /// group has no mass. `reduce` sums partial sums over the ranks of a distributed run (as
     /// LAMMPS' MPI_Allreduce after each of mass, centre, angular momentum and inertia; a no-op
     /// on one rank).
-    pub fn of(v: &[[f64; 3]], x: &[[f64; 3]], image: &[[i32; 3]], mass: &[f64], sel: &[bool], prd: [f64; 3], reduce: &mut dyn FnMut(&mut [f64])) -> Option<GroupRotation> {
+    pub fn of(v: &[[f64; 3]], x: &[[f64; 3]], image: &[[i32; 3]], mass: &[f64], sel: &[bool], periods: Periods, reduce: &mut dyn FnMut(&mut [f64])) -> Option<GroupRotation> {
         let mut masstotal = [mass.iter().zip(sel).filter(|(_, &s)| s).fold(0.0, |t, (&m, _)| t + m)];
         reduce(&mut masstotal);
         let masstotal = masstotal[0];
@@ -40,7 +40,7 @@ impl GroupRotation {
         let mut cm = [0.0; 3];
         for i in 0..v.len() {
             if sel[i] {
-                let u = unmap_prd(x[i], image[i], prd);
+                let u = periods.unmap(x[i], image[i]);
                 cm[0] += u[0] * mass[i];
                 cm[1] += u[1] * mass[i];
                 cm[2] += u[2] * mass[i];
@@ -54,7 +54,7 @@ impl GroupRotation {
         let mut inertia = [[0.0; 3]; 3];
         for i in 0..v.len() {
             if sel[i] {
-                let u = unmap_prd(x[i], image[i], prd);
+                let u = periods.unmap(x[i], image[i]);
                 let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
                 let m = mass[i];
                 l[0] += m * (dy * v[i][2] - dz * v[i][1]);
@@ -64,7 +64,7 @@ impl GroupRotation {
         }
         for i in 0..v.len() {
             if sel[i] {
-                let u = unmap_prd(x[i], image[i], prd);
+                let u = periods.unmap(x[i], image[i]);
                 let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
                 let m = mass[i];
                 inertia[0][0] += m * (dy * dy + dz * dz);
@@ -156,6 +156,6 @@ pub fn of_group(state: &crate::engine::state::State, bit: u32) -> Option<GroupRo
     let image: Vec<[i32; 3]> = sel.iter().map(|&i| a.image[i]).collect();
     let mass: Vec<f64> = sel.iter().map(|&i| state.mass(i)).collect();
     let v: Vec<[f64; 3]> = sel.iter().map(|&i| a.v[i]).collect();
-    let prd = state.domain.as_ref().map_or([0.0; 3], |d| d.prd());
-    GroupRotation::of(&v, &x, &image, &mass, &vec![true; sel.len()], prd, &mut |s| state.sum_ranks(s))
+    let periods = state.domain.as_ref().map_or(Periods::default(), |d| d.periods());
+    GroupRotation::of(&v, &x, &image, &mass, &vec![true; sel.len()], periods, &mut |s| state.sum_ranks(s))
 }

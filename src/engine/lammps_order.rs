@@ -164,7 +164,7 @@ impl LammpsOrder {
             Sort::Never => false,
         };
         if self.sortfreq > 0 && due {
-            let binsize = if self.binsize > 0.0 { self.binsize } else { 0.5 * cutneighmax };
+            let binsize = self.sort_binsize(cutneighmax);
             if binsize > 0.0 {
                 self.nextsort = (step / self.sortfreq) * self.sortfreq + self.sortfreq;
                 let idx = local(&self.ids);
@@ -184,6 +184,24 @@ impl LammpsOrder {
         }
         self.local = local(&self.ids);
         self.sides = None;
+    }
+
+    /// LAMMPS' sort bin size: `atom_modify sort` binsize, else half the list cutoff.
+    fn sort_binsize(&self, cutneighmax: f64) -> f64 {
+        if self.binsize > 0.0 { self.binsize } else { 0.5 * cutneighmax }
+    }
+
+    /// Whether [`LammpsOrder::after_rebuild`] with these arguments sorts the atoms: a sort is
+    /// due and has more than one bin. (LAMMPS bins a triclinic box's atoms in box coordinates,
+    /// between two conversions of theirs, so their last bits change on that rebuild.)
+    pub fn sorts(&self, domain: &Domain, cutneighmax: f64, step: i64, sort: Sort) -> bool {
+        let due = match sort {
+            Sort::Setup => true,
+            Sort::Due => step >= self.nextsort,
+            Sort::Never => false,
+        };
+        let binsize = self.sort_binsize(cutneighmax);
+        self.sortfreq > 0 && due && binsize > 0.0 && sort_bins(domain, binsize).total().is_some_and(|t| t > 1 && t <= i32::MAX as usize)
     }
 
     /// After [`LammpsOrder::after_rebuild`]: LAMMPS' neighbour bins of this rebuild, for
@@ -217,6 +235,9 @@ pub struct ListSides {
     /// LAMMPS' local index of each owned atom (by dmhs index)
     rank: Vec<u32>,
     newton: bool,
+    /// A triclinic box: LAMMPS' `half/bin/newton/tri` lists a pair from the atom below the
+    /// other (z, then y, then x), whatever their bins.
+    tri: bool,
 }
 
 impl ListSides {
@@ -231,7 +252,7 @@ impl ListSides {
             n[d] = nb.max(1);
             inv[d] = 1.0 / (len / n[d] as f64);
         }
-        ListSides { lo, hi, n, inv, rank, newton }
+        ListSides { lo, hi, n, inv, rank, newton, tri: domain.triclinic() }
     }
 
     /// LAMMPS' bin coordinate along `d` (ghosts beyond the box get bins outside it).
@@ -251,6 +272,17 @@ impl ListSides {
     pub fn first(&self, i: usize, j: usize, x: &[[f64; 3]]) -> bool {
         let (xi, xj) = (&x[i], &x[j]);
         if !self.newton {
+            return match (self.rank.get(i), self.rank.get(j)) {
+                (Some(ri), Some(rj)) => ri < rj,
+                _ => true,
+            };
+        }
+        if self.tri {
+            for d in [2, 1, 0] {
+                if xj[d] != xi[d] {
+                    return xj[d] > xi[d];
+                }
+            }
             return match (self.rank.get(i), self.rank.get(j)) {
                 (Some(ri), Some(rj)) => ri < rj,
                 _ => true,
@@ -287,8 +319,10 @@ fn sort_bins(domain: &Domain, binsize: f64) -> SortBins {
     let bininv = 1.0 / binsize;
     let mut n = [1usize; 3];
     let mut inv = [0.0; 3];
+    // a triclinic box's bins cover its bounding box
+    let (lo, hi) = if domain.triclinic() { domain.bbox([0.0; 3], [1.0; 3]) } else { (domain.lo, domain.hi) };
     for d in 0..3 {
-        let len = domain.hi[d] - domain.lo[d];
+        let len = hi[d] - lo[d];
         let mut nb = (len * bininv) as i64;
         if d == 2 && domain.dimension == 2 {
             nb = 1;
@@ -296,7 +330,7 @@ fn sort_bins(domain: &Domain, binsize: f64) -> SortBins {
         n[d] = nb.max(1) as usize;
         inv[d] = n[d] as f64 / len;
     }
-    SortBins { lo: domain.lo, n, inv }
+    SortBins { lo, n, inv }
 }
 
 impl SortBins {
@@ -322,7 +356,7 @@ mod tests {
     use crate::engine::domain::BoundaryKind;
 
     fn domain(l: f64) -> Domain {
-        Domain { dimension: 3, lo: [0.0; 3], hi: [l; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] }
+        Domain::new(3, [0.0; 3], [l; 3], [[BoundaryKind::Periodic; 2]; 3])
     }
 
     #[test]

@@ -412,8 +412,9 @@ pub struct Neighbor {
     pub list: NeighList,
     /// Positions at the last build (for the distance check).
     xhold: Vec<[f64; 3]>,
-    /// The box at the last build (for the distance check while a fix changes the box).
-    box_hold: ([f64; 3], [f64; 3]),
+    /// The box's corners at the last build (for the distance check while a fix changes the
+    /// box).
+    corners_hold: [[f64; 3]; 8],
     /// Steps since the last build.
     pub ago: i64,
     pub nbuilds: u64,
@@ -620,6 +621,11 @@ fn zeroed(v: &mut Vec<u32>, n: usize) {
 pub enum Ghosts<'a> {
     /// Periodic images of the owned atoms, made by the build (one rank).
     Periodic,
+    /// [`Ghosts::Periodic`] of a triclinic box, made as LAMMPS makes them: the owned atoms'
+    /// positions arrive as box fractions, wrapped into `[0, 1)`; the build places them and
+    /// their images with lamda2x. `resorted`: LAMMPS sorts its atoms on this rebuild, which
+    /// takes them to box coordinates and back first.
+    Tilted { resorted: bool },
     /// Made by `make(atoms, ghost cutoff)` once the owned atoms are sorted (the ranks of a
     /// decomposed run exchange them); `sub` is this rank's sub-domain, which the bins cover.
     Given { sub: ([f64; 3], [f64; 3]), make: &'a mut dyn FnMut(&mut Atoms, f64) },
@@ -667,12 +673,28 @@ impl Neighbor {
                     trigger * trigger
                 }
                 Some(d) => {
-                    let (lo, hi) = &self.box_hold;
+                    let hold = &self.corners_hold;
                     let corner = |a: &[f64; 3], b: &[f64; 3]| {
                         let (dx, dy, dz) = (a[0] - b[0], a[1] - b[1], a[2] - b[2]);
                         (dx * dx + dy * dy + dz * dz).sqrt()
                     };
-                    let delta = 0.5 * (settings.skin - (corner(&d.lo, lo) + corner(&d.hi, hi)));
+                    let moved = if d.triclinic() {
+                        // LAMMPS' two largest corner moves, as it finds them (a move that is not
+                        // the largest so far counts as the second only when it beats it)
+                        let (mut d1, mut d2) = (0.0, 0.0);
+                        for (c, h) in d.corners().iter().zip(hold) {
+                            let m = corner(c, h);
+                            if m > d1 {
+                                d1 = m;
+                            } else if m > d2 {
+                                d2 = m;
+                            }
+                        }
+                        d1 + d2
+                    } else {
+                        corner(&d.lo, &hold[0]) + corner(&d.hi, &hold[7])
+                    };
+                    let delta = 0.5 * (settings.skin - moved);
                     let delta = if delta < 0.0 { 0.0 } else { delta };
                     delta * delta
                 }
@@ -710,6 +732,12 @@ impl Neighbor {
         sizes: bool,
         special: &SpecialTable,
     ) -> Result<Vec<usize>, NeighError> {
+        if domain.triclinic() {
+            for x in &mut atoms.x[..atoms.nlocal] {
+                *x = domain.x2lamda(*x);
+            }
+            return self.build_with(atoms, domain, settings, ntypes, cut_pair, sizes, special, Ghosts::Tilted { resorted: false });
+        }
         self.build_with(atoms, domain, settings, ntypes, cut_pair, sizes, special, Ghosts::Periodic)
     }
 
@@ -736,6 +764,21 @@ impl Neighbor {
                 return Err(NeighError::BadPosition { index: i });
             }
         }
+        // a triclinic box's owned atoms arrive as box fractions: kept for their images, and
+        // placed in the box
+        let tilted = matches!(ghosts, Ghosts::Tilted { .. });
+        let mut lamda: Vec<[f64; 3]> = Vec::new();
+        if tilted {
+            lamda = atoms.x[..n].to_vec();
+            if let Ghosts::Tilted { resorted: true } = ghosts {
+                for l in &mut lamda {
+                    *l = domain.x2lamda(domain.lamda2x(*l));
+                }
+            }
+            for (x, l) in atoms.x[..n].iter_mut().zip(&lamda) {
+                *x = domain.lamda2x(*l);
+            }
+        }
 
         // list cutoffs per type pair
         let stride = ntypes + 1;
@@ -758,9 +801,14 @@ impl Neighbor {
         self.cutneighmax = cutmax;
         let dim = domain.dimension;
         let prd = domain.prd();
+        let periods = domain.periods();
+        // the ghost shell in box fractions (a triclinic box's width across dimension d is
+        // cutmax / reach[d])
+        let reach = domain.lamda_reach(cutmax);
         for d in 0..dim {
-            if domain.periodic(d) && cutmax > prd[d] {
-                return Err(NeighError::BoxTooSmall { dim: d, cut: cutmax, length: prd[d] });
+            if domain.periodic(d) && reach[d] > 1.0 {
+                let length = if tilted { cutmax / reach[d] } else { prd[d] };
+                return Err(NeighError::BoxTooSmall { dim: d, cut: cutmax, length });
             }
         }
 
@@ -777,8 +825,13 @@ impl Neighbor {
             lo = domain.lo;
             hi = domain.hi;
         }
+        // a triclinic box's ghosts lie around it within the shell in box fractions
+        let shell = tilted.then(|| domain.bbox(reach.map(|r| -r), reach.map(|r| 1.0 + r)));
         for d in 0..dim {
-            if domain.periodic(d) {
+            if let Some((blo, bhi)) = shell {
+                lo[d] = lo[d].min(blo[d]);
+                hi[d] = hi[d].max(bhi[d]);
+            } else if domain.periodic(d) {
                 lo[d] = lo[d].min(domain.lo[d]);
                 hi[d] = hi[d].max(domain.hi[d]);
             }
@@ -800,10 +853,42 @@ impl Neighbor {
         let order = local.sort(&grid, &keys);
         atoms.permute(&order);
         let bin_of: Vec<u32> = order.iter().map(|&o| keys[o]).collect();
+        if tilted {
+            lamda = order.iter().map(|&o| lamda[o]).collect();
+        }
 
         // ghosts, dimension by dimension so edges and corners get images too (LAMMPS borders())
         if let Ghosts::Given { make, .. } = &mut ghosts {
             make(atoms, cutmax);
+        } else if tilted && cutmax > 0.0 {
+            // in box fractions, each dimension's images of the atoms and of the images made
+            // so far, as LAMMPS' borders(); placed with lamda2x
+            let mut made: Vec<(usize, [i8; 3], [f64; 3])> = Vec::new();
+            for d in 0..dim {
+                if !domain.periodic(d) {
+                    continue;
+                }
+                let count = made.len();
+                for k in 0..n + count {
+                    let (owner, shift, l) = if k < n { (k, [0i8; 3], lamda[k]) } else { made[k - n] };
+                    if l[d] < reach[d] {
+                        let (mut s, mut g) = (shift, l);
+                        s[d] = 1;
+                        g[d] += 1.0;
+                        made.push((owner, s, g));
+                    }
+                    if l[d] >= 1.0 - reach[d] {
+                        let (mut s, mut g) = (shift, l);
+                        s[d] = -1;
+                        g[d] -= 1.0;
+                        made.push((owner, s, g));
+                    }
+                }
+            }
+            atoms.reserve(made.len());
+            for (owner, s, g) in made {
+                atoms.push_ghost_at(owner, s, domain.lamda2x(g));
+            }
         } else if cutmax > 0.0 {
             for d in 0..dim {
                 if !domain.periodic(d) {
@@ -826,12 +911,12 @@ impl Neighbor {
                     if near_lo {
                         let mut s = shift;
                         s[d] = 1;
-                        atoms.push_ghost(owner, s, prd);
+                        atoms.push_ghost(owner, s, periods);
                     }
                     if near_hi {
                         let mut s = shift;
                         s[d] = -1;
-                        atoms.push_ghost(owner, s, prd);
+                        atoms.push_ghost(owner, s, periods);
                     }
                 }
             }
@@ -879,6 +964,8 @@ impl Neighbor {
         // sub-domain of a rank of a decomposed run
         let ghost_faces: Vec<(usize, f64, f64)> = match &ghosts {
             Ghosts::Periodic => (0..dim).filter(|&d| domain.periodic(d)).map(|d| (d, domain.lo[d], domain.hi[d])).collect(),
+            // a tilted face is not a plane of constant x, y or z: every atom looks
+            Ghosts::Tilted { .. } => (0..dim).filter(|&d| domain.periodic(d)).map(|d| (d, f64::INFINITY, f64::NEG_INFINITY)).collect(),
             Ghosts::Given { sub, .. } => (0..dim).map(|d| (d, sub.0[d], sub.1[d])).collect(),
         };
         let a: &Atoms = atoms;
@@ -1064,7 +1151,7 @@ impl Neighbor {
         debug_assert_eq!(self.list.check_slab_invariant(), Ok(()));
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);
-        self.box_hold = (domain.lo, domain.hi);
+        self.corners_hold = domain.corners();
         self.ago = 0;
         self.nbuilds += 1;
         Ok(order)
@@ -1208,7 +1295,7 @@ mod tests {
     fn every_owned_partner_lies_in_the_same_or_the_next_chunk() {
         let mut rand = uniform(12345);
         for (len, n) in [([6.0, 6.0, 6.0], 300), ([40.0, 5.0, 5.0], 2000), ([3.1, 3.1, 30.0], 500)] {
-            let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
+            let domain = Domain::new(3, [0.0; 3], len, [[BoundaryKind::Periodic; 2]; 3]);
             let mut atoms = Atoms::new(AtomFeatures::default());
             for k in 0..n {
                 atoms.push(&NewAtom::at(k as i64 + 1, 1, [rand() * len[0], rand() * len[1], rand() * len[2]]));
@@ -1227,7 +1314,7 @@ mod tests {
     fn size_lists_hold_the_pairs_within_their_radii_sum_and_skin() {
         let mut rand = uniform(777);
         let len = [7.0, 6.0, 5.0];
-        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let domain = Domain::new(3, [0.0; 3], len, [[BoundaryKind::Periodic; 2]; 3]);
         let mut atoms = Atoms::new(AtomFeatures { sphere: true, ..AtomFeatures::default() });
         for k in 0..400 {
             let mut a = NewAtom::at(k as i64 + 1, 1, [rand() * len[0], rand() * len[1], rand() * len[2]]);
@@ -1291,7 +1378,7 @@ mod tests {
     fn acting_partners_give_the_entries_of_the_per_pair_search() {
         let mut rand = uniform(777);
         let len = [7.0, 6.0, 6.5];
-        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: len, boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let domain = Domain::new(3, [0.0; 3], len, [[BoundaryKind::Periodic; 2]; 3]);
         // chains of 10 atoms, IDs in chain order, a random walk of steps near 1
         let (nchain, clen) = (30, 10i64);
         let mut atoms = Atoms::new(AtomFeatures::default());
@@ -1395,7 +1482,7 @@ mod tests {
         // each build O(N^2))
         let g = Grid::new([0.0; 3], [1e19, 400.0, 0.5], 1.1 / 3.0, 2, 1.1).unwrap();
         assert!(g.total as f64 <= Grid::MAX_BINS && g.nb[1] > 1000, "{:?}", g.nb);
-        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [8.4, 8.4, 3.6e9], boundary: [[BoundaryKind::Periodic; 2]; 3] };
+        let domain = Domain::new(3, [0.0; 3], [8.4, 8.4, 3.6e9], [[BoundaryKind::Periodic; 2]; 3]);
         let mut atoms = Atoms::new(AtomFeatures::default());
         atoms.push(&NewAtom::at(1, 1, [1.0, 1.0, 2.0e9]));
         atoms.push(&NewAtom::at(2, 1, [2.0, 1.0, 2.0e9]));
@@ -1411,7 +1498,7 @@ mod tests {
     #[test]
     fn huge_boxes_bin_without_overflow() {
         for l in [1e30, 1e100, 1e308] {
-            let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [l; 3], boundary: [[BoundaryKind::Periodic; 2]; 3] };
+            let domain = Domain::new(3, [0.0; 3], [l; 3], [[BoundaryKind::Periodic; 2]; 3]);
             let mut atoms = Atoms::new(AtomFeatures::default());
             for (k, x) in [[1.0, 1.0, 1.0], [2.0, 1.0, 1.0], [1.0, 1.0, l * 0.9999999]].into_iter().enumerate() {
                 atoms.push(&NewAtom::at(k as i64 + 1, 1, x));
@@ -1421,7 +1508,7 @@ mod tests {
             let pairs: usize = neighbor.list.chunks.iter().map(|c| c.neigh.len()).sum();
             assert_eq!(pairs, 1, "box {l}");
         }
-        let domain = Domain { dimension: 3, lo: [0.0; 3], hi: [4.0; 3], boundary: [[BoundaryKind::Shrink; 2]; 3] };
+        let domain = Domain::new(3, [0.0; 3], [4.0; 3], [[BoundaryKind::Shrink; 2]; 3]);
         let mut atoms = Atoms::new(AtomFeatures::default());
         atoms.push(&NewAtom::at(1, 1, [-1e308, 1.0, 1.0]));
         atoms.push(&NewAtom::at(2, 1, [1e308, 1.0, 1.0]));

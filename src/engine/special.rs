@@ -653,12 +653,7 @@ mod tests {
             let (lists, _) = build_special(&sb, &ids, Topology { bonds: case.bonds, ..Default::default() }).unwrap();
             let periodic: Vec<bool> = case.boundary.split(' ').map(|b| b == "p").collect();
             let kind = |p: bool| if p { BoundaryKind::Periodic } else { BoundaryKind::Fixed };
-            let domain = Domain {
-                dimension: 3,
-                lo: case.box_.map(|b| b[0]),
-                hi: case.box_.map(|b| b[1]),
-                boundary: [0, 1, 2].map(|d| [kind(periodic[d]); 2]),
-            };
+            let domain = Domain::new(3, case.box_.map(|b| b[0]), case.box_.map(|b| b[1]), [0, 1, 2].map(|d| [kind(periodic[d]); 2]));
             let prd = domain.prd();
             let mut f = vec![[0.0f64; 3]; n];
             let mut e = 0.0;

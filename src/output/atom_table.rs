@@ -113,11 +113,11 @@ pub fn state_table(state: &State) -> AtomTable {
     if temperature.is_some() {
         cols.push("temperature");
     }
-    let prd = state.domain.as_ref().map(|d| d.prd()).unwrap_or([0.0; 3]);
+    let periods = state.domain.as_ref().map(|d| d.periods()).unwrap_or_default();
     table(state, &cols, |i, c| match c {
-        "xu" => a.x[i][0] + a.image[i][0] as f64 * prd[0],
-        "yu" => a.x[i][1] + a.image[i][1] as f64 * prd[1],
-        "zu" => a.x[i][2] + a.image[i][2] as f64 * prd[2],
+        "xu" => periods.unmap(a.x[i], a.image[i])[0],
+        "yu" => periods.unmap(a.x[i], a.image[i])[1],
+        "zu" => periods.unmap(a.x[i], a.image[i])[2],
         "vx" => a.v[i][0],
         "vy" => a.v[i][1],
         "vz" => a.v[i][2],

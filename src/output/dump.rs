@@ -334,9 +334,21 @@ impl Dump {
         let dom = w.state.domain()?;
         let mut s = format!("ITEM: TIMESTEP\n{}\nITEM: NUMBER OF {what}\n{}\n", w.state.step, count);
         let bstr: Vec<String> = (0..3).map(|d| format!("{}{}", dom.boundary[d][0].letter(), dom.boundary[d][1].letter())).collect();
-        s += &format!("ITEM: BOX BOUNDS {}\n", bstr.join(" "));
-        for d in 0..3 {
-            s += &format!("{} {}\n", sci16(dom.lo[d]), sci16(dom.hi[d]));
+        match dom.tilt {
+            None => {
+                s += &format!("ITEM: BOX BOUNDS {}\n", bstr.join(" "));
+                for d in 0..3 {
+                    s += &format!("{} {}\n", sci16(dom.lo[d]), sci16(dom.hi[d]));
+                }
+            }
+            Some(tilt) => {
+                // the bounding box, and the tilts xy xz yz in turn
+                let (lo, hi) = dom.bounds();
+                s += &format!("ITEM: BOX BOUNDS xy xz yz {}\n", bstr.join(" "));
+                for d in 0..3 {
+                    s += &format!("{} {} {}\n", sci16(lo[d]), sci16(hi[d]), sci16(tilt[d]));
+                }
+            }
         }
         s += &format!("ITEM: {what} {}\n", self.names.join(" "));
         Ok(s)

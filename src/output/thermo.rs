@@ -152,6 +152,15 @@ pub const KEYWORDS: &[(&str, &str)] = &[
     ("yhi", "Yhi"),
     ("zlo", "Zlo"),
     ("zhi", "Zhi"),
+    ("xy", "Xy"),
+    ("xz", "Xz"),
+    ("yz", "Yz"),
+    ("cella", "Cella"),
+    ("cellb", "Cellb"),
+    ("cellc", "Cellc"),
+    ("cellalpha", "CellAlpha"),
+    ("cellbeta", "CellBeta"),
+    ("cellgamma", "CellGamma"),
     ("xlat", "Xlat"),
     ("ylat", "Ylat"),
     ("zlat", "Zlat"),
@@ -282,6 +291,10 @@ pub fn keyword_value(w: &World, thermo: &Thermo, cpu: f64, name: &str) -> Option
             "yhi" => box_value(&|d| d.hi[1])?,
             "zlo" => box_value(&|d| d.lo[2])?,
             "zhi" => box_value(&|d| d.hi[2])?,
+            "xy" => box_value(&|d| d.tilts()[0])?,
+            "xz" => box_value(&|d| d.tilts()[1])?,
+            "yz" => box_value(&|d| d.tilts()[2])?,
+            "cella" | "cellb" | "cellc" | "cellalpha" | "cellbeta" | "cellgamma" => box_value(&|d| cell(d, name))?,
             "xlat" | "ylat" | "zlat" => {
                 let s = w.state.lattice_scale()?;
                 s[["xlat", "ylat", "zlat"].iter().position(|k| *k == name).unwrap()]
@@ -311,6 +324,27 @@ fn center(s: &str, width: usize) -> String {
     }
     let left = (width - n) / 2;
     format!("{}{}{}", " ".repeat(left), s, " ".repeat(width - n - left))
+}
+
+/// LAMMPS' lattice-cell keywords: the edge lengths a, b, c and the angles between them in
+/// degrees (90 for an orthogonal box).
+fn cell(d: &crate::engine::domain::Domain, name: &str) -> f64 {
+    let h = d.h();
+    let tri = d.triclinic();
+    let b = (h[1] * h[1] + h[5] * h[5]).sqrt();
+    let c = (h[2] * h[2] + h[3] * h[3] + h[4] * h[4]).sqrt();
+    let deg = |cos: f64| cos.acos() * 180.0 / std::f64::consts::PI;
+    match name {
+        "cella" => h[0],
+        "cellb" if tri => b,
+        "cellb" => h[1],
+        "cellc" if tri => c,
+        "cellc" => h[2],
+        _ if !tri => 90.0,
+        "cellalpha" => deg((h[5] * h[4] + h[1] * h[3]) / ((h[1] * h[1] + h[5] * h[5]) * (h[2] * h[2] + h[3] * h[3] + h[4] * h[4])).sqrt()),
+        "cellbeta" => deg(h[4] / c),
+        _ => deg(h[5] / b),
+    }
 }
 
 impl Thermo {

@@ -82,7 +82,9 @@ impl Simulation {
     }
 
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
-        let what = if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
+        let what = if self.state.domain.as_ref().is_some_and(|d| d.triclinic()) {
+            Some("a triclinic box".to_string())
+        } else if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
             Some(format!("bond_style {}", b.name()))
         } else if let Some(b) = self.bond_style.as_ref().filter(|b| b.as_bpm().is_some_and(|p| p.shared().volume)) {
             // each bond reads both atoms' volume sums: a ghost's would have to travel mid-pass

@@ -221,11 +221,22 @@ impl Simulation {
         }
         let Some(domain) = self.state.domain.as_mut() else { return Err(RunError::new(step, "no simulation box")) };
         self.state.atoms.clear_ghosts();
+        // a triclinic box wraps its atoms in box fractions and keeps them so until the list
+        // build places them again (LAMMPS' x2lamda, pbc, ..., lamda2x: their last bits change)
+        let tilted = domain.triclinic();
         for i in 0..self.state.atoms.nlocal {
             let (x, img) = (&mut self.state.atoms.x[i], &mut self.state.atoms.image[i]);
-            domain.wrap(x, img);
+            if tilted {
+                *x = domain.x2lamda(*x);
+                domain.wrap_lamda(x, img);
+            } else {
+                domain.wrap(x, img);
+            }
         }
-        self.state.shrink_wrap();
+        if !tilted {
+            // (a triclinic box with shrink-wrapped faces is refused when it is made)
+            self.state.shrink_wrap();
+        }
         let lost = crate::sim::stability::check_lost(self);
         if self.state.any_ranks(lost.is_err()) {
             return Err(lost.err().unwrap_or_else(|| RunError::new(step, "another rank lost atoms")));
@@ -274,7 +285,17 @@ impl Simulation {
                 let given = crate::engine::neighbor::Ghosts::Given { sub, make: &mut make };
                 self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, given)
             }
-            None => self.state.neighbor.build(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table),
+            None => {
+                let kind = if tilted {
+                    // the list cutoff the build will find, for LAMMPS' sort bins
+                    let pair_cut = (1..=self.state.ntypes).flat_map(|i| (1..=self.state.ntypes).map(move |j| (i, j))).map(|(i, j)| cut(i, j)).fold(0.0, f64::max);
+                    let cutneighmax = pair_cut + self.state.neigh_settings.skin;
+                    crate::engine::neighbor::Ghosts::Tilted { resorted: self.state.lammps_order.sorts(domain, cutneighmax, step, sort) }
+                } else {
+                    crate::engine::neighbor::Ghosts::Periodic
+                };
+                self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, kind)
+            }
         };
         let thick = match (&self.state.decomp, self.state.distributed) {
             (Some(d), Some(_)) => d.check_thickness(domain, self.state.neighbor.cutneighmax.max(self.state.comm_cutoff)).map_err(|e| RunError::new(step, e)),
@@ -719,7 +740,7 @@ impl Simulation {
                 }
             }
             _ => {
-                self.state.atoms.forward_positions(domain.prd());
+                self.state.atoms.forward_positions(domain.periods());
                 if with_state {
                     self.state.atoms.forward_state();
                 }

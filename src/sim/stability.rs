@@ -342,11 +342,13 @@ pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
     let a = &sim.state.atoms;
     let mut gone = vec![false; a.nlocal];
     let mut first: Option<(usize, usize)> = None;
+    // (a triclinic box's atoms are in box fractions here, during a rebuild)
+    let (lo, hi) = if domain.triclinic() { ([0.0; 3], [1.0; 3]) } else { (domain.lo, domain.hi) };
     for i in 0..a.nlocal {
         for d in 0..3 {
             let [blo, bhi] = domain.boundary[d];
             let x = a.x[i][d];
-            let out = (blo == BoundaryKind::Fixed && x < domain.lo[d]) || (bhi == BoundaryKind::Fixed && x >= domain.hi[d]) || !x.is_finite();
+            let out = (blo == BoundaryKind::Fixed && x < lo[d]) || (bhi == BoundaryKind::Fixed && x >= hi[d]) || !x.is_finite();
             if out {
                 gone[i] = true;
                 first.get_or_insert((i, d));
@@ -378,13 +380,14 @@ pub fn check_lost(sim: &mut Simulation) -> Result<(), RunError> {
     Err(RunError::new(
         sim.state.step,
         format!(
-            "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {} = {}, box {}..{}){}",
+            "lost atoms: {n_lost} of {} left the box through a fixed boundary (first: atom {} at {}{} = {}, box {}..{}){}",
             a.nlocal,
             a.tag[i],
+            if domain.triclinic() { "box fraction " } else { "" },
             ["x", "y", "z"][d],
             a.x[i][d],
-            domain.lo[d],
-            domain.hi[d],
+            lo[d],
+            hi[d],
             dt_hint(sim)
         ),
     ))

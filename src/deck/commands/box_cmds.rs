@@ -57,6 +57,9 @@ pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     t.nimpropertypes = b.improper_types;
     let d = &b.domain;
     sim.out.print(&format!("Created {}", crate::deck::box_text(d)));
+    if let Ok(Some(w)) = crate::deck::tilt_check(d) {
+        sim.out.print(&w);
+    }
     sim.state.box_initial = Some(b.unpadded);
     sim.state.domain = Some(b.domain);
     Ok(())

@@ -362,7 +362,7 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
     st.newton_pair = s.newton_pair;
     st.newton_bond = s.newton_bond;
     st.comm_vel = s.comm_vel;
-    let domain = |b: &Bounds| Domain { dimension: s.dimension as usize, lo: b.lo, hi: b.hi, boundary: c.boundary };
+    let domain = |b: &Bounds| Domain::new(s.dimension as usize, b.lo, b.hi, c.boundary);
     st.domain = Some(domain(&r.bounds.current));
     st.box_initial = r.bounds.initial.as_ref().map(domain);
     st.ntypes = r.types.atom_types;

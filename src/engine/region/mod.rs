@@ -55,6 +55,11 @@ pub trait Shape: Debug + Send + Sync {
     fn simple(&self) -> Option<Simple> {
         None
     }
+    /// A prism's lower and upper bounds and tilts `[xy, xz, yz]` (create_box makes a
+    /// triclinic box of it).
+    fn prism(&self) -> Option<([f64; 3], [f64; 3], [f64; 3])> {
+        None
+    }
     /// Union and intersect: whether all sub-regions must match, and the sub-regions (taken into
     /// the [`Region`], which keeps their motion state).
     fn boolean(&self) -> Option<(bool, Vec<Region>)> {
@@ -311,6 +316,14 @@ impl Region {
         matches!(self.kind, Kind::Shape(_)) && self.open_faces.contains(&true)
     }
 
+    /// [`Shape::prism`] of this region.
+    pub fn prism(&self) -> Option<([f64; 3], [f64; 3], [f64; 3])> {
+        match &self.kind {
+            Kind::Shape(shape) => shape.prism(),
+            Kind::Boolean { .. } => None,
+        }
+    }
+
     /// The block or cylinder this region is, if it is one (`side in`, no open faces, still).
     pub fn simple(&self) -> Option<Simple> {
         if !self.interior || self.open_faces.contains(&true) || self.is_dynamic() {
@@ -462,7 +475,7 @@ pub(crate) mod tests {
     use crate::engine::lattice::tests::cmd;
 
     pub(crate) fn boxed(lo: [f64; 3], hi: [f64; 3]) -> Domain {
-        Domain { dimension: 3, lo, hi, boundary: [[BoundaryKind::Periodic; 2]; 3] }
+        Domain::new(3, lo, hi, [[BoundaryKind::Periodic; 2]; 3])
     }
 
     pub(crate) fn reg(line: &str, d: Option<&Domain>, l: Option<&Lattice>, ex: &[Region]) -> DResult<Region> {

@@ -157,6 +157,9 @@ impl Prism {
 }
 
 impl Shape for Prism {
+    fn prism(&self) -> Option<([f64; 3], [f64; 3], [f64; 3])> {
+        Some((self.lo.into(), self.hi.into(), self.tilt.into()))
+    }
     fn inside(&self, x: &Vec3) -> bool {
         // Row by row as LAMMPS' RegPrism; the zeros below the diagonal only add signed zeros,
         // which the range test does not see.

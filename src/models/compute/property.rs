@@ -121,10 +121,23 @@ impl Field {
             Field::X(d) => a.x[i][d],
             Field::Xs(d) => {
                 let dom = state.domain.as_ref().unwrap();
+                if dom.triclinic() {
+                    return dom.x2lamda(a.x[i])[d];
+                }
                 (a.x[i][d] - dom.lo[d]) / (dom.hi[d] - dom.lo[d])
             }
             Field::Xu(d) => {
                 let dom = state.domain.as_ref().unwrap();
+                if dom.triclinic() {
+                    // LAMMPS' dump custom adds the image terms one by one (Domain::unmap sums
+                    // them first)
+                    let (h, m) = (dom.h(), a.image[i].map(|k| k as f64));
+                    return match d {
+                        0 => a.x[i][0] + h[0] * m[0] + h[5] * m[1] + h[4] * m[2],
+                        1 => a.x[i][1] + h[1] * m[1] + h[3] * m[2],
+                        _ => a.x[i][2] + h[2] * m[2],
+                    };
+                }
                 a.x[i][d] + a.image[i][d] as f64 * (dom.hi[d] - dom.lo[d])
             }
             Field::Image(d) => a.image[i][d] as f64,

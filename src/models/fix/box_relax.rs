@@ -14,7 +14,7 @@ use dmhs_parser::{Args, Command, DResult, Word};
 pub const SYNTAX: &str = "fix ID group box/relax iso|aniso|tri P | x|y|z|xy|xz|yz P ... [couple none|xyz|xy|yz|xz] [dilate all|partial] [vmax V] [nreset N] [scalexy|scalexz|scaleyz yes|no] [fixedpoint x y z]";
 
 /// How the box lengths move: one length for all (iso), each on its own (aniso); tilts
-/// (triclinic) need a triclinic box, which dmhs does not have.
+/// (triclinic) are not supported yet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum PStyle {
     Iso,
@@ -50,6 +50,9 @@ impl FixBoxRelax {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let d = state.domain().map_err(|m| a.error_command(format!("fix box/relax: {m}"), "no box"))?;
+        if d.triclinic() {
+            return Err(a.error_command("fix box/relax on a triclinic box is not supported yet", "triclinic box"));
+        }
         let dimension = state.dimension;
         if a.is_empty() {
             return Err(a.missing("a pressure keyword (iso, aniso, tri, x, y, z, xy, xz, yz)"));
@@ -138,7 +141,7 @@ impl FixBoxRelax {
             }
         }
         if let Some(w) = off_diagonal {
-            return Err(a.error_at(w, "cannot relax Pxy/Pxz/Pyz in fix box/relax with a non-triclinic box (dmhs has orthogonal boxes only)", "needs a triclinic box"));
+            return Err(a.error_at(w, "cannot relax Pxy/Pxz/Pyz in fix box/relax: a triclinic box's tilts are not supported there yet", "needs a triclinic box"));
         }
         let same = |i: usize, j: usize| p_target[i] == p_target[j];
         let couple_mismatch = pcouple.mismatch(dimension, same);

@@ -69,6 +69,9 @@ impl FixDeform {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let d = state.domain().map_err(|m| a.error_command(format!("fix deform: {m}"), "no box"))?;
+        if d.triclinic() {
+            return Err(a.error_command("fix deform on a triclinic box is not supported yet", "triclinic box"));
+        }
         let nevery = a.i64_in("N", 1, i32::MAX as i64)?;
         let mut set: [Dim; 3] = Default::default();
         let mut controlled: Vec<(usize, &Word)> = Vec::new();

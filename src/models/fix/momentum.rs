@@ -6,7 +6,6 @@
 //! Group functions make them, so the same bits.
 
 use super::{Fix, FixCtx, FixHooks};
-use crate::engine::domain::unmap_prd;
 use crate::engine::group_rotation;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Diagnostic, Word};
@@ -108,11 +107,11 @@ impl Fix for FixMomentum {
             // an empty (dynamic) group has no rotation to remove
             let Some(r) = group_rotation::of_group(state, bit) else { return Ok(()) };
             let (cm, w) = (r.cm, r.omega().map_err(fail)?);
-            let prd = state.domain.as_ref().map_or([0.0; 3], |d| d.prd());
+            let periods = state.domain.as_ref().map_or(Default::default(), |d| d.periods());
             let a = &mut state.atoms;
             for &i in &order {
                 if a.mask[i] & bit != 0 {
-                    group_rotation::remove_rotation(&mut a.v[i], unmap_prd(a.x[i], a.image[i], prd), cm, w);
+                    group_rotation::remove_rotation(&mut a.v[i], periods.unmap(a.x[i], a.image[i]), cm, w);
                 }
             }
         }

@@ -24,7 +24,7 @@ pub const SYNTAX_NPT: &str = "fix ID group npt temp Tstart Tstop Tdamp iso|aniso
 pub const SYNTAX_NPH: &str = "fix ID group nph iso|aniso|x|y|z Pstart Pstop Pdamp ... [couple none|xyz|xy|yz|xz] [ptemp T] [pchain N] [ploop N] [mtk yes|no] [drag f] [dilate all|group-ID] [nreset N] [fixedpoint x y z] [scalexy|scalexz|scaleyz|flip yes|no]";
 
 /// How the box lengths move: together (ISO: `iso`, `couple xyz`, or `couple xy` in 2D) or each
-/// on its own (ANISO). LAMMPS' third style (tilts) needs a triclinic box, which dmhs lacks.
+/// on its own (ANISO). LAMMPS' third style (tilts, on a triclinic box) is not supported yet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum PStyle {
     Iso,
@@ -222,7 +222,7 @@ impl FixNh {
                     first_pressure.get_or_insert(w);
                 }
                 k @ ("tri" | "xy" | "xz" | "yz") => {
-                    return Err(a.error_at(w, format!("fix {style} {k}: the tilt pressures need a triclinic box, and dmhs has orthogonal boxes only"), "use iso, aniso, x, y or z"));
+                    return Err(a.error_at(w, format!("fix {style} {k}: the tilt pressures (a triclinic box's) are not supported yet"), "use iso, aniso, x, y or z"));
                 }
                 "couple" => {
                     pcouple = Couple::parse(&mut a)?;
@@ -280,6 +280,9 @@ impl FixNh {
             return Err(bad(format!("thermostat in fix {style} is incompatible with the ptemp keyword")));
         }
         let d = state.domain().map_err(|m| a.error_command(format!("fix {style}: {m}"), "no box"))?;
+        if d.triclinic() && p_flag.iter().any(|&p| p) {
+            return Err(a.error_command(format!("fix {style} on a triclinic box is not supported yet"), "triclinic box"));
+        }
         if dimension == 2 && pcouple.needs_3d() {
             return Err(bad(format!("invalid fix {style} command for a 2d simulation: couple yz or xz")));
         }

@@ -62,10 +62,10 @@ impl Fix for FixSpringRg {
             return Ok(());
         }
         let term1 = 2.0 * self.k * (1.0 - rg0 / rg);
-        let prd = state.domain.as_ref().map_or([0.0; 3], |d| d.prd());
+        let periods = state.domain.as_ref().map_or(Default::default(), |d| d.periods());
         let (a, type_mass) = (&mut state.atoms, &state.type_mass);
         for i in (0..a.nlocal).filter(|&i| a.mask[i] & self.groupbit != 0) {
-            let u = crate::engine::domain::unmap_prd(a.x[i], a.image[i], prd);
+            let u = periods.unmap(a.x[i], a.image[i]);
             let massfrac = a.mass(i, type_mass) / masstotal;
             for d in 0..3 {
                 a.f[i][d] -= term1 * (u[d] - xcm[d]) * massfrac;

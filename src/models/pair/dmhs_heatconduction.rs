@@ -163,7 +163,7 @@ mod tests {
         // mixed: kappa 2, h 0.8
         assert_eq!(*hc.pairs.get(1, 2), (2.0, 0.8));
         let mut nb = crate::engine::neighbor::Neighbor::default();
-        let dom = crate::engine::domain::Domain { dimension: 3, lo: [-5.0; 3], hi: [5.0; 3], boundary: [[crate::engine::domain::BoundaryKind::Fixed; 2]; 3] };
+        let dom = crate::engine::domain::Domain::new(3, [-5.0; 3], [5.0; 3], [[crate::engine::domain::BoundaryKind::Fixed; 2]; 3]);
         let settings = crate::engine::neighbor::NeighborSettings::new(0.1);
         let cut = |i: usize, j: usize| hc.cutoff(i, j);
         nb.build(&mut atoms, &dom, &settings, 2, &cut, false, &Default::default()).unwrap();

@@ -354,8 +354,8 @@ impl Min {
             }
         } else {
             sim.timers.stamp();
-            let prd = sim.state.domain.as_ref().expect("a box").prd();
-            sim.state.atoms.forward_positions(prd);
+            let periods = sim.state.domain.as_ref().expect("a box").periods();
+            sim.state.atoms.forward_positions(periods);
             if sim.needs_ghost_state() {
                 sim.state.atoms.forward_state();
             }

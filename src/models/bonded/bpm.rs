@@ -16,6 +16,7 @@
 //! (`id1 id2 time x y z x/ref y/ref z/ref`) in fix FIXID (see
 //! `crate::models::fix::store_local`), created by the `bond_style` command.
 
+use crate::engine::domain::Periods;
 use super::{Vec3, Virial};
 use crate::engine::bonded_lists::{Entry, Listed};
 use crate::engine::fields::Field;
@@ -392,14 +393,14 @@ pub fn rank_bond_list(state: &State, copies: &crate::models::bonded::pass::Copie
 
 /// Position of atom `i` at periodic shift `s` (LAMMPS' ghost copy `x + s L`).
 #[inline(always)]
-fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Vec3) -> Vec3 {
+fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Periods) -> Vec3 {
     crate::models::fix::bond_break::image(x[i as usize], s, prd)
 }
 
 /// A listed bond's atoms as LAMMPS computes it, the lower ID first, their positions and
 /// `del = x1 - x2`; `swapped`: atom 1 is the entry's second atom.
 #[inline(always)]
-fn ordered(e: &Entry<2>, x: &[Vec3], tag: &[i64], prd: Vec3) -> ([u32; 2], [Vec3; 2], Vec3, bool) {
+fn ordered(e: &Entry<2>, x: &[Vec3], tag: &[i64], prd: Periods) -> ([u32; 2], [Vec3; 2], Vec3, bool) {
     let swapped = tag[e.atoms[1] as usize] < tag[e.atoms[0] as usize];
     let (a, b) = if swapped { (1, 0) } else { (0, 1) };
     let (p1, p2) = (image(x, e.atoms[a], e.shift[a], prd), image(x, e.atoms[b], e.shift[b], prd));
@@ -436,7 +437,7 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     if state.bonded_lists.lammps_bonds.is_empty() && !distributed {
         return Ok((BondedTally::default(), vec![]));
     }
-    let prd = state.domain.as_ref().unwrap().prd();
+    let prd = state.domain.as_ref().unwrap().periods();
     // the records whose reference state the pass rewrote (their list copies follow after it)
     let mut rewritten: Option<Vec<bool>> = None;
     // LAMMPS' store_data: every bond's reference at the first evaluation of the style
@@ -709,7 +710,7 @@ impl SideSums {
 
 /// LAMMPS' calculate_vol over the listed bonds at the current positions: each atom's volume,
 /// and the volumes of bonds whose reference is unset (created since), for vol0.
-fn bond_volumes(state: &State, list: &[Listed], prd: Vec3) -> (Vec<f64>, Option<Vec<f64>>) {
+fn bond_volumes(state: &State, list: &[Listed], prd: Periods) -> (Vec<f64>, Option<Vec<f64>>) {
     let n = state.atoms.nlocal;
     let (mut vol, mut dvol0, mut created) = (SideSums::new(n), SideSums::new(n), false);
     for l in list {
@@ -731,7 +732,7 @@ fn bond_volumes(state: &State, list: &[Listed], prd: Vec3) -> (Vec<f64>, Option<
 
 /// The volumes of this evaluation: vol0 made at the first one, grown by bonds created since,
 /// and vol now.
-fn volumes(state: &State, list: &[Listed], prd: Vec3, first: bool) -> Volumes {
+fn volumes(state: &State, list: &[Listed], prd: Periods, first: bool) -> Volumes {
     let a = &state.atoms;
     let saved = |f: Field| a.field_values(f).map(|v| v[..a.nlocal].to_vec()).unwrap_or_else(|| vec![0.0; a.nlocal]);
     let mut vol0 = if first { bond_volumes(state, list, prd).0 } else { saved(VOL0) };

@@ -3,6 +3,7 @@
 //! atom 2 of an angle or dihedral), with the image's coordinate computed as LAMMPS' ghost
 //! copy is (`x + shift * L`), so displacements match LAMMPS bit for bit.
 
+use crate::engine::domain::Periods;
 use crate::models::bonded::{angle_virial, bond_virial, dihedral_virial, AngleStyle, BondStyle, DihedralStyle};
 use crate::engine::par::lanes::{transpose4, L, LANES};
 use crate::engine::par::{alone, slab_phase, window_phase, AtomsMut, PARALLEL_MIN_WORK};
@@ -102,6 +103,9 @@ pub fn build_bonded_lists(state: &mut State, styles: BondedStyles) -> Result<(),
         };
         // shift of atom `o` that brings it closest to atom `r`, per periodic dimension
         let closest = |r: usize, o: usize| -> [i8; 3] {
+            if domain.triclinic() {
+                return closest_tilted(domain, x[r], x[o]);
+            }
             let mut s = [0i8; 3];
             for d in 0..3 {
                 if domain.periodic(d) {
@@ -297,7 +301,7 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
         if nothing || (!distributed && lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty()) {
             return Ok(BondedTally::default());
         }
-        let prd = state.domain.as_ref().unwrap().prd();
+        let prd = state.domain.as_ref().unwrap().periods();
         let mut f = std::mem::take(&mut state.atoms.f);
         if distributed {
             // ghost forces of this pass alone go back to their owners
@@ -372,10 +376,34 @@ impl BondedTally {
     }
 }
 
+/// The shift of atom `o`'s image nearest to atom `r` in a triclinic box: LAMMPS' minimum
+/// image (z, then y, then x, each period carrying its tilts), counted in periods.
+fn closest_tilted(domain: &crate::engine::domain::Domain, xr: [f64; 3], xo: [f64; 3]) -> [i8; 3] {
+    let p = domain.prd();
+    let [xy, xz, yz] = domain.tilts();
+    let step = [[p[0], 0.0, 0.0], [xy, p[1], 0.0], [xz, yz, p[2]]];
+    let mut dx = [xr[0] - xo[0], xr[1] - xo[1], xr[2] - xo[2]];
+    let mut s = [0i8; 3];
+    for d in [2, 1, 0] {
+        if !domain.periodic(d) {
+            continue;
+        }
+        // a bonded partner lies within a period or two: the loops are short
+        for _ in 0..4 {
+            let sign = if dx[d] > 0.5 * p[d] { 1.0 } else if dx[d] < -0.5 * p[d] { -1.0 } else { break };
+            for k in 0..3 {
+                dx[k] -= sign * step[d][k];
+            }
+            s[d] += sign as i8;
+        }
+    }
+    s
+}
+
 /// What the bonded kernels read.
 pub struct Kernels<'a> {
     x: &'a [[f64; 3]],
-    prd: [f64; 3],
+    prd: Periods,
     /// Entries may carry periodic shifts (the leftovers).
     shifts: bool,
     eflag: bool,
@@ -399,13 +427,9 @@ impl Kernels<'_> {
     /// Chunk entries have no shifts (see `slab`), so their positions are read directly.
     #[inline(always)]
     fn pos(&self, i: u32, s: [i8; 3]) -> [f64; 3] {
-        let mut p = self.x[i as usize];
+        let p = self.x[i as usize];
         if self.shifts {
-            for d in 0..3 {
-                if s[d] != 0 {
-                    p[d] += s[d] as f64 * self.prd[d];
-                }
-            }
+            return self.prd.shifted(p, s);
         }
         p
     }
@@ -544,7 +568,7 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, result: &mut crate::e
         None => &mut *result,
     };
     // every entry at its shifts (chunk entries have none)
-    let k = Kernels { x: &state.atoms.x, prd: dom.prd(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+    let k = Kernels { x: &state.atoms.x, prd: dom.periods(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
     if let Some(style) = styles.bond {
         for e in lists.bonds.all() {
             let del = sub(k.pos(e.atoms[0], e.shift[0]), k.pos(e.atoms[1], e.shift[1]));
@@ -624,7 +648,7 @@ mod tests {
         entries.push(Entry { atoms: [n - 4, n - 3, n - 2], shift: [[0; 3]; 3], typ: 1, rec: 61 });
         entries.push(Entry { atoms: [n - 4, n - 3, n - 4], shift: [[0; 3]; 3], typ: 2, rec: 62 });
         entries.push(Entry { atoms: [n - 1, n - 3, n - 2], shift: [[0; 3]; 3], typ: 2, rec: 63 });
-        let k = Kernels { x: &x, prd: [3.0, 3.5, 4.0], shifts: true, eflag: true, bond: None, angle: None, dihedral: None };
+        let k = Kernels { x: &x, prd: Periods { prd: [3.0, 3.5, 4.0], tilt: None }, shifts: true, eflag: true, bond: None, angle: None, dihedral: None };
         // every length of a last partial batch
         for len in [entries.len(), entries.len() - 1, entries.len() - 2, entries.len() - 3, 1] {
             let (mut f_one, mut f_lanes) = (vec![[0.0; 3]; x.len()], vec![[0.0; 3]; x.len()]);

@@ -41,7 +41,7 @@ impl Compute for ComputeDisplaceAtom {
     fn peratom(&self, w: &World) -> Result<PerAtom, String> {
         let s = w.state;
         let d = s.domain.as_ref().ok_or("no simulation box")?;
-        let (at, prd) = (&s.atoms, d.prd());
+        let (at, periods) = (&s.atoms, d.periods());
         let mut data = vec![0.0; 4 * at.nlocal];
         for i in 0..at.nlocal {
             if at.mask[i] & self.groupbit == 0 {
@@ -49,10 +49,8 @@ impl Compute for ComputeDisplaceAtom {
             }
             // an atom created later has no reference: it has not moved (LAMMPS' set_arrays)
             let Some(o) = self.original.get(&at.tag[i]) else { continue };
-            let img = at.image[i];
-            let dx = at.x[i][0] + img[0] as f64 * prd[0] - o[0];
-            let dy = at.x[i][1] + img[1] as f64 * prd[1] - o[1];
-            let dz = at.x[i][2] + img[2] as f64 * prd[2] - o[2];
+            let u = periods.unmap(at.x[i], at.image[i]);
+            let (dx, dy, dz) = (u[0] - o[0], u[1] - o[1], u[2] - o[2]);
             let r = &mut data[4 * i..4 * i + 4];
             r[0] = dx;
             r[1] = dy;

@@ -91,16 +91,14 @@ impl Compute for ComputeMsd {
             0.0
         };
         let nav = r.naverage as f64;
-        let (at, prd) = (&s.atoms, d.prd());
+        let (at, periods) = (&s.atoms, d.periods());
         let mut msd = [0.0; 4];
         for i in 0..at.nlocal {
             if at.mask[i] & self.groupbit == 0 {
                 continue;
             }
-            let img = at.image[i];
-            let xt = at.x[i][0] + img[0] as f64 * prd[0] - cm[0];
-            let yt = at.x[i][1] + img[1] as f64 * prd[1] - cm[1];
-            let zt = at.x[i][2] + img[2] as f64 * prd[2] - cm[2];
+            let u = periods.unmap(at.x[i], at.image[i]);
+            let (xt, yt, zt) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
             // an atom that joined the group later starts from where it is (LAMMPS' set_arrays)
             let o = r.x.entry(at.tag[i]).or_insert(at.x[i]);
             if self.average {

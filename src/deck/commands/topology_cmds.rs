@@ -135,13 +135,15 @@ fn many(sim: &mut Simulation, cmd: &Command, groups: [u32; 2], typ: usize, range
     let (rminsq, rmaxsq) = (range[0] * range[0], range[1] * range[1]);
     // candidates: atoms in either group, binned at rmax (a bin of at least 1e-12 of the box)
     let cand: Vec<usize> = (0..n).filter(|&i| at.mask[i] & (groups[0] | groups[1]) != 0).collect();
-    let prd = domain.prd();
+    // (a triclinic box is binned in box fractions, by its widths across each dimension)
+    let prd = if domain.triclinic() { domain.lamda_reach(1.0).map(|r| 1.0 / r) } else { domain.prd() };
     let dim = domain.dimension;
     let nbin: Vec<usize> = (0..3).map(|d| if d < dim { ((prd[d] / range[1].max(1e-12 * prd[d])).floor() as usize).clamp(1, 1 << 10) } else { 1 }).collect();
     let bin_of = |x: [f64; 3]| -> [usize; 3] {
         let mut b = [0usize; 3];
+        let (x, lo, len) = if domain.triclinic() { (domain.x2lamda(x), [0.0; 3], [1.0; 3]) } else { (x, domain.lo, prd) };
         for d in 0..dim {
-            let f = ((x[d] - domain.lo[d]) / prd[d] * nbin[d] as f64).floor();
+            let f = ((x[d] - lo[d]) / len[d] * nbin[d] as f64).floor();
             b[d] = (f.max(0.0) as usize).min(nbin[d] - 1);
         }
         b

@@ -14,7 +14,7 @@ use dmhs::deck::{run_text, DeckOptions};
 mod thermo_tables;
 use thermo_tables::table;
 
-const DECKS: [&str; 23] = ["rigid_clumps_flags", "rigid_small_custom", "rigid_read_data_fix", "rigid_small_infile", "rigid_small_reinit", "rigid_gravity_bodies", "rigid_pour_gravity", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
+const DECKS: [&str; 24] = ["rigid_small_tri", "rigid_clumps_flags", "rigid_small_custom", "rigid_read_data_fix", "rigid_small_infile", "rigid_small_reinit", "rigid_gravity_bodies", "rigid_pour_gravity", "rigid_clumps_infile", "rigid_custom_gmask", "rigid_nve_nvt_flags", "rigid_group_langevin", "rigid_nvt_npt_clumps", "rigid_single_2d", "rigid_small_clumps", "rigid_small_2d", "rigid_small_gran", "rigid_small_langevin", "rigid_nve_small_clumps", "rigid_nvt_small_clumps", "rigid_nvt_small_2d", "rigid_npt_small_clumps", "rigid_nph_small_2d", "rigid_deposit"];
 
 thermo_tables::thermo_table_tests!(DECKS);
 

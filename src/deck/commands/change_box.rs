@@ -1,9 +1,9 @@
-//! `change_box group-ID x|y|z final lo hi | delta dlo dhi | scale f  boundary x y z  remap [x]
-//! set  [units lattice|box]`, as LAMMPS' ChangeBox for an orthogonal box: atoms are first
-//! wrapped into the current box (and shrink-wrapped faces reset), the parameters are applied
-//! in the order given, `remap` maps the group's atoms from the box saved last (at the start, by
-//! `set` or by the previous `remap`) to the current one through fractional coordinates, and
-//! at the end every owned atom is remapped into a periodic box.
+//! `change_box group-ID x|y|z final lo hi | delta dlo dhi | scale f  xy|xz|yz final t | delta dt
+//! boundary x y z  ortho  triclinic  remap [x]  set  [units lattice|box]`, as LAMMPS'
+//! ChangeBox: atoms are first wrapped into the current box (and shrink-wrapped faces reset),
+//! the parameters are applied in the order given, `remap` maps the group's atoms from the box
+//! saved last (at the start, by `set` or by the previous `remap`) to the current one through
+//! box fractions, and at the end every owned atom is remapped into a periodic box.
 
 use super::need_box;
 use crate::engine::boundary::reset_shrink_wrap;
@@ -11,11 +11,15 @@ use crate::engine::domain::Domain;
 use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 
-const SYNTAX: &str = "change_box group-ID  x|y|z final lo hi | delta dlo dhi | scale factor  boundary x y z  remap [x]  set ... [units lattice|box]";
+const SYNTAX: &str = "change_box group-ID  x|y|z final lo hi | delta dlo dhi | scale factor  xy|xz|yz final t | delta dt  boundary x y z  ortho  triclinic  remap [x]  set ... [units lattice|box]";
 
 enum Op<'a> {
     /// dimension, flavour (final/delta/scale) and its values (lo, hi or the factor twice)
     Xyz(usize, usize, [f64; 2]),
+    /// tilt (0 xy, 1 xz, 2 yz), final (or delta), value
+    Tilt(usize, bool, f64, &'a Word),
+    /// `ortho` (false) or `triclinic` (true)
+    Shape(bool, &'a Word),
     Boundary(&'a [Word]),
     Remap,
     Set,
@@ -29,7 +33,7 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     let dim = sim.state.dimension;
     let mut ops = vec![];
     let mut lattice_units = true;
-    const PARAMS: &[&str] = &["x", "y", "z", "boundary", "remap", "set", "units"];
+    const PARAMS: &[&str] = &["x", "y", "z", "xy", "xz", "yz", "boundary", "ortho", "triclinic", "remap", "set", "units"];
     if a.peek().is_none() {
         return Err(Diagnostic::at(cmd.span, "change_box needs at least one parameter", "nothing to change").with_help(format!("syntax: {SYNTAX}")));
     }
@@ -68,8 +72,19 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             }
             "set" => ops.push(Op::Set),
             "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
-            "xy" | "xz" | "yz" | "ortho" | "triclinic" => {
-                return Err(a.error_at(w, format!("change_box {} is not supported: dmhs boxes are orthogonal", w.text), "not supported"));
+            "xy" | "xz" | "yz" => {
+                let k = ["xy", "xz", "yz"].iter().position(|t| *t == w.text).unwrap();
+                if dim == 2 && k > 0 {
+                    return Err(a.error_at(w, "Cannot change_box in xz or yz for 2d simulation", "z tilt in 2d"));
+                }
+                let flavor = a.choice("change style", &["final", "delta"])?;
+                ops.push(Op::Tilt(k, flavor == 0, a.f64("tilt")?, w));
+            }
+            "ortho" | "triclinic" => {
+                if !sim.dumps.is_empty() {
+                    return Err(a.error_at(w, "Cannot change box ortho/triclinic with dumps defined", "a dump is defined"));
+                }
+                ops.push(Op::Shape(w.text == "triclinic", w));
             }
             _ => return Err(a.unknown_keyword(w, PARAMS)),
         }
@@ -115,6 +130,30 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 st.box_initial = Some(domain.clone());
                 sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
             }
+            Op::Tilt(k, fin, v, w) => {
+                let Some(tilt) = domain.tilt.as_mut() else {
+                    return Err(Diagnostic::at(w.span, "Cannot change box tilt factors for orthogonal box", "orthogonal box").with_help("make it triclinic first: change_box all triclinic"));
+                };
+                // xy and xz in x lattice spacings, yz in y ones
+                let v = scale[if *k == 2 { 1 } else { 0 }] * v;
+                tilt[*k] = if *fin { v } else { tilt[*k] + v };
+                if let Some(m) = crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(w.span, e, "z tilt in 2d"))? {
+                    sim.out.print(&m);
+                }
+                st.box_initial = Some(domain.clone());
+                sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
+            }
+            Op::Shape(tri, w) => {
+                if !tri && domain.tilts() != [0.0; 3] {
+                    return Err(Diagnostic::at(w.span, "Cannot change box to orthogonal when tilt is non-zero", "tilted box"));
+                }
+                if *tri && (0..3).any(|d| domain.boundary[d].iter().any(|b| matches!(b, crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin))) {
+                    return Err(Diagnostic::at(w.span, "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet", "use p or f boundaries"));
+                }
+                domain.tilt = tri.then_some([0.0; 3]);
+                st.box_initial = Some(domain.clone());
+                sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
+            }
             Op::Boundary(words) => {
                 domain.boundary = super::settings::parse_boundary(words, dim)?;
                 st.boundary = domain.boundary;
@@ -156,6 +195,11 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
 /// A point's fractional coordinates in `from`, placed in `to` (LAMMPS x2lamda with the saved
 /// box then lamda2x with the current one; h_inv = 1/prd as LAMMPS stores it).
 fn remap_point(x: [f64; 3], from: &Domain, to: &Domain) -> [f64; 3] {
+    if from.triclinic() || to.triclinic() {
+        let mut y = x;
+        crate::engine::domain::Dilation::new(from, to).apply(&mut y);
+        return y;
+    }
     let (pf, pt) = (from.prd(), to.prd());
     std::array::from_fn(|d| {
         let lamda = (1.0 / pf[d]) * (x[d] - from.lo[d]);

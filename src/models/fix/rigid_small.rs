@@ -800,7 +800,7 @@ impl FixRigidSmall {
     /// move, in LAMMPS' local order (the other half comes from the other call of the step).
     fn set_atoms(&mut self, state: &mut State, with_x: bool) -> Result<(), String> {
         self.refresh_local(state);
-        let prd = state.domain()?.prd();
+        let periods = state.domain()?.periods();
         let dtf = 0.5 * state.dt * state.units.ftm2v;
         let per_atom_mass = state.atoms.features.per_atom_mass();
         let order = state.lammps_order.indices(state.atoms.nlocal);
@@ -810,7 +810,7 @@ impl FixRigidSmall {
             let Some(m) = members[i] else { continue };
             let b = &bodies[m.body];
             let xbox = Self::xcmimage(a.image[i], b.image);
-            let x0 = [a.x[i][0] + xbox[0] as f64 * prd[0], a.x[i][1] + xbox[1] as f64 * prd[1], a.x[i][2] + xbox[2] as f64 * prd[2]];
+            let x0 = periods.unmap(a.x[i], xbox);
             let v0 = a.v[i];
             let d = quat::matvec_cols(&b.ex, &b.ey, &b.ez, &m.displace);
             a.v[i] = [
@@ -819,10 +819,16 @@ impl FixRigidSmall {
                 b.omega[0] * d[1] - b.omega[1] * d[0] + b.vcm[2],
             ];
             if with_x {
-                let mut x = d;
-                for k in 0..3 {
-                    x[k] += b.xcm[k] - xbox[k] as f64 * prd[k];
-                }
+                // back by the atom's images, as LAMMPS: xcm - xbox a - ybox b - zbox c
+                let (p, m) = (periods.prd, xbox.map(|k| k as f64));
+                let x = match periods.tilt {
+                    None => [d[0] + (b.xcm[0] - m[0] * p[0]), d[1] + (b.xcm[1] - m[1] * p[1]), d[2] + (b.xcm[2] - m[2] * p[2])],
+                    Some([xy, xz, yz]) => [
+                        d[0] + (b.xcm[0] - m[0] * p[0] - m[1] * xy - m[2] * xz),
+                        d[1] + (b.xcm[1] - m[1] * p[1] - m[2] * yz),
+                        d[2] + (b.xcm[2] - m[2] * p[2]),
+                    ],
+                };
                 a.x[i] = x;
             }
             if m.sphere {

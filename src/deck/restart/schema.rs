@@ -99,6 +99,9 @@ pub struct BoxSection {
 pub struct Bounds {
     pub lo: [f64; 3],
     pub hi: [f64; 3],
+    /// A triclinic box's `[xy, xz, yz]` (absent for an orthogonal box).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilt: Option<[f64; 3]>,
 }
 
 #[derive(Serialize, Deserialize)]

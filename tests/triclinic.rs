@@ -102,3 +102,21 @@ fn bad_triclinic_input_is_an_error() {
     let ortho = "units lj\nregion b block 0 4 0 4 0 4\ncreate_box 1 b\n";
     common::assert_located_errors(ortho, &[("change_box all xy final 1\n", "Cannot change box tilt factors for orthogonal box"), ("fix 1 all deform 1 xy erate 0.1\n", "require triclinic box")]);
 }
+
+/// A restart file keeps the tilts: the run read back continues with the same box.
+#[test]
+fn restart_files_keep_the_tilts() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("tri.restart");
+    let opts = dmhs::deck::DeckOptions { screen: false, ..Default::default() };
+    let write = format!(
+        "units lj\nlattice fcc 0.8442\nregion box prism 0 3 0 3 0 3 1.0 0.5 -0.5\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\nfix 1 all nve\nrun 5\nwrite_restart {}\n",
+        file.display()
+    );
+    let first = dmhs::deck::run_text("w.deck", &write, &opts).map_err(|f| f.rendered).unwrap();
+    let read = format!("read_restart {}\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0 2.5\n", file.display());
+    let second = dmhs::deck::run_text("r.deck", &read, &opts).map_err(|f| f.rendered).unwrap();
+    let (a, b) = (first.sim.state.domain.as_ref().unwrap(), second.sim.state.domain.as_ref().unwrap());
+    assert!(a.tilt.is_some());
+    assert_eq!((a.lo, a.hi, a.tilt), (b.lo, b.hi, b.tilt));
+}

@@ -296,22 +296,19 @@ impl FixDeform {
                     }
                 }
                 if d.periodic(0) {
-                    if fxz * xinv < -0.5 {
-                        fxz += xprd;
-                        n = 1;
-                    }
-                    if fxz * xinv > 0.5 {
-                        fxz -= xprd;
-                        n = -1;
-                    }
-                    if fxy * xinv < -0.5 {
-                        fxy += xprd;
-                        m = 1;
-                    }
-                    if fxy * xinv > 0.5 {
-                        fxy -= xprd;
-                        m = -1;
-                    }
+                    // xz, then xy, each by one x length (LAMMPS' two separate tests)
+                    let back = |t: &mut f64, flag: &mut i32| {
+                        if *t * xinv < -0.5 {
+                            *t += xprd;
+                            *flag = 1;
+                        }
+                        if *t * xinv > 0.5 {
+                            *t -= xprd;
+                            *flag = -1;
+                        }
+                    };
+                    back(&mut fxz, &mut n);
+                    back(&mut fxy, &mut m);
                 }
                 if m != 0 || n != 0 || p != 0 {
                     self.pending_flip = Some(([fxy, fxz, fyz], [m, n, p], step + 1));

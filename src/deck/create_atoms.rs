@@ -101,11 +101,8 @@ pub fn create_box(
     // 1e-4 of the box length, so lattice sites on those faces fall inside the box.
     let mut unpadded = Domain::new(dimension, lo, hi, boundary);
     if let Some((_, _, tilt)) = prism {
-        if (0..3).any(|d| matches!(boundary[d][0], BoundaryKind::Shrink | BoundaryKind::ShrinkMin) || matches!(boundary[d][1], BoundaryKind::Shrink | BoundaryKind::ShrinkMin)) {
-            return Err(a.error_at(rw, "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet", "use p or f boundaries"));
-        }
         unpadded.tilt = Some(tilt);
-        crate::deck::tilt_check(&unpadded).map_err(|e| a.error_at(rw, e, "z tilt in 2d"))?;
+        crate::deck::tilt_check(&unpadded).map_err(|e| a.error_at(rw, e, "triclinic box"))?;
     }
     let domain = crate::engine::boundary::pad_shrink_faces(&unpadded);
     let mut out = CreateBox {

@@ -185,9 +185,6 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     if o.add.is_some() && (h.tilt.is_some() || tri_now) {
         return Err(Diagnostic::at(cmd.span, "read_data add with a triclinic box (in the file or the system) is not supported yet", "triclinic box"));
     }
-    if h.tilt.is_some() && (0..3).any(|d| sim.state.boundary[d].iter().any(|b| matches!(b, crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin))) {
-        return Err(Diagnostic::at(cmd.span, "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet", "triclinic data file"));
-    }
     if !data.impropers.is_empty() {
         return Err(Diagnostic::at(cmd.span, "impropers are not supported yet", "data file has Impropers"));
     }
@@ -251,7 +248,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
         }
     };
     sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
-    if let Some(w) = crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(cmd.span, e, "z tilt in a 2d box"))? {
+    if let Some(w) = crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(cmd.span, e, "triclinic box"))? {
         sim.out.print(&w);
     }
     sim.state.box_initial = Some(domain.clone());

@@ -147,15 +147,15 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 if !tri && domain.tilts() != [0.0; 3] {
                     return Err(Diagnostic::at(w.span, "Cannot change box to orthogonal when tilt is non-zero", "tilted box"));
                 }
-                if *tri && (0..3).any(|d| domain.boundary[d].iter().any(|b| matches!(b, crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin))) {
-                    return Err(Diagnostic::at(w.span, "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet", "use p or f boundaries"));
-                }
                 domain.tilt = tri.then_some([0.0; 3]);
+                crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(w.span, e, "triclinic box"))?;
                 st.box_initial = Some(domain.clone());
                 sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
             }
             Op::Boundary(words) => {
                 domain.boundary = super::settings::parse_boundary(words, dim)?;
+                // (no shrink-wrapped faces on a triclinic box)
+                crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(words[0].span, e, "triclinic box"))?;
                 st.boundary = domain.boundary;
                 st.box_initial = Some(domain.clone());
                 // image flags of non-periodic dimensions are reset (LAMMPS' warning)

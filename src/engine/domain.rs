@@ -562,6 +562,8 @@ mod tilted_tests {
             assert!((dx[k] - w).abs() < 1e-14, "{dx:?}");
         }
         // ghost images: one exchange per dimension, a shift along y moves x by xy
+        let flat = Periods { prd: [10.0, 5.0, 2.0], tilt: None };
+        assert_eq!(flat.shifted([0.25, 1.0, 3.0], [1, 0, -1]), [10.25, 1.0, 1.0]);
         let p = d.periods();
         assert_eq!(p.shifted([0.0; 3], [0, 1, 0]), [1.5, 4.0, 0.0]);
         assert_eq!(p.shifted([0.0; 3], [1, 0, -1]), [6.0 + 0.7, -0.9, -5.0]);

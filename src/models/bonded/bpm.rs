@@ -393,17 +393,17 @@ pub fn rank_bond_list(state: &State, copies: &crate::models::bonded::pass::Copie
 
 /// Position of atom `i` at periodic shift `s` (LAMMPS' ghost copy `x + s L`).
 #[inline(always)]
-fn image(x: &[Vec3], i: u32, s: [i8; 3], prd: Periods) -> Vec3 {
-    crate::models::fix::bond_break::image(x[i as usize], s, prd)
+fn image(x: &[Vec3], i: u32, s: [i8; 3], periods: Periods) -> Vec3 {
+    periods.shifted(x[i as usize], s)
 }
 
 /// A listed bond's atoms as LAMMPS computes it, the lower ID first, their positions and
 /// `del = x1 - x2`; `swapped`: atom 1 is the entry's second atom.
 #[inline(always)]
-fn ordered(e: &Entry<2>, x: &[Vec3], tag: &[i64], prd: Periods) -> ([u32; 2], [Vec3; 2], Vec3, bool) {
+fn ordered(e: &Entry<2>, x: &[Vec3], tag: &[i64], periods: Periods) -> ([u32; 2], [Vec3; 2], Vec3, bool) {
     let swapped = tag[e.atoms[1] as usize] < tag[e.atoms[0] as usize];
     let (a, b) = if swapped { (1, 0) } else { (0, 1) };
-    let (p1, p2) = (image(x, e.atoms[a], e.shift[a], prd), image(x, e.atoms[b], e.shift[b], prd));
+    let (p1, p2) = (image(x, e.atoms[a], e.shift[a], periods), image(x, e.atoms[b], e.shift[b], periods));
     ([e.atoms[a], e.atoms[b]], [p1, p2], [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]], swapped)
 }
 
@@ -437,14 +437,14 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     if state.bonded_lists.lammps_bonds.is_empty() && !distributed {
         return Ok((BondedTally::default(), vec![]));
     }
-    let prd = state.domain.as_ref().unwrap().periods();
+    let periods = state.domain.as_ref().unwrap().periods();
     // the records whose reference state the pass rewrote (their list copies follow after it)
     let mut rewritten: Option<Vec<bool>> = None;
     // LAMMPS' store_data: every bond's reference at the first evaluation of the style
     let first = !style.bpm().stored.swap(true, Ordering::Relaxed);
     if first {
         for l in &state.bonded_lists.lammps_bonds {
-            let (_, _, del, _) = ordered(&l.entry, &state.atoms.x, &state.atoms.tag, prd);
+            let (_, _, del, _) = ordered(&l.entry, &state.atoms.x, &state.atoms.tag, periods);
             state.topo.bonds[l.entry.rec as usize].history = style.reference(del);
         }
         // a bond to a periodic image is listed twice: the record keeps the last one's
@@ -457,7 +457,7 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
     }
     let list = &state.bonded_lists.lammps_bonds;
     let (x, tag) = (&state.atoms.x, &state.atoms.tag);
-    let mut vols = style.bpm().volume.then(|| volumes(state, list, prd, first));
+    let mut vols = style.bpm().volume.then(|| volumes(state, list, periods, first));
     let atoms = BpmAtoms { v: &state.atoms.v, omega: &state.atoms.omega, quat: &state.atoms.quat };
     let mut f = std::mem::take(&mut state.atoms.f);
     let mut torque = std::mem::take(&mut state.atoms.torque);
@@ -482,7 +482,7 @@ pub fn compute<S: BpmStyle>(state: &mut State, style: &S, eflag: bool, mut perat
         // a listed bond's atoms (lower ID first), their positions, `del`, whether swapped, its
         // reference state (stored now if it was unset)
         let prep = |l: &Listed| {
-            let (i, p, del, swapped) = ordered(&l.entry, x, tag, prd);
+            let (i, p, del, swapped) = ordered(&l.entry, x, tag, periods);
             let mut hist = l.history;
             let mut stored = None;
             if hist[0] < EPSILON || hist[0].is_nan() {
@@ -710,13 +710,13 @@ impl SideSums {
 
 /// LAMMPS' calculate_vol over the listed bonds at the current positions: each atom's volume,
 /// and the volumes of bonds whose reference is unset (created since), for vol0.
-fn bond_volumes(state: &State, list: &[Listed], prd: Periods) -> (Vec<f64>, Option<Vec<f64>>) {
+fn bond_volumes(state: &State, list: &[Listed], periods: Periods) -> (Vec<f64>, Option<Vec<f64>>) {
     let n = state.atoms.nlocal;
     let (mut vol, mut dvol0, mut created) = (SideSums::new(n), SideSums::new(n), false);
     for l in list {
         // the entry's own order: the squares of x1 - x2 and x2 - x1 have the same bits
         let (e, x) = (&l.entry, &state.atoms.x);
-        let (p1, p2) = (image(x, e.atoms[0], e.shift[0], prd), image(x, e.atoms[1], e.shift[1], prd));
+        let (p1, p2) = (image(x, e.atoms[0], e.shift[0], periods), image(x, e.atoms[1], e.shift[1], periods));
         let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
         let v = bond_volume(rsq, state.dimension, rsq.sqrt());
@@ -732,11 +732,11 @@ fn bond_volumes(state: &State, list: &[Listed], prd: Periods) -> (Vec<f64>, Opti
 
 /// The volumes of this evaluation: vol0 made at the first one, grown by bonds created since,
 /// and vol now.
-fn volumes(state: &State, list: &[Listed], prd: Periods, first: bool) -> Volumes {
+fn volumes(state: &State, list: &[Listed], periods: Periods, first: bool) -> Volumes {
     let a = &state.atoms;
     let saved = |f: Field| a.field_values(f).map(|v| v[..a.nlocal].to_vec()).unwrap_or_else(|| vec![0.0; a.nlocal]);
-    let mut vol0 = if first { bond_volumes(state, list, prd).0 } else { saved(VOL0) };
-    let (vol, dvol0) = bond_volumes(state, list, prd);
+    let mut vol0 = if first { bond_volumes(state, list, periods).0 } else { saved(VOL0) };
+    let (vol, dvol0) = bond_volumes(state, list, periods);
     if let Some(d) = dvol0 {
         vol0.iter_mut().zip(d).for_each(|(a, d)| *a += d);
     }

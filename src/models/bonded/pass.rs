@@ -301,13 +301,13 @@ pub fn compute_bonded(state: &mut State, styles: BondedStyles, eflag: bool) -> R
         if nothing || (!distributed && lists.bonds.is_empty() && lists.angles.is_empty() && lists.dihedrals.is_empty()) {
             return Ok(BondedTally::default());
         }
-        let prd = state.domain.as_ref().unwrap().periods();
+        let periods = state.domain.as_ref().unwrap().periods();
         let mut f = std::mem::take(&mut state.atoms.f);
         if distributed {
             // ghost forces of this pass alone go back to their owners
             f[state.atoms.nlocal..].iter_mut().for_each(|g| *g = [0.0; 3]);
         }
-        let ctx = Kernels { x: &state.atoms.x, prd, shifts: false, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+        let ctx = Kernels { x: &state.atoms.x, periods, shifts: false, eflag, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
         // the bonded lists are grouped by the chunks of the neighbour list (each chunk's
         // interactions touch only atoms of that chunk and the next)
         let bounds = state.neighbor.list.bounds();
@@ -403,7 +403,7 @@ fn closest_tilted(domain: &crate::engine::domain::Domain, xr: [f64; 3], xo: [f64
 /// What the bonded kernels read.
 pub struct Kernels<'a> {
     x: &'a [[f64; 3]],
-    prd: Periods,
+    periods: Periods,
     /// Entries may carry periodic shifts (the leftovers).
     shifts: bool,
     eflag: bool,
@@ -429,7 +429,7 @@ impl Kernels<'_> {
     fn pos(&self, i: u32, s: [i8; 3]) -> [f64; 3] {
         let p = self.x[i as usize];
         if self.shifts {
-            return self.prd.shifted(p, s);
+            return self.periods.shifted(p, s);
         }
         p
     }
@@ -568,7 +568,7 @@ pub fn bonded_peratom(state: &State, styles: BondedStyles, result: &mut crate::e
         None => &mut *result,
     };
     // every entry at its shifts (chunk entries have none)
-    let k = Kernels { x: &state.atoms.x, prd: dom.periods(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
+    let k = Kernels { x: &state.atoms.x, periods: dom.periods(), shifts: true, eflag: true, bond: styles.bond, angle: styles.angle, dihedral: styles.dihedral };
     if let Some(style) = styles.bond {
         for e in lists.bonds.all() {
             let del = sub(k.pos(e.atoms[0], e.shift[0]), k.pos(e.atoms[1], e.shift[1]));
@@ -648,7 +648,7 @@ mod tests {
         entries.push(Entry { atoms: [n - 4, n - 3, n - 2], shift: [[0; 3]; 3], typ: 1, rec: 61 });
         entries.push(Entry { atoms: [n - 4, n - 3, n - 4], shift: [[0; 3]; 3], typ: 2, rec: 62 });
         entries.push(Entry { atoms: [n - 1, n - 3, n - 2], shift: [[0; 3]; 3], typ: 2, rec: 63 });
-        let k = Kernels { x: &x, prd: Periods { prd: [3.0, 3.5, 4.0], tilt: None }, shifts: true, eflag: true, bond: None, angle: None, dihedral: None };
+        let k = Kernels { x: &x, periods: Periods { prd: [3.0, 3.5, 4.0], tilt: None }, shifts: true, eflag: true, bond: None, angle: None, dihedral: None };
         // every length of a last partial batch
         for len in [entries.len(), entries.len() - 1, entries.len() - 2, entries.len() - 3, 1] {
             let (mut f_one, mut f_lanes) = (vec![[0.0; 3]; x.len()], vec![[0.0; 3]; x.len()]);

@@ -24,7 +24,6 @@
 //! partner, in atom-ID order), so runs are reproducible but not bit-identical to LAMMPS, whose
 //! draws follow its per-processor atom order.
 
-use crate::engine::domain::Periods;
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::random_park::RanPark;
 use crate::engine::state::{RunError, State};
@@ -142,12 +141,6 @@ pub fn check_special(state: &State, style: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Position of owned atom `i` at periodic shift `s`, computed as a LAMMPS ghost copy.
-#[inline]
-pub fn image(x: [f64; 3], s: [i8; 3], periods: Periods) -> [f64; 3] {
-    periods.shifted(x, s)
-}
-
 /// Delete bond (a, b) (either order, first match) and, if asked, the angles and dihedrals that
 /// contain it as one of their consecutive pairs.
 pub fn remove_bond(state: &mut State, a: i64, b: i64, angles: bool, dihedrals: bool) {
@@ -192,7 +185,7 @@ impl Fix for FixBondBreak {
         }
         // the ghosts of a distributed run at this step's positions (LAMMPS forwards them here)
         state.forward_positions_ranks();
-        let prd = state.domain.as_ref().unwrap().periods();
+        let periods = state.domain.as_ref().unwrap().periods();
         let a = &state.atoms;
         let mut hot_bonds: Vec<(i64, i64)> = vec![];
         let temp = |i: usize| a.esph[i] / a.cv[i];
@@ -216,8 +209,8 @@ impl Fix for FixBondBreak {
                     continue;
                 }
             }
-            let p1 = image(a.x[i1], e.shift[0], prd);
-            let p2 = image(a.x[i2], e.shift[1], prd);
+            let p1 = periods.shifted(a.x[i1], e.shift[0]);
+            let p2 = periods.shifted(a.x[i2], e.shift[1]);
             let del = [p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]];
             let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
             longest_sq = longest_sq.max(rsq);
@@ -291,10 +284,5 @@ mod tests {
         // without angles/dihedrals at run start (LAMMPS' angleflag), only the bond goes
         remove_bond(&mut state, 1, 2, false, false);
         assert_eq!(state.topo.angles.len(), 1);
-    }
-
-    #[test]
-    fn ghost_image_positions_are_computed_as_lammps_copies_them() {
-        assert_eq!(image([0.25, 1.0, 3.0], [1, 0, -1], Periods { prd: [10.0, 5.0, 2.0], tilt: None }), [10.25, 1.0, 1.0]);
     }
 }

@@ -20,7 +20,7 @@
 //! own atom's bond count) and every rank reads every rank's candidates, so all make the same
 //! choices; the new bonds go into every rank's topology in ID order.
 
-use super::bond_break::{check_special, image, mutual_choices, mutual_partners};
+use super::bond_break::{check_special, mutual_choices, mutual_partners};
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::neighbor::NEIGH_MASK;
 use crate::engine::random_park::RanPark;
@@ -130,7 +130,7 @@ impl FixBondCreate {
     /// The bonds to create (atom IDs), each atom's closest eligible partner where the two
     /// chose each other, in the local order of the lower-ID atom (one rank holding every atom).
     fn choose(&mut self, state: &State) -> Vec<(i64, i64)> {
-        let prd = state.domain.as_ref().unwrap().periods();
+        let periods = state.domain.as_ref().unwrap().periods();
         let a = &state.atoms;
         let n = a.nlocal;
         let k = a.find_extra(&self.count_name()).expect("bond count array");
@@ -159,7 +159,7 @@ impl FixBondCreate {
                         continue;
                     }
                     // current position of j (ghosts are refreshed only after this hook)
-                    let xj = if j < n { a.x[j] } else { image(a.x[jo], a.ghost_shift[j - n], prd) };
+                    let xj = if j < n { a.x[j] } else { periods.shifted(a.x[jo], a.ghost_shift[j - n]) };
                     let rsq = dist_sq(xi, xj);
                     if rsq >= self.cutsq {
                         continue;

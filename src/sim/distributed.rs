@@ -71,9 +71,13 @@ impl Simulation {
     /// The ghost cutoff of a distributed run: the longest pair cutoff plus the skin, or the
     /// `comm_modify cutoff` if longer (the least thickness of a sub-domain).
     pub(crate) fn ghost_cutoff(&self) -> f64 {
+        (self.pair_cutoff_max() + self.state.neigh_settings.skin).max(self.state.comm_cutoff)
+    }
+
+    /// The longest pair cutoff over the type pairs (0 without a pair style).
+    pub(crate) fn pair_cutoff_max(&self) -> f64 {
         let n = self.state.ntypes;
-        let pair = self.pair.as_deref().map_or(0.0, |p| (1..=n).flat_map(|i| (i..=n).map(move |j| (i, j))).map(|(i, j)| p.cutoff(i, j)).fold(0.0, f64::max));
-        (pair + self.state.neigh_settings.skin).max(self.state.comm_cutoff)
+        self.pair.as_deref().map_or(0.0, |p| (1..=n).flat_map(|i| (i..=n).map(move |j| (i, j))).map(|(i, j)| p.cutoff(i, j)).fold(0.0, f64::max))
     }
 
     /// Why this deck cannot run on several ranks yet (None: it can).

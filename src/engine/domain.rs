@@ -39,12 +39,52 @@ pub struct Domain {
     /// triclinic box with zero tilts is not an orthogonal one: LAMMPS moves its atoms through
     /// box fractions at every rebuild, which changes their last bits.
     pub tilt: Option<[f64; 3]>,
+    /// How fast fix deform changes the box, and whether atoms crossing a face carry it.
+    pub rate: BoxRate,
+}
+
+/// The rate at which fix deform changes the box (LAMMPS' Domain::h_rate, in `h`'s layout
+/// `[lx, ly, lz, yz, xz, xy]`, and h_ratelo, the lower faces' velocities), and with `fix deform
+/// ... remap v` the group whose atoms change velocity by the box's rate when they cross a
+/// periodic face (LAMMPS' deform_vremap and deform_groupbit). The rates stay after the fix
+/// is gone, as LAMMPS' do; the group is found again at each run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BoxRate {
+    pub h_rate: [f64; 6],
+    pub h_ratelo: [f64; 3],
+    pub vremap: Option<u32>,
+}
+
+impl BoxRate {
+    /// The streaming velocity at box fractions `l`: h_rate l + h_ratelo (LAMMPS' order).
+    pub fn streaming(&self, l: [f64; 3]) -> [f64; 3] {
+        let (r, lo) = (&self.h_rate, &self.h_ratelo);
+        [r[0] * l[0] + r[5] * l[1] + r[4] * l[2] + lo[0], r[1] * l[1] + r[3] * l[2] + lo[1], r[2] * l[2] + lo[2]]
+    }
+    /// The velocity change of an atom whose image along `dim` moves by `-sign` (it crossed the
+    /// lower face for `sign` 1): the box's edge velocity of that dimension, component by
+    /// component as LAMMPS' pbc adds them.
+    pub fn cross(&self, v: &mut [f64; 3], dim: usize, sign: f64) {
+        let r = &self.h_rate;
+        match dim {
+            0 => v[0] += sign * r[0],
+            1 => {
+                v[0] += sign * r[5];
+                v[1] += sign * r[1];
+            }
+            _ => {
+                v[0] += sign * r[4];
+                v[1] += sign * r[3];
+                v[2] += sign * r[2];
+            }
+        }
+    }
 }
 
 impl Domain {
     /// An orthogonal box.
     pub fn new(dimension: usize, lo: [f64; 3], hi: [f64; 3], boundary: [[BoundaryKind; 2]; 3]) -> Domain {
-        Domain { dimension, lo, hi, boundary, tilt: None }
+        Domain { dimension, lo, hi, boundary, tilt: None, rate: BoxRate::default() }
     }
     pub fn triclinic(&self) -> bool {
         self.tilt.is_some()
@@ -170,24 +210,39 @@ impl Domain {
             *x = self.lamda2x(l);
             return;
         }
-        self.wrap_in(x, image, self.lo, self.hi, self.prd());
+        self.wrap_in(x, image, self.lo, self.hi, self.prd(), None);
     }
     /// [`Domain::wrap`] of box fractions (LAMMPS' pbc() of a triclinic box: lo 0, hi 1).
     pub fn wrap_lamda(&self, l: &mut [f64; 3], image: &mut [i32; 3]) {
-        self.wrap_in(l, image, [0.0; 3], [1.0; 3], [1.0; 3]);
+        self.wrap_in(l, image, [0.0; 3], [1.0; 3], [1.0; 3], None);
     }
-    fn wrap_in(&self, x: &mut [f64; 3], image: &mut [i32; 3], lo: [f64; 3], hi: [f64; 3], p: [f64; 3]) {
+    /// LAMMPS' pbc() of one atom, positions in box fractions for a triclinic box: with
+    /// `v` (an atom of fix deform's `remap v` group) each crossing also changes the velocity
+    /// by the box's rate ([`BoxRate::cross`]).
+    pub fn pbc(&self, x: &mut [f64; 3], image: &mut [i32; 3], v: Option<&mut [f64; 3]>) {
+        match self.triclinic() {
+            true => self.wrap_in(x, image, [0.0; 3], [1.0; 3], [1.0; 3], v),
+            false => self.wrap_in(x, image, self.lo, self.hi, self.prd(), v),
+        }
+    }
+    fn wrap_in(&self, x: &mut [f64; 3], image: &mut [i32; 3], lo: [f64; 3], hi: [f64; 3], p: [f64; 3], mut v: Option<&mut [f64; 3]>) {
         for d in 0..3 {
             if !self.periodic(d) {
                 continue;
             }
             if x[d] < lo[d] {
                 x[d] += p[d];
+                if let Some(v) = v.as_deref_mut() {
+                    self.rate.cross(v, d, 1.0);
+                }
                 image[d] -= 1;
             }
             if x[d] >= hi[d] {
                 x[d] -= p[d];
                 x[d] = x[d].max(lo[d]);
+                if let Some(v) = v.as_deref_mut() {
+                    self.rate.cross(v, d, -1.0);
+                }
                 image[d] += 1;
             }
         }
@@ -454,6 +509,19 @@ impl Dilation {
     pub fn apply(&self, x: &mut [f64; 3]) {
         *x = lamda2x_with(&self.h_new, &self.lo_new, x2lamda_with(&self.hinv_old, &self.lo_old, *x));
     }
+}
+
+/// The product of two upper-triangular matrices in `h`'s layout `[xx, yy, zz, yz, xz, xy]`
+/// (LAMMPS' MathExtra::multiply_shape_shape, term by term).
+pub fn shape_product(one: &[f64; 6], two: &[f64; 6]) -> [f64; 6] {
+    [
+        one[0] * two[0],
+        one[1] * two[1],
+        one[2] * two[2],
+        one[1] * two[3] + one[3] * two[2],
+        one[0] * two[4] + one[5] * two[3] + one[4] * two[2],
+        one[0] * two[5] + one[5] * two[1],
+    ]
 }
 
 /// LAMMPS' x2lamda with a given `h_inv` and box origin.

@@ -365,7 +365,36 @@ impl State {
     pub fn forward_ghost_state(&mut self) {
         match (&self.decomp, self.distributed, &self.domain) {
             (Some(d), Some(_), Some(domain)) => d.forward_state(&mut self.atoms, domain),
-            _ => self.atoms.forward_state(),
+            _ => {
+                self.atoms.forward_state();
+                self.deform_ghost_velocities();
+            }
+        }
+    }
+    /// The velocities of ghosts of fix deform's `remap v` group as LAMMPS' forward
+    /// communication makes them with `comm_modify vel yes`: each periodic exchange adds the
+    /// box's rate of its dimension, x, y, then z (serial runs: a distributed one refuses
+    /// `remap v`).
+    pub fn deform_ghost_velocities(&mut self) {
+        let Some(d) = &self.domain else { return };
+        let Some(group) = d.rate.vremap else { return };
+        if !self.comm_vel || self.distributed.is_some() {
+            return;
+        }
+        let a = &mut self.atoms;
+        let n = a.nlocal;
+        for (k, (&o, s)) in a.ghost_owner.iter().zip(&a.ghost_shift).enumerate() {
+            let o = o as usize;
+            if a.mask[o] & group == 0 {
+                continue;
+            }
+            let mut v = a.v[o];
+            for dim in 0..3 {
+                for _ in 0..s[dim].unsigned_abs() {
+                    d.rate.cross(&mut v, dim, s[dim].signum() as f64);
+                }
+            }
+            a.v[n + k] = v;
         }
     }
     /// A per-rank quantity needed whole (group functions, per-atom lookups) that dmhs does not

@@ -158,8 +158,15 @@ impl Simulation {
 
     /// LAMMPS' Modify::init of the fixes (with their warnings when `warn`).
     pub(crate) fn init_fixes(&mut self, warn: bool) -> Result<(), String> {
+        // LAMMPS' Domain::init finds fix deform's remap v group again at each run
+        if let Some(d) = self.state.domain.as_mut() {
+            d.rate.vremap = None;
+        }
         for k in 0..self.fixes.len() {
             self.with_fix(k, |fix, state, ctx| fix.init(state, ctx).map_err(|e| format!("fix {} ({}): {e}", fix.id(), fix.style())))?;
+            if let (Some(rate), Some(d)) = (self.fixes[k].box_rate(), self.state.domain.as_mut()) {
+                d.rate = rate;
+            }
             if warn {
                 for w in self.fixes[k].init_warnings([&self.fixes[..k], &self.fixes[k + 1..]]) {
                     self.out.print(&format!("WARNING: {w}"));
@@ -224,14 +231,14 @@ impl Simulation {
         // a triclinic box wraps its atoms in box fractions and keeps them so until the list
         // build places them again (LAMMPS' x2lamda, pbc, ..., lamda2x: their last bits change)
         let tilted = domain.triclinic();
-        for i in 0..self.state.atoms.nlocal {
-            let (x, img) = (&mut self.state.atoms.x[i], &mut self.state.atoms.image[i]);
+        let vremap = domain.rate.vremap;
+        let a = &mut self.state.atoms;
+        for i in 0..a.nlocal {
             if tilted {
-                *x = domain.x2lamda(*x);
-                domain.wrap_lamda(x, img);
-            } else {
-                domain.wrap(x, img);
+                a.x[i] = domain.x2lamda(a.x[i]);
             }
+            let v = vremap.filter(|&g| a.mask[i] & g != 0).map(|_| &mut a.v[i]);
+            domain.pbc(&mut a.x[i], &mut a.image[i], v);
         }
         if !tilted {
             // (a triclinic box with shrink-wrapped faces is refused when it is made)
@@ -339,6 +346,7 @@ impl Simulation {
         let cutneighmax = self.state.neighbor.cutneighmax.max(self.state.neigh_settings.skin);
         self.state.lammps_order.after_rebuild(&self.state.atoms, domain, cutneighmax, step, sort);
         self.state.lammps_order.make_sides(&self.state.atoms, domain, cutneighmax, self.state.neigh_settings.binsize, self.state.newton_pair);
+        self.state.deform_ghost_velocities();
         if self.pair.is_some() {
             self.with_pair(|p, input, _| p.rebuilt(input, &order), false, false);
         }
@@ -741,6 +749,7 @@ impl Simulation {
                 self.state.atoms.forward_positions(domain.periods());
                 if with_state {
                     self.state.atoms.forward_state();
+                    self.state.deform_ghost_velocities();
                 }
             }
         }

@@ -368,7 +368,9 @@ impl ComputeChunkAtom {
             Style::Bins { ndim, dim, invdelta, .. } => {
                 let dom = state.domain()?;
                 let prd = dom.prd();
-                let inv = prd.map(|p| 1.0 / p);
+                if dom.triclinic() && !self.reduced {
+                    return Err(format!("Compute chunk/atom {} for triclinic boxes requires units reduced", self.id));
+                }
                 for i in 0..n {
                     if exclude[i] {
                         continue;
@@ -376,8 +378,8 @@ impl ComputeChunkAtom {
                     let mut ibin = 0i64;
                     for m in 0..*ndim {
                         let d = dim[m];
-                        // LAMMPS' reduced coordinates, (x - lo) / prd as h_inv (x - lo)
-                        let (mut x, lo, hi, p) = if self.reduced { (inv[d] * (a.x[i][d] - dom.lo[d]), 0.0, 1.0, 1.0) } else { (a.x[i][d], dom.lo[d], dom.hi[d], prd[d]) };
+                        // LAMMPS' reduced coordinates: box fractions (x2lamda, tilts included)
+                        let (mut x, lo, hi, p) = if self.reduced { (dom.x2lamda(a.x[i])[d], 0.0, 1.0, 1.0) } else { (a.x[i][d], dom.lo[d], dom.hi[d], prd[d]) };
                         if dom.periodic(d) {
                             if x < lo {
                                 x += p;

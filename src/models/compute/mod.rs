@@ -35,6 +35,7 @@ pub mod stress_atom;
 pub mod temp;
 pub mod temp_bias;
 pub mod temp_com;
+pub mod temp_deform;
 pub mod temp_partial;
 pub mod temp_profile;
 pub mod temp_ramp;
@@ -296,6 +297,7 @@ const STYLES: &[(&str, ComputeCtor)] = &[
     ("temp/ramp", |d, w| Ok(Box::new(temp_ramp::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/profile", |d, w| Ok(Box::new(temp_profile::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/com", |d, _| Ok(Box::new(temp_com::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
+    ("temp/deform", |d, _| Ok(Box::new(temp_deform::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),
     ("temp/region", |d, w| Ok(Box::new(temp_region::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("temp/sphere", |d, w| Ok(Box::new(temp_sphere::ComputeTempSphere::from_lammps(d.id, d.groupbit, d.args, d.cmd, w)?))),
     ("ke", |d, _| Ok(Box::new(ke::ComputeKe::from_lammps(d.id, d.groupbit, d.args, d.cmd)?))),

@@ -1,5 +1,5 @@
 //! What the temperature computes with a velocity bias share (LAMMPS' `tempbias` computes
-//! temp/partial, temp/com, temp/region, temp/ramp and temp/profile): the thermal velocity each leaves, the degrees of
+//! temp/partial, temp/com, temp/region, temp/ramp, temp/profile and temp/deform): the thermal velocity each leaves, the degrees of
 //! freedom each counts, and the bias that thermostats (`fix_modify temp`) and `velocity ...
 //! temp ID bias yes` remove before they scale velocities and restore after (LAMMPS'
 //! remove_bias_all, restore_bias_all, reapply_bias_all). Sums run in LAMMPS' atom order.
@@ -25,6 +25,8 @@ pub enum Bias {
     Ramp(Ramp),
     /// temp/profile: the mean velocity of the spatial bin an atom is in.
     Profile(Profile),
+    /// temp/deform: the streaming velocity of fix deform's box at the atom's box fractions.
+    Deform,
 }
 
 /// temp/profile's bins: `nbin` per direction over the box, the `flags` components biased.
@@ -145,7 +147,7 @@ impl TempSpec {
                 nper * count - (nper / d) * (fix_dof + extra)
             }
             Bias::Region(_) => 0.0,
-            Bias::None | Bias::Com | Bias::Ramp(_) => d * count - (extra + fix_dof),
+            Bias::None | Bias::Com | Bias::Ramp(_) | Bias::Deform => d * count - (extra + fix_dof),
             Bias::Profile(p) => d * count - (extra + fix_dof + p.nstreaming()),
         }
     }
@@ -192,6 +194,7 @@ impl TempSpec {
         let vcm = if self.bias == Bias::Com { state.group_vcm(self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
         let bins = self.bins(state)?;
+        let domain = state.domain()?;
         for &i in state.lammps_order.indices(a.nlocal).iter() {
             if a.mask[i] & self.groupbit == 0 || region.is_some_and(|r| !r.matches(a.x[i])) {
                 continue;
@@ -208,6 +211,10 @@ impl TempSpec {
                 Bias::Profile(p) => {
                     let b = bins.as_ref().and_then(|b| b.bin[i].map(|k| b.mean[k])).unwrap_or([0.0; 3]);
                     [0, 1, 2].map(|k| if p.flags[k] { v[k] - b[k] } else { v[k] })
+                }
+                Bias::Deform => {
+                    let s = domain.rate.streaming(domain.x2lamda(a.x[i]));
+                    [v[0] - s[0], v[1] - s[1], v[2] - s[2]]
                 }
                 Bias::None | Bias::Region(_) => v,
             };
@@ -236,6 +243,7 @@ impl TempSpec {
         let vcm = if self.bias == Bias::Com { state.group_vcm(self.groupbit) } else { [0.0; 3] };
         let region = self.region(state)?;
         let bins = self.bins(state)?;
+        let domain = state.domain()?;
         if self.bias == Bias::None {
             return Ok(None);
         }
@@ -258,6 +266,7 @@ impl TempSpec {
                             let b = bins.as_ref().and_then(|b| b.bin[i].map(|k| b.mean[k])).unwrap_or([0.0; 3]);
                             [0, 1, 2].map(|k| if p.flags[k] { b[k] } else { 0.0 })
                         }
+                        Bias::Deform => domain.rate.streaming(domain.x2lamda(a.x[i])),
                         _ => v,
                     }
                 })

@@ -1,19 +1,22 @@
-//! `fix ID group deform N dim style args ... [remap x|none] [flip yes|no] [units lattice|box]`:
+//! `fix ID group deform N dim style args ... [remap x|v|none] [flip yes|no] [units lattice|box]`:
 //! the box lengths (and a triclinic box's tilts) changed every N steps at the end of the step,
 //! each controlled one towards its target of the run (LAMMPS' FixDeform, same arithmetic).
 //! Length styles: final lo hi, delta dlo dhi, scale f, vel v, erate r, trate r, volume, wiggle
 //! A Tp, variable v_len v_rate; tilt styles (xy xz yz): final t, delta dt, vel v, erate r,
 //! trate r, wiggle A Tp, variable v_tilt v_rate. With `remap x` (default) the atoms of the group
-//! follow the box in box fractions. With `flip yes` (default) a tilt beyond half the box length
+//! follow the box in box fractions; with `remap v` they stay, and an atom of the group that
+//! crosses a periodic face changes velocity by the box's rate (for fix nvt/sllod). The box's
+//! rate (LAMMPS' h_rate, read by compute temp/deform and fix nvt/sllod) is set as LAMMPS sets
+//! it: at init for the styles of constant rate, every step for trate, wiggle and variable. With `flip yes` (default) a tilt beyond half the box length
 //! flips to its equivalent on the other side on the next step (LAMMPS' pre_exchange), the atoms
 //! remapped and their image flags carried over.
 
 use super::{Fix, FixCtx, FixHooks};
-use crate::engine::domain::{BoundaryKind, Dilation};
+use crate::engine::domain::{BoundaryKind, BoxRate, Dilation};
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
-pub const SYNTAX: &str = "fix ID group deform N x|y|z final lo hi | delta dlo dhi | scale f | vel v | erate r | trate r | volume | wiggle A Tp | variable v_len v_rate ... xy|xz|yz final t | delta dt | vel v | erate r | trate r | wiggle A Tp | variable v_tilt v_rate ... [remap x|none] [flip yes|no] [units lattice|box]";
+pub const SYNTAX: &str = "fix ID group deform N x|y|z final lo hi | delta dlo dhi | scale f | vel v | erate r | trate r | volume | wiggle A Tp | variable v_len v_rate ... xy|xz|yz final t | delta dt | vel v | erate r | trate r | wiggle A Tp | variable v_tilt v_rate ... [remap x|v|none] [flip yes|no] [units lattice|box]";
 
 /// One tilt's settings and the run's start, stop and target values (LAMMPS' set[3..5]).
 #[derive(Clone, Debug, Default)]
@@ -70,6 +73,15 @@ struct Dim {
     hi_target: f64,
 }
 
+/// What follows the box: the group's positions (LAMMPS' X_REMAP), the velocities of the
+/// group's atoms that cross a periodic face (V_REMAP), or nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Remap {
+    X,
+    V,
+    None,
+}
+
 pub struct FixDeform {
     id: String,
     groupbit: u32,
@@ -77,8 +89,10 @@ pub struct FixDeform {
     set: [Dim; 3],
     /// xy, xz, yz
     tilt: [Tilt; 3],
-    remap: bool,
+    remap: Remap,
     flip: bool,
+    /// The box's rate (the group of `remap v` with it).
+    rate: BoxRate,
     /// The tilts to flip to and the flips (xy, xz, yz: +1, -1 or 0) at the next step's
     /// pre_exchange, with that step.
     pending_flip: Option<([f64; 3], [i32; 3], i64)>,
@@ -148,17 +162,17 @@ impl FixDeform {
             controlled.push((dim, w));
         }
         // options
-        let (mut remap, mut lattice_units, mut flip) = (true, true, true);
+        let (mut remap, mut lattice_units, mut flip) = (Remap::X, true, true);
         while let Some(w) = a.peek() {
             a.skip(1);
             match w.text.as_str() {
                 "remap" => {
                     let v = a.word("remap")?;
                     remap = match v.text.as_str() {
-                        "x" => true,
-                        "none" => false,
-                        "v" => return Err(a.error_at(v, "fix deform remap v (velocities of atoms crossing the box remapped by the box's rate, for SLLOD) is not supported by dmhs", "x or none")),
-                        _ => return Err(a.error_at(v, format!("unknown fix deform remap `{}`", v.text), "x or none")),
+                        "x" => Remap::X,
+                        "v" => Remap::V,
+                        "none" => Remap::None,
+                        _ => return Err(a.error_at(v, format!("unknown fix deform remap `{}`", v.text), "x, v or none")),
                     };
                 }
                 "flip" => flip = a.logical("flip")?,
@@ -232,7 +246,8 @@ impl FixDeform {
         for (k, t) in tilt.iter_mut().enumerate() {
             t.initial = d.tilts()[k];
         }
-        Ok(FixDeform { id, groupbit, nevery, set, tilt, remap, flip, pending_flip: None })
+        let rate = BoxRate { vremap: (remap == Remap::V).then_some(groupbit), ..BoxRate::default() };
+        Ok(FixDeform { id, groupbit, nevery, set, tilt, remap, flip, rate, pending_flip: None })
     }
 
     /// LAMMPS' apply_strain and update_domain for the tilts: this step's targets, each moved
@@ -242,15 +257,24 @@ impl FixDeform {
         let step = state.step;
         let d = state.domain().map_err(|m| RunError::new(step, m))?;
         let now = d.tilts();
+        let h = d.h();
         for k in 0..3 {
             let t = &self.tilt[k];
+            // LAMMPS' h index of this tilt: xy 5, xz 4, yz 3
+            let ih = 5 - k;
             let target = match t.style.clone() {
                 Style::None => now[k],
-                Style::Trate(rate) => t.start * (rate * delt).exp(),
-                Style::Wiggle(amp, period) => t.start + amp * (std::f64::consts::TAU * delt / period).sin(),
+                Style::Trate(rate) => {
+                    self.rate.h_rate[ih] = rate * h[ih];
+                    t.start * (rate * delt).exp()
+                }
+                Style::Wiggle(amp, period) => {
+                    self.rate.h_rate[ih] = wiggle_rate(amp, period, delt);
+                    t.start + amp * (std::f64::consts::TAU * delt / period).sin()
+                }
                 Style::Variable(v, rate) => {
                     let del = ctx.equal(state, self, &v).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
-                    ctx.equal(state, self, &rate).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
+                    self.rate.h_rate[ih] = ctx.equal(state, self, &rate).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
                     self.tilt[k].start + del
                 }
                 _ => t.start + delta * (t.stop - t.start),
@@ -259,7 +283,6 @@ impl FixDeform {
         }
         // LAMMPS' order yz, xz, xy; each against its second dimension's new length (y for yz,
         // x for the others) and the tilt's share of the old one
-        let h = d.h();
         for k in [2, 1, 0] {
             let idenom = if k == 2 { 1 } else { 0 };
             let denom = self.set[idenom].hi_target - self.set[idenom].lo_target;
@@ -335,7 +358,9 @@ impl FixDeform {
             delta /= nsteps_total;
         }
         let d = state.domain().map_err(|m| RunError::new(step, m))?.clone();
-        // strain-controlled dimensions
+        let h = d.h();
+        // strain-controlled dimensions; the styles of changing rate set it (before the box
+        // changes: trate's is the rate times the old length)
         for i in 0..3 {
             let s = &self.set[i];
             let (lo, hi) = match s.style.clone() {
@@ -343,17 +368,21 @@ impl FixDeform {
                 Style::Trate(rate) => {
                     let delt = nsteps * dt;
                     let shift = 0.5 * ((s.hi_start - s.lo_start) * (rate * delt).exp());
+                    self.rate.h_rate[i] = rate * h[i];
+                    self.rate.h_ratelo[i] = -0.5 * self.rate.h_rate[i];
                     (0.5 * (s.lo_start + s.hi_start) - shift, 0.5 * (s.lo_start + s.hi_start) + shift)
                 }
                 Style::Wiggle(amp, period) => {
                     let delt = nsteps * dt;
                     let shift = 0.5 * amp * (std::f64::consts::TAU * delt / period).sin();
+                    self.rate.h_rate[i] = wiggle_rate(amp, period, delt);
+                    self.rate.h_ratelo[i] = -0.5 * self.rate.h_rate[i];
                     (s.lo_start - shift, s.hi_start + shift)
                 }
                 Style::Variable(h, rate) => {
                     let del = ctx.equal(state, self, &h).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
-                    // the rate (LAMMPS' h_rate, read by SLLOD) is evaluated as LAMMPS does
-                    ctx.equal(state, self, &rate).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
+                    self.rate.h_rate[i] = ctx.equal(state, self, &rate).map_err(|m| RunError::new(step, format!("fix deform {}: {m}", self.id)))?;
+                    self.rate.h_ratelo[i] = -0.5 * self.rate.h_rate[i];
                     let s = &self.set[i];
                     (s.lo_start - 0.5 * del, s.hi_start + 0.5 * del)
                 }
@@ -384,6 +413,8 @@ impl FixDeform {
             self.tilt_targets(state, ctx, nsteps * dt, delta)?;
         }
         let dom = state.domain.as_mut().ok_or_else(|| RunError::new(step, "fix deform: no box"))?;
+        dom.rate.h_rate = self.rate.h_rate;
+        dom.rate.h_ratelo = self.rate.h_ratelo;
         for i in 0..3 {
             if self.set[i].style != Style::None {
                 dom.lo[i] = self.set[i].lo_target;
@@ -402,7 +433,7 @@ impl FixDeform {
             return Err(RunError::new(step, format!("fix deform {}: the box length became {:?} (not positive)", self.id, prd_new)));
         }
         // the group's owned atoms follow the box in box fractions
-        if self.remap {
+        if self.remap == Remap::X {
             let dilation = Dilation::new(&d, dom);
             let at = &mut state.atoms;
             for i in (0..at.nlocal).filter(|&i| at.mask[i] & self.groupbit != 0) {
@@ -411,6 +442,11 @@ impl FixDeform {
         }
         Ok(())
     }
+}
+
+/// A wiggle's rate of change at time `delt`: 2 pi / T A cos(2 pi delt / T) (LAMMPS' order).
+fn wiggle_rate(amp: f64, period: f64, delt: f64) -> f64 {
+    std::f64::consts::TAU / period * amp * (std::f64::consts::TAU * delt / period).cos()
 }
 
 impl Fix for FixDeform {
@@ -516,7 +552,27 @@ impl Fix for FixDeform {
                 }
             }
         }
+        // the box's rate where it is constant over the run; the other styles set theirs every
+        // step (0 until then), as LAMMPS' init
+        let mut rate = BoxRate { vremap: self.rate.vremap, ..BoxRate::default() };
+        let per_time = |stop: f64, start: f64| if delt != 0.0 { (stop - start) / delt } else { 0.0 };
+        for (i, s) in self.set.iter().enumerate() {
+            if matches!(s.style, Style::Final(..) | Style::Delta(..) | Style::Scale(_) | Style::Vel(_) | Style::Erate(_)) {
+                let (dlo, dhi) = (per_time(s.lo_stop, s.lo_start), per_time(s.hi_stop, s.hi_start));
+                rate.h_rate[i] = dhi - dlo;
+                rate.h_ratelo[i] = dlo;
+            }
+        }
+        for (k, t) in self.tilt.iter().enumerate() {
+            if matches!(t.style, Style::Final(..) | Style::Delta(..) | Style::Vel(_) | Style::Erate(_)) {
+                rate.h_rate[5 - k] = per_time(t.stop, t.start);
+            }
+        }
+        self.rate = rate;
         Ok(())
+    }
+    fn box_rate(&self) -> Option<BoxRate> {
+        Some(self.rate)
     }
     fn end_of_step(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         if state.step % self.nevery != 0 {

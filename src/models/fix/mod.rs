@@ -292,6 +292,11 @@ pub trait Fix: Send + Sync {
     fn init(&mut self, _state: &State, _ctx: &FixCtx) -> Result<(), String> {
         Ok(())
     }
+    /// The box's rate of change the fix sets at its init (fix deform: LAMMPS' h_rate, and the
+    /// group of `remap v`); None for the other fixes.
+    fn box_rate(&self) -> Option<crate::engine::domain::BoxRate> {
+        None
+    }
     /// The warnings LAMMPS prints when a run starts, given the fixes defined before and after
     /// this one.
     fn init_warnings(&self, _others: [&[Box<dyn Fix>]; 2]) -> Vec<String> {
@@ -609,6 +614,7 @@ const STYLES: &[(&str, FixCtor)] = &[
     ("temp/berendsen", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("temp/csvr", |d, _| Ok(Box::new(temp_scale::FixTempScale::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd)?))),
     ("nvt", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
+    ("nvt/sllod", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("npt", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("nph", |d, state| Ok(Box::new(nh::FixNh::from_lammps(d.id, d.groupbit, d.style, d.args, d.cmd, state)?))),
     ("property/atom", |d, state| Ok(Box::new(property_atom::FixPropertyAtom::from_lammps(d.id, d.groupbit, d.args, d.cmd, state)?))),

@@ -10,6 +10,13 @@
 //! dilate every atom (or a `dilate` group) with the box. Defaults as LAMMPS: chains of 3, one
 //! loop, mtk yes, no drag, the box centre fixed. The scalar is the energy of the chains and the
 //! barostat.
+//!
+//! `fix ID group nvt/sllod temp ... [psllod yes|no]`: fix nvt for a box that fix deform
+//! changes with `remap v` (NEMD shear and elongation), as LAMMPS 22 Jul 2025's FixNVTSllod:
+//! its own temperature is a compute temp/deform (the box's streaming velocity taken away), the
+//! chain is 1 long unless `tchain` says otherwise, and where fix nvt scales the thermal
+//! velocities the SLLOD step also subtracts dt/2 (h_rate h_inv) v_thermal (p-SLLOD: of the
+//! whole velocity).
 
 use super::box_stress::{dilate_box, strain_trace, Couple};
 use super::thermostat::{run_fraction, GroupTemp};
@@ -19,6 +26,7 @@ use crate::models::compute::temp_bias;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, Command, DResult, Word};
 
+pub const SYNTAX_SLLOD: &str = "fix ID group nvt/sllod temp Tstart Tstop Tdamp [psllod yes|no] [tchain N] [tloop N] [drag factor]";
 pub const SYNTAX_NVT: &str = "fix ID group nvt temp Tstart Tstop Tdamp [tchain N] [tloop N] [drag factor] [mtk yes|no]";
 pub const SYNTAX_NPT: &str = "fix ID group npt temp Tstart Tstop Tdamp iso|aniso|x|y|z Pstart Pstop Pdamp ... [couple none|xyz|xy|yz|xz] [tchain N] [pchain N] [tloop N] [ploop N] [mtk yes|no] [drag f] [dilate all|group-ID] [nreset N] [fixedpoint x y z] [scalexy|scalexz|scaleyz|flip yes|no]";
 pub const SYNTAX_NPH: &str = "fix ID group nph iso|aniso|x|y|z Pstart Pstop Pdamp ... [couple none|xyz|xy|yz|xz] [ptemp T] [pchain N] [ploop N] [mtk yes|no] [drag f] [dilate all|group-ID] [nreset N] [fixedpoint x y z] [scalexy|scalexz|scaleyz|flip yes|no]";
@@ -159,6 +167,8 @@ pub struct FixNh {
     tdof: f64,
     tdrag_factor: f64,
     baro: Option<Barostat>,
+    /// fix nvt/sllod: Some(psllod).
+    sllod: Option<bool>,
 }
 
 const BAROSTAT_KEYS: [&str; 19] = ["iso", "aniso", "tri", "x", "y", "z", "xy", "yz", "xz", "couple", "dilate", "pchain", "ploop", "nreset", "fixedpoint", "ptemp", "scalexy", "scalexz", "scaleyz"];
@@ -168,8 +178,12 @@ impl FixNh {
         let (style, syntax) = match style.text.as_str() {
             "npt" => ("npt", SYNTAX_NPT),
             "nph" => ("nph", SYNTAX_NPH),
+            "nvt/sllod" => ("nvt/sllod", SYNTAX_SLLOD),
             _ => ("nvt", SYNTAX_NVT),
         };
+        let is_sllod = style == "nvt/sllod";
+        let mut psllod = false;
+        let mut tchain_given = false;
         let mut a = Args::from_words(args, cmd.span, syntax);
         let dimension = state.dimension;
         let mut tstat: Option<(f64, f64, f64)> = None;
@@ -237,7 +251,11 @@ impl FixNh {
                         dilate = None;
                     }
                 }
-                "tchain" => mtchain = a.i64_in("tchain (chain length)", 1, 10_000)? as usize,
+                "tchain" => {
+                    mtchain = a.i64_in("tchain (chain length)", 1, 10_000)? as usize;
+                    tchain_given = true;
+                }
+                "psllod" if is_sllod => psllod = a.logical("psllod")?,
                 "pchain" => mpchain = a.i64_in("pchain (chain length)", 0, 10_000)? as usize,
                 // LAMMPS takes any count; a bound keeps a typo from hanging the run
                 "tloop" => nc_tchain = a.i64_in("tloop (sub-cycles)", 0, 10_000)?,
@@ -262,19 +280,23 @@ impl FixNh {
         let bad = |m: String| a.error_command(m, format!("fix {style}"));
         let pstat = p_flag.iter().any(|&f| f);
         match style {
-            "nvt" if tstat.is_none() => return Err(a.error_at(&args[0], "fix nvt needs temperature control: `temp Tstart Tstop Tdamp`", "no `temp` keyword")),
-            "nvt" if pstat => {
-                return Err(a.error_at(first_pressure.unwrap_or(&args[0]), "pressure control cannot be used with fix nvt (use fix npt)", "not with fix nvt"));
+            "nvt" | "nvt/sllod" if tstat.is_none() => return Err(a.error_at(&args[0], format!("fix {style} needs temperature control: `temp Tstart Tstop Tdamp`"), "no `temp` keyword")),
+            "nvt" | "nvt/sllod" if pstat => {
+                return Err(a.error_at(first_pressure.unwrap_or(&args[0]), format!("pressure control cannot be used with fix {style}"), format!("not with fix {style}")));
             }
             "npt" if tstat.is_none() => return Err(bad("temperature control must be used with fix npt: `temp Tstart Tstop Tdamp`".into())),
             "npt" | "nph" if !pstat => return Err(bad(format!("pressure control must be used with fix {style}: iso, aniso, x, y or z"))),
             "nph" if tstat.is_some() => return Err(bad("temperature control cannot be used with fix nph (use fix npt)".into())),
             _ => {}
         }
-        if style == "nvt" {
+        if style == "nvt" || is_sllod {
             if let Some(w) = args.iter().find(|w| BAROSTAT_KEYS.contains(&w.text.as_str()) && w.text != "x" && w.text != "y" && w.text != "z") {
-                return Err(a.error_at(w, format!("`{}` is a barostat keyword; fix nvt has no barostat (use fix npt)", w.text), "not with fix nvt"));
+                return Err(a.error_at(w, format!("`{}` is a barostat keyword; fix {style} has no barostat", w.text), format!("not with fix {style}")));
             }
+        }
+        // LAMMPS' FixNVTSllod: a chain of 1 unless tchain is given
+        if is_sllod && !tchain_given {
+            mtchain = 1;
         }
         if tstat.is_some() && p_temp.is_some() {
             return Err(bad(format!("thermostat in fix {style} is incompatible with the ptemp keyword")));
@@ -345,8 +367,13 @@ impl FixNh {
                 pdim: p_flag.iter().filter(|&&f| f).count(),
             }
         });
-        // nvt: the temperature of its group; npt, nph: of group all (their compute ID_temp)
-        let temp_group = if style == "nvt" { groupbit } else { 1 };
+        // nvt: the temperature of its group; npt, nph: of group all (their compute ID_temp);
+        // nvt/sllod: temp/deform of its group
+        let temp_group = if style == "nvt" || is_sllod { groupbit } else { 1 };
+        let mut temp = GroupTemp::new(temp_group);
+        if is_sllod {
+            temp.spec.bias = temp_bias::Bias::Deform;
+        }
         Ok(FixNh {
             id,
             groupbit,
@@ -356,7 +383,7 @@ impl FixNh {
             mtchain,
             nc_tchain,
             drag,
-            temp: GroupTemp::new(temp_group),
+            temp,
             chain: Chain::new(if tstat.is_some() { mtchain } else { 0 }),
             t_target: 0.0,
             ke_target: 0.0,
@@ -364,6 +391,7 @@ impl FixNh {
             tdof: 0.0,
             tdrag_factor: 1.0,
             baro,
+            sllod: is_sllod.then_some(psllod),
         })
     }
 
@@ -391,9 +419,12 @@ impl FixNh {
             c.eta_mass[ich] = boltz * t_target / (t_freq * t_freq);
         }
         let ke = tdof * boltz * self.t_current;
-        let (temp, t_current) = (&mut self.temp, &mut self.t_current);
+        let (temp, t_current, sllod) = (&mut self.temp, &mut self.t_current, self.sllod);
         c.half_step(state.dt, self.nc_tchain, self.tdrag_factor, ke, self.ke_target, boltz * t_target, |factor| {
-            temp.scale(state, groupbit, factor)?;
+            match sllod {
+                Some(psllod) => sllod_v_temp(temp, state, groupbit, factor, psllod)?,
+                None => temp.scale(state, groupbit, factor)?,
+            }
             // the temperature scales with the velocities; LAMMPS does not recompute it
             *t_current *= factor * factor;
             Ok(tdof * boltz * *t_current)
@@ -715,6 +746,35 @@ impl Barostat {
     }
 }
 
+/// LAMMPS' FixNVTSllod::nh_v_temp: each atom of the group loses its bias (the stream of
+/// temp/deform), is scaled by the chain's `factor` less dt/2 (h_rate h_inv) of its thermal
+/// velocity (p-SLLOD: of its whole velocity, taken before the bias) and gets its bias back.
+fn sllod_v_temp(temp: &GroupTemp, state: &mut State, groupbit: u32, factor: f64, psllod: bool) -> Result<(), RunError> {
+    let step = state.step;
+    let bias = temp.spec.field(state, groupbit).map_err(|e| RunError::new(step, e))?;
+    let d = state.domain().map_err(|e| RunError::new(step, e))?;
+    let h_two = crate::engine::domain::shape_product(&d.rate.h_rate, &d.h_inv());
+    let dthalf = 0.5 * state.dt;
+    let a = &mut state.atoms;
+    for i in (0..a.nlocal).filter(|&i| a.mask[i] & groupbit != 0) {
+        let b = bias.as_ref().map_or([0.0; 3], |b| b[i]);
+        let v = &mut a.v[i];
+        let unbias = |v: &mut [f64; 3]| (0..3).for_each(|k| v[k] -= b[k]);
+        if !psllod {
+            unbias(v);
+        }
+        let vdelu = [h_two[0] * v[0] + h_two[5] * v[1] + h_two[4] * v[2], h_two[1] * v[1] + h_two[3] * v[2], h_two[2] * v[2]];
+        if psllod {
+            unbias(v);
+        }
+        for k in 0..3 {
+            v[k] = v[k] * factor - dthalf * vdelu[k];
+            v[k] += b[k];
+        }
+    }
+    Ok(())
+}
+
 impl Fix for FixNh {
     fn id(&self) -> &str {
         &self.id
@@ -747,6 +807,18 @@ impl Fix for FixNh {
     }
     fn init(&mut self, state: &State, ctx: &FixCtx) -> Result<(), String> {
         self.temp.count_dof(state, ctx);
+        if self.sllod.is_some() {
+            if self.temp.spec.bias == temp_bias::Bias::None {
+                return Err("Temperature for fix nvt/sllod does not have a bias".into());
+            }
+            match ctx.other_fixes().find(|f| f.style() == "deform") {
+                None => return Err("Using fix nvt/sllod with no fix deform defined".into()),
+                Some(f) if f.box_rate().is_none_or(|r| r.vremap.is_none()) => {
+                    return Err(format!("Using fix nvt/sllod with inconsistent fix deform remap option: fix {} must remap v (the velocities of atoms crossing the box)", f.id()));
+                }
+                Some(_) => {}
+            }
+        }
         self.tdrag_factor = 1.0 - (state.dt * self.t_freq() * self.drag / self.nc_tchain as f64);
         let (style, drag) = (self.style, self.drag);
         let Some(b) = self.baro.as_mut() else { return Ok(()) };

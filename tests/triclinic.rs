@@ -115,6 +115,24 @@ fn bad_sllod_input_is_an_error() {
     ]);
 }
 
+/// compute temp/deform warns at the run, as LAMMPS, when no fix deform keeps a stream.
+#[test]
+fn temp_deform_warns_without_a_stream() {
+    let base = "units lj\ndimension 2\nregion b prism 0 6 0 6 -0.5 0.5 0 0 0 units box\ncreate_box 1 b\ncreate_atoms 1 random 20 5 NULL\nmass 1 1\npair_style lj/cut 2.5\npair_coeff 1 1 1 1\nfix 1 all nve\ncompute t all temp/deform\n";
+    let opts = dmhs::deck::DeckOptions { screen: false, capture_text: true, ..Default::default() };
+    for (extra, want) in [
+        ("", Some("WARNING: Using compute temp/deform with no fix deform defined")),
+        ("fix 2 all deform 1 xy erate 0.1\n", Some("WARNING: Using compute temp/deform with inconsistent fix deform remap option")),
+        ("fix 2 all deform 1 xy erate 0.1 remap none\n", None),
+        ("fix 2 all deform 1 xy erate 0.1 remap v\n", None),
+    ] {
+        let run = dmhs::deck::run_text("w.deck", &format!("{base}{extra}run 0\n"), &opts).map_err(|f| f.rendered).unwrap();
+        let text = run.sim.out.captured.clone().unwrap_or_default();
+        let warned: Vec<&str> = text.lines().filter(|l| l.starts_with("WARNING") && l.contains("temp/deform")).collect();
+        assert_eq!(warned, want.into_iter().collect::<Vec<_>>(), "{extra}");
+    }
+}
+
 /// The box dmhs prints and writes: LAMMPS' "triclinic box" line, the tilt line of write_data.
 #[test]
 fn triclinic_box_is_reported_and_written() {

@@ -130,6 +130,10 @@ impl Simulation {
             self.out.print(&format!("WARNING: {w}"));
         }
         self.init_fixes(true)?;
+        let warnings: Vec<String> = self.computes.iter().flat_map(|c| c.init_warnings(&self.world())).collect();
+        for w in warnings {
+            self.out.print(&format!("WARNING: {w}"));
+        }
         self.init_thermo_columns();
         // LAMMPS' Output::init: output intervals given by variables
         let intervals = self.thermo.every_var.iter().map(|v| (v, "thermo".to_string())).chain(self.dumps.iter().filter_map(|d| d.every_var.as_ref().map(|v| (v, format!("dump {}", d.id)))));

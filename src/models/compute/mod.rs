@@ -243,6 +243,10 @@ pub trait Compute: Send + Sync {
     /// Recompute what LAMMPS computes once per run (a temperature's degrees of freedom); called
     /// before each run and by `velocity`.
     fn setup(&mut self, _w: &World) {}
+    /// The warnings LAMMPS prints at the compute's init, when a run starts.
+    fn init_warnings(&self, _w: &World) -> Vec<String> {
+        Vec::new()
+    }
     /// Once per run after the setup's list build, with the atoms wrapped and sorted (LAMMPS'
     /// compute setup comes after Verlet::setup's build; msd/chunk keeps its reference there).
     fn setup_after_build(&mut self, _w: &World) {}

@@ -364,6 +364,17 @@ impl Compute for ComputeTempBias {
     fn setup(&mut self, w: &World) {
         self.dof.at_setup = Some(self.count_dof(w));
     }
+    /// temp/deform expects the stream fix deform's `remap v` (or none) keeps.
+    fn init_warnings(&self, w: &World) -> Vec<String> {
+        if self.bias != Bias::Deform {
+            return Vec::new();
+        }
+        match w.fixes.iter().find(|f| f.style() == "deform") {
+            None => vec!["Using compute temp/deform with no fix deform defined".into()],
+            Some(f) if f.deform_remap() == Some(crate::models::fix::deform::Remap::X) => vec!["Using compute temp/deform with inconsistent fix deform remap option".into()],
+            Some(_) => Vec::new(),
+        }
+    }
     fn modify_dof(&mut self, extra: Option<f64>, dynamic: Option<bool>) {
         self.dof.modify(extra, dynamic);
     }

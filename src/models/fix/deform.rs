@@ -574,6 +574,9 @@ impl Fix for FixDeform {
     fn box_rate(&self) -> Option<BoxRate> {
         Some(self.rate)
     }
+    fn deform_remap(&self) -> Option<Remap> {
+        Some(self.remap)
+    }
     fn end_of_step(&mut self, state: &mut State, ctx: &mut FixCtx) -> Result<(), RunError> {
         if state.step % self.nevery != 0 {
             return Ok(());

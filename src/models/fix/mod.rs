@@ -297,6 +297,10 @@ pub trait Fix: Send + Sync {
     fn box_rate(&self) -> Option<crate::engine::domain::BoxRate> {
         None
     }
+    /// What fix deform's `remap` moves with the box; None for the other fixes.
+    fn deform_remap(&self) -> Option<deform::Remap> {
+        None
+    }
     /// The warnings LAMMPS prints when a run starts, given the fixes defined before and after
     /// this one.
     fn init_warnings(&self, _others: [&[Box<dyn Fix>]; 2]) -> Vec<String> {

@@ -813,7 +813,7 @@ impl Fix for FixNh {
             }
             match ctx.other_fixes().find(|f| f.style() == "deform") {
                 None => return Err("Using fix nvt/sllod with no fix deform defined".into()),
-                Some(f) if f.box_rate().is_none_or(|r| r.vremap.is_none()) => {
+                Some(f) if f.deform_remap() != Some(super::deform::Remap::V) => {
                     return Err(format!("Using fix nvt/sllod with inconsistent fix deform remap option: fix {} must remap v (the velocities of atoms crossing the box)", f.id()));
                 }
                 Some(_) => {}

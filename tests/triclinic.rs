@@ -6,7 +6,8 @@
 //! tests/triclinic/in.shear for fix deform shearing the box (xy erate, a flip, yz vel),
 //! tests/triclinic/in.sllod for NEMD shear (fix nvt/sllod, fix deform remap v, compute
 //! temp/deform, chunk/atom in box fractions, a flip, p-SLLOD) and tests/triclinic/in.elongate
-//! for SLLOD elongation of an orthogonal box. The liquids' round-off grows over the runs; the
+//! for SLLOD elongation of an orthogonal box, tests/triclinic/in.replicate for replicate of a
+//! tilted box whose atoms carry image flags. The liquids' round-off grows over the runs; the
 //! thermo, dump and profile columns stay within 1e-9 of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
@@ -18,6 +19,7 @@ const BOND_FILES: [&str; 2] = ["bonds.txt", "bonds.dump"];
 const SHEAR_FILES: [&str; 2] = ["shear.txt", "shear.dump"];
 const SLLOD_FILES: [&str; 3] = ["sllod.txt", "sllod.dump", "sllod.profile"];
 const ELONGATE_FILES: [&str; 2] = ["elongate.txt", "elongate.dump"];
+const REPLICATE_FILES: [&str; 2] = ["replicate.txt", "replicate.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -95,6 +97,18 @@ fn sllod_elongation_matches_stored_lammps_output() {
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn sllod_elongation_matches_lammps_now() {
     live("in.elongate", &ELONGATE_FILES);
+}
+
+/// replicate of a tilted box: tests/triclinic/in.replicate.
+#[test]
+fn replicated_tilted_box_matches_stored_lammps_output() {
+    stored("in.replicate", &REPLICATE_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn replicated_tilted_box_matches_lammps_now() {
+    live("in.replicate", &REPLICATE_FILES);
 }
 
 /// fix nvt/sllod needs fix deform remapping velocities and a temperature with a bias, as

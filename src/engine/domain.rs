@@ -553,6 +553,16 @@ impl Periods {
             Some([xy, xz, yz]) => [x[0] + p[0] * a + xy * b + xz * c, x[1] + p[1] * b + yz * c, x[2] + p[2] * c],
         }
     }
+    /// [`Periods::unmap`] as LAMMPS' in-place Domain::unmap sums it (replicate): the images'
+    /// shift first, then added to the position (the same bits as `unmap` for an orthogonal box).
+    pub fn unmap_summed(&self, x: [f64; 3], image: [i32; 3]) -> [f64; 3] {
+        let p = self.prd;
+        let [a, b, c] = [image[0] as f64, image[1] as f64, image[2] as f64];
+        match self.tilt {
+            None => self.unmap(x, image),
+            Some([xy, xz, yz]) => [x[0] + (p[0] * a + xy * b + xz * c), x[1] + (p[1] * b + yz * c), x[2] + p[2] * c],
+        }
+    }
     /// The position of the image `shift` of a point at `x`, as LAMMPS' forward communication
     /// makes it: one exchange per dimension in turn (x, y, z), each adding its own shift (for
     /// a triclinic box a shift along y moves x by xy too, one along z x and y by xz and yz).

@@ -2,8 +2,9 @@
 //! Replicate on one process.
 //!
 //! Atoms are first unwrapped with their image flags; copy (ix, iy, iz) is shifted by
-//! (ix, iy, iz) old box lengths and remapped into the new box, whose upper bounds are
-//! lo + n * prd. Copies are made replica by replica (z fastest, then y, then x), each in the
+//! (ix, iy, iz) old box lengths (a triclinic box's by its edge vectors, the tilts included) and
+//! remapped into the new box, whose upper bounds are lo + n * prd and whose tilts are xy ny,
+//! xz nz, yz nz. Copies are made replica by replica (z fastest, then y, then x), each in the
 //! old local order, and copy k = ix + nx (iy + ny iz) adds k * maxtag to atom IDs and
 //! k * maxmol to positive molecule IDs; bonds, angles and dihedrals are copied with their atom
 //! IDs shifted the same way. Every other per-atom value is copied unchanged. Shrink-wrapped
@@ -64,19 +65,31 @@ pub fn replicate(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     for d in 0..3 {
         big.hi[d] = domain.lo[d] + n[d] as f64 * prd[d];
     }
+    let tilt = domain.tilt;
+    big.tilt = tilt.map(|[xy, xz, yz]| [xy * n[1] as f64, xz * n[2] as f64, yz * n[2] as f64]);
     // copies (ix, iy, iz) with z fastest; copy k of atom old_order[j] becomes atom k * nold + j
     let reps: Vec<[usize; 3]> = (0..n[0]).flat_map(|ix| (0..n[1]).flat_map(move |iy| (0..n[2]).map(move |iz| [ix, iy, iz]))).collect();
-    let unwrapped: Vec<[f64; 3]> = old_order.iter().map(|&i| domain.unmap(st.atoms.x[i], st.atoms.image[i])).collect();
+    let periods = domain.periods();
+    let unwrapped: Vec<[f64; 3]> = old_order.iter().map(|&i| periods.unmap_summed(st.atoms.x[i], st.atoms.image[i])).collect();
     let mut placed = Vec::with_capacity(nold * nrep);
     for rep in &reps {
+        let r = rep.map(|k| k as f64);
         for u in &unwrapped {
-            let mut x = [u[0] + rep[0] as f64 * prd[0], u[1] + rep[1] as f64 * prd[1], u[2] + rep[2] as f64 * prd[2]];
+            let mut x = match tilt {
+                None => [u[0] + r[0] * prd[0], u[1] + r[1] * prd[1], u[2] + r[2] * prd[2]],
+                Some([xy, xz, yz]) => [u[0] + r[0] * prd[0] + r[1] * xy + r[2] * xz, u[1] + r[1] * prd[1] + r[2] * yz, u[2] + r[2] * prd[2]],
+            };
             let mut image = [0; 3];
             big.remap(&mut x, &mut image);
             placed.push((x, image));
         }
     }
-    let lost = placed.iter().filter(|(x, _)| !(0..3).all(|d| big.periodic(d) || (x[d] >= big.lo[d] && x[d] < big.hi[d]))).count();
+    // inside the new box along each non-periodic dimension (a triclinic box's in box fractions)
+    let inside = |x: &[f64; 3]| {
+        let (c, lo, hi) = if big.triclinic() { (big.x2lamda(*x), [0.0; 3], [1.0; 3]) } else { (*x, big.lo, big.hi) };
+        (0..3).all(|d| big.periodic(d) || (c[d] >= lo[d] && c[d] < hi[d]))
+    };
+    let lost = placed.iter().filter(|(x, _)| !inside(x)).count();
     if lost > 0 {
         return Err(Diagnostic::at(cmd.span, format!("replicate: {lost} copied atoms would lie outside the new box in a non-periodic dimension (LAMMPS: \"Replicate did not assign all atoms correctly\")"), "atoms outside the box"));
     }

@@ -5,9 +5,10 @@
 //! tests/triclinic/in.bonds does the same for harmonic bonds across the tilted faces, and
 //! tests/triclinic/in.shear for fix deform shearing the box (xy erate, a flip, yz vel),
 //! tests/triclinic/in.sllod for NEMD shear (fix nvt/sllod, fix deform remap v, compute
-//! temp/deform, chunk/atom in box fractions, a flip, p-SLLOD) and tests/triclinic/in.elongate
+//! temp/deform, chunk/atom in box fractions, a flip, p-SLLOD), tests/triclinic/in.elongate
 //! for SLLOD elongation of an orthogonal box, tests/triclinic/in.replicate for replicate of a
-//! tilted box whose atoms carry image flags. The liquids' round-off grows over the runs; the
+//! tilted box whose atoms carry image flags, and tests/triclinic/in.npt_tri for fix npt (iso,
+//! then x y z apart) scaling a tilted box's tilts and flipping it. The liquids' round-off grows over the runs; the
 //! thermo, dump and profile columns stay within 1e-9 of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
@@ -20,6 +21,7 @@ const SHEAR_FILES: [&str; 2] = ["shear.txt", "shear.dump"];
 const SLLOD_FILES: [&str; 3] = ["sllod.txt", "sllod.dump", "sllod.profile"];
 const ELONGATE_FILES: [&str; 2] = ["elongate.txt", "elongate.dump"];
 const REPLICATE_FILES: [&str; 2] = ["replicate.txt", "replicate.dump"];
+const NPT_FILES: [&str; 2] = ["npt_tri.txt", "npt_tri.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -109,6 +111,18 @@ fn replicated_tilted_box_matches_stored_lammps_output() {
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn replicated_tilted_box_matches_lammps_now() {
     live("in.replicate", &REPLICATE_FILES);
+}
+
+/// Barostats on a tilted box: tests/triclinic/in.npt_tri.
+#[test]
+fn npt_on_a_tilted_box_matches_stored_lammps_output() {
+    stored("in.npt_tri", &NPT_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn npt_on_a_tilted_box_matches_lammps_now() {
+    live("in.npt_tri", &NPT_FILES);
 }
 
 /// fix nvt/sllod needs fix deform remapping velocities and a temperature with a bias, as

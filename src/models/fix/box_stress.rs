@@ -76,15 +76,37 @@ pub fn strain_trace(s: &[f64; 6], h: &[f64; 6]) -> f64 {
     0.5 * (d0 + d1 + d2)
 }
 
+/// A flip of a triclinic box (LAMMPS' pre_exchange of fix deform and the barostats): the new
+/// tilts `[xy, xz, yz]`, each atom's image flags carried over by the flips `[m, n, p]` (xy,
+/// xz, yz: LAMMPS' image_flip, before the remap), the atom remapped into the new box and moved
+/// through box fractions once more (LAMMPS migrates them in lamda coordinates).
+pub fn flip_box(state: &mut State, tilts: [f64; 3], [m, n, p]: [i32; 3]) -> Result<(), String> {
+    let dom = state.domain.as_mut().ok_or("no simulation box")?;
+    dom.tilt = Some(tilts);
+    let a = &mut state.atoms;
+    for i in 0..a.nlocal {
+        let img = &mut a.image[i];
+        img[1] -= p * img[2];
+        img[0] -= m * img[1] + n * img[2];
+        dom.remap(&mut a.x[i], img);
+        a.x[i] = dom.lamda2x(dom.x2lamda(a.x[i]));
+    }
+    Ok(())
+}
+
+/// The largest tilt a barostat's step may leave, in lengths of the tilt's first dimension.
+const TILTMAX: f64 = 1.5;
+
 /// A barostat's half step of the box (LAMMPS' remap): each length k with `scale[k] =
-/// Some((fixed point, factor))` scaled about its fixed point, then the atoms (all, or the group
+/// Some((fixed point, factor))` scaled about its fixed point, a triclinic box's tilts that
+/// `tilt_scale` (yz, xz, xy) names scaled with the length of their second dimension (y for
+/// xy, z for xz and yz; None: a triclinic box is refused), then the atoms (all, or the group
 /// `dilate`'s) moved with the box in box fractions (x2lamda, new box, lamda2x). Returns the
 /// dilation, for other points that follow the box (rigid bodies' centres).
-pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], dilate: Option<u32>) -> Result<Dilation, String> {
+pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], tilt_scale: Option<[bool; 3]>, dilate: Option<u32>) -> Result<Dilation, String> {
     let dom = state.domain.as_mut().ok_or("no simulation box")?;
-    if dom.triclinic() {
-        // (LAMMPS scales the tilts with the lengths: not done here yet)
-        return Err("a barostat on a triclinic box is not supported yet".into());
+    if dom.triclinic() && tilt_scale.is_none() {
+        return Err("a barostat of rigid bodies on a triclinic box is not supported yet".into());
     }
     let old = dom.clone();
     for k in 0..3 {
@@ -92,11 +114,31 @@ pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], dilate: Opt
             let (oldlo, oldhi) = (dom.lo[k], dom.hi[k]);
             dom.lo[k] = (oldlo - fixed) * expfac + fixed;
             dom.hi[k] = (oldhi - fixed) * expfac + fixed;
+            // [xy, xz, yz] follow y (xy) and z (xz, yz) when their scaling is on
+            if let (Some(t), Some([syz, sxz, sxy])) = (dom.tilt.as_mut(), tilt_scale) {
+                if k == 1 && sxy {
+                    t[0] *= expfac;
+                }
+                if k == 2 {
+                    if sxz {
+                        t[1] *= expfac;
+                    }
+                    if syz {
+                        t[2] *= expfac;
+                    }
+                }
+            }
         }
     }
     let prd = dom.prd();
     if (0..3).any(|k| !(prd[k] > 0.0) || !prd[k].is_finite()) {
         return Err(format!("the box length became {prd:?} - simulation unstable"));
+    }
+    // LAMMPS' TILTMAX: a tilt may not pass 1.5 box lengths in one step
+    let [xy, xz, yz] = dom.tilts();
+    let beyond = |t: f64, len: f64| t < -TILTMAX * len || t > TILTMAX * len;
+    if beyond(yz, prd[1]) || beyond(xz, prd[0]) || beyond(xy, prd[0]) {
+        return Err("has tilted box too far in one step - periodic cell is too far from equilibrium state".into());
     }
     let dilation = Dilation::new(&old, dom);
     let a = &mut state.atoms;

@@ -597,17 +597,6 @@ impl Fix for FixDeform {
         for k in 0..3 {
             self.tilt[k].target = tilts[k];
         }
-        let dom = state.domain.as_mut().ok_or_else(|| RunError::new(state.step, "fix deform: no box"))?;
-        dom.tilt = Some(tilts);
-        let a = &mut state.atoms;
-        for i in 0..a.nlocal {
-            let img = &mut a.image[i];
-            img[1] -= p * img[2];
-            img[0] -= m * img[1] + n * img[2];
-            dom.remap(&mut a.x[i], img);
-            // LAMMPS migrates the atoms in box fractions, even on one process
-            a.x[i] = dom.lamda2x(dom.x2lamda(a.x[i]));
-        }
-        Ok(())
+        super::box_stress::flip_box(state, tilts, [m, n, p]).map_err(|e| RunError::new(state.step, format!("fix deform: {e}")))
     }
 }

@@ -18,7 +18,7 @@
 //! velocities the SLLOD step also subtracts dt/2 (h_rate h_inv) v_thermal (p-SLLOD: of the
 //! whole velocity).
 
-use super::box_stress::{dilate_box, strain_trace, Couple};
+use super::box_stress::{dilate_box, flip_box, strain_trace, Couple};
 use super::thermostat::{run_fraction, GroupTemp};
 use super::{Fix, FixCtx, FixHooks};
 use crate::models::compute::pressure::{scalar_pressure, tensor_pressure};
@@ -123,6 +123,10 @@ struct Barostat {
     dilate: Option<u32>,
     nreset_h0: i64,
     fixedpoint: [f64; 3],
+    /// Whether the tilts yz, xz, xy scale with the box (scaleyz, scalexz, scalexy).
+    tilt_scale: [bool; 3],
+    /// Whether a tilt past half a box length (and DELTAFLIP) flips at a rebuild.
+    flips: bool,
     p_temp: Option<f64>,
     chain: Chain,
     // state
@@ -194,7 +198,12 @@ impl FixNh {
         let mut dilate = None;
         let mut nreset_h0 = 0;
         let mut p_temp = None;
-        let mut scale = [false; 3]; // yz, xz, xy: tilts are 0 on an orthogonal box
+        // yz, xz, xy: LAMMPS scales a tilt with its box length when it is not 0 and the length's
+        // dimension is periodic
+        let now = state.domain().map_err(|m| a.error_command(format!("fix {style}: {m}"), "no box"))?;
+        let [xy0, xz0, yz0] = now.tilts();
+        let mut scale = [now.periodic(2) && dimension == 3 && yz0 != 0.0, now.periodic(2) && dimension == 3 && xz0 != 0.0, now.periodic(1) && xy0 != 0.0];
+        let mut flip = true;
         let mut fixedpoint = None;
         let mut first_pressure: Option<&Word> = None;
         if a.is_empty() {
@@ -267,9 +276,7 @@ impl FixNh {
                     scale[c] = a.logical(k)?;
                 }
                 // box flips happen to tilted boxes only
-                "flip" => {
-                    a.logical("flip")?;
-                }
+                "flip" => flip = a.logical("flip")?,
                 // read by fix nvt/sphere and nph/sphere; the point-particle styles ignore it
                 "disc" => {}
                 "fixedpoint" => fixedpoint = Some([a.f64("fixedpoint x")?, a.f64("fixedpoint y")?, a.f64("fixedpoint z")?]),
@@ -301,10 +308,7 @@ impl FixNh {
         if tstat.is_some() && p_temp.is_some() {
             return Err(bad(format!("thermostat in fix {style} is incompatible with the ptemp keyword")));
         }
-        let d = state.domain().map_err(|m| a.error_command(format!("fix {style}: {m}"), "no box"))?;
-        if d.triclinic() && p_flag.iter().any(|&p| p) {
-            return Err(a.error_command(format!("fix {style} on a triclinic box is not supported yet"), "triclinic box"));
-        }
+        let d = now;
         if dimension == 2 && pcouple.needs_3d() {
             return Err(bad(format!("invalid fix {style} command for a 2d simulation: couple yz or xz")));
         }
@@ -346,6 +350,9 @@ impl FixNh {
                 dilate,
                 nreset_h0,
                 fixedpoint: fixedpoint.unwrap_or([0.5 * (d.lo[0] + d.hi[0]), 0.5 * (d.lo[1] + d.hi[1]), 0.5 * (d.lo[2] + d.hi[2])]),
+                tilt_scale: scale,
+                // LAMMPS flips a box that was tilted when the fix was defined
+                flips: flip && (xy0 != 0.0 || xz0 != 0.0 || yz0 != 0.0),
                 p_temp,
                 chain: Chain::new(mpchain),
                 p_target: [0.0; 3],
@@ -518,7 +525,7 @@ impl FixNh {
             b.omega[k] += dto * b.omega_dot[k];
         }
         let scale = std::array::from_fn(|k| b.p_flag[k].then(|| (b.fixedpoint[k], (dto * b.omega_dot[k]).exp())));
-        dilate_box(state, scale, b.dilate).map_err(|e| RunError::new(state.step, format!("fix {} {}: {e}", self.style, self.id)))?;
+        dilate_box(state, scale, Some(b.tilt_scale), b.dilate).map_err(|e| RunError::new(state.step, format!("fix {} {}: {e}", self.style, self.id)))?;
         Ok(())
     }
 
@@ -548,7 +555,7 @@ impl FixNh {
         let delta = run_fraction(state);
         let begin = state.run_window.map_or(state.step, |w| w.0);
         let volume = self.volume(state)?;
-        let prd = state.domain().map_err(|e| RunError::new(state.step, e))?.prd();
+        let h_inv = state.domain().map_err(|e| RunError::new(state.step, e))?.h_inv();
         let b = self.baro.as_mut().expect("a barostat");
         b.p_hydro = 0.0;
         for i in 0..3 {
@@ -563,7 +570,7 @@ impl FixNh {
         if b.deviatoric {
             if b.nreset_h0 > 0 && (state.step - begin) % b.nreset_h0 == 0 {
                 b.vol0 = volume;
-                b.h0_inv = [1.0 / prd[0], 1.0 / prd[1], 1.0 / prd[2], 0.0, 0.0, 0.0];
+                b.h0_inv = h_inv;
             }
             b.compute_sigma();
         }
@@ -578,13 +585,13 @@ impl FixNh {
     /// Half step of the box velocities from the pressure difference (LAMMPS' nh_omega_dot).
     fn nh_omega_dot(&mut self, state: &State) -> Result<(), RunError> {
         let volume = self.volume(state)?;
-        let prd = state.domain().map_err(|e| RunError::new(state.step, e))?.prd();
+        let h = state.domain().map_err(|e| RunError::new(state.step, e))?.h();
         let (boltz, nktv2p, dthalf) = (state.units.boltz, state.units.nktv2p, 0.5 * state.dt);
         let natoms = state.natoms();
         let (tdof, t_current) = (self.tdof, self.t_current);
         let b = self.baro.as_mut().expect("a barostat");
         if b.deviatoric {
-            b.compute_deviatoric(&[prd[0], prd[1], prd[2], 0.0, 0.0, 0.0]);
+            b.compute_deviatoric(&h);
         }
         let nd = (b.pdim * natoms) as f64;
         b.mtk_term1 = 0.0;
@@ -647,8 +654,8 @@ impl FixNh {
             }
         }
         if b.deviatoric {
-            let p = state.domain().map(|d| d.prd()).unwrap_or([f64::NAN; 3]);
-            energy += b.strain_energy(&[p[0], p[1], p[2], 0.0, 0.0, 0.0], nktv2p);
+            let h = state.domain().map(|d| d.h()).unwrap_or([f64::NAN; 6]);
+            energy += b.strain_energy(&h, nktv2p);
         }
         energy
     }
@@ -702,8 +709,8 @@ impl FixNh {
                 out.push(0.5 * c.eta_mass[ich] * c.eta_dot[ich] * c.eta_dot[ich]);
             }
             if b.deviatoric {
-                let p = state.domain().map(|d| d.prd()).unwrap_or([f64::NAN; 3]);
-                out.push(b.strain_energy(&[p[0], p[1], p[2], 0.0, 0.0, 0.0], nktv2p));
+                let h = state.domain().map(|d| d.h()).unwrap_or([f64::NAN; 6]);
+                out.push(b.strain_energy(&h, nktv2p));
             }
         }
         out
@@ -789,7 +796,50 @@ impl Fix for FixNh {
         true
     }
     fn hooks(&self) -> FixHooks {
-        FixHooks { initial_integrate: true, final_integrate: true, ..FixHooks::default() }
+        let flips = self.baro.as_ref().is_some_and(|b| b.flips);
+        FixHooks { initial_integrate: true, final_integrate: true, pre_exchange: flips, ..FixHooks::default() }
+    }
+    /// LAMMPS' FixNH::pre_exchange at a rebuild: a tilt past half its box length by DELTAFLIP
+    /// (0.1, so that a tilt oscillating about the half does not flip back and forth) flips,
+    /// yz first (it moves xz by xy), then xz and xy, each along a periodic dimension.
+    fn pre_exchange(&mut self, state: &mut State, _ctx: &mut FixCtx) -> Result<(), RunError> {
+        const DELTAFLIP: f64 = 0.1;
+        let d = state.domain().map_err(|e| RunError::new(state.step, e))?;
+        let Some([mut xy, mut xz, mut yz]) = d.tilt else { return Ok(()) };
+        let prd = d.prd();
+        let (xtiltmax, ytiltmax) = ((0.5 + DELTAFLIP) * prd[0], (0.5 + DELTAFLIP) * prd[1]);
+        let (mut m, mut n, mut p) = (0, 0, 0);
+        if d.periodic(1) {
+            if yz < -ytiltmax {
+                yz += prd[1];
+                xz += xy;
+                p = 1;
+            } else if yz >= ytiltmax {
+                yz -= prd[1];
+                xz -= xy;
+                p = -1;
+            }
+        }
+        if d.periodic(0) {
+            if xz < -xtiltmax {
+                xz += prd[0];
+                n = 1;
+            } else if xz >= xtiltmax {
+                xz -= prd[0];
+                n = -1;
+            }
+            if xy < -xtiltmax {
+                xy += prd[0];
+                m = 1;
+            } else if xy >= xtiltmax {
+                xy -= prd[0];
+                m = -1;
+            }
+        }
+        if m == 0 && n == 0 && p == 0 {
+            return Ok(());
+        }
+        flip_box(state, [xy, xz, yz], [m, n, p]).map_err(|e| RunError::new(state.step, format!("fix {} {}: {e}", self.style, self.id)))
     }
     fn couples_energy(&self) -> bool {
         true
@@ -832,9 +882,8 @@ impl Fix for FixNh {
         b.pdrag_factor = 1.0 - (state.dt * b.p_freq_max * drag / b.nc_pchain as f64);
         if b.vol0 == 0.0 {
             let d = state.domain()?;
-            let p = d.prd();
             b.vol0 = d.volume();
-            b.h0_inv = [1.0 / p[0], 1.0 / p[1], 1.0 / p[2], 0.0, 0.0, 0.0];
+            b.h0_inv = d.h_inv();
         }
         Ok(())
     }

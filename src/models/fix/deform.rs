@@ -7,9 +7,10 @@
 //! follow the box in box fractions; with `remap v` they stay, and an atom of the group that
 //! crosses a periodic face changes velocity by the box's rate (for fix nvt/sllod). The box's
 //! rate (LAMMPS' h_rate, read by compute temp/deform and fix nvt/sllod) is set as LAMMPS sets
-//! it: at init for the styles of constant rate, every step for trate, wiggle and variable. With `flip yes` (default) a tilt beyond half the box length
-//! flips to its equivalent on the other side on the next step (LAMMPS' pre_exchange), the atoms
-//! remapped and their image flags carried over.
+//! it: at init for the styles of constant rate, every step for trate, wiggle and variable.
+//! With `flip yes` (default) a tilt beyond half the box length flips to its equivalent on the
+//! other side on the next step (LAMMPS' pre_exchange), the atoms remapped and their image flags
+//! carried over.
 
 use super::{Fix, FixCtx, FixHooks};
 use crate::engine::domain::{BoundaryKind, BoxRate, Dilation};

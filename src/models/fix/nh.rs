@@ -1,6 +1,7 @@
 //! `fix ID group nvt|npt|nph keyword values ...`: Nose-Hoover chain thermostat and
-//! Martyna-Tobias-Klein barostat with velocity-Verlet (LAMMPS' FixNH on an orthogonal box, same
-//! operations and order). A step: the barostat's chain and the thermostat's chain for half a
+//! Martyna-Tobias-Klein barostat with velocity-Verlet (LAMMPS' FixNH, same operations and
+//! order; on a triclinic box the lengths are barostatted and the tilts follow them, flipping
+//! past 0.6 box lengths). A step: the barostat's chain and the thermostat's chain for half a
 //! step (velocities scaled), the pressure measured, the box velocity and the velocity scaling by
 //! it, the NVE half kick, half the box change, the drift, the other half of the box change;
 //! after the forces: the second kick, the velocity scaling, the new temperature and pressure,
@@ -289,7 +290,8 @@ impl FixNh {
         match style {
             "nvt" | "nvt/sllod" if tstat.is_none() => return Err(a.error_at(&args[0], format!("fix {style} needs temperature control: `temp Tstart Tstop Tdamp`"), "no `temp` keyword")),
             "nvt" | "nvt/sllod" if pstat => {
-                return Err(a.error_at(first_pressure.unwrap_or(&args[0]), format!("pressure control cannot be used with fix {style}"), format!("not with fix {style}")));
+                let hint = if is_sllod { "" } else { " (use fix npt)" };
+                return Err(a.error_at(first_pressure.unwrap_or(&args[0]), format!("pressure control cannot be used with fix {style}{hint}"), format!("not with fix {style}")));
             }
             "npt" if tstat.is_none() => return Err(bad("temperature control must be used with fix npt: `temp Tstart Tstop Tdamp`".into())),
             "npt" | "nph" if !pstat => return Err(bad(format!("pressure control must be used with fix {style}: iso, aniso, x, y or z"))),
@@ -298,7 +300,8 @@ impl FixNh {
         }
         if style == "nvt" || is_sllod {
             if let Some(w) = args.iter().find(|w| BAROSTAT_KEYS.contains(&w.text.as_str()) && w.text != "x" && w.text != "y" && w.text != "z") {
-                return Err(a.error_at(w, format!("`{}` is a barostat keyword; fix {style} has no barostat", w.text), format!("not with fix {style}")));
+                let hint = if is_sllod { "" } else { " (use fix npt)" };
+                return Err(a.error_at(w, format!("`{}` is a barostat keyword; fix {style} has no barostat{hint}", w.text), format!("not with fix {style}")));
             }
         }
         // LAMMPS' FixNVTSllod: a chain of 1 unless tchain is given

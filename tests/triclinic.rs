@@ -8,7 +8,8 @@
 //! temp/deform, chunk/atom in box fractions, a flip, p-SLLOD), tests/triclinic/in.elongate
 //! for SLLOD elongation of an orthogonal box, tests/triclinic/in.replicate for replicate of a
 //! tilted box whose atoms carry image flags, and tests/triclinic/in.npt_tri for fix npt (iso,
-//! then x y z apart) scaling a tilted box's tilts and flipping it. The liquids' round-off grows over the runs; the
+//! then x y z apart) scaling a tilted box's tilts and flipping it, tests/triclinic/in.npt_shear
+//! for the barostat of the tilts (tri, then xy and yz shear targets). The liquids' round-off grows over the runs; the
 //! thermo, dump and profile columns stay within 1e-9 of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
@@ -22,6 +23,7 @@ const SLLOD_FILES: [&str; 3] = ["sllod.txt", "sllod.dump", "sllod.profile"];
 const ELONGATE_FILES: [&str; 2] = ["elongate.txt", "elongate.dump"];
 const REPLICATE_FILES: [&str; 2] = ["replicate.txt", "replicate.dump"];
 const NPT_FILES: [&str; 2] = ["npt_tri.txt", "npt_tri.dump"];
+const SHEAR_BARO_FILES: [&str; 2] = ["npt_shear.txt", "npt_shear.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -125,6 +127,18 @@ fn npt_on_a_tilted_box_matches_lammps_now() {
     live("in.npt_tri", &NPT_FILES);
 }
 
+/// The tilts' barostat: tests/triclinic/in.npt_shear.
+#[test]
+fn npt_of_the_tilts_matches_stored_lammps_output() {
+    stored("in.npt_shear", &SHEAR_BARO_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn npt_of_the_tilts_matches_lammps_now() {
+    live("in.npt_shear", &SHEAR_BARO_FILES);
+}
+
 /// fix nvt/sllod needs fix deform remapping velocities and a temperature with a bias, as
 /// LAMMPS checks them (at the run); compute temp/deform takes no arguments; chunk/atom bins a
 /// tilted box in box fractions only.
@@ -185,14 +199,19 @@ fn bad_triclinic_input_is_an_error() {
     common::assert_located_errors(shrink, &[("region b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\n", "shrink-wrapped")]);
     let tri = "units lj\nregion b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\nmass 1 1\n";
     common::assert_located_errors(tri, &[
-        ("fix 1 all nph xy 0 0 1\n", "triclinic"),
+        ("fix 1 all npt temp 1 1 1 iso 1 1 1 xy 0 0 1 scalexy yes\n", "both xy dynamics and xy scaling"),
+        ("fix 1 all box/relax iso 0.0\n", "triclinic"),
         ("fix 1 all deform 1 xy scale 2\n", "Illegal fix deform command argument: scale"),
         ("fix 1 all deform 1 yz trate 0.1\n", "Cannot use fix deform trate on a box with zero tilt"),
         ("fix 1 all deform 1 xy erate 0.1 yz final 3.0\n", "Fix deform is changing yz too much with xy"),
         ("change_box all ortho\n", "Cannot change box to orthogonal when tilt is non-zero"),
     ]);
     let ortho = "units lj\nregion b block 0 4 0 4 0 4\ncreate_box 1 b\n";
-    common::assert_located_errors(ortho, &[("change_box all xy final 1\n", "Cannot change box tilt factors for orthogonal box"), ("fix 1 all deform 1 xy erate 0.1\n", "require triclinic box")]);
+    common::assert_located_errors(ortho, &[
+        ("change_box all xy final 1\n", "Cannot change box tilt factors for orthogonal box"),
+        ("fix 1 all deform 1 xy erate 0.1\n", "require triclinic box"),
+        ("fix 1 all npt temp 1 1 1 tri 1 1 1\n", "non-triclinic box"),
+    ]);
 }
 
 /// A restart file keeps the tilts: the run read back continues with the same box.

@@ -97,38 +97,49 @@ pub fn flip_box(state: &mut State, tilts: [f64; 3], [m, n, p]: [i32; 3]) -> Resu
 /// The largest tilt a barostat's step may leave, in lengths of the tilt's first dimension.
 const TILTMAX: f64 = 1.5;
 
-/// A barostat's half step of the box (LAMMPS' remap): each length k with `scale[k] =
-/// Some((fixed point, factor))` scaled about its fixed point, a triclinic box's tilts that
-/// `tilt_scale` (yz, xz, xy) names scaled with the length of their second dimension (y for
-/// xy, z for xz and yz; None: a triclinic box is refused), then the atoms (all, or the group
-/// `dilate`'s) moved with the box in box fractions (x2lamda, new box, lamda2x). Returns the
-/// dilation, for other points that follow the box (rigid bodies' centres).
-pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], tilt_scale: Option<[bool; 3]>, dilate: Option<u32>) -> Result<Dilation, String> {
+/// A barostat's half step of the box (LAMMPS' remap): `shear` (the tilts' own barostat, on
+/// `h` = [lx ly lz yz xz xy] holding the old lengths, as LAMMPS' domain->h until the box is
+/// set) before and after; each length k with `scale[k] = Some((fixed point, factor))` scaled
+/// about its fixed point, a triclinic box's tilts that `tilt_scale` (yz, xz, xy) names scaled
+/// with the length of their second dimension (y for xy, z for xz and yz; None: a triclinic box
+/// is refused); then the atoms (all, or the group `dilate`'s) moved with the box in box
+/// fractions (x2lamda, new box, lamda2x). Returns the dilation, for other points that follow
+/// the box (rigid bodies' centres).
+pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], tilt_scale: Option<[bool; 3]>, shear: Option<&dyn Fn(&mut [f64; 6])>, dilate: Option<u32>) -> Result<Dilation, String> {
     let dom = state.domain.as_mut().ok_or("no simulation box")?;
     if dom.triclinic() && tilt_scale.is_none() {
         return Err("a barostat of rigid bodies on a triclinic box is not supported yet".into());
     }
     let old = dom.clone();
+    let mut h = old.h();
+    if let Some(f) = shear {
+        f(&mut h);
+    }
+    let [syz, sxz, sxy] = tilt_scale.unwrap_or([false; 3]);
     for k in 0..3 {
         if let Some((fixed, expfac)) = scale[k] {
             let (oldlo, oldhi) = (dom.lo[k], dom.hi[k]);
             dom.lo[k] = (oldlo - fixed) * expfac + fixed;
             dom.hi[k] = (oldhi - fixed) * expfac + fixed;
-            // [xy, xz, yz] follow y (xy) and z (xz, yz) when their scaling is on
-            if let (Some(t), Some([syz, sxz, sxy])) = (dom.tilt.as_mut(), tilt_scale) {
-                if k == 1 && sxy {
-                    t[0] *= expfac;
+            // xy follows y, xz and yz follow z, when their scaling is on
+            if k == 1 && sxy {
+                h[5] *= expfac;
+            }
+            if k == 2 {
+                if sxz {
+                    h[4] *= expfac;
                 }
-                if k == 2 {
-                    if sxz {
-                        t[1] *= expfac;
-                    }
-                    if syz {
-                        t[2] *= expfac;
-                    }
+                if syz {
+                    h[3] *= expfac;
                 }
             }
         }
+    }
+    if let Some(f) = shear {
+        f(&mut h);
+    }
+    if let Some(t) = dom.tilt.as_mut() {
+        *t = [h[5], h[4], h[3]];
     }
     let prd = dom.prd();
     if (0..3).any(|k| !(prd[k] > 0.0) || !prd[k].is_finite()) {

@@ -38,6 +38,8 @@ pub const SYNTAX_NPH: &str = "fix ID group nph iso|aniso|x|y|z Pstart Pstop Pdam
 enum PStyle {
     Iso,
     Aniso,
+    /// A tilt is barostatted too (6 degrees of freedom).
+    Triclinic,
 }
 
 /// A Nose-Hoover chain of `m` links (the velocity array has one extra zero link, as LAMMPS').
@@ -126,6 +128,8 @@ struct Barostat {
     fixedpoint: [f64; 3],
     /// Whether the tilts yz, xz, xy scale with the box (scaleyz, scalexz, scalexy).
     tilt_scale: [bool; 3],
+    /// The tilts' own barostat (`tri`, `xy`, `xz`, `yz`).
+    shear: Option<TiltBaro>,
     /// Whether a tilt past half a box length (and DELTAFLIP) flips at a rebuild.
     flips: bool,
     p_temp: Option<f64>,
@@ -152,6 +156,62 @@ struct Barostat {
     pdrag_factor: f64,
     p_freq_max: f64,
     pdim: usize,
+}
+
+/// The barostat of a triclinic box's tilts, index 0 yz, 1 xz, 2 xy (LAMMPS' Voigt 3, 4, 5):
+/// targets (the stress: minus the pressure's off-diagonal), box velocities and masses.
+#[derive(Clone, Debug, Default)]
+struct TiltBaro {
+    p_start: [f64; 3],
+    p_stop: [f64; 3],
+    p_freq: [f64; 3],
+    p_flag: [bool; 3],
+    p_target: [f64; 3],
+    p_current: [f64; 3],
+    omega: [f64; 3],
+    omega_dot: [f64; 3],
+    omega_mass: [f64; 3],
+}
+
+impl TiltBaro {
+    /// sum m omega_dot^2 over the barostatted tilts.
+    fn kinetic(&self, omega_dot: &[f64; 3]) -> f64 {
+        (0..3).filter(|&j| self.p_flag[j]).fold(0.0, |ke, j| ke + self.omega_mass[j] * omega_dot[j] * omega_dot[j])
+    }
+    fn count(&self) -> usize {
+        self.p_flag.iter().filter(|&&f| f).count()
+    }
+    /// LAMMPS' off-diagonal half of remap (h_dot = omega_dot h, upper triangular, in the order
+    /// xz, yz, xy, xz that keeps it time-symmetric), on `h` = [lx ly lz yz xz xy] with the box's
+    /// old lengths; `omega_dot0` the diagonal box velocities.
+    fn half_shear(&self, h: &mut [f64; 6], omega_dot0: [f64; 3], dto: f64) {
+        let (dto2, dto4, dto8) = (dto / 2.0, dto / 4.0, dto / 8.0);
+        let w = &self.omega_dot;
+        let xz = |h: &mut [f64; 6]| {
+            let expfac = (dto8 * omega_dot0[0]).exp();
+            h[4] *= expfac;
+            h[4] += dto4 * (w[2] * h[3] + w[1] * h[2]);
+            h[4] *= expfac;
+        };
+        if self.p_flag[1] {
+            xz(h);
+        }
+        if self.p_flag[0] {
+            let expfac = (dto4 * omega_dot0[1]).exp();
+            h[3] *= expfac;
+            h[3] += dto2 * (w[0] * h[2]);
+            h[3] *= expfac;
+        }
+        if self.p_flag[2] {
+            let expfac = (dto4 * omega_dot0[0]).exp();
+            h[5] *= expfac;
+            h[5] += dto2 * (w[2] * h[1]);
+            h[5] *= expfac;
+        }
+        if self.p_flag[1] {
+            xz(h);
+        }
+    }
 }
 
 pub struct FixNh {
@@ -205,6 +265,8 @@ impl FixNh {
         let [xy0, xz0, yz0] = now.tilts();
         let mut scale = [now.periodic(2) && dimension == 3 && yz0 != 0.0, now.periodic(2) && dimension == 3 && xz0 != 0.0, now.periodic(1) && xy0 != 0.0];
         let mut flip = true;
+        // the tilts' barostat: yz, xz, xy
+        let (mut t_start, mut t_stop, mut t_period, mut t_flag) = ([0.0; 3], [0.0; 3], [0.0; 3], [false; 3]);
         let mut fixedpoint = None;
         let mut first_pressure: Option<&Word> = None;
         if a.is_empty() {
@@ -245,8 +307,34 @@ impl FixNh {
                     deviatoric = true;
                     first_pressure.get_or_insert(w);
                 }
-                k @ ("tri" | "xy" | "xz" | "yz") => {
-                    return Err(a.error_at(w, format!("fix {style} {k}: the tilt pressures (a triclinic box's) are not supported yet"), "use iso, aniso, x, y or z"));
+                "tri" => {
+                    let (p0, p1, period) = (a.f64("Pstart")?, a.f64("Pstop")?, a.positive_f64("Pdamp")?);
+                    pcouple = Couple::None;
+                    scale = [false; 3];
+                    let n = if dimension == 2 { 2 } else { 3 };
+                    p_start = [p0, p0, if n == 3 { p0 } else { 0.0 }];
+                    p_stop = [p1, p1, if n == 3 { p1 } else { 0.0 }];
+                    p_period = [period, period, if n == 3 { period } else { 0.0 }];
+                    p_flag = [true, true, n == 3];
+                    // the tilts' targets are 0; in 2d only xy
+                    for j in 0..3 {
+                        let on = dimension == 3 || j == 2;
+                        (t_start[j], t_stop[j], t_period[j], t_flag[j]) = (0.0, 0.0, if on { period } else { 0.0 }, on);
+                    }
+                    first_pressure.get_or_insert(w);
+                }
+                k @ ("xy" | "xz" | "yz") => {
+                    let j = ["yz", "xz", "xy"].iter().position(|s| *s == k).unwrap_or(0);
+                    if dimension == 2 && j < 2 {
+                        return Err(a.error_at(w, format!("invalid fix {style} command for a 2d simulation: {k}"), "3d only"));
+                    }
+                    t_start[j] = a.f64("Pstart")?;
+                    t_stop[j] = a.f64("Pstop")?;
+                    t_period[j] = a.positive_f64("Pdamp")?;
+                    t_flag[j] = true;
+                    scale[j] = false;
+                    deviatoric = true;
+                    first_pressure.get_or_insert(w);
                 }
                 "couple" => {
                     pcouple = Couple::parse(&mut a)?;
@@ -286,7 +374,7 @@ impl FixNh {
             }
         }
         let bad = |m: String| a.error_command(m, format!("fix {style}"));
-        let pstat = p_flag.iter().any(|&f| f);
+        let pstat = p_flag.iter().any(|&f| f) || t_flag.iter().any(|&f| f);
         match style {
             "nvt" | "nvt/sllod" if tstat.is_none() => return Err(a.error_at(&args[0], format!("fix {style} needs temperature control: `temp Tstart Tstop Tdamp`"), "no `temp` keyword")),
             "nvt" | "nvt/sllod" if pstat => {
@@ -331,14 +419,36 @@ impl FixNh {
             if scale[c] && !d.periodic(*dim) {
                 return Err(bad(format!("cannot use fix {style} with {name} scaling when {} is a non-periodic dimension", ["x", "y", "z"][*dim])));
             }
+            if t_flag[c] && !d.periodic(*dim) {
+                return Err(bad(format!("cannot use fix {style} on a 2nd non-periodic dimension ({name} needs {} periodic)", ["x", "y", "z"][*dim])));
+            }
+            if t_flag[c] && scale[c] {
+                return Err(bad(format!("cannot use fix {style} with both {name} dynamics and {name} scaling")));
+            }
+        }
+        if t_flag.iter().any(|&f| f) && !d.triclinic() {
+            return Err(bad(format!("can not specify Pxy/Pxz/Pyz in fix {style} with non-triclinic box")).with_help("make the box triclinic first: change_box all triclinic"));
         }
         let same = |i: usize, j: usize| p_start[i] == p_start[j] && p_stop[i] == p_stop[j] && p_period[i] == p_period[j];
         let mismatch = pcouple.mismatch(dimension, same);
         if mismatch {
             return Err(bad(format!("invalid fix {style} pressure settings: the coupled dimensions need the same Pstart, Pstop and Pdamp")));
         }
+        let shear = t_flag.iter().any(|&f| f).then(|| TiltBaro {
+            p_start: t_start,
+            p_stop: t_stop,
+            p_freq: [0, 1, 2].map(|j| if t_flag[j] { 1.0 / t_period[j] } else { 0.0 }),
+            p_flag: t_flag,
+            ..TiltBaro::default()
+        });
         let baro = pstat.then(|| {
-            let pstyle = if pcouple == Couple::Xyz || (dimension == 2 && pcouple == Couple::Xy) { PStyle::Iso } else { PStyle::Aniso };
+            let pstyle = if shear.is_some() {
+                PStyle::Triclinic
+            } else if pcouple == Couple::Xyz || (dimension == 2 && pcouple == Couple::Xy) {
+                PStyle::Iso
+            } else {
+                PStyle::Aniso
+            };
             let p_freq = [0, 1, 2].map(|k| if p_flag[k] { 1.0 / p_period[k] } else { 0.0 });
             Barostat {
                 pstyle,
@@ -354,8 +464,10 @@ impl FixNh {
                 nreset_h0,
                 fixedpoint: fixedpoint.unwrap_or([0.5 * (d.lo[0] + d.hi[0]), 0.5 * (d.lo[1] + d.hi[1]), 0.5 * (d.lo[2] + d.hi[2])]),
                 tilt_scale: scale,
-                // LAMMPS flips a box that was tilted when the fix was defined
-                flips: flip && (xy0 != 0.0 || xz0 != 0.0 || yz0 != 0.0),
+                // LAMMPS flips a box whose tilts it changes or that was tilted when the fix
+                // was defined
+                flips: flip && (shear.is_some() || xy0 != 0.0 || xz0 != 0.0 || yz0 != 0.0),
+                shear,
                 p_temp,
                 chain: Chain::new(mpchain),
                 p_target: [0.0; 3],
@@ -484,9 +596,13 @@ impl FixNh {
             let b = self.baro.as_mut().expect("a barostat");
             b.mvv_current = ke;
             b.p_current = b.pcouple.apply([t[0], t[1], t[2]]);
+            // LAMMPS' couple(): the tensor's xy xz yz to Voigt yz xz xy
+            if let Some(s) = b.shear.as_mut() {
+                s.p_current = [t[5], t[4], t[3]];
+            }
         }
         let b = self.baro.as_ref().expect("a barostat");
-        if b.p_current.iter().any(|p| !p.is_finite()) {
+        if b.p_current.iter().chain(b.shear.iter().flat_map(|s| s.p_current.iter())).any(|p| !p.is_finite()) {
             return Err(RunError::new(state.step, format!("fix {} {}: non-numeric pressure - simulation unstable", self.style, self.id)));
         }
         Ok(())
@@ -498,6 +614,8 @@ impl FixNh {
         let b = self.baro.as_ref().expect("a barostat");
         let dt4 = 0.25 * state.dt;
         let factor = [0, 1, 2].map(|k| (-dt4 * (b.omega_dot[k] + b.mtk_term2)).exp());
+        let dthalf = 0.5 * state.dt;
+        let shear = b.shear.as_ref().map(|s| s.omega_dot);
         let bias = self.temp.spec.field(state, self.groupbit).map_err(|e| RunError::new(state.step, e))?;
         let a = &mut state.atoms;
         let n = a.nlocal;
@@ -507,6 +625,11 @@ impl FixNh {
         for (v, _) in a.v[..n].iter_mut().zip(&a.mask[..n]).filter(|(_, &m)| m & self.groupbit != 0) {
             for k in 0..3 {
                 v[k] *= factor[k];
+            }
+            // the tilts' box velocities (yz, xz, xy) shear the velocities between the scalings
+            if let Some(w) = shear {
+                v[0] += -dthalf * (v[1] * w[2] + v[2] * w[1]);
+                v[1] += -dthalf * v[2] * w[0];
             }
             for k in 0..3 {
                 v[k] *= factor[k];
@@ -527,8 +650,15 @@ impl FixNh {
         for k in 0..3 {
             b.omega[k] += dto * b.omega_dot[k];
         }
+        if let Some(t) = b.shear.as_mut() {
+            for j in 0..3 {
+                t.omega[j] += dto * t.omega_dot[j];
+            }
+        }
         let scale = std::array::from_fn(|k| b.p_flag[k].then(|| (b.fixedpoint[k], (dto * b.omega_dot[k]).exp())));
-        dilate_box(state, scale, Some(b.tilt_scale), b.dilate).map_err(|e| RunError::new(state.step, format!("fix {} {}: {e}", self.style, self.id)))?;
+        let omega_dot0 = b.omega_dot;
+        let half = b.shear.as_ref().map(|t| move |h: &mut [f64; 6]| t.half_shear(h, omega_dot0, dto));
+        dilate_box(state, scale, Some(b.tilt_scale), half.as_ref().map(|f| f as &dyn Fn(&mut [f64; 6])), b.dilate).map_err(|e| RunError::new(state.step, format!("fix {} {}: {e}", self.style, self.id)))?;
         Ok(())
     }
 
@@ -537,10 +667,13 @@ impl FixNh {
     fn nhc_press_integrate(&mut self, state: &State) -> Result<(), RunError> {
         let kt = state.units.boltz * self.t_target;
         let b = self.baro.as_mut().expect("a barostat");
-        let target = if b.pstyle == PStyle::Iso { kt } else { b.pdim as f64 * kt };
+        let pdof = b.pdim + b.shear.as_ref().map_or(0, |s| s.count());
+        let target = if b.pstyle == PStyle::Iso { kt } else { pdof as f64 * kt };
         let (p_flag, omega_mass) = (b.p_flag, b.omega_mass);
         let kinetic = |omega_dot: &[f64; 3]| (0..3).filter(|&i| p_flag[i]).fold(0.0, |ke, i| ke + omega_mass[i] * omega_dot[i] * omega_dot[i]);
-        let ke = kinetic(&b.omega_dot);
+        let shear = b.shear.clone();
+        let mut tilt_dot = shear.as_ref().map_or([0.0; 3], |s| s.omega_dot);
+        let ke = kinetic(&b.omega_dot) + shear.as_ref().map_or(0.0, |s| s.kinetic(&tilt_dot));
         let omega_dot = &mut b.omega_dot;
         b.chain.half_step(state.dt, b.nc_pchain, b.pdrag_factor, ke, target, kt, |factor| {
             for i in 0..3 {
@@ -548,8 +681,17 @@ impl FixNh {
                     omega_dot[i] *= factor;
                 }
             }
-            Ok(kinetic(omega_dot))
-        })
+            if let Some(s) = &shear {
+                for j in (0..3).filter(|&j| s.p_flag[j]) {
+                    tilt_dot[j] *= factor;
+                }
+            }
+            Ok(kinetic(omega_dot) + shear.as_ref().map_or(0.0, |s| s.kinetic(&tilt_dot)))
+        })?;
+        if let Some(s) = b.shear.as_mut() {
+            s.omega_dot = tilt_dot;
+        }
+        Ok(())
     }
 
     /// The targets ramped over the run and their mean; with a deviatoric target, sigma
@@ -569,6 +711,11 @@ impl FixNh {
         }
         if b.pdim > 0 {
             b.p_hydro /= b.pdim as f64;
+        }
+        if let Some(s) = b.shear.as_mut() {
+            for j in (0..3).filter(|&j| s.p_flag[j]) {
+                s.p_target[j] = s.p_start[j] + delta * (s.p_stop[j] - s.p_start[j]);
+            }
         }
         if b.deviatoric {
             if b.nreset_h0 > 0 && (state.step - begin) % b.nreset_h0 == 0 {
@@ -632,6 +779,17 @@ impl FixNh {
                 b.mtk_term2 /= nd;
             }
         }
+        let (fdev, deviatoric, pdrag) = (b.fdev, b.deviatoric, b.pdrag_factor);
+        if let Some(s) = b.shear.as_mut() {
+            for j in (0..3).filter(|&j| s.p_flag[j]) {
+                let mut f_omega = s.p_current[j] * volume / (s.omega_mass[j] * nktv2p);
+                if deviatoric {
+                    f_omega -= fdev[3 + j] / (s.omega_mass[j] * nktv2p);
+                }
+                s.omega_dot[j] += f_omega * dthalf;
+                s.omega_dot[j] *= pdrag;
+            }
+        }
         Ok(())
     }
 
@@ -646,6 +804,12 @@ impl FixNh {
         for i in 0..3 {
             if b.p_flag[i] {
                 energy += 0.5 * b.omega_dot[i] * b.omega_dot[i] * b.omega_mass[i] + b.p_hydro * (volume - b.vol0) / (b.pdim as f64 * nktv2p);
+                lkt_press += kt;
+            }
+        }
+        if let Some(s) = &b.shear {
+            for j in (0..3).filter(|&j| s.p_flag[j]) {
+                energy += 0.5 * s.omega_dot[j] * s.omega_dot[j] * s.omega_mass[j];
                 lkt_press += kt;
             }
         }
@@ -674,8 +838,12 @@ impl FixNh {
             out.extend_from_slice(&self.chain.eta_dot[..self.mtchain]);
         }
         if let Some(b) = &self.baro {
+            // TRICLINIC: six box velocities, the tilts' in Voigt order (yz, xz, xy)
+            let tilt = b.shear.as_ref();
             out.extend_from_slice(&b.omega[..n_omega(b)]);
+            out.extend(tilt.iter().flat_map(|s| s.omega));
             out.extend_from_slice(&b.omega_dot[..n_omega(b)]);
+            out.extend(tilt.iter().flat_map(|s| s.omega_dot));
             out.extend_from_slice(&b.chain.eta);
             out.extend_from_slice(&b.chain.eta_dot[..b.chain.len()]);
         }
@@ -700,8 +868,14 @@ impl FixNh {
                 for i in 0..3 {
                     out.push(if b.p_flag[i] { b.p_hydro * (volume - b.vol0) / (pdim * nktv2p) } else { 0.0 });
                 }
+                if b.shear.is_some() {
+                    out.extend([0.0; 3]);
+                }
                 for i in 0..3 {
                     out.push(if b.p_flag[i] { 0.5 * b.omega_dot[i] * b.omega_dot[i] * b.omega_mass[i] } else { 0.0 });
+                }
+                if let Some(s) = &b.shear {
+                    out.extend((0..3).map(|j| if s.p_flag[j] { 0.5 * s.omega_dot[j] * s.omega_dot[j] * s.omega_mass[j] } else { 0.0 }));
                 }
             }
             let c = &b.chain;
@@ -726,7 +900,8 @@ impl Barostat {
     fn compute_sigma(&mut self) {
         let (h, v0) = (&self.h0_inv, self.vol0);
         let ph = self.p_hydro;
-        let pt = [self.p_target[0], self.p_target[1], self.p_target[2], 0.0, 0.0, 0.0];
+        let t = self.shear.as_ref().map_or([0.0; 3], |s| s.p_target);
+        let pt = [self.p_target[0], self.p_target[1], self.p_target[2], t[0], t[1], t[2]];
         self.sigma = [
             v0 * (h[0] * ((pt[0] - ph) * h[0] + pt[5] * h[5] + pt[4] * h[4]) + h[5] * (pt[5] * h[0] + (pt[1] - ph) * h[5] + pt[3] * h[4]) + h[4] * (pt[4] * h[0] + pt[3] * h[5] + (pt[2] - ph) * h[4])),
             v0 * (h[1] * ((pt[1] - ph) * h[1] + pt[3] * h[3]) + h[3] * (pt[3] * h[1] + (pt[2] - ph) * h[3])),
@@ -881,7 +1056,7 @@ impl Fix for FixNh {
         if let Some(f) = ctx.other_fixes().find(|f| f.rigid_body_mass(state).is_some()) {
             return Err(format!("fix {style} with fix {} ({}): dmhs' barostats do not move rigid bodies with the box", f.id(), f.style()));
         }
-        b.p_freq_max = b.p_freq.iter().fold(0.0, |m: f64, &f| m.max(f));
+        b.p_freq_max = b.p_freq.iter().chain(b.shear.iter().flat_map(|s| s.p_freq.iter())).fold(0.0, |m: f64, &f| m.max(f));
         b.pdrag_factor = 1.0 - (state.dt * b.p_freq_max * drag / b.nc_pchain as f64);
         if b.vol0 == 0.0 {
             let d = state.domain()?;
@@ -937,6 +1112,11 @@ impl Fix for FixNh {
             for i in 0..3 {
                 if b.p_flag[i] {
                     b.omega_mass[i] = nkt / (b.p_freq[i] * b.p_freq[i]);
+                }
+            }
+            if let Some(s) = b.shear.as_mut() {
+                for j in (0..3).filter(|&j| s.p_flag[j]) {
+                    s.omega_mass[j] = nkt / (s.p_freq[j] * s.p_freq[j]);
                 }
             }
             let c = &mut b.chain;
@@ -1012,7 +1192,11 @@ impl Fix for FixNh {
     fn size_vector(&self) -> usize {
         let t = if self.tstat.is_some() { 4 * self.mtchain } else { 0 };
         let p = self.baro.as_ref().map_or(0, |b| {
-            let n = if b.pstyle == PStyle::Iso { 1 } else { 3 };
+            let n = match b.pstyle {
+                PStyle::Iso => 1,
+                PStyle::Aniso => 3,
+                PStyle::Triclinic => 6,
+            };
             4 * n + 4 * b.chain.len() + usize::from(b.deviatoric)
         });
         t + p
@@ -1040,10 +1224,11 @@ impl Fix for FixNh {
             None => list.push(0.0),
             Some(b) => {
                 list.push(1.0);
+                let tilt = b.shear.clone().unwrap_or_default();
                 list.extend_from_slice(&b.omega);
-                list.extend([0.0; 3]);
+                list.extend_from_slice(&tilt.omega);
                 list.extend_from_slice(&b.omega_dot);
-                list.extend([0.0; 3]);
+                list.extend_from_slice(&tilt.omega_dot);
                 list.extend([b.vol0, b.t0, b.chain.len() as f64]);
                 list.extend_from_slice(&b.chain.eta);
                 list.extend_from_slice(&b.chain.eta_dot[..b.chain.len()]);
@@ -1084,6 +1269,10 @@ impl Fix for FixNh {
         let Some(b) = self.baro.as_mut() else { return };
         b.omega.copy_from_slice(&head[0..3]);
         b.omega_dot.copy_from_slice(&head[6..9]);
+        if let Some(s) = b.shear.as_mut() {
+            s.omega.copy_from_slice(&head[3..6]);
+            s.omega_dot.copy_from_slice(&head[9..12]);
+        }
         (b.vol0, b.t0) = (head[12], head[13]);
         if m == b.chain.len() && chain.len() == 2 * m {
             b.chain.eta.copy_from_slice(&chain[..m]);

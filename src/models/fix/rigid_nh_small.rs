@@ -487,7 +487,7 @@ impl RigidNh {
         }
         let dom = state.domain.as_ref().ok_or("no simulation box")?;
         let scale = std::array::from_fn(|i| b.p_flag[i].then(|| (0.5 * (dom.lo[i] + dom.hi[i]), (dtq * b.epsilon_dot[i]).exp())));
-        let dilation = dilate_box(state, scale, None, b.dilate)?;
+        let dilation = dilate_box(state, scale, None, None, b.dilate)?;
         for body in bodies.iter_mut() {
             dilation.apply(&mut body.xcm);
         }

@@ -159,7 +159,7 @@ struct Barostat {
 }
 
 /// The barostat of a triclinic box's tilts, index 0 yz, 1 xz, 2 xy (LAMMPS' Voigt 3, 4, 5):
-/// targets (the stress: minus the pressure's off-diagonal), box velocities and masses.
+/// the off-diagonal pressures' targets, box velocities and masses.
 #[derive(Clone, Debug, Default)]
 struct TiltBaro {
     p_start: [f64; 3],

@@ -81,12 +81,12 @@ fn check_prints_the_setup_without_running() {
 fn check_reports_several_errors() {
     let tmp = tempfile::tempdir().unwrap();
     let deck = tmp.path().join("in.bad");
-    std::fs::write(&deck, "units lj\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nmass 1 -1.0\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0\nfix 1 all nvt/sllod temp 1 1 1\n").unwrap();
+    std::fs::write(&deck, "units lj\natom_style atomic\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nmass 1 -1.0\npair_style lj/cut 2.5\npair_coeff 1 1 1.0 1.0\nfix 1 all shake 0.0001 20 0 b 1\n").unwrap();
     let o = dmhs(&["check", "in.bad"], tmp.path());
     let t = text(&o);
     assert_eq!(o.status.code(), Some(2), "{t}");
     assert!(t.contains("in.bad:5:8") && t.contains("mass must be > 0"), "{t}");
-    assert!(t.contains("in.bad:8:11") && t.contains("fix style `nvt/sllod` is a LAMMPS style that dmhs does not support"), "{t}");
+    assert!(t.contains("in.bad:8:11") && t.contains("fix style `shake` is a LAMMPS style that dmhs does not support"), "{t}");
 }
 
 /// The built-in example (examples/capsules/in.capsules), shortened: it says what it is, runs

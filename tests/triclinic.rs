@@ -153,7 +153,7 @@ fn bad_sllod_input_is_an_error() {
         ("fix 1 all nvt/sllod 1 1 0.1\n", "unknown keyword"),
         ("fix 1 all nvt temp 1 1 0.1 psllod yes\n", "unknown keyword `psllod`"),
         ("compute t all temp/deform 1\n", "temp/deform"),
-        ("compute c all chunk/atom bin/1d y lower 0.1 units box\nfix a all ave/chunk 1 1 1 c vx file none\n", "requires units reduced"),
+        ("compute c all chunk/atom bin/1d y lower 0.1 units box\nfix a all ave/chunk 1 1 1 c vx\n", "requires units reduced"),
     ]);
 }
 

@@ -202,19 +202,19 @@ impl Domain {
     }
     /// Wrap a position back into a periodic box, updating its image flags, exactly as
     /// LAMMPS `Domain::pbc` does (one box length at most per call). A triclinic box wraps in
-    /// box fractions ([`Domain::wrap_lamda`]), then converts back.
+    /// box fractions ([`Domain::pbc`]), then converts back.
     pub fn wrap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) {
         if self.triclinic() {
             let mut l = self.x2lamda(*x);
-            self.wrap_lamda(&mut l, image);
+            self.pbc(&mut l, image, None);
             *x = self.lamda2x(l);
             return;
         }
-        self.wrap_in(x, image, self.lo, self.hi, self.prd(), None);
+        self.pbc(x, image, None);
     }
-    /// [`Domain::wrap`] of box fractions (LAMMPS' pbc() of a triclinic box: lo 0, hi 1).
-    pub fn wrap_lamda(&self, l: &mut [f64; 3], image: &mut [i32; 3]) {
-        self.wrap_in(l, image, [0.0; 3], [1.0; 3], [1.0; 3], None);
+    /// The streaming velocity of the box fix deform changes, at position `x` (temp/deform's bias).
+    pub fn stream_velocity(&self, x: [f64; 3]) -> [f64; 3] {
+        self.rate.streaming(self.x2lamda(x))
     }
     /// LAMMPS' pbc() of one atom, positions in box fractions for a triclinic box: with
     /// `v` (an atom of fix deform's `remap v` group) each crossing also changes the velocity

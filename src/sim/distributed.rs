@@ -88,7 +88,7 @@ impl Simulation {
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
         let what = if self.state.domain.as_ref().is_some_and(|d| d.triclinic()) {
             Some("a triclinic box".to_string())
-        } else if let Some(f) = self.fixes.iter().find(|f| f.box_rate().is_some_and(|r| r.vremap.is_some())) {
+        } else if let Some(f) = self.fixes.iter().find(|f| f.deform_remap() == Some(crate::models::fix::deform::Remap::V)) {
             Some(format!("fix {} ({}) remap v", f.id(), f.style()))
         } else if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
             Some(format!("bond_style {}", b.name()))

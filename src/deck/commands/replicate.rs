@@ -73,12 +73,10 @@ pub fn replicate(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     let unwrapped: Vec<[f64; 3]> = old_order.iter().map(|&i| periods.unmap_summed(st.atoms.x[i], st.atoms.image[i])).collect();
     let mut placed = Vec::with_capacity(nold * nrep);
     for rep in &reps {
-        let r = rep.map(|k| k as f64);
+        // copy (ix, iy, iz) is the image (ix, iy, iz) of the old box (LAMMPS' arithmetic)
+        let shift = rep.map(|k| k as i32);
         for u in &unwrapped {
-            let mut x = match tilt {
-                None => [u[0] + r[0] * prd[0], u[1] + r[1] * prd[1], u[2] + r[2] * prd[2]],
-                Some([xy, xz, yz]) => [u[0] + r[0] * prd[0] + r[1] * xy + r[2] * xz, u[1] + r[1] * prd[1] + r[2] * yz, u[2] + r[2] * prd[2]],
-            };
+            let mut x = periods.unmap(*u, shift);
             let mut image = [0; 3];
             big.remap(&mut x, &mut image);
             placed.push((x, image));

@@ -376,10 +376,14 @@ impl ComputeChunkAtom {
                         continue;
                     }
                     let mut ibin = 0i64;
+                    // LAMMPS' reduced coordinates: box fractions (x2lamda, tilts included)
+                    let l = self.reduced.then(|| dom.x2lamda(a.x[i]));
                     for m in 0..*ndim {
                         let d = dim[m];
-                        // LAMMPS' reduced coordinates: box fractions (x2lamda, tilts included)
-                        let (mut x, lo, hi, p) = if self.reduced { (dom.x2lamda(a.x[i])[d], 0.0, 1.0, 1.0) } else { (a.x[i][d], dom.lo[d], dom.hi[d], prd[d]) };
+                        let (mut x, lo, hi, p) = match l {
+                            Some(l) => (l[d], 0.0, 1.0, 1.0),
+                            None => (a.x[i][d], dom.lo[d], dom.hi[d], prd[d]),
+                        };
                         if dom.periodic(d) {
                             if x < lo {
                                 x += p;

@@ -213,7 +213,7 @@ impl TempSpec {
                     [0, 1, 2].map(|k| if p.flags[k] { v[k] - b[k] } else { v[k] })
                 }
                 Bias::Deform => {
-                    let s = domain.rate.streaming(domain.x2lamda(a.x[i]));
+                    let s = domain.stream_velocity(a.x[i]);
                     [v[0] - s[0], v[1] - s[1], v[2] - s[2]]
                 }
                 Bias::None | Bias::Region(_) => v,
@@ -266,7 +266,7 @@ impl TempSpec {
                             let b = bins.as_ref().and_then(|b| b.bin[i].map(|k| b.mean[k])).unwrap_or([0.0; 3]);
                             [0, 1, 2].map(|k| if p.flags[k] { b[k] } else { 0.0 })
                         }
-                        Bias::Deform => domain.rate.streaming(domain.x2lamda(a.x[i])),
+                        Bias::Deform => domain.stream_velocity(a.x[i]),
                         _ => v,
                     }
                 })

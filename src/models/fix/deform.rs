@@ -92,7 +92,7 @@ pub struct FixDeform {
     tilt: [Tilt; 3],
     remap: Remap,
     flip: bool,
-    /// The box's rate (the group of `remap v` with it).
+    /// The box's rate (LAMMPS' h_rate and h_ratelo).
     rate: BoxRate,
     /// The tilts to flip to and the flips (xy, xz, yz: +1, -1 or 0) at the next step's
     /// pre_exchange, with that step.
@@ -247,8 +247,7 @@ impl FixDeform {
         for (k, t) in tilt.iter_mut().enumerate() {
             t.initial = d.tilts()[k];
         }
-        let rate = BoxRate { vremap: (remap == Remap::V).then_some(groupbit), ..BoxRate::default() };
-        Ok(FixDeform { id, groupbit, nevery, set, tilt, remap, flip, rate, pending_flip: None })
+        Ok(FixDeform { id, groupbit, nevery, set, tilt, remap, flip, rate: BoxRate::default(), pending_flip: None })
     }
 
     /// LAMMPS' apply_strain and update_domain for the tilts: this step's targets, each moved
@@ -555,7 +554,7 @@ impl Fix for FixDeform {
         }
         // the box's rate where it is constant over the run; the other styles set theirs every
         // step (0 until then), as LAMMPS' init
-        let mut rate = BoxRate { vremap: self.rate.vremap, ..BoxRate::default() };
+        let mut rate = BoxRate::default();
         let per_time = |stop: f64, start: f64| if delt != 0.0 { (stop - start) / delt } else { 0.0 };
         for (i, s) in self.set.iter().enumerate() {
             if matches!(s.style, Style::Final(..) | Style::Delta(..) | Style::Scale(_) | Style::Vel(_) | Style::Erate(_)) {
@@ -573,7 +572,7 @@ impl Fix for FixDeform {
         Ok(())
     }
     fn box_rate(&self) -> Option<BoxRate> {
-        Some(self.rate)
+        Some(BoxRate { vremap: (self.remap == Remap::V).then_some(self.groupbit), ..self.rate })
     }
     fn deform_remap(&self) -> Option<Remap> {
         Some(self.remap)

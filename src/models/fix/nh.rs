@@ -999,20 +999,18 @@ impl Fix for FixNh {
             }
         }
         if d.periodic(0) {
-            if xz < -xtiltmax {
-                xz += prd[0];
-                n = 1;
-            } else if xz >= xtiltmax {
-                xz -= prd[0];
-                n = -1;
-            }
-            if xy < -xtiltmax {
-                xy += prd[0];
-                m = 1;
-            } else if xy >= xtiltmax {
-                xy -= prd[0];
-                m = -1;
-            }
+            // xz, then xy, each by one x length
+            let back = |t: &mut f64, flag: &mut i32| {
+                if *t < -xtiltmax {
+                    *t += prd[0];
+                    *flag = 1;
+                } else if *t >= xtiltmax {
+                    *t -= prd[0];
+                    *flag = -1;
+                }
+            };
+            back(&mut xz, &mut n);
+            back(&mut xy, &mut m);
         }
         if m == 0 && n == 0 && p == 0 {
             return Ok(());

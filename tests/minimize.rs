@@ -8,7 +8,20 @@
 use dmhs::deck::{run_file, run_text, DeckOptions};
 use std::path::{Path, PathBuf};
 
-const DECKS: [&str; 9] = ["min_lj_cg", "min_chains_sd", "min_fire_2d", "min_cluster_cg", "min_cluster_walls", "min_indent_2d", "min_relax_2d", "min_relax_iso", "min_relax_aniso"];
+const DECKS: [&str; 12] = [
+    "min_lj_cg",
+    "min_chains_sd",
+    "min_fire_2d",
+    "min_cluster_cg",
+    "min_cluster_walls",
+    "min_indent_2d",
+    "min_relax_2d",
+    "min_relax_iso",
+    "min_relax_aniso",
+    "min_relax_tri",
+    "min_relax_shear",
+    "min_relax_tri2d",
+];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -174,7 +187,7 @@ fn min_style_resets_min_modify() {
 
 /// Bad input is a located error naming what is wrong; fixes LAMMPS would apply while
 /// minimizing and dmhs does not are refused; fix box/relax's settings are checked as LAMMPS
-/// checks them (the tilts of a triclinic box are not supported by box/relax yet).
+/// checks them.
 #[test]
 fn bad_input_is_a_located_error() {
     let n = BASE.lines().count() + 1;
@@ -202,8 +215,8 @@ fn bad_input_is_a_located_error() {
         ("fix b all box/relax iso 1.0 nreset -1\n", "nreset"),
         ("fix b all box/relax iso 1.0 bogus 2\n", "unknown keyword `bogus`"),
         ("fix b all box/relax iso 1.0 dilate some\n", "some"),
-        ("fix b all box/relax tri 1.0\n", "triclinic box's tilts"),
-        ("fix b all box/relax x 1.0 xy 0.5\n", "triclinic box's tilts"),
+        ("fix b all box/relax tri 1.0\n", "Pxy/Pxz/Pyz in fix box/relax with a non-triclinic box"),
+        ("fix b all box/relax x 1.0 xy 0.5\n", "Pxy/Pxz/Pyz in fix box/relax with a non-triclinic box"),
         ("fix b all box/relax x 1.0 couple xyz\n", "pressure settings"),
         ("fix b all box/relax x 1.0 y 2.0 z 3.0 couple xy\n", "same target pressure"),
         ("fix b all box/relax iso 1.0\nmin_style fire\nminimize 0 0 10 100\n", "damped dynamics"),

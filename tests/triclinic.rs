@@ -196,11 +196,14 @@ fn bad_triclinic_input_is_an_error() {
     let flat = "units lj\ndimension 2\nboundary p p p\n";
     common::assert_located_errors(flat, &[("region b prism 0 4 0 4 -0.5 0.5 1 1 0\ncreate_box 1 b\n", "Cannot skew triclinic box in z for 2d simulation")]);
     let shrink = "units lj\nboundary p p s\n";
+    let flat_tri = "units lj\ndimension 2\nregion b prism 0 4 0 4 -0.5 0.5 1 0 0\ncreate_box 1 b\n";
+    common::assert_located_errors(flat_tri, &[("fix 1 all box/relax xz 0.0\n", "xz is not allowed for a 2d simulation")]);
     common::assert_located_errors(shrink, &[("region b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\n", "shrink-wrapped")]);
     let tri = "units lj\nregion b prism 0 4 0 4 0 4 1 0 0\ncreate_box 1 b\nmass 1 1\n";
     common::assert_located_errors(tri, &[
         ("fix 1 all npt temp 1 1 1 iso 1 1 1 xy 0 0 1 scalexy yes\n", "both xy dynamics and xy scaling"),
-        ("fix 1 all box/relax iso 0.0\n", "triclinic"),
+        ("fix 1 all box/relax xy 0.0 scalexy yes\n", "both xy relaxation and scaling"),
+        ("fix 1 all box/relax tri 0.0 scalexy yes\n", "both xy relaxation and scaling"),
         ("fix 1 all deform 1 xy scale 2\n", "Illegal fix deform command argument: scale"),
         ("fix 1 all deform 1 yz trate 0.1\n", "Cannot use fix deform trate on a box with zero tilt"),
         ("fix 1 all deform 1 xy erate 0.1 yz final 3.0\n", "Fix deform is changing yz too much with xy"),

@@ -187,9 +187,8 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     // (LAMMPS leaves the atoms alone when the command only makes the box ortho or triclinic:
     // a remap in a triclinic box moves them through box fractions)
     if ops.iter().any(|o| !matches!(o, Op::Shape(..))) {
-        for i in 0..st.atoms.nlocal {
-            domain.remap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
-        }
+        let n = st.atoms.nlocal;
+        domain.remap_and_migrate(&mut st.atoms.x[..n], &mut st.atoms.image[..n]);
     }
     st.domain = Some(domain);
     st.lists_valid = false;

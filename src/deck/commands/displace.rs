@@ -107,9 +107,7 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
         }
     }
     // LAMMPS remaps every owned atom back into a periodic box, updating image flags
-    for i in 0..at.nlocal {
-        d.remap(&mut at.x[i], &mut at.image[i]);
-    }
+    d.remap_and_migrate(&mut at.x[..at.nlocal], &mut at.image[..at.nlocal]);
     sim.state.lists_valid = false;
     Ok(())
 }

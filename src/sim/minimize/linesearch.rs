@@ -171,7 +171,7 @@ fn store_start(sim: &mut Simulation, m: &mut Min) -> Result<(), RunError> {
     let n = sim.state.atoms.nlocal;
     m.vectors[X0].copy_from_slice(&sim.state.atoms.x[..n]);
     // LAMMPS' FixMinimize::store_box: wrapped atoms' x0 are re-imaged with this box
-    m.box0 = Some(sim.state.domain.as_ref().expect("a box").prd());
+    m.box0 = sim.state.domain.clone();
     m.store_extra(sim)
 }
 

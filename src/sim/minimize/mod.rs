@@ -12,6 +12,7 @@ mod linesearch;
 
 use crate::models::fix::MinRole;
 use crate::sim::{RunError, SetupError, Simulation};
+use crate::engine::domain::Domain;
 use crate::engine::timing::Stage;
 use std::time::Instant;
 
@@ -189,7 +190,7 @@ pub(crate) struct Min {
     gextra: Vec<f64>,
     hextra: Vec<f64>,
     /// The box where the line search started (LAMMPS' FixMinimize::store_box).
-    box0: Option<[f64; 3]>,
+    box0: Option<Domain>,
 }
 
 impl Min {
@@ -376,27 +377,18 @@ impl Min {
     }
 
     /// x0 of an atom that was wrapped is moved by the length of the line search's starting
-    /// box, so that x0 + alpha h is the wrapped atom's line (LAMMPS' minimum image of x - x0).
+    /// box, so that x0 + alpha h is the wrapped atom's line (LAMMPS' minimum image of x - x0
+    /// in the box FixMinimize::store_box kept, its tilts too).
     fn reset_coords(&mut self, sim: &Simulation) {
-        let d = sim.state.domain.as_ref().expect("a box");
-        let prd = self.box0.unwrap_or_else(|| d.prd());
+        let d = self.box0.as_ref().or(sim.state.domain.as_ref()).expect("a box");
         let x = &sim.state.atoms.x;
         for (i, x0) in self.vectors[0].iter_mut().enumerate() {
+            let dx0 = [x[i][0] - x0[0], x[i][1] - x0[1], x[i][2] - x0[2]];
+            let mut dx = dx0;
+            d.minimum_image(&mut dx);
             for k in 0..3 {
-                if !d.periodic(k) {
-                    continue;
-                }
-                let dx0 = x[i][k] - x0[k];
-                let mut dx = dx0;
-                while dx.abs() > 0.5 * prd[k] {
-                    if dx < 0.0 {
-                        dx += prd[k];
-                    } else {
-                        dx -= prd[k];
-                    }
-                }
-                if dx != dx0 {
-                    x0[k] = x[i][k] - dx;
+                if dx[k] != dx0[k] {
+                    x0[k] = x[i][k] - dx[k];
                 }
             }
         }

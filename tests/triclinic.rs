@@ -204,6 +204,7 @@ fn bad_triclinic_input_is_an_error() {
         ("fix 1 all npt temp 1 1 1 iso 1 1 1 xy 0 0 1 scalexy yes\n", "both xy dynamics and xy scaling"),
         ("fix 1 all box/relax xy 0.0 scalexy yes\n", "both xy relaxation and scaling"),
         ("fix 1 all box/relax tri 0.0 scalexy yes\n", "both xy relaxation and scaling"),
+        ("create_atoms 1 single 1 1 1\ncreate_atoms 1 single 1.5 1 1\nfix 1 all rigid/npt single temp 1 1 1 iso 1 1 1\n", "fix rigid/npt does not yet allow triclinic box"),
         ("fix 1 all deform 1 xy scale 2\n", "Illegal fix deform command argument: scale"),
         ("fix 1 all deform 1 yz trate 0.1\n", "Cannot use fix deform trate on a box with zero tilt"),
         ("fix 1 all deform 1 xy erate 0.1 yz final 3.0\n", "Fix deform is changing yz too much with xy"),

@@ -108,7 +108,7 @@ const TILTMAX: f64 = 1.5;
 pub fn dilate_box(state: &mut State, scale: [Option<(f64, f64)>; 3], tilt_scale: Option<[bool; 3]>, shear: Option<&dyn Fn(&mut [f64; 6])>, dilate: Option<u32>) -> Result<Dilation, String> {
     let dom = state.domain.as_mut().ok_or("no simulation box")?;
     if dom.triclinic() && tilt_scale.is_none() {
-        return Err("a barostat of rigid bodies on a triclinic box is not supported yet".into());
+        return Err("a barostat of rigid bodies on a triclinic box (LAMMPS: does not yet allow triclinic box)".into());
     }
     let old = dom.clone();
     let mut h = old.h();

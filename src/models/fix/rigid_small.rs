@@ -939,6 +939,10 @@ impl Fix for FixRigidSmall {
             }
         }
         if let Some(nh) = self.nh.as_mut().filter(|nh| nh.baro.is_some()) {
+            // LAMMPS' own restriction (FixRigidNH and FixRigidNHSmall init)
+            if state.domain()?.triclinic() {
+                return Err(format!("fix {} does not yet allow triclinic box", self.style));
+            }
             if let Some(f) = ctx.other_fixes().find(|f| f.style() == "deform" || f.changes_box()) {
                 return Err(format!("fix {} ({}) with fix {} ({}): dmhs does not combine a rigid barostat with another fix that changes the box", self.id, self.style, f.id(), f.style()));
             }

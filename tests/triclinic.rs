@@ -9,7 +9,8 @@
 //! for SLLOD elongation of an orthogonal box, tests/triclinic/in.replicate for replicate of a
 //! tilted box whose atoms carry image flags, and tests/triclinic/in.npt_tri for fix npt (iso,
 //! then x y z apart) scaling a tilted box's tilts and flipping it, tests/triclinic/in.npt_shear
-//! for the barostat of the tilts (tri, then xy and yz shear targets). The liquids' round-off grows over the runs; the
+//! for the barostat of the tilts (tri, then xy and yz shear targets), tests/triclinic/in.read_dump
+//! for read_dump of triclinic snapshots (wrapped, scaled, unwrapped). The liquids' round-off grows over the runs; the
 //! thermo, dump and profile columns stay within 1e-9 of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
@@ -24,6 +25,7 @@ const ELONGATE_FILES: [&str; 2] = ["elongate.txt", "elongate.dump"];
 const REPLICATE_FILES: [&str; 2] = ["replicate.txt", "replicate.dump"];
 const NPT_FILES: [&str; 2] = ["npt_tri.txt", "npt_tri.dump"];
 const SHEAR_BARO_FILES: [&str; 2] = ["npt_shear.txt", "npt_shear.dump"];
+const READ_DUMP_FILES: [&str; 3] = ["read_dump.txt", "read_dump.dump", "rd_scaled.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -113,6 +115,18 @@ fn replicated_tilted_box_matches_stored_lammps_output() {
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn replicated_tilted_box_matches_lammps_now() {
     live("in.replicate", &REPLICATE_FILES);
+}
+
+/// read_dump of triclinic snapshots: tests/triclinic/in.read_dump.
+#[test]
+fn read_dump_of_tilted_snapshots_matches_stored_lammps_output() {
+    stored("in.read_dump", &READ_DUMP_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn read_dump_of_tilted_snapshots_matches_lammps_now() {
+    live("in.read_dump", &READ_DUMP_FILES);
 }
 
 /// Barostats on a tilted box: tests/triclinic/in.npt_tri.
@@ -234,4 +248,32 @@ fn restart_files_keep_the_tilts() {
     let (a, b) = (first.sim.state.domain.as_ref().unwrap(), second.sim.state.domain.as_ref().unwrap());
     assert!(a.tilt.is_some());
     assert_eq!((a.lo, a.hi, a.tilt), (b.lo, b.hi, b.tilt));
+}
+
+/// read_dump's checks of a triclinic snapshot, as LAMMPS': its triclinic status must be the
+/// box's when the box is taken (box yes), and scaled coordinates in a triclinic box need all
+/// of x, y, z; with box no an orthogonal box reads a triclinic snapshot's positions.
+#[test]
+fn read_dump_checks_triclinic_snapshots() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dump = tmp.path().join("tri.dump");
+    std::fs::write(
+        &dump,
+        "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n-1 11 1\n0 10 -1\n0 10 0\nITEM: ATOMS id type xs ys zs\n1 1 0.5 0.5 0.5\n",
+    )
+    .unwrap();
+    let d = dump.display();
+    let ortho = "units lj\nregion b block 0 10 0 10 0 10\ncreate_box 1 b\nmass 1 1\ncreate_atoms 1 single 1 1 1\n";
+    common::assert_located_errors(ortho, &[(&format!("read_dump {d} 0 x y z\n"), "Read_dump triclinic status does not match simulation")]);
+    let tri = "units lj\nregion b prism 0 10 0 10 0 10 1 0 0\ncreate_box 1 b\nmass 1 1\ncreate_atoms 1 single 1 1 1\n";
+    common::assert_located_errors(tri, &[(&format!("read_dump {d} 0 x y\n"), "All read_dump x,y,z fields must be specified for scaled, triclinic coords")]);
+    // the snapshot's box: bounds 0..10 in x after the reach of xy 1 and xz -1 (and of xy + xz
+    // 0) is taken off; the atom at fractions (0.5, 0.5, 0.5) with the tilts
+    let opts = dmhs::deck::DeckOptions { screen: false, ..Default::default() };
+    let run = dmhs::deck::run_text("r.deck", &format!("{tri}read_dump {d} 0 x y z\n"), &opts).map_err(|f| f.rendered).unwrap();
+    let dom = run.sim.state.domain.as_ref().unwrap();
+    assert_eq!((dom.lo, dom.hi, dom.tilt), ([0.0; 3], [10.0; 3], Some([1.0, -1.0, 0.0])));
+    assert_eq!(run.sim.state.atoms.x[0], [5.0, 5.0, 5.0]);
+    let run = dmhs::deck::run_text("o.deck", &format!("{ortho}read_dump {d} 0 x y z box no\n"), &opts).map_err(|f| f.rendered).unwrap();
+    assert_eq!(run.sim.state.atoms.x[0], [5.0, 5.0, 5.0]);
 }

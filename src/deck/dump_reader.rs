@@ -101,8 +101,8 @@ pub struct Header {
     pub natoms: u64,
     /// lo and hi of each dimension (None: the format has no box, as XYZ).
     pub bounds: Option<[[f64; 2]; 3]>,
-    /// The box line names tilt factors (xy xz yz).
-    pub triclinic: bool,
+    /// The tilt factors `[xy, xz, yz]` when the box line names them (each line's third value).
+    pub tilt: Option<[f64; 3]>,
 }
 
 /// The columns the wanted fields come from, decided by the first snapshot's labels (LAMMPS
@@ -244,7 +244,7 @@ impl DumpReader {
     /// of a read), also the column labels of a native file (`ITEM: ATOMS id type x ...`).
     pub fn read_header(&mut self, labels: Option<&mut Vec<String>>) -> Result<Header, String> {
         match self.format {
-            Format::Xyz => Ok(Header { natoms: self.xyz_natoms, bounds: None, triclinic: false }),
+            Format::Xyz => Ok(Header { natoms: self.xyz_natoms, bounds: None, tilt: None }),
             Format::Native => {
                 self.skip_lines(2, "ITEM: NUMBER OF ATOMS and the count")?;
                 let natoms = self.count()?;
@@ -255,6 +255,7 @@ impl DumpReader {
                 let words: Vec<&str> = boxline.split_whitespace().collect();
                 let triclinic = words.windows(3).any(|w| w == ["xy", "xz", "yz"]);
                 let mut bounds = [[0.0; 2]; 3];
+                let mut tilt = [0.0; 3];
                 for (d, b) in bounds.iter_mut().enumerate() {
                     self.need_line("a line of box bounds")?;
                     let vals: Vec<&str> = self.text.split_whitespace().collect();
@@ -262,8 +263,12 @@ impl DumpReader {
                     if vals.len() < want {
                         return Err(self.err(format!("dump file is incorrectly formatted: expected {want} box values for {}, found `{}`", ["x", "y", "z"][d], self.text.trim())));
                     }
+                    let number = |w: &str| parse_f64(w).ok_or_else(|| self.err(format!("dump file is incorrectly formatted: expected a number for the box, found `{w}`")));
                     for k in 0..2 {
-                        b[k] = parse_f64(vals[k]).ok_or_else(|| self.err(format!("dump file is incorrectly formatted: expected a number for the box, found `{}`", vals[k])))?;
+                        b[k] = number(vals[k])?;
+                    }
+                    if triclinic {
+                        tilt[d] = number(vals[2])?;
                     }
                 }
                 let atoms = self.need_line("ITEM: ATOMS")?.to_string();
@@ -271,7 +276,7 @@ impl DumpReader {
                     let rest = atoms.trim_start().strip_prefix("ITEM: ATOMS").ok_or_else(|| self.err(format!("dump file is incorrectly formatted: expected `ITEM: ATOMS` and the column labels, found `{}`", atoms.trim())))?;
                     *labels = rest.split_whitespace().map(str::to_string).collect();
                 }
-                Ok(Header { natoms, bounds: Some(bounds), triclinic })
+                Ok(Header { natoms, bounds: Some(bounds), tilt: triclinic.then_some(tilt) })
             }
         }
     }

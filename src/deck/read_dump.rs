@@ -232,9 +232,6 @@ impl DumpSource {
             if header.bounds.is_none() && self.spec.boxflag {
                 return Err("No box information in dump, must use 'box no' (XYZ files have no box)".to_string());
             }
-            if header.triclinic {
-                return Err(self.reader.err("Read_dump triclinic status does not match simulation: the snapshot's box is triclinic and dmhs' boxes are orthogonal"));
-            }
             self.columns = Some(self.reader.columns(&self.spec.fields, &self.spec.label, &labels, self.spec.given)?);
         }
         let cols = self.columns.as_ref().expect("columns of the first snapshot");
@@ -257,12 +254,34 @@ impl DumpSource {
         if s.purge {
             counts.purged = st.delete_owned(&vec![true; st.atoms.nlocal]);
         }
-        // positions in the snapshot's box (a scaled column is a fraction of it)
-        let (lo, prd) = match snap.header.bounds {
-            Some(b) => (std::array::from_fn(|d| b[d][0]), std::array::from_fn(|d| b[d][1] - b[d][0])),
-            None => ([0.0; 3], [0.0; 3]),
+        let dim = st.domain.as_ref().map_or(3, |d| d.dimension);
+        let tilted = st.domain.as_ref().is_some_and(|d| d.triclinic());
+        let sbox = SnapBox::of(&snap.header);
+        if s.boxflag && sbox.tilt.is_some() != tilted {
+            return Err(format!("Read_dump triclinic status does not match simulation: the snapshot's box is {}, the simulation's {}", ["orthogonal", "triclinic"][sbox.tilt.is_some() as usize], ["orthogonal", "triclinic"][tilted as usize]));
+        }
+        // the columns of x, y, z among the fields
+        let column = |f: Field| s.fields.iter().position(|&g| g == f);
+        let cols = [column(Field::X), column(Field::Y), column(Field::Z)];
+        if coords.scaled && tilted && (cols[0].is_none() || cols[1].is_none() || (dim == 3 && cols[2].is_none())) {
+            return Err("All read_dump x,y,z fields must be specified for scaled, triclinic coords".to_string());
+        }
+        // positions in the snapshot's box (a scaled column is a fraction of it; in a triclinic
+        // simulation the other fractions carry the tilts, LAMMPS' xfield/yfield/zfield)
+        let (lo, prd) = (sbox.lo, sbox.prd);
+        let [xy, xz, yz] = sbox.tilt.unwrap_or([0.0; 3]);
+        let position = |row: &[f64], d: usize| {
+            let v = row[cols[d].expect("a coordinate field")];
+            let frac = |k: usize| row[cols[k].expect("x, y and z of a scaled triclinic snapshot")];
+            match (coords.scaled, tilted, d) {
+                (false, _, _) => v,
+                (true, false, _) | (true, true, 2) => v * prd[d] + lo[d],
+                (true, true, 0) if dim == 2 => prd[0] * v + xy * frac(1) + lo[0],
+                (true, true, 0) => prd[0] * v + xy * frac(1) + xz * frac(2) + lo[0],
+                (true, true, _) if dim == 2 => prd[1] * v + lo[1],
+                (true, true, _) => prd[1] * v + yz * frac(2) + lo[1],
+            }
         };
-        let position = |d: usize, v: f64| if coords.scaled { v * prd[d] + lo[d] } else { v };
         let map = st.atoms.tag_map();
         let nlocal = st.atoms.nlocal;
         let mut updated = vec![false; nlocal];
@@ -286,7 +305,7 @@ impl DumpSource {
                     Field::Id | Field::Type => {}
                     Field::X | Field::Y | Field::Z => {
                         let d = f.coordinate().unwrap();
-                        a.x[m][d] = position(d, v);
+                        a.x[m][d] = position(row, d);
                     }
                     Field::Vx => a.v[m][0] = v,
                     Field::Vy => a.v[m][1] = v,
@@ -319,7 +338,7 @@ impl DumpSource {
                         Field::Type => atom.typ = v as i64 as usize,
                         Field::X | Field::Y | Field::Z => {
                             let d = f.coordinate().unwrap();
-                            atom.x[d] = position(d, v);
+                            atom.x[d] = position(row, d);
                         }
                         Field::Vx => atom.v[0] = v,
                         Field::Vy => atom.v[1] = v,
@@ -345,29 +364,63 @@ impl DumpSource {
                 counts.added += 1;
             }
         }
-        let dim = st.domain.as_ref().map_or(3, |d| d.dimension);
-        if let (true, Some(b)) = (s.boxflag, snap.header.bounds) {
+        let mut warning = None;
+        if let (true, Some(_)) = (s.boxflag, snap.header.bounds) {
             let domain = st.domain.as_mut().expect("a box");
             for d in 0..dim {
-                if !(b[d][1] > b[d][0]) {
-                    return Err(format!("the snapshot's box is empty or inverted in {}: {} to {}", ["x", "y", "z"][d], b[d][0], b[d][1]));
+                if !(sbox.hi[d] > sbox.lo[d]) {
+                    return Err(format!("the snapshot's box is empty or inverted in {}: {} to {}", ["x", "y", "z"][d], sbox.lo[d], sbox.hi[d]));
                 }
-                (domain.lo[d], domain.hi[d]) = (b[d][0], b[d][1]);
+                (domain.lo[d], domain.hi[d]) = (sbox.lo[d], sbox.hi[d]);
             }
+            if let Some(t) = domain.tilt.as_mut() {
+                t[0] = xy;
+                if dim == 3 {
+                    (t[1], t[2]) = (xz, yz);
+                }
+            }
+            warning = crate::deck::tilt_check(domain)?;
             st.box_initial = Some(domain.clone());
         }
         let domain = st.domain.as_ref().expect("a box");
-        for i in 0..st.atoms.nlocal {
-            if !st.atoms.x[i].iter().all(|c| c.is_finite()) {
-                return Err(format!("atom {} has a non-finite position in the dump snapshot", st.atoms.tag[i]));
-            }
-            domain.remap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
+        let n = st.atoms.nlocal;
+        if let Some(i) = (0..n).find(|&i| !st.atoms.x[i].iter().all(|c| c.is_finite())) {
+            return Err(format!("atom {} has a non-finite position in the dump snapshot", st.atoms.tag[i]));
         }
+        domain.remap_and_migrate(&mut st.atoms.x[..n], &mut st.atoms.image[..n]);
         st.shrink_wrap();
         st.lists_valid = false;
         // unsorted output before the next build lists the atoms in LAMMPS' order
         st.lammps_order.refresh(&st.atoms);
+        if let Some(w) = warning {
+            sim.out.print(&w);
+        }
         Ok(counts)
+    }
+}
+
+/// A snapshot's box (LAMMPS' ReadDump::header): a triclinic snapshot's bounds are those of
+/// the box's bounding box, so the tilts' reach is taken off them.
+struct SnapBox {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    prd: [f64; 3],
+    /// `[xy, xz, yz]` of a triclinic snapshot.
+    tilt: Option<[f64; 3]>,
+}
+
+impl SnapBox {
+    fn of(h: &Header) -> SnapBox {
+        let b = h.bounds.unwrap_or([[0.0; 2]; 3]);
+        let (mut lo, mut hi): ([f64; 3], [f64; 3]) = (std::array::from_fn(|d| b[d][0]), std::array::from_fn(|d| b[d][1]));
+        if let Some([xy, xz, yz]) = h.tilt {
+            lo[0] -= 0.0f64.min(xy).min(xz).min(xy + xz);
+            hi[0] -= 0.0f64.max(xy).max(xz).max(xy + xz);
+            lo[1] -= 0.0f64.min(yz);
+            hi[1] -= 0.0f64.max(yz);
+        }
+        let prd = std::array::from_fn(|d| hi[d] - lo[d]);
+        SnapBox { lo, hi, prd, tilt: h.tilt }
     }
 }
 

@@ -77,6 +77,23 @@ fn check_prints_the_setup_without_running() {
     assert!(!t.contains("Loop time"), "{t}");
 }
 
+/// `dmhs check` opens no output file: fix print, the fix ave/* files, print, log, write_data,
+/// write_restart and write_dump are checked but write nothing.
+#[test]
+fn check_writes_no_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "units lj\nlattice fcc 0.8442\nregion b block 0 3 0 3 0 3\ncreate_box 1 b\ncreate_atoms 1 box\nmass 1 1\n\
+                pair_style lj/cut 2.5\npair_coeff 1 1 1 1\nfix 1 all nve\ncompute t all temp\n\
+                fix a all ave/time 10 1 10 c_t file avet.txt\nfix h all ave/histo 10 1 10 0 1 10 c_t file hist.txt\n\
+                fix pr all print 10 \"hi\" file pr.txt\nprint \"x\" file p.txt\nprint \"y\" append pa.txt\nlog lg.txt\n\
+                write_data w.data\nwrite_restart r.rst\nwrite_dump all atom wd.dump\ndump d all atom 10 d.dump\nrun 20\n";
+    std::fs::write(tmp.path().join("in.deck"), deck).unwrap();
+    let o = dmhs(&["check", "in.deck"], tmp.path());
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let files: Vec<String> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    assert_eq!(files, ["in.deck"], "dmhs check wrote files");
+}
+
 #[test]
 fn check_reports_several_errors() {
     let tmp = tempfile::tempdir().unwrap();

@@ -80,6 +80,8 @@ pub struct Interpreter {
     echo_screen: bool,
     echo_log: bool,
     keep_going: bool,
+    /// `print ... file|append` opens its file (not under `dmhs check`).
+    writes_files: bool,
     recorded: Vec<Diagnostic>,
     /// Keep-going mode: the refused definitions, and the errors that follow from them.
     refused: Refused,
@@ -137,6 +139,7 @@ impl Interpreter {
             echo_screen: false,
             echo_log: true,
             keep_going: false,
+            writes_files: true,
             recorded: vec![],
             refused: Refused::default(),
             follow_ons: vec![],
@@ -171,6 +174,11 @@ impl Interpreter {
     /// Keep going after an error: record it, skip its command, continue (for `check`).
     pub fn set_keep_going(&mut self, on: bool) {
         self.keep_going = on;
+    }
+
+    /// Whether `print ... file|append` opens its file (`dmhs check` opens none).
+    pub fn set_writes_files(&mut self, on: bool) {
+        self.writes_files = on;
     }
 
     /// Where commands are echoed (`-echo` / the `echo` command); LAMMPS' default is the log only.
@@ -703,6 +711,7 @@ impl Interpreter {
                 return Err(one(Diagnostic::at(kw.span, format!("missing value after `{}`", kw.as_str()), "here").with_help(syntax)));
             };
             match kw.as_str() {
+                "file" | "append" if !self.writes_files => {}
                 "file" | "append" => {
                     let path = value.as_str();
                     let full = self.resolve(path);

@@ -75,7 +75,7 @@ pub fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> 
     }
     sim.base_dir = opts.base_dir.clone();
     sim.want_capture = opts.capture;
-    sim.check_only = opts.check_only;
+    sim.state.check_only = opts.check_only;
     if opts.record_commands {
         sim.command_log = Some(Vec::new());
     }
@@ -85,6 +85,7 @@ pub fn prepare(opts: &DeckOptions) -> Result<(Simulation, Interpreter), String> 
     let mut interp = Interpreter::new();
     interp.set_base_dir(opts.base_dir.clone());
     interp.set_keep_going(opts.check_only);
+    interp.set_writes_files(!opts.check_only);
     if let Some((s, l)) = opts.echo {
         interp.set_echo(s, l);
     }

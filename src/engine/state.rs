@@ -166,6 +166,8 @@ pub struct State {
     /// A fix halt stopped the run (LAMMPS' expired timer): the run loop stops before its next
     /// step and later `run` and `minimize` commands do nothing, until a `continue` halt resets it.
     pub halted: bool,
+    /// `dmhs check`: the deck's commands are built, no run runs and no output file is opened.
+    pub check_only: bool,
     /// Pair parameters a fix asked to change (fix adapt), applied by the simulation before
     /// the forces.
     pub pair_changes: Vec<PairParamChange>,
@@ -240,6 +242,7 @@ impl State {
             special_frozen: false,
             messages: Vec::new(),
             halted: false,
+            check_only: false,
             pair_changes: Vec::new(),
             decomp: None,
             procs: Default::default(),
@@ -266,9 +269,10 @@ impl State {
         v[0]
     }
     /// Whether this process writes the files of fix outputs (fix print, ave/time): rank 0 of
-    /// several (set before the deck's first command), or a rank alone, as LAMMPS' `me == 0`.
+    /// several (set before the deck's first command), or a rank alone, as LAMMPS' `me == 0`;
+    /// none under `dmhs check`.
     pub fn writes_files(&self) -> bool {
-        self.decomp.as_ref().is_none_or(|d| d.rank() == 0)
+        !self.check_only && self.decomp.as_ref().is_none_or(|d| d.rank() == 0)
     }
     /// The largest of `v` over the ranks of a distributed run, element by element.
     pub fn max_ranks(&self, v: &mut [f64]) {

@@ -61,8 +61,6 @@ pub struct Simulation {
     /// (first: the step of the first run) and at the end of every run, in step order.
     pub capture_checkpoints: Vec<(i64, crate::output::atom_table::AtomTable)>,
     pub capture_first_step: Option<i64>,
-    /// `dmhs check`: commands are built but `run` does not run.
-    pub check_only: bool,
     pub checked_runs: usize,
     pub guard: crate::sim::stability::Guard,
     /// Set from another thread (the Python module on Ctrl-C) to stop a run at the next step;
@@ -115,7 +113,6 @@ impl Simulation {
             want_capture: false,
             capture_checkpoints: Vec::new(),
             capture_first_step: None,
-            check_only: false,
             checked_runs: 0,
             guard: Default::default(),
             cancel: Default::default(),

@@ -401,5 +401,9 @@ pub fn write_data(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         s.set_types(nd);
         unset(s.check_all_set())?;
     }
+    // `dmhs check` writes no file
+    if sim.state.check_only {
+        return Ok(());
+    }
     crate::deck::data::write_data(sim, cmd).map_err(|e| Diagnostic::at(cmd.span, e, "write_data failed"))
 }

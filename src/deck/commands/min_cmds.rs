@@ -22,7 +22,7 @@ pub fn parse_minimize(cmd: &Command) -> DResult<MinimizeOptions> {
 pub fn minimize(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
     let opts = parse_minimize(cmd)?;
-    if sim.check_only {
+    if sim.state.check_only {
         sim.init_run().map_err(|e| Diagnostic::at(cmd.span, e.message, "this minimize"))?;
         sim.out.print(&format!("check: minimize {} iterations from step {} (not run)", opts.maxiter, sim.state.step));
         return Ok(());

@@ -243,7 +243,7 @@ pub fn write_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         d.modify(&mut m, sim.state.ntypes)?;
     }
     // `dmhs check` writes no file (the atoms are not those of a run)
-    if sim.check_only {
+    if sim.state.check_only {
         return Ok(());
     }
     let world = crate::models::world::World { state: &sim.state, computes: &sim.computes, fixes: crate::models::world::FixesView::all(&sim.fixes), bond: sim.bond_style.as_deref(), pair: sim.pair.as_deref() };

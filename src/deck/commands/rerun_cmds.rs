@@ -14,7 +14,7 @@ pub fn read_dump(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     let fw = a.word("dump file name")?;
     let nstep = a.i64("Nstep (the snapshot's step)")?;
     let spec = read_dump::parse_spec(sim, &mut a, vec![sim.path(&fw.text)])?;
-    if sim.check_only {
+    if sim.state.check_only {
         return Ok(());
     }
     let file_err = |e: String| Diagnostic::at(fw.span, e, "this dump file");
@@ -77,7 +77,7 @@ pub fn rerun(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
         }
     }
     let spec = read_dump::parse_spec(sim, &mut a, files)?;
-    if sim.check_only {
+    if sim.state.check_only {
         return Ok(());
     }
     let mut src = DumpSource::new(spec);

@@ -32,7 +32,7 @@ pub fn parse_run(cmd: &Command) -> DResult<RunOptions> {
 pub fn run(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
     let opts = parse_run(cmd)?;
-    if sim.check_only {
+    if sim.state.check_only {
         return sim.check_run(&opts).map_err(|e| setup_error(&e, cmd));
     }
     sim.run(&opts).map_err(|e| run_failure(sim, &e, cmd))

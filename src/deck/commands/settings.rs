@@ -474,6 +474,10 @@ pub fn log(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()
     let append = if a.is_empty() { false } else { a.choice("keyword", &["append"]).map(|_| true)? };
     a.finish()?;
     let path = if w.text == "none" { None } else { Some(sim.path(&w.text)) };
+    // `dmhs check` opens no log file
+    if sim.state.check_only {
+        return Ok(());
+    }
     sim.out.set_log(path.as_deref(), append).map_err(|e| a.error_at(w, format!("cannot open log file `{}`: {e}", w.text), "cannot open"))
 }
 
@@ -523,7 +527,7 @@ pub fn clear(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<
     fresh.base_dir = sim.base_dir.take();
     fresh.want_capture = sim.want_capture;
     fresh.capture_first_step = sim.capture_first_step;
-    fresh.check_only = sim.check_only;
+    fresh.state.check_only = sim.state.check_only;
     fresh.checked_runs = sim.checked_runs;
     fresh.runtime_failed = sim.runtime_failed;
     fresh.cancel = sim.cancel.clone();

@@ -101,6 +101,10 @@ pub fn write_restart(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> 
     let name = w.text.replace('*', &sim.state.step.to_string());
     let path = sim.path(&name);
     let bytes = restart_json(sim).map_err(|e| Diagnostic::at(cmd.span, format!("cannot write restart file `{}`: {e}", path.display()), "here"))?;
+    // `dmhs check` writes no file (the state is checked as read_restart would check it)
+    if sim.state.check_only {
+        return Ok(());
+    }
     crate::output::log::write_atomic(&path, &bytes).map_err(|e| a.error_at(w, format!("cannot write restart file `{}`: {e}", path.display()), "cannot write"))?;
     Ok(())
 }

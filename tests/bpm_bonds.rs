@@ -183,15 +183,15 @@ fn a_stretched_bond_breaks_once_and_the_pair_turns_on() {
 
 #[test]
 fn rotational_bad_input_is_located() {
-    let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere");
+    let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere").replace("mass 1 1.0\n", "");
     let coeff = "bond_coeff 1 1 1 1 1 1 1 1 1 1 1 1 1\n";
     // (deck, what the message says, the line it points at; 0: an error of the run, unlocated)
     let cases = [
-        (format!("{sphere}bond_style bpm/rotational smooth maybe\n"), "maybe", 12),
-        (format!("{sphere}bond_style bpm/rotational volume/factor no\n"), "volume/factor", 12),
-        (format!("{sphere}bond_style bpm/rotational store/local brk 10\n"), "at least one value", 12),
-        (format!("{sphere}bond_style bpm/rotational break no\n"), "must turn off smoothing with break no", 12),
-        (format!("{sphere}bond_style bpm/rotational\nbond_coeff 1 1 1 1 1 1 1 1 1 1 1 1\n"), "gtwist", 13),
+        (format!("{sphere}bond_style bpm/rotational smooth maybe\n"), "maybe", 11),
+        (format!("{sphere}bond_style bpm/rotational volume/factor no\n"), "volume/factor", 11),
+        (format!("{sphere}bond_style bpm/rotational store/local brk 10\n"), "at least one value", 11),
+        (format!("{sphere}bond_style bpm/rotational break no\n"), "must turn off smoothing with break no", 11),
+        (format!("{sphere}bond_style bpm/rotational\nbond_coeff 1 1 1 1 1 1 1 1 1 1 1 1\n"), "gtwist", 12),
         // LAMMPS' init checks, at the run
         (format!("{TWO}bond_style bpm/rotational\n{coeff}run 0\n"), "requires atom style bpm/sphere", 0),
         (format!("{}bond_style bpm/rotational\n{coeff}run 0\n", sphere.replace("comm_modify vel yes\n", "")), "ghost atoms store velocity", 0),
@@ -210,7 +210,7 @@ fn rotational_bond_breaks_only_with_break_yes() {
     // at step 20, no error) with `break no smooth no`
     let tmp = tempfile::tempdir().unwrap();
     let file = tmp.path().join("b.txt");
-    let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere");
+    let sphere = TWO.replace("atom_style bond", "atom_style bpm/sphere").replace("mass 1 1.0\n", "");
     for (settings, nbonds) in [("break no smooth no", 1), ("store/local brk 1 time id1 id2", 0)] {
         let dump = if nbonds == 0 { format!("dump d all local 1 {} f_brk[1] f_brk[2] f_brk[3]\ndump_modify d header no\n", file.display()) } else { String::new() };
         let deck = format!("{sphere}pair_style zero 1.0\npair_coeff * *\nbond_style bpm/rotational {settings}\nbond_coeff 1 1 1 1 1 0.01 1 1 1 0 0 0 0\nset atom 2 vx 1.0\nfix 1 all nve/bpm/sphere\n{dump}run 20\n");

@@ -59,6 +59,7 @@ fn setup_command_errors_are_located() {
         ("fix fr low freeze", "fix fr low freeze now", "unexpected argument `now`"),
         ("compute ke all ke/atom", "compute ke all ke/atom 2", "ke/atom"),
         ("atom_style sphere", "atom_style atomic\nmass * 1.0", "requires atom style sphere"),
+        ("compute ke all ke/atom", "compute ke all ke/atom\nmass 1 1.0", "Cannot set per-type atom mass for atom style sphere"),
     ] {
         let deck = base().replacen(from, to, 1);
         assert_ne!(deck, base(), "{from}");

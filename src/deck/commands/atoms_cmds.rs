@@ -8,6 +8,13 @@ use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
 pub fn mass(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     need_box(sim, cmd)?;
     let mut a = Args::new(cmd, "mass I value  (I: type or range n*m)");
+    // styles with per-atom masses only have no per-type ones (a hybrid with sph, bond, ...
+    // has both, as LAMMPS')
+    let styles = &sim.state.atom_style;
+    if styles.iter().all(|s| matches!(s.as_str(), "sphere" | "bpm/sphere")) {
+        let name = if styles.len() > 1 { "hybrid".to_string() } else { styles.join(" ") };
+        return Err(a.error_command(format!("Cannot set per-type atom mass for atom style {name}"), "per-atom masses: set ... mass or density"));
+    }
     let (lo, hi) = a.type_range("atom type", sim.state.ntypes)?;
     let m = a.positive_f64("mass")?;
     a.finish()?;

@@ -50,7 +50,6 @@ fn setup_command_errors_are_located() {
         ("move v_mx v_my", "move v_nope v_my", "Variable name for displace_atoms does not exist: v_nope"),
         ("move v_mx v_my 0.01", "move v_mx v_my dz", "expected a number for dz"),
         (cb, "change_box all xy final 1", "Cannot change box tilt factors for orthogonal box"),
-        (cb, "change_box all triclinic", "a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet"),
         (cb, "change_box all x volume", "volume is not supported"),
         (cb, "change_box all x delta -0.5 0.5 remap wobble", "unknown keyword `wobble`"),
         (cb, "change_box all x final 2 1", "empty or inverted"),

@@ -365,7 +365,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     }
     // LAMMPS' read_data shrink-wraps the box to the atoms at once (its margins from the file's box)
     if let (Some(d), Some(initial)) = (sim.state.domain.as_mut(), sim.state.box_initial.as_ref()) {
-        crate::engine::boundary::reset_shrink_wrap(d, initial, &sim.state.atoms);
+        crate::engine::boundary::reset_shrink_wrap_box_coords(d, initial, &mut sim.state.atoms);
     }
     sim.out.print(&format!("  {} atoms\n  {} bonds\n  {} angles\n  {} dihedrals", data.atoms.len(), data.bonds.len(), data.angles.len(), data.dihedrals.len()));
     // sections read by fixes (LAMMPS' Fix::read_data_section), atom IDs shifted by `add`

@@ -172,9 +172,6 @@ pub(crate) fn box_text(d: &crate::engine::domain::Domain) -> String {
 /// shrink-wrapped faces, which dmhs does not support on a triclinic box yet.
 pub(crate) fn tilt_check(d: &crate::engine::domain::Domain) -> Result<Option<String>, String> {
     let Some([xy, xz, yz]) = d.tilt else { return Ok(None) };
-    if d.boundary.iter().flatten().any(|b| matches!(b, crate::engine::domain::BoundaryKind::Shrink | crate::engine::domain::BoundaryKind::ShrinkMin)) {
-        return Err("a triclinic box with shrink-wrapped boundaries (s or m) is not supported yet".into());
-    }
     if d.dimension == 2 && (xz != 0.0 || yz != 0.0) {
         return Err("Cannot skew triclinic box in z for 2d simulation".into());
     }

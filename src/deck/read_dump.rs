@@ -382,13 +382,13 @@ impl DumpSource {
             warning = crate::deck::tilt_check(domain)?;
             st.box_initial = Some(domain.clone());
         }
-        let domain = st.domain.as_ref().expect("a box");
         let n = st.atoms.nlocal;
         if let Some(i) = (0..n).find(|&i| !st.atoms.x[i].iter().all(|c| c.is_finite())) {
             return Err(format!("atom {} has a non-finite position in the dump snapshot", st.atoms.tag[i]));
         }
-        domain.remap_and_migrate(&mut st.atoms.x[..n], &mut st.atoms.image[..n]);
-        st.shrink_wrap();
+        // (every rank holds every atom between runs: the shrink-wrap is the same on each)
+        let domain = st.domain.as_mut().expect("a box");
+        crate::engine::boundary::remap_and_migrate(domain, st.box_initial.as_ref(), &mut st.atoms);
         st.lists_valid = false;
         // unsorted output before the next build lists the atoms in LAMMPS' order
         st.lammps_order.refresh(&st.atoms);

@@ -274,20 +274,6 @@ impl Domain {
         }
     }
 
-    /// [`Domain::remap`] of every atom, then, on a triclinic box, one more round trip through
-    /// box fractions (LAMMPS migrates the atoms in lamda coordinates after such a remap:
-    /// change_box, displace_atoms).
-    pub fn remap_and_migrate(&self, x: &mut [[f64; 3]], image: &mut [[i32; 3]]) {
-        for (x, image) in x.iter_mut().zip(image.iter_mut()) {
-            self.remap(x, image);
-        }
-        if self.triclinic() {
-            for x in x.iter_mut() {
-                *x = self.lamda2x(self.x2lamda(*x));
-            }
-        }
-    }
-
     /// How many box lengths [`Domain::remap`] steps, as LAMMPS, before it jumps.
     pub const REMAP_STEPS: f64 = 1e6;
 

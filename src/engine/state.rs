@@ -314,13 +314,40 @@ impl State {
     }
 
     /// Shrink-wrapped faces around the atoms (LAMMPS' `Domain::reset_box`): those of every rank
-    /// in a distributed run, so that every rank cuts the same box.
+    /// in a distributed run, so that every rank cuts the same box. On a triclinic box the
+    /// positions are in box fractions (as a rebuild keeps them) and stay so.
     pub fn shrink_wrap(&mut self) {
         let Some(initial) = self.box_initial.as_ref() else { return };
         // the box taken out, so that the extent can be reduced over the ranks through `self`
         let Some(mut domain) = self.domain.take() else { return };
-        crate::engine::boundary::reset_shrink_wrap_over(&mut domain, initial, &self.atoms, |v| self.max_ranks(v));
+        let ranks = self.decomp.as_ref().filter(|_| self.distributed.is_some());
+        crate::engine::boundary::reset_shrink_wrap_over(&mut domain, initial, &mut self.atoms, |v| {
+            if let Some(d) = ranks {
+                d.comm.max(v);
+            }
+        });
         self.domain = Some(domain);
+    }
+    /// LAMMPS' preparation of write_data and write_restart: every owned atom wrapped into the
+    /// periodic box (LAMMPS' pbc, in box fractions on a triclinic box) and the shrink-wrapped
+    /// faces reset around the atoms. The file then holds the box LAMMPS' holds.
+    pub fn settle_into_box(&mut self) {
+        let Some(domain) = self.domain.clone() else { return };
+        let tilted = domain.triclinic();
+        if tilted {
+            crate::engine::boundary::to_fractions(&domain, &mut self.atoms);
+        }
+        let vremap = domain.rate.vremap;
+        let a = &mut self.atoms;
+        for i in 0..a.nlocal {
+            let v = vremap.filter(|&g| a.mask[i] & g != 0).map(|_| &mut a.v[i]);
+            domain.pbc(&mut a.x[i], &mut a.image[i], v);
+        }
+        self.shrink_wrap();
+        if tilted {
+            crate::engine::boundary::to_box(self.domain.as_ref().expect("a box"), &mut self.atoms);
+        }
+        self.lists_valid = false;
     }
     /// The largest atom ID and molecule ID over every rank's owned atoms: inserted atoms and
     /// molecules are numbered after them.

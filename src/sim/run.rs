@@ -244,10 +244,7 @@ impl Simulation {
             let v = vremap.filter(|&g| a.mask[i] & g != 0).map(|_| &mut a.v[i]);
             domain.pbc(&mut a.x[i], &mut a.image[i], v);
         }
-        if !tilted {
-            // (a triclinic box with shrink-wrapped faces is refused when it is made)
-            self.state.shrink_wrap();
-        }
+        self.state.shrink_wrap();
         let lost = crate::sim::stability::check_lost(self);
         if self.state.any_ranks(lost.is_err()) {
             return Err(lost.err().unwrap_or_else(|| RunError::new(step, "another rank lost atoms")));

@@ -405,5 +405,6 @@ pub fn write_data(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     if sim.state.check_only {
         return Ok(());
     }
+    sim.state.settle_into_box();
     crate::deck::data::write_data(sim, cmd).map_err(|e| Diagnostic::at(cmd.span, e, "write_data failed"))
 }

@@ -6,7 +6,7 @@
 //! box fractions, and at the end every owned atom is remapped into a periodic box.
 
 use super::need_box;
-use crate::engine::boundary::reset_shrink_wrap;
+use crate::engine::boundary::{reset_shrink_wrap, reset_shrink_wrap_box_coords, to_box, to_fractions};
 use crate::engine::domain::Domain;
 use crate::sim::Simulation;
 use dmhs_parser::{Args, Command, DResult, Diagnostic, SourceMap, Word};
@@ -97,12 +97,20 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     let st = &mut sim.state;
     st.atoms.clear_ghosts();
     let mut domain = st.domain.clone().unwrap();
-    // atoms into the current box first (LAMMPS pbc and reset_box), then save it
+    // atoms into the current box first (LAMMPS pbc and reset_box, in box fractions on a
+    // triclinic box), then save it
+    let tilted = domain.triclinic();
+    if tilted {
+        to_fractions(&domain, &mut st.atoms);
+    }
     for i in 0..st.atoms.nlocal {
-        domain.wrap(&mut st.atoms.x[i], &mut st.atoms.image[i]);
+        domain.pbc(&mut st.atoms.x[i], &mut st.atoms.image[i], None);
     }
     if let Some(initial) = st.box_initial.as_ref() {
-        reset_shrink_wrap(&mut domain, initial, &st.atoms);
+        reset_shrink_wrap(&mut domain, initial, &mut st.atoms);
+    }
+    if tilted {
+        to_box(&domain, &mut st.atoms);
     }
     let mut saved = domain.clone();
     for op in &ops {
@@ -127,7 +135,7 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 if !(domain.hi[d] > domain.lo[d]) {
                     return Err(Diagnostic::at(cmd.span, format!("change_box makes the box empty or inverted in {}: {} to {}", ["x", "y", "z"][d], domain.lo[d], domain.hi[d]), "bad box"));
                 }
-                st.box_initial = Some(domain.clone());
+                set_initial_box(&mut domain, &mut st.box_initial);
                 sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
             }
             Op::Tilt(k, fin, v, w) => {
@@ -140,7 +148,7 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 if let Some(m) = crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(w.span, e, "z tilt in 2d"))? {
                     sim.out.print(&m);
                 }
-                st.box_initial = Some(domain.clone());
+                set_initial_box(&mut domain, &mut st.box_initial);
                 sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
             }
             Op::Shape(tri, w) => {
@@ -149,7 +157,7 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 }
                 domain.tilt = tri.then_some([0.0; 3]);
                 crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(w.span, e, "triclinic box"))?;
-                st.box_initial = Some(domain.clone());
+                set_initial_box(&mut domain, &mut st.box_initial);
                 sim.out.print(&format!("  {}", crate::deck::box_text(&domain)));
             }
             Op::Boundary(words) => {
@@ -157,7 +165,7 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
                 // (no shrink-wrapped faces on a triclinic box)
                 crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(words[0].span, e, "triclinic box"))?;
                 st.boundary = domain.boundary;
-                st.box_initial = Some(domain.clone());
+                set_initial_box(&mut domain, &mut st.box_initial);
                 // image flags of non-periodic dimensions are reset (LAMMPS' warning)
                 let mut reset = false;
                 for img in st.atoms.image[..st.atoms.nlocal].iter_mut() {
@@ -182,17 +190,24 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         }
     }
     if let Some(initial) = st.box_initial.as_ref() {
-        reset_shrink_wrap(&mut domain, initial, &st.atoms);
+        reset_shrink_wrap_box_coords(&mut domain, initial, &mut st.atoms);
     }
     // (LAMMPS leaves the atoms alone when the command only makes the box ortho or triclinic:
     // a remap in a triclinic box moves them through box fractions)
     if ops.iter().any(|o| !matches!(o, Op::Shape(..))) {
-        let n = st.atoms.nlocal;
-        domain.remap_and_migrate(&mut st.atoms.x[..n], &mut st.atoms.image[..n]);
+        crate::engine::boundary::remap_and_migrate(&mut domain, st.box_initial.as_ref(), &mut st.atoms);
     }
     st.domain = Some(domain);
     st.lists_valid = false;
     Ok(())
+}
+
+/// LAMMPS' Domain::set_initial_box after each change: the box becomes the one shrink-wrapped
+/// faces keep their margins (1e-4 of its lengths) and `m` faces their bounds from, and its
+/// shrink-wrapped (`s`) faces move out by that margin.
+fn set_initial_box(domain: &mut Domain, initial: &mut Option<Domain>) {
+    *initial = Some(domain.clone());
+    *domain = crate::engine::boundary::pad_shrink_faces(domain);
 }
 
 /// A point's fractional coordinates in `from`, placed in `to` (LAMMPS x2lamda with the saved

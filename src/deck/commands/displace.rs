@@ -100,14 +100,16 @@ pub fn displace_atoms(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) ->
             }
         }
     }
-    let d = sim.state.domain.clone().unwrap();
+    let mut d = sim.state.domain.clone().unwrap();
     for &i in &members {
         if !at.x[i].iter().all(|c| c.is_finite()) {
             return Err(Diagnostic::at(cmd.span, format!("displace_atoms moves atom {} to a non-finite position {:?}", at.tag[i], at.x[i]), "non-finite position"));
         }
     }
-    // LAMMPS remaps every owned atom back into a periodic box, updating image flags
-    d.remap_and_migrate(&mut at.x[..at.nlocal], &mut at.image[..at.nlocal]);
+    // LAMMPS remaps every owned atom back into a periodic box, updating image flags, and
+    // shrink-wraps the box around them
+    crate::engine::boundary::remap_and_migrate(&mut d, sim.state.box_initial.as_ref(), at);
+    sim.state.domain = Some(d);
     sim.state.lists_valid = false;
     Ok(())
 }

@@ -90,13 +90,18 @@ fn signed_type(typ: usize, off: bool) -> i64 {
 pub fn write_restart(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     let mut a = Args::new(cmd, WRITE_SYNTAX);
     let w = a.word("file name")?;
+    let mut init = true;
     while let Some(k) = a.peek() {
         a.skip(1);
         match k.text.as_str() {
             "fileper" | "nfile" => return Err(a.error_at(k, format!("write_restart {} is for MPI runs (dmhs writes one file)", k.text), "not supported")),
-            "noinit" => {}
+            "noinit" => init = false,
             _ => return Err(a.unknown_keyword(k, &["noinit"])),
         }
+    }
+    // LAMMPS' set-up before the file (skipped by noinit): atoms into the box, shrink-wrapped faces
+    if init && !sim.state.check_only {
+        sim.state.settle_into_box();
     }
     let name = w.text.replace('*', &sim.state.step.to_string());
     let path = sim.path(&name);

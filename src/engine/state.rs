@@ -317,16 +317,13 @@ impl State {
     /// in a distributed run, so that every rank cuts the same box. On a triclinic box the
     /// positions are in box fractions (as a rebuild keeps them) and stay so.
     pub fn shrink_wrap(&mut self) {
-        let Some(initial) = self.box_initial.as_ref() else { return };
-        // the box taken out, so that the extent can be reduced over the ranks through `self`
-        let Some(mut domain) = self.domain.take() else { return };
+        let (Some(initial), Some(domain)) = (self.box_initial.as_ref(), self.domain.as_mut()) else { return };
         let ranks = self.decomp.as_ref().filter(|_| self.distributed.is_some());
-        crate::engine::boundary::reset_shrink_wrap_over(&mut domain, initial, &mut self.atoms, |v| {
+        crate::engine::boundary::reset_shrink_wrap_over(domain, initial, &mut self.atoms, |v| {
             if let Some(d) = ranks {
                 d.comm.max(v);
             }
         });
-        self.domain = Some(domain);
     }
     /// LAMMPS' preparation of write_data and write_restart: every owned atom wrapped into the
     /// periodic box (LAMMPS' pbc, in box fractions on a triclinic box) and the shrink-wrapped

@@ -162,7 +162,6 @@ pub fn change_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
             }
             Op::Boundary(words) => {
                 domain.boundary = super::settings::parse_boundary(words, dim)?;
-                // (no shrink-wrapped faces on a triclinic box)
                 crate::deck::tilt_check(&domain).map_err(|e| Diagnostic::at(words[0].span, e, "triclinic box"))?;
                 st.boundary = domain.boundary;
                 set_initial_box(&mut domain, &mut st.box_initial);

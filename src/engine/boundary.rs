@@ -67,6 +67,17 @@ pub fn remap_and_migrate(domain: &mut Domain, initial: Option<&Domain>, atoms: &
     }
 }
 
+/// LAMMPS' Domain::pbc over the owned atoms (their positions in box fractions on a triclinic
+/// box): an atom of fix deform's `remap v` group that crosses a periodic face also gets the
+/// box's velocity change.
+pub fn pbc_owned(domain: &Domain, atoms: &mut Atoms) {
+    let vremap = domain.rate.vremap;
+    for i in 0..atoms.nlocal {
+        let v = vremap.filter(|&g| atoms.mask[i] & g != 0).map(|_| &mut atoms.v[i]);
+        domain.pbc(&mut atoms.x[i], &mut atoms.image[i], v);
+    }
+}
+
 /// The owned atoms' positions to box fractions (LAMMPS' x2lamda(nlocal)).
 pub fn to_fractions(domain: &Domain, atoms: &mut Atoms) {
     for x in atoms.x[..atoms.nlocal].iter_mut() {
@@ -136,11 +147,7 @@ pub fn reset_shrink_wrap_over(domain: &mut Domain, initial: &Domain, atoms: &mut
         }
     }
     if tilted {
-        let vremap = domain.rate.vremap;
-        for i in 0..atoms.nlocal {
-            atoms.x[i] = domain.x2lamda(atoms.x[i]);
-            let v = vremap.filter(|&g| atoms.mask[i] & g != 0).map(|_| &mut atoms.v[i]);
-            domain.pbc(&mut atoms.x[i], &mut atoms.image[i], v);
-        }
+        to_fractions(domain, atoms);
+        pbc_owned(domain, atoms);
     }
 }

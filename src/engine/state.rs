@@ -334,12 +334,7 @@ impl State {
         if tilted {
             crate::engine::boundary::to_fractions(&domain, &mut self.atoms);
         }
-        let vremap = domain.rate.vremap;
-        let a = &mut self.atoms;
-        for i in 0..a.nlocal {
-            let v = vremap.filter(|&g| a.mask[i] & g != 0).map(|_| &mut a.v[i]);
-            domain.pbc(&mut a.x[i], &mut a.image[i], v);
-        }
+        crate::engine::boundary::pbc_owned(&domain, &mut self.atoms);
         self.shrink_wrap();
         if tilted {
             crate::engine::boundary::to_box(self.domain.as_ref().expect("a box"), &mut self.atoms);

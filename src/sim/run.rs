@@ -235,15 +235,10 @@ impl Simulation {
         // a triclinic box wraps its atoms in box fractions and keeps them so until the list
         // build places them again (LAMMPS' x2lamda, pbc, ..., lamda2x: their last bits change)
         let tilted = domain.triclinic();
-        let vremap = domain.rate.vremap;
-        let a = &mut self.state.atoms;
-        for i in 0..a.nlocal {
-            if tilted {
-                a.x[i] = domain.x2lamda(a.x[i]);
-            }
-            let v = vremap.filter(|&g| a.mask[i] & g != 0).map(|_| &mut a.v[i]);
-            domain.pbc(&mut a.x[i], &mut a.image[i], v);
+        if tilted {
+            crate::engine::boundary::to_fractions(domain, &mut self.state.atoms);
         }
+        crate::engine::boundary::pbc_owned(domain, &mut self.state.atoms);
         self.state.shrink_wrap();
         let lost = crate::sim::stability::check_lost(self);
         if self.state.any_ranks(lost.is_err()) {

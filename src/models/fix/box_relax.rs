@@ -270,31 +270,20 @@ impl FixBoxRelax {
         let d = state.domain()?;
         let p = d.prd();
         let nktv2p = state.units.nktv2p;
+        let three = self.dimension == 3;
+        let inv = if three { 1.0 / (p[0] * p[1] * p[2]) } else { 1.0 / (p[0] * p[1]) };
         let pc = if self.pstyle == PStyle::Iso {
-            let s = if self.dimension == 3 {
-                let inv = 1.0 / (p[0] * p[1] * p[2]);
-                (virial[0] + virial[1] + virial[2]) / 3.0 * inv * nktv2p
-            } else {
-                let inv = 1.0 / (p[0] * p[1]);
-                (virial[0] + virial[1]) / 2.0 * inv * nktv2p
-            };
+            let s = if three { (virial[0] + virial[1] + virial[2]) / 3.0 * inv * nktv2p } else { (virial[0] + virial[1]) / 2.0 * inv * nktv2p };
             [s; 3]
         } else {
-            let t = if self.dimension == 3 {
-                let inv = 1.0 / (p[0] * p[1] * p[2]);
-                [virial[0] * inv * nktv2p, virial[1] * inv * nktv2p, virial[2] * inv * nktv2p]
-            } else {
-                let inv = 1.0 / (p[0] * p[1]);
-                [virial[0] * inv * nktv2p, virial[1] * inv * nktv2p, 0.0]
-            };
-            self.pcouple.apply(t)
+            let z = if three { virial[2] * inv * nktv2p } else { 0.0 };
+            self.pcouple.apply([virial[0] * inv * nktv2p, virial[1] * inv * nktv2p, z])
         };
         let mut p6 = [pc[0], pc[1], pc[2], 0.0, 0.0, 0.0];
         if self.pstyle == PStyle::Triclinic {
-            let inv = if self.dimension == 3 { 1.0 / (p[0] * p[1] * p[2]) } else { 1.0 / (p[0] * p[1]) };
             // the virial's xy xz yz in the box's yz xz xy order (2d: xy only)
             for (k, v) in [(3, 5), (4, 4), (5, 3)] {
-                p6[k] = if self.dimension == 3 || k == 5 { virial[v] * inv * nktv2p } else { 0.0 };
+                p6[k] = if three || k == 5 { virial[v] * inv * nktv2p } else { 0.0 };
             }
         }
         if p6.iter().any(|v| !v.is_finite()) {

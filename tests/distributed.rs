@@ -201,6 +201,7 @@ fn chains_deck(dir: &std::path::Path, bond: &str) -> String {
         "
 units        lj
 atom_style   molecular
+processors   * 1 1
 read_data    {}/chains.data
 {bond}
 angle_style  harmonic
@@ -212,7 +213,6 @@ pair_coeff   1 1 1.0 1.0
 pair_modify  shift yes
 special_bonds lj 0.0 1.0 1.0
 comm_modify  cutoff 2.5
-processors   * 1 1
 neighbor     0.4 bin
 neigh_modify every 1 delay 0 check yes
 velocity     all create 1.0 4928459 loop geom
@@ -295,7 +295,7 @@ fn an_error_on_one_rank_stops_every_rank_without_hanging() {
     let data = "one bond\n\n3 atoms\n1 bonds\n1 atom types\n1 bond types\n\n0 12 xlo xhi\n0 12 ylo yhi\n0 12 zlo zhi\n\nMasses\n\n1 1.0\n\nAtoms # bond\n\n1 1 1 5.5 6 6\n2 1 1 8.5 6 6\n3 2 1 1.0 1.0 1.0\n\nBonds\n\n1 1 1 2\n";
     std::fs::write(dir.path().join("bond.data"), data).unwrap();
     let deck = format!(
-        "units lj\natom_style bond\nread_data {}/bond.data\nbond_style harmonic\nbond_coeff 1 10.0 3.0\npair_style lj/cut 1.12\npair_coeff 1 1 1.0 1.0\nprocessors 2 1 1\nfix 1 all nve\nrun 10\n",
+        "units lj\natom_style bond\nprocessors 2 1 1\nread_data {}/bond.data\nbond_style harmonic\nbond_coeff 1 10.0 3.0\npair_style lj/cut 1.12\npair_coeff 1 1 1.0 1.0\nfix 1 all nve\nrun 10\n",
         dir.path().display()
     );
     let results = on_ranks(&deck, 2);
@@ -311,8 +311,8 @@ fn an_error_on_one_rank_stops_every_rank_without_hanging() {
 #[test]
 fn a_setup_error_on_one_rank_stops_every_rank() {
     let deck = MELT.replace("lattice      fcc 0.8442\n", "boundary     p p f\nlattice      fcc 0.8442\n")
-        .replace("region       box block 0 6 0 6 0 6", "region       box block 0 6 0 6 0 6.25")
-        .replace("fix          1 all nve\n", "fix          1 all nve\nfix          w all wall/lj93 zlo EDGE 1.0 1.0 2.5\nprocessors   1 1 2\n");
+        .replace("region       box block 0 6 0 6 0 6", "processors   1 1 2\nregion       box block 0 6 0 6 0 6.25")
+        .replace("fix          1 all nve\n", "fix          1 all nve\nfix          w all wall/lj93 zlo EDGE 1.0 1.0 2.5\n");
     for (rank, r) in on_ranks(&deck, 2).iter().enumerate() {
         let e = r.as_ref().err().unwrap_or_else(|| panic!("rank {rank} ran"));
         assert!(e.contains("on rank 0 of 2") && e.contains("on or inside the wall surface"), "rank {rank}: {e}");
@@ -526,8 +526,8 @@ fn what_is_not_distributed_yet_is_refused_on_every_rank() {
 
 #[test]
 fn sub_domains_thinner_than_the_cutoff_are_refused() {
-    let deck = MELT.replace("block 0 6 0 6 0 6", "block 0 6 0 6 0 2");
-    for e in refusals(&deck.replace("run          150\nrun          100\n", "processors 1 1 2\nrun 10\n"), 2) {
+    let deck = MELT.replace("block 0 6 0 6 0 6", "block 0 6 0 6 0 2").replace("create_box", "processors 1 1 2\ncreate_box");
+    for e in refusals(&deck.replace("run          150\nrun          100\n", "run 10\n"), 2) {
         assert!(e.contains("less than the ghost cutoff"), "{e}");
     }
 }
@@ -580,6 +580,14 @@ fn mpiexec_ranks_give_the_serial_run() {
     let rows1 = thermo_rows(&run(1).0);
     let rows2 = thermo_rows(&run(2).0);
     assert!(rows1.len() >= 7 && rows1.len() == rows2.len() && rows1.iter().flatten().zip(rows2.iter().flatten()).all(|(x, y)| close(*x, *y, 1e-9)), "pour: {rows2:?} against serial {rows1:?}");
+    // a tilted box sheared by fix deform, cut in box fractions
+    let tilted = tilted_melt("fix          1 all nvt temp 3.0 3.0 0.5\nfix          2 all deform 1 xy erate 0.05\nthermo_style custom step temp epair etotal press pxy xy atoms\n");
+    std::fs::write(dir.path().join("in.melt"), tilted + "write_data final.data\n").unwrap();
+    let rows1 = thermo_rows(&run(1).0);
+    for np in [2, 4] {
+        let rows = thermo_rows(&run(np).0);
+        assert!(rows1.len() >= 7 && rows1.len() == rows.len() && rows1.iter().flatten().zip(rows.iter().flatten()).all(|(x, y)| close(*x, *y, 1e-9)), "triclinic on {np} ranks: {rows:?} against serial {rows1:?}");
+    }
     std::fs::write(dir.path().join("in.melt"), &deck).unwrap();
     // the benchmark times the ranks too
     let out = std::process::Command::new(&bin).args(["bench", "--threads-list", "1", "--ranks", "2", "in.melt"]).env("DMHS_MPIEXEC", &mpiexec).current_dir(dir.path()).output().unwrap();
@@ -1426,10 +1434,10 @@ fn deposited_bonded_molecules_on_ranks_are_the_serial_run() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("dimer.mol"), "dimer\n\n2 atoms\n1 bonds\n\nCoords\n\n1 -0.5 0 0\n2 0.5 0 0\n\nTypes\n\n1 1\n2 1\n\nBonds\n\n1 1 1 2\n").unwrap();
     let deck = format!(
-        "units lj\natom_style bond\nboundary p p f\nregion box block 0 10 0 10 0 8\ncreate_box 1 box bond/types 1 extra/bond/per/atom 1 extra/special/per/atom 1\n\
+        "units lj\natom_style bond\nboundary p p f\nprocessors * * 1\nregion box block 0 10 0 10 0 8\ncreate_box 1 box bond/types 1 extra/bond/per/atom 1 extra/special/per/atom 1\n\
          mass * 1.0\npair_style lj/cut 2.5\npair_coeff * * 1.0 1.0\nbond_style harmonic\nbond_coeff 1 50.0 1.1\nmolecule dimer {}/dimer.mol\n\
          region slab block 0 10 0 10 5 6\nfix 1 all nve\nfix 2 all deposit 10 0 15 12345 region slab near 1.3 mol dimer vz -1.0 -0.5 vx -0.3 0.3 units box\n\
-         fix 3 all wall/reflect zlo EDGE zhi EDGE\nprocessors * * 1\nthermo_style custom step atoms temp epair ebond etotal f_2\nthermo_modify format float %.15g\nthermo 20\nrun 200\n",
+         fix 3 all wall/reflect zlo EDGE zhi EDGE\nthermo_style custom step atoms temp epair ebond etotal f_2\nthermo_modify format float %.15g\nthermo 20\nrun 200\n",
         dir.path().display()
     );
     let (text, atoms) = serial(&deck);
@@ -1624,6 +1632,10 @@ fn processors_errors_are_located() {
         let err = dmhs::deck::run_text("deck", &deck, &options()).err().unwrap_or_else(|| panic!("{line}: accepted")).rendered;
         assert!(err.contains(want) && err.contains("deck:6:"), "{line}: expected `{want}`:\n{err}");
     }
+    // LAMMPS 22 Jul 2025: "Processors command after simulation box is defined"
+    let deck = MELT.replace("mass         1 1.0\n", "mass         1 1.0\nprocessors   * * *\n");
+    let err = dmhs::deck::run_text("deck", &deck, &options()).err().expect("processors after the box is refused").rendered;
+    assert!(err.contains("processors must be used before the simulation box is defined") && err.contains("deck:9:"), "{err}");
 }
 
 /// Barostats and fix deform on ranks: the box changes identically on every rank (the pressure,
@@ -1652,4 +1664,82 @@ fn barostats_and_deform_on_ranks_are_the_serial_run() {
     );
     compare(&deform, 2);
     compare(&deform, 4);
+}
+
+/// The LJ melt in a prism (every tilt non-zero): the ranks cut the box in box fractions, as
+/// LAMMPS cuts a triclinic box, and the ghosts across the tilted faces are the serial run's.
+fn tilted_melt(fixes: &str) -> String {
+    MELT.replace("region       box block 0 6 0 6 0 6\n", "region       box prism 0 6 0 6 0 6 1.5 -1.0 0.8\n")
+        .replace("check no\n", "check yes\n")
+        .replace("fix          1 all nve\nthermo_style custom step temp epair emol etotal press atoms\n", fixes)
+}
+
+#[test]
+fn a_triclinic_box_on_ranks_is_the_serial_run() {
+    let nve = tilted_melt("fix          1 all nve\nthermo_style custom step temp epair etotal press pxy pxz pyz xy xz yz atoms\nthermo_modify format float %.15g\n");
+    compare(&nve, 2);
+    compare(&nve, 3);
+    compare(&nve, 4);
+    // the box tilting as the atoms move (fix deform remaps them in box fractions), and a
+    // barostat on every degree of freedom of the box
+    let deform = tilted_melt(
+        "fix          1 all nvt temp 3.0 3.0 0.5\n\
+         fix          2 all deform 1 xy erate 0.05 yz erate -0.03\n\
+         thermo_style custom step temp epair etotal press pxy xy yz atoms\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&deform, 4);
+    let npt = tilted_melt(
+        "fix          1 all npt temp 3.0 3.0 0.5 tri 4.0 4.0 2.0\n\
+         thermo_style custom step temp epair etotal press vol xy xz yz atoms\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&npt, 2);
+}
+
+/// Bonded chains in a box made triclinic and sheared (bonds, angles and dihedrals across the
+/// tilted periodic faces and the ranks' boundaries).
+#[test]
+fn bonded_chains_in_a_triclinic_box_on_ranks_are_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97")
+        .replace("angle_style  harmonic\n", "change_box   all triclinic\nchange_box   all xy final 3.0 xz final -2.0 yz final 1.5 remap units box\nangle_style  harmonic\n")
+        .replace("processors   * 1 1\n", "");
+    compare(&deck, 2);
+    compare(&deck, 4);
+}
+
+/// A 2D liquid slab in a tilted box with shrink-wrapped faces along y: the faces follow the
+/// atoms of every rank (in box fractions), and the processor grid is the one LAMMPS 22 Jul 2025
+/// chooses for this deck (`mpiexec -np 4 lmp` prints "2 by 2 by 1": from the box as
+/// create_box made it, not the shrink-wrapped box of the run, which would be cut 4 by 1).
+#[test]
+fn a_shrink_wrapped_triclinic_slab_on_ranks_is_the_serial_run() {
+    let deck = "
+units        lj
+dimension    2
+atom_style   atomic
+boundary     p s p
+lattice      sq2 0.8442
+region       box prism 0 20 0 12 -0.5 0.5 4.0 0 0
+create_box   1 box
+region       blob block 0 20 2 10 INF INF
+create_atoms 1 region blob
+mass         1 1.0
+velocity     all create 1.0 87287 loop geom
+pair_style   lj/cut 2.5
+pair_coeff   1 1 1.0 1.0 2.5
+neighbor     0.3 bin
+neigh_modify every 2 delay 0 check yes
+fix          1 all nve
+fix          2 all enforce2d
+thermo_style custom step temp epair etotal press pxy xy ylo yhi atoms
+thermo_modify format float %.15g
+thermo       50
+run          300
+";
+    compare(deck, 2);
+    compare(deck, 4);
+    let text = on_ranks(deck, 4).swap_remove(0).unwrap().0;
+    assert!(text.contains("2 by 2 by 1 MPI processor grid"), "{text}");
 }

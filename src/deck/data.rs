@@ -254,6 +254,9 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
     sim.state.box_initial = Some(domain.clone());
     // a new box: LAMMPS' set_initial_box(1) pads its shrink-wrapped faces
     let domain = if o.add.is_none() { crate::engine::boundary::pad_shrink_faces(&domain) } else { domain };
+    if o.add.is_none() {
+        sim.state.grid_areas = Some(domain.face_areas());
+    }
     sim.state.domain = Some(domain.clone());
     let natoms = sim.state.atoms.nlocal + h.atoms;
     crate::sim::memory::check_atoms(natoms as f64, sim.state.atoms.features, 0, 0).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {natoms} atoms: {e}"), "too many atoms for this machine"))?;

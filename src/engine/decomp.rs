@@ -6,6 +6,11 @@
 //!
 //! Ranks sit in the grid as `processors` places them (by default as MPI's Cartesian topology
 //! numbers them, z fastest; src/engine/procmap.rs).
+//!
+//! A triclinic box is cut in box fractions, as LAMMPS cuts it in lamda coordinates: from the
+//! wrap of a rebuild to the list build its atoms are fractions, and migration, balancing and
+//! the ghosts' selection work in [`frame`], the box of fractions, with the ghost cutoff's
+//! [`reach`] across it; ghosts are placed back in the box with lamda2x.
 
 use crate::engine::atoms::Atoms;
 use crate::engine::comm::Comm;
@@ -76,8 +81,13 @@ impl Decomp {
         }
         (lo, hi)
     }
-    /// The rank whose sub-domain holds `x` (outside the box: the nearest edge rank).
+    /// The rank whose sub-domain holds the point `x` of the box (outside the box: the nearest
+    /// edge rank).
     pub fn owner(&self, domain: &Domain, x: &[f64; 3]) -> usize {
+        self.owner_in(&frame(domain), &in_frame(domain, *x))
+    }
+    /// [`Decomp::owner`] of a position `x` in `frame` (see [`frame`]).
+    fn owner_in(&self, domain: &Domain, x: &[f64; 3]) -> usize {
         let mut c = [0usize; 3];
         for d in 0..3 {
             let p = self.procs[d];
@@ -133,10 +143,13 @@ impl Decomp {
     /// A sub-domain must be at least as thick as the ghost cutoff (ghosts come from the next
     /// ranks only).
     pub fn check_thickness(&self, domain: &Domain, cut: f64) -> Result<(), String> {
+        let (f, reach) = (frame(domain), reach(domain, cut));
         for d in 0..domain.dimension {
             let p = self.procs[d];
-            let width = (0..p).map(|c| self.bounds(domain, d, c)).map(|(lo, hi)| hi - lo).fold(f64::INFINITY, f64::min);
-            if p > 1 && width < cut {
+            let width = (0..p).map(|c| self.bounds(&f, d, c)).map(|(lo, hi)| hi - lo).fold(f64::INFINITY, f64::min);
+            if p > 1 && width < reach[d] {
+                // (a triclinic sub-domain's thickness across its faces, in lengths)
+                let width = if domain.triclinic() { width * cut / reach[d] } else { width };
                 return Err(format!(
                     "the sub-domains of the {}x{}x{} processor grid are {width} thick along {}, less than the ghost cutoff {cut} (pair cutoff + skin, or comm_modify cutoff): use fewer ranks along {} (processors command)",
                     self.procs[0], self.procs[1], self.procs[2],
@@ -148,10 +161,20 @@ impl Decomp {
     }
 
     /// Atom counts of the owned atoms in [`BALANCE_BINS`] equal bins across the box, per
-    /// dimension, summed over the ranks (`all`) or of this rank alone.
+    /// dimension, summed over the ranks (`all`) or of this rank alone. `domain`: the frame the
+    /// positions are in (see [`frame`]).
     pub fn histograms(&self, atoms: &Atoms, domain: &Domain, all: bool) -> [Vec<f64>; 3] {
+        self.histograms_of(atoms.x[..atoms.nlocal].iter().copied(), domain, all)
+    }
+    /// [`Decomp::histograms`] of this rank's atoms at their places in the box (between runs,
+    /// where every rank holds every atom).
+    pub fn box_histograms(&self, atoms: &Atoms, domain: &Domain) -> [Vec<f64>; 3] {
+        self.histograms_of(atoms.x[..atoms.nlocal].iter().map(|&x| in_frame(domain, x)), &frame(domain), false)
+    }
+    /// [`Decomp::histograms`] of the positions `xs`.
+    fn histograms_of(&self, xs: impl Iterator<Item = [f64; 3]>, domain: &Domain, all: bool) -> [Vec<f64>; 3] {
         let mut h = [(); 3].map(|_| vec![0.0; BALANCE_BINS]);
-        for x in &atoms.x[..atoms.nlocal] {
+        for x in xs {
             for d in 0..domain.dimension {
                 let f = (x[d] - domain.lo[d]) / (domain.hi[d] - domain.lo[d]) * BALANCE_BINS as f64;
                 let b = if f.is_nan() || f < 0.0 { 0 } else { (f as usize).min(BALANCE_BINS - 1) };
@@ -170,6 +193,7 @@ impl Decomp {
     /// in `hist` (LAMMPS' `balance shift` on every dimension with more than one rank), no
     /// sub-domain thinner than `cut`. Returns whether a cut moved.
     pub fn balance(&mut self, domain: &Domain, hist: &[Vec<f64>; 3], cut: f64) -> bool {
+        let (reach, domain) = (reach(domain, cut), &frame(domain));
         let mut moved = false;
         for d in 0..domain.dimension {
             let p = self.procs[d];
@@ -177,7 +201,7 @@ impl Decomp {
                 continue;
             }
             // (a hair more than the cutoff: the widths computed back from the cuts round)
-            if let Some(cuts) = balanced_cuts(&hist[d], p, cut / (domain.hi[d] - domain.lo[d]) * (1.0 + 1e-12)) {
+            if let Some(cuts) = balanced_cuts(&hist[d], p, reach[d] / (domain.hi[d] - domain.lo[d]) * (1.0 + 1e-12)) {
                 moved |= cuts != self.splits[d];
                 self.splits[d] = cuts;
             }
@@ -211,8 +235,8 @@ impl Decomp {
 
     /// Send the owned atoms that left this sub-domain to the ranks that now own them (LAMMPS'
     /// `Comm::exchange`): the neighbouring ranks, or any rank (`anywhere`: after balancing).
-    /// Positions are wrapped; no ghosts are present. Returns the IDs of the atoms that left and
-    /// the ranks they went to.
+    /// Positions are wrapped, in `domain`, the frame of the rebuild (see [`frame`]); no ghosts
+    /// are present. Returns the IDs of the atoms that left and the ranks they went to.
     pub fn migrate(&self, atoms: &mut Atoms, domain: &Domain, anywhere: bool) -> Result<Vec<(i64, usize)>, String> {
         let me = self.rank();
         let peers = self.destinations(domain, anywhere);
@@ -221,7 +245,7 @@ impl Decomp {
         let mut departed = Vec::new();
         let mut stray = None;
         for i in 0..atoms.nlocal {
-            let r = self.owner(domain, &atoms.x[i]);
+            let r = self.owner_in(domain, &atoms.x[i]);
             if r == me {
                 continue;
             }
@@ -270,13 +294,18 @@ impl Decomp {
 
     /// Make the ghosts within `cut` of this sub-domain (LAMMPS' `Comm::borders`): every rank
     /// sends each rank next to it (and itself, across periodic faces) the images of its atoms
-    /// that lie within `cut` of that rank's sub-domain.
-    pub fn borders(&mut self, atoms: &mut Atoms, domain: &Domain, cut: f64) {
+    /// that lie within `cut` of that rank's sub-domain. `lamda`: the owned atoms' box fractions
+    /// on a triclinic box (empty otherwise), where the images are chosen and made.
+    pub fn borders(&mut self, atoms: &mut Atoms, domain: &Domain, cut: f64, lamda: &[[f64; 3]]) {
         let me = self.rank();
         let mut targets = self.peers(domain);
         targets.push(me);
         targets.sort_unstable();
-        let prd = domain.prd();
+        let (f, reach) = (frame(domain), reach(domain, cut));
+        let tilted = domain.triclinic();
+        let pos: &[[f64; 3]] = if tilted { lamda } else { &atoms.x[..atoms.nlocal] };
+        debug_assert_eq!(pos.len(), atoms.nlocal);
+        let periods = f.periods();
         let shifts: Vec<[i8; 3]> = {
             let range = |d: usize| if d < domain.dimension && domain.periodic(d) { vec![-1i8, 0, 1] } else { vec![0i8] };
             let mut s = Vec::new();
@@ -291,41 +320,40 @@ impl Decomp {
         };
         // only an atom within `cut` of its own sub-domain's faces can lie within `cut` of
         // another sub-domain or of a periodic face (the sub-domains tile the box)
-        let (my_lo, my_hi) = self.subdomain(domain, me);
-        let near: Vec<usize> = (0..atoms.nlocal)
-            .filter(|&i| (0..domain.dimension).any(|d| !(atoms.x[i][d] >= my_lo[d] + cut && atoms.x[i][d] < my_hi[d] - cut)))
-            .collect();
+        let (my_lo, my_hi) = self.subdomain(&f, me);
+        let near: Vec<usize> = (0..pos.len()).filter(|&i| (0..domain.dimension).any(|d| !(pos[i][d] >= my_lo[d] + reach[d] && pos[i][d] < my_hi[d] - reach[d]))).collect();
         // the images of each such atom that can reach any sub-domain: itself, and across a
         // periodic face only when it lies within `cut` of the opposite face
         let images: Vec<Vec<[i8; 3]>> = near
             .iter()
             .map(|&i| {
-                let x = atoms.x[i];
+                let x = pos[i];
                 shifts
                     .iter()
                     .copied()
-                    .filter(|s| (0..3).all(|d| s[d] == 0 || (s[d] > 0 && x[d] < domain.lo[d] + cut) || (s[d] < 0 && x[d] >= domain.hi[d] - cut)))
+                    .filter(|s| (0..3).all(|d| s[d] == 0 || (s[d] > 0 && x[d] < f.lo[d] + reach[d]) || (s[d] < 0 && x[d] >= f.hi[d] - reach[d])))
                     .collect()
             })
             .collect();
         self.sends.clear();
         for &q in &targets {
-            let (lo, hi) = self.subdomain(domain, q);
+            let (lo, hi) = self.subdomain(&f, q);
             let mut list = Vec::new();
             for (&i, images) in near.iter().zip(&images) {
                 for s in images {
                     if q == me && *s == [0, 0, 0] {
                         continue;
                     }
-                    let x = shifted(atoms.x[i], *s, prd);
-                    if (0..domain.dimension).all(|d| x[d] >= lo[d] - cut && x[d] < hi[d] + cut) {
+                    let x = periods.shifted(pos[i], *s);
+                    if (0..domain.dimension).all(|d| x[d] >= lo[d] - reach[d] && x[d] < hi[d] + reach[d]) {
                         list.push((i as u32, *s));
                     }
                 }
             }
             self.sends.push((q, list));
         }
-        let bufs = self.pack_sends(atoms, prd, |a, i, x, s, out| a.pack_ghost(i, x, s, out));
+        // a triclinic box's ghosts are placed from their fractions, as the serial build's
+        let bufs = self.pack_sends(atoms, |a, i, s| if tilted { domain.lamda2x(periods.shifted(pos[i], s)) } else { periods.shifted(a.x[i], s) }, |a, i, x, s, out| a.pack_ghost(i, x, s, out));
         self.recv_counts.clear();
         for buf in bufs {
             let before = atoms.nall();
@@ -367,7 +395,7 @@ impl Decomp {
 
     /// Fresh ghost positions from their owners (LAMMPS' forward communication of `x`).
     pub fn forward_positions(&self, atoms: &mut Atoms, domain: &Domain) {
-        let bufs = self.pack_sends(atoms, domain.prd(), |_, _, x, _, out| out.extend_from_slice(&x));
+        let bufs = self.pack_sends(atoms, at_shift(domain), |_, _, x, _, out| out.extend_from_slice(&x));
         let mut k = atoms.nlocal;
         for buf in bufs {
             for x in buf.chunks_exact(3) {
@@ -379,7 +407,7 @@ impl Decomp {
 
     /// Fresh ghost positions and per-atom state (velocities, SPH/DEM values, ghost fields).
     pub fn forward_state(&self, atoms: &mut Atoms, domain: &Domain) {
-        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, x, s, out| a.pack_ghost(i, x, s, out));
+        let bufs = self.pack_sends(atoms, at_shift(domain), |a, i, x, s, out| a.pack_ghost(i, x, s, out));
         let nlocal = atoms.nlocal;
         atoms.clear_ghosts();
         for buf in bufs {
@@ -391,7 +419,7 @@ impl Decomp {
     /// Fresh ghost values of one per-atom field, read with `get` and written with `set` (the
     /// densities after a summation pass: LAMMPS' pair sph/rhosum forwards only them).
     pub fn forward_field(&self, atoms: &mut Atoms, domain: &Domain, get: fn(&Atoms) -> &[f64], set: fn(&mut Atoms) -> &mut [f64]) {
-        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, _, _, out| out.push(get(a)[i]));
+        let bufs = self.pack_sends(atoms, at_shift(domain), |a, i, _, _, out| out.push(get(a)[i]));
         let n = atoms.nlocal;
         let values = set(atoms);
         for (k, v) in bufs.into_iter().flatten().enumerate() {
@@ -402,20 +430,21 @@ impl Decomp {
     /// The owners' values of one per-atom vector for every ghost, in ghost order, leaving the
     /// ghosts' own copies as they are (fix sph's fresh velocity estimates at a run's setup).
     pub fn owners_vectors(&self, atoms: &Atoms, domain: &Domain, get: fn(&Atoms) -> &[[f64; 3]]) -> Vec<[f64; 3]> {
-        let bufs = self.pack_sends(atoms, domain.prd(), |a, i, _, _, out| out.extend_from_slice(&get(a)[i]));
+        let bufs = self.pack_sends(atoms, at_shift(domain), |a, i, _, _, out| out.extend_from_slice(&get(a)[i]));
         bufs.concat().chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect()
     }
 
-    /// Pack each send list with `pack(atoms, i, shifted x, shift, out)` and exchange: the buffers
-    /// received, in ghost order (by sending rank).
-    fn pack_sends(&self, atoms: &Atoms, prd: [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], [i8; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {
+    /// Pack each send list with `pack(atoms, i, x, shift, out)`, `x` the image's position
+    /// `place(atoms, i, shift)`, and exchange: the buffers received, in ghost order (by
+    /// sending rank).
+    fn pack_sends(&self, atoms: &Atoms, place: impl Fn(&Atoms, usize, [i8; 3]) -> [f64; 3], pack: impl Fn(&Atoms, usize, [f64; 3], [i8; 3], &mut Vec<f64>)) -> Vec<Vec<f64>> {
         let bufs = self
             .sends
             .iter()
             .map(|(_, list)| {
                 let mut buf = Vec::new();
                 for &(i, s) in list {
-                    pack(atoms, i as usize, shifted(atoms.x[i as usize], s, prd), s, &mut buf);
+                    pack(atoms, i as usize, place(atoms, i as usize, s), s, &mut buf);
                 }
                 buf
             })
@@ -553,14 +582,27 @@ fn unpack_contacts(mut buf: &[f64]) -> Vec<ContactRecord> {
     out
 }
 
-/// `x + s * prd`, per component where the shift is not zero (as a serial ghost is made).
-fn shifted(mut x: [f64; 3], s: [i8; 3], prd: [f64; 3]) -> [f64; 3] {
-    for d in 0..3 {
-        if s[d] != 0 {
-            x[d] += s[d] as f64 * prd[d];
-        }
-    }
-    x
+/// The box in which a rebuild cuts and migrates the atoms: the box itself, or for a triclinic
+/// box the box of its fractions ([`Domain::fractions`]), where its atoms then are.
+pub fn frame(domain: &Domain) -> Domain {
+    if domain.triclinic() { domain.fractions() } else { domain.clone() }
+}
+
+/// A point of the box in [`frame`]: its box fractions on a triclinic box.
+pub fn in_frame(domain: &Domain, x: [f64; 3]) -> [f64; 3] {
+    if domain.triclinic() { domain.x2lamda(x) } else { x }
+}
+
+/// How far a distance `cut` reaches along each dimension of [`frame`] (LAMMPS' cutghost).
+pub fn reach(domain: &Domain, cut: f64) -> [f64; 3] {
+    if domain.triclinic() { domain.lamda_reach(cut) } else { [cut; 3] }
+}
+
+/// The position of the image `s` of owned atom `i` between rebuilds: one period per shift
+/// along each dimension, as a serial ghost is refreshed.
+fn at_shift(domain: &Domain) -> impl Fn(&Atoms, usize, [i8; 3]) -> [f64; 3] {
+    let periods = domain.periods();
+    move |a, i, s| periods.shifted(a.x[i], s)
 }
 
 #[cfg(test)]

@@ -159,6 +159,24 @@ impl Domain {
         let hi = self.h_inv();
         [cut * (hi[0] * hi[0] + hi[5] * hi[5] + hi[4] * hi[4]).sqrt(), cut * (hi[1] * hi[1] + hi[3] * hi[3]).sqrt(), cut * hi[2]]
     }
+    /// The box of box fractions: 0 to 1 along each dimension, orthogonal, with this box's
+    /// boundaries. A triclinic box's atoms are in it from the wrap of a rebuild to the list
+    /// build, where the ranks of a run cut it (LAMMPS' sub-domains in lamda coordinates).
+    pub fn fractions(&self) -> Domain {
+        Domain::new(self.dimension, [0.0; 3], [1.0; 3], self.boundary)
+    }
+    /// The areas of the box's faces normal to z, y and x (the xy, xz and yz faces: LAMMPS'
+    /// ProcMap::best_factors, which chooses the processor grid with the least surface).
+    pub fn face_areas(&self) -> [f64; 3] {
+        let p = self.prd();
+        let Some([xy, xz, yz]) = self.tilt else { return [p[0] * p[1], p[0] * p[2], p[1] * p[2]] };
+        let norm = |a: [f64; 3], b: [f64; 3]| {
+            let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+            (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+        };
+        let (a, b, c) = ([p[0], 0.0, 0.0], [xy, p[1], 0.0], [xz, yz, p[2]]);
+        [norm(a, b), norm(a, c), norm(b, c)]
+    }
     /// The periodic shifts of this box, for ghost images and unwrapping.
     pub fn periods(&self) -> Periods {
         Periods { prd: self.prd(), tilt: self.tilt }
@@ -599,6 +617,23 @@ mod tilted_tests {
 
     fn tilted() -> Domain {
         Domain { tilt: Some([1.5, -0.7, 0.9]), ..Domain::new(3, [-1.0, 0.5, 2.0], [5.0, 4.5, 7.0], [[BoundaryKind::Periodic; 2]; 3]) }
+    }
+
+    #[test]
+    fn face_areas_are_the_parallelepiped_faces() {
+        // lengths 6, 4, 5, tilts xy 1.5, xz -0.7, yz 0.9: the xy face is a parallelogram of
+        // base 6 and height 4; the xz face spans a = (6,0,0) and c = (-0.7,0.9,5); the yz face
+        // spans b = (1.5,4,0) and c
+        let a = tilted().face_areas();
+        assert_eq!(a[0], 24.0);
+        assert!((a[1] - 6.0 * (0.9f64 * 0.9 + 25.0).sqrt()).abs() < 1e-12);
+        let c: [f64; 3] = [4.0 * 5.0, -1.5 * 5.0, 1.5 * 0.9 - 4.0 * -0.7];
+        assert!((a[2] - (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()).abs() < 1e-12);
+        let ortho = Domain::new(3, [0.0; 3], [2.0, 3.0, 4.0], [[BoundaryKind::Periodic; 2]; 3]);
+        assert_eq!(ortho.face_areas(), [6.0, 8.0, 12.0]);
+        // the box of fractions keeps the boundaries
+        let f = Domain { boundary: [[BoundaryKind::Periodic; 2], [BoundaryKind::Shrink; 2], [BoundaryKind::Periodic; 2]], ..tilted() }.fractions();
+        assert!(!f.triclinic() && f.lo == [0.0; 3] && f.hi == [1.0; 3] && !f.periodic(1) && f.periodic(2));
     }
 
     #[test]

@@ -626,9 +626,11 @@ pub enum Ghosts<'a> {
     /// their images with lamda2x. `resorted`: LAMMPS sorts its atoms on this rebuild, which
     /// takes them to box coordinates and back first.
     Tilted { resorted: bool },
-    /// Made by `make(atoms, ghost cutoff)` once the owned atoms are sorted (the ranks of a
-    /// decomposed run exchange them); `sub` is this rank's sub-domain, which the bins cover.
-    Given { sub: ([f64; 3], [f64; 3]), make: &'a mut dyn FnMut(&mut Atoms, f64) },
+    /// Made by `make(atoms, ghost cutoff, lamda)` once the owned atoms are sorted (the ranks of
+    /// a decomposed run exchange them); `sub` is this rank's sub-domain, which the bins cover.
+    /// On a triclinic box the owned atoms arrive as box fractions (as for [`Ghosts::Tilted`]),
+    /// `sub` is in box fractions, and `make` gets the sorted atoms' fractions.
+    Given { sub: ([f64; 3], [f64; 3]), make: &'a mut dyn FnMut(&mut Atoms, f64, &[[f64; 3]]) },
 }
 
 /// Error raised while building lists (reported by the engine with the step number).
@@ -766,7 +768,7 @@ impl Neighbor {
         }
         // a triclinic box's owned atoms arrive as box fractions: kept for their images, and
         // placed in the box
-        let tilted = matches!(ghosts, Ghosts::Tilted { .. });
+        let tilted = matches!(ghosts, Ghosts::Tilted { .. }) || (matches!(ghosts, Ghosts::Given { .. }) && domain.triclinic());
         let mut lamda: Vec<[f64; 3]> = Vec::new();
         if tilted {
             lamda = atoms.x[..n].to_vec();
@@ -826,8 +828,12 @@ impl Neighbor {
             lo = domain.lo;
             hi = domain.hi;
         }
-        // a triclinic box's ghosts lie around it within the shell in box fractions
-        let shell = tilted.then(|| domain.bbox(reach.map(|r| -r), reach.map(|r| 1.0 + r)));
+        // a triclinic box's ghosts lie around it (or around the rank's sub-domain) within the
+        // shell in box fractions
+        let shell = tilted.then(|| match &ghosts {
+            Ghosts::Given { sub, .. } => domain.bbox(std::array::from_fn(|d| sub.0[d] - reach[d]), std::array::from_fn(|d| sub.1[d] + reach[d])),
+            _ => domain.bbox(reach.map(|r| -r), reach.map(|r| 1.0 + r)),
+        });
         for d in 0..dim {
             if let Some((blo, bhi)) = shell {
                 lo[d] = lo[d].min(blo[d]);
@@ -836,7 +842,7 @@ impl Neighbor {
                 lo[d] = lo[d].min(domain.lo[d]);
                 hi[d] = hi[d].max(domain.hi[d]);
             }
-            if let Ghosts::Given { sub, .. } = &ghosts {
+            if let (Ghosts::Given { sub, .. }, false) = (&ghosts, tilted) {
                 lo[d] = lo[d].min(sub.0[d]);
                 hi[d] = hi[d].max(sub.1[d]);
             }
@@ -860,7 +866,7 @@ impl Neighbor {
 
         // ghosts, dimension by dimension so edges and corners get images too (LAMMPS borders())
         if let Ghosts::Given { make, .. } = &mut ghosts {
-            make(atoms, cutmax);
+            make(atoms, cutmax, &lamda);
         } else if tilted && cutmax > 0.0 {
             // in box fractions, each dimension's images of the atoms and of the images made
             // so far, as LAMMPS' borders(); placed with lamda2x
@@ -967,6 +973,7 @@ impl Neighbor {
             Ghosts::Periodic => (0..dim).filter(|&d| domain.periodic(d)).map(|d| (d, domain.lo[d], domain.hi[d])).collect(),
             // a tilted face is not a plane of constant x, y or z: every atom looks
             Ghosts::Tilted { .. } => (0..dim).filter(|&d| domain.periodic(d)).map(|d| (d, f64::INFINITY, f64::NEG_INFINITY)).collect(),
+            Ghosts::Given { .. } if tilted => (0..dim).map(|d| (d, f64::INFINITY, f64::NEG_INFINITY)).collect(),
             Ghosts::Given { sub, .. } => (0..dim).map(|d| (d, sub.0[d], sub.1[d])).collect(),
         };
         let a: &Atoms = atoms;

@@ -152,9 +152,10 @@ fn fits(p: &[usize; 3], user: &[Option<usize>; 3]) -> bool {
 }
 
 /// The index of the first factoring with the least sub-domain surface, the box's face areas
+/// (`areas`: xy, xz, yz, [`Domain::face_areas`](crate::engine::domain::Domain::face_areas))
 /// divided by `s` (LAMMPS' best_factors).
-fn best(list: &[[usize; 3]], prd: [f64; 3], s: [usize; 3]) -> Option<usize> {
-    let area = [prd[0] * prd[1] / (s[0] * s[1]) as f64, prd[0] * prd[2] / (s[0] * s[2]) as f64, prd[1] * prd[2] / (s[1] * s[2]) as f64];
+fn best(list: &[[usize; 3]], areas: [f64; 3], s: [usize; 3]) -> Option<usize> {
+    let area = [areas[0] / (s[0] * s[1]) as f64, areas[1] / (s[0] * s[2]) as f64, areas[2] / (s[1] * s[2]) as f64];
     let mut bestsurf = 2.0 * (area[0] + area[1] + area[2]);
     let mut index = None;
     for (m, f) in list.iter().enumerate() {
@@ -173,18 +174,18 @@ fn fixed(user: &[Option<usize>; 3]) -> String {
 
 /// LAMMPS' one-level grid (`ProcMap::onelevel_grid`): among the factorings of `n` that agree
 /// with the user's counts (and Pz = 1 in 2D), the one with the least sub-domain surface.
-pub fn choose_grid(n: usize, user: [Option<usize>; 3], prd: [f64; 3], dimension: usize) -> Result<[usize; 3], String> {
+pub fn choose_grid(n: usize, user: [Option<usize>; 3], areas: [f64; 3], dimension: usize) -> Result<[usize; 3], String> {
     let mut list = factors(n);
     if dimension == 2 {
         cull(&mut list, |p| p[2] == 1);
     }
     cull(&mut list, |p| fits(p, &user));
-    best(&list, prd, [1; 3]).map(|m| list[m]).ok_or_else(|| format!("processors {} cannot be arranged for {n} ranks{}", fixed(&user), if dimension == 2 { " (Pz must be 1 in 2D)" } else { "" }))
+    best(&list, areas, [1; 3]).map(|m| list[m]).ok_or_else(|| format!("processors {} cannot be arranged for {n} ranks{}", fixed(&user), if dimension == 2 { " (Pz must be 1 in 2D)" } else { "" }))
 }
 
 /// LAMMPS' two-level grid (`ProcMap::twolevel_grid`): node grids times core grids of
 /// `ncores`; the grid and the core sub-grid.
-fn twolevel_grid(n: usize, user: [Option<usize>; 3], ncores: usize, user_cores: [Option<usize>; 3], prd: [f64; 3], dimension: usize) -> Result<([usize; 3], [usize; 3]), String> {
+fn twolevel_grid(n: usize, user: [Option<usize>; 3], ncores: usize, user_cores: [Option<usize>; 3], areas: [f64; 3], dimension: usize) -> Result<([usize; 3], [usize; 3]), String> {
     if ncores == 0 || n % ncores != 0 {
         return Err(format!("processors grid twolevel needs the number of ranks ({n}) to be a multiple of the cores per node ({ncores})"));
     }
@@ -199,27 +200,27 @@ fn twolevel_grid(n: usize, user: [Option<usize>; 3], ncores: usize, user_cores: 
     let mut combined: Vec<([usize; 3], usize)> = nodes.iter().flat_map(|nf| cores.iter().enumerate().map(move |(k, cf)| ([nf[0] * cf[0], nf[1] * cf[1], nf[2] * cf[2]], k))).collect();
     cull(&mut combined, |(p, _)| fits(p, &user));
     let grids: Vec<[usize; 3]> = combined.iter().map(|c| c.0).collect();
-    let m = best(&grids, prd, [1; 3]).ok_or_else(|| format!("processors {} grid twolevel {ncores} {} cannot be arranged for {n} ranks", fixed(&user), fixed(&user_cores)))?;
+    let m = best(&grids, areas, [1; 3]).ok_or_else(|| format!("processors {} grid twolevel {ncores} {} cannot be arranged for {n} ranks", fixed(&user), fixed(&user_cores)))?;
     Ok((combined[m].0, cores[combined[m].1]))
 }
 
-/// The layout a run on `n` ranks uses: the grid (`settings` and the box's extents `prd`) and
-/// each rank's place.
-pub fn layout(n: usize, settings: &ProcSettings, prd: [f64; 3], dimension: usize) -> Result<Layout, String> {
+/// The layout a run on `n` ranks uses: the grid (`settings` and the box's face areas `areas`)
+/// and each rank's place.
+pub fn layout(n: usize, settings: &ProcSettings, areas: [f64; 3], dimension: usize) -> Result<Layout, String> {
     let ijk_or_xyz = |m: MapStyle| match m {
         MapStyle::Ijk(o) => o,
         _ => [0, 1, 2],
     };
     match &settings.grid {
         GridStyle::OneLevel => {
-            let procs = choose_grid(n, settings.user, prd, dimension)?;
+            let procs = choose_grid(n, settings.user, areas, dimension)?;
             Ok(match settings.map {
                 MapStyle::Cart | MapStyle::CartReorder => Layout::cartesian(procs),
                 MapStyle::Ijk(o) => Layout::from_places(procs, (0..n).map(|r| ijk(r, procs, o)).collect())?,
             })
         }
         GridStyle::TwoLevel { ncores, user_cores } => {
-            let (procs, cores) = twolevel_grid(n, settings.user, *ncores, *user_cores, prd, dimension)?;
+            let (procs, cores) = twolevel_grid(n, settings.user, *ncores, *user_cores, areas, dimension)?;
             let nodes = [0, 1, 2].map(|d| procs[d] / cores[d]);
             // nodes placed by the map (cart: MPI's numbering), a node's cores x fastest (cart)
             // or by the map's order
@@ -284,40 +285,45 @@ pub fn read_custom(text: &str) -> Result<([usize; 3], Vec<[usize; 3]>), (usize, 
 mod tests {
     use super::*;
 
+    /// The face areas of an orthogonal box of lengths `p`.
+    fn areas(p: [f64; 3]) -> [f64; 3] {
+        [p[0] * p[1], p[0] * p[2], p[1] * p[2]]
+    }
+
     #[test]
     fn grids_minimise_the_surface_as_lammps() {
-        assert_eq!(choose_grid(4, [None; 3], [10.0, 10.0, 10.0], 3).unwrap(), [1, 2, 2]);
-        assert_eq!(choose_grid(2, [None; 3], [10.0, 10.0, 10.0], 3).unwrap(), [1, 1, 2]);
-        assert_eq!(choose_grid(2, [None; 3], [40.0, 10.0, 10.0], 3).unwrap(), [2, 1, 1]);
-        assert_eq!(choose_grid(4, [None; 3], [10.0, 10.0, 1.0], 2).unwrap(), [2, 2, 1]);
-        assert_eq!(choose_grid(8, [Some(8), None, None], [10.0, 10.0, 10.0], 3).unwrap(), [8, 1, 1]);
-        assert!(choose_grid(4, [Some(3), None, None], [10.0; 3], 3).is_err());
-        assert!(choose_grid(2, [Some(1), Some(1), None], [10.0, 10.0, 1.0], 2).is_err());
+        assert_eq!(choose_grid(4, [None; 3], areas([10.0, 10.0, 10.0]), 3).unwrap(), [1, 2, 2]);
+        assert_eq!(choose_grid(2, [None; 3], areas([10.0, 10.0, 10.0]), 3).unwrap(), [1, 1, 2]);
+        assert_eq!(choose_grid(2, [None; 3], areas([40.0, 10.0, 10.0]), 3).unwrap(), [2, 1, 1]);
+        assert_eq!(choose_grid(4, [None; 3], areas([10.0, 10.0, 1.0]), 2).unwrap(), [2, 2, 1]);
+        assert_eq!(choose_grid(8, [Some(8), None, None], areas([10.0, 10.0, 10.0]), 3).unwrap(), [8, 1, 1]);
+        assert!(choose_grid(4, [Some(3), None, None], areas([10.0; 3]), 3).is_err());
+        assert!(choose_grid(2, [Some(1), Some(1), None], areas([10.0, 10.0, 1.0]), 2).is_err());
     }
 
     #[test]
     fn equal_surfaces_go_to_the_factoring_lammps_culling_leaves_first() {
         // a square 2D box on 2 ranks: LAMMPS 22 Jul 2025 prints "2 by 1 by 1" (culling 1x1x2
         // moves 2x1x1 ahead of 1x2x1)
-        assert_eq!(choose_grid(2, [None; 3], [10.0, 10.0, 1.0], 2).unwrap(), [2, 1, 1]);
+        assert_eq!(choose_grid(2, [None; 3], areas([10.0, 10.0, 1.0]), 2).unwrap(), [2, 1, 1]);
         // a cube on 8: 2x2x2; on 6 with Py fixed at 1 (culled order 1x1x6, 6x1x1, 3x1x2, 2x1x3:
         // 3x1x2 and 2x1x3 have equal surfaces)
-        assert_eq!(choose_grid(8, [None; 3], [10.0; 3], 3).unwrap(), [2, 2, 2]);
-        assert_eq!(choose_grid(6, [None, Some(1), None], [10.0; 3], 3).unwrap(), [3, 1, 2]);
+        assert_eq!(choose_grid(8, [None; 3], areas([10.0; 3]), 3).unwrap(), [2, 2, 2]);
+        assert_eq!(choose_grid(6, [None, Some(1), None], areas([10.0; 3]), 3).unwrap(), [3, 1, 2]);
     }
 
     #[test]
     fn maps_number_the_ranks_as_lammps_documents() {
         let s = |map: &str| ProcSettings { map: MapStyle::parse(map).unwrap(), ..Default::default() };
         // processors doc: xyz on 2x2x2, proc 1 = hi x lo y lo z, proc 2 = lo x hi y lo z, ...
-        let l = layout(8, &s("xyz"), [10.0; 3], 3).unwrap();
+        let l = layout(8, &s("xyz"), areas([10.0; 3]), 3).unwrap();
         assert_eq!(l.procs, [2, 2, 2]);
         let places: Vec<[usize; 3]> = (0..8).map(|r| l.place(r)).collect();
         assert_eq!(places, vec![[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0, 0, 1], [1, 0, 1], [0, 1, 1], [1, 1, 1]]);
         // cart: MPI's row-major numbering, z fastest (zyx)
-        assert_eq!(layout(8, &s("cart"), [10.0; 3], 3).unwrap(), layout(8, &s("zyx"), [10.0; 3], 3).unwrap());
-        assert_eq!(layout(8, &s("cart"), [10.0; 3], 3).unwrap().place(1), [0, 0, 1]);
-        let l = layout(8, &s("yzx"), [10.0; 3], 3).unwrap();
+        assert_eq!(layout(8, &s("cart"), areas([10.0; 3]), 3).unwrap(), layout(8, &s("zyx"), areas([10.0; 3]), 3).unwrap());
+        assert_eq!(layout(8, &s("cart"), areas([10.0; 3]), 3).unwrap().place(1), [0, 0, 1]);
+        let l = layout(8, &s("yzx"), areas([10.0; 3]), 3).unwrap();
         assert_eq!((l.place(1), l.place(2)), ([0, 1, 0], [0, 0, 1]));
         for r in 0..8 {
             assert_eq!(l.rank_at(l.place(r)), r);
@@ -330,18 +336,18 @@ mod tests {
         // 16 ranks as 4 nodes of 4 cores in a square 2D box: LAMMPS' first best grid is nodes
         // 4x1 of 1x4 cores (its file: rank r at I = r/4 + 1, J = r%4 + 1)
         let s = ProcSettings { grid: GridStyle::TwoLevel { ncores: 4, user_cores: [None; 3] }, ..Default::default() };
-        let l = layout(16, &s, [10.0, 10.0, 1.0], 2).unwrap();
+        let l = layout(16, &s, areas([10.0, 10.0, 1.0]), 2).unwrap();
         assert_eq!(l.procs, [4, 4, 1]);
         for r in 0..16 {
             assert_eq!(l.place(r), [r / 4, r % 4, 0]);
         }
         // 2x2x1 cores per node with map xyz: a node's ranks fill a 2x2 square x fastest
         let s = ProcSettings { grid: GridStyle::TwoLevel { ncores: 4, user_cores: [Some(2), Some(2), Some(1)] }, map: MapStyle::Ijk([0, 1, 2]), ..Default::default() };
-        let l = layout(8, &s, [10.0; 3], 3).unwrap();
+        let l = layout(8, &s, areas([10.0; 3]), 3).unwrap();
         assert_eq!((0..4).map(|r| l.place(r)).collect::<Vec<_>>(), vec![[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]);
         assert_eq!(l.place(4), [0, 0, 1]);
         let s = ProcSettings { grid: GridStyle::TwoLevel { ncores: 3, user_cores: [None; 3] }, ..Default::default() };
-        assert!(layout(8, &s, [10.0; 3], 3).is_err());
+        assert!(layout(8, &s, areas([10.0; 3]), 3).is_err());
     }
 
     #[test]
@@ -350,11 +356,11 @@ mod tests {
         assert_eq!(procs, [2, 1, 1]);
         assert_eq!(places, vec![[1, 0, 0], [0, 0, 0]]);
         let s = ProcSettings { grid: GridStyle::Custom { procs, places }, ..Default::default() };
-        assert_eq!(layout(2, &s, [10.0; 3], 3).unwrap().rank_at([0, 0, 0]), 1);
-        assert!(layout(4, &s, [10.0; 3], 3).is_err());
+        assert_eq!(layout(2, &s, areas([10.0; 3]), 3).unwrap().rank_at([0, 0, 0]), 1);
+        assert!(layout(4, &s, areas([10.0; 3]), 3).is_err());
         let (procs, places) = read_custom("1 1 2\n0 1 1 1\n1 1 1 2\n").unwrap();
         let s = ProcSettings { grid: GridStyle::Custom { procs, places }, ..Default::default() };
-        assert!(layout(2, &s, [10.0; 3], 3).is_ok() && layout(2, &s, [10.0, 10.0, 1.0], 2).is_err());
+        assert!(layout(2, &s, areas([10.0; 3]), 3).is_ok() && layout(2, &s, areas([10.0, 10.0, 1.0]), 2).is_err());
         assert_eq!(read_custom("2 1 1\n0 1 1 1\n0 2 1 1\n").unwrap_err().0, 3);
         assert_eq!(read_custom("2 1 1\n0 1 1 1\n1 3 1 1\n").unwrap_err().0, 3);
         assert!(read_custom("2 1 1\n0 1 1 1\n").is_err());

@@ -176,6 +176,10 @@ pub struct State {
     pub decomp: Option<crate::engine::decomp::Decomp>,
     /// The `processors` command's settings (Px Py Pz, None: `*`, chosen by the decomposition).
     pub procs: crate::engine::procmap::ProcSettings,
+    /// The box's face areas when it was made (create_box, read_data, read_restart, replicate):
+    /// a run on ranks chooses its processor grid from them, as LAMMPS sets its grid then
+    /// (Comm::set_proc_grid), not from the box of the run.
+    pub grid_areas: Option<[f64; 3]>,
     /// The atoms are spread over the ranks now, each holding its own (the total in `natoms`).
     pub distributed: Option<usize>,
     /// The interactions by the atom each is stored on, for a distributed run's bonded lists
@@ -246,6 +250,7 @@ impl State {
             pair_changes: Vec::new(),
             decomp: None,
             procs: Default::default(),
+            grid_areas: None,
             distributed: None,
             stored_on: None,
         }

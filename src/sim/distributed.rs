@@ -86,9 +86,7 @@ impl Simulation {
     }
 
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
-        let what = if self.state.domain.as_ref().is_some_and(|d| d.triclinic()) {
-            Some("a triclinic box".to_string())
-        } else if let Some(f) = self.fixes.iter().find(|f| f.deform_remap() == Some(crate::models::fix::deform::Remap::V)) {
+        let what = if let Some(f) = self.fixes.iter().find(|f| f.deform_remap() == Some(crate::models::fix::deform::Remap::V)) {
             Some(format!("fix {} ({}) remap v", f.id(), f.style()))
         } else if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
             Some(format!("bond_style {}", b.name()))
@@ -148,7 +146,7 @@ impl Simulation {
     /// the processor grid, the atoms each rank would own, and what it cannot run yet.
     pub fn decomposition_plan(&self, n: usize) -> String {
         let Some(domain) = self.state.domain.as_ref() else { return format!("on {n} ranks: no box yet\n") };
-        let l = match layout(n, &self.state.procs, domain.prd(), self.state.dimension) {
+        let l = match layout(n, &self.state.procs, self.state.grid_areas.unwrap_or_else(|| domain.face_areas()), self.state.dimension) {
             Ok(l) => l,
             Err(e) => return format!("on {n} ranks: {e}\n"),
         };
@@ -156,7 +154,7 @@ impl Simulation {
         let mut d = Decomp::new(Arc::new(crate::engine::comm::Serial), procs);
         d.set_layout(l);
         if self.state.balance {
-            let hist = d.histograms(&self.state.atoms, domain, false);
+            let hist = d.box_histograms(&self.state.atoms, domain);
             d.balance(domain, &hist, self.ghost_cutoff());
         }
         let mut owned = vec![0usize; n];
@@ -189,13 +187,22 @@ impl Simulation {
             return Err(RunError::new(step, why));
         }
         // shrink-wrapped faces around the atoms (every rank holds them all here) before the box
-        // is cut: the setup's rebuild finds the same box, so every atom starts on its owner
-        self.state.shrink_wrap();
+        // is cut: the setup's rebuild finds the same box, so every atom starts on its owner. A
+        // triclinic box is shrink-wrapped in box fractions, as the rebuild does; the atoms keep
+        // their positions for it
+        if let Some(domain) = self.state.domain.as_ref().filter(|d| d.triclinic()) {
+            let kept = self.state.atoms.x.clone();
+            crate::engine::boundary::to_fractions(domain, &mut self.state.atoms);
+            self.state.shrink_wrap();
+            self.state.atoms.x = kept;
+        } else {
+            self.state.shrink_wrap();
+        }
         let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
         let ghost_cut = self.ghost_cutoff();
         let grid_file = self.state.procs.file.as_ref().map(|f| self.path(f));
         let d = self.state.decomp.as_mut().expect("a decomposition");
-        d.set_layout(layout(d.comm.size(), &self.state.procs, domain.prd(), self.state.dimension).map_err(|e| RunError::new(step, e))?);
+        d.set_layout(layout(d.comm.size(), &self.state.procs, self.state.grid_areas.unwrap_or_else(|| domain.face_areas()), self.state.dimension).map_err(|e| RunError::new(step, e))?);
         if let Some(path) = grid_file {
             // (every rank takes part in gathering the names)
             let names = d.comm.processor_names();
@@ -205,7 +212,7 @@ impl Simulation {
         }
         if self.state.balance {
             // every rank holds every atom here: the same counts, the same cuts
-            let hist = d.histograms(&self.state.atoms, domain, false);
+            let hist = d.box_histograms(&self.state.atoms, domain);
             d.balance(domain, &hist, ghost_cut);
         }
         let natoms = self.state.atoms.nlocal;

@@ -246,8 +246,10 @@ impl Simulation {
         }
         let domain = self.state.domain.as_ref().unwrap();
         let ghost_cut = self.ghost_cutoff();
+        // where the ranks cut the box: a triclinic box's atoms are box fractions here
+        let frame = crate::engine::decomp::frame(domain);
         if let (Some(d), Some(_)) = (&mut self.state.decomp, self.state.distributed) {
-            let departed = d.migrate(&mut self.state.atoms, domain, false).map_err(|e| RunError::new(step, e))?;
+            let departed = d.migrate(&mut self.state.atoms, &frame, false).map_err(|e| RunError::new(step, e))?;
             if let Some(pair) = self.pair.as_mut() {
                 for h in pair.histories() {
                     d.carry_contacts(h, &departed, domain, false);
@@ -255,9 +257,9 @@ impl Simulation {
             }
             // an uneven load moves the cuts (every rank sees the same counts, so all agree)
             if self.state.balance && d.imbalance(self.state.atoms.nlocal) > crate::sim::distributed::REBALANCE {
-                let hist = d.histograms(&self.state.atoms, domain, true);
+                let hist = d.histograms(&self.state.atoms, &frame, true);
                 if d.balance(domain, &hist, ghost_cut) {
-                    let departed = d.migrate(&mut self.state.atoms, domain, true).map_err(|e| RunError::new(step, e))?;
+                    let departed = d.migrate(&mut self.state.atoms, &frame, true).map_err(|e| RunError::new(step, e))?;
                     if let Some(pair) = self.pair.as_mut() {
                         for h in pair.histories() {
                             d.carry_contacts(h, &departed, domain, true);
@@ -280,13 +282,13 @@ impl Simulation {
         // (a granular style without radii stops at its init, never here)
         let sizes = pair.is_some_and(|p| p.size_list()) && self.state.atoms.features.sphere;
         let ghosts = match (&mut self.state.decomp, self.state.distributed) {
-            (Some(d), Some(_)) => Some((d.subdomain(domain, d.rank()), d)),
+            (Some(d), Some(_)) => Some((d.subdomain(&frame, d.rank()), d)),
             _ => None,
         };
         let built = match ghosts {
             Some((sub, d)) => {
                 let comm_cutoff = self.state.comm_cutoff;
-                let mut make = |atoms: &mut crate::engine::atoms::Atoms, cut: f64| d.borders(atoms, domain, cut.max(comm_cutoff));
+                let mut make = |atoms: &mut crate::engine::atoms::Atoms, cut: f64, lamda: &[[f64; 3]]| d.borders(atoms, domain, cut.max(comm_cutoff), lamda);
                 let given = crate::engine::neighbor::Ghosts::Given { sub, make: &mut make };
                 self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, given)
             }

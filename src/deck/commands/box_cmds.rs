@@ -61,6 +61,7 @@ pub fn create_box(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
         sim.out.print(&w);
     }
     sim.state.box_initial = Some(b.unpadded);
+    sim.state.grid_areas = Some(b.domain.face_areas());
     sim.state.domain = Some(b.domain);
     Ok(())
 }

@@ -108,6 +108,7 @@ pub fn replicate(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRes
     // pad it until the next run wraps it (seen by $(ylo) and EDGE regions between commands)
     st.box_initial = Some(big.clone());
     st.domain = Some(crate::engine::boundary::pad_shrink_faces(&big));
+    st.grid_areas = st.domain.as_ref().map(crate::engine::domain::Domain::face_areas);
     sim.out.print(&format!("  {}", crate::deck::box_text(&big)));
     sim.out.print(&format!("  {} atoms", sim.state.atoms.nlocal));
     let t = &sim.state.topo;

@@ -240,6 +240,8 @@ pub fn newton(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 /// command may also follow the box (LAMMPS requires it before).
 pub fn processors(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     use crate::engine::procmap::{layout, read_custom, GridStyle, MapStyle, ProcSettings};
+    // LAMMPS sets the grid when it makes the box: "Processors command after simulation box is defined"
+    super::before_box(sim, cmd)?;
     let ranks = sim.nranks();
     const SYNTAX: &str = "processors Px Py Pz [grid onelevel|twolevel Nc Cx Cy Cz|custom infile] [map cart|cart/reorder|xyz|xzy|yxz|yzx|zxy|zyx] [file outfile]  (each P * or a count; their product the number of ranks)";
     let mut a = Args::new(cmd, SYNTAX);

@@ -373,6 +373,7 @@ fn restore(sim: &mut Simulation, r: Restart, c: Checked) -> Result<Stored, Strin
     st.comm_vel = s.comm_vel;
     let domain = |b: &Bounds| Domain { tilt: b.tilt, ..Domain::new(s.dimension as usize, b.lo, b.hi, c.boundary) };
     st.domain = Some(domain(&r.bounds.current));
+    st.grid_areas = st.domain.as_ref().map(Domain::face_areas);
     st.box_initial = r.bounds.initial.as_ref().map(domain);
     st.ntypes = r.types.atom_types;
     st.type_mass = std::iter::once(0.0).chain(r.types.masses.iter().map(|m| m.unwrap_or(0.0))).collect();

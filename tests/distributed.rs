@@ -1743,3 +1743,45 @@ run          300
     let text = on_ranks(deck, 4).swap_remove(0).unwrap().0;
     assert!(text.contains("2 by 2 by 1 MPI processor grid"), "{text}");
 }
+
+/// NEMD on ranks: SLLOD shear of the tilted melt (fix deform xy erate remap v, fix nvt/sllod
+/// with its temp/deform), and a dense granular packing sheared the same way with `comm_modify
+/// vel yes`, whose contact damping reads the ghosts' velocities: an image across a periodic
+/// face carries the box's streaming velocity (LAMMPS' deform_vremap), on every rank as in the
+/// serial run.
+#[test]
+fn sllod_shear_on_ranks_is_the_serial_run() {
+    let sllod = tilted_melt(
+        "fix          1 all nvt/sllod temp 3.0 3.0 0.5\n\
+         fix          2 all deform 1 xy erate 0.2 remap v\n\
+         compute      tdef all temp/deform\n\
+         thermo_style custom step temp c_tdef epair etotal press pxy xy atoms\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&sllod, 2);
+    compare(&sllod, 4);
+    let granular = "
+units        lj
+atom_style   sphere
+comm_modify  vel yes
+lattice      sc 0.9
+region       box prism 0 7 0 7 0 7 0 0 0
+create_box   1 box
+create_atoms 1 box
+set          type 1 diameter 1.05
+set          type 1 density 1.0
+velocity     all create 0.1 87287 loop geom
+pair_style   gran/hooke/history 2000.0 NULL 50.0 NULL 0.5 1
+pair_coeff   * *
+fix          1 all nve/sphere
+fix          2 all deform 1 xy erate 0.5 remap v
+compute      erot all erotate/sphere
+thermo_style custom step ke c_erot press pxy xy atoms
+thermo_modify format float %.15g
+thermo       100
+timestep     0.002
+run          800
+";
+    compare(granular, 2);
+    compare(granular, 4);
+}

@@ -393,26 +393,25 @@ impl State {
     pub fn forward_ghost_state(&mut self) {
         match (&self.decomp, self.distributed, &self.domain) {
             (Some(d), Some(_), Some(domain)) => d.forward_state(&mut self.atoms, domain),
-            _ => {
-                self.atoms.forward_state();
-                self.deform_ghost_velocities();
-            }
+            _ => self.atoms.forward_state(),
         }
+        self.deform_ghost_velocities();
     }
     /// The velocities of ghosts of fix deform's `remap v` group as LAMMPS' forward
     /// communication makes them with `comm_modify vel yes`: each periodic exchange adds the
-    /// box's rate of its dimension, x, y, then z (serial runs: a distributed one refuses
-    /// `remap v`).
+    /// box's rate of its dimension, x, y, then z. A serial ghost starts from its owner's
+    /// velocity, a distributed one from the owner's velocity its rank sent.
     pub fn deform_ghost_velocities(&mut self) {
         let Some(d) = &self.domain else { return };
         let Some(group) = d.rate.vremap else { return };
-        if !self.comm_vel || self.distributed.is_some() {
+        if !self.comm_vel {
             return;
         }
+        let distributed = self.distributed.is_some();
         let a = &mut self.atoms;
         let n = a.nlocal;
-        for (k, (&o, s)) in a.ghost_owner.iter().zip(&a.ghost_shift).enumerate() {
-            let o = o as usize;
+        for (k, s) in a.ghost_shift.iter().enumerate() {
+            let o = if distributed { n + k } else { a.ghost_owner[k] as usize };
             if a.mask[o] & group == 0 {
                 continue;
             }

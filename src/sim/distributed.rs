@@ -23,9 +23,9 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt", "npt", "nph", "deform",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
-    "halt", "recenter", "spring/rg", "temp/csvr", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create", "heat", "ehex", "thermal/conductivity", "viscosity", "ave/correlate"];
+    "halt", "recenter", "spring/rg", "temp/csvr", "nvt/sllod", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create", "heat", "ehex", "thermal/conductivity", "viscosity", "ave/correlate"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",
-    "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom",
+    "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile", "temp/deform", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom",
     "erotate/sphere/atom", "contact/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them, or the step's per-atom energies and
@@ -86,9 +86,7 @@ impl Simulation {
     }
 
     fn distributed_refusal_for(&self, ranks: usize) -> Option<String> {
-        let what = if let Some(f) = self.fixes.iter().find(|f| f.deform_remap() == Some(crate::models::fix::deform::Remap::V)) {
-            Some(format!("fix {} ({}) remap v", f.id(), f.style()))
-        } else if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
+        let what = if let Some(b) = self.bond_style.as_ref().filter(|b| !BONDS.contains(&b.name())) {
             Some(format!("bond_style {}", b.name()))
         } else if let Some(b) = self.bond_style.as_ref().filter(|b| b.as_bpm().is_some_and(|p| p.shared().volume)) {
             // each bond reads both atoms' volume sums: a ghost's would have to travel mid-pass

@@ -739,6 +739,7 @@ impl Simulation {
             (Some(d), Some(_)) => {
                 if with_state {
                     d.forward_state(&mut self.state.atoms, domain);
+                    self.state.deform_ghost_velocities();
                 } else {
                     d.forward_positions(&mut self.state.atoms, domain);
                 }

@@ -11,7 +11,8 @@
 //! then x y z apart) scaling a tilted box's tilts and flipping it, tests/triclinic/in.npt_shear
 //! for the barostat of the tilts (tri, then xy and yz shear targets), tests/triclinic/in.read_dump
 //! for read_dump of triclinic snapshots (wrapped, scaled, unwrapped), tests/triclinic/in.shrink for
-//! shrink-wrapped faces of a tilted box. The liquids' round-off grows over the runs; the
+//! shrink-wrapped faces of a tilted box, tests/triclinic/in.read_data_add for read_data add into
+//! one. The liquids' round-off grows over the runs; the
 //! thermo, dump and profile columns stay within 1e-9 of LAMMPS' (relative, 1e-12 absolute).
 
 mod common;
@@ -28,6 +29,7 @@ const NPT_FILES: [&str; 2] = ["npt_tri.txt", "npt_tri.dump"];
 const SHEAR_BARO_FILES: [&str; 2] = ["npt_shear.txt", "npt_shear.dump"];
 const READ_DUMP_FILES: [&str; 3] = ["read_dump.txt", "read_dump.dump", "rd_scaled.dump"];
 const SHRINK_FILES: [&str; 2] = ["shrink.txt", "shrink.dump"];
+const READ_DATA_ADD_FILES: [&str; 2] = ["read_data_add.txt", "read_data_add.dump"];
 const REL: f64 = 1e-9;
 
 fn deck_dir() -> PathBuf {
@@ -141,6 +143,38 @@ fn shrink_wrapped_tilted_box_matches_stored_lammps_output() {
 #[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
 fn shrink_wrapped_tilted_box_matches_lammps_now() {
     live("in.shrink", &SHRINK_FILES);
+}
+
+/// read_data add into a tilted box: tests/triclinic/in.read_data_add.
+#[test]
+fn read_data_add_to_a_tilted_box_matches_stored_lammps_output() {
+    stored("in.read_data_add", &READ_DATA_ADD_FILES);
+}
+
+#[test]
+#[cfg_attr(not(live_lammps), ignore = "live LAMMPS comparison: LAMMPS not found (set DMHS_LAMMPS_PYTHON, see README)")]
+fn read_data_add_to_a_tilted_box_matches_lammps_now() {
+    live("in.read_data_add", &READ_DATA_ADD_FILES);
+}
+
+/// A file added to a system keeps its kind of box and its tilts: LAMMPS 22 Jul 2025's three
+/// errors, located at the read_data.
+#[test]
+fn read_data_add_refuses_another_box_kind_or_tilt() {
+    let dir = tempfile::tempdir().unwrap();
+    let head = |tilt: &str| format!("test\n\n1 atoms\n1 atom types\n\n0 4 xlo xhi\n0 4 ylo yhi\n0 4 zlo zhi\n{tilt}\nMasses\n\n1 1.0\n\nAtoms # atomic\n\n1 1 1.0 1.0 1.0\n");
+    std::fs::write(dir.path().join("tri.data"), head("0.5 0.25 0.1 xy xz yz\n")).unwrap();
+    std::fs::write(dir.path().join("tri2.data"), head("0.5 0.25 0.2 xy xz yz\n")).unwrap();
+    std::fs::write(dir.path().join("ortho.data"), head("")).unwrap();
+    for (first, second, want) in [
+        ("ortho", "tri", "Read_data subsequent file cannot switch to restricted triclinic"),
+        ("tri", "ortho", "Read_data subsequent file cannot switch to orthogonal"),
+        ("tri", "tri2", "Read_data subsequent file tilt factors must be same as first file"),
+    ] {
+        let deck = format!("units lj\natom_style atomic\nread_data {0}/{first}.data\nread_data {0}/{second}.data add append\n", dir.path().display());
+        let err = dmhs::deck::run_text("deck", &deck, &Default::default()).err().unwrap_or_else(|| panic!("{first} + {second}: accepted")).rendered;
+        assert!(err.contains(want) && err.contains("deck:4:"), "{first} + {second}: expected `{want}`:\n{err}");
+    }
 }
 
 /// Barostats on a tilted box: tests/triclinic/in.npt_tri.

@@ -181,9 +181,18 @@ pub fn read_data(sim: &mut Simulation, cmd: &Command, sources: &mut SourceMap) -
 
 fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, sources: &mut SourceMap) -> DResult<()> {
     let h = &data.header;
-    let tri_now = sim.state.domain.as_ref().is_some_and(|d| d.triclinic());
-    if o.add.is_some() && (h.tilt.is_some() || tri_now) {
-        return Err(Diagnostic::at(cmd.span, "read_data add with a triclinic box (in the file or the system) is not supported yet", "triclinic box"));
+    // a file added to a system has its kind of box, and a triclinic one its tilts (LAMMPS 22 Jul
+    // 2025's three errors: only the lengths grow to the union of the boxes)
+    if let (Some(_), Some(d)) = (o.add.as_ref(), sim.state.domain.as_ref()) {
+        let refusal = match (d.tilt, h.tilt) {
+            (None, Some(_)) => Some("Read_data subsequent file cannot switch to restricted triclinic"),
+            (Some(_), None) => Some("Read_data subsequent file cannot switch to orthogonal"),
+            (Some(t), Some(f)) if t != f => Some("Read_data subsequent file tilt factors must be same as first file"),
+            _ => None,
+        };
+        if let Some(r) = refusal {
+            return Err(Diagnostic::at(cmd.span, r, "the box of this file"));
+        }
     }
     if !data.impropers.is_empty() {
         return Err(Diagnostic::at(cmd.span, "impropers are not supported yet", "data file has Impropers"));
@@ -252,11 +261,11 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
         sim.out.print(&w);
     }
     sim.state.box_initial = Some(domain.clone());
-    // a new box: LAMMPS' set_initial_box(1) pads its shrink-wrapped faces
-    let domain = if o.add.is_none() { crate::engine::boundary::pad_shrink_faces(&domain) } else { domain };
-    if o.add.is_none() {
-        sim.state.grid_areas = Some(domain.face_areas());
-    }
+    // LAMMPS' set_initial_box(1) pads the shrink-wrapped faces of a new box and of the union
+    // box of an `add`
+    let domain = crate::engine::boundary::pad_shrink_faces(&domain);
+    // (LAMMPS sets its processor grid again for the union box of an `add`)
+    sim.state.grid_areas = Some(domain.face_areas());
     sim.state.domain = Some(domain.clone());
     let natoms = sim.state.atoms.nlocal + h.atoms;
     crate::sim::memory::check_atoms(natoms as f64, sim.state.atoms.features, 0, 0).map_err(|e| Diagnostic::at(cmd.span, format!("read_data: {natoms} atoms: {e}"), "too many atoms for this machine"))?;
@@ -366,7 +375,12 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
         check_type(b.topo_type, h.dihedral_types, b.span, "dihedral")?;
         sim.state.topo.dihedrals.push(Dihedral::new(b.topo_type + doff, b.atoms.map(|a| a + id_off)));
     }
-    // LAMMPS' read_data shrink-wraps the box to the atoms at once (its margins from the file's box)
+    // LAMMPS migrates every atom after an `add` (in box fractions on a triclinic box: one round
+    // trip), then shrink-wraps the box to the atoms at once (its margins from the file's box)
+    if let Some(d) = sim.state.domain.as_ref().filter(|d| o.add.is_some() && d.triclinic()) {
+        crate::engine::boundary::to_fractions(d, &mut sim.state.atoms);
+        crate::engine::boundary::to_box(d, &mut sim.state.atoms);
+    }
     if let (Some(d), Some(initial)) = (sim.state.domain.as_mut(), sim.state.box_initial.as_ref()) {
         crate::engine::boundary::reset_shrink_wrap_box_coords(d, initial, &mut sim.state.atoms);
     }
@@ -386,14 +400,14 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
 
 /// `write_data file [nocoeff]`: a data file LAMMPS' read_data accepts, written atomically.
 pub fn write_data(sim: &Simulation, cmd: &Command) -> Result<(), String> {
-    let mut a = Args::new(cmd, "write_data file [nocoeff] [nofix] [nolabelmap]");
+    let mut a = Args::new(cmd, "write_data file [nocoeff] [noinit] [nofix] [nolabelmap]");
     let fw = a.word("file name").map_err(|d| d.message)?;
     let mut coeffs = true;
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
             "nocoeff" => coeffs = false,
-            "nofix" | "nolabelmap" => {}
+            "noinit" | "nofix" | "nolabelmap" => {}
             "pair" => {
                 a.skip(1);
             }
@@ -450,10 +464,10 @@ pub fn to_data_file(sim: &Simulation, coeffs: bool) -> DataFile {
     f.image_flags = true;
     let mut vels = Vec::with_capacity(a.nlocal);
     for &i in &order {
-        let (mut x, mut img) = (a.x[i], a.image[i]);
-        d.remap(&mut x, &mut img);
-        let mut al = AtomLine::new(a.tag[i], a.typ[i], x);
-        al.image = img;
+        // as the atoms are: write_data wrapped them first (LAMMPS' pbc; a remap here would move
+        // a triclinic box's atoms through box fractions once more)
+        let mut al = AtomLine::new(a.tag[i], a.typ[i], a.x[i]);
+        al.image = a.image[i];
         if a.features.molecule {
             al.molecule = a.molecule[i];
         }

@@ -406,6 +406,10 @@ pub fn write_data(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
     if sim.state.check_only {
         return Ok(());
     }
-    sim.state.settle_into_box();
+    // `noinit`: the atoms as they are, unwrapped, the box not shrink-wrapped (LAMMPS skips its
+    // init, pbc and reset_box)
+    if !cmd.args.iter().skip(1).any(|w| w.text == "noinit") {
+        sim.state.settle_into_box();
+    }
     crate::deck::data::write_data(sim, cmd).map_err(|e| Diagnostic::at(cmd.span, e, "write_data failed"))
 }

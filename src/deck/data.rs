@@ -398,7 +398,7 @@ fn apply(sim: &mut Simulation, cmd: &Command, data: &DataFile, o: &ReadOptions, 
 }
 
 
-/// `write_data file [nocoeff]`: a data file LAMMPS' read_data accepts, written atomically.
+/// `write_data file [nocoeff] [noinit]`: a data file LAMMPS' read_data accepts, written atomically.
 pub fn write_data(sim: &Simulation, cmd: &Command) -> Result<(), String> {
     let mut a = Args::new(cmd, "write_data file [nocoeff] [noinit] [nofix] [nolabelmap]");
     let fw = a.word("file name").map_err(|d| d.message)?;

@@ -236,8 +236,8 @@ pub fn newton(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult
 
 /// `processors Px Py Pz [grid onelevel|twolevel Nc Cx Cy Cz|custom infile] [map
 /// cart|cart/reorder|xyz|xzy|yxz|yzx|zxy|zyx] [file outfile]`: the processor grid of a run on
-/// several ranks (src/engine/procmap.rs). dmhs lays the ranks out at each run's start, so the
-/// command may also follow the box (LAMMPS requires it before).
+/// several ranks (src/engine/procmap.rs). Before the box, as LAMMPS requires: the grid is chosen
+/// for the box as it is made (`State::grid_areas`); the ranks are laid out at each run's start.
 pub fn processors(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
     use crate::engine::procmap::{layout, read_custom, GridStyle, MapStyle, ProcSettings};
     // LAMMPS sets the grid when it makes the box: "Processors command after simulation box is defined"

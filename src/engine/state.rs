@@ -388,6 +388,11 @@ impl State {
             _ => self.atoms.ghost_owner.iter().map(|&o| get(&self.atoms)[o as usize]).collect(),
         }
     }
+    /// The face areas a run on ranks chooses its processor grid from: the box's as it was made
+    /// (`grid_areas`), or the box's now where no command recorded them.
+    pub fn grid_face_areas(&self, domain: &Domain) -> [f64; 3] {
+        self.grid_areas.unwrap_or_else(|| domain.face_areas())
+    }
     /// Fresh ghost state (positions, velocities and every per-atom value ghosts carry) from
     /// the owners, serial or distributed.
     pub fn forward_ghost_state(&mut self) {

@@ -144,7 +144,7 @@ impl Simulation {
     /// the processor grid, the atoms each rank would own, and what it cannot run yet.
     pub fn decomposition_plan(&self, n: usize) -> String {
         let Some(domain) = self.state.domain.as_ref() else { return format!("on {n} ranks: no box yet\n") };
-        let l = match layout(n, &self.state.procs, self.state.grid_areas.unwrap_or_else(|| domain.face_areas()), self.state.dimension) {
+        let l = match layout(n, &self.state.procs, self.state.grid_face_areas(domain), self.state.dimension) {
             Ok(l) => l,
             Err(e) => return format!("on {n} ranks: {e}\n"),
         };
@@ -199,8 +199,9 @@ impl Simulation {
         let domain = self.state.domain.as_ref().ok_or_else(|| RunError::new(step, "no simulation box"))?;
         let ghost_cut = self.ghost_cutoff();
         let grid_file = self.state.procs.file.as_ref().map(|f| self.path(f));
+        let areas = self.state.grid_face_areas(domain);
         let d = self.state.decomp.as_mut().expect("a decomposition");
-        d.set_layout(layout(d.comm.size(), &self.state.procs, self.state.grid_areas.unwrap_or_else(|| domain.face_areas()), self.state.dimension).map_err(|e| RunError::new(step, e))?);
+        d.set_layout(layout(d.comm.size(), &self.state.procs, areas, self.state.dimension).map_err(|e| RunError::new(step, e))?);
         if let Some(path) = grid_file {
             // (every rank takes part in gathering the names)
             let names = d.comm.processor_names();

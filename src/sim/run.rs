@@ -736,21 +736,13 @@ impl Simulation {
     fn forward_ghosts(&mut self, with_state: bool) {
         let domain = self.state.domain.as_ref().expect("a box");
         match (&self.state.decomp, self.state.distributed) {
-            (Some(d), Some(_)) => {
-                if with_state {
-                    d.forward_state(&mut self.state.atoms, domain);
-                    self.state.deform_ghost_velocities();
-                } else {
-                    d.forward_positions(&mut self.state.atoms, domain);
-                }
-            }
-            _ => {
-                self.state.atoms.forward_positions(domain.periods());
-                if with_state {
-                    self.state.atoms.forward_state();
-                    self.state.deform_ghost_velocities();
-                }
-            }
+            // (a rank's exchange of the state carries the positions too)
+            (Some(_), Some(_)) if with_state => {}
+            (Some(d), Some(_)) => d.forward_positions(&mut self.state.atoms, domain),
+            _ => self.state.atoms.forward_positions(domain.periods()),
+        }
+        if with_state {
+            self.state.forward_ghost_state();
         }
     }
 

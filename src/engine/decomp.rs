@@ -34,16 +34,21 @@ pub struct Decomp {
     sends: Vec<(usize, Vec<(u32, [i8; 3])>)>,
     /// The number of ghosts received from each rank of `sends`, in ghost order.
     recv_counts: Vec<usize>,
+    /// How many sub-domains away along each dimension the last [`Decomp::borders`] looked for
+    /// ranks within the ghost cutoff (1: the next ones; more where sub-domains are thinner
+    /// than the cutoff, as LAMMPS' multiple swaps): the same on every rank.
+    hops: [usize; 3],
 }
 
 impl Decomp {
     pub fn new(comm: Arc<dyn Comm>, procs: [usize; 3]) -> Decomp {
-        Decomp { comm, procs, layout: Layout::cartesian(procs), splits: procs.map(uniform), sends: Vec::new(), recv_counts: Vec::new() }
+        Decomp { comm, procs, layout: Layout::cartesian(procs), splits: procs.map(uniform), sends: Vec::new(), recv_counts: Vec::new(), hops: [1; 3] }
     }
     /// A new processor grid and placing of the ranks, cut uniformly.
     pub fn set_layout(&mut self, layout: Layout) {
         self.procs = layout.procs;
         self.splits = layout.procs.map(uniform);
+        self.hops = [1; 3];
         self.layout = layout;
     }
     pub fn layout(&self) -> &Layout {
@@ -106,31 +111,31 @@ impl Decomp {
         }
         self.rank_at(c)
     }
-    /// The ranks next to this one in the grid (26 neighbours at most, across periodic faces
-    /// too), without itself, in rank order.
-    pub fn peers(&self, domain: &Domain) -> Vec<usize> {
+    /// The ranks up to `hops[d]` sub-domains away from this one along each dimension (across
+    /// periodic faces too), without itself, in rank order: with one hop the 26 next ones at most.
+    fn peers(&self, domain: &Domain, hops: [usize; 3]) -> Vec<usize> {
         let me = self.rank();
         let c = self.coords(me);
+        // the grid places along each dimension within reach
+        let along: Vec<Vec<usize>> = (0..3)
+            .map(|d| {
+                let (p, k) = (self.procs[d] as i64, hops[d] as i64);
+                let mut v: Vec<usize> = (c[d] as i64 - k..=c[d] as i64 + k)
+                    .filter_map(|q| match (0..p).contains(&q) {
+                        true => Some(q as usize),
+                        false => domain.periodic(d).then(|| q.rem_euclid(p) as usize),
+                    })
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            })
+            .collect();
         let mut out = Vec::new();
-        for dx in -1i64..=1 {
-            for dy in -1i64..=1 {
-                for dz in -1i64..=1 {
-                    let mut n = [0usize; 3];
-                    let mut ok = true;
-                    for (d, off) in [dx, dy, dz].into_iter().enumerate() {
-                        let p = self.procs[d] as i64;
-                        let k = c[d] as i64 + off;
-                        if (0..p).contains(&k) {
-                            n[d] = k as usize;
-                        } else if domain.periodic(d) {
-                            n[d] = k.rem_euclid(p) as usize;
-                        } else {
-                            ok = false;
-                        }
-                    }
-                    if ok {
-                        out.push(self.rank_at(n));
-                    }
+        for &x in &along[0] {
+            for &y in &along[1] {
+                for &z in &along[2] {
+                    out.push(self.rank_at([x, y, z]));
                 }
             }
         }
@@ -140,24 +145,21 @@ impl Decomp {
         out
     }
 
-    /// A sub-domain must be at least as thick as the ghost cutoff (ghosts come from the next
-    /// ranks only).
-    pub fn check_thickness(&self, domain: &Domain, cut: f64) -> Result<(), String> {
-        let (f, reach) = (frame(domain), reach(domain, cut));
+    /// How many sub-domains away along each dimension one can lie within `reach` (in the frame
+    /// of the box, see [`frame`]) of another: the next one, or more where the thinnest
+    /// sub-domains are thinner than the reach. A sub-domain k hops away is separated from this
+    /// one by k - 1 others, each at least the thinnest wide. Every rank has the same cuts, so the
+    /// same hops: the relation is symmetric, as the exchange needs.
+    fn hops_for(&self, domain: &Domain, reach: [f64; 3]) -> [usize; 3] {
+        let mut hops = [1; 3];
         for d in 0..domain.dimension {
             let p = self.procs[d];
-            let width = (0..p).map(|c| self.bounds(&f, d, c)).map(|(lo, hi)| hi - lo).fold(f64::INFINITY, f64::min);
-            if p > 1 && width < reach[d] {
-                // (a triclinic sub-domain's thickness across its faces, in lengths)
-                let width = if domain.triclinic() { width * cut / reach[d] } else { width };
-                return Err(format!(
-                    "the sub-domains of the {}x{}x{} processor grid are {width} thick along {}, less than the ghost cutoff {cut} (pair cutoff + skin, or comm_modify cutoff): use fewer ranks along {} (processors command)",
-                    self.procs[0], self.procs[1], self.procs[2],
-                    ["x", "y", "z"][d], ["x", "y", "z"][d]
-                ));
-            }
+            let thinnest = (0..p).map(|c| self.bounds(domain, d, c)).map(|(lo, hi)| hi - lo).fold(f64::INFINITY, f64::min);
+            // (floor + 1 rather than ceil: a reach of exactly k widths also touches the next)
+            let k = (reach[d] / thinnest).floor();
+            hops[d] = if k.is_finite() && k < p as f64 { k as usize + 1 } else { p };
         }
-        Ok(())
+        hops
     }
 
     /// Atom counts of the owned atoms in [`BALANCE_BINS`] equal bins across the box, per
@@ -224,12 +226,13 @@ impl Decomp {
         atoms.retain(&remove);
     }
 
-    /// The ranks atoms can go to: the neighbours in the grid, or (`anywhere`, after the cuts
-    /// moved) every other rank.
+    /// The ranks atoms can go to: the ranks the last ghost exchange reached (the neighbours in
+    /// the grid, farther ones where sub-domains are thinner than the ghost cutoff), or
+    /// (`anywhere`, after the cuts moved) every other rank.
     fn destinations(&self, domain: &Domain, anywhere: bool) -> Vec<usize> {
         match anywhere {
             true => (0..self.comm.size()).filter(|&r| r != self.rank()).collect(),
-            false => self.peers(domain),
+            false => self.peers(domain, self.hops),
         }
     }
 
@@ -293,15 +296,18 @@ impl Decomp {
     }
 
     /// Make the ghosts within `cut` of this sub-domain (LAMMPS' `Comm::borders`): every rank
-    /// sends each rank next to it (and itself, across periodic faces) the images of its atoms
-    /// that lie within `cut` of that rank's sub-domain. `lamda`: the owned atoms' box fractions
-    /// on a triclinic box (empty otherwise), where the images are chosen and made.
+    /// sends each rank within `cut` of it (the next ones, and farther ones where sub-domains are
+    /// thinner than `cut`, as LAMMPS' multiple swaps reach them; itself across periodic faces)
+    /// the images of its atoms that lie within `cut` of that rank's sub-domain, straight from
+    /// their owner. `lamda`: the owned atoms' box fractions on a triclinic box (empty
+    /// otherwise), where the images are chosen and made.
     pub fn borders(&mut self, atoms: &mut Atoms, domain: &Domain, cut: f64, lamda: &[[f64; 3]]) {
         let me = self.rank();
-        let mut targets = self.peers(domain);
+        let (f, reach) = (frame(domain), reach(domain, cut));
+        self.hops = self.hops_for(&f, reach);
+        let mut targets = self.peers(domain, self.hops);
         targets.push(me);
         targets.sort_unstable();
-        let (f, reach) = (frame(domain), reach(domain, cut));
         let tilted = domain.triclinic();
         let pos: &[[f64; 3]] = if tilted { lamda } else { &atoms.x[..atoms.nlocal] };
         debug_assert_eq!(pos.len(), atoms.nlocal);

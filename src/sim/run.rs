@@ -300,11 +300,6 @@ impl Simulation {
                 self.state.neighbor.build_with(&mut self.state.atoms, domain, &self.state.neigh_settings, self.state.ntypes, &cut, sizes, &self.state.special_table, kind)
             }
         };
-        let thick = match (&self.state.decomp, self.state.distributed) {
-            (Some(d), Some(_)) => d.check_thickness(domain, self.state.neighbor.cutneighmax.max(self.state.comm_cutoff)).map_err(|e| RunError::new(step, e)),
-            _ => Ok(()),
-        };
-        thick?;
         let order = built
             .map_err(|e| match e {
                 NeighError::BoxTooSmall { dim, cut, length } => RunError::new(

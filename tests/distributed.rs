@@ -1798,3 +1798,57 @@ run          800
     compare(granular, 2);
     compare(granular, 4);
 }
+
+/// A deck of lammps-refs/decks with its data files read from there, `nsteps` steps per run and
+/// thermo every `every` steps.
+fn refs_deck(name: &str, nsteps: usize, every: usize) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks");
+    let text = std::fs::read_to_string(dir.join(format!("in.{name}"))).unwrap();
+    let mut out = String::new();
+    for line in text.lines() {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        let line = match w.as_slice() {
+            ["read_data", file, rest @ ..] => format!("read_data {}/{file} {}", dir.display(), rest.join(" ")),
+            ["molecule", id, file, rest @ ..] => format!("molecule {id} {}/{file} {}", dir.display(), rest.join(" ")),
+            ["variable", "nsteps", "index", _] => format!("variable nsteps index {nsteps}"),
+            ["thermo", _] => format!("thermo {every}"),
+            _ => line.to_string(),
+        };
+        out += &line;
+        out.push('\n');
+    }
+    out
+}
+
+/// Rigid bodies on ranks (fix rigid and rigid/small with their nve, nvt, npt and nph steps,
+/// Langevin, enforce2d): every rank knows every body (set up from all atoms, gathered on
+/// ranks), each sums the forces and torques of its own atoms, and the sums are added over
+/// the ranks; the bodies then move as in a serial run.
+#[test]
+fn rigid_bodies_on_ranks_are_the_serial_run() {
+    for (name, ranks) in [
+        ("rigid_small_clumps", 2),
+        ("rigid_small_clumps", 4),
+        ("rigid_nvt_npt_clumps", 3),
+        ("rigid_group_langevin", 2),
+        ("rigid_small_langevin", 3),
+        ("rigid_nve_small_clumps", 2),
+        ("rigid_npt_small_clumps", 2),
+        ("rigid_nph_small_2d", 4),
+        ("rigid_single_2d", 2),
+        ("rigid_clumps_flags", 2),
+        ("rigid_small_reinit", 2),
+    ] {
+        eprintln!("{name} on {ranks} ranks");
+        let deck = refs_deck(name, 150, 25);
+        compare_decks(&deck, &deck, ranks, 1e-9);
+    }
+}
+
+/// A rigid fix that inserts bodies from a molecule template stays refused on ranks.
+#[test]
+fn rigid_bodies_from_a_template_are_refused_on_ranks() {
+    for e in refusals(&refs_deck("rigid_deposit", 100, 25), 2) {
+        assert!(e.contains("with a molecule template (mol) cannot run on 2 ranks yet"), "{e}");
+    }
+}

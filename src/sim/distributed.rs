@@ -23,10 +23,11 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "dmhs/phase", "dmhs/cooling", "dmhs/bond/break", "wall/reflect", "GROUP", "nve/bpm/sphere", "STORE/LOCAL",
     "wall/lj93", "wall/lj126", "wall/lj1043", "wall/harmonic", "wall/morse", "wall/region", "indent", "temp/rescale", "temp/berendsen", "nvt", "npt", "nph", "deform",
     "move", "print", "ave/time", "dt/reset", "spring", "spring/self", "wall/gran/region", "heat/flow", "property/atom", "momentum",
-    "halt", "recenter", "spring/rg", "temp/csvr", "nvt/sllod", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create", "heat", "ehex", "thermal/conductivity", "viscosity", "ave/correlate"];
+    "halt", "recenter", "spring/rg", "temp/csvr", "nvt/sllod", "ave/histo", "vector", "pour", "deposit", "ave/chunk", "ave/atom", "aveforce", "adapt", "balance", "bond/create", "heat", "ehex", "thermal/conductivity", "viscosity", "ave/correlate",
+    "rigid", "rigid/nve", "rigid/nvt", "rigid/npt", "rigid/nph", "rigid/small", "rigid/nve/small", "rigid/nvt/small", "rigid/npt/small", "rigid/nph/small"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",
     "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile", "temp/deform", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom",
-    "erotate/sphere/atom", "contact/atom"];
+    "erotate/sphere/atom", "contact/atom", "ke/rigid", "erotate/rigid"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them, or the step's per-atom energies and
 /// virials, gathered with them).
@@ -101,6 +102,9 @@ impl Simulation {
             Some(r)
         } else if let Some(f) = self.fixes.iter().find(|f| !FIXES.contains(&f.style())) {
             Some(format!("fix {} ({})", f.id(), f.style()))
+        } else if let Some(f) = self.fixes.iter().find(|f| f.rigid_template().is_some_and(|t| !t.is_empty())) {
+            // bodies inserted by fix deposit or pour would be made by the inserting rank alone
+            Some(format!("fix {} ({}) with a molecule template (mol)", f.id(), f.style()))
         } else if let Some(c) = self.computes.iter().find(|c| !COMPUTES.contains(&c.style())) {
             Some(format!("compute {} ({})", c.id(), c.style()))
         } else if let Some((c, (fix, id))) = self.computes.iter().find_map(|c| c.reads().into_iter().find(|r| !self.reads_on_ranks(r)).map(|r| (c, r))) {

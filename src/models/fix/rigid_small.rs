@@ -33,6 +33,7 @@ use crate::engine::jacobi::{jacobi3, Sort};
 use crate::engine::molecule::{add_point_inertia, RigidInsert, RigidTemplate};
 use crate::engine::quat::{self, Quat};
 use crate::engine::random_mars::RanMars;
+use crate::engine::atoms::Atoms;
 use crate::engine::state::{RunError, State};
 use dmhs_parser::{Args, DResult, Word};
 use std::collections::HashMap;
@@ -508,14 +509,26 @@ impl FixRigidSmall {
         (rank, rsqfar.sqrt())
     }
 
-    fn massone(state: &State, i: usize) -> f64 {
-        let a = &state.atoms;
+    fn massone(state: &State, a: &Atoms, i: usize) -> f64 {
         if a.features.per_atom_mass() { a.rmass[i] } else { state.type_mass[a.typ[i]] }
     }
 
+    /// The atoms the bodies are set up from, in the order their sums run: the owned atoms in
+    /// LAMMPS' local order; on several ranks every rank's atoms gathered (in rank order), so
+    /// that every rank sets up every body and knows every member, as a serial run.
+    fn setup_atoms(state: &State) -> (std::borrow::Cow<'_, Atoms>, Vec<usize>) {
+        match (&state.decomp, state.distributed) {
+            (Some(d), Some(_)) => {
+                let all = d.gathered(&state.atoms);
+                let order = (0..all.nlocal).collect();
+                (std::borrow::Cow::Owned(all), order)
+            }
+            _ => (std::borrow::Cow::Borrowed(&state.atoms), state.lammps_order.indices(state.atoms.nlocal).into_owned()),
+        }
+    }
+
     /// Atom `i` joins body `b` (counted as a point or a finite-size sphere).
-    fn add_member(body: &mut Body, members: &mut HashMap<i64, Member>, state: &State, i: usize, b: usize) {
-        let a = &state.atoms;
+    fn add_member(body: &mut Body, members: &mut HashMap<i64, Member>, a: &Atoms, i: usize, b: usize) {
         let sphere = a.features.sphere && a.radius[i] > 0.0;
         if sphere {
             body.nsphere += 1;
@@ -525,30 +538,29 @@ impl FixRigidSmall {
         members.insert(a.tag[i], Member { body: b, displace: [0.0; 3], sphere });
     }
 
-    /// The bodies of the group's molecules, in LAMMPS' body order (`rank`), with their
-    /// membership counts; nothing else set.
-    fn assign(&self, state: &State) -> (Vec<Body>, HashMap<i64, Member>) {
-        let a = &state.atoms;
+    /// The bodies of the group's molecules among atoms `a` (walked in `order`), in LAMMPS'
+    /// body order (`rank`), with their membership counts; nothing else set.
+    fn assign(&self, a: &Atoms, order: &[usize]) -> (Vec<Body>, HashMap<i64, Member>) {
         if let Some(g) = &self.global {
             // fix rigid: the bodies of the definition, in their order
             let mut bodies: Vec<Body> = (0..g.nbody).map(|k| Body { mol: k as i64 + 1, ..Body::default() }).collect();
             let mut members = HashMap::new();
             for i in 0..a.nlocal {
                 let Some(&b) = g.body_of.get(&a.tag[i]) else { continue };
-                Self::add_member(&mut bodies[b], &mut members, state, i, b);
+                Self::add_member(&mut bodies[b], &mut members, a, i, b);
             }
             return (bodies, members);
         }
         let mut bodies: Vec<Body> = Vec::new();
         let mut by_mol: HashMap<i64, usize> = HashMap::new();
         let mut members = HashMap::new();
-        for &i in state.lammps_order.indices(a.nlocal).iter() {
+        for &i in order {
             let Some(mol) = body_key(self.custom.as_ref(), a, self.groupbit, i) else { continue };
             let b = *by_mol.entry(mol).or_insert_with(|| {
                 bodies.push(Body { mol, ..Body::default() });
                 bodies.len() - 1
             });
-            Self::add_member(&mut bodies[b], &mut members, state, i, b);
+            Self::add_member(&mut bodies[b], &mut members, a, i, b);
         }
         let mut order: Vec<usize> = (0..bodies.len()).collect();
         order.sort_by_key(|&b| self.rank.get(&bodies[b].mol).map_or((1, bodies[b].mol), |&r| (0, r as i64)));
@@ -571,15 +583,15 @@ impl FixRigidSmall {
     /// LAMMPS' setup_bodies_static and setup_bodies_dynamic.
     fn setup_bodies(&mut self, state: &State) -> Result<(), String> {
         let domain = state.domain()?.clone();
-        let (mut bodies, mut members) = self.assign(state);
-        let a = &state.atoms;
-        let order = state.lammps_order.indices(a.nlocal);
+        let (a, order) = Self::setup_atoms(state);
+        let a: &Atoms = &a;
+        let (mut bodies, mut members) = self.assign(a, &order);
         let extended = members.values().any(|m| m.sphere);
         // centre of mass from unwrapped positions
         for &i in order.iter() {
             let Some(m) = members.get(&a.tag[i]) else { continue };
             let b = &mut bodies[m.body];
-            let massone = Self::massone(state, i);
+            let massone = Self::massone(state, a, i);
             let unwrap = domain.unmap(a.x[i], a.image[i]);
             for k in 0..3 {
                 b.xcm[k] += unwrap[k] * massone;
@@ -599,7 +611,7 @@ impl FixRigidSmall {
         let by_index = self.global.is_some();
         let from_file = |k: usize, b: &Body| infile.and_then(|f| f.bodies.get(&if by_index { k } else { b.mol as usize }));
         if infile.is_some() {
-            Self::setup_dynamic(&mut bodies, &members, state, &order, &domain);
+            Self::setup_dynamic(&mut bodies, &members, state, a, &order, &domain);
             for (k, b) in bodies.iter_mut().enumerate() {
                 if let Some(r) = from_file(k, b) {
                     (b.mass, b.xcm, b.vcm, b.angmom, b.image) = (r.mass, r.xcm, r.vcm, r.angmom, r.image);
@@ -617,13 +629,13 @@ impl FixRigidSmall {
             let b = &bodies[m.body];
             let unwrap = domain.unmap(a.x[i], Self::xcmimage(a.image[i], b.image));
             let d = [unwrap[0] - b.xcm[0], unwrap[1] - b.xcm[1], unwrap[2] - b.xcm[2]];
-            add_point_inertia(&mut itensor[m.body], Self::massone(state, i), d);
+            add_point_inertia(&mut itensor[m.body], Self::massone(state, a, i), d);
         }
         if extended {
             for &i in order.iter() {
                 let Some(m) = members.get(&a.tag[i]) else { continue };
                 if m.sphere {
-                    let massone = Self::massone(state, i);
+                    let massone = Self::massone(state, a, i);
                     let t = &mut itensor[m.body];
                     for k in 0..3 {
                         t[k] += SINERTIA * massone * a.radius[i] * a.radius[i];
@@ -673,7 +685,7 @@ impl FixRigidSmall {
             m.displace = quat::transpose_matvec_cols(&b.ex, &b.ey, &b.ez, &delta);
         }
         if infile.is_none() {
-            Self::setup_dynamic(&mut bodies, &members, state, &order, &domain);
+            Self::setup_dynamic(&mut bodies, &members, state, a, &order, &domain);
         }
         self.bodies = bodies;
         self.members = members;
@@ -684,15 +696,14 @@ impl FixRigidSmall {
 
     /// LAMMPS' setup_bodies_dynamic: vcm and angular momentum from the atoms' velocities, about
     /// the bodies' centres as they are.
-    fn setup_dynamic(bodies: &mut [Body], members: &HashMap<i64, Member>, state: &State, order: &[usize], domain: &crate::engine::domain::Domain) {
-        let a = &state.atoms;
+    fn setup_dynamic(bodies: &mut [Body], members: &HashMap<i64, Member>, state: &State, a: &Atoms, order: &[usize], domain: &crate::engine::domain::Domain) {
         for b in bodies.iter_mut() {
             (b.vcm, b.angmom) = ([0.0; 3], [0.0; 3]);
         }
         for &i in order.iter() {
             let Some(m) = members.get(&a.tag[i]) else { continue };
             let b = &mut bodies[m.body];
-            let massone = Self::massone(state, i);
+            let massone = Self::massone(state, a, i);
             let v = a.v[i];
             for k in 0..3 {
                 b.vcm[k] += v[k] * massone;
@@ -763,6 +774,15 @@ impl FixRigidSmall {
                         t[k] += a.torque[i][k];
                     }
                 }
+            }
+        }
+        if state.distributed.is_some() {
+            // each rank summed its own atoms: every rank gets the bodies' totals
+            let mut sums: Vec<f64> = self.bodies.iter().flat_map(|b| b.fcm.into_iter().chain(b.torque)).collect();
+            state.sum_ranks(&mut sums);
+            for (b, s) in self.bodies.iter_mut().zip(sums.chunks_exact(6)) {
+                b.fcm = [s[0], s[1], s[2]];
+                b.torque = [s[3], s[4], s[5]];
             }
         }
         Ok(())
@@ -1234,8 +1254,9 @@ impl Fix for FixRigidSmall {
         if !self.set_up {
             return 0.0;
         }
-        let (bodies, members) = self.assign(state);
-        let a = &state.atoms;
+        // (on several ranks every rank's atoms, gathered)
+        let (a, order) = Self::setup_atoms(state);
+        let (bodies, members) = self.assign(&a, &order);
         let mut in_group = vec![0usize; bodies.len()];
         for i in 0..a.nlocal {
             if let Some(m) = members.get(&a.tag[i]) {

@@ -1852,3 +1852,37 @@ fn rigid_bodies_from_a_template_are_refused_on_ranks() {
         assert!(e.contains("with a molecule template (mol) cannot run on 2 ranks yet"), "{e}");
     }
 }
+
+/// delta-SPH density diffusion (dmhs/sph/delta, both forms, under hybrid/overlay) on ranks: the
+/// diffusion reads the ghosts' densities, forwarded as sph/taitwater's are.
+#[test]
+fn delta_sph_on_ranks_is_the_serial_run() {
+    for (form, ranks) in [("molteni", 2), ("fourtakas g 0.0 -0.002 0.0", 4)] {
+        let deck = SPH
+            .replace("run          0 post no\n", "")
+            .replace("dump         d all custom 100 dump.sph id x y vx vy c_rho c_e c_dx[1] c_dx[4]\ndump_modify  d sort id\n", "")
+            .replace("thermo       50", "thermo       25")
+            .replace("pair_style   hybrid/overlay sph/rhosum 1 sph/taitwater\npair_coeff   * * sph/rhosum 2.4\n", &format!("pair_style   hybrid/overlay sph/taitwater dmhs/sph/delta {form}\npair_coeff   * * dmhs/sph/delta 1.0 10.0 0.1 2.4\n"))
+            .replace("velocity     all create 0.05", "velocity     all create 0.3");
+        compare_decks(&deck, &deck, ranks, 1e-9);
+    }
+}
+
+/// pair_style zero and bond_style zero on ranks (a deck that lists pairs and bonds without
+/// forces, as LAMMPS decks do to keep a neighbour list or a topology).
+#[test]
+fn zero_styles_on_ranks_are_the_serial_run() {
+    let dir = tempfile::tempdir().unwrap();
+    // the chains' bonds as bond_style zero (short runs: the chains come apart), pairs listed to
+    // 2.0 by pair_style zero beside the WCA
+    let deck = chains_deck(dir.path(), "bond_style   zero\nbond_coeff   1")
+        .replace("pair_style   lj/cut 1.122462048309373\npair_coeff   1 1 1.0 1.0\n", "pair_style   hybrid/overlay lj/cut 1.122462048309373 zero 2.0\npair_coeff   1 1 lj/cut 1.0 1.0\npair_coeff   * * zero\n")
+        .replace("thermo       50\n", "thermo       5\n")
+        .replace("run          150\nrun          100\n", "run          30\nrun          20\n");
+    compare(&deck, 2);
+    // run on, the unbonded chains come apart: a dihedral reaches past the ghosts, and the
+    // message names the rank it came from once
+    for e in refusals(&deck.replace("run          30\nrun          20\n", "run          150\n"), 2) {
+        assert!(e.contains("is missing on this rank") && e.matches("on rank ").count() == 1, "{e}");
+    }
+}

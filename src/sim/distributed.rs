@@ -16,7 +16,7 @@ use std::sync::Arc;
 const PAIRS: &[&str] = &[
     "lj/cut", "soft", "sph/taitwater", "sph/taitwater/morris", "sph/rhosum", "sph/idealgas", "sph/lj", "sph/heatconduction",
     "gran/hooke", "gran/hooke/history", "gran/hertz/history", "granular", "dmhs/sph/diffusion", "dmhs/lj/wet",
-    "dmhs/heatconduction", "dmhs/blend", "bpm/spring",
+    "dmhs/heatconduction", "dmhs/blend", "bpm/spring", "dmhs/sph/delta", "zero",
 ];
 /// (GROUP: a dynamic group's update, per owned atom; atom values by ID stop the run on ranks.)
 const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity", "sph", "sph/stationary", "setforce", "addforce", "langevin", "freeze", "wall/gran", "bond/break", "dmhs/stokes", "dmhs/diffusion", "dmhs/swell",
@@ -37,7 +37,7 @@ const GATHERED_COMPUTES: &[&str] = &["property/atom", "dmhs/phase/atom", "ke/ato
 const GATHERED_FIXES: &[&str] = &["ave/atom"];
 /// (The BPM styles keep each bond's reference state in every rank's topology; see
 /// `bpm::rank_bond_list`.)
-const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse", "bpm/rotational", "bpm/spring", "bpm/spring/plastic"];
+const BONDS: &[&str] = &["harmonic", "fene", "fene/expand", "morse", "bpm/rotational", "bpm/spring", "bpm/spring/plastic", "zero"];
 const ANGLES: &[&str] = &["harmonic"];
 const DIHEDRALS: &[&str] = &["harmonic", "quadratic"];
 
@@ -263,7 +263,10 @@ impl Simulation {
         let mine: Vec<f64> = outcome.as_ref().err().map_or(Vec::new(), |e| e.message.bytes().map(f64::from).collect());
         let all = d.comm.allgather(mine);
         let (rank, text) = all.iter().enumerate().find(|(_, m)| !m.is_empty()).map(|(k, m)| (k, String::from_utf8_lossy(&m.iter().map(|&b| b as u8).collect::<Vec<u8>>()).into_owned())).unwrap_or_default();
-        let message = format!("on rank {rank} of {}: {text}", d.comm.size());
+        // (an outcome agreed on before, inside this step, already names the rank it came from)
+        let size = d.comm.size();
+        let named = (0..size).any(|r| text.starts_with(&format!("on rank {r} of {size}: ")));
+        let message = if named { text } else { format!("on rank {rank} of {size}: {text}") };
         Err(match outcome {
             Err(e) => RunError { message, ..e },
             Ok(()) => RunError::new(self.state.step, message),

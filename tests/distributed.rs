@@ -1886,3 +1886,26 @@ fn zero_styles_on_ranks_are_the_serial_run() {
         assert!(e.contains("is missing on this rank") && e.matches("on rank ").count() == 1, "{e}");
     }
 }
+
+/// compute heat/flux (from ke/atom, pe/atom and stress/atom) and compute msd/chunk (per
+/// molecule) on ranks: each rank sums its own atoms, the sums are added over the ranks.
+#[test]
+fn heat_flux_and_msd_chunk_on_ranks_are_the_serial_ones() {
+    let flux = melt_with(
+        "fix          1 all nve\n\
+         compute      ke all ke/atom\n\
+         compute      pe all pe/atom\n\
+         compute      st all stress/atom NULL virial\n\
+         compute      flux all heat/flux ke pe st\n\
+         thermo_style custom step temp epair c_flux[1] c_flux[2] c_flux[3] c_flux[4] c_flux[6]\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&flux, 2);
+    compare(&flux, 3);
+    let dir = tempfile::tempdir().unwrap();
+    let chains = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace(
+        "thermo_style custom step temp epair ebond eangle edihed etotal press atoms\n",
+        "compute      mol all chunk/atom molecule\ncompute      msd all msd/chunk mol\nvariable     m1 equal c_msd[1][4]\nvariable     m3 equal c_msd[3][1]\nthermo_style custom step temp epair v_m1 v_m3\nthermo_modify format float %.15g\n",
+    );
+    compare(&chains, 2);
+}

@@ -1887,10 +1887,11 @@ fn zero_styles_on_ranks_are_the_serial_run() {
     }
 }
 
-/// compute heat/flux (from ke/atom, pe/atom and stress/atom) and compute msd/chunk (per
-/// molecule) on ranks: each rank sums its own atoms, the sums are added over the ranks.
+/// compute heat/flux (from ke/atom, pe/atom and stress/atom), centro/atom (reduced) and
+/// msd/chunk (per molecule) on ranks: each rank sums its own atoms, the sums are added over
+/// the ranks.
 #[test]
-fn heat_flux_and_msd_chunk_on_ranks_are_the_serial_ones() {
+fn heat_flux_centro_and_msd_chunk_on_ranks_are_the_serial_ones() {
     let flux = melt_with(
         "fix          1 all nve\n\
          compute      ke all ke/atom\n\
@@ -1902,6 +1903,17 @@ fn heat_flux_and_msd_chunk_on_ranks_are_the_serial_ones() {
     );
     compare(&flux, 2);
     compare(&flux, 3);
+    // centro/atom, like coord/atom, from each owned atom's pairs with owned atoms and ghosts
+    let centro = melt_with(
+        "fix          1 all nve\n\
+         compute      cs all centro/atom fcc\n\
+         compute      sum all reduce sum c_cs\n\
+         compute      max all reduce max c_cs\n\
+         thermo_style custom step temp epair c_sum c_max\n\
+         thermo_modify format float %.15g\n",
+    );
+    compare(&centro, 2);
+    compare(&centro, 4);
     let dir = tempfile::tempdir().unwrap();
     let chains = chains_deck(dir.path(), "bond_style   harmonic\nbond_coeff   1 100.0 0.97").replace(
         "thermo_style custom step temp epair ebond eangle edihed etotal press atoms\n",

@@ -27,7 +27,7 @@ const FIXES: &[&str] = &["nve", "nve/sphere", "viscous", "enforce2d", "gravity",
     "rigid", "rigid/nve", "rigid/nvt", "rigid/npt", "rigid/nph", "rigid/small", "rigid/nve/small", "rigid/nvt/small", "rigid/npt/small", "rigid/nph/small"];
 const COMPUTES: &[&str] = &["temp", "pe", "pressure", "ke", "erotate/sphere", "temp/sphere", "com", "reduce", "property/atom", "dmhs/phase/atom", "nbond/atom", "gyration", "vacf", "msd", "coord/atom", "ke/atom", "chunk/atom", "rdf", "pe/atom", "stress/atom",
     "temp/partial", "temp/com", "temp/region", "temp/ramp", "temp/profile", "temp/deform", "displace/atom", "sph/rho/atom", "sph/e/atom", "sph/t/atom",
-    "erotate/sphere/atom", "contact/atom", "ke/rigid", "erotate/rigid", "heat/flux", "msd/chunk"];
+    "erotate/sphere/atom", "contact/atom", "ke/rigid", "erotate/rigid", "heat/flux", "msd/chunk", "centro/atom"];
 /// Per-atom computes a dump can evaluate on the whole system gathered at rank 0 (they read
 /// only the atoms' own values, which travel with them, or the step's per-atom energies and
 /// virials, gathered with them).

@@ -64,3 +64,23 @@ fn bad_fix_modify_is_a_located_error() {
     // `no` is accepted for any fix, as LAMMPS checks only when the tally is switched on
     run_text("ok.deck", &format!("{BASE}fix_modify s energy no virial no\nrun 0\n"), &Default::default()).unwrap_or_else(|f| panic!("{}", f.rendered));
 }
+
+/// `pair_modify pair M [k] ...` (lammps-refs/decks/in.pair_modify_hybrid compares it with LAMMPS)
+/// and its located errors: not a hybrid style, an unknown sub-style, a missing instance number,
+/// `pair` after another keyword.
+#[test]
+fn pair_modify_pair_errors_are_located() {
+    let base = "units lj\natom_style atomic\nregion box block 0 5 0 5 0 5 units box\ncreate_box 2 box\nmass * 1.0\n";
+    let err = |text: &str| match run_text("bad.deck", &format!("{base}{text}"), &dmhs::deck::DeckOptions { screen: false, ..Default::default() }) {
+        Ok(_) => panic!("accepted: {text}"),
+        Err(f) => f.rendered,
+    };
+    let e = err("pair_style lj/cut 2.5\npair_modify pair lj/cut shift yes\n");
+    assert!(e.contains("pair_modify pair can only be used with pair_style hybrid") && e.contains("bad.deck:7:18"), "{e}");
+    let e = err("pair_style hybrid lj/cut 2.5 soft 1.0\npair_modify pair lj/cut/coul/long shift yes\n");
+    assert!(e.contains("names `lj/cut/coul/long`, which is not a sub-style") && e.contains("sub-styles: lj/cut, soft"), "{e}");
+    let e = err("pair_style hybrid lj/cut 2.5 lj/cut 2.0\npair_modify pair lj/cut shift yes\n");
+    assert!(e.contains("sub-style index"), "{e}");
+    let e = err("pair_style hybrid lj/cut 2.5 soft 1.0\npair_modify shift yes pair soft\n");
+    assert!(e.contains("pair_modify pair must be the first keyword"), "{e}");
+}

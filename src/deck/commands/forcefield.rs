@@ -63,33 +63,59 @@ pub fn pair_coeff(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DRe
 }
 
 pub fn pair_modify(sim: &mut Simulation, cmd: &Command, _: &mut SourceMap) -> DResult<()> {
-    let mut a = Args::new(cmd, "pair_modify keyword value ...  (shift yes|no, mix geometric|arithmetic|sixthpower, tail no)");
-    if sim.pair.is_none() {
+    let mut a = Args::new(cmd, "pair_modify [pair M [k]] keyword value ...  (shift yes|no, mix geometric|arithmetic|sixthpower, tail no)");
+    let Some(pair) = sim.pair.as_mut() else {
         return Err(Diagnostic::at(cmd.name.span, "pair_modify used before pair_style", "no pair style yet"));
-    }
+    };
     if a.is_empty() {
         return Err(a.missing("a keyword"));
     }
+    // `pair M [k]` first: the keywords that follow change that hybrid sub-style alone;
+    // otherwise the style's settings and every sub-style's own
+    let sub = match a.peek() {
+        Some(w) if w.text == "pair" => {
+            a.skip(1);
+            Some(pair.sub_modify(&mut a, &sim.pair_modify)?)
+        }
+        _ => None,
+    };
+    let (mut mix, mut shift) = (None, None);
     while let Some(w) = a.peek() {
         a.skip(1);
         match w.text.as_str() {
-            "shift" => sim.pair_modify.shift = a.yes_no("shift")?,
+            "shift" => shift = Some(a.yes_no("shift")?),
             "mix" => {
-                sim.pair_modify.mix = match a.choice("mixing rule", &["geometric", "arithmetic", "sixthpower"])? {
+                mix = Some(match a.choice("mixing rule", &["geometric", "arithmetic", "sixthpower"])? {
                     0 => MixRule::Geometric,
                     1 => MixRule::Arithmetic,
                     _ => MixRule::SixthPower,
-                }
+                })
             }
             "tail" => {
                 if a.yes_no("tail")? {
                     return Err(a.error_at(a.last().unwrap(), "pair_modify tail yes (long-range corrections) is not supported yet", "use no"));
                 }
             }
-            "pair" | "special" | "compute" | "table" | "table/disp" | "tabinner" | "tabinner/disp" | "nofdotr" | "neigh/trim" => {
+            "pair" => return Err(a.error_at(w, "pair_modify pair must be the first keyword", "move it first")),
+            "special" | "compute/tally" | "compute" | "table" | "table/disp" | "tabinner" | "tabinner/disp" | "nofdotr" | "neigh/trim" => {
                 return Err(a.error_at(w, format!("pair_modify {} is not supported yet", w.text), "not supported"));
             }
-            _ => return Err(a.unknown_keyword(w, &["shift", "mix", "tail"])),
+            _ => return Err(a.unknown_keyword(w, &["pair", "shift", "mix", "tail"])),
+        }
+    }
+    let mut apply = |m: &mut crate::models::pair::PairModify| {
+        if let Some(mix) = mix {
+            m.mix = mix;
+        }
+        if let Some(shift) = shift {
+            m.shift = shift;
+        }
+    };
+    match sub {
+        Some(m) => apply(m),
+        None => {
+            apply(&mut sim.pair_modify);
+            pair.each_sub_modify(&mut apply);
         }
     }
     Ok(())

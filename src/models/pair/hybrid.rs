@@ -27,6 +27,8 @@ pub struct Hybrid {
     /// The atom types the sub-lists were filtered with (a fix that changes types without a
     /// list rebuild makes them stale too).
     sublists_typ: Vec<usize>,
+    /// Each sub-style's own pair_modify settings (`pair_modify pair M ...`); None: the global.
+    modify: Vec<Option<PairModify>>,
 }
 
 impl Hybrid {
@@ -58,7 +60,8 @@ impl Hybrid {
             k = end;
         }
         let seconds = vec![0.0; styles.len()];
-        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds, sublists: vec![], sublists_of: None, sublists_typ: vec![] })
+        let modify = vec![None; styles.len()];
+        Ok(Hybrid { overlay, styles, assigned: vec![], none: vec![], ntypes: 0, seconds, sublists: vec![], sublists_of: None, sublists_typ: vec![], modify })
     }
 
     fn grow(&mut self, n: usize) {
@@ -92,11 +95,16 @@ impl Hybrid {
         if w.text == "none" {
             return Ok(None);
         }
+        self.pick_named(args, &w, "pair_coeff")
+    }
+
+    /// The sub-style named `w` (its instance number next in `args` when listed more than once).
+    fn pick_named(&self, args: &mut Args, w: &Word, command: &str) -> DResult<Option<usize>> {
         let matches: Vec<usize> = (0..self.styles.len()).filter(|&k| self.styles[k].style() == w.text).collect();
         match matches.len() {
             0 => {
                 let names: Vec<&str> = self.styles.iter().map(|s| s.style()).collect();
-                Err(args.error_at(w, format!("pair_coeff names `{}`, which is not a sub-style of this pair_style", w.text), format!("sub-styles: {}", names.join(", "))))
+                Err(args.error_at(w, format!("{command} names `{}`, which is not a sub-style of this pair_style", w.text), format!("sub-styles: {}", names.join(", "))))
             }
             1 => Ok(Some(matches[0])),
             n => {
@@ -170,6 +178,14 @@ impl PairStyle for Hybrid {
         self.styles.iter().flat_map(|s| s.sub_styles()).collect()
     }
 
+    fn sub_modify(&mut self, args: &mut Args, global: &PairModify) -> DResult<&mut PairModify> {
+        let w = args.word("sub-style name")?;
+        let k = self.pick_named(args, &w, "pair_modify pair")?.expect("a named sub-style");
+        Ok(self.modify[k].get_or_insert(*global))
+    }
+    fn each_sub_modify(&mut self, f: &mut dyn FnMut(&mut PairModify)) {
+        self.modify.iter_mut().flatten().for_each(f);
+    }
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()> {
         self.grow(ihi.max(jhi));
         let s = self.ntypes + 1;
@@ -234,8 +250,8 @@ impl PairStyle for Hybrid {
                 }
             }
         }
-        for (style, active) in self.styles.iter_mut().zip(&self.assigned) {
-            style.init(ntypes, modify, Some(active)).map_err(|e| format!("{e} (sub-style {})", style.style()))?;
+        for ((style, active), own) in self.styles.iter_mut().zip(&self.assigned).zip(&self.modify) {
+            style.init(ntypes, own.as_ref().unwrap_or(modify), Some(active)).map_err(|e| format!("{e} (sub-style {})", style.style()))?;
         }
         check_density_diffusion(&self.styles)
     }

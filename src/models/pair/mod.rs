@@ -64,8 +64,8 @@ impl MixRule {
     }
 }
 
-/// `pair_modify` settings shared by all styles.
-#[derive(Clone, Debug)]
+/// `pair_modify` settings: the style's, or one hybrid sub-style's (`pair_modify pair M ...`).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PairModify {
     pub mix: MixRule,
     pub shift: bool,
@@ -227,6 +227,16 @@ pub trait PairStyle: Send + Sync {
     fn sub_styles(&self) -> Vec<&str> {
         vec![self.style()]
     }
+    /// `pair_modify pair M [k] ...`: the settings of the hybrid sub-style named by the next
+    /// words of `args` (its instance number `k` when it is listed more than once), made from
+    /// `global` the first time. Other styles have no sub-styles (LAMMPS' error).
+    fn sub_modify(&mut self, args: &mut Args, _global: &PairModify) -> DResult<&mut PairModify> {
+        let w = args.word("sub-style name")?;
+        Err(args.error_at(w, "pair_modify pair can only be used with pair_style hybrid or hybrid/overlay", "not a hybrid pair style"))
+    }
+    /// The sub-styles' own settings (`pair_modify pair`), each changed with the keywords of a
+    /// `pair_modify` without `pair`, which apply to every sub-style too.
+    fn each_sub_modify(&mut self, _f: &mut dyn FnMut(&mut PairModify)) {}
     /// `pair_coeff I J args...` with the type ranges already parsed (`args` starts after them).
     fn coeff(&mut self, ilo: usize, ihi: usize, jlo: usize, jhi: usize, args: &mut Args) -> DResult<()>;
     /// A per-type-pair parameter that fix adapt may change (LAMMPS' Pair::extract with

@@ -95,21 +95,21 @@ impl Hybrid {
         if w.text == "none" {
             return Ok(None);
         }
-        self.pick_named(args, &w, "pair_coeff")
+        self.pick_named(args, &w, "pair_coeff").map(Some)
     }
 
     /// The sub-style named `w` (its instance number next in `args` when listed more than once).
-    fn pick_named(&self, args: &mut Args, w: &Word, command: &str) -> DResult<Option<usize>> {
+    fn pick_named(&self, args: &mut Args, w: &Word, command: &str) -> DResult<usize> {
         let matches: Vec<usize> = (0..self.styles.len()).filter(|&k| self.styles[k].style() == w.text).collect();
         match matches.len() {
             0 => {
                 let names: Vec<&str> = self.styles.iter().map(|s| s.style()).collect();
                 Err(args.error_at(w, format!("{command} names `{}`, which is not a sub-style of this pair_style", w.text), format!("sub-styles: {}", names.join(", "))))
             }
-            1 => Ok(Some(matches[0])),
+            1 => Ok(matches[0]),
             n => {
                 let k = args.i64_in("sub-style index", 1, n as i64)? as usize;
-                Ok(Some(matches[k - 1]))
+                Ok(matches[k - 1])
             }
         }
     }
@@ -180,7 +180,7 @@ impl PairStyle for Hybrid {
 
     fn sub_modify(&mut self, args: &mut Args, global: &PairModify) -> DResult<&mut PairModify> {
         let w = args.word("sub-style name")?;
-        let k = self.pick_named(args, &w, "pair_modify pair")?.expect("a named sub-style");
+        let k = self.pick_named(args, &w, "pair_modify pair")?;
         Ok(self.modify[k].get_or_insert(*global))
     }
     fn each_sub_modify(&mut self, f: &mut dyn FnMut(&mut PairModify)) {

@@ -22,14 +22,19 @@ fn options() -> DeckOptions {
 
 /// Run `deck` on `n` ranks; every rank's outcome (or its error), by rank.
 fn on_ranks(deck: &str, n: usize) -> Vec<Result<Outcome, String>> {
+    on_ranks_with(deck, n, &options())
+}
+
+/// [`on_ranks`] with the deck options `opts` (a folder for its relative paths, variables).
+fn on_ranks_with(deck: &str, n: usize, opts: &DeckOptions) -> Vec<Result<Outcome, String>> {
     let world = Threads::world(n);
     let handles: Vec<_> = world
         .into_iter()
         .map(|c| {
-            let deck = deck.to_string();
+            let (deck, opts) = (deck.to_string(), opts.clone());
             std::thread::spawn(move || {
                 let comm: Arc<dyn Comm> = Arc::new(c);
-                match run_text_on("deck", &deck, &options(), Some(comm)) {
+                match run_text_on("deck", &deck, &opts, Some(comm)) {
                     Ok(run) => Ok(outcome(&run)),
                     Err(f) => Err(f.rendered),
                 }
@@ -40,7 +45,11 @@ fn on_ranks(deck: &str, n: usize) -> Vec<Result<Outcome, String>> {
 }
 
 fn serial(deck: &str) -> Outcome {
-    outcome(&dmhs::deck::run_text("deck", deck, &options()).unwrap_or_else(|f| panic!("{}", f.rendered)))
+    serial_with(deck, &options())
+}
+
+fn serial_with(deck: &str, opts: &DeckOptions) -> Outcome {
+    outcome(&dmhs::deck::run_text("deck", deck, opts).unwrap_or_else(|f| panic!("{}", f.rendered)))
 }
 
 /// The numbers of the thermo rows (lines that start with a step number).
@@ -102,10 +111,15 @@ fn compare(deck: &str, ranks: usize) {
 /// [`compare`] of `serial_deck` run serially with `ranks_deck` run on ranks (decks that differ
 /// only in where they write), the atoms' positions and velocities within `atom_tol`.
 fn compare_decks(serial_deck: &str, ranks_deck: &str, ranks: usize, atom_tol: f64) {
-    let (text0, atoms0) = serial(serial_deck);
+    compare_decks_with(serial_deck, ranks_deck, ranks, atom_tol, &options());
+}
+
+/// [`compare_decks`] with the deck options `opts`.
+fn compare_decks_with(serial_deck: &str, ranks_deck: &str, ranks: usize, atom_tol: f64, opts: &DeckOptions) {
+    let (text0, atoms0) = serial_with(serial_deck, opts);
     let rows0 = thermo_rows(&text0);
     assert!(rows0.len() >= 7, "serial thermo rows: {text0}");
-    let results = on_ranks(ranks_deck, ranks);
+    let results = on_ranks_with(ranks_deck, ranks, opts);
     let errors: Vec<String> = results.iter().enumerate().filter_map(|(k, r)| r.as_ref().err().map(|e| format!("rank {k}: {e}"))).collect();
     assert!(errors.is_empty(), "{ranks} ranks:\n{}", errors.join("\n"));
     for (rank, r) in results.into_iter().enumerate() {
@@ -135,7 +149,12 @@ fn compare_decks(serial_deck: &str, ranks_deck: &str, ranks: usize, atom_tol: f6
 
 /// The errors of a deck each of `n` thread-ranks must refuse (a rank that runs it fails the test).
 fn refusals(deck: &str, n: usize) -> Vec<String> {
-    on_ranks(deck, n).into_iter().map(|r| r.err().expect("refused")).collect()
+    refusals_with(deck, n, &options())
+}
+
+/// [`refusals`] with the deck options `opts`.
+fn refusals_with(deck: &str, n: usize, opts: &DeckOptions) -> Vec<String> {
+    on_ranks_with(deck, n, opts).into_iter().map(|r| r.err().expect("refused")).collect()
 }
 
 /// The `--features mpi` build (DMHS_MPI_BIN) and the launcher (DMHS_MPIEXEC, default `mpiexec`)
@@ -1799,25 +1818,14 @@ run          800
     compare(granular, 4);
 }
 
-/// A deck of lammps-refs/decks with its data files read from there, `nsteps` steps per run and
-/// thermo every `every` steps.
-fn refs_deck(name: &str, nsteps: usize, every: usize) -> String {
+/// A deck of lammps-refs/decks with thermo every `every` steps, and the options that run it
+/// there (its files read from that folder) with `nsteps` steps per run.
+fn refs_deck(name: &str, nsteps: usize, every: usize) -> (String, DeckOptions) {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lammps-refs/decks");
     let text = std::fs::read_to_string(dir.join(format!("in.{name}"))).unwrap();
-    let mut out = String::new();
-    for line in text.lines() {
-        let w: Vec<&str> = line.split_whitespace().collect();
-        let line = match w.as_slice() {
-            ["read_data", file, rest @ ..] => format!("read_data {}/{file} {}", dir.display(), rest.join(" ")),
-            ["molecule", id, file, rest @ ..] => format!("molecule {id} {}/{file} {}", dir.display(), rest.join(" ")),
-            ["variable", "nsteps", "index", _] => format!("variable nsteps index {nsteps}"),
-            ["thermo", _] => format!("thermo {every}"),
-            _ => line.to_string(),
-        };
-        out += &line;
-        out.push('\n');
-    }
-    out
+    let text: String = text.lines().map(|l| if l.split_whitespace().next() == Some("thermo") && l.split_whitespace().count() == 2 { format!("thermo {every}\n") } else { format!("{l}\n") }).collect();
+    let opts = DeckOptions { base_dir: Some(dir), vars: vec![("nsteps".into(), vec![nsteps.to_string()])], ..options() };
+    (text, opts)
 }
 
 /// Rigid bodies on ranks (fix rigid and rigid/small with their nve, nvt, npt and nph steps,
@@ -1840,15 +1848,16 @@ fn rigid_bodies_on_ranks_are_the_serial_run() {
         ("rigid_small_reinit", 2),
     ] {
         eprintln!("{name} on {ranks} ranks");
-        let deck = refs_deck(name, 150, 25);
-        compare_decks(&deck, &deck, ranks, 1e-9);
+        let (deck, opts) = refs_deck(name, 150, 25);
+        compare_decks_with(&deck, &deck, ranks, 1e-9, &opts);
     }
 }
 
 /// A rigid fix that inserts bodies from a molecule template stays refused on ranks.
 #[test]
 fn rigid_bodies_from_a_template_are_refused_on_ranks() {
-    for e in refusals(&refs_deck("rigid_deposit", 100, 25), 2) {
+    let (deck, opts) = refs_deck("rigid_deposit", 100, 25);
+    for e in refusals_with(&deck, 2, &opts) {
         assert!(e.contains("with a molecule template (mol) cannot run on 2 ranks yet"), "{e}");
     }
 }
